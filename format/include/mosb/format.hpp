@@ -1,0 +1,161 @@
+// The on-disk layout of mosb format 1.0: the one source of truth that spec/FORMAT.md describes.
+// Everything here is plain data with fixed sizes; every multi-byte field is little-endian.
+#pragma once
+
+#include <array>
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string_view>
+
+namespace mosb::format {
+
+static_assert(std::endian::native == std::endian::little,
+              "mosb maps files zero-copy and therefore needs a little-endian host");
+
+inline constexpr std::uint16_t kVersionMajor = 1;
+inline constexpr std::uint16_t kVersionMinor = 0;
+
+// PNG-style: a high-bit byte catches 7-bit transfers, CR LF catches CRLF->LF conversion,
+// the lone LF catches LF->CRLF conversion, 0x1A stops `type` on DOS.
+inline constexpr std::array<std::uint8_t, 8> kMagic = {0x89, 'M', 'O', 'S', 0x0D, 0x0A, 0x1A, 0x0A};
+// Stored as the bytes 04 03 02 01; a reader that sees 01 02 03 04 has a byte-swapped file.
+inline constexpr std::uint32_t kByteOrderMark = 0x01020304;
+
+inline constexpr std::uint64_t kAlignment = 64;
+inline constexpr std::uint32_t kHeaderSize = 128;
+inline constexpr std::size_t kHeaderChecksumOffset = 120;
+inline constexpr std::size_t kNameSize = 24;
+
+enum class FileKind : std::uint32_t { instance = 1 };
+
+// Required features: a reader refuses a file with a required bit it does not know.
+enum RequiredFeature : std::uint64_t {
+  kFeatureZstdSections = 1ULL << 0,  // some section has encoding zstd (a packed file)
+};
+inline constexpr std::uint64_t kKnownRequiredFeatures = kFeatureZstdSections;
+// No optional features are defined in 1.0; readers ignore unknown optional bits.
+
+struct FileHeader {
+  std::array<std::uint8_t, 8> magic;
+  std::uint32_t byte_order_mark;
+  std::uint16_t version_major;
+  std::uint16_t version_minor;
+  std::uint32_t header_size;
+  std::uint32_t file_kind;
+  std::uint64_t required_features;
+  std::uint64_t optional_features;
+  std::uint64_t file_size;
+  std::uint64_t table_offset;
+  std::uint32_t section_count;
+  std::uint32_t objective_count;
+  std::uint64_t vertex_count;
+  std::uint64_t arc_count;
+  std::array<std::uint8_t, 40> reserved;
+  std::uint64_t header_checksum;  // XXH3-64 of header bytes [0, 120) followed by the section table
+};
+static_assert(sizeof(FileHeader) == kHeaderSize);
+static_assert(offsetof(FileHeader, byte_order_mark) == 8);
+static_assert(offsetof(FileHeader, version_major) == 12);
+static_assert(offsetof(FileHeader, header_size) == 16);
+static_assert(offsetof(FileHeader, file_kind) == 20);
+static_assert(offsetof(FileHeader, required_features) == 24);
+static_assert(offsetof(FileHeader, optional_features) == 32);
+static_assert(offsetof(FileHeader, file_size) == 40);
+static_assert(offsetof(FileHeader, table_offset) == 48);
+static_assert(offsetof(FileHeader, section_count) == 56);
+static_assert(offsetof(FileHeader, objective_count) == 60);
+static_assert(offsetof(FileHeader, vertex_count) == 64);
+static_assert(offsetof(FileHeader, arc_count) == 72);
+static_assert(offsetof(FileHeader, reserved) == 80);
+static_assert(offsetof(FileHeader, header_checksum) == kHeaderChecksumOffset);
+
+enum class SectionKind : std::uint16_t {
+  metadata = 1,         // u8 x 1: UTF-8 "key=value\n" lines, sorted by key
+  forward_offsets = 2,  // u64 x 1, n+1 rows: first outgoing arc of each vertex
+  forward_targets = 3,  // u32 x 1, m rows: head of each arc
+  reverse_offsets = 4,  // u64 x 1, n+1 rows: first incoming entry of each vertex
+  reverse_sources = 5,  // u32 x 1, m rows: tail of each incoming arc
+  reverse_arcs = 6,     // u32 x 1, m rows: forward arc id of each incoming arc
+  cost = 7,             // unsigned or float x 1, m rows: one objective, named by the section
+  vertex_data = 8,      // any type x width, n rows
+  arc_data = 9,         // any type x width, m rows
+  queries = 10,         // u32 x 2, one row per (start, goal) pair
+};
+
+enum class ElementType : std::uint8_t {
+  u8 = 1, u16 = 2, u32 = 3, u64 = 4,
+  i8 = 5, i16 = 6, i32 = 7, i64 = 8,
+  f32 = 9, f64 = 10,
+};
+
+enum class Encoding : std::uint8_t {
+  raw = 0,   // the stored bytes are the elements
+  zstd = 1,  // the stored bytes are one zstd frame that decompresses to the elements
+};
+
+struct SectionEntry {
+  std::array<char, kNameSize> name;  // UTF-8, NUL-padded, 1..24 bytes, no NUL inside
+  std::uint16_t kind;
+  std::uint8_t element_type;
+  std::uint8_t encoding;
+  std::uint32_t row_width;  // elements per row, >= 1
+  std::uint64_t row_count;
+  std::uint64_t offset;         // from the start of the file, a multiple of kAlignment
+  std::uint64_t stored_length;  // bytes on disk
+  std::uint64_t checksum;       // XXH3-64 (seed 0) of the decoded elements
+};
+static_assert(sizeof(SectionEntry) == 64);
+static_assert(offsetof(SectionEntry, kind) == 24);
+static_assert(offsetof(SectionEntry, element_type) == 26);
+static_assert(offsetof(SectionEntry, encoding) == 27);
+static_assert(offsetof(SectionEntry, row_width) == 28);
+static_assert(offsetof(SectionEntry, row_count) == 32);
+static_assert(offsetof(SectionEntry, offset) == 40);
+static_assert(offsetof(SectionEntry, stored_length) == 48);
+static_assert(offsetof(SectionEntry, checksum) == 56);
+
+// The name without its NUL padding.
+inline std::string_view name_of(const SectionEntry& e) {
+  std::size_t length = 0;
+  while (length < kNameSize && e.name[length] != '\0') ++length;
+  return {e.name.data(), length};
+}
+
+constexpr std::size_t element_size(ElementType t) {
+  switch (t) {
+    case ElementType::u8: case ElementType::i8: return 1;
+    case ElementType::u16: case ElementType::i16: return 2;
+    case ElementType::u32: case ElementType::i32: case ElementType::f32: return 4;
+    case ElementType::u64: case ElementType::i64: case ElementType::f64: return 8;
+  }
+  return 0;
+}
+
+constexpr bool is_float(ElementType t) { return t == ElementType::f32 || t == ElementType::f64; }
+constexpr bool is_unsigned(ElementType t) {
+  return t == ElementType::u8 || t == ElementType::u16 || t == ElementType::u32 || t == ElementType::u64;
+}
+
+std::optional<ElementType> element_type_from(std::uint8_t raw);
+std::optional<SectionKind> section_kind_from(std::uint16_t raw);
+std::string_view to_string(ElementType t);
+std::string_view to_string(SectionKind k);
+std::optional<ElementType> parse_element_type(std::string_view name);
+
+template <class T> constexpr ElementType element_type_of();
+template <> constexpr ElementType element_type_of<std::uint8_t>() { return ElementType::u8; }
+template <> constexpr ElementType element_type_of<std::uint16_t>() { return ElementType::u16; }
+template <> constexpr ElementType element_type_of<std::uint32_t>() { return ElementType::u32; }
+template <> constexpr ElementType element_type_of<std::uint64_t>() { return ElementType::u64; }
+template <> constexpr ElementType element_type_of<std::int8_t>() { return ElementType::i8; }
+template <> constexpr ElementType element_type_of<std::int16_t>() { return ElementType::i16; }
+template <> constexpr ElementType element_type_of<std::int32_t>() { return ElementType::i32; }
+template <> constexpr ElementType element_type_of<std::int64_t>() { return ElementType::i64; }
+template <> constexpr ElementType element_type_of<float>() { return ElementType::f32; }
+template <> constexpr ElementType element_type_of<double>() { return ElementType::f64; }
+
+constexpr std::uint64_t align_up(std::uint64_t x) { return (x + kAlignment - 1) / kAlignment * kAlignment; }
+
+}  // namespace mosb::format

@@ -1,0 +1,55 @@
+#include "mosb/format.hpp"
+
+namespace mosb::format {
+
+std::optional<ElementType> element_type_from(std::uint8_t raw) {
+  if (raw >= 1 && raw <= 10) return static_cast<ElementType>(raw);
+  return std::nullopt;
+}
+
+std::optional<SectionKind> section_kind_from(std::uint16_t raw) {
+  if (raw >= 1 && raw <= 10) return static_cast<SectionKind>(raw);
+  return std::nullopt;
+}
+
+std::string_view to_string(ElementType t) {
+  switch (t) {
+    case ElementType::u8: return "u8";
+    case ElementType::u16: return "u16";
+    case ElementType::u32: return "u32";
+    case ElementType::u64: return "u64";
+    case ElementType::i8: return "i8";
+    case ElementType::i16: return "i16";
+    case ElementType::i32: return "i32";
+    case ElementType::i64: return "i64";
+    case ElementType::f32: return "f32";
+    case ElementType::f64: return "f64";
+  }
+  return "?";
+}
+
+std::string_view to_string(SectionKind k) {
+  switch (k) {
+    case SectionKind::metadata: return "metadata";
+    case SectionKind::forward_offsets: return "forward_offsets";
+    case SectionKind::forward_targets: return "forward_targets";
+    case SectionKind::reverse_offsets: return "reverse_offsets";
+    case SectionKind::reverse_sources: return "reverse_sources";
+    case SectionKind::reverse_arcs: return "reverse_arcs";
+    case SectionKind::cost: return "cost";
+    case SectionKind::vertex_data: return "vertex_data";
+    case SectionKind::arc_data: return "arc_data";
+    case SectionKind::queries: return "queries";
+  }
+  return "?";
+}
+
+std::optional<ElementType> parse_element_type(std::string_view name) {
+  for (std::uint8_t raw = 1; raw <= 10; ++raw) {
+    auto t = static_cast<ElementType>(raw);
+    if (to_string(t) == name) return t;
+  }
+  return std::nullopt;
+}
+
+}  // namespace mosb::format

@@ -1,0 +1,63 @@
+// Streams sections into a new mosb file. The file appears under its final name only when commit()
+// succeeds; until then it lives under a temporary name in the same directory, removed on failure.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "mosb/format.hpp"
+
+struct XXH3_state_s;
+
+namespace mosb {
+
+class FileWriter {
+ public:
+  explicit FileWriter(std::filesystem::path target);
+  ~FileWriter();
+  FileWriter(const FileWriter&) = delete;
+  FileWriter& operator=(const FileWriter&) = delete;
+
+  void begin_section(format::SectionKind kind, std::string_view name, format::ElementType type,
+                     std::uint32_t row_width);
+  void append(std::span<const std::byte> bytes);
+  template <class T>
+  void append_values(std::span<const T> values) {
+    append(std::as_bytes(values));
+  }
+  void end_section();
+
+  template <class T>
+  void add_section(format::SectionKind kind, std::string_view name, std::uint32_t row_width,
+                   std::span<const T> values) {
+    begin_section(kind, name, format::element_type_of<T>(), row_width);
+    append_values(values);
+    end_section();
+  }
+
+  // Writes the table and header, then renames the file into place.
+  void commit(std::uint64_t vertex_count, std::uint64_t arc_count);
+
+ private:
+  void write_at_end(const void* data, std::size_t size);
+  void flush_buffer();
+  [[noreturn]] void fail(const std::string& what) const;
+
+  std::filesystem::path target_;
+  std::filesystem::path temporary_;
+  int fd_ = -1;
+  bool committed_ = false;
+  std::uint64_t position_ = 0;  // bytes written or buffered so far
+  std::vector<std::byte> buffer_;
+  std::vector<format::SectionEntry> table_;
+  bool in_section_ = false;
+  std::uint64_t section_bytes_ = 0;
+  XXH3_state_s* hash_state_ = nullptr;
+};
+
+}  // namespace mosb

@@ -1,0 +1,66 @@
+// Turns an arc list with per-objective costs into a canonical mosb instance file: forward CSR
+// (stable by tail), its exact transpose, one cost column per objective in the narrowest lossless type.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <span>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "mosb/format.hpp"
+#include "mosb/metadata.hpp"
+#include "mosb/query.hpp"
+
+namespace mosb {
+
+struct CostColumn {
+  std::string name;
+  std::string unit;
+  // Integers or reals, in input arc order.
+  std::variant<std::vector<std::uint64_t>, std::vector<double>> values;
+  std::optional<format::ElementType> forced_type;
+};
+
+// Raw little-endian rows of `width` elements of `type`; one row per vertex, or per input arc.
+struct DataColumn {
+  std::string name;
+  format::ElementType type = format::ElementType::u32;
+  std::uint32_t width = 1;
+  std::vector<std::byte> bytes;
+
+  template <class T>
+  static DataColumn from(std::string name, std::uint32_t width, const std::vector<T>& values) {
+    DataColumn c{std::move(name), format::element_type_of<T>(), width, {}};
+    auto raw = std::as_bytes(std::span(values));
+    c.bytes.assign(raw.begin(), raw.end());
+    return c;
+  }
+};
+
+struct QuerySet {
+  std::string name;
+  std::vector<Query> pairs;
+};
+
+struct GraphInput {
+  std::uint64_t vertex_count = 0;
+  std::vector<std::uint32_t> tails;
+  std::vector<std::uint32_t> heads;
+  std::vector<CostColumn> costs;
+  std::vector<DataColumn> vertex_data;
+  std::vector<DataColumn> arc_data;
+  std::vector<QuerySet> queries;
+  Metadata metadata;  // objective units and the writing tool are added by write_graph
+};
+
+// The type a cost column is stored in (forced, or the narrowest lossless one); throws mosb::Error
+// naming the column when values do not fit, are negative or are not finite.
+format::ElementType choose_cost_type(const CostColumn& column);
+
+// Validates the input and writes the instance atomically to `path`.
+void write_graph(const GraphInput& input, const std::filesystem::path& path);
+
+}  // namespace mosb

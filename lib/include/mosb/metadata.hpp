@@ -1,0 +1,41 @@
+// The metadata section: sorted, unique `key=value` lines (spec/FORMAT.md §7).
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace mosb {
+
+class Metadata {
+ public:
+  void set(std::string_view key, std::string_view value);
+  std::optional<std::string> get(std::string_view key) const;
+  const std::map<std::string, std::string, std::less<>>& entries() const { return entries_; }
+
+  std::string serialize() const;
+  // Throws mosb::Error("metadata line N: ...") on text that breaks §7.
+  static Metadata parse(std::string_view text);
+
+  // Keys and section names share one alphabet: [A-Za-z0-9_.+-].
+  static bool is_name_char(char c);
+  static bool is_valid_key(std::string_view key);
+
+ private:
+  std::map<std::string, std::string, std::less<>> entries_;
+};
+
+}  // namespace mosb
+
+#include <vector>
+
+namespace mosb {
+
+// The first view (§7 `view.*` keys) that names a missing objective or query set, as a message;
+// nullopt when every view is sound.
+std::optional<std::string> find_view_problem(const Metadata& metadata,
+                                             const std::vector<std::string>& objective_names,
+                                             const std::vector<std::string>& query_set_names);
+
+}  // namespace mosb

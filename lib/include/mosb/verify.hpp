@@ -1,0 +1,20 @@
+// Full verification: every checksum and every structural rule of spec/FORMAT.md §9, over the whole
+// file. Separate from opening, which stays O(1) in the file size.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "mosb/graph_reader.hpp"
+
+namespace mosb {
+
+enum class VerifyLevel { header, checksums, structure, full };
+
+std::optional<VerifyLevel> parse_verify_level(std::string_view text);
+
+// The first problem found, as "section 'NAME': [rule] detail"; nullopt when the file passes.
+std::optional<std::string> verify(const GraphReader& reader, VerifyLevel level);
+
+}  // namespace mosb

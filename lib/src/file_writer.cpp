@@ -1,0 +1,157 @@
+#include "mosb/file_writer.hpp"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <xxhash.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+
+#include "mosb/error.hpp"
+#include "mosb/metadata.hpp"
+
+namespace mosb {
+
+namespace {
+constexpr std::size_t kBufferSize = 1 << 20;
+}
+
+FileWriter::FileWriter(std::filesystem::path target) : target_(std::move(target)) {
+  auto directory = target_.parent_path();
+  if (directory.empty()) directory = ".";
+  std::string pattern = (directory / ("." + target_.filename().string() + ".tmp-XXXXXX")).string();
+  fd_ = ::mkstemp(pattern.data());
+  if (fd_ < 0) throw Error(target_.string() + ": cannot create a temporary file in '" +
+                           directory.string() + "': " + std::strerror(errno));
+  temporary_ = pattern;
+  ::fchmod(fd_, 0644);
+  hash_state_ = XXH3_createState();
+  buffer_.reserve(kBufferSize);
+  // The header is written last, at commit; until then its bytes are zero, so a partial file never
+  // carries a valid magic.
+  std::byte zeros[format::kHeaderSize] = {};
+  write_at_end(zeros, sizeof zeros);
+}
+
+FileWriter::~FileWriter() {
+  if (fd_ >= 0) ::close(fd_);
+  if (!committed_ && !temporary_.empty()) ::unlink(temporary_.c_str());
+  XXH3_freeState(hash_state_);
+}
+
+void FileWriter::fail(const std::string& what) const {
+  throw Error(target_.string() + ": " + what);
+}
+
+void FileWriter::flush_buffer() {
+  const std::byte* data = buffer_.data();
+  std::size_t left = buffer_.size();
+  while (left > 0) {
+    ssize_t written = ::write(fd_, data, left);
+    if (written < 0) {
+      if (errno == EINTR) continue;
+      fail(std::string("write failed: ") + std::strerror(errno));
+    }
+    data += written;
+    left -= static_cast<std::size_t>(written);
+  }
+  buffer_.clear();
+}
+
+void FileWriter::write_at_end(const void* data, std::size_t size) {
+  const auto* bytes = static_cast<const std::byte*>(data);
+  position_ += size;
+  while (size > 0) {
+    std::size_t chunk = std::min(size, kBufferSize - buffer_.size());
+    buffer_.insert(buffer_.end(), bytes, bytes + chunk);
+    bytes += chunk;
+    size -= chunk;
+    if (buffer_.size() == kBufferSize) flush_buffer();
+  }
+}
+
+void FileWriter::begin_section(format::SectionKind kind, std::string_view name,
+                               format::ElementType type, std::uint32_t row_width) {
+  if (in_section_) fail("internal error: section '" + std::string(name) + "' begun inside another");
+  if (name.empty() || name.size() > format::kNameSize || !Metadata::is_valid_key(name))
+    fail("invalid section name '" + std::string(name) + "' (1-24 characters from [A-Za-z0-9_.+-])");
+  if (row_width == 0) fail("section '" + std::string(name) + "' has row width 0");
+  static constexpr std::byte zeros[format::kAlignment] = {};
+  write_at_end(zeros, format::align_up(position_) - position_);
+
+  format::SectionEntry entry{};
+  std::copy(name.begin(), name.end(), entry.name.begin());
+  entry.kind = static_cast<std::uint16_t>(kind);
+  entry.element_type = static_cast<std::uint8_t>(type);
+  entry.encoding = static_cast<std::uint8_t>(format::Encoding::raw);
+  entry.row_width = row_width;
+  entry.offset = position_;
+  table_.push_back(entry);
+  in_section_ = true;
+  section_bytes_ = 0;
+  XXH3_64bits_reset(hash_state_);
+}
+
+void FileWriter::append(std::span<const std::byte> bytes) {
+  if (!in_section_) fail("internal error: data written outside a section");
+  XXH3_64bits_update(hash_state_, bytes.data(), bytes.size());
+  write_at_end(bytes.data(), bytes.size());
+  section_bytes_ += bytes.size();
+}
+
+void FileWriter::end_section() {
+  auto& entry = table_.back();
+  const std::uint64_t row_bytes =
+      entry.row_width * format::element_size(static_cast<format::ElementType>(entry.element_type));
+  if (section_bytes_ % row_bytes != 0)
+    fail("internal error: section '" + std::string(format::name_of(entry)) +
+         "' is not a whole number of rows");
+  entry.row_count = section_bytes_ / row_bytes;
+  entry.stored_length = section_bytes_;
+  entry.checksum = XXH3_64bits_digest(hash_state_);
+  in_section_ = false;
+}
+
+void FileWriter::commit(std::uint64_t vertex_count, std::uint64_t arc_count) {
+  if (in_section_) fail("internal error: commit inside a section");
+  static constexpr std::byte zeros[format::kAlignment] = {};
+  write_at_end(zeros, format::align_up(position_) - position_);
+
+  format::FileHeader header{};
+  std::copy(format::kMagic.begin(), format::kMagic.end(), header.magic.begin());
+  header.byte_order_mark = format::kByteOrderMark;
+  header.version_major = format::kVersionMajor;
+  header.version_minor = format::kVersionMinor;
+  header.header_size = format::kHeaderSize;
+  header.file_kind = static_cast<std::uint32_t>(format::FileKind::instance);
+  header.table_offset = position_;
+  header.section_count = static_cast<std::uint32_t>(table_.size());
+  header.file_size = position_ + table_.size() * sizeof(format::SectionEntry);
+  header.objective_count = static_cast<std::uint32_t>(std::count_if(
+      table_.begin(), table_.end(),
+      [](const auto& e) { return e.kind == static_cast<std::uint16_t>(format::SectionKind::cost); }));
+  header.vertex_count = vertex_count;
+  header.arc_count = arc_count;
+
+  write_at_end(table_.data(), table_.size() * sizeof(format::SectionEntry));
+  flush_buffer();
+
+  XXH3_64bits_reset(hash_state_);
+  XXH3_64bits_update(hash_state_, &header, format::kHeaderChecksumOffset);
+  XXH3_64bits_update(hash_state_, table_.data(), table_.size() * sizeof(format::SectionEntry));
+  header.header_checksum = XXH3_64bits_digest(hash_state_);
+
+  if (::pwrite(fd_, &header, sizeof header, 0) != static_cast<ssize_t>(sizeof header))
+    fail(std::string("write failed: ") + std::strerror(errno));
+  if (::fsync(fd_) != 0) fail(std::string("fsync failed: ") + std::strerror(errno));
+  ::close(fd_);
+  fd_ = -1;
+  std::error_code ec;
+  std::filesystem::rename(temporary_, target_, ec);
+  if (ec) fail("cannot rename the finished file into place: " + ec.message());
+  committed_ = true;
+}
+
+}  // namespace mosb

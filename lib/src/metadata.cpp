@@ -1,0 +1,114 @@
+#include "mosb/metadata.hpp"
+
+#include "mosb/error.hpp"
+
+namespace mosb {
+
+bool Metadata::is_name_char(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+         c == '.' || c == '+' || c == '-';
+}
+
+bool Metadata::is_valid_key(std::string_view key) {
+  if (key.empty()) return false;
+  for (char c : key)
+    if (!is_name_char(c)) return false;
+  return true;
+}
+
+void Metadata::set(std::string_view key, std::string_view value) {
+  if (!is_valid_key(key)) throw Error("invalid metadata key '" + std::string(key) + "'");
+  entries_.insert_or_assign(std::string(key), std::string(value));
+}
+
+std::optional<std::string> Metadata::get(std::string_view key) const {
+  auto it = entries_.find(key);
+  if (it == entries_.end()) return std::nullopt;
+  return it->second;
+}
+
+std::string Metadata::serialize() const {
+  std::string out;
+  for (const auto& [key, value] : entries_) {
+    out += key;
+    out += '=';
+    for (char c : value) {
+      if (c == '\\') out += "\\\\";
+      else if (c == '\n') out += "\\n";
+      else out += c;
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+Metadata Metadata::parse(std::string_view text) {
+  Metadata result;
+  std::string previous_key;
+  std::size_t line_number = 0;
+  while (!text.empty()) {
+    ++line_number;
+    const auto where = "metadata line " + std::to_string(line_number) + ": ";
+    auto end = text.find('\n');
+    if (end == std::string_view::npos) throw Error(where + "missing final newline");
+    std::string_view line = text.substr(0, end);
+    text.remove_prefix(end + 1);
+    auto eq = line.find('=');
+    if (eq == std::string_view::npos) throw Error(where + "no '=' in line");
+    std::string_view key = line.substr(0, eq);
+    if (!is_valid_key(key)) throw Error(where + "invalid key '" + std::string(key) + "'");
+    if (line_number > 1 && key <= previous_key)
+      throw Error(where + "key '" + std::string(key) + "' is not in sorted order or repeated");
+    std::string value;
+    for (std::size_t i = eq + 1; i < line.size(); ++i) {
+      if (line[i] != '\\') {
+        value += line[i];
+        continue;
+      }
+      if (++i == line.size()) throw Error(where + "dangling '\\' at end of value");
+      if (line[i] == '\\') value += '\\';
+      else if (line[i] == 'n') value += '\n';
+      else throw Error(where + "unknown escape '\\" + std::string(1, line[i]) + "'");
+    }
+    previous_key = std::string(key);
+    result.entries_.emplace(previous_key, std::move(value));
+  }
+  return result;
+}
+
+}  // namespace mosb
+
+namespace mosb {
+
+std::optional<std::string> find_view_problem(const Metadata& metadata,
+                                             const std::vector<std::string>& objective_names,
+                                             const std::vector<std::string>& query_set_names) {
+  auto contains = [](const std::vector<std::string>& names, std::string_view name) {
+    for (const auto& n : names)
+      if (n == name) return true;
+    return false;
+  };
+  for (const auto& [key, value] : metadata.entries()) {
+    if (!key.starts_with("view.")) continue;
+    if (key.ends_with(".objectives")) {
+      if (value.empty()) return "metadata key '" + key + "' lists no objective";
+      std::string_view rest = value;
+      while (true) {
+        auto comma = rest.find(',');
+        auto name = rest.substr(0, comma);
+        if (!contains(objective_names, name))
+          return "metadata key '" + key + "' names objective '" + std::string(name) +
+                 "', which is not a cost section";
+        if (comma == std::string_view::npos) break;
+        rest.remove_prefix(comma + 1);
+      }
+    } else if (key.ends_with(".queries")) {
+      if (!contains(query_set_names, value))
+        return "metadata key '" + key + "' names query set '" + value +
+               "', which is not a queries section";
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace mosb

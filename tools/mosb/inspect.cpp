@@ -1,0 +1,125 @@
+#include <CLI/CLI.hpp>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+
+#include "commands.hpp"
+#include "json_writer.hpp"
+#include "mosb/graph_reader.hpp"
+
+namespace mosb::cli {
+
+namespace {
+
+std::string hex64(std::uint64_t value) {
+  std::ostringstream out;
+  out << std::hex << std::setw(16) << std::setfill('0') << value;
+  return out.str();
+}
+
+std::string kind_name(const Section& s) {
+  return s.kind ? std::string(format::to_string(*s.kind)) : "unknown(" + std::to_string(s.entry.kind) + ")";
+}
+
+std::string version(const GraphReader& r) {
+  return std::to_string(r.header().version_major) + "." + std::to_string(r.header().version_minor);
+}
+
+void print_text(const GraphReader& r) {
+  const auto& metadata = r.metadata();
+  std::cout << "file        " << r.display_name() << '\n'
+            << "format      " << version(r) << "\n"
+            << "digest      " << r.digest() << '\n'
+            << "benchmark   " << metadata.get("benchmark").value_or("") << '\n'
+            << "family      " << metadata.get("family").value_or("") << '\n'
+            << "vertices    " << r.vertex_count() << '\n'
+            << "arcs        " << r.arc_count() << '\n'
+            << "objectives  " << r.objective_count() << '\n';
+  for (std::size_t i = 0; i < r.objective_count(); ++i) {
+    const auto& s = r.objective(i);
+    std::cout << "  " << i << "  " << std::left << std::setw(24) << s.name << std::setw(5)
+              << format::to_string(s.type)
+              << "unit '" << metadata.get("objective." + s.name + ".unit").value_or("") << "'\n";
+  }
+  std::cout << "query sets\n";
+  for (const auto* s : r.all(format::SectionKind::queries))
+    std::cout << "  " << std::left << std::setw(24) << s->name << s->entry.row_count << " queries\n";
+  std::cout << "sections\n"
+            << "  " << std::left << std::setw(16) << "kind" << std::setw(25) << "name"
+            << std::setw(5) << "type" << std::right << std::setw(6) << "width" << std::setw(12)
+            << "rows" << std::setw(13) << "bytes" << std::setw(13) << "offset" << "  checksum\n";
+  for (const auto& s : r.sections())
+    std::cout << "  " << std::left << std::setw(16) << kind_name(s) << std::setw(25) << s.name
+              << std::setw(5) << format::to_string(s.type) << std::right << std::setw(6)
+              << s.entry.row_width << std::setw(12) << s.entry.row_count << std::setw(13)
+              << s.entry.stored_length << std::setw(13) << s.entry.offset << "  "
+              << hex64(s.entry.checksum) << (s.is_packed() ? " (zstd)" : "") << '\n';
+  std::cout << "metadata\n";
+  for (const auto& [key, value] : metadata.entries()) std::cout << "  " << key << " = " << value << '\n';
+}
+
+void print_json(const GraphReader& r) {
+  const auto& metadata = r.metadata();
+  JsonWriter json(std::cout);
+  json.begin_object();
+  json.key("file").value(r.display_name());
+  json.key("format").value(version(r));
+  json.key("digest").value(r.digest());
+  json.key("vertices").value(r.vertex_count());
+  json.key("arcs").value(r.arc_count());
+  json.key("objectives").begin_array();
+  for (std::size_t i = 0; i < r.objective_count(); ++i) {
+    const auto& s = r.objective(i);
+    json.begin_object();
+    json.key("name").value(s.name);
+    json.key("type").value(format::to_string(s.type));
+    json.key("unit").value(metadata.get("objective." + s.name + ".unit").value_or(""));
+    json.end_object();
+  }
+  json.end_array();
+  json.key("query_sets").begin_array();
+  for (const auto* s : r.all(format::SectionKind::queries)) {
+    json.begin_object();
+    json.key("name").value(s->name);
+    json.key("queries").value(s->entry.row_count);
+    json.end_object();
+  }
+  json.end_array();
+  json.key("sections").begin_array();
+  for (const auto& s : r.sections()) {
+    json.begin_object();
+    json.key("kind").value(kind_name(s));
+    json.key("name").value(s.name);
+    json.key("type").value(format::to_string(s.type));
+    json.key("width").value(std::uint64_t{s.entry.row_width});
+    json.key("rows").value(s.entry.row_count);
+    json.key("offset").value(s.entry.offset);
+    json.key("bytes").value(s.entry.stored_length);
+    json.key("checksum").value(hex64(s.entry.checksum));
+    json.key("packed").value(s.is_packed());
+    json.end_object();
+  }
+  json.end_array();
+  json.key("metadata").begin_object();
+  for (const auto& [key, value] : metadata.entries()) json.key(key).value(value);
+  json.end_object();
+  json.end_object();
+}
+
+}  // namespace
+
+Command add_inspect(CLI::App& app) {
+  auto* sub = app.add_subcommand("inspect", "Show a file's version, digest, sections and metadata");
+  auto file = std::make_shared<std::string>();
+  auto as_json = std::make_shared<bool>(false);
+  sub->add_option("FILE", *file, "a .mosb instance")->required();
+  sub->add_flag("--json", *as_json, "print the same information as JSON");
+  return {sub, [file, as_json] {
+            const auto reader = GraphReader::open(*file);
+            if (*as_json) print_json(reader);
+            else print_text(reader);
+            return 0;
+          }};
+}
+
+}  // namespace mosb::cli

@@ -1,0 +1,79 @@
+// A minimal streaming JSON writer for `--json` output (Boost 1.74 has no Boost.JSON).
+#pragma once
+
+#include <cstdint>
+#include <ostream>
+#include <string_view>
+#include <vector>
+
+namespace mosb::cli {
+
+class JsonWriter {
+ public:
+  explicit JsonWriter(std::ostream& out) : out_(out) {}
+
+  JsonWriter& begin_object() { return open('{'); }
+  JsonWriter& end_object() { return close('}'); }
+  JsonWriter& begin_array() { return open('['); }
+  JsonWriter& end_array() { return close(']'); }
+  JsonWriter& key(std::string_view k) {
+    separate();
+    write_string(k);
+    out_ << ':';
+    after_key_ = true;
+    return *this;
+  }
+  JsonWriter& value(std::string_view v) { return scalar([&] { write_string(v); }); }
+  JsonWriter& value(const char* v) { return value(std::string_view(v)); }
+  JsonWriter& value(std::uint64_t v) { return scalar([&] { out_ << v; }); }
+  JsonWriter& value(bool v) { return scalar([&] { out_ << (v ? "true" : "false"); }); }
+
+ private:
+  template <class F>
+  JsonWriter& scalar(F write) {
+    separate();
+    write();
+    return *this;
+  }
+  JsonWriter& open(char c) {
+    separate();
+    out_ << c;
+    first_.push_back(true);
+    return *this;
+  }
+  JsonWriter& close(char c) {
+    out_ << c;
+    first_.pop_back();
+    if (first_.empty()) out_ << '\n';
+    return *this;
+  }
+  void separate() {
+    if (after_key_) {
+      after_key_ = false;
+      return;
+    }
+    if (!first_.empty()) {
+      if (!first_.back()) out_ << ',';
+      first_.back() = false;
+    }
+  }
+  void write_string(std::string_view s) {
+    out_ << '"';
+    for (unsigned char c : s) {
+      if (c == '"' || c == '\\') out_ << '\\' << c;
+      else if (c == '\n') out_ << "\\n";
+      else if (c == '\t') out_ << "\\t";
+      else if (c < 0x20) {
+        static constexpr char kHex[] = "0123456789abcdef";
+        out_ << "\\u00" << kHex[c >> 4] << kHex[c & 15];
+      } else out_ << c;
+    }
+    out_ << '"';
+  }
+
+  std::ostream& out_;
+  std::vector<bool> first_;
+  bool after_key_ = false;
+};
+
+}  // namespace mosb::cli

@@ -1,0 +1,33 @@
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "commands.hpp"
+#include "mosb/error.hpp"
+#include "mosb/version.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"mosb: multi-objective search benchmark instances in a checksummed binary format"};
+  app.set_version_flag("--version", std::string("mosb ") + mosb::kVersion);
+  app.require_subcommand(1);
+  const std::vector<mosb::cli::Command> commands = {
+      mosb::cli::add_inspect(app),
+      mosb::cli::add_verify(app),
+      mosb::cli::add_generate(app),
+  };
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    for (const auto& command : commands)
+      if (command.subcommand->parsed()) return command.run();
+  } catch (const mosb::Error& e) {
+    std::cerr << "mosb: " << e.what() << '\n';
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "mosb: internal error: " << e.what() << '\n';
+    return 1;
+  }
+  return 1;
+}
