@@ -119,8 +119,8 @@ void check_input(const GraphInput& in) {
   for (std::uint64_t a = 0; a < m; ++a)
     if (in.tails[a] >= n || in.heads[a] >= n)
       throw Error("arc " + std::to_string(a) + " (" + std::to_string(in.tails[a]) + " -> " +
-                  std::to_string(in.heads[a]) + ") has an endpoint outside 0.." +
-                  std::to_string(n) + "-1");
+                  std::to_string(in.heads[a]) + ") has an endpoint not below the vertex count " +
+                  std::to_string(n));
   check_unique_names("objective", in.costs);
   check_unique_names("vertex data", in.vertex_data);
   check_unique_names("arc data", in.arc_data);
@@ -142,7 +142,7 @@ void check_input(const GraphInput& in) {
     for (std::size_t i = 0; i < q.pairs.size(); ++i)
       if (q.pairs[i].start >= n || q.pairs[i].goal >= n)
         throw Error("query set '" + q.name + "', query " + std::to_string(i) +
-                    ": endpoint outside 0.." + std::to_string(n) + "-1");
+                    ": an endpoint is not below the vertex count " + std::to_string(n));
 }
 
 }  // namespace

@@ -98,8 +98,12 @@ void GraphReader::validate() {
     if (std::equal(magic.begin(), magic.end(), format::kMagic.rbegin()))
       fail("byte-swapped mosb file (its magic is reversed); it was written or copied with the wrong "
            "byte order");
-    if (magic[1] == 'M' && magic[2] == 'O' && magic[3] == 'S')
+    const bool mos = magic[1] == 'M' && magic[2] == 'O' && magic[3] == 'S';
+    if (mos && magic[0] == format::kMagic[0])
       fail("mosb file damaged by a text-mode transfer (line-end bytes in the magic were changed); "
+           "copy it in binary mode");
+    if (mos && magic[0] == (format::kMagic[0] & 0x7F))
+      fail("mosb file damaged by a 7-bit transfer (the high bit of its first byte was cleared); "
            "copy it in binary mode");
     fail("not a mosb file (wrong magic)");
   }
@@ -259,7 +263,7 @@ void GraphReader::validate() {
             expect(s.type == shape.type && s.entry.row_width == 1,
                    "must be " + std::string(format::to_string(shape.type)) + " x 1");
             expect_rows(shape.per_vertex_plus_one ? n + 1 : m,
-                        shape.per_vertex_plus_one ? "vertex count + 1" : "the arc count");
+                        shape.per_vertex_plus_one ? "the vertex count + 1" : "the arc count");
             structural_[slot] = i;
           }
     }

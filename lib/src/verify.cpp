@@ -84,25 +84,26 @@ Problem check_csr(const GraphReader& reader) {
   // arc ids ascend strictly within a list. With m entries in all, that makes every arc appear once.
   const Section& rs = section(SectionKind::reverse_arcs);
   const std::uint64_t m = targets.size();
+  auto broken = [&](std::uint64_t v, std::uint64_t j, const std::string& what) {
+    return in_section(rs, "reverse-transpose", "entry " + std::to_string(j) + " (vertex " +
+                                                   std::to_string(v) + ") " + what);
+  };
   for (std::uint64_t v = 0; v < n; ++v) {
     for (auto j = roffsets[v]; j < roffsets[v + 1]; ++j) {
       const std::uint32_t a = rarcs[j];
-      const std::string entry = "entry " + std::to_string(j) + " (vertex " + std::to_string(v) + ")";
-      if (a >= m)
-        return in_section(rs, "reverse-transpose", entry + " names arc " + std::to_string(a) +
-                                                       ", not below m = " + std::to_string(m));
-      if (targets[a] != v)
-        return in_section(rs, "reverse-transpose", entry + " names arc " + std::to_string(a) +
-                                                       ", which enters vertex " +
-                                                       std::to_string(targets[a]));
       const std::uint32_t u = rsources[j];
+      // One branch on the hot path; the message is built only when something is wrong.
+      if (a < m && targets[a] == v && offsets[u] <= a && a < offsets[u + 1] &&
+          (j == roffsets[v] || rarcs[j - 1] < a))
+        continue;
+      if (a >= m) return broken(v, j, "names arc " + std::to_string(a) + ", not below m = " + std::to_string(m));
+      if (targets[a] != v)
+        return broken(v, j, "names arc " + std::to_string(a) + ", which enters vertex " +
+                                std::to_string(targets[a]));
       if (!(offsets[u] <= a && a < offsets[u + 1]))
-        return in_section(rs, "reverse-transpose", entry + " says arc " + std::to_string(a) +
-                                                       " leaves vertex " + std::to_string(u) +
-                                                       ", the forward CSR disagrees");
-      if (j > roffsets[v] && rarcs[j - 1] >= a)
-        return in_section(rs, "reverse-transpose",
-                          entry + ": arc ids do not ascend (" + std::to_string(rarcs[j - 1]) +
+        return broken(v, j, "says arc " + std::to_string(a) + " leaves vertex " +
+                                std::to_string(u) + ", the forward CSR disagrees");
+      return broken(v, j, "breaks the ascending arc order (" + std::to_string(rarcs[j - 1]) +
                               " then " + std::to_string(a) + ")");
     }
   }

@@ -1,0 +1,311 @@
+// Hostile and damaged files: each must give a clear error at open or at the right verify level.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "file_patch.hpp"
+#include "mosb/converters/grid_generator.hpp"
+#include "mosb/graph_reader.hpp"
+#include "mosb/verify.hpp"
+#include "temp_dir.hpp"
+
+using namespace mosb;
+using namespace mosb::testing;
+
+namespace {
+
+Bytes grid_bytes(const TempDir& dir) {
+  write_graph(converters::generate_grid({4, 3, 2, 5}), dir / "grid.mosb");
+  return read_bytes(dir / "grid.mosb");
+}
+
+std::string open_error(const Bytes& bytes) {
+  try {
+    GraphReader::from_memory(bytes, "f.mosb");
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(opened)";
+}
+
+std::string verify_problem(const Bytes& bytes, VerifyLevel level) {
+  auto r = GraphReader::from_memory(bytes, "f.mosb");
+  return verify(r, level).value_or("(passed)");
+}
+
+}  // namespace
+
+TEST_CASE("open refuses damaged headers and tables with a message naming the problem") {
+  TempDir dir;
+  const Bytes good = grid_bytes(dir);
+  CHECK(open_error(good) == "(opened)");
+
+  SUBCASE("truncated") {
+    Bytes b(good.begin(), good.end() - 100);
+    CHECK(open_error(b) == "f.mosb: truncated: header says " + std::to_string(good.size()) +
+                               " bytes, file has " + std::to_string(b.size()));
+  }
+  SUBCASE("shorter than a header") {
+    Bytes b(good.begin(), good.begin() + 50);
+    CHECK(open_error(b).find("shorter than the 128-byte header") != std::string::npos);
+  }
+  SUBCASE("wrong magic") {
+    Bytes b = good;
+    b[1] = std::byte{'X'};
+    CHECK(open_error(b) == "f.mosb: not a mosb file (wrong magic)");
+  }
+  SUBCASE("byte-swapped magic") {
+    Bytes b = good;
+    std::reverse(b.begin(), b.begin() + 8);
+    CHECK(open_error(b).find("byte-swapped mosb file") != std::string::npos);
+  }
+  SUBCASE("byte-swapped byte-order mark") {
+    Bytes b = good;
+    std::reverse(b.begin() + 8, b.begin() + 12);
+    CHECK(open_error(b).find("byte-swapped mosb file (byte-order mark") != std::string::npos);
+  }
+  SUBCASE("CRLF to LF conversion") {
+    Bytes b = good;
+    b.erase(b.begin() + 4);  // drops the CR of the magic's CR LF
+    CHECK(open_error(b).find("text-mode transfer") != std::string::npos);
+  }
+  SUBCASE("newer major version") {
+    Bytes b = good;
+    auto h = header_of(b);
+    h.version_major = 2;
+    h.version_minor = 3;
+    set_header(b, h);
+    CHECK(open_error(b) == "f.mosb: prepared with format 2.3, this reader reads format 1.x (up to 1.0)");
+  }
+  SUBCASE("newer minor version is read") {
+    Bytes b = good;
+    auto h = header_of(b);
+    h.version_minor = 7;
+    h.optional_features = 1ULL << 9;  // unknown optional features are ignored
+    set_header(b, h);
+    reseal_header(b);
+    CHECK(open_error(b) == "(opened)");
+  }
+  SUBCASE("unknown required feature") {
+    Bytes b = good;
+    auto h = header_of(b);
+    h.required_features = 1ULL << 5;
+    set_header(b, h);
+    reseal_header(b);
+    CHECK(open_error(b) == "f.mosb: requires feature bit 5, unknown to this reader (format 1.0)");
+  }
+  SUBCASE("header checksum") {
+    Bytes b = good;
+    b[100] = std::byte{1};  // a reserved byte
+    CHECK(open_error(b).find("header checksum mismatch") != std::string::npos);
+  }
+  SUBCASE("overlapping sections") {
+    Bytes b = good;
+    auto e = entry_of(b, 3);
+    e.offset = entry_of(b, 2).offset;
+    set_entry(b, 3, e);
+    reseal_header(b);
+    CHECK(open_error(b) == "f.mosb: sections 'forward_targets' and 'reverse_offsets' overlap");
+  }
+  SUBCASE("misaligned section") {
+    Bytes b = good;
+    auto e = entry_of(b, 2);
+    e.offset += 8;
+    set_entry(b, 2, e);
+    reseal_header(b);
+    CHECK(open_error(b).find("section 'forward_targets': offset") != std::string::npos);
+    CHECK(open_error(b).find("is not 64-byte aligned") != std::string::npos);
+  }
+  SUBCASE("section past the data area") {
+    Bytes b = good;
+    auto e = entry_of(b, 6);
+    e.offset = header_of(b).table_offset;
+    set_entry(b, 6, e);
+    reseal_header(b);
+    CHECK(open_error(b).find("lie outside the data area") != std::string::npos);
+  }
+  SUBCASE("counts that disagree") {
+    Bytes b = good;
+    auto h = header_of(b);
+    h.arc_count += 1;
+    set_header(b, h);
+    reseal_header(b);
+    CHECK(open_error(b).find("section 'forward_targets': has 40 rows, but the arc count is 41") !=
+          std::string::npos);
+  }
+  SUBCASE("objective count that disagrees") {
+    Bytes b = good;
+    auto h = header_of(b);
+    h.objective_count = 3;
+    set_header(b, h);
+    reseal_header(b);
+    CHECK(open_error(b) == "f.mosb: header declares 3 objectives, table has 2 cost sections");
+  }
+  SUBCASE("section table pointing past the end") {
+    Bytes b = good;
+    auto h = header_of(b);
+    h.section_count += 1;
+    set_header(b, h);
+    CHECK(open_error(b).find("does not end at the end of the file") != std::string::npos);
+  }
+  SUBCASE("a row count that overflows") {
+    Bytes b = good;
+    auto e = entry_of(b, 6);
+    e.row_count = 1ULL << 62;
+    e.row_width = 1u << 20;
+    set_entry(b, 6, e);
+    reseal_header(b);
+    CHECK(open_error(b) == "f.mosb: section 'c1': size overflows");
+  }
+  SUBCASE("a cost column of a signed type") {
+    Bytes b = good;
+    auto e = entry_of(b, 6);
+    e.element_type = static_cast<std::uint8_t>(format::ElementType::i8);
+    set_entry(b, 6, e);
+    reseal_header(b);
+    CHECK(open_error(b) == "f.mosb: section 'c1': cost type i8 is not unsigned or float");
+  }
+  SUBCASE("a missing structural section") {
+    Bytes b = good;
+    auto e = entry_of(b, 4);
+    e.kind = 99;  // now a kind this reader does not know, so it is ignored ...
+    set_entry(b, 4, e);
+    reseal_header(b);
+    CHECK(open_error(b) == "f.mosb: no reverse_sources section");  // ... and the real one is missing
+  }
+  SUBCASE("offsets that do not end at m") {
+    Bytes b = good;
+    poke<std::uint64_t>(b, 1, header_of(b).vertex_count, 7);
+    reseal_section(b, 1);
+    CHECK(open_error(b).find("offsets run from 0 to 7, not from 0 to the arc count 40") != std::string::npos);
+  }
+  SUBCASE("zstd-encoded section without the feature bit") {
+    Bytes b = good;
+    auto e = entry_of(b, 6);
+    e.encoding = 1;
+    set_entry(b, 6, e);
+    reseal_header(b);
+    CHECK(open_error(b).find("lacks the zstd-sections feature") != std::string::npos);
+  }
+}
+
+TEST_CASE("the checksums level names the damaged section, whatever its kind") {
+  TempDir dir;
+  const Bytes good = grid_bytes(dir);
+  CHECK(verify_problem(good, VerifyLevel::full) == "(passed)");
+  for (std::size_t i = 0; i < header_of(good).section_count; ++i) {
+    const auto e = entry_of(good, i);
+    const std::string name(format::name_of(e));
+    CAPTURE(name);
+    Bytes b = good;
+    b[e.offset + e.stored_length / 2] ^= std::byte{0x10};
+    const auto problem = verify_problem(b, VerifyLevel::checksums);
+    CHECK(problem.starts_with("section '" + name + "': [checksum] mismatch"));
+    CHECK(verify_problem(b, VerifyLevel::header) == "(passed)");
+  }
+}
+
+TEST_CASE("the structure level names the broken rule, with checksums recomputed") {
+  TempDir dir;
+  const Bytes good = grid_bytes(dir);
+  const auto n = header_of(good).vertex_count;
+  auto expect_rule = [](Bytes& b, std::size_t section, const std::string& start) {
+    reseal_section(b, section);
+    CHECK(verify_problem(b, VerifyLevel::checksums) == "(passed)");
+    const auto problem = verify_problem(b, VerifyLevel::structure);
+    CHECK_MESSAGE(problem.starts_with(start), problem);
+    CHECK(verify_problem(b, VerifyLevel::full) == problem);
+  };
+  SUBCASE("offsets decrease") {
+    Bytes b = good;
+    const auto s = find_entry(b, "forward_offsets");
+    poke<std::uint64_t>(b, s, 2, 0);
+    expect_rule(b, s, "section 'forward_offsets': [offsets-monotonic] offsets decrease at vertex 1");
+  }
+  SUBCASE("a target out of range") {
+    Bytes b = good;
+    const auto s = find_entry(b, "forward_targets");
+    poke<std::uint32_t>(b, s, 5, static_cast<std::uint32_t>(n));
+    expect_rule(b, s, "section 'forward_targets': [target-range] arc 5 is vertex 14");
+  }
+  SUBCASE("a reverse entry naming the wrong arc") {
+    Bytes b = good;
+    const auto s = find_entry(b, "reverse_arcs");
+    poke<std::uint32_t>(b, s, 0, 7);
+    expect_rule(b, s, "section 'reverse_arcs': [reverse-transpose]");
+  }
+  SUBCASE("a reverse entry naming the wrong source") {
+    Bytes b = good;
+    const auto s = find_entry(b, "reverse_sources");
+    poke<std::uint32_t>(b, s, 0, 3);
+    expect_rule(b, s, "section 'reverse_arcs': [reverse-transpose] entry 0 (vertex 0) says arc");
+  }
+  SUBCASE("a query endpoint out of range") {
+    Bytes b = good;
+    const auto s = find_entry(b, "default");
+    poke<std::uint32_t>(b, s, 1, static_cast<std::uint32_t>(n + 3));
+    expect_rule(b, s, "section 'default': [query-range] endpoint 1 is vertex 17");
+  }
+  SUBCASE("metadata that breaks its grammar") {
+    Bytes b = good;
+    const auto s = find_entry(b, "metadata");
+    poke<char>(b, s, 0, 'z');  // "benchmark" -> "zenchmark": the next key is now out of order
+    expect_rule(b, s, "section 'metadata': [metadata] metadata line 2: key 'family' is not in sorted order");
+  }
+  SUBCASE("a view naming a missing objective") {
+    Bytes b = good;
+    const auto s = find_entry(b, "metadata");
+    const auto e = entry_of(b, s);
+    std::string text(reinterpret_cast<const char*>(b.data() + e.offset), e.stored_length);
+    const auto at = text.find("c1,c2");
+    REQUIRE(at != std::string::npos);
+    poke<char>(b, s, at + 4, '9');
+    expect_rule(b, s, "section 'metadata': [metadata-views] metadata key 'view.Grid_2.objectives' names objective 'c9'");
+  }
+}
+
+TEST_CASE("float cost columns must be finite and non-negative") {
+  TempDir dir;
+  GraphInput g;
+  g.vertex_count = 2;
+  g.tails = {0, 1};
+  g.heads = {1, 0};
+  g.costs.push_back({"w", "", std::vector<double>{0.1, 0.2}, {}});
+  write_graph(g, dir / "f.mosb");
+  const Bytes good = read_bytes(dir / "f.mosb");
+  const auto s = find_entry(good, "w");
+  Bytes b = good;
+  poke<double>(b, s, 1, std::nan(""));
+  reseal_section(b, s);
+  CHECK(verify_problem(b, VerifyLevel::structure).starts_with("section 'w': [cost-finite] arc 1"));
+  b = good;
+  poke<double>(b, s, 0, -2.0);
+  reseal_section(b, s);
+  CHECK(verify_problem(b, VerifyLevel::structure).starts_with("section 'w': [cost-nonnegative] arc 0"));
+}
+
+TEST_CASE("packed sections are refused for zero-copy access") {
+  TempDir dir;
+  Bytes b = grid_bytes(dir);
+  auto h = header_of(b);
+  h.required_features = format::kFeatureZstdSections;
+  set_header(b, h);
+  auto e = entry_of(b, 6);
+  e.encoding = 1;
+  set_entry(b, 6, e);
+  reseal_header(b);
+  auto r = GraphReader::from_memory(b, "f.mosb");
+  CHECK_THROWS_WITH_AS((void)r.cost<std::uint8_t>(0),
+                       doctest::Contains("section 'c1' is zstd-packed and cannot be mapped zero-copy"), Error);
+  CHECK(r.forward_targets().size() == 40);
+}
+
+TEST_CASE("opening a path that is not a mosb file") {
+  TempDir dir;
+  CHECK_THROWS_WITH_AS(GraphReader::open(dir / "missing.mosb"), doctest::Contains("missing.mosb: cannot open"), Error);
+  CHECK_THROWS_WITH_AS(GraphReader::open(dir.path()), doctest::Contains("not a regular file"), Error);
+  write_bytes(dir / "empty.mosb", {});
+  CHECK_THROWS_WITH_AS(GraphReader::open(dir / "empty.mosb"),
+                       doctest::Contains("empty.mosb: not a mosb file: 0 bytes is shorter than the 128-byte header"), Error);
+}
