@@ -1,6 +1,7 @@
 #include "mosb/metadata.hpp"
 
 #include "mosb/error.hpp"
+#include "mosb/utf8.hpp"
 
 namespace mosb {
 
@@ -70,6 +71,7 @@ Metadata Metadata::parse(std::string_view text) {
       else if (line[i] == 'n') value += '\n';
       else throw Error(where + "unknown escape '\\" + std::string(1, line[i]) + "'");
     }
+    if (!is_valid_utf8(value)) throw Error(where + "value of '" + std::string(key) + "' is not valid UTF-8");
     previous_key = std::string(key);
     result.entries_.emplace(previous_key, std::move(value));
   }

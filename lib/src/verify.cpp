@@ -1,6 +1,6 @@
 #include "mosb/verify.hpp"
 
-#include <xxhash.h>
+#include "xxh3.hpp"
 
 #include <cmath>
 
@@ -34,7 +34,7 @@ std::string in_section(const Section& s, std::string_view rule, const std::strin
 Problem check_checksums(const GraphReader& reader) {
   for (const auto& s : reader.sections()) {
     if (s.is_packed())
-      return in_section(s, "checksum", "zstd-packed sections are verified after 'mosb unpack'");
+      return in_section(s, "checksum", "zstd-packed sections are verified after unpacking");
     const std::uint64_t computed = XXH3_64bits(s.stored.data(), s.stored.size());
     if (computed != s.entry.checksum)
       return in_section(s, "checksum", "mismatch (stored " + hex64(s.entry.checksum) +
@@ -162,7 +162,7 @@ std::optional<std::string> verify(const GraphReader& reader, VerifyLevel level) 
     if (auto p = check_checksums(reader)) return p;
   if (level == VerifyLevel::structure || level == VerifyLevel::full) {
     for (const auto& s : reader.sections())
-      if (s.is_packed()) return in_section(s, "structure", "zstd-packed; run 'mosb unpack' first");
+      if (s.is_packed()) return in_section(s, "structure", "zstd-packed; unpack the file first");
     if (auto p = check_structure(reader)) return p;
   }
   return std::nullopt;

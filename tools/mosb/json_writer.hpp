@@ -6,6 +6,8 @@
 #include <string_view>
 #include <vector>
 
+#include "mosb/utf8.hpp"
+
 namespace mosb::cli {
 
 class JsonWriter {
@@ -59,8 +61,14 @@ class JsonWriter {
   }
   void write_string(std::string_view s) {
     out_ << '"';
-    for (unsigned char c : s) {
-      if (c == '"' || c == '\\') out_ << '\\' << c;
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      const auto c = static_cast<unsigned char>(s[i]);
+      if (c >= 0x80) {  // JSON must be UTF-8: a stray byte (say, in a file name) becomes U+FFFD
+        const auto length = utf8_sequence_length(s, i);
+        if (length == 0) out_ << "\\ufffd";
+        else out_ << s.substr(i, length);
+        i += length == 0 ? 0 : length - 1;
+      } else if (c == '"' || c == '\\') out_ << '\\' << c;
       else if (c == '\n') out_ << "\\n";
       else if (c == '\t') out_ << "\\t";
       else if (c < 0x20) {
