@@ -312,9 +312,6 @@ def open_instance(path):
         found = sum(s.kind == kind for s in sections)
         if found != 1:
             raise FormatError("%d %s sections, expected exactly one" % (found, KIND_NAMES[kind]))
-    meta = next(s for s in sections if s.kind == METADATA)
-    if meta.name != "metadata":
-        raise FormatError("the metadata section is named %r, not 'metadata'" % meta.name)
     costs = sum(s.kind == COST for s in sections)
     if costs != h["objective_count"]:
         raise FormatError("objective_count is %d but there are %d cost sections"

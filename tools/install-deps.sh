@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Installs the Debian packages mosb needs to build and test it, when any is missing.
+set -euo pipefail
+packages=(
+  g++ cmake ninja-build pkg-config          # toolchain
+  libxxhash-dev                             # XXH3 checksums and digests
+  libcli11-dev                              # the mosb command line
+  doctest-dev                               # unit tests
+  python3 python3-numpy python3-xxhash      # the reference reader and the CLI tests
+  clang libclang-rt-14-dev                  # libFuzzer
+)
+missing=()
+for package in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" || missing+=("$package")
+done
+if ((${#missing[@]} > 0)); then
+  sudo=""
+  if [[ $(id -u) -ne 0 ]]; then sudo="sudo"; fi
+  echo "mosb: installing ${missing[*]}"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
