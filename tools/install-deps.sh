@@ -5,6 +5,8 @@ packages=(
   g++ cmake ninja-build pkg-config          # toolchain
   libxxhash-dev                             # XXH3 checksums and digests
   libcli11-dev                              # the mosb command line
+  libboost-iostreams-dev zlib1g-dev libbz2-dev liblzma-dev libzstd-dev  # compressed inputs
+  gzip bzip2 xz-utils zstd                  # compressed test fixtures
   doctest-dev                               # unit tests
   python3 python3-numpy python3-xxhash      # the reference reader and the CLI tests
   clang libclang-rt-14-dev                  # libFuzzer

@@ -18,5 +18,6 @@ struct Command {
 Command add_inspect(CLI::App& app);
 Command add_verify(CLI::App& app);
 Command add_generate(CLI::App& app);
+Command add_convert(CLI::App& app);
 
 }  // namespace mosb::cli

@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
       mosb::cli::add_inspect(app),
       mosb::cli::add_verify(app),
       mosb::cli::add_generate(app),
+      mosb::cli::add_convert(app),
   };
   try {
     app.parse(argc, argv);

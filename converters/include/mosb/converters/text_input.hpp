@@ -1,0 +1,33 @@
+// A raw input file read whole into memory, decompressed when its magic bytes say gzip, bzip2, xz or
+// zstd (the file name is not consulted), with what the metadata records about the raw bytes.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+namespace mosb::converters {
+
+enum class Compression { none, gzip, bzip2, xz, zstd };
+
+// By magic bytes only.
+Compression detect_compression(std::string_view raw);
+const char* compression_name(Compression c);
+
+// Decompresses `raw` in memory; throws mosb::Error naming `display_name` on a corrupt stream.
+std::string decompress(std::string_view raw, Compression c, const std::string& display_name);
+
+struct TextInput {
+  std::string display_name;  // the path as given, for messages only
+  std::string base_name;     // file name without directories, for metadata
+  std::uint64_t raw_size = 0;
+  std::string raw_xxh3;      // XXH3-64 of the raw (possibly compressed) bytes, 16 lowercase hex
+  Compression compression = Compression::none;
+  std::string text;          // decompressed content
+};
+
+// Throws mosb::Error naming the file when it cannot be read or decompressed.
+TextInput read_text_input(const std::filesystem::path& path);
+
+}  // namespace mosb::converters

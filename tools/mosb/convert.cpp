@@ -1,0 +1,71 @@
+#include <CLI/CLI.hpp>
+#include <iostream>
+#include <memory>
+
+#include "commands.hpp"
+#include "mosb/converters/dimacs_converter.hpp"
+#include "mosb/error.hpp"
+#include "mosb/graph_reader.hpp"
+
+namespace mosb::cli {
+
+namespace {
+
+struct DimacsArgs {
+  std::vector<std::string> gr;
+  std::vector<std::string> objectives;
+  std::string co;
+  std::string name;
+  unsigned id_base = 1;
+  std::string cost_type;
+  std::string output;
+};
+
+int run_dimacs(const DimacsArgs& a) {
+  converters::DimacsOptions o;
+  o.gr_files = a.gr;
+  for (const auto& spec : a.objectives) {
+    const auto colon = spec.find(':');
+    converters::Objective objective{spec.substr(0, colon),
+                                    colon == std::string::npos ? "" : spec.substr(colon + 1)};
+    if (objective.name.empty()) throw Error("convert dimacs: --objective '" + spec + "' has an empty name");
+    o.objectives.push_back(std::move(objective));
+  }
+  if (!a.co.empty()) o.co_file = a.co;
+  if (!a.name.empty()) o.name = a.name;
+  o.id_base = a.id_base;
+  if (!a.cost_type.empty()) {
+    const auto type = format::parse_element_type(a.cost_type);
+    if (!type) throw Error("convert dimacs: unknown --cost-type '" + a.cost_type + "'");
+    o.cost_type = *type;
+  }
+  write_graph(converters::convert_dimacs(o), a.output);
+  const auto reader = GraphReader::open(a.output);
+  std::cout << "wrote " << a.output << ": " << reader.vertex_count() << " vertices, "
+            << reader.arc_count() << " arcs, " << reader.objective_count() << " objectives, digest "
+            << reader.digest() << '\n';
+  return 0;
+}
+
+}  // namespace
+
+Command add_convert(CLI::App& app) {
+  auto* sub = app.add_subcommand("convert", "Convert a benchmark from its source format");
+  sub->require_subcommand(1);
+  auto* dimacs = sub->add_subcommand(
+      "dimacs", "DIMACS shortest-path .gr files (plain, gzip, bzip2, xz or zstd), optional .co");
+  auto args = std::make_shared<DimacsArgs>();
+  dimacs->add_option("--gr", args->gr, "a .gr file; one per objective in order, or one with several cost columns")
+      ->required()->check(CLI::ExistingFile);
+  dimacs->add_option("--objective", args->objectives, "NAME[:UNIT] of each cost column, in order (default c1..cd)");
+  dimacs->add_option("--co", args->co, "a .co coordinate file (stored as vertex data 'coords')")
+      ->check(CLI::ExistingFile);
+  dimacs->add_option("--name", args->name, "benchmark name (default: the first file's base name)");
+  dimacs->add_option("--id-base", args->id_base, "base of vertex ids in the files")
+      ->check(CLI::IsMember({0u, 1u}))->capture_default_str();
+  dimacs->add_option("--cost-type", args->cost_type, "store every cost column as this type (u8..u64, f32, f64)");
+  dimacs->add_option("-o,--output", args->output, "the .mosb file to write")->required();
+  return {sub, [args] { return run_dimacs(*args); }};
+}
+
+}  // namespace mosb::cli
