@@ -3,6 +3,8 @@
 #pragma once
 
 #include <functional>
+#include <string>
+#include <vector>
 
 namespace CLI {
 class App;
@@ -15,9 +17,21 @@ struct Command {
   std::function<int()> run;
 };
 
+// A subcommand with one child per family (`convert dimacs`, `generate grid`, ...): runs the chosen one.
+Command group(CLI::App* parent, std::vector<Command> children);
+
+// Prints "wrote FILE: n vertices, m arcs, d objectives, digest D" after reopening FILE; returns 0.
+int report_written(const std::string& path);
+
 Command add_inspect(CLI::App& app);
 Command add_verify(CLI::App& app);
 Command add_generate(CLI::App& app);
 Command add_convert(CLI::App& app);
+
+// Children of `generate`.
+Command add_generate_grid(CLI::App& generate);
+
+// Children of `convert`.
+Command add_convert_dimacs(CLI::App& convert);
 
 }  // namespace mosb::cli

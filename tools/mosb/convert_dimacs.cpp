@@ -1,11 +1,10 @@
 #include <CLI/CLI.hpp>
-#include <iostream>
 #include <memory>
 
 #include "commands.hpp"
 #include "mosb/converters/dimacs_converter.hpp"
 #include "mosb/error.hpp"
-#include "mosb/graph_reader.hpp"
+#include "mosb/graph_builder.hpp"
 
 namespace mosb::cli {
 
@@ -40,19 +39,13 @@ int run_dimacs(const DimacsArgs& a) {
     o.cost_type = *type;
   }
   write_graph(converters::convert_dimacs(o), a.output);
-  const auto reader = GraphReader::open(a.output);
-  std::cout << "wrote " << a.output << ": " << reader.vertex_count() << " vertices, "
-            << reader.arc_count() << " arcs, " << reader.objective_count() << " objectives, digest "
-            << reader.digest() << '\n';
-  return 0;
+  return report_written(a.output);
 }
 
 }  // namespace
 
-Command add_convert(CLI::App& app) {
-  auto* sub = app.add_subcommand("convert", "Convert a benchmark from its source format");
-  sub->require_subcommand(1);
-  auto* dimacs = sub->add_subcommand(
+Command add_convert_dimacs(CLI::App& convert) {
+  auto* dimacs = convert.add_subcommand(
       "dimacs", "DIMACS shortest-path .gr files (plain, gzip, bzip2, xz or zstd), optional .co");
   auto args = std::make_shared<DimacsArgs>();
   dimacs->add_option("--gr", args->gr, "a .gr file; one per objective in order, or one with several cost columns")
@@ -65,7 +58,7 @@ Command add_convert(CLI::App& app) {
       ->check(CLI::IsMember({0u, 1u}))->capture_default_str();
   dimacs->add_option("--cost-type", args->cost_type, "store every cost column as this type (u8..u64, f32, f64)");
   dimacs->add_option("-o,--output", args->output, "the .mosb file to write")->required();
-  return {sub, [args] { return run_dimacs(*args); }};
+  return {dimacs, [args] { return run_dimacs(*args); }};
 }
 
 }  // namespace mosb::cli

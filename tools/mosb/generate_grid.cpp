@@ -1,17 +1,13 @@
 #include <CLI/CLI.hpp>
-#include <iostream>
 #include <memory>
 
 #include "commands.hpp"
 #include "mosb/converters/grid_generator.hpp"
-#include "mosb/graph_reader.hpp"
 
 namespace mosb::cli {
 
-Command add_generate(CLI::App& app) {
-  auto* sub = app.add_subcommand("generate", "Generate a synthetic instance");
-  sub->require_subcommand(1);
-  auto* grid = sub->add_subcommand("grid", "The paper's random-cost 4-connected grid (Grid family)");
+Command add_generate_grid(CLI::App& generate) {
+  auto* grid = generate.add_subcommand("grid", "The paper's random-cost 4-connected grid (Grid family)");
   auto params = std::make_shared<converters::GridParameters>();
   auto output = std::make_shared<std::string>();
   params->width = 300;
@@ -25,13 +21,9 @@ Command add_generate(CLI::App& app) {
       ->check(CLI::Range(1u, 16u))->capture_default_str();
   grid->add_option("--seed", params->seed, "seed of the specified generator")->capture_default_str();
   grid->add_option("-o,--output", *output, "the .mosb file to write")->required();
-  return {sub, [params, output] {
+  return {grid, [params, output] {
             write_graph(converters::generate_grid(*params), *output);
-            const auto reader = GraphReader::open(*output);
-            std::cout << "wrote " << *output << ": " << reader.vertex_count() << " vertices, "
-                      << reader.arc_count() << " arcs, " << reader.objective_count()
-                      << " objectives, digest " << reader.digest() << '\n';
-            return 0;
+            return report_written(*output);
           }};
 }
 
