@@ -1,16 +1,32 @@
 #!/usr/bin/env bash
-# Bounded fuzz run of the binary reader, seeded from spec/golden and a generated grid.
-# Usage: tests/fuzz/run.sh [SECONDS]   (needs the `fuzz` preset built: cmake --build --preset fuzz)
+# Bounded fuzz runs: the binary reader for SECONDS (default 60), every text-parser target for a
+# third of that. Seeds: spec/golden for the reader, tests/fuzz/corpus/<target>/ for the others.
+# Needs the `fuzz` preset built: cmake --preset fuzz && cmake --build --preset fuzz
 set -euo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
 seconds="${1:-60}"
-fuzzer="$root/build/fuzz/tests/fuzz/mosb_fuzz_reader"
-corpus="$(mktemp -d)"
-trap 'rm -rf "$corpus"' EXIT
-cp "$root"/spec/golden/*/valid/*.mosb "$root"/spec/golden/*/invalid/*.mosb "$corpus"/
-if [[ -x "$root/build/release/tools/mosb" ]]; then
-  "$root/build/release/tools/mosb" generate grid --width 3 --height 2 --objectives 2 -o "$corpus/grid.mosb" >/dev/null
-fi
-echo "fuzzing the reader for ${seconds}s from $(ls "$corpus" | wc -l) seed files"
-"$fuzzer" -max_total_time="$seconds" -max_len=65536 -timeout=10 -rss_limit_mb=4096 \
-  -print_final_stats=1 "$corpus" 2>&1 | tail -n 25
+bin="$root/build/fuzz/tests/fuzz"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+
+run() {  # target seconds seed-files...
+  local target="$1" time="$2"
+  shift 2
+  mkdir -p "$work/$target"
+  cp "$@" "$work/$target"/ 2>/dev/null || true
+  echo "fuzzing $target for ${time}s from $(ls "$work/$target" | wc -l) seed files"
+  "$bin/$target" -max_total_time="$time" -max_len=65536 -timeout=10 -rss_limit_mb=4096 \
+    -print_final_stats=1 "$work/$target" > "$work/$target.log" 2>&1 || {
+    tail -n 60 "$work/$target.log"
+    echo "fuzz target $target failed"
+    exit 1
+  }
+  grep -E "^Done|stat::new_units_added" "$work/$target.log"
+}
+
+run mosb_fuzz_reader "$seconds" "$root"/spec/golden/*/valid/*.mosb "$root"/spec/golden/*/invalid/*.mosb
+for fuzzer in "$bin"/mosb_fuzz_*; do
+  target="$(basename "$fuzzer")"
+  [[ "$target" == mosb_fuzz_reader ]] && continue
+  run "$target" $((seconds / 3 > 5 ? seconds / 3 : 5)) "$root"/tests/fuzz/corpus/"$target"/*
+done
