@@ -89,10 +89,20 @@ Problem check_csr(const GraphReader& reader) {
                                                    std::to_string(v) + ") " + what);
   };
   for (std::uint64_t v = 0; v < n; ++v) {
+    // Branch-free over the whole in-list (targets[a] is read only for a < m); the slow loop below
+    // runs only to name the first broken entry.
+    bool broken_list = false;
     for (auto j = roffsets[v]; j < roffsets[v + 1]; ++j) {
       const std::uint32_t a = rarcs[j];
       const std::uint32_t u = rsources[j];
-      // One branch on the hot path; the message is built only when something is wrong.
+      const bool in_range = a < m;
+      broken_list |= !in_range | (targets[in_range ? a : 0] != v) | (offsets[u] > a) |
+                     (a >= offsets[u + 1]) | (j > roffsets[v] && rarcs[j - 1] >= a);
+    }
+    if (!broken_list) continue;
+    for (auto j = roffsets[v]; j < roffsets[v + 1]; ++j) {
+      const std::uint32_t a = rarcs[j];
+      const std::uint32_t u = rsources[j];
       if (a < m && targets[a] == v && offsets[u] <= a && a < offsets[u + 1] &&
           (j == roffsets[v] || rarcs[j - 1] < a))
         continue;
