@@ -5,6 +5,7 @@ packages=(
   g++ cmake ninja-build pkg-config          # toolchain
   libxxhash-dev                             # XXH3 checksums and digests
   libcli11-dev                              # the mosb command line
+  libboost-dev                              # Boost.PropertyTree: GraphML roadmaps
   libboost-iostreams-dev zlib1g-dev libbz2-dev liblzma-dev libzstd-dev  # compressed inputs
   gzip bzip2 xz-utils zstd                  # compressed test fixtures
   doctest-dev                               # unit tests

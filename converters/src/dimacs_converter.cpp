@@ -163,6 +163,33 @@ std::string plural(std::uint64_t n, const char* word) {
   return std::to_string(n) + " " + (w == "vertex" ? std::string("vertices") : w + "s");
 }
 
+// The common case in one pass: `a u v c1 .. cd` with plain integers and valid ids. Anything else
+// (reals, signs, bad ids, wrong field counts) returns false and takes the general path, which
+// reports the precise error.
+bool scan_integer_arc(std::string_view line, std::size_t cost_count, unsigned id_base, std::uint64_t n,
+                      std::uint32_t& u, std::uint32_t& v, std::uint64_t* costs) {
+  const char* p = line.data() + 1;
+  const char* const end = line.data() + line.size();
+  auto field = [&](std::uint64_t& out) {
+    if (p == end || (*p != ' ' && *p != '\t')) return false;
+    while (p != end && (*p == ' ' || *p == '\t')) ++p;
+    const char* const start = p;
+    std::uint64_t x = 0;
+    while (p != end && static_cast<unsigned>(*p - '0') < 10) x = x * 10 + static_cast<unsigned>(*p++ - '0');
+    out = x;
+    return p != start && p - start <= 19;  // 19 digits cannot overflow
+  };
+  std::uint64_t a = 0, b = 0;
+  if (!field(a) || !field(b) || a < id_base || b < id_base || a - id_base >= n || b - id_base >= n)
+    return false;
+  for (std::size_t j = 0; j < cost_count; ++j)
+    if (!field(costs[j])) return false;
+  if (p != end) return false;
+  u = static_cast<std::uint32_t>(a - id_base);
+  v = static_cast<std::uint32_t>(b - id_base);
+  return true;
+}
+
 }  // namespace
 
 DimacsGraph parse_dimacs_gr(std::string_view text, const std::string& display_name, unsigned id_base,
@@ -175,9 +202,26 @@ DimacsGraph parse_dimacs_gr(std::string_view text, const std::string& display_na
   std::vector<Token> t;
   std::uint64_t p_line = 0, m_column = 0, declared_arcs = 0, first_arc_line = 0;
   std::size_t cost_count = 0;
+  std::vector<std::vector<std::uint64_t>*> integer_columns;  // all columns, while all are integers
+  std::vector<std::uint64_t> fast_costs;
   while (lines.next(line)) {
-    tokenize(line, t);
     const auto ln = lines.number();
+    std::uint32_t fast_u = 0, fast_v = 0;
+    if (!integer_columns.empty() && line.size() > 1 && line[0] == 'a' &&
+        scan_integer_arc(line, cost_count, id_base, g.vertex_count, fast_u, fast_v, fast_costs.data())) {
+      const auto k = g.tails.size();
+      const bool matches_reference = !reference || (k < reference->graph->tails.size() &&
+                                                    reference->graph->tails[k] == fast_u &&
+                                                    reference->graph->heads[k] == fast_v);
+      if (matches_reference && k < kMaxCount) {
+        for (std::size_t j = 0; j < cost_count; ++j) integer_columns[j]->push_back(fast_costs[j]);
+        g.tails.push_back(fast_u);
+        g.heads.push_back(fast_v);
+        g.arc_lines.push_back(ln);
+        continue;
+      }
+    }
+    tokenize(line, t);
     if (t.empty() || t[0].text == "c") continue;
     const auto end_column = line.size() + 1;
     if (t[0].text == "a") {
@@ -219,6 +263,11 @@ DimacsGraph parse_dimacs_gr(std::string_view text, const std::string& display_na
       g.tails.push_back(u);
       g.heads.push_back(v);
       g.arc_lines.push_back(ln);
+      integer_columns.clear();
+      for (auto& c : g.columns)
+        if (auto* ints = std::get_if<std::vector<std::uint64_t>>(&c)) integer_columns.push_back(ints);
+      if (integer_columns.size() != cost_count || cost_count == 0) integer_columns.clear();
+      fast_costs.resize(cost_count);
     } else if (t[0].text == "p") {
       if (p_line != 0)
         at.fail(ln, t[0].column, "second 'p' line (the first is line " + std::to_string(p_line) + ")");

@@ -96,8 +96,11 @@ Problem check_csr(const GraphReader& reader) {
       const std::uint32_t a = rarcs[j];
       const std::uint32_t u = rsources[j];
       const bool in_range = a < m;
-      broken_list |= !in_range | (targets[in_range ? a : 0] != v) | (offsets[u] > a) |
-                     (a >= offsets[u + 1]) | (j > roffsets[v] && rarcs[j - 1] >= a);
+      // Integer ORs, not ||, so every test is evaluated without branches.
+      const unsigned bad = unsigned{!in_range} | unsigned{targets[in_range ? a : 0] != v} |
+                           unsigned{offsets[u] > a} | unsigned{a >= offsets[u + 1]} |
+                           unsigned{j > roffsets[v] && rarcs[j - 1] >= a};
+      broken_list |= bad != 0;
     }
     if (!broken_list) continue;
     for (auto j = roffsets[v]; j < roffsets[v + 1]; ++j) {

@@ -27,11 +27,19 @@ Command add_inspect(CLI::App& app);
 Command add_verify(CLI::App& app);
 Command add_generate(CLI::App& app);
 Command add_convert(CLI::App& app);
+Command add_queries(CLI::App& app);  // queries.cpp: `queries import` and `queries generate`
+Command add_stats(CLI::App& app);
+Command add_export(CLI::App& app);  // export_dimacs.cpp: the `export` group and its children
 
 // Children of `generate`.
 Command add_generate_grid(CLI::App& generate);
+Command add_generate_netmaker(CLI::App& generate);
 
 // Children of `convert`.
 Command add_convert_dimacs(CLI::App& convert);
+Command add_convert_netmaker(CLI::App& convert);
+Command add_convert_fmi(CLI::App& convert);
+Command add_convert_guards(CLI::App& convert);
+Command add_convert_roadmap(CLI::App& convert);
 
 }  // namespace mosb::cli

@@ -3,6 +3,7 @@
 
 #include "commands.hpp"
 #include "mosb/converters/dimacs_converter.hpp"
+#include "mosb/converters/dimacs_extended.hpp"
 #include "mosb/error.hpp"
 #include "mosb/graph_builder.hpp"
 
@@ -18,6 +19,10 @@ struct DimacsArgs {
   unsigned id_base = 1;
   std::string cost_type;
   std::string output;
+  std::vector<std::string> derive;
+  std::string avg_outdegree_mode = "twice";
+  std::string elevation;
+  std::vector<std::string> views;
 };
 
 int run_dimacs(const DimacsArgs& a) {
@@ -38,7 +43,19 @@ int run_dimacs(const DimacsArgs& a) {
     if (!type) throw Error("convert dimacs: unknown --cost-type '" + a.cost_type + "'");
     o.cost_type = *type;
   }
-  write_graph(converters::convert_dimacs(o), a.output);
+  converters::ExtendedOptions extended;
+  if (!a.elevation.empty()) extended.elevation_file = a.elevation;
+  for (const auto& d : a.derive) {
+    extended.hop |= d == "hop";
+    extended.avg_outdegree |= d == "avg-outdegree";
+  }
+  if (a.avg_outdegree_mode == "round-half-up")
+    extended.avg_outdegree_mode = converters::AvgOutdegreeMode::round_half_up;
+  for (const auto& v : a.views) extended.views.push_back(converters::parse_view_spec(v));
+  auto graph = converters::convert_dimacs(o);
+  converters::append_derived_columns(graph, extended, o.id_base);
+  converters::add_views(graph, extended.views);
+  write_graph(graph, a.output);
   return report_written(a.output);
 }
 
@@ -57,6 +74,17 @@ Command add_convert_dimacs(CLI::App& convert) {
   dimacs->add_option("--id-base", args->id_base, "base of vertex ids in the files")
       ->check(CLI::IsMember({0u, 1u}))->capture_default_str();
   dimacs->add_option("--cost-type", args->cost_type, "store every cost column as this type (u8..u64, f32, f64)");
+  dimacs->add_option("--elevation", args->elevation,
+                     "per-vertex elevations ('p aux sp elev n', 'v id elevation'): appends column "
+                     "'elevation' = |elev(u) - elev(v)|")
+      ->check(CLI::ExistingFile);
+  dimacs->add_option("--derive", args->derive,
+                     "append derived columns: avg-outdegree, hop (order fixed: elevation, avg_outdegree, hop)")
+      ->check(CLI::IsMember({"hop", "avg-outdegree"}))->delimiter(',');
+  dimacs->add_option("--avg-outdegree-mode", args->avg_outdegree_mode,
+                     "avg_outdegree as outdeg(u)+outdeg(v) (twice, exact) or their mean rounded half up")
+      ->check(CLI::IsMember({"twice", "round-half-up"}))->capture_default_str();
+  dimacs->add_option("--view", args->views, "NAME=OBJ1,OBJ2,...[@QUERYSET]: a benchmark over some columns (repeatable)");
   dimacs->add_option("-o,--output", args->output, "the .mosb file to write")->required();
   return {dimacs, [args] { return run_dimacs(*args); }};
 }

@@ -1,6 +1,8 @@
 // A minimal streaming JSON writer for `--json` output (Boost 1.74 has no Boost.JSON).
 #pragma once
 
+#include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <ostream>
 #include <string_view>
@@ -29,6 +31,19 @@ class JsonWriter {
   JsonWriter& value(const char* v) { return value(std::string_view(v)); }
   JsonWriter& value(std::uint64_t v) { return scalar([&] { out_ << v; }); }
   JsonWriter& value(bool v) { return scalar([&] { out_ << (v ? "true" : "false"); }); }
+  // Shortest text that reads back as the same double; JSON has no NaN or infinity: null.
+  JsonWriter& value(double v) {
+    return scalar([&] {
+      if (!std::isfinite(v)) {
+        out_ << "null";
+        return;
+      }
+      char buffer[32];
+      const auto end = std::to_chars(buffer, buffer + sizeof buffer, v).ptr;
+      out_.write(buffer, end - buffer);
+    });
+  }
+  JsonWriter& null() { return scalar([&] { out_ << "null"; }); }
 
  private:
   template <class F>

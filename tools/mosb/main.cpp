@@ -14,6 +14,9 @@ int main(int argc, char** argv) {
       mosb::cli::add_verify(app),
       mosb::cli::add_generate(app),
       mosb::cli::add_convert(app),
+      mosb::cli::add_queries(app),
+      mosb::cli::add_stats(app),
+      mosb::cli::add_export(app),
   };
   try {
     app.parse(argc, argv);

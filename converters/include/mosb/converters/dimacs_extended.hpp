@@ -1,0 +1,55 @@
+// DIMACS-Extended road networks (spec/families/road.md): objectives derived from a converted DIMACS
+// graph (elevation difference, average out-degree of the end vertices, hop count) and benchmark
+// views over the columns of one instance.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "mosb/graph_builder.hpp"
+
+namespace mosb::converters {
+
+// How the average out-degree (an integer or half-integer) is stored as an integer cost.
+enum class AvgOutdegreeMode {
+  twice,          // outdeg(u) + outdeg(v): exactly twice the average (the default)
+  round_half_up,  // floor((outdeg(u) + outdeg(v) + 1) / 2)
+};
+
+// A benchmark over some columns of the instance: `NAME=OBJ1,OBJ2,...[@QUERYSET]`.
+struct ViewSpec {
+  std::string name;
+  std::vector<std::string> objectives;
+  std::string queries = "default";
+};
+
+struct ExtendedOptions {
+  std::optional<std::string> elevation_file;
+  bool avg_outdegree = false;
+  AvgOutdegreeMode avg_outdegree_mode = AvgOutdegreeMode::twice;
+  bool hop = false;
+  std::vector<ViewSpec> views;
+};
+
+// Parses the text of one --view option; throws mosb::Error naming the option.
+ViewSpec parse_view_spec(std::string_view text);
+
+// Parses an elevation file: `c` comments, one `p aux sp elev n` line, then one `v id elevation`
+// line (signed integer) per vertex. Errors are "FILE:LINE:COLUMN: message".
+std::vector<std::int64_t> parse_dimacs_elevation(std::string_view text, const std::string& display_name,
+                                                 unsigned id_base, std::uint64_t vertex_count);
+
+// Out-degree of every vertex in the directed graph as read (parallel arcs and loops counted).
+std::vector<std::uint32_t> out_degrees(std::uint64_t vertex_count, const std::vector<std::uint32_t>& tails);
+
+// Cost columns in the fixed order elevation, avg_outdegree, hop, appended after the existing ones.
+void append_derived_columns(GraphInput& graph, const ExtendedOptions& options, unsigned id_base);
+
+// Writes view.NAME.objectives, and view.NAME.queries only when `graph` has that query set (a
+// later `mosb queries import` adds it); refuses objectives that are not columns of `graph`.
+void add_views(GraphInput& graph, const std::vector<ViewSpec>& views);
+
+}  // namespace mosb::converters

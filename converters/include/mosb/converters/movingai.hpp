@@ -1,0 +1,87 @@
+// Moving AI grid benchmarks (spec/families/games.md): octile maps (.map) and scenarios (.scen).
+// Every input error is one line "FILE:LINE:COLUMN: message".
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace mosb::converters {
+
+// Which of the two terrain kinds whose reading depends on the agent count as passable.
+struct TerrainRules {
+  bool swamp_passable = true;   // 'S': "passable from regular terrain"
+  bool water_passable = false;  // 'W': "traversable, but not passable from terrain"
+};
+
+// A parsed octile map. Cell (x, y) is column x, row y, row 0 being the first row of the file.
+struct OctileMap {
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  std::vector<std::uint8_t> passable;  // width*height flags, row-major: index y*width + x
+
+  bool is_passable(std::uint32_t x, std::uint32_t y) const {
+    return passable[std::size_t{y} * width + x] != 0;
+  }
+};
+
+OctileMap parse_octile_map(std::string_view text, const std::string& display_name,
+                           const TerrainRules& rules = {});
+
+// One scenario row: `bucket map width height sx sy gx gy optimal`, tab-separated.
+struct ScenarioEntry {
+  std::uint64_t line = 0;
+  std::uint64_t bucket = 0;
+  std::string map;
+  std::uint32_t map_width = 0, map_height = 0;
+  std::uint32_t start_x = 0, start_y = 0, goal_x = 0, goal_y = 0;
+  double optimal = 0;
+  std::array<std::uint32_t, 9> columns{};  // 1-based column of each field, for messages
+};
+
+// Parses a `version 1` scenario file; blank lines are skipped.
+std::vector<ScenarioEntry> parse_scenario(std::string_view text, const std::string& display_name);
+
+// Throws "FILE:LINE:COLUMN: ..." when a row's width/height differ from the map's or its start or
+// goal lies outside the map or on a blocked cell.
+void check_scenario(const std::vector<ScenarioEntry>& entries, const std::string& display_name,
+                    const OctileMap& map, const std::string& map_name);
+
+// Text helpers shared by the Moving AI and GUARDS parsers.
+namespace movingai_text {
+
+// Lines of a buffer: '\n' ends a line, one trailing '\r' is dropped; 1-based numbers.
+class Lines {
+ public:
+  explicit Lines(std::string_view text) : text_(text) {}
+  bool next(std::string_view& line);
+  std::uint64_t number() const { return number_; }
+
+ private:
+  std::string_view text_;
+  std::size_t pos_ = 0;
+  std::uint64_t number_ = 0;
+};
+
+struct Token {
+  std::string_view text;
+  std::uint32_t column;  // 1-based
+};
+
+// Splits on blanks and tabs.
+std::vector<Token> tokenize(std::string_view line);
+
+// A token quoted for a one-line message: control bytes shown as '?', long tokens cut.
+std::string quoted(std::string_view token);
+
+[[noreturn]] void fail(const std::string& file, std::uint64_t line, std::uint64_t column,
+                       const std::string& message);
+
+// Plain decimal digits only (no sign), within [0, max]; false otherwise.
+bool parse_unsigned(std::string_view s, std::uint64_t max, std::uint64_t& value);
+
+}  // namespace movingai_text
+
+}  // namespace mosb::converters

@@ -1,0 +1,58 @@
+// Writes a whole benchmark suite (many independent instances) into one directory, in parallel,
+// followed by a MANIFEST: one line `name<TAB>file<TAB>size<TAB>digest` per instance, sorted by name,
+// written atomically last (spec/GENERATORS.md, Suites). The bytes never depend on the thread count.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "mosb/graph_builder.hpp"
+
+namespace mosb::converters {
+
+struct SuiteInstance {
+  std::string name;                    // the file is name + ".mosb"
+  std::function<GraphInput()> build;   // called on a worker thread; must not share mutable state
+};
+
+struct SuiteEntry {
+  std::string name;
+  std::string file;
+  std::uint64_t size = 0;
+  std::string digest;  // FORMAT.md §8 content digest
+};
+
+struct SuiteOptions {
+  unsigned threads = 0;  // 0: std::thread::hardware_concurrency()
+  // Called once per finished instance, serialized, `done` counting from 1.
+  std::function<void(std::size_t done, std::size_t total, const std::string& file)> progress;
+};
+
+// Prints "[k/total] FILE" lines on stderr when stderr is a terminal; empty (quiet) otherwise.
+std::function<void(std::size_t done, std::size_t total, const std::string& file)> terminal_progress();
+
+// Creates `directory` if needed, writes every instance and then MANIFEST; returns the MANIFEST
+// lines. On failure throws the error of the lowest-index failing instance (no MANIFEST is written).
+std::vector<SuiteEntry> run_suite(const std::filesystem::path& directory,
+                                  const std::vector<SuiteInstance>& instances, const SuiteOptions& options);
+
+// The seed of one suite instance: mix(suite_seed + 0x9E3779B97F4A7C15 * key), where the key encodes
+// the instance's parameters, so a subset of a suite reproduces the full suite's files exactly.
+std::uint64_t suite_instance_seed(std::uint64_t suite_seed, std::uint64_t key);
+
+// The paper's sizes: 300, 350, ..., 600 (7 x 7 = 49 graphs) and N = 10000, 20000, 30000.
+std::vector<std::uint32_t> paper_grid_sizes();
+std::vector<std::uint32_t> paper_netmaker_vertex_counts();
+
+// Grid-KxM for every K, M in `sizes`, 3 objectives (views Grid_2 and Grid_3); key K * 2^20 + M.
+std::vector<SuiteInstance> grid_suite(std::uint64_t suite_seed, const std::vector<std::uint32_t>& sizes);
+
+// NetMaker-N<N>-I<I>-<r> for N in `vertex_counts`, I in {20, 50}, r in {1, 2}; A = 1, B = 10;
+// key (N * 2^16 + I) * 4 + r.
+std::vector<SuiteInstance> netmaker_suite(std::uint64_t suite_seed,
+                                          const std::vector<std::uint32_t>& vertex_counts);
+
+}  // namespace mosb::converters

@@ -1,0 +1,228 @@
+#include "mosb/converters/dimacs_extended.hpp"
+
+#include <charconv>
+#include <set>
+
+#include "mosb/converters/text_input.hpp"
+#include "mosb/error.hpp"
+#include "mosb/metadata.hpp"
+
+namespace mosb::converters {
+
+namespace {
+
+constexpr std::uint64_t kMaxCount = 0xFFFFFFFEULL;
+
+struct Field {
+  std::string_view text;
+  std::uint64_t column;  // 1-based
+};
+
+std::vector<Field> split_fields(std::string_view line) {
+  std::vector<Field> fields;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+    if (i >= line.size()) break;
+    const std::size_t start = i;
+    while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
+    fields.push_back({line.substr(start, i - start), start + 1});
+  }
+  return fields;
+}
+
+std::string shown(std::string_view token) {
+  std::string out = "'";
+  for (std::size_t i = 0; i < token.size() && i < 40; ++i) {
+    const auto c = static_cast<unsigned char>(token[i]);
+    out += (c < 0x20 || c == 0x7F) ? '?' : static_cast<char>(c);
+  }
+  if (token.size() > 40) out += "...";
+  return out + "'";
+}
+
+template <class T>
+std::optional<T> to_integer(std::string_view s) {
+  T value{};
+  if (s.empty() || s[0] == '+') return std::nullopt;
+  const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
+  if (ec != std::errc() || ptr != s.data() + s.size()) return std::nullopt;
+  return value;
+}
+
+std::string input_key(const Metadata& m) {
+  std::size_t i = 0;
+  while (m.get("source.input." + std::to_string(i) + ".name")) ++i;
+  return "source.input." + std::to_string(i);
+}
+
+std::uint64_t absolute_difference(std::int64_t a, std::int64_t b) {
+  return a >= b ? static_cast<std::uint64_t>(a) - static_cast<std::uint64_t>(b)
+                : static_cast<std::uint64_t>(b) - static_cast<std::uint64_t>(a);
+}
+
+bool is_name(std::string_view s) {
+  if (s.empty()) return false;
+  for (char c : s)
+    if (!Metadata::is_name_char(c)) return false;
+  return true;
+}
+
+}  // namespace
+
+ViewSpec parse_view_spec(std::string_view text) {
+  const std::string where = "convert dimacs: --view " + shown(text) + ": ";
+  const auto equals = text.find('=');
+  if (equals == std::string_view::npos) throw Error(where + "expected NAME=OBJ1,OBJ2,...[@QUERYSET]");
+  ViewSpec view;
+  view.name = std::string(text.substr(0, equals));
+  auto rest = text.substr(equals + 1);
+  if (const auto at = rest.find('@'); at != std::string_view::npos) {
+    view.queries = std::string(rest.substr(at + 1));
+    rest = rest.substr(0, at);
+  }
+  if (!is_name(view.name)) throw Error(where + "the view name must be 1 or more of [A-Za-z0-9_.+-]");
+  if (!is_name(view.queries)) throw Error(where + "the query set name must be 1 or more of [A-Za-z0-9_.+-]");
+  std::set<std::string> seen;
+  while (true) {
+    const auto comma = rest.find(',');
+    const std::string objective(rest.substr(0, comma));
+    if (!is_name(objective)) throw Error(where + "empty or invalid objective name " + shown(objective));
+    if (!seen.insert(objective).second) throw Error(where + "objective '" + objective + "' listed twice");
+    view.objectives.push_back(objective);
+    if (comma == std::string_view::npos) break;
+    rest = rest.substr(comma + 1);
+  }
+  return view;
+}
+
+std::vector<std::int64_t> parse_dimacs_elevation(std::string_view text, const std::string& display_name,
+                                                 unsigned id_base, std::uint64_t vertex_count) {
+  auto fail = [&](std::uint64_t line, std::uint64_t column, const std::string& message) {
+    throw Error(display_name + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " + message);
+  };
+  std::uint64_t p_line = 0, line_number = 0, n = 0;
+  std::vector<std::int64_t> elevation;
+  std::vector<bool> seen;
+  std::size_t pos = 0;
+  while (pos < text.size()) {
+    auto end = text.find('\n', pos);
+    if (end == std::string_view::npos) end = text.size();
+    auto line = text.substr(pos, end - pos);
+    pos = end + 1;
+    ++line_number;
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '\t'))
+      line.remove_suffix(1);
+    const auto t = split_fields(line);
+    if (t.empty() || t[0].text == "c") continue;
+    const auto end_column = line.size() + 1;
+    if (t[0].text == "v") {
+      if (p_line == 0) fail(line_number, t[0].column, "'v' line before the 'p aux sp elev n' line");
+      if (t.size() < 3) fail(line_number, end_column, "missing field: an elevation line is 'v id elevation'");
+      if (t.size() > 3)
+        fail(line_number, t[3].column, "extra field " + shown(t[3].text) + ": an elevation line is 'v id elevation'");
+      const auto id = to_integer<std::uint64_t>(t[1].text);
+      if (!id || *id < id_base || *id - id_base >= n)
+        fail(line_number, t[1].column,
+             "vertex id " + shown(t[1].text) + " outside " +
+                 (n == 0 ? std::string("(none: the graph has no vertices)")
+                         : std::to_string(id_base) + ".." + std::to_string(n - 1 + id_base)));
+      const auto v = *id - id_base;
+      if (seen[v]) fail(line_number, t[1].column, "second 'v' line for vertex " + std::to_string(*id));
+      const auto value = to_integer<std::int64_t>(t[2].text);
+      if (!value) fail(line_number, t[2].column, "expected an integer elevation, found " + shown(t[2].text));
+      seen[v] = true;
+      elevation[v] = *value;
+    } else if (t[0].text == "p") {
+      if (p_line != 0)
+        fail(line_number, t[0].column, "second 'p' line (the first is line " + std::to_string(p_line) + ")");
+      if (t.size() < 5) fail(line_number, end_column, "missing field: the header is 'p aux sp elev n'");
+      if (t[1].text != "aux" || t[2].text != "sp" || t[3].text != "elev")
+        fail(line_number, t[1].column, "expected 'p aux sp elev n'");
+      if (t.size() > 5)
+        fail(line_number, t[5].column, "extra field " + shown(t[5].text) + ": the header is 'p aux sp elev n'");
+      const auto count = to_integer<std::uint64_t>(t[4].text);
+      if (!count || *count > kMaxCount) fail(line_number, t[4].column, "expected the vertex count, found " + shown(t[4].text));
+      if (*count != vertex_count)
+        fail(line_number, t[4].column,
+             "declares " + std::to_string(*count) + " vertices, the graph has " + std::to_string(vertex_count));
+      n = *count;
+      p_line = line_number;
+      elevation.assign(n, 0);  // n equals the graph's vertex count, already held in memory
+      seen.assign(n, false);
+    } else {
+      fail(line_number, t[0].column, "unknown line type " + shown(t[0].text));
+    }
+  }
+  if (p_line == 0) fail(std::max<std::uint64_t>(line_number, 1), 1, "no 'p aux sp elev n' line");
+  for (std::uint64_t v = 0; v < n; ++v)
+    if (!seen[v]) fail(p_line, 1, "no 'v' line for vertex " + std::to_string(v + id_base));
+  return elevation;
+}
+
+std::vector<std::uint32_t> out_degrees(std::uint64_t vertex_count, const std::vector<std::uint32_t>& tails) {
+  std::vector<std::uint32_t> degree(vertex_count, 0);
+  for (auto t : tails) ++degree[t];  // m <= 2^32 - 2, so no overflow
+  return degree;
+}
+
+void append_derived_columns(GraphInput& graph, const ExtendedOptions& options, unsigned id_base) {
+  const auto m = graph.tails.size();
+  auto& meta = graph.metadata;
+  if (options.elevation_file) {
+    auto input = read_text_input(*options.elevation_file);
+    const auto key = input_key(meta);
+    meta.set(key + ".name", input.base_name);
+    meta.set(key + ".size", std::to_string(input.raw_size));
+    meta.set(key + ".xxh3", input.raw_xxh3);
+    const auto elevation = parse_dimacs_elevation(input.text, input.display_name, id_base, graph.vertex_count);
+    std::vector<std::uint64_t> cost(m);
+    for (std::size_t k = 0; k < m; ++k)
+      cost[k] = absolute_difference(elevation[graph.tails[k]], elevation[graph.heads[k]]);
+    graph.costs.push_back({"elevation", "", std::move(cost), std::nullopt});
+    meta.set("source.param.elevation", input.base_name);
+  }
+  if (options.avg_outdegree) {
+    const auto degree = out_degrees(graph.vertex_count, graph.tails);
+    const bool twice = options.avg_outdegree_mode == AvgOutdegreeMode::twice;
+    std::vector<std::uint64_t> cost(m);
+    for (std::size_t k = 0; k < m; ++k) {
+      const std::uint64_t sum = std::uint64_t{degree[graph.tails[k]]} + degree[graph.heads[k]];
+      cost[k] = twice ? sum : (sum + 1) / 2;
+    }
+    graph.costs.push_back({"avg_outdegree", "", std::move(cost), std::nullopt});
+    meta.set("source.param.avg_outdegree", twice ? "twice" : "round-half-up");
+  }
+  if (options.hop) graph.costs.push_back({"hop", "", std::vector<std::uint64_t>(m, 1), std::nullopt});
+  std::string derived;
+  if (options.avg_outdegree) derived = "avg-outdegree";
+  if (options.hop) derived += derived.empty() ? "hop" : ",hop";
+  if (!derived.empty()) meta.set("source.param.derive", derived);
+}
+
+void add_views(GraphInput& graph, const std::vector<ViewSpec>& views) {
+  std::set<std::string> names;
+  for (const auto& view : views) {
+    if (!names.insert(view.name).second) throw Error("convert dimacs: --view '" + view.name + "' given twice");
+    std::string list;
+    for (const auto& objective : view.objectives) {
+      bool found = false;
+      for (const auto& c : graph.costs) found |= c.name == objective;
+      if (!found) {
+        std::string columns;
+        for (const auto& c : graph.costs) columns += (columns.empty() ? "" : ",") + c.name;
+        throw Error("convert dimacs: --view '" + view.name + "': objective '" + objective +
+                    "' is not a column (columns: " + columns + ")");
+      }
+      list += (list.empty() ? "" : ",") + objective;
+    }
+    graph.metadata.set("view." + view.name + ".objectives", list);
+    bool has_queries = false;
+    for (const auto& q : graph.queries) has_queries |= q.name == view.queries;
+    if (has_queries) graph.metadata.set("view." + view.name + ".queries", view.queries);
+    // The intended query set survives in the parameters for `mosb queries import`.
+    graph.metadata.set("source.param.view." + view.name, list + "@" + view.queries);
+  }
+}
+
+}  // namespace mosb::converters

@@ -1,0 +1,302 @@
+#include "mosb/converters/guards_converter.hpp"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+
+#include "mosb/converters/text_input.hpp"
+#include "mosb/error.hpp"
+
+namespace mosb::converters {
+
+namespace {
+
+using movingai_text::fail;
+using movingai_text::quoted;
+
+constexpr std::uint64_t kMaxRadiusMilli = 1'000'000'000;  // 10^6 cells: beyond any map that fits
+
+// `D` or `D.DDD` (at most 3 decimals), in thousandths.
+bool parse_radius(std::string_view s, std::uint64_t& milli) {
+  const auto dot = s.find('.');
+  const auto whole = s.substr(0, dot);
+  std::string_view fraction = dot == std::string_view::npos ? std::string_view() : s.substr(dot + 1);
+  if (dot != std::string_view::npos && (fraction.empty() || fraction.size() > 3)) return false;
+  std::uint64_t w = 0, f = 0;
+  if (!movingai_text::parse_unsigned(whole, kMaxRadiusMilli / 1000, w)) return false;
+  if (!fraction.empty() && !movingai_text::parse_unsigned(fraction, 999, f)) return false;
+  for (auto k = fraction.size(); k < 3; ++k) f *= 10;
+  milli = w * 1000 + f;
+  return milli <= kMaxRadiusMilli;
+}
+
+}  // namespace
+
+std::vector<Guard> parse_guards(std::string_view text_in, const std::string& file, const OctileMap& map) {
+  movingai_text::Lines lines(text_in);
+  std::string_view line;
+  std::vector<Guard> guards;
+  while (lines.next(line)) {
+    const auto ln = lines.number();
+    const auto hash = line.find('#');
+    if (hash != std::string_view::npos) line = line.substr(0, hash);
+    const auto t = movingai_text::tokenize(line);
+    if (t.empty()) continue;
+    if (t.size() < 2) fail(file, ln, line.size() + 1, "missing field: a guard line is 'x y [radius]'");
+    if (t.size() > 3) fail(file, ln, t[3].column, "extra field " + quoted(t[3].text) + ": a guard line is 'x y [radius]'");
+    Guard g;
+    g.line = ln;
+    std::uint64_t x = 0, y = 0;
+    if (!movingai_text::parse_unsigned(t[0].text, map.width - 1, x))
+      fail(file, ln, t[0].column, "guard x " + quoted(t[0].text) + " is not a column 0.." + std::to_string(map.width - 1));
+    if (!movingai_text::parse_unsigned(t[1].text, map.height - 1, y))
+      fail(file, ln, t[1].column, "guard y " + quoted(t[1].text) + " is not a row 0.." + std::to_string(map.height - 1));
+    g.x = static_cast<std::uint32_t>(x);
+    g.y = static_cast<std::uint32_t>(y);
+    if (!map.is_passable(g.x, g.y))
+      fail(file, ln, t[0].column, "guard on the blocked cell (" + std::to_string(x) + ", " + std::to_string(y) + ")");
+    if (t.size() == 3) {
+      std::uint64_t milli = 0;
+      if (!parse_radius(t[2].text, milli))
+        fail(file, ln, t[2].column, "expected a radius from 0 to 1000000 with at most 3 decimals, found " + quoted(t[2].text));
+      g.radius_milli = milli;
+    }
+    guards.push_back(g);
+  }
+  return guards;
+}
+
+std::vector<std::uint64_t> parse_exposure(std::string_view text_in, const std::string& file, const OctileMap& map) {
+  movingai_text::Lines lines(text_in);
+  std::string_view line;
+  std::vector<std::uint64_t> exposure(map.passable.size(), 0);
+  for (std::uint32_t y = 0; y < map.height; ++y) {
+    if (!lines.next(line))
+      fail(file, lines.number() + 1, 1, "missing row " + std::to_string(y + 1) + " of " + std::to_string(map.height));
+    const auto ln = lines.number();
+    const auto t = movingai_text::tokenize(line);
+    if (t.size() < map.width)
+      fail(file, ln, line.size() + 1, "row " + std::to_string(y + 1) + " has " + std::to_string(t.size()) +
+                                          " values, the map is " + std::to_string(map.width) + " wide");
+    if (t.size() > map.width) fail(file, ln, t[map.width].column, "extra value " + quoted(t[map.width].text) +
+                                                                   ": the map is " + std::to_string(map.width) + " wide");
+    for (std::uint32_t x = 0; x < map.width; ++x) {
+      if (!map.is_passable(x, y)) continue;  // blocked cells may hold anything
+      std::uint64_t value = 0;
+      if (!movingai_text::parse_unsigned(t[x].text, UINT64_MAX, value))
+        fail(file, ln, t[x].column, "expected a non-negative integer exposure, found " + quoted(t[x].text));
+      exposure[std::size_t{y} * map.width + x] = value;
+    }
+  }
+  while (lines.next(line))
+    if (!movingai_text::tokenize(line).empty())
+      fail(file, lines.number(), 1, "text after the " + std::to_string(map.height) + " rows of the grid");
+  return exposure;
+}
+
+bool line_of_sight(const OctileMap& map, std::uint32_t x0, std::uint32_t y0, std::uint32_t x1, std::uint32_t y1) {
+  // Walks the cells the segment enters, in order: the next boundary crossed is the vertical one when
+  // (ix + 1/2) / dx < (iy + 1/2) / dy; at equality the segment passes through a grid corner and
+  // touches all four cells around it, so both side cells are checked too.
+  const std::int64_t dx = x1 >= x0 ? std::int64_t{x1} - x0 : std::int64_t{x0} - x1;
+  const std::int64_t dy = y1 >= y0 ? std::int64_t{y1} - y0 : std::int64_t{y0} - y1;
+  const std::int64_t sx = x1 >= x0 ? 1 : -1, sy = y1 >= y0 ? 1 : -1;
+  std::int64_t x = x0, y = y0;
+  auto open = [&](std::int64_t cx, std::int64_t cy) {
+    return map.is_passable(static_cast<std::uint32_t>(cx), static_cast<std::uint32_t>(cy));
+  };
+  if (!open(x, y)) return false;
+  for (std::int64_t ix = 0, iy = 0; ix < dx || iy < dy;) {
+    const std::int64_t decision = (1 + 2 * ix) * dy - (1 + 2 * iy) * dx;
+    if (decision == 0) {
+      if (!open(x + sx, y) || !open(x, y + sy)) return false;
+      x += sx, y += sy, ++ix, ++iy;
+    } else if (decision < 0) {
+      x += sx, ++ix;
+    } else {
+      y += sy, ++iy;
+    }
+    if (!open(x, y)) return false;
+  }
+  return true;
+}
+
+std::vector<std::uint64_t> compute_exposure(const OctileMap& map, const std::vector<Guard>& guards) {
+  std::vector<std::uint64_t> exposure(map.passable.size(), 0);
+  for (const auto& g : guards) {
+    std::uint32_t x_lo = 0, y_lo = 0, x_hi = map.width - 1, y_hi = map.height - 1;
+    if (g.radius_milli) {
+      const auto reach = static_cast<std::uint32_t>(*g.radius_milli / 1000);
+      x_lo = g.x - std::min(g.x, reach), y_lo = g.y - std::min(g.y, reach);
+      x_hi = g.x + std::min(map.width - 1 - g.x, reach), y_hi = g.y + std::min(map.height - 1 - g.y, reach);
+    }
+    for (std::uint32_t y = y_lo; y <= y_hi; ++y) {
+      for (std::uint32_t x = x_lo; x <= x_hi; ++x) {
+        if (!map.is_passable(x, y)) continue;
+        if (g.radius_milli) {
+          // Exact: dx^2 + dy^2 <= (R/1000)^2  <=>  10^6 (dx^2 + dy^2) <= R^2 (both below 2^63).
+          const std::uint64_t dx = x > g.x ? x - g.x : g.x - x, dy = y > g.y ? y - g.y : g.y - y;
+          if (1'000'000 * (dx * dx + dy * dy) > *g.radius_milli * *g.radius_milli) continue;
+        }
+        if (line_of_sight(map, g.x, g.y, x, y)) ++exposure[std::size_t{y} * map.width + x];
+      }
+    }
+  }
+  return exposure;
+}
+
+std::string format_exposure(const OctileMap& map, const std::vector<std::uint64_t>& exposure) {
+  std::string out;
+  for (std::uint32_t y = 0; y < map.height; ++y) {
+    for (std::uint32_t x = 0; x < map.width; ++x) {
+      if (x) out += ' ';
+      out += std::to_string(exposure[std::size_t{y} * map.width + x]);
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+void write_text_atomically(const std::filesystem::path& path, std::string_view content) {
+  std::string temp = path.string() + ".tmp-XXXXXX";
+  const int fd = ::mkstemp(temp.data());
+  if (fd < 0) throw Error(path.string() + ": cannot create a temporary file: " + std::strerror(errno));
+  std::size_t done = 0;
+  while (done < content.size()) {
+    const auto n = ::write(fd, content.data() + done, content.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const std::string reason = std::strerror(errno);
+      ::close(fd);
+      std::remove(temp.c_str());
+      throw Error(path.string() + ": cannot write: " + reason);
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  ::fchmod(fd, 0644);
+  if (::close(fd) != 0 || std::rename(temp.c_str(), path.c_str()) != 0) {
+    const std::string reason = std::strerror(errno);
+    std::remove(temp.c_str());
+    throw Error(path.string() + ": cannot write: " + reason);
+  }
+}
+
+GraphInput build_guards_graph(const OctileMap& map, const std::vector<std::uint64_t>& exposure) {
+  GraphInput g;
+  constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+  std::vector<std::uint32_t> id(map.passable.size(), kNone);
+  const bool narrow = map.width <= 65536 && map.height <= 65536;
+  std::vector<std::uint16_t> cells16;
+  std::vector<std::uint32_t> cells32;
+  std::uint32_t n = 0;
+  for (std::uint32_t y = 0; y < map.height; ++y)
+    for (std::uint32_t x = 0; x < map.width; ++x)
+      if (map.is_passable(x, y)) {
+        id[std::size_t{y} * map.width + x] = n++;
+        if (narrow) cells16.insert(cells16.end(), {static_cast<std::uint16_t>(x), static_cast<std::uint16_t>(y)});
+        else cells32.insert(cells32.end(), {x, y});
+      }
+  g.vertex_count = n;
+  std::vector<std::uint64_t> length, cost;
+  auto at = [&](std::int64_t x, std::int64_t y) { return static_cast<std::size_t>(y) * map.width + static_cast<std::size_t>(x); };
+  auto inside = [&](std::int64_t x, std::int64_t y) { return x >= 0 && y >= 0 && x < map.width && y < map.height; };
+  for (std::uint32_t y = 0; y < map.height; ++y) {
+    for (std::uint32_t x = 0; x < map.width; ++x) {
+      const auto tail = id[at(x, y)];
+      if (tail == kNone) continue;
+      // Neighbours in row-major order of the 3x3 block, so each tail's heads are increasing.
+      for (std::int64_t dy = -1; dy <= 1; ++dy) {
+        for (std::int64_t dx = -1; dx <= 1; ++dx) {
+          const std::int64_t hx = std::int64_t{x} + dx, hy = std::int64_t{y} + dy;
+          if ((dx == 0 && dy == 0) || !inside(hx, hy) || !map.passable[at(hx, hy)]) continue;
+          const bool diagonal = dx != 0 && dy != 0;
+          if (diagonal && (!map.passable[at(hx, y)] || !map.passable[at(x, hy)])) continue;
+          g.tails.push_back(tail);
+          g.heads.push_back(id[at(hx, hy)]);
+          length.push_back(diagonal ? 14 : 10);
+          auto e = exposure[at(hx, hy)];
+          if (diagonal) e = std::max({e, exposure[at(hx, y)], exposure[at(x, hy)]});
+          cost.push_back(e);
+        }
+      }
+    }
+  }
+  g.costs.push_back({"length", "0.1 cell", std::move(length), std::nullopt});
+  g.costs.push_back({"exposure", "guards", std::move(cost), std::nullopt});
+  g.vertex_data.push_back(narrow ? DataColumn::from("cell", 2, cells16) : DataColumn::from("cell", 2, cells32));
+  g.metadata.set("map.width", std::to_string(map.width));
+  g.metadata.set("map.height", std::to_string(map.height));
+  g.metadata.set("view.GUARDS_2.objectives", "length,exposure");
+  return g;
+}
+
+namespace {
+
+void record_input(Metadata& m, std::size_t i, const TextInput& in) {
+  const std::string key = "source.input." + std::to_string(i);
+  m.set(key + ".name", in.base_name);
+  m.set(key + ".size", std::to_string(in.raw_size));
+  m.set(key + ".xxh3", in.raw_xxh3);
+}
+
+std::string default_benchmark(std::string base) {
+  for (const char* ext : {".gz", ".bz2", ".xz", ".zst", ".zstd", ".map"}) {
+    const std::string e = ext;
+    if (base.size() > e.size() && base.compare(base.size() - e.size(), e.size(), e) == 0)
+      base.resize(base.size() - e.size());
+  }
+  return base;
+}
+
+}  // namespace
+
+GuardsResult convert_guards(const GuardsOptions& o) {
+  if (o.exposure_file.has_value() == o.guards_file.has_value())
+    throw Error("convert guards: give exactly one of --exposure and --guards");
+  GuardsResult r;
+  Metadata inputs;
+  const auto map_input = read_text_input(o.map_file);
+  record_input(inputs, 0, map_input);
+  r.map = parse_octile_map(map_input.text, map_input.display_name, o.terrain);
+  const auto cells_input = read_text_input(o.exposure_file ? *o.exposure_file : *o.guards_file);
+  record_input(inputs, 1, cells_input);
+  if (o.exposure_file) {
+    r.exposure = parse_exposure(cells_input.text, cells_input.display_name, r.map);
+  } else {
+    r.exposure = compute_exposure(r.map, parse_guards(cells_input.text, cells_input.display_name, r.map));
+  }
+  r.graph = build_guards_graph(r.map, r.exposure);
+  if (o.exposure_file) r.graph.costs[1].unit = "";
+  if (o.scen_file) {
+    const auto scen_input = read_text_input(*o.scen_file);
+    record_input(inputs, 2, scen_input);
+    const auto entries = parse_scenario(scen_input.text, scen_input.display_name);
+    check_scenario(entries, scen_input.display_name, r.map, map_input.display_name);
+    std::vector<std::uint32_t> id(r.map.passable.size(), 0);
+    std::uint32_t n = 0;
+    for (std::size_t c = 0; c < id.size(); ++c)
+      if (r.map.passable[c]) id[c] = n++;
+    QuerySet scen{"scen", {}};
+    for (const auto& e : entries)
+      scen.pairs.push_back({id[std::size_t{e.start_y} * r.map.width + e.start_x],
+                            id[std::size_t{e.goal_y} * r.map.width + e.goal_x]});
+    r.graph.queries.push_back(std::move(scen));
+  }
+  auto& m = r.graph.metadata;
+  for (const auto& [key, value] : inputs.entries()) m.set(key, value);
+  m.set("benchmark", o.name ? *o.name : default_benchmark(map_input.base_name));
+  m.set("family", "games");
+  m.set("id_base", "0");
+  m.set("source.command", "convert guards");
+  m.set("source.param.exposure", o.exposure_file ? "file" : "guards");
+  m.set("source.param.swamp", o.terrain.swamp_passable ? "passable" : "blocked");
+  m.set("source.param.water", o.terrain.water_passable ? "passable" : "blocked");
+  if (o.name) m.set("source.param.name", *o.name);
+  return r;
+}
+
+}  // namespace mosb::converters

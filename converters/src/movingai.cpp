@@ -1,0 +1,241 @@
+#include "mosb/converters/movingai.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <optional>
+
+#include "mosb/error.hpp"
+
+namespace mosb::converters {
+
+namespace movingai_text {
+
+bool Lines::next(std::string_view& line) {
+  if (pos_ >= text_.size()) return false;
+  auto end = text_.find('\n', pos_);
+  if (end == std::string_view::npos) end = text_.size();
+  line = text_.substr(pos_, end - pos_);
+  pos_ = end + 1;
+  ++number_;
+  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  return true;
+}
+
+std::vector<Token> tokenize(std::string_view line) {
+  std::vector<Token> tokens;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+    if (i >= line.size()) break;
+    const std::size_t start = i;
+    while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
+    tokens.push_back({line.substr(start, i - start), static_cast<std::uint32_t>(start + 1)});
+  }
+  return tokens;
+}
+
+std::string quoted(std::string_view token) {
+  std::string out = "'";
+  const std::size_t limit = 40;
+  for (std::size_t i = 0; i < token.size() && i < limit; ++i) {
+    const auto c = static_cast<unsigned char>(token[i]);
+    out += (c < 0x20 || c >= 0x7F) ? '?' : static_cast<char>(c);
+  }
+  if (token.size() > limit) out += "...";
+  return out + "'";
+}
+
+void fail(const std::string& file, std::uint64_t line, std::uint64_t column, const std::string& message) {
+  throw Error(file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " + message);
+}
+
+bool parse_unsigned(std::string_view s, std::uint64_t max, std::uint64_t& value) {
+  if (s.empty()) return false;
+  for (char c : s)
+    if (c < '0' || c > '9') return false;
+  const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
+  return ec == std::errc() && ptr == s.data() + s.size() && value <= max;
+}
+
+}  // namespace movingai_text
+
+namespace {
+
+using movingai_text::fail;
+using movingai_text::quoted;
+
+constexpr std::uint64_t kMaxCells = 0xFFFFFFFEULL;  // vertex ids are u32 with one value to spare
+
+// 1 passable, 0 blocked, nullopt for a character the format does not define.
+std::optional<std::uint8_t> terrain(char c, const TerrainRules& rules) {
+  switch (c) {
+    case '.': case 'G': return 1;
+    case '@': case 'O': case 'T': return 0;
+    case 'S': return rules.swamp_passable ? 1 : 0;
+    case 'W': return rules.water_passable ? 1 : 0;
+    default: return std::nullopt;
+  }
+}
+
+std::uint32_t parse_dimension(const std::string& file, std::uint64_t ln, const movingai_text::Token& t, const char* what) {
+  std::uint64_t value = 0;
+  if (!movingai_text::parse_unsigned(t.text, 0xFFFFFFFFULL, value) || value == 0)
+    fail(file, ln, t.column, std::string("expected the map ") + what + " (an integer from 1 to 4294967295), found " +
+                                 quoted(t.text));
+  return static_cast<std::uint32_t>(value);
+}
+
+}  // namespace
+
+OctileMap parse_octile_map(std::string_view text_in, const std::string& file, const TerrainRules& rules) {
+  movingai_text::Lines lines(text_in);
+  std::string_view line;
+  OctileMap map;
+  std::uint64_t header_line = 0;
+  bool have_type = false;
+  // The header: `type octile`, then `height H` and `width W` (either order), then `map`.
+  while (true) {
+    if (!lines.next(line))
+      fail(file, lines.number() + 1, 1, have_type ? "missing 'map' line after the header" : "empty file: expected 'type octile'");
+    const auto ln = lines.number();
+    const auto t = movingai_text::tokenize(line);
+    if (!have_type) {
+      if (t.size() < 1 || t[0].text != "type") fail(file, ln, t.empty() ? 1 : t[0].column, "expected 'type octile'");
+      if (t.size() < 2 || t[1].text != "octile")
+        fail(file, ln, t.size() < 2 ? line.size() + 1 : t[1].column, "expected 'type octile' (only octile maps are supported)");
+      if (t.size() > 2) fail(file, ln, t[2].column, "extra field " + quoted(t[2].text));
+      have_type = true;
+      continue;
+    }
+    if (t.empty()) fail(file, ln, 1, "expected 'height H', 'width W' or 'map'");
+    if (t[0].text == "map") {
+      if (t.size() > 1) fail(file, ln, t[1].column, "extra field " + quoted(t[1].text));
+      if (map.height == 0) fail(file, ln, 1, "'map' before the 'height H' line");
+      if (map.width == 0) fail(file, ln, 1, "'map' before the 'width W' line");
+      break;
+    }
+    const bool is_height = t[0].text == "height";
+    if (!is_height && t[0].text != "width")
+      fail(file, ln, t[0].column, "expected 'height H', 'width W' or 'map', found " + quoted(t[0].text));
+    auto& field = is_height ? map.height : map.width;
+    const char* what = is_height ? "height" : "width";
+    if (field != 0) fail(file, ln, t[0].column, std::string("second '") + what + "' line");
+    if (t.size() < 2) fail(file, ln, line.size() + 1, std::string("missing the map ") + what);
+    if (t.size() > 2) fail(file, ln, t[2].column, "extra field " + quoted(t[2].text));
+    field = parse_dimension(file, ln, t[1], what);
+    header_line = ln;
+  }
+  const auto cells = std::uint64_t{map.width} * map.height;
+  // Untrusted header: the rows must be in the text before anything that large is allocated.
+  if (cells > kMaxCells || cells > text_in.size())
+    fail(file, header_line, 1, "a " + std::to_string(map.width) + " x " + std::to_string(map.height) +
+                                   " map cannot be held in this " + std::to_string(text_in.size()) + "-byte file");
+  map.passable.resize(cells);
+  for (std::uint32_t y = 0; y < map.height; ++y) {
+    if (!lines.next(line))
+      fail(file, lines.number() + 1, 1, "missing row " + std::to_string(y + 1) + " of " + std::to_string(map.height));
+    const auto ln = lines.number();
+    const auto n = std::min<std::size_t>(line.size(), map.width);
+    for (std::size_t x = 0; x < n; ++x) {
+      const auto flag = terrain(line[x], rules);
+      if (!flag) fail(file, ln, x + 1, "unknown terrain character " + quoted(line.substr(x, 1)));
+      map.passable[std::size_t{y} * map.width + x] = *flag;
+    }
+    if (line.size() != map.width)
+      fail(file, ln, n + 1, "row " + std::to_string(y + 1) + " has " + std::to_string(line.size()) +
+                                " cells, the map is " + std::to_string(map.width) + " wide");
+  }
+  while (lines.next(line))
+    if (!line.empty())
+      fail(file, lines.number(), 1, "text after the " + std::to_string(map.height) + " rows of the map");
+  return map;
+}
+
+std::vector<ScenarioEntry> parse_scenario(std::string_view text_in, const std::string& file) {
+  movingai_text::Lines lines(text_in);
+  std::string_view line;
+  bool have_version = false;
+  std::vector<ScenarioEntry> entries;
+  while (lines.next(line)) {
+    const auto ln = lines.number();
+    const auto words = movingai_text::tokenize(line);
+    if (words.empty()) continue;
+    if (!have_version) {
+      if (words[0].text != "version") fail(file, ln, words[0].column, "expected 'version 1'");
+      if (words.size() < 2 || (words[1].text != "1" && words[1].text != "1.0"))
+        fail(file, ln, words.size() < 2 ? line.size() + 1 : words[1].column,
+             "expected 'version 1' (only version 1 scenarios are supported)");
+      if (words.size() > 2) fail(file, ln, words[2].column, "extra field " + quoted(words[2].text));
+      have_version = true;
+      continue;
+    }
+    // Fields are tab-separated (a map path may hold blanks); a row without tabs is split on blanks.
+    std::vector<movingai_text::Token> fields;
+    if (line.find('\t') != std::string_view::npos) {
+      std::size_t start = 0;
+      while (true) {
+        const auto tab = line.find('\t', start);
+        const auto end = tab == std::string_view::npos ? line.size() : tab;
+        fields.push_back({line.substr(start, end - start), static_cast<std::uint32_t>(start + 1)});
+        if (tab == std::string_view::npos) break;
+        start = tab + 1;
+      }
+      while (fields.size() > 9 && fields.back().text.empty()) fields.pop_back();  // trailing tabs
+    } else {
+      fields = words;
+    }
+    if (fields.size() < 9)
+      fail(file, ln, line.size() + 1, "missing field: a row is 'bucket map width height sx sy gx gy optimal'");
+    if (fields.size() > 9) fail(file, ln, fields[9].column, "extra field " + quoted(fields[9].text));
+    ScenarioEntry e;
+    e.line = ln;
+    for (std::size_t k = 0; k < 9; ++k) e.columns[k] = fields[k].column;
+    if (!movingai_text::parse_unsigned(fields[0].text, UINT64_MAX, e.bucket))
+      fail(file, ln, fields[0].column, "expected a bucket number, found " + quoted(fields[0].text));
+    if (fields[1].text.empty()) fail(file, ln, fields[1].column, "empty map name");
+    e.map = std::string(fields[1].text);
+    std::uint32_t* targets[] = {&e.map_width, &e.map_height, &e.start_x, &e.start_y, &e.goal_x, &e.goal_y};
+    const char* names[] = {"map width", "map height", "start x", "start y", "goal x", "goal y"};
+    for (std::size_t k = 0; k < 6; ++k) {
+      std::uint64_t value = 0;
+      if (!movingai_text::parse_unsigned(fields[2 + k].text, 0xFFFFFFFFULL, value))
+        fail(file, ln, fields[2 + k].column, std::string("expected the ") + names[k] + ", found " + quoted(fields[2 + k].text));
+      *targets[k] = static_cast<std::uint32_t>(value);
+    }
+    const auto opt = fields[8].text;
+    const bool well_formed = !opt.empty() && opt.find_first_not_of("0123456789.eE+-") == std::string_view::npos &&
+                             opt[0] >= '0' && opt[0] <= '9';
+    const auto [ptr, ec] = std::from_chars(opt.data(), opt.data() + opt.size(), e.optimal);
+    if (!well_formed || ec != std::errc() || ptr != opt.data() + opt.size() || !std::isfinite(e.optimal))
+      fail(file, ln, fields[8].column, "expected the optimal length (a non-negative number), found " + quoted(opt));
+    entries.push_back(std::move(e));
+  }
+  if (!have_version) fail(file, std::max<std::uint64_t>(lines.number(), 1), 1, "empty file: expected 'version 1'");
+  return entries;
+}
+
+void check_scenario(const std::vector<ScenarioEntry>& entries, const std::string& file, const OctileMap& map,
+                    const std::string& map_name) {
+  for (const auto& e : entries) {
+    if (e.map_width != map.width || e.map_height != map.height)
+      fail(file, e.line, e.columns[e.map_width != map.width ? 2 : 3],
+           "the row gives a " + std::to_string(e.map_width) + " x " + std::to_string(e.map_height) + " map, " +
+               map_name + " is " + std::to_string(map.width) + " x " + std::to_string(map.height));
+    const struct {
+      std::uint32_t x, y;
+      std::size_t field;
+      const char* what;
+    } ends[] = {{e.start_x, e.start_y, 4, "start"}, {e.goal_x, e.goal_y, 6, "goal"}};
+    for (const auto& end : ends) {
+      const std::string cell = "(" + std::to_string(end.x) + ", " + std::to_string(end.y) + ")";
+      if (end.x >= map.width || end.y >= map.height)
+        fail(file, e.line, e.columns[end.x >= map.width ? end.field : end.field + 1],
+             std::string("the ") + end.what + " cell " + cell + " lies outside " + map_name);
+      if (!map.is_passable(end.x, end.y))
+        fail(file, e.line, e.columns[end.field],
+             std::string("the ") + end.what + " cell " + cell + " is blocked in " + map_name);
+    }
+  }
+}
+
+}  // namespace mosb::converters

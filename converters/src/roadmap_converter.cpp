@@ -1,0 +1,496 @@
+#include "mosb/converters/roadmap_converter.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+
+#include "mosb/converters/graphml_reader.hpp"
+#include "mosb/converters/text_input.hpp"
+#include "mosb/error.hpp"
+
+namespace mosb::converters {
+
+namespace {
+
+constexpr std::uint64_t kMaxCount = 0xFFFFFFFEULL;  // n and m are at most 2^32 - 2 (FORMAT.md §4)
+
+struct Token {
+  std::string_view text;
+  std::uint64_t column;  // 1-based
+};
+
+// Calls f(line_number, tokens) for each line; '\n' ends a line, blanks, tabs and '\r' separate tokens.
+template <class F>
+void for_each_line(std::string_view text, F&& f) {
+  std::vector<Token> tokens;
+  std::uint64_t number = 0;
+  std::size_t pos = 0;
+  while (pos < text.size()) {
+    auto end = text.find('\n', pos);
+    if (end == std::string_view::npos) end = text.size();
+    const auto line = text.substr(pos, end - pos);
+    ++number;
+    tokens.clear();
+    std::size_t i = 0;
+    const auto blank = [&](std::size_t k) { return line[k] == ' ' || line[k] == '\t' || line[k] == '\r'; };
+    while (i < line.size()) {
+      while (i < line.size() && blank(i)) ++i;
+      const auto start = i;
+      while (i < line.size() && !blank(i)) ++i;
+      if (i > start) tokens.push_back({line.substr(start, i - start), start + 1});
+    }
+    f(number, tokens, line.size() + 1);
+    pos = end + 1;
+  }
+}
+
+std::string shown(std::string_view s) {
+  std::string out = "'";
+  for (std::size_t i = 0; i < s.size() && i < 40; ++i) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    out += (c < 0x20 || c == 0x7F) ? '?' : static_cast<char>(c);
+  }
+  return out + (s.size() > 40 ? "...'" : "'");
+}
+
+[[noreturn]] void fail_at(const std::string& file, std::uint64_t line, std::uint64_t column, const std::string& message) {
+  throw Error(file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " + message);
+}
+
+std::optional<std::uint64_t> to_u64(std::string_view s) {
+  if (s.empty() || s.find_first_not_of("0123456789") != std::string_view::npos) return std::nullopt;
+  std::uint64_t value = 0;
+  const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
+  if (ec != std::errc() || ptr != s.data() + s.size()) return std::nullopt;
+  return value;
+}
+
+// A finite real in plain decimal or exponent notation (no inf, nan, hex).
+std::optional<double> to_real(std::string_view s) {
+  if (s.empty() || s.find_first_not_of("0123456789.eE+-") != std::string_view::npos) return std::nullopt;
+  double value = 0;
+  const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), value, std::chars_format::general);
+  if (ec != std::errc() || ptr != s.data() + s.size() || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+// Shortest text that reads back as the same double: metadata values stay byte-identical.
+std::string real_text(double value) {
+  char buffer[32];
+  const auto [ptr, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, ec == std::errc() ? ptr : buffer);
+}
+
+void record_input(Metadata& m, std::size_t i, const TextInput& in) {
+  const std::string key = "source.input." + std::to_string(i);
+  m.set(key + ".name", in.base_name);
+  m.set(key + ".size", std::to_string(in.raw_size));
+  m.set(key + ".xxh3", in.raw_xxh3);
+}
+
+std::string default_benchmark(std::string base) {
+  for (const char* ext : {".gz", ".bz2", ".xz", ".zst", ".zstd", ".gr", ".xml", ".graphml"}) {
+    const std::string e = ext;
+    if (base.size() > e.size() && base.compare(base.size() - e.size(), e.size(), e) == 0)
+      base.resize(base.size() - e.size());
+  }
+  return base;
+}
+
+// What a first pass over a .gr text finds: the `p sp n m` header and the largest vertex id.
+struct GrScan {
+  std::uint64_t header_line = 0;  // 0: none found (the parser reports it)
+  std::uint64_t declared = 0;
+  std::size_t count_offset = 0, count_length = 0;  // the n token, for --vertices-from-ids
+  std::optional<std::uint64_t> largest;
+  std::uint64_t largest_line = 0, largest_column = 0;
+};
+
+GrScan scan_gr(std::string_view text) {
+  GrScan s;
+  for_each_line(text, [&](std::uint64_t line, const std::vector<Token>& t, std::uint64_t) {
+    if (t.empty()) return;
+    if (t[0].text == "p" && t.size() >= 3 && t[1].text == "sp" && s.header_line == 0) {
+      if (const auto n = to_u64(t[2].text)) {
+        s.header_line = line;
+        s.declared = *n;
+        s.count_offset = static_cast<std::size_t>(t[2].text.data() - text.data());
+        s.count_length = t[2].text.size();
+      }
+    } else if (t[0].text == "a") {
+      for (std::size_t k = 1; k < 3 && k < t.size(); ++k) {
+        const auto id = to_u64(t[k].text);
+        if (id && (!s.largest || *id > *s.largest)) {
+          s.largest = *id;
+          s.largest_line = line;
+          s.largest_column = t[k].column;
+        }
+      }
+    }
+  });
+  return s;
+}
+
+const char* kFromIdsHint = "; --vertices-from-ids sizes the graph from the largest id instead";
+
+std::string declared_range(std::uint64_t declared) {
+  return declared == 0 ? "(none)" : "0.." + std::to_string(declared - 1);
+}
+
+std::vector<double> vertex_configs(const VertexFile& vf, std::uint64_t n, const std::string& file) {
+  std::vector<std::uint64_t> order(vf.ids.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](auto a, auto b) { return vf.ids[a] < vf.ids[b]; });
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const auto id = vf.ids[order[k]];
+    if (id >= n)
+      fail_at(file, vf.lines[order[k]], 1, "vertex id " + std::to_string(id) + " outside " + declared_range(n));
+    if (k > 0 && vf.ids[order[k - 1]] == id)
+      fail_at(file, vf.lines[order[k]], 1, "second line for vertex " + std::to_string(id) + " (the first is line " +
+                                               std::to_string(vf.lines[order[k - 1]]) + ")");
+    if (id != k) throw Error(file + ": no line for vertex " + std::to_string(k));
+  }
+  if (order.size() != n) throw Error(file + ": no line for vertex " + std::to_string(order.size()));
+  std::vector<double> configs(vf.coords.size());
+  for (std::size_t i = 0; i < vf.ids.size(); ++i)
+    std::copy_n(vf.coords.begin() + static_cast<std::ptrdiff_t>(i * vf.dof), vf.dof,
+                configs.begin() + static_cast<std::ptrdiff_t>(vf.ids[i] * vf.dof));
+  return configs;
+}
+
+void name_objectives(GraphInput& out, const std::vector<Objective>& names) {
+  if (names.empty()) return;
+  if (names.size() != out.costs.size())
+    throw Error("convert roadmap: " + std::to_string(names.size()) + " --objective names given, the input has " +
+                std::to_string(out.costs.size()) + " objectives");
+  std::string list;
+  for (std::size_t j = 0; j < names.size(); ++j) {
+    out.costs[j].name = names[j].name;
+    out.costs[j].unit = names[j].unit;
+    list += (j ? "," : "") + names[j].name + (names[j].unit.empty() ? "" : ":" + names[j].unit);
+  }
+  out.metadata.set("source.param.objectives", list);
+}
+
+GraphInput convert_gr_files(const RoadmapOptions& o) {
+  GraphInput out;
+  auto& m = out.metadata;
+  std::vector<TextInput> inputs;
+  std::vector<GrScan> scans;
+  for (std::size_t i = 0; i < o.gr_files.size(); ++i) {
+    inputs.push_back(read_text_input(o.gr_files[i]));
+    record_input(m, i, inputs.back());
+    scans.push_back(scan_gr(inputs.back().text));
+    const auto& s = scans.back();
+    if (i > 0 && s.header_line && scans[0].header_line && s.declared != scans[0].declared)
+      fail_at(inputs[i].display_name, s.header_line, 1,
+              "declares " + std::to_string(s.declared) + " vertices, " + inputs[0].display_name + " declares " +
+                  std::to_string(scans[0].declared));
+  }
+  std::optional<VertexFile> vertices;
+  std::string vertex_name;
+  if (o.vertex_file) {
+    const auto input = read_text_input(*o.vertex_file);
+    record_input(m, inputs.size(), input);
+    vertices = parse_vertex_file(input.text, input.display_name);
+    vertex_name = input.display_name;
+  }
+  const std::uint64_t declared = scans[0].declared;
+  std::uint64_t n = declared;
+  if (scans[0].header_line) {
+    for (std::size_t i = 0; i < scans.size(); ++i) {
+      const auto& s = scans[i];
+      if (!s.largest || *s.largest < declared) continue;
+      if (!o.vertices_from_ids)
+        fail_at(inputs[i].display_name, s.largest_line, s.largest_column,
+                "the largest vertex id, " + std::to_string(*s.largest) + ", is outside the " +
+                    std::to_string(declared) + " vertices declared on line " + std::to_string(s.header_line) +
+                    " (0-based ids " + declared_range(declared) + ")" + kFromIdsHint);
+      n = std::max(n, *s.largest + 1);
+    }
+    if (vertices && !vertices->ids.empty()) {
+      const auto at = std::max_element(vertices->ids.begin(), vertices->ids.end()) - vertices->ids.begin();
+      const auto largest = vertices->ids[static_cast<std::size_t>(at)];
+      if (largest >= declared && !o.vertices_from_ids)
+        fail_at(vertex_name, vertices->lines[static_cast<std::size_t>(at)], 1,
+                "the largest vertex id, " + std::to_string(largest) + ", is outside the " + std::to_string(declared) +
+                    " vertices declared on " + inputs[0].display_name + ":" + std::to_string(scans[0].header_line) +
+                    " (0-based ids " + declared_range(declared) + ")" + kFromIdsHint);
+      if (largest >= declared) n = std::max(n, largest + 1);
+    }
+    if (n > kMaxCount) throw Error("convert roadmap: vertex ids reach " + std::to_string(n - 1) + ", beyond the format's limit");
+  }
+  if (n > declared) {
+    m.set("warning.vertex_count", "declared " + std::to_string(declared) + ", ids reach " + std::to_string(n - 1));
+    // The DIMACS parser sizes the graph from the header: give it the header the ids call for.
+    for (std::size_t i = 0; i < inputs.size(); ++i)
+      if (scans[i].header_line != 0)
+        inputs[i].text.replace(scans[i].count_offset, scans[i].count_length, std::to_string(n));
+  }
+
+  DimacsGraph first;
+  std::vector<std::variant<std::vector<std::uint64_t>, std::vector<double>>> columns;
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const DimacsReference ref{&inputs[0].display_name, &first};
+    auto g = parse_dimacs_gr(inputs[i].text, inputs[i].display_name, 0, i == 0 ? nullptr : &ref);
+    for (auto& c : g.columns) columns.push_back(std::move(c));
+    g.columns.clear();
+    if (i == 0) first = std::move(g);
+  }
+  out.vertex_count = first.vertex_count;
+  out.tails = std::move(first.tails);
+  out.heads = std::move(first.heads);
+  for (std::size_t j = 0; j < columns.size(); ++j) {
+    CostColumn c;
+    c.name = "c" + std::to_string(j + 1);
+    c.values = std::move(columns[j]);
+    out.costs.push_back(std::move(c));
+  }
+  name_objectives(out, o.objectives);
+  if (vertices) {
+    out.vertex_data.push_back(DataColumn::from("config", vertices->dof, vertex_configs(*vertices, n, vertex_name)));
+    m.set("roadmap.dof", std::to_string(vertices->dof));
+  }
+  m.set("benchmark", o.name ? *o.name : default_benchmark(inputs[0].base_name));
+  m.set("source.param.vertices_from_ids", o.vertices_from_ids ? "true" : "false");
+  return out;
+}
+
+// Parses a comma-separated configuration of a GraphML node.
+std::vector<double> parse_coords(const std::string& text, const std::string& file, const std::string& node) {
+  std::vector<double> q;
+  std::size_t pos = 0;
+  while (true) {
+    auto end = text.find(',', pos);
+    if (end == std::string::npos) end = text.size();
+    auto part = std::string_view(text).substr(pos, end - pos);
+    while (!part.empty() && (part.front() == ' ' || part.front() == '\t')) part.remove_prefix(1);
+    while (!part.empty() && (part.back() == ' ' || part.back() == '\t')) part.remove_suffix(1);
+    const auto value = to_real(part);
+    if (!value) throw Error(file + ": node " + shown(node) + ": coords " + shown(text) + ": expected comma-separated reals");
+    q.push_back(*value);
+    if (end == text.size()) return q;
+    pos = end + 1;
+  }
+}
+
+struct ClearanceKeys {
+  std::optional<std::size_t> aggregate;  // `clearance`
+  std::vector<std::size_t> links;        // `clearance_0` .. `clearance_{L-1}`
+};
+
+ClearanceKeys find_clearance_keys(const GraphmlGraph& g, const std::string& file) {
+  ClearanceKeys keys;
+  keys.aggregate = g.edge_key("clearance");
+  std::vector<std::pair<std::uint64_t, std::size_t>> links;
+  for (std::size_t k = 0; k < g.edge_keys.size(); ++k) {
+    const std::string_view name = g.edge_keys[k].name;
+    if (!name.starts_with("clearance_")) continue;
+    const auto suffix = name.substr(10);
+    const auto i = to_u64(suffix);
+    if (!i || (suffix.size() > 1 && suffix[0] == '0') || *i > 1000)
+      throw Error(file + ": edge key " + shown(name) + ": expected clearance_0, clearance_1, ...");
+    links.emplace_back(*i, k);
+  }
+  std::sort(links.begin(), links.end());
+  for (std::size_t i = 0; i < links.size(); ++i) {
+    if (links[i].first != i)
+      throw Error(file + ": edge key 'clearance_" + std::to_string(links[i].first) + "' declared, 'clearance_" +
+                  std::to_string(i) + "' is missing (links are numbered 0..L-1)");
+    keys.links.push_back(links[i].second);
+  }
+  return keys;
+}
+
+GraphInput convert_graphml_file(const RoadmapOptions& o) {
+  GraphInput out;
+  auto& m = out.metadata;
+  const auto input = read_text_input(*o.graphml_file);
+  record_input(m, 0, input);
+  const auto& file = input.display_name;
+  const auto g = parse_graphml(input.text, file);
+
+  const auto coords_key = g.node_key("coords");
+  if (!coords_key) throw Error(file + ": no node key named 'coords' (the configurations the length needs)");
+  const std::size_t n = g.node_ids.size();
+  std::vector<double> configs;
+  std::size_t dof = 0;
+  for (std::size_t v = 0; v < n; ++v) {
+    const auto& text = g.node_value(v, *coords_key);
+    if (!text) throw Error(file + ": node " + shown(g.node_ids[v]) + " has no coords");
+    const auto q = parse_coords(*text, file, g.node_ids[v]);
+    if (v == 0) dof = q.size();
+    if (q.size() != dof)
+      throw Error(file + ": node " + shown(g.node_ids[v]) + " has " + std::to_string(q.size()) + " coordinates, node " +
+                  shown(g.node_ids[0]) + " has " + std::to_string(dof));
+    configs.insert(configs.end(), q.begin(), q.end());
+  }
+
+  const auto keys = find_clearance_keys(g, file);
+  auto mode = o.clearance;
+  if (mode == ClearanceMode::automatic)
+    mode = keys.aggregate || !keys.links.empty() ? ClearanceMode::aggregate : ClearanceMode::none;
+  const bool want_aggregate = mode == ClearanceMode::aggregate || mode == ClearanceMode::both;
+  const bool want_links = mode == ClearanceMode::per_link || mode == ClearanceMode::both;
+  if (want_aggregate && !keys.aggregate && keys.links.empty())
+    throw Error(file + ": --clearance " + clearance_mode_name(mode) + ": no edge key 'clearance' or 'clearance_0'...");
+  if (want_links && keys.links.empty())
+    throw Error(file + ": --clearance " + clearance_mode_name(mode) + ": no edge keys 'clearance_0' .. 'clearance_{L-1}'");
+  const auto weight_key = g.edge_key("weight");
+  if (o.weight && !weight_key) throw Error(file + ": --weight: no edge key named 'weight'");
+  if (!(o.delta > 0) || !std::isfinite(o.delta)) throw Error("convert roadmap: --delta must be a positive real");
+
+  const auto real_of = [&](std::size_t e, std::size_t key) {
+    const auto& text = g.edge_value(e, key);
+    const auto& name = g.edge_keys[key].name;
+    if (!text) throw Error(file + ": " + g.describe_edge(e) + " has no " + shown(name));
+    const auto value = to_real(*text);
+    if (!value) throw Error(file + ": " + g.describe_edge(e) + ": " + name + " " + shown(*text) + " is not a finite real");
+    return *value;
+  };
+  const auto clearance_of = [&](std::size_t e, std::size_t key) {
+    const double d = real_of(e, key);
+    if (d <= 0)
+      throw Error(file + ": " + g.describe_edge(e) + ": " + g.edge_keys[key].name + " = " + real_text(d) +
+                  " <= 0: a collision (roadmap edges must be collision-free)");
+    return d;
+  };
+
+  const std::size_t links = want_links ? keys.links.size() : 0;
+  std::vector<double> length, aggregate, weight;
+  std::vector<std::vector<double>> per_link(links);
+  for (std::size_t e = 0; e < g.edges.size(); ++e) {
+    const auto& edge = g.edges[e];
+    double squared = 0;
+    for (std::size_t k = 0; k < dof; ++k) {
+      const double diff = configs[edge.source * dof + k] - configs[edge.target * dof + k];
+      squared += diff * diff;
+    }
+    const double len = std::sqrt(squared);
+    if (!std::isfinite(len)) throw Error(file + ": " + g.describe_edge(e) + ": the length overflows");
+    std::vector<double> link_d(keys.links.size());
+    if (want_links || (want_aggregate && !keys.aggregate))
+      for (std::size_t i = 0; i < keys.links.size(); ++i) link_d[i] = clearance_of(e, keys.links[i]);
+    double d_min = 0;
+    if (want_aggregate)
+      d_min = keys.aggregate ? clearance_of(e, *keys.aggregate) : *std::min_element(link_d.begin(), link_d.end());
+    double w = 0;
+    if (o.weight) {
+      w = real_of(e, *weight_key);
+      if (w < 0) throw Error(file + ": " + g.describe_edge(e) + ": negative weight " + shown(*g.edge_value(e, *weight_key)));
+    }
+    // An undirected edge is two opposite arcs with the same costs; an undirected loop is one arc.
+    const int copies = edge.directed || edge.source == edge.target ? 1 : 2;
+    for (int c = 0; c < copies; ++c) {
+      if (out.tails.size() >= kMaxCount) throw Error(file + ": more than " + std::to_string(kMaxCount) + " arcs");
+      out.tails.push_back(c == 0 ? edge.source : edge.target);
+      out.heads.push_back(c == 0 ? edge.target : edge.source);
+      length.push_back(len);
+      if (want_aggregate) aggregate.push_back(clearance_penalty(d_min, o.delta));
+      for (std::size_t i = 0; i < links; ++i) per_link[i].push_back(clearance_penalty(link_d[i], o.delta));
+      if (o.weight) weight.push_back(w);
+    }
+  }
+
+  out.vertex_count = n;
+  out.costs.push_back({"length", "", std::move(length), std::nullopt});
+  if (want_aggregate) out.costs.push_back({"clearance", "", std::move(aggregate), std::nullopt});
+  for (std::size_t i = 0; i < links; ++i)
+    out.costs.push_back({"clearance_" + std::to_string(i), "", std::move(per_link[i]), std::nullopt});
+  if (o.weight) out.costs.push_back({"weight", "", std::move(weight), std::nullopt});
+  name_objectives(out, o.objectives);
+  // The paper's views: Panda-RRG_2 is (length, aggregate penalty), Panda-RRG_8 length and 7 links.
+  if (want_aggregate) m.set("view.Panda-RRG_2.objectives", out.costs[0].name + "," + out.costs[1].name);
+  if (links == 7) {
+    std::string list = out.costs[0].name;
+    const std::size_t first_link = want_aggregate ? 2 : 1;
+    for (std::size_t i = 0; i < links; ++i) list += "," + out.costs[first_link + i].name;
+    m.set("view.Panda-RRG_8.objectives", list);
+  }
+  if (dof > 0) out.vertex_data.push_back(DataColumn::from("config", static_cast<std::uint32_t>(dof), configs));
+  m.set("benchmark", o.name ? *o.name : default_benchmark(input.base_name));
+  m.set("roadmap.dof", std::to_string(dof));
+  m.set("roadmap.edgedefault", g.edge_default_directed ? "directed" : "undirected");
+  m.set("roadmap.edges", std::to_string(g.edges.size()));
+  if (!keys.links.empty()) m.set("roadmap.clearance_links", std::to_string(keys.links.size()));
+  m.set("source.param.clearance", clearance_mode_name(mode));
+  if (want_aggregate || want_links) m.set("source.param.delta", real_text(o.delta));
+  m.set("source.param.weight", o.weight ? "true" : "false");
+  return out;
+}
+
+}  // namespace
+
+std::optional<ClearanceMode> parse_clearance_mode(std::string_view text) {
+  for (auto mode : {ClearanceMode::automatic, ClearanceMode::none, ClearanceMode::aggregate, ClearanceMode::per_link,
+                    ClearanceMode::both})
+    if (text == clearance_mode_name(mode)) return mode;
+  return std::nullopt;
+}
+
+const char* clearance_mode_name(ClearanceMode mode) {
+  switch (mode) {
+    case ClearanceMode::automatic: return "auto";
+    case ClearanceMode::none: return "none";
+    case ClearanceMode::aggregate: return "aggregate";
+    case ClearanceMode::per_link: return "per-link";
+    case ClearanceMode::both: return "both";
+  }
+  return "?";
+}
+
+double clearance_penalty(double d, double delta) {
+  if (d >= delta) return 0.0;
+  return (d - delta) * (d - delta) / (2.0 * delta);
+}
+
+VertexFile parse_vertex_file(std::string_view text, const std::string& display_name) {
+  VertexFile vf;
+  std::uint64_t first_line = 0;
+  for_each_line(text, [&](std::uint64_t line, const std::vector<Token>& t, std::uint64_t end_column) {
+    if (t.empty() || t[0].text.starts_with("#")) return;
+    const auto id = to_u64(t[0].text);
+    if (!id) fail_at(display_name, line, t[0].column, "expected a vertex id, found " + shown(t[0].text));
+    if (*id >= kMaxCount) fail_at(display_name, line, t[0].column, "vertex id " + shown(t[0].text) + " exceeds " + std::to_string(kMaxCount - 1));
+    if (first_line == 0) {
+      if (t.size() < 2) fail_at(display_name, line, end_column, "missing field: a vertex line is 'id q1 .. qdof'");
+      if (t.size() - 1 > 1000) fail_at(display_name, line, t[1001].column, "more than 1000 coordinates");
+      vf.dof = static_cast<std::uint32_t>(t.size() - 1);
+      first_line = line;
+    } else if (t.size() - 1 != vf.dof) {
+      const std::string expected = "expected " + std::to_string(vf.dof) + " coordinates as on line " + std::to_string(first_line);
+      if (t.size() - 1 < vf.dof) fail_at(display_name, line, end_column, "missing field: " + expected);
+      fail_at(display_name, line, t[1 + vf.dof].column, "extra field " + shown(t[1 + vf.dof].text) + ": " + expected);
+    }
+    for (std::size_t k = 1; k < t.size(); ++k) {
+      const auto value = to_real(t[k].text);
+      if (!value) fail_at(display_name, line, t[k].column, "expected a finite real coordinate, found " + shown(t[k].text));
+      vf.coords.push_back(*value);
+    }
+    vf.ids.push_back(*id);
+    vf.lines.push_back(line);
+  });
+  return vf;
+}
+
+GraphInput convert_roadmap(const RoadmapOptions& options) {
+  const bool text = !options.gr_files.empty();
+  if (text == options.graphml_file.has_value())
+    throw Error("convert roadmap: give either --gr files or one --graphml file");
+  if (text && options.clearance != ClearanceMode::automatic && options.clearance != ClearanceMode::none)
+    throw Error("convert roadmap: --clearance applies to --graphml input (.gr files carry their costs)");
+  if (text && options.weight) throw Error("convert roadmap: --weight applies to --graphml input");
+  if (!text && (options.vertex_file || options.vertices_from_ids))
+    throw Error("convert roadmap: --vertices and --vertices-from-ids apply to --gr input");
+  auto out = text ? convert_gr_files(options) : convert_graphml_file(options);
+  auto& m = out.metadata;
+  m.set("family", "robots");
+  m.set("id_base", "0");
+  m.set("source.command", "convert roadmap");
+  if (options.name) m.set("source.param.name", *options.name);
+  return out;
+}
+
+}  // namespace mosb::converters

@@ -1,0 +1,138 @@
+#include "mosb/converters/suite.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <exception>
+#include <fstream>
+#include <iostream>
+#include <mutex>
+#include <thread>
+
+#include <unistd.h>
+
+#include "mosb/converters/grid_generator.hpp"
+#include "mosb/converters/netmaker_generator.hpp"
+#include "mosb/error.hpp"
+#include "mosb/graph_reader.hpp"
+#include "mosb/random.hpp"
+
+namespace mosb::converters {
+
+namespace {
+
+void write_manifest(const std::filesystem::path& directory, const std::vector<SuiteEntry>& entries) {
+  const auto target = directory / "MANIFEST";
+  const auto temporary = directory / ".MANIFEST.tmp";
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    for (const auto& e : entries)
+      out << e.name << '\t' << e.file << '\t' << e.size << '\t' << e.digest << '\n';
+    out.flush();
+    if (!out) throw Error(temporary.string() + ": cannot write the suite manifest");
+  }
+  std::error_code ec;
+  std::filesystem::rename(temporary, target, ec);
+  if (ec) throw Error(target.string() + ": cannot rename the manifest into place: " + ec.message());
+}
+
+// A size listed twice would make two workers write the same file.
+std::vector<std::uint32_t> sorted_unique(std::vector<std::uint32_t> values) {
+  std::sort(values.begin(), values.end());
+  values.erase(std::unique(values.begin(), values.end()), values.end());
+  return values;
+}
+
+}  // namespace
+
+std::function<void(std::size_t, std::size_t, const std::string&)> terminal_progress() {
+  if (!::isatty(STDERR_FILENO)) return {};
+  return [](std::size_t done, std::size_t total, const std::string& file) {
+    std::cerr << '[' << done << '/' << total << "] " << file << std::endl;
+  };
+}
+
+std::vector<SuiteEntry> run_suite(const std::filesystem::path& directory,
+                                  const std::vector<SuiteInstance>& instances, const SuiteOptions& options) {
+  std::error_code ec;
+  std::filesystem::create_directories(directory, ec);
+  if (ec) throw Error(directory.string() + ": cannot create the suite directory: " + ec.message());
+
+  std::vector<SuiteEntry> entries(instances.size());
+  std::vector<std::exception_ptr> errors(instances.size());
+  std::atomic<std::size_t> next{0};
+  std::atomic<bool> failed{false};
+  std::mutex progress_mutex;
+  std::size_t done = 0;
+
+  auto work = [&] {
+    for (std::size_t i = next++; i < instances.size() && !failed; i = next++) {
+      try {
+        const auto file = instances[i].name + ".mosb";
+        write_graph(instances[i].build(), directory / file);
+        const auto reader = GraphReader::open(directory / file);
+        entries[i] = {instances[i].name, file, reader.bytes().size(), reader.digest()};
+        std::lock_guard lock(progress_mutex);
+        ++done;
+        if (options.progress) options.progress(done, instances.size(), file);
+      } catch (...) {
+        errors[i] = std::current_exception();
+        failed = true;
+      }
+    }
+  };
+  unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+  threads = static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(1, instances.size())));
+  {
+    std::vector<std::jthread> pool;
+    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
+    work();
+  }
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
+
+  std::sort(entries.begin(), entries.end(), [](const SuiteEntry& a, const SuiteEntry& b) { return a.name < b.name; });
+  write_manifest(directory, entries);
+  return entries;
+}
+
+std::uint64_t suite_instance_seed(std::uint64_t suite_seed, std::uint64_t key) {
+  return SplitMix64::mix(suite_seed + 0x9E3779B97F4A7C15ULL * key);
+}
+
+std::vector<std::uint32_t> paper_grid_sizes() { return {300, 350, 400, 450, 500, 550, 600}; }
+std::vector<std::uint32_t> paper_netmaker_vertex_counts() { return {10000, 20000, 30000}; }
+
+std::vector<SuiteInstance> grid_suite(std::uint64_t suite_seed, const std::vector<std::uint32_t>& sizes) {
+  std::vector<SuiteInstance> out;
+  const auto unique = sorted_unique(sizes);
+  for (auto width : unique)
+    for (auto height : unique) {
+      if (width < 1 || height < 1 || width >= (1u << 20) || height >= (1u << 20))
+        throw Error("grid suite: sizes must be 1 to 2^20 - 1");
+      const GridParameters p{width, height, 3,
+                             suite_instance_seed(suite_seed, (std::uint64_t{width} << 20) + height)};
+      out.push_back({"Grid-" + std::to_string(width) + "x" + std::to_string(height),
+                     [p] { return generate_grid(p); }});
+    }
+  return out;
+}
+
+std::vector<SuiteInstance> netmaker_suite(std::uint64_t suite_seed,
+                                          const std::vector<std::uint32_t>& vertex_counts) {
+  std::vector<SuiteInstance> out;
+  for (auto n : sorted_unique(vertex_counts))
+    for (std::uint32_t locality : {20u, 50u})
+      for (std::uint32_t r = 1; r <= 2; ++r) {
+        NetMakerParameters p;
+        p.vertices = n;
+        p.amin = 1;
+        p.amax = 10;
+        p.locality = locality;
+        p.seed = suite_instance_seed(suite_seed, ((std::uint64_t{n} << 16) + locality) * 4 + r);
+        p.name = "NetMaker-N" + std::to_string(n) + "-I" + std::to_string(locality) + "-" + std::to_string(r);
+        out.push_back({*p.name, [p] { return generate_netmaker(p); }});
+      }
+  return out;
+}
+
+}  // namespace mosb::converters

@@ -1,0 +1,23 @@
+// Rewrites an existing instance with new metadata and some query sets added or replaced, copying
+// every other section's bytes unchanged (so their checksums, and the graph, stay identical).
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include "mosb/graph_builder.hpp"
+#include "mosb/graph_reader.hpp"
+#include "mosb/metadata.hpp"
+
+namespace mosb {
+
+// Writes `output` atomically: the sections of `source` in table order, the metadata section
+// replaced by `metadata`, a `queries` section whose name is in `query_sets` replaced in place, the
+// other `query_sets` appended at the end in the given order. `output` may be the file `source`
+// maps: the new file is renamed over it, and the mapping stays valid until `source` is destroyed.
+// Refuses packed (zstd) sources, copied sections whose bytes do not match their checksum, query
+// endpoints not below n and metadata views naming missing sections; throws mosb::Error.
+void rewrite_instance(const GraphReader& source, const Metadata& metadata,
+                      const std::vector<QuerySet>& query_sets, const std::filesystem::path& output);
+
+}  // namespace mosb

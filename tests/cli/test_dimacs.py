@@ -1,0 +1,208 @@
+#!/usr/bin/python3
+"""End-to-end tests of `mosb convert dimacs` (with the DIMACS-Extended options) and `mosb export dimacs`.
+
+    MOSB=build/release/tools/mosb /usr/bin/python3 tests/cli/test_dimacs.py
+
+The real files of /work/shared/data/dimacs-small are used when present (skipped visibly otherwise).
+"""
+
+import os
+import struct
+import subprocess
+import tempfile
+import unittest
+
+MOSB = os.path.abspath(os.environ["MOSB"]) if os.environ.get("MOSB") else ""
+DATA = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)),
+                                     "..", "..", "..", "shared", "data", "dimacs-small"))
+HEADER = struct.Struct("<8sIHHIIQQQQIIQQ40sQ")  # spec/FORMAT.md §2
+ENTRY = struct.Struct("<24sHBBIQQQQ")           # §3
+
+GRAPH = "c hand-made\np sp 4 7\na 1 2 3\na 2 3 4\na 1 3 9\na 3 4 1\na 4 1 2\na 1 2 5\na 2 2 7\n"
+ELEVATION = "c metres\np aux sp elev 4\nv 1 100\nv 2 -20\nv 3 50\nv 4 50\n"
+
+
+def sections(path):
+    """(kind, name) -> checksum for every section but the metadata, from the raw table."""
+    with open(path, "rb") as f:
+        data = f.read()
+    h = HEADER.unpack_from(data, 0)
+    table_offset, count = h[9], h[10]
+    out = {}
+    for i in range(count):
+        name, kind, _, _, _, _, _, _, checksum = ENTRY.unpack_from(data, table_offset + i * ENTRY.size)
+        if kind != 1:
+            out[(kind, name.rstrip(b"\0").decode())] = checksum
+    return out
+
+
+def metadata(path):
+    with open(path, "rb") as f:
+        data = f.read()
+    h = HEADER.unpack_from(data, 0)
+    for i in range(h[10]):
+        _, kind, _, _, _, rows, offset, _, _ = ENTRY.unpack_from(data, h[9] + i * ENTRY.size)
+        if kind == 1:
+            text = data[offset:offset + rows].decode()
+            return dict(line.split("=", 1) for line in text.splitlines())
+    return {}
+
+
+class Result:
+    def __init__(self, completed):
+        self.code, self.out, self.err = completed.returncode, completed.stdout, completed.stderr
+
+    def __repr__(self):
+        return "exit %d\nstdout: %s\nstderr: %s" % (self.code, self.out, self.err)
+
+
+def setUpModule():
+    if not (MOSB and os.path.isfile(MOSB)):
+        raise RuntimeError("set the environment variable MOSB to the path of the mosb binary")
+
+
+class DimacsCase(unittest.TestCase):
+    def setUp(self):
+        self._tmp = tempfile.TemporaryDirectory(prefix="mosb-dimacs-")
+        self.dir = self._tmp.name
+
+    def tearDown(self):
+        self._tmp.cleanup()
+
+    def path(self, name):
+        return os.path.join(self.dir, name)
+
+    def write(self, name, text):
+        with open(self.path(name), "w") as f:
+            f.write(text)
+        return self.path(name)
+
+    def read(self, name):
+        with open(self.path(name)) as f:
+            return f.read()
+
+    def mosb(self, *args):
+        r = Result(subprocess.run([MOSB, *args], cwd=self.dir, capture_output=True, text=True,
+                                  errors="replace", timeout=60))
+        self.assertGreaterEqual(r.code, 0, "killed by a signal: %r" % r)
+        for stream in (r.out, r.err):
+            self.assertNotIn("Sanitizer", stream, r)
+            self.assertNotIn("runtime error", stream, r)
+        return r
+
+    def ok(self, *args):
+        r = self.mosb(*args)
+        self.assertEqual(r.code, 0, r)
+        self.assertEqual(r.err, "", r)
+        return r
+
+    def fails(self, message, *args):
+        r = self.mosb(*args)
+        self.assertEqual(r.code, 1, r)
+        self.assertEqual(r.out, "", r)
+        self.assertEqual(r.err.count("\n"), 1, r)  # one line
+        self.assertIn(message, r.err, r)
+        return r
+
+
+class RealData(DimacsCase):
+    def setUp(self):
+        super().setUp()
+        if not os.path.isdir(DATA):
+            self.skipTest("no shared data at %s" % DATA)
+
+    def test_ex1_three_objective_files(self):
+        gr = [os.path.join(DATA, "ex1-c%d.gr" % i) for i in (1, 2, 3)]
+        r = self.ok("convert", "dimacs", "--gr", gr[0], "--gr", gr[1], "--gr", gr[2], "-o", "ex1.mosb")
+        self.assertIn("5 vertices, 14 arcs, 3 objectives", r.out)
+        self.ok("verify", "ex1.mosb", "--level", "full")
+
+    def test_ex1_extended_and_round_trip(self):
+        gr = [os.path.join(DATA, "ex1-c%d.gr" % i) for i in (1, 2, 3)]
+        args = ["--gr", gr[0], "--gr", gr[1], "--objective", "distance", "--objective", "time",
+                "--derive", "hop,avg-outdegree", "--view", "ex1_3=distance,time,hop", "--name", "ex1"]
+        r = self.ok("convert", "dimacs", *args, "-o", "a.mosb")
+        self.assertIn("5 vertices, 14 arcs, 4 objectives", r.out)
+        r = self.ok("export", "dimacs", "a.mosb", "--out-dir", "out")
+        self.assertEqual(sorted(os.listdir(self.path("out"))),
+                         ["ex1-avg_outdegree.gr", "ex1-distance.gr", "ex1-hop.gr", "ex1-time.gr"])
+        self.assertEqual(r.out.count("wrote "), 4)
+        back = ["--gr", "out/ex1-distance.gr", "--gr", "out/ex1-time.gr", "--gr", "out/ex1-avg_outdegree.gr",
+                "--gr", "out/ex1-hop.gr", "--objective", "distance", "--objective", "time",
+                "--objective", "avg_outdegree", "--objective", "hop"]
+        self.ok("convert", "dimacs", *back, "-o", "b.mosb")
+        self.assertEqual(sections(self.path("a.mosb")), sections(self.path("b.mosb")))
+
+    def test_truncated_ny_head_is_refused_with_counts(self):
+        self.fails("USA-road-d.NY.head.gr:5:13: the header declares 733846 arcs, found 92",
+                   "convert", "dimacs", "--gr", os.path.join(DATA, "USA-road-d.NY.head.gr"), "-o", "ny.mosb")
+        self.assertFalse(os.path.exists(self.path("ny.mosb")))
+
+
+class Extended(DimacsCase):
+    def convert(self, *extra, output="g.mosb"):
+        self.write("g.gr", GRAPH)
+        self.write("g.elev", ELEVATION)
+        return self.mosb("convert", "dimacs", "--gr", "g.gr", *extra, "-o", output)
+
+    def test_columns_in_fixed_order_whatever_the_option_order(self):
+        r = self.convert("--derive", "hop", "--derive", "avg-outdegree", "--elevation", "g.elev")
+        self.assertEqual(r.code, 0, r)
+        names = [name for (kind, name) in sections(self.path("g.mosb")) if kind == 7]
+        self.assertEqual(sorted(names), ["avg_outdegree", "c1", "elevation", "hop"])
+        self.ok("export", "dimacs", "g.mosb", "--out-dir", "x")
+        arcs = lambda name: [line.split()[3] for line in self.read("x/g-%s.gr" % name).splitlines()
+                             if line.startswith("a ")]
+        self.assertEqual(arcs("elevation"), ["120", "50", "120", "70", "0", "0", "50"])
+        self.assertEqual(arcs("avg_outdegree"), ["5", "4", "5", "3", "4", "2", "4"])
+        self.assertEqual(arcs("hop"), ["1"] * 7)
+        m = metadata(self.path("g.mosb"))
+        self.assertEqual(m["source.param.derive"], "avg-outdegree,hop")
+
+    def test_round_half_up(self):
+        r = self.convert("--derive", "avg-outdegree", "--avg-outdegree-mode", "round-half-up")
+        self.assertEqual(r.code, 0, r)
+        self.ok("export", "dimacs", "g.mosb", "--out-dir", "x")
+        values = [line.split()[3] for line in self.read("x/g-avg_outdegree.gr").splitlines() if line[0] == "a"]
+        self.assertEqual(values, ["3", "2", "3", "2", "2", "1", "2"])
+
+    def test_views_and_view_export(self):
+        r = self.convert("--derive", "hop", "--view", "two=hop,c1", "--view", "one=c1@ny100")
+        self.assertEqual(r.code, 0, r)
+        m = metadata(self.path("g.mosb"))
+        self.assertEqual(m["view.two.objectives"], "hop,c1")
+        self.assertEqual(m["view.one.objectives"], "c1")
+        self.assertNotIn("view.one.queries", m)
+        self.assertEqual(m["source.param.view.one"], "c1@ny100")
+        self.ok("export", "dimacs", "g.mosb", "--out-dir", "v", "--view", "two", "--id-base", "0")
+        self.assertEqual(sorted(os.listdir(self.path("v"))), ["g-c1.gr", "g-hop.gr"])
+        self.assertIn("\na 0 1 3\n", self.read("v/g-c1.gr"))
+
+    def test_errors_are_one_line_with_exit_1(self):
+        self.write("bad.elev", "p aux sp elev 4\nv 1 1\nv 2 x\n")
+        self.fails("bad.elev:3:5: expected an integer elevation, found 'x'", *self.convert_args("--elevation", "bad.elev"))
+        self.fails("convert dimacs: --view 'v': objective 'hop' is not a column (columns: c1)",
+                   *self.convert_args("--view", "v=hop"))
+        self.fails("convert dimacs: --view 'v': expected NAME=OBJ1,OBJ2,...[@QUERYSET]",
+                   *self.convert_args("--view", "v"))
+        r = self.mosb(*self.convert_args("--derive", "elevation"))
+        self.assertNotEqual(r.code, 0, r)
+        self.ok("convert", "dimacs", "--gr", "g.gr", "-o", "g.mosb")
+        self.fails("no view 'nope'", "export", "dimacs", "g.mosb", "--out-dir", "o", "--view", "nope")
+        self.fails("g.gr", "export", "dimacs", "g.gr", "--out-dir", "o")
+
+    def convert_args(self, *extra):
+        self.write("g.gr", GRAPH)
+        return ["convert", "dimacs", "--gr", "g.gr", *extra, "-o", "g.mosb"]
+
+    def test_deterministic_bytes(self):
+        for out in ("1.mosb", "2.mosb"):
+            self.write("g.elev", ELEVATION)
+            r = self.convert("--elevation", "g.elev", "--derive", "hop", output=out)
+            self.assertEqual(r.code, 0, r)
+        with open(self.path("1.mosb"), "rb") as a, open(self.path("2.mosb"), "rb") as b:
+            self.assertEqual(a.read(), b.read())
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=2)

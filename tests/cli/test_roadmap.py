@@ -1,0 +1,179 @@
+#!/usr/bin/python3
+"""End-to-end tests of `mosb convert roadmap` (spec/families/robots.md).
+
+    MOSB=build/release/tools/mosb /usr/bin/python3 tests/cli/test_roadmap.py
+
+Counts on the real fixtures are checked independently of mosb: lines of the .gr files, and the
+<edge> elements and directedness of the GraphML file read with xml.etree.
+"""
+
+import json
+import os
+import subprocess
+import tempfile
+import unittest
+import xml.etree.ElementTree as ET
+
+MOSB = os.path.abspath(os.environ.get("MOSB", "mosb"))
+DATA = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "shared", "data"))
+POINT_ROBOT = os.path.join(DATA, "roadmap-point-robot", "exp_4_obs")
+GRAPHML = os.path.join(DATA, "roadmap-graphml", "roadmap.xml")
+NS = "{http://graphml.graphdrawing.org/xmlns}"
+
+
+def run(*args, cwd=None):
+    return subprocess.run([MOSB, *args], capture_output=True, text=True, cwd=cwd)
+
+
+def inspect(path):
+    result = run("inspect", path, "--json")
+    assert result.returncode == 0, result.stderr
+    return json.loads(result.stdout)
+
+
+def header_counts(path):
+    """n, m and d from the file header (spec/FORMAT.md §2), independent of `inspect`."""
+    import struct
+    with open(path, "rb") as f:
+        header = f.read(128)
+    objective_count, vertex_count, arc_count = struct.unpack_from("<IQQ", header, 60)
+    return vertex_count, arc_count, objective_count
+
+
+class HandMade(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = self.tmp.name
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def write(self, name, text):
+        path = os.path.join(self.dir, name)
+        with open(path, "w") as f:
+            f.write(text)
+        return path
+
+    def graphml(self, bc_link0="0.5"):
+        # a=(0,0), b=(3,4), c=(3,0); undirected a-b (length 5) and b-c (length 4), 2 links.
+        return self.write("r.graphml", f"""<?xml version="1.0"?>
+<graphml xmlns="http://graphml.graphdrawing.org/xmlns">
+  <key id="q" for="node" attr.name="coords" attr.type="string"/>
+  <key id="d0" for="edge" attr.name="clearance_0" attr.type="double"/>
+  <key id="d1" for="edge" attr.name="clearance_1" attr.type="double"/>
+  <graph edgedefault="undirected">
+    <node id="a"><data key="q">0,0</data></node>
+    <node id="b"><data key="q">3,4</data></node>
+    <node id="c"><data key="q">3,0</data></node>
+    <edge id="e0" source="a" target="b"><data key="d0">0.05</data><data key="d1">0.2</data></edge>
+    <edge id="e1" source="b" target="c"><data key="d0">{bc_link0}</data><data key="d1">0.01</data></edge>
+  </graph>
+</graphml>
+""")
+
+    def test_graphml_modes(self):
+        src = self.graphml()
+        out = os.path.join(self.dir, "both.mosb")
+        result = run("convert", "roadmap", "--graphml", src, "--clearance", "both", "-o", out)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(header_counts(out), (3, 4, 4))
+        info = inspect(out)
+        self.assertEqual([o["name"] for o in info["objectives"]], ["length", "clearance", "clearance_0", "clearance_1"])
+        self.assertEqual(info["metadata"]["view.Panda-RRG_2.objectives"], "length,clearance")
+        verify = run("verify", out, "--level", "full")
+        self.assertEqual(verify.returncode, 0, verify.stdout + verify.stderr)
+        for mode, d in (("aggregate", 2), ("per-link", 3), ("none", 1)):
+            path = os.path.join(self.dir, mode + ".mosb")
+            result = run("convert", "roadmap", "--graphml", src, "--clearance", mode, "-o", path)
+            self.assertEqual(result.returncode, 0, result.stderr)
+            self.assertEqual(header_counts(path), (3, 4, d))
+
+    def test_collision_refused(self):
+        src = self.graphml("-0.01")
+        result = run("convert", "roadmap", "--graphml", src, "--clearance", "per-link", "-o",
+                     os.path.join(self.dir, "x.mosb"))
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("edge 'e1' ('b' -> 'c'): clearance_0 = -0.01 <= 0: a collision", result.stderr)
+        self.assertEqual(len(result.stderr.strip().splitlines()), 1)
+        self.assertFalse(os.path.exists(os.path.join(self.dir, "x.mosb")))
+
+    def test_deterministic_from_any_directory(self):
+        src = self.graphml()
+        os.mkdir(os.path.join(self.dir, "sub"))
+        a, b = os.path.join(self.dir, "a.mosb"), os.path.join(self.dir, "sub", "b.mosb")
+        self.assertEqual(run("convert", "roadmap", "--graphml", src, "-o", a).returncode, 0)
+        self.assertEqual(run("convert", "roadmap", "--graphml", "../r.graphml", "-o", "b.mosb",
+                             cwd=os.path.join(self.dir, "sub")).returncode, 0)
+        with open(a, "rb") as fa, open(b, "rb") as fb:
+            self.assertEqual(fa.read(), fb.read())
+
+    def test_gr_vertices_from_ids(self):
+        gr = self.write("c1.gr", "p sp 2 2\na 0 1 0.5\na 1 2 1.25\n")
+        result = run("convert", "roadmap", "--gr", gr, "-o", os.path.join(self.dir, "x.mosb"))
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("c1.gr:3:5: the largest vertex id, 2, is outside the 2 vertices declared on line 1", result.stderr)
+        self.assertIn("--vertices-from-ids", result.stderr)
+        out = os.path.join(self.dir, "y.mosb")
+        result = run("convert", "roadmap", "--gr", gr, "--vertices-from-ids", "--objective", "len:m", "-o", out)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn("warning: vertex_count: declared 2, ids reach 2", result.stderr)
+        self.assertEqual(header_counts(out), (3, 2, 1))
+        self.assertEqual(inspect(out)["metadata"]["warning.vertex_count"], "declared 2, ids reach 2")
+
+
+@unittest.skipUnless(os.path.isdir(POINT_ROBOT) and os.path.isfile(GRAPHML), f"shared data absent: {DATA}")
+class RealFixtures(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def test_point_robot(self):
+        files = [os.path.join(POINT_ROBOT, f"file_{i}.gr") for i in range(6)]
+        args = []
+        for f in files:
+            args += ["--gr", f]
+        args += ["--vertices", os.path.join(POINT_ROBOT, "vertex_positions.txt")]
+        out = os.path.join(self.tmp.name, "p.mosb")
+        refused = run("convert", "roadmap", *args, "-o", out)
+        self.assertEqual(refused.returncode, 1)
+        self.assertEqual(refused.stderr.strip(), "mosb: " + files[0] + ":146501:8: the largest vertex id, 5002, is "
+                         "outside the 5002 vertices declared on line 2 (0-based ids 0..5001); --vertices-from-ids "
+                         "sizes the graph from the largest id instead")
+        result = run("convert", "roadmap", *args, "--vertices-from-ids", "-o", out)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        # Independent counts: arc lines of every file, largest id, vertex file lines.
+        arcs, largest = set(), 0
+        for f in files:
+            with open(f) as fh:
+                lines = [line.split() for line in fh if line.startswith("a ")]
+            arcs.add(len(lines))
+            largest = max(largest, max(max(int(t[1]), int(t[2])) for t in lines))
+        with open(os.path.join(POINT_ROBOT, "vertex_positions.txt")) as fh:
+            vertex_lines = sum(1 for line in fh if line.strip())
+        self.assertEqual(arcs, {154414})
+        self.assertEqual(header_counts(out), (max(largest + 1, vertex_lines), 154414, 6))
+        self.assertEqual(header_counts(out), (5003, 154414, 6))
+        meta = inspect(out)["metadata"]
+        self.assertEqual(meta["warning.vertex_count"], "declared 5002, ids reach 5002")
+        self.assertEqual(meta["family"], "robots")
+
+    def test_graphml(self):
+        root = ET.parse(GRAPHML).getroot()
+        graph = root.find(NS + "graph")
+        directed_default = graph.get("edgedefault") == "directed"
+        expected_arcs = 0
+        for edge in graph.findall(NS + "edge"):
+            directed = edge.get("directed", "true" if directed_default else "false") == "true"
+            expected_arcs += 1 if directed or edge.get("source") == edge.get("target") else 2
+        nodes = len(graph.findall(NS + "node"))
+        out = os.path.join(self.tmp.name, "g.mosb")
+        result = run("convert", "roadmap", "--graphml", GRAPHML, "--weight", "-o", out)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(header_counts(out), (nodes, expected_arcs, 2))
+        self.assertEqual((nodes, expected_arcs), (170, 698))
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=2)

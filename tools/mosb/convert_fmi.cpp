@@ -1,0 +1,76 @@
+#include <CLI/CLI.hpp>
+#include <memory>
+
+#include "commands.hpp"
+#include "mosb/converters/fmi_converter.hpp"
+#include "mosb/error.hpp"
+#include "mosb/graph_builder.hpp"
+
+namespace mosb::cli {
+
+namespace {
+
+struct FmiArgs {
+  std::string file;
+  unsigned costs = 0;
+  bool ignore_extra_fields = false;
+  std::vector<std::string> objectives;
+  std::uint32_t bfs_root = 0;
+  std::uint64_t bfs_count = 0;
+  bool bfs_undirected = false;
+  std::string name;
+  std::string output;
+  CLI::Option* costs_option = nullptr;
+  CLI::Option* bfs_option = nullptr;
+};
+
+int run_fmi(const FmiArgs& a) {
+  converters::FmiOptions o;
+  o.file = a.file;
+  if (a.costs_option->count() > 0) o.cost_count = a.costs;
+  o.ignore_extra_fields = a.ignore_extra_fields;
+  for (const auto& spec : a.objectives) {
+    const auto colon = spec.find(':');
+    converters::Objective objective{spec.substr(0, colon),
+                                    colon == std::string::npos ? "" : spec.substr(colon + 1)};
+    if (objective.name.empty()) throw Error("convert fmi: --objective '" + spec + "' has an empty name");
+    o.objectives.push_back(std::move(objective));
+  }
+  if (a.bfs_option->count() > 0) o.extract_bfs = converters::FmiBfs{a.bfs_root, a.bfs_count, a.bfs_undirected};
+  if (!a.name.empty()) o.name = a.name;
+  write_graph(converters::convert_fmi(o), a.output);
+  return report_written(a.output);
+}
+
+}  // namespace
+
+Command add_convert_fmi(CLI::App& convert) {
+  auto* fmi = convert.add_subcommand(
+      "fmi", "FMI / OsmGraphCreator text road graphs (GER_10), optionally a BFS-extracted subgraph");
+  auto args = std::make_shared<FmiArgs>();
+  fmi->add_option("file", args->file, "the FMI text file (plain, gzip, bzip2, xz or zstd)")
+      ->required()->check(CLI::ExistingFile);
+  args->costs_option = fmi->add_option(
+      "--costs", args->costs,
+      "D cost fields per edge line: 'src trg c1 .. cD' (default: 'src trg cost type [maxspeed]')")
+      ->check(CLI::Range(1u, 64u));
+  fmi->add_flag("--ignore-extra-fields", args->ignore_extra_fields,
+                "with --costs: skip fields after the D costs (the same number on every edge line)")
+      ->needs(args->costs_option);
+  fmi->add_option("--objective", args->objectives,
+                  "NAME[:UNIT] of each cost column, in order (default: the GER_10 names for D = 10, else c1..cd)");
+  args->bfs_option = fmi->add_option("--extract-bfs", args->bfs_root,
+                                     "keep the first --count vertices in BFS order from this vertex (0-based)");
+  auto* count = fmi->add_option("--count", args->bfs_count, "number of vertices --extract-bfs keeps")
+                    ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{0xFFFFFFFEULL}));
+  auto* undirected = fmi->add_flag("--bfs-undirected", args->bfs_undirected,
+                                   "let the BFS follow arcs in both directions (default: out-arcs only)");
+  args->bfs_option->needs(count);
+  count->needs(args->bfs_option);
+  undirected->needs(args->bfs_option);
+  fmi->add_option("--name", args->name, "benchmark name (default: the file's base name)");
+  fmi->add_option("-o,--output", args->output, "the .mosb file to write")->required();
+  return {fmi, [args] { return run_fmi(*args); }};
+}
+
+}  // namespace mosb::cli

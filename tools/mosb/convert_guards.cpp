@@ -1,0 +1,71 @@
+#include <CLI/CLI.hpp>
+#include <memory>
+
+#include "commands.hpp"
+#include "mosb/converters/guards_converter.hpp"
+#include "mosb/error.hpp"
+#include "mosb/graph_builder.hpp"
+
+namespace mosb::cli {
+
+namespace {
+
+struct GuardsArgs {
+  std::string map;
+  std::string exposure;
+  std::string guards;
+  std::string scen;
+  std::string write_exposure;
+  std::string swamp = "passable";
+  std::string water = "blocked";
+  std::string name;
+  std::string output;
+};
+
+int run_guards(const GuardsArgs& a) {
+  converters::GuardsOptions o;
+  o.map_file = a.map;
+  if (!a.exposure.empty()) o.exposure_file = a.exposure;
+  if (!a.guards.empty()) o.guards_file = a.guards;
+  if (!a.scen.empty()) o.scen_file = a.scen;
+  o.terrain.swamp_passable = a.swamp == "passable";
+  o.terrain.water_passable = a.water == "passable";
+  if (!a.name.empty()) o.name = a.name;
+  const auto result = converters::convert_guards(o);
+  if (!a.write_exposure.empty())
+    converters::write_text_atomically(a.write_exposure, converters::format_exposure(result.map, result.exposure));
+  write_graph(result.graph, a.output);
+  return report_written(a.output);
+}
+
+}  // namespace
+
+Command add_convert_guards(CLI::App& convert) {
+  auto* guards = convert.add_subcommand(
+      "guards", "Moving AI octile map with guard exposure (GUARDS benchmarks): objectives length, exposure");
+  auto args = std::make_shared<GuardsArgs>();
+  guards->add_option("--map", args->map, "the octile .map file")->required()->check(CLI::ExistingFile);
+  auto* exposure = guards->add_option("--exposure", args->exposure,
+                                      "per-cell exposure: height lines of width non-negative integers")
+                       ->check(CLI::ExistingFile);
+  auto* guard_file = guards->add_option("--guards", args->guards,
+                                        "guard positions 'x y [radius]' (exposure = guards with line of sight)")
+                         ->check(CLI::ExistingFile);
+  exposure->excludes(guard_file);
+  guards->add_option("--scen", args->scen, "a Moving AI scenario, imported as query set 'scen'")
+      ->check(CLI::ExistingFile);
+  guards->add_option("--write-exposure", args->write_exposure, "also write the exposure grid (--exposure format)");
+  guards->add_option("--swamp", args->swamp, "terrain 'S'")->check(CLI::IsMember({"passable", "blocked"}))
+      ->capture_default_str();
+  guards->add_option("--water", args->water, "terrain 'W'")->check(CLI::IsMember({"passable", "blocked"}))
+      ->capture_default_str();
+  guards->add_option("--name", args->name, "benchmark name (default: the map's base name without .map)");
+  guards->add_option("-o,--output", args->output, "the .mosb file to write")->required();
+  return {guards, [args] {
+            if (args->exposure.empty() == args->guards.empty())
+              throw Error("convert guards: give exactly one of --exposure FILE and --guards FILE");
+            return run_guards(*args);
+          }};
+}
+
+}  // namespace mosb::cli

@@ -1,0 +1,36 @@
+#include <CLI/CLI.hpp>
+#include <memory>
+#include <optional>
+
+#include "commands.hpp"
+#include "mosb/converters/netmaker_generator.hpp"
+#include "mosb/graph_builder.hpp"
+
+namespace mosb::cli {
+
+namespace {
+
+struct ConvertNetMakerArgs {
+  std::string input;
+  std::string name;
+  std::string output;
+};
+
+}  // namespace
+
+Command add_convert_netmaker(CLI::App& convert) {
+  auto* netmaker = convert.add_subcommand(
+      "netmaker", "An existing NetMaker graph: 0-based DIMACS-like .gr with one cost column per objective");
+  auto args = std::make_shared<ConvertNetMakerArgs>();
+  netmaker->add_option("FILE", args->input, "the .gr file (plain, gzip, bzip2, xz or zstd)")
+      ->required()->check(CLI::ExistingFile);
+  netmaker->add_option("--name", args->name, "benchmark name (default: the file's base name)");
+  netmaker->add_option("-o,--output", args->output, "the .mosb file to write")->required();
+  return {netmaker, [args] {
+            const auto name = args->name.empty() ? std::nullopt : std::optional<std::string>(args->name);
+            write_graph(converters::convert_netmaker(args->input, name), args->output);
+            return report_written(args->output);
+          }};
+}
+
+}  // namespace mosb::cli
