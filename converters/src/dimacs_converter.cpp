@@ -5,6 +5,7 @@
 #include <string>
 
 #include "mosb/converters/text_input.hpp"
+#include "mosb/converters/text_scan.hpp"
 #include "mosb/error.hpp"
 
 namespace mosb::converters {
@@ -13,91 +14,7 @@ namespace {
 
 constexpr std::uint64_t kMaxCount = 0xFFFFFFFEULL;  // n and m are at most 2^32 - 2 (§4)
 
-struct Token {
-  std::string_view text;
-  std::uint64_t column;  // 1-based
-};
-
-// Lines of a text buffer: '\n' ends a line; a trailing '\r', blanks and tabs are dropped.
-class LineScanner {
- public:
-  explicit LineScanner(std::string_view text) : text_(text) {}
-  bool next(std::string_view& line) {
-    if (pos_ >= text_.size()) return false;
-    auto end = text_.find('\n', pos_);
-    if (end == std::string_view::npos) end = text_.size();
-    line = text_.substr(pos_, end - pos_);
-    pos_ = end + 1;
-    ++number_;
-    while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '\t'))
-      line.remove_suffix(1);
-    return true;
-  }
-  std::uint64_t number() const { return number_; }
-
- private:
-  std::string_view text_;
-  std::size_t pos_ = 0;
-  std::uint64_t number_ = 0;
-};
-
-void tokenize(std::string_view line, std::vector<Token>& tokens) {
-  tokens.clear();
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
-    if (i >= line.size()) break;
-    const std::size_t start = i;
-    while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
-    tokens.push_back({line.substr(start, i - start), start + 1});
-  }
-}
-
-// A token quoted for a one-line message: control bytes shown as '?', long tokens cut.
-std::string quoted(std::string_view token) {
-  std::string out = "'";
-  const std::size_t limit = 40;
-  for (std::size_t i = 0; i < token.size() && i < limit; ++i) {
-    const auto c = static_cast<unsigned char>(token[i]);
-    out += (c < 0x20 || c == 0x7F) ? '?' : static_cast<char>(c);
-  }
-  if (token.size() > limit) out += "...";
-  return out + "'";
-}
-
-class Located {
- public:
-  Located(const std::string& file) : file_(file) {}
-  [[noreturn]] void fail(std::uint64_t line, std::uint64_t column, const std::string& message) const {
-    throw Error(file_ + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " + message);
-  }
-
- private:
-  const std::string& file_;
-};
-
-std::optional<std::uint64_t> to_u64(std::string_view s) {
-  std::uint64_t value = 0;
-  if (s.empty() || s[0] < '0' || s[0] > '9') return std::nullopt;
-  const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
-  if (ec != std::errc() || ptr != s.data() + s.size()) return std::nullopt;
-  return value;
-}
-
-std::optional<std::int64_t> to_i64(std::string_view s) {
-  std::int64_t value = 0;
-  if (s.empty()) return std::nullopt;
-  const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
-  if (ec != std::errc() || ptr != s.data() + s.size()) return std::nullopt;
-  return value;
-}
-
-bool is_digits(std::string_view s) {
-  if (s.empty()) return false;
-  for (char c : s)
-    if (c < '0' || c > '9') return false;
-  return true;
-}
+using namespace text;  // the shared primitives of text_scan.hpp
 
 std::string id_range(unsigned id_base, std::uint64_t n) {
   if (n == 0) return "(none: the graph has no vertices)";
@@ -105,33 +22,33 @@ std::string id_range(unsigned id_base, std::uint64_t n) {
 }
 
 // A count field of a header line (n or m).
-std::uint64_t parse_count(const Located& at, std::uint64_t line, const Token& t, const char* what) {
-  if (!is_digits(t.text)) at.fail(line, t.column, std::string("expected the ") + what + ", found " + quoted(t.text));
+std::uint64_t parse_count(const std::string& file, std::uint64_t line, const Token& t, const char* what) {
+  if (!is_digits(t.text)) fail(file, line, t.column, std::string("expected the ") + what + ", found " + quoted(t.text));
   const auto value = to_u64(t.text);
   if (!value || *value > kMaxCount)
-    at.fail(line, t.column, std::string("the ") + what + " " + quoted(t.text) + " exceeds " + std::to_string(kMaxCount));
+    fail(file, line, t.column, std::string("the ") + what + " " + quoted(t.text) + " exceeds " + std::to_string(kMaxCount));
   return *value;
 }
 
-std::uint32_t parse_id(const Located& at, std::uint64_t line, const Token& t, unsigned id_base,
+std::uint32_t parse_id(const std::string& file, std::uint64_t line, const Token& t, unsigned id_base,
                        std::uint64_t n) {
-  if (!is_digits(t.text)) at.fail(line, t.column, "expected a vertex id, found " + quoted(t.text));
+  if (!is_digits(t.text)) fail(file, line, t.column, "expected a vertex id, found " + quoted(t.text));
   const auto value = to_u64(t.text);
   if (!value || *value < id_base || *value - id_base >= n)
-    at.fail(line, t.column, "vertex id " + quoted(t.text) + " outside " + id_range(id_base, n));
+    fail(file, line, t.column, "vertex id " + quoted(t.text) + " outside " + id_range(id_base, n));
   return static_cast<std::uint32_t>(*value - id_base);
 }
 
 using Column = std::variant<std::vector<std::uint64_t>, std::vector<double>>;
 
-void add_cost(const Located& at, std::uint64_t line, const Token& t, Column& column) {
+void add_cost(const std::string& file, std::uint64_t line, const Token& t, Column& column) {
   const auto s = t.text;
-  if (!s.empty() && s[0] == '-') at.fail(line, t.column, "negative cost " + quoted(s));
+  if (!s.empty() && s[0] == '-') fail(file, line, t.column, "negative cost " + quoted(s));
   const bool real = s.find_first_of(".eE") != std::string_view::npos;
   if (!real) {
-    if (!is_digits(s)) at.fail(line, t.column, "expected a cost, found " + quoted(s));
+    if (!is_digits(s)) fail(file, line, t.column, "expected a cost, found " + quoted(s));
     const auto value = to_u64(s);
-    if (!value) at.fail(line, t.column, "cost " + quoted(s) + " exceeds " + std::to_string(UINT64_MAX));
+    if (!value) fail(file, line, t.column, "cost " + quoted(s) + " exceeds " + std::to_string(UINT64_MAX));
     if (auto* ints = std::get_if<std::vector<std::uint64_t>>(&column))
       ints->push_back(*value);
     else
@@ -141,26 +58,20 @@ void add_cost(const Located& at, std::uint64_t line, const Token& t, Column& col
   // Digits, at most one '.', then an optional exponent: what from_chars accepts without inf/nan/hex.
   for (char c : s)
     if (!((c >= '0' && c <= '9') || c == '.' || c == 'e' || c == 'E' || c == '+' || c == '-'))
-      at.fail(line, t.column, "expected a cost, found " + quoted(s));
+      fail(file, line, t.column, "expected a cost, found " + quoted(s));
   if (s[0] == '+' || s[0] == 'e' || s[0] == 'E')
-    at.fail(line, t.column, "expected a cost, found " + quoted(s));
+    fail(file, line, t.column, "expected a cost, found " + quoted(s));
   double value = 0;
   const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), value, std::chars_format::general);
-  if (ec == std::errc::result_out_of_range) at.fail(line, t.column, "cost " + quoted(s) + " out of range");
+  if (ec == std::errc::result_out_of_range) fail(file, line, t.column, "cost " + quoted(s) + " out of range");
   if (ec != std::errc() || ptr != s.data() + s.size())
-    at.fail(line, t.column, "expected a cost, found " + quoted(s));
+    fail(file, line, t.column, "expected a cost, found " + quoted(s));
   if (auto* ints = std::get_if<std::vector<std::uint64_t>>(&column)) {
     std::vector<double> reals(ints->begin(), ints->end());
     reals.reserve(ints->capacity());
     column = std::move(reals);
   }
   std::get<std::vector<double>>(column).push_back(value);
-}
-
-std::string plural(std::uint64_t n, const char* word) {
-  const std::string w = word;
-  if (n == 1) return "1 " + w;
-  return std::to_string(n) + " " + (w == "vertex" ? std::string("vertices") : w + "s");
 }
 
 // The common case in one pass: `a u v c1 .. cd` with plain integers and valid ids. Anything else
@@ -195,7 +106,6 @@ bool scan_integer_arc(std::string_view line, std::size_t cost_count, unsigned id
 DimacsGraph parse_dimacs_gr(std::string_view text, const std::string& display_name, unsigned id_base,
                             const DimacsReference* reference) {
   if (id_base > 1) throw Error(display_name + ": id base must be 0 or 1");
-  const Located at(display_name);
   DimacsGraph g;
   LineScanner lines(text);
   std::string_view line;
@@ -225,11 +135,11 @@ DimacsGraph parse_dimacs_gr(std::string_view text, const std::string& display_na
     if (t.empty() || t[0].text == "c") continue;
     const auto end_column = line.size() + 1;
     if (t[0].text == "a") {
-      if (p_line == 0) at.fail(ln, t[0].column, "arc line before the 'p sp' line");
+      if (p_line == 0) fail(display_name, ln, t[0].column, "arc line before the 'p sp' line");
       if (t.size() < 4) {
-        if (t.size() >= 2) parse_id(at, ln, t[1], id_base, g.vertex_count);
-        if (t.size() >= 3) parse_id(at, ln, t[2], id_base, g.vertex_count);
-        at.fail(ln, end_column, "missing field: an arc line is 'a u v cost...'");
+        if (t.size() >= 2) parse_id(display_name, ln, t[1], id_base, g.vertex_count);
+        if (t.size() >= 3) parse_id(display_name, ln, t[2], id_base, g.vertex_count);
+        fail(display_name, ln, end_column, "missing field: an arc line is 'a u v cost...'");
       }
       if (first_arc_line == 0) {
         first_arc_line = ln;
@@ -239,21 +149,21 @@ DimacsGraph parse_dimacs_gr(std::string_view text, const std::string& display_na
       } else if (t.size() - 3 != cost_count) {
         const std::string expected = "expected " + plural(cost_count, "cost") + " as on line " +
                                      std::to_string(first_arc_line);
-        if (t.size() - 3 < cost_count) at.fail(ln, end_column, "missing field: " + expected);
-        at.fail(ln, t[3 + cost_count].column, "extra field " + quoted(t[3 + cost_count].text) + ": " + expected);
+        if (t.size() - 3 < cost_count) fail(display_name, ln, end_column, "missing field: " + expected);
+        fail(display_name, ln, t[3 + cost_count].column, "extra field " + quoted(t[3 + cost_count].text) + ": " + expected);
       }
-      const auto u = parse_id(at, ln, t[1], id_base, g.vertex_count);
-      const auto v = parse_id(at, ln, t[2], id_base, g.vertex_count);
-      for (std::size_t j = 0; j < cost_count; ++j) add_cost(at, ln, t[3 + j], g.columns[j]);
+      const auto u = parse_id(display_name, ln, t[1], id_base, g.vertex_count);
+      const auto v = parse_id(display_name, ln, t[2], id_base, g.vertex_count);
+      for (std::size_t j = 0; j < cost_count; ++j) add_cost(display_name, ln, t[3 + j], g.columns[j]);
       const auto k = g.tails.size();
-      if (k >= kMaxCount) at.fail(ln, t[0].column, "more than " + std::to_string(kMaxCount) + " arcs");
+      if (k >= kMaxCount) fail(display_name, ln, t[0].column, "more than " + std::to_string(kMaxCount) + " arcs");
       if (reference) {
         const auto& ref = *reference->graph;
         if (k >= ref.tails.size())
-          at.fail(ln, t[1].column, "arc beyond the " + plural(ref.tails.size(), "arc") + " of " +
+          fail(display_name, ln, t[1].column, "arc beyond the " + plural(ref.tails.size(), "arc") + " of " +
                                        *reference->display_name);
         if (ref.tails[k] != u || ref.heads[k] != v)
-          at.fail(ln, t[1].column,
+          fail(display_name, ln, t[1].column,
                   "arc " + std::to_string(u + id_base) + " " + std::to_string(v + id_base) +
                       " differs from arc " + std::to_string(ref.tails[k] + id_base) + " " +
                       std::to_string(ref.heads[k] + id_base) + " at " + *reference->display_name + ":" +
@@ -270,23 +180,23 @@ DimacsGraph parse_dimacs_gr(std::string_view text, const std::string& display_na
       fast_costs.resize(cost_count);
     } else if (t[0].text == "p") {
       if (p_line != 0)
-        at.fail(ln, t[0].column, "second 'p' line (the first is line " + std::to_string(p_line) + ")");
-      if (t.size() < 2) at.fail(ln, end_column, "missing field: the header is 'p sp n m'");
-      if (t[1].text != "sp") at.fail(ln, t[1].column, "expected 'sp' after 'p', found " + quoted(t[1].text));
-      if (t.size() < 4) at.fail(ln, end_column, "missing field: the header is 'p sp n m'");
-      if (t.size() > 4) at.fail(ln, t[4].column, "extra field " + quoted(t[4].text) + ": the header is 'p sp n m'");
-      g.vertex_count = parse_count(at, ln, t[2], "vertex count");
-      declared_arcs = parse_count(at, ln, t[3], "arc count");
+        fail(display_name, ln, t[0].column, "second 'p' line (the first is line " + std::to_string(p_line) + ")");
+      if (t.size() < 2) fail(display_name, ln, end_column, "missing field: the header is 'p sp n m'");
+      if (t[1].text != "sp") fail(display_name, ln, t[1].column, "expected 'sp' after 'p', found " + quoted(t[1].text));
+      if (t.size() < 4) fail(display_name, ln, end_column, "missing field: the header is 'p sp n m'");
+      if (t.size() > 4) fail(display_name, ln, t[4].column, "extra field " + quoted(t[4].text) + ": the header is 'p sp n m'");
+      g.vertex_count = parse_count(display_name, ln, t[2], "vertex count");
+      declared_arcs = parse_count(display_name, ln, t[3], "arc count");
       p_line = ln;
       m_column = t[3].column;
       if (reference) {
         const auto& ref = *reference->graph;
         if (g.vertex_count != ref.vertex_count)
-          at.fail(ln, t[2].column, "declares " + plural(g.vertex_count, "vertex") + ", " +
+          fail(display_name, ln, t[2].column, "declares " + plural(g.vertex_count, "vertex") + ", " +
                                        *reference->display_name + " has " +
                                        std::to_string(ref.vertex_count));
         if (declared_arcs != ref.tails.size())
-          at.fail(ln, t[3].column, "declares " + plural(declared_arcs, "arc") + ", " +
+          fail(display_name, ln, t[3].column, "declares " + plural(declared_arcs, "arc") + ", " +
                                        *reference->display_name + " has " +
                                        std::to_string(ref.tails.size()));
       }
@@ -296,12 +206,12 @@ DimacsGraph parse_dimacs_gr(std::string_view text, const std::string& display_na
       g.heads.reserve(reserve);
       g.arc_lines.reserve(reserve);
     } else {
-      at.fail(ln, t[0].column, "unknown line type " + quoted(t[0].text));
+      fail(display_name, ln, t[0].column, "unknown line type " + quoted(t[0].text));
     }
   }
-  if (p_line == 0) at.fail(std::max<std::uint64_t>(lines.number(), 1), 1, "no 'p sp n m' line");
+  if (p_line == 0) fail(display_name, std::max<std::uint64_t>(lines.number(), 1), 1, "no 'p sp n m' line");
   if (g.tails.size() != declared_arcs)
-    at.fail(p_line, m_column, "the header declares " + plural(declared_arcs, "arc") + ", found " +
+    fail(display_name, p_line, m_column, "the header declares " + plural(declared_arcs, "arc") + ", found " +
                                   std::to_string(g.tails.size()));
   if (first_arc_line == 0 && reference)  // no arcs at all: as many (zero) columns as the reference
     g.columns.assign(reference->graph->columns.size(), Column{});
@@ -311,7 +221,6 @@ DimacsGraph parse_dimacs_gr(std::string_view text, const std::string& display_na
 
 std::vector<std::int64_t> parse_dimacs_co(std::string_view text, const std::string& display_name,
                                           unsigned id_base, std::uint64_t vertex_count) {
-  const Located at(display_name);
   LineScanner lines(text);
   std::string_view line;
   std::vector<Token> t;
@@ -324,37 +233,37 @@ std::vector<std::int64_t> parse_dimacs_co(std::string_view text, const std::stri
     if (t.empty() || t[0].text == "c") continue;
     const auto end_column = line.size() + 1;
     if (t[0].text == "v") {
-      if (p_line == 0) at.fail(ln, t[0].column, "'v' line before the 'p aux sp co' line");
-      if (t.size() < 4) at.fail(ln, end_column, "missing field: a coordinate line is 'v id x y'");
-      if (t.size() > 4) at.fail(ln, t[4].column, "extra field " + quoted(t[4].text) + ": a coordinate line is 'v id x y'");
-      const auto id = parse_id(at, ln, t[1], id_base, n);
-      if (seen[id]) at.fail(ln, t[1].column, "second 'v' line for vertex " + std::to_string(id + id_base));
+      if (p_line == 0) fail(display_name, ln, t[0].column, "'v' line before the 'p aux sp co' line");
+      if (t.size() < 4) fail(display_name, ln, end_column, "missing field: a coordinate line is 'v id x y'");
+      if (t.size() > 4) fail(display_name, ln, t[4].column, "extra field " + quoted(t[4].text) + ": a coordinate line is 'v id x y'");
+      const auto id = parse_id(display_name, ln, t[1], id_base, n);
+      if (seen[id]) fail(display_name, ln, t[1].column, "second 'v' line for vertex " + std::to_string(id + id_base));
       seen[id] = true;
       for (int k = 0; k < 2; ++k) {
         const auto value = to_i64(t[2 + k].text);
-        if (!value) at.fail(ln, t[2 + k].column, "expected an integer coordinate, found " + quoted(t[2 + k].text));
+        if (!value) fail(display_name, ln, t[2 + k].column, "expected an integer coordinate, found " + quoted(t[2 + k].text));
         xy[2 * std::size_t{id} + k] = *value;
       }
     } else if (t[0].text == "p") {
       if (p_line != 0)
-        at.fail(ln, t[0].column, "second 'p' line (the first is line " + std::to_string(p_line) + ")");
-      if (t.size() < 5) at.fail(ln, end_column, "missing field: the header is 'p aux sp co n'");
+        fail(display_name, ln, t[0].column, "second 'p' line (the first is line " + std::to_string(p_line) + ")");
+      if (t.size() < 5) fail(display_name, ln, end_column, "missing field: the header is 'p aux sp co n'");
       if (t[1].text != "aux" || t[2].text != "sp" || t[3].text != "co")
-        at.fail(ln, t[1].column, "expected 'p aux sp co n'");
-      if (t.size() > 5) at.fail(ln, t[5].column, "extra field " + quoted(t[5].text) + ": the header is 'p aux sp co n'");
-      n = parse_count(at, ln, t[4], "vertex count");
+        fail(display_name, ln, t[1].column, "expected 'p aux sp co n'");
+      if (t.size() > 5) fail(display_name, ln, t[5].column, "extra field " + quoted(t[5].text) + ": the header is 'p aux sp co n'");
+      n = parse_count(display_name, ln, t[4], "vertex count");
       if (n != vertex_count)
-        at.fail(ln, t[4].column, "declares " + plural(n, "vertex") + ", the graph has " + std::to_string(vertex_count));
+        fail(display_name, ln, t[4].column, "declares " + plural(n, "vertex") + ", the graph has " + std::to_string(vertex_count));
       p_line = ln;
       xy.assign(2 * n, 0);
       seen.assign(n, false);
     } else {
-      at.fail(ln, t[0].column, "unknown line type " + quoted(t[0].text));
+      fail(display_name, ln, t[0].column, "unknown line type " + quoted(t[0].text));
     }
   }
-  if (p_line == 0) at.fail(std::max<std::uint64_t>(lines.number(), 1), 1, "no 'p aux sp co n' line");
+  if (p_line == 0) fail(display_name, std::max<std::uint64_t>(lines.number(), 1), 1, "no 'p aux sp co n' line");
   for (std::uint64_t id = 0; id < n; ++id)
-    if (!seen[id]) at.fail(p_line, 1, "no 'v' line for vertex " + std::to_string(id + id_base));
+    if (!seen[id]) fail(display_name, p_line, 1, "no 'v' line for vertex " + std::to_string(id + id_base));
   return xy;
 }
 

@@ -1,9 +1,9 @@
 #include "mosb/converters/dimacs_extended.hpp"
 
-#include <charconv>
 #include <set>
 
 #include "mosb/converters/text_input.hpp"
+#include "mosb/converters/text_scan.hpp"
 #include "mosb/error.hpp"
 #include "mosb/metadata.hpp"
 
@@ -13,42 +13,7 @@ namespace {
 
 constexpr std::uint64_t kMaxCount = 0xFFFFFFFEULL;
 
-struct Field {
-  std::string_view text;
-  std::uint64_t column;  // 1-based
-};
-
-std::vector<Field> split_fields(std::string_view line) {
-  std::vector<Field> fields;
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
-    if (i >= line.size()) break;
-    const std::size_t start = i;
-    while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
-    fields.push_back({line.substr(start, i - start), start + 1});
-  }
-  return fields;
-}
-
-std::string shown(std::string_view token) {
-  std::string out = "'";
-  for (std::size_t i = 0; i < token.size() && i < 40; ++i) {
-    const auto c = static_cast<unsigned char>(token[i]);
-    out += (c < 0x20 || c == 0x7F) ? '?' : static_cast<char>(c);
-  }
-  if (token.size() > 40) out += "...";
-  return out + "'";
-}
-
-template <class T>
-std::optional<T> to_integer(std::string_view s) {
-  T value{};
-  if (s.empty() || s[0] == '+') return std::nullopt;
-  const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
-  if (ec != std::errc() || ptr != s.data() + s.size()) return std::nullopt;
-  return value;
-}
+using namespace text;  // the shared primitives of text_scan.hpp
 
 std::string input_key(const Metadata& m) {
   std::size_t i = 0;
@@ -71,7 +36,7 @@ bool is_name(std::string_view s) {
 }  // namespace
 
 ViewSpec parse_view_spec(std::string_view text) {
-  const std::string where = "convert dimacs: --view " + shown(text) + ": ";
+  const std::string where = "convert dimacs: --view " + quoted(text) + ": ";
   const auto equals = text.find('=');
   if (equals == std::string_view::npos) throw Error(where + "expected NAME=OBJ1,OBJ2,...[@QUERYSET]");
   ViewSpec view;
@@ -87,7 +52,7 @@ ViewSpec parse_view_spec(std::string_view text) {
   while (true) {
     const auto comma = rest.find(',');
     const std::string objective(rest.substr(0, comma));
-    if (!is_name(objective)) throw Error(where + "empty or invalid objective name " + shown(objective));
+    if (!is_name(objective)) throw Error(where + "empty or invalid objective name " + quoted(objective));
     if (!seen.insert(objective).second) throw Error(where + "objective '" + objective + "' listed twice");
     view.objectives.push_back(objective);
     if (comma == std::string_view::npos) break;
@@ -98,65 +63,58 @@ ViewSpec parse_view_spec(std::string_view text) {
 
 std::vector<std::int64_t> parse_dimacs_elevation(std::string_view text, const std::string& display_name,
                                                  unsigned id_base, std::uint64_t vertex_count) {
-  auto fail = [&](std::uint64_t line, std::uint64_t column, const std::string& message) {
-    throw Error(display_name + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " + message);
-  };
-  std::uint64_t p_line = 0, line_number = 0, n = 0;
+  std::uint64_t p_line = 0, n = 0;
   std::vector<std::int64_t> elevation;
   std::vector<bool> seen;
-  std::size_t pos = 0;
-  while (pos < text.size()) {
-    auto end = text.find('\n', pos);
-    if (end == std::string_view::npos) end = text.size();
-    auto line = text.substr(pos, end - pos);
-    pos = end + 1;
-    ++line_number;
-    while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '\t'))
-      line.remove_suffix(1);
-    const auto t = split_fields(line);
+  LineScanner lines(text);
+  std::string_view line;
+  std::vector<Token> t;
+  while (lines.next(line)) {
+    const auto line_number = lines.number();
+    tokenize(line, t);
     if (t.empty() || t[0].text == "c") continue;
     const auto end_column = line.size() + 1;
     if (t[0].text == "v") {
-      if (p_line == 0) fail(line_number, t[0].column, "'v' line before the 'p aux sp elev n' line");
-      if (t.size() < 3) fail(line_number, end_column, "missing field: an elevation line is 'v id elevation'");
+      if (p_line == 0) fail(display_name, line_number, t[0].column, "'v' line before the 'p aux sp elev n' line");
+      if (t.size() < 3) fail(display_name, line_number, end_column, "missing field: an elevation line is 'v id elevation'");
       if (t.size() > 3)
-        fail(line_number, t[3].column, "extra field " + shown(t[3].text) + ": an elevation line is 'v id elevation'");
-      const auto id = to_integer<std::uint64_t>(t[1].text);
+        fail(display_name, line_number, t[3].column, "extra field " + quoted(t[3].text) + ": an elevation line is 'v id elevation'");
+      const auto id = to_u64(t[1].text);
       if (!id || *id < id_base || *id - id_base >= n)
-        fail(line_number, t[1].column,
-             "vertex id " + shown(t[1].text) + " outside " +
+        fail(display_name, line_number, t[1].column,
+             "vertex id " + quoted(t[1].text) + " outside " +
                  (n == 0 ? std::string("(none: the graph has no vertices)")
                          : std::to_string(id_base) + ".." + std::to_string(n - 1 + id_base)));
       const auto v = *id - id_base;
-      if (seen[v]) fail(line_number, t[1].column, "second 'v' line for vertex " + std::to_string(*id));
-      const auto value = to_integer<std::int64_t>(t[2].text);
-      if (!value) fail(line_number, t[2].column, "expected an integer elevation, found " + shown(t[2].text));
+      if (seen[v]) fail(display_name, line_number, t[1].column, "second 'v' line for vertex " + std::to_string(*id));
+      const auto value = to_i64(t[2].text);
+      if (!value) fail(display_name, line_number, t[2].column, "expected an integer elevation, found " + quoted(t[2].text));
       seen[v] = true;
       elevation[v] = *value;
     } else if (t[0].text == "p") {
       if (p_line != 0)
-        fail(line_number, t[0].column, "second 'p' line (the first is line " + std::to_string(p_line) + ")");
-      if (t.size() < 5) fail(line_number, end_column, "missing field: the header is 'p aux sp elev n'");
+        fail(display_name, line_number, t[0].column, "second 'p' line (the first is line " + std::to_string(p_line) + ")");
+      if (t.size() < 5) fail(display_name, line_number, end_column, "missing field: the header is 'p aux sp elev n'");
       if (t[1].text != "aux" || t[2].text != "sp" || t[3].text != "elev")
-        fail(line_number, t[1].column, "expected 'p aux sp elev n'");
+        fail(display_name, line_number, t[1].column, "expected 'p aux sp elev n'");
       if (t.size() > 5)
-        fail(line_number, t[5].column, "extra field " + shown(t[5].text) + ": the header is 'p aux sp elev n'");
-      const auto count = to_integer<std::uint64_t>(t[4].text);
-      if (!count || *count > kMaxCount) fail(line_number, t[4].column, "expected the vertex count, found " + shown(t[4].text));
+        fail(display_name, line_number, t[5].column, "extra field " + quoted(t[5].text) + ": the header is 'p aux sp elev n'");
+      const auto count = to_u64(t[4].text);
+      if (!count || *count > kMaxCount) fail(display_name, line_number, t[4].column, "expected the vertex count, found " + quoted(t[4].text));
       if (*count != vertex_count)
-        fail(line_number, t[4].column,
+        fail(display_name, line_number, t[4].column,
              "declares " + std::to_string(*count) + " vertices, the graph has " + std::to_string(vertex_count));
       n = *count;
       p_line = line_number;
       elevation.assign(n, 0);  // n equals the graph's vertex count, already held in memory
       seen.assign(n, false);
     } else {
-      fail(line_number, t[0].column, "unknown line type " + shown(t[0].text));
+      fail(display_name, line_number, t[0].column, "unknown line type " + quoted(t[0].text));
     }
   }
-  if (p_line == 0) fail(std::max<std::uint64_t>(line_number, 1), 1, "no 'p aux sp elev n' line");
+  if (p_line == 0) fail(display_name, std::max<std::uint64_t>(lines.number(), 1), 1, "no 'p aux sp elev n' line");
   for (std::uint64_t v = 0; v < n; ++v)
-    if (!seen[v]) fail(p_line, 1, "no 'v' line for vertex " + std::to_string(v + id_base));
+    if (!seen[v]) fail(display_name, p_line, 1, "no 'v' line for vertex " + std::to_string(v + id_base));
   return elevation;
 }
 

@@ -1,12 +1,12 @@
 #include "mosb/converters/fmi_converter.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <limits>
 
 #include "mosb/converters/text_input.hpp"
+#include "mosb/converters/text_scan.hpp"
 #include "mosb/error.hpp"
 
 namespace mosb::converters {
@@ -15,146 +15,55 @@ namespace {
 
 constexpr std::uint64_t kMaxCount = 0xFFFFFFFEULL;  // n and m are at most 2^32 - 2 (FORMAT.md §4)
 
-struct Token {
-  std::string_view text;
-  std::uint64_t column;  // 1-based
-};
-
-// Lines of a text buffer: '\n' ends a line; a trailing '\r', blanks and tabs are dropped.
-class LineScanner {
- public:
-  explicit LineScanner(std::string_view text) : text_(text) {}
-  bool next(std::string_view& line) {
-    if (pos_ >= text_.size()) return false;
-    auto end = text_.find('\n', pos_);
-    if (end == std::string_view::npos) end = text_.size();
-    line = text_.substr(pos_, end - pos_);
-    pos_ = end + 1;
-    ++number_;
-    while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '\t'))
-      line.remove_suffix(1);
-    return true;
-  }
-  std::uint64_t number() const { return number_; }
-
- private:
-  std::string_view text_;
-  std::size_t pos_ = 0;
-  std::uint64_t number_ = 0;
-};
-
-void tokenize(std::string_view line, std::vector<Token>& tokens) {
-  tokens.clear();
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
-    if (i >= line.size()) break;
-    const std::size_t start = i;
-    while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
-    tokens.push_back({line.substr(start, i - start), start + 1});
-  }
-}
-
-// A token quoted for a one-line message: control bytes shown as '?', long tokens cut.
-std::string quoted(std::string_view token) {
-  std::string out = "'";
-  const std::size_t limit = 40;
-  for (std::size_t i = 0; i < token.size() && i < limit; ++i) {
-    const auto c = static_cast<unsigned char>(token[i]);
-    out += (c < 0x20 || c == 0x7F) ? '?' : static_cast<char>(c);
-  }
-  if (token.size() > limit) out += "...";
-  return out + "'";
-}
-
-std::string plural(std::uint64_t n, const char* word) {
-  const std::string w = word;
-  if (n == 1) return "1 " + w;
-  return std::to_string(n) + " " + (w == "vertex" ? std::string("vertices") : w + "s");
-}
-
-class Located {
- public:
-  explicit Located(const std::string& file) : file_(file) {}
-  [[noreturn]] void fail(std::uint64_t line, std::uint64_t column, const std::string& message) const {
-    throw Error(file_ + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " + message);
-  }
-
- private:
-  const std::string& file_;
-};
-
-bool is_digits(std::string_view s) {
-  if (s.empty()) return false;
-  for (char c : s)
-    if (c < '0' || c > '9') return false;
-  return true;
-}
+using namespace text;  // the shared primitives of text_scan.hpp
 
 // A non-negative integer field (count, id, osm id, type, maxspeed).
-std::uint64_t parse_unsigned(const Located& at, std::uint64_t line, const Token& t, const std::string& what,
+std::uint64_t parse_unsigned(const std::string& file, std::uint64_t line, const Token& t, const std::string& what,
                              std::uint64_t max = UINT64_MAX) {
-  if (!is_digits(t.text)) at.fail(line, t.column, "expected " + what + ", found " + quoted(t.text));
-  std::uint64_t value = 0;
-  const auto [ptr, ec] = std::from_chars(t.text.data(), t.text.data() + t.text.size(), value);
-  if (ec != std::errc() || ptr != t.text.data() + t.text.size() || value > max)
-    at.fail(line, t.column, what + " " + quoted(t.text) + " exceeds " + std::to_string(max));
-  return value;
-}
-
-// A decimal number: optional '-', digits, at most one '.', optional exponent; no inf, nan or hex.
-std::optional<double> to_real(std::string_view s) {
-  if (s.empty() || s[0] == '+' || s[0] == 'e' || s[0] == 'E') return std::nullopt;
-  for (char c : s)
-    if (!((c >= '0' && c <= '9') || c == '.' || c == 'e' || c == 'E' || c == '+' || c == '-'))
-      return std::nullopt;
-  double value = 0;
-  const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), value, std::chars_format::general);
-  if (ec != std::errc() || ptr != s.data() + s.size() || !std::isfinite(value)) return std::nullopt;
-  return value;
+  if (!is_digits(t.text)) fail(file, line, t.column, "expected " + what + ", found " + quoted(t.text));
+  const auto value = to_u64(t.text, max);
+  if (!value) fail(file, line, t.column, what + " " + quoted(t.text) + " exceeds " + std::to_string(max));
+  return *value;
 }
 
 bool looks_real(std::string_view s) { return s.find_first_of(".eE") != std::string_view::npos; }
 
-double parse_degrees(const Located& at, std::uint64_t line, const Token& t, const char* what, double limit) {
+double parse_degrees(const std::string& file, std::uint64_t line, const Token& t, const char* what, double limit) {
   const auto value = to_real(t.text);
-  if (!value) at.fail(line, t.column, std::string("expected the ") + what + ", found " + quoted(t.text));
+  if (!value) fail(file, line, t.column, std::string("expected the ") + what + ", found " + quoted(t.text));
   if (std::fabs(*value) > limit)
-    at.fail(line, t.column, std::string(what) + " " + quoted(t.text) + " outside -" +
-                                std::to_string(static_cast<int>(limit)) + ".." +
-                                std::to_string(static_cast<int>(limit)));
+    fail(file, line, t.column, std::string(what) + " " + quoted(t.text) + " outside -" +
+                                   std::to_string(static_cast<int>(limit)) + ".." +
+                                   std::to_string(static_cast<int>(limit)));
   return *value;
 }
 
 using Elevation = std::variant<std::vector<std::int64_t>, std::vector<double>>;
 
-void add_elevation(const Located& at, std::uint64_t line, const Token& t, Elevation& column) {
+void add_elevation(const std::string& file, std::uint64_t line, const Token& t, Elevation& column) {
   const auto s = t.text;
   if (!looks_real(s)) {
-    std::int64_t value = 0;
-    const bool sign_ok = !s.empty() && (is_digits(s) || (s[0] == '-' && is_digits(s.substr(1))));
-    const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
-    if (!sign_ok || ec != std::errc() || ptr != s.data() + s.size())
-      at.fail(line, t.column, "expected the elevation, found " + quoted(s));
+    const auto value = to_i64(s);
+    if (!value) fail(file, line, t.column, "expected the elevation, found " + quoted(s));
     if (auto* ints = std::get_if<std::vector<std::int64_t>>(&column))
-      ints->push_back(value);
+      ints->push_back(*value);
     else
-      std::get<std::vector<double>>(column).push_back(static_cast<double>(value));
+      std::get<std::vector<double>>(column).push_back(static_cast<double>(*value));
     return;
   }
   const auto value = to_real(s);
-  if (!value) at.fail(line, t.column, "expected the elevation, found " + quoted(s));
+  if (!value) fail(file, line, t.column, "expected the elevation, found " + quoted(s));
   if (auto* ints = std::get_if<std::vector<std::int64_t>>(&column)) column = std::vector<double>(ints->begin(), ints->end());
   std::get<std::vector<double>>(column).push_back(*value);
 }
 
 using CostValues = std::variant<std::vector<std::uint64_t>, std::vector<double>>;
 
-void add_cost(const Located& at, std::uint64_t line, const Token& t, CostValues& column) {
+void add_cost(const std::string& file, std::uint64_t line, const Token& t, CostValues& column) {
   const auto s = t.text;
-  if (!s.empty() && s[0] == '-') at.fail(line, t.column, "negative cost " + quoted(s));
+  if (!s.empty() && s[0] == '-') fail(file, line, t.column, "negative cost " + quoted(s));
   if (!looks_real(s)) {
-    const auto value = parse_unsigned(at, line, t, "a cost");
+    const auto value = parse_unsigned(file, line, t, "a cost");
     if (auto* ints = std::get_if<std::vector<std::uint64_t>>(&column))
       ints->push_back(value);
     else
@@ -162,7 +71,7 @@ void add_cost(const Located& at, std::uint64_t line, const Token& t, CostValues&
     return;
   }
   const auto value = to_real(s);
-  if (!value) at.fail(line, t.column, "expected a cost, found " + quoted(s));
+  if (!value) fail(file, line, t.column, "expected a cost, found " + quoted(s));
   if (auto* ints = std::get_if<std::vector<std::uint64_t>>(&column)) column = std::vector<double>(ints->begin(), ints->end());
   std::get<std::vector<double>>(column).push_back(*value);
 }
@@ -181,7 +90,6 @@ bool next_data_line(LineScanner& lines, std::vector<Token>& t) {
 
 FmiGraph parse_fmi(std::string_view text, const std::string& display_name, std::optional<unsigned> cost_count,
                    bool ignore_extra_fields) {
-  const Located at(display_name);
   FmiGraph g;
   LineScanner lines(text);
   std::vector<Token> t;
@@ -191,9 +99,9 @@ FmiGraph parse_fmi(std::string_view text, const std::string& display_name, std::
   std::uint64_t count_lines[2] = {0, 0};
   const char* count_names[2] = {"the node count", "the edge count"};
   for (int k = 0; k < 2; ++k) {
-    if (!next_data_line(lines, t)) at.fail(end_line(), 1, std::string("missing ") + count_names[k]);
-    if (t.size() > 1) at.fail(lines.number(), t[1].column, "extra field " + quoted(t[1].text) + " after " + count_names[k]);
-    counts[k] = parse_unsigned(at, lines.number(), t[0], count_names[k], kMaxCount);
+    if (!next_data_line(lines, t)) fail(display_name, end_line(), 1, std::string("missing ") + count_names[k]);
+    if (t.size() > 1) fail(display_name, lines.number(), t[1].column, "extra field " + quoted(t[1].text) + " after " + count_names[k]);
+    counts[k] = parse_unsigned(display_name, lines.number(), t[0], count_names[k], kMaxCount);
     count_lines[k] = lines.number();
   }
   const std::uint64_t n = counts[0], m = counts[1];
@@ -204,15 +112,15 @@ FmiGraph parse_fmi(std::string_view text, const std::string& display_name, std::
 
   for (std::uint64_t v = 0; v < n; ++v) {
     if (!next_data_line(lines, t))
-      at.fail(count_lines[0], 1, "the header declares " + plural(n, "node") + ", found " + std::to_string(v));
+      fail(display_name, count_lines[0], 1, "the header declares " + plural(n, "node") + ", found " + std::to_string(v));
     const auto ln = lines.number();
-    if (t.size() < 5) at.fail(ln, t.back().column + t.back().text.size(), "missing field: a node line is 'id osm_id lat lon elevation'");
-    const auto id = parse_unsigned(at, ln, t[0], "a node id");
-    if (id != v) at.fail(ln, t[0].column, "expected node id " + std::to_string(v) + " (ids 0..n-1 in order), found " + quoted(t[0].text));
-    g.osm_ids.push_back(parse_unsigned(at, ln, t[1], "an OSM id"));
-    g.coords.push_back(parse_degrees(at, ln, t[2], "latitude", 90));
-    g.coords.push_back(parse_degrees(at, ln, t[3], "longitude", 180));
-    add_elevation(at, ln, t[4], g.elevation);
+    if (t.size() < 5) fail(display_name, ln, t.back().column + t.back().text.size(), "missing field: a node line is 'id osm_id lat lon elevation'");
+    const auto id = parse_unsigned(display_name, ln, t[0], "a node id");
+    if (id != v) fail(display_name, ln, t[0].column, "expected node id " + std::to_string(v) + " (ids 0..n-1 in order), found " + quoted(t[0].text));
+    g.osm_ids.push_back(parse_unsigned(display_name, ln, t[1], "an OSM id"));
+    g.coords.push_back(parse_degrees(display_name, ln, t[2], "latitude", 90));
+    g.coords.push_back(parse_degrees(display_name, ln, t[3], "longitude", 180));
+    add_elevation(display_name, ln, t[4], g.elevation);
   }
   g.vertex_count = n;
 
@@ -228,33 +136,33 @@ FmiGraph parse_fmi(std::string_view text, const std::string& display_name, std::
   const auto id_range = n == 0 ? std::string("(none: the graph has no nodes)") : "0.." + std::to_string(n - 1);
   for (std::uint64_t e = 0; e < m; ++e) {
     if (!next_data_line(lines, t))
-      at.fail(count_lines[1], 1, "the header declares " + plural(m, "edge") + ", found " + std::to_string(e));
+      fail(display_name, count_lines[1], 1, "the header declares " + plural(m, "edge") + ", found " + std::to_string(e));
     const auto ln = lines.number();
     const auto end_column = t.back().column + t.back().text.size();
-    if (t.size() < fixed) at.fail(ln, end_column, "missing field: " + layout);
+    if (t.size() < fixed) fail(display_name, ln, end_column, "missing field: " + layout);
     if (first_edge_line == 0) {
       first_edge_line = ln;
       fields = t.size();
       const std::size_t allowed = cost_count ? (ignore_extra_fields ? fields : fixed) : 5;
-      if (fields > allowed) at.fail(ln, t[allowed].column, "extra field " + quoted(t[allowed].text) + ": " + layout);
+      if (fields > allowed) fail(display_name, ln, t[allowed].column, "extra field " + quoted(t[allowed].text) + ": " + layout);
     } else if (t.size() != fields) {
       const std::string expected = "expected " + plural(fields, "field") + " as on line " + std::to_string(first_edge_line);
-      if (t.size() < fields) at.fail(ln, end_column, "missing field: " + expected);
-      at.fail(ln, t[fields].column, "extra field " + quoted(t[fields].text) + ": " + expected);
+      if (t.size() < fields) fail(display_name, ln, end_column, "missing field: " + expected);
+      fail(display_name, ln, t[fields].column, "extra field " + quoted(t[fields].text) + ": " + expected);
     }
     for (int k = 0; k < 2; ++k) {
-      const auto id = parse_unsigned(at, ln, t[k], "a node id");
-      if (id >= n) at.fail(ln, t[k].column, "node id " + quoted(t[k].text) + " outside " + id_range);
+      const auto id = parse_unsigned(display_name, ln, t[k], "a node id");
+      if (id >= n) fail(display_name, ln, t[k].column, "node id " + quoted(t[k].text) + " outside " + id_range);
       (k == 0 ? g.tails : g.heads).push_back(static_cast<std::uint32_t>(id));
     }
-    for (std::size_t j = 0; j < columns; ++j) add_cost(at, ln, t[2 + j], g.costs[j]);
+    for (std::size_t j = 0; j < columns; ++j) add_cost(display_name, ln, t[2 + j], g.costs[j]);
     if (!cost_count) {
-      g.types.push_back(parse_unsigned(at, ln, t[3], "the edge type"));
-      if (fields == 5) g.maxspeeds.push_back(parse_unsigned(at, ln, t[4], "the maxspeed"));
+      g.types.push_back(parse_unsigned(display_name, ln, t[3], "the edge type"));
+      if (fields == 5) g.maxspeeds.push_back(parse_unsigned(display_name, ln, t[4], "the maxspeed"));
     }
   }
   if (next_data_line(lines, t))
-    at.fail(lines.number(), t[0].column, "the header declares " + plural(m, "edge") + ", found more");
+    fail(display_name, lines.number(), t[0].column, "the header declares " + plural(m, "edge") + ", found more");
   return g;
 }
 

@@ -9,14 +9,14 @@
 #include <cstring>
 
 #include "mosb/converters/text_input.hpp"
+#include "mosb/converters/text_scan.hpp"
 #include "mosb/error.hpp"
 
 namespace mosb::converters {
 
 namespace {
 
-using movingai_text::fail;
-using movingai_text::quoted;
+using namespace text;  // the shared primitives of text_scan.hpp
 
 constexpr std::uint64_t kMaxRadiusMilli = 1'000'000'000;  // 10^6 cells: beyond any map that fits
 
@@ -26,39 +26,44 @@ bool parse_radius(std::string_view s, std::uint64_t& milli) {
   const auto whole = s.substr(0, dot);
   std::string_view fraction = dot == std::string_view::npos ? std::string_view() : s.substr(dot + 1);
   if (dot != std::string_view::npos && (fraction.empty() || fraction.size() > 3)) return false;
-  std::uint64_t w = 0, f = 0;
-  if (!movingai_text::parse_unsigned(whole, kMaxRadiusMilli / 1000, w)) return false;
-  if (!fraction.empty() && !movingai_text::parse_unsigned(fraction, 999, f)) return false;
+  const auto w = to_u64(whole, kMaxRadiusMilli / 1000);
+  if (!w) return false;
+  std::uint64_t f = 0;
+  if (!fraction.empty()) {
+    const auto digits = to_u64(fraction, 999);
+    if (!digits) return false;
+    f = *digits;
+  }
   for (auto k = fraction.size(); k < 3; ++k) f *= 10;
-  milli = w * 1000 + f;
+  milli = *w * 1000 + f;
   return milli <= kMaxRadiusMilli;
 }
 
 }  // namespace
 
 std::vector<Guard> parse_guards(std::string_view text_in, const std::string& file, const OctileMap& map) {
-  movingai_text::Lines lines(text_in);
+  text::LineScanner lines(text_in, text::LineEnd::cr);
   std::string_view line;
+  std::vector<Token> t;
   std::vector<Guard> guards;
   while (lines.next(line)) {
     const auto ln = lines.number();
     const auto hash = line.find('#');
     if (hash != std::string_view::npos) line = line.substr(0, hash);
-    const auto t = movingai_text::tokenize(line);
+    text::tokenize(line, t);
     if (t.empty()) continue;
     if (t.size() < 2) fail(file, ln, line.size() + 1, "missing field: a guard line is 'x y [radius]'");
     if (t.size() > 3) fail(file, ln, t[3].column, "extra field " + quoted(t[3].text) + ": a guard line is 'x y [radius]'");
     Guard g;
     g.line = ln;
-    std::uint64_t x = 0, y = 0;
-    if (!movingai_text::parse_unsigned(t[0].text, map.width - 1, x))
-      fail(file, ln, t[0].column, "guard x " + quoted(t[0].text) + " is not a column 0.." + std::to_string(map.width - 1));
-    if (!movingai_text::parse_unsigned(t[1].text, map.height - 1, y))
-      fail(file, ln, t[1].column, "guard y " + quoted(t[1].text) + " is not a row 0.." + std::to_string(map.height - 1));
-    g.x = static_cast<std::uint32_t>(x);
-    g.y = static_cast<std::uint32_t>(y);
+    const auto x = to_u64(t[0].text, map.width - 1);
+    if (!x) fail(file, ln, t[0].column, "guard x " + quoted(t[0].text) + " is not a column 0.." + std::to_string(map.width - 1));
+    const auto y = to_u64(t[1].text, map.height - 1);
+    if (!y) fail(file, ln, t[1].column, "guard y " + quoted(t[1].text) + " is not a row 0.." + std::to_string(map.height - 1));
+    g.x = static_cast<std::uint32_t>(*x);
+    g.y = static_cast<std::uint32_t>(*y);
     if (!map.is_passable(g.x, g.y))
-      fail(file, ln, t[0].column, "guard on the blocked cell (" + std::to_string(x) + ", " + std::to_string(y) + ")");
+      fail(file, ln, t[0].column, "guard on the blocked cell (" + std::to_string(*x) + ", " + std::to_string(*y) + ")");
     if (t.size() == 3) {
       std::uint64_t milli = 0;
       if (!parse_radius(t[2].text, milli))
@@ -71,14 +76,15 @@ std::vector<Guard> parse_guards(std::string_view text_in, const std::string& fil
 }
 
 std::vector<std::uint64_t> parse_exposure(std::string_view text_in, const std::string& file, const OctileMap& map) {
-  movingai_text::Lines lines(text_in);
+  text::LineScanner lines(text_in, text::LineEnd::cr);
   std::string_view line;
+  std::vector<Token> t;
   std::vector<std::uint64_t> exposure(map.passable.size(), 0);
   for (std::uint32_t y = 0; y < map.height; ++y) {
     if (!lines.next(line))
       fail(file, lines.number() + 1, 1, "missing row " + std::to_string(y + 1) + " of " + std::to_string(map.height));
     const auto ln = lines.number();
-    const auto t = movingai_text::tokenize(line);
+    text::tokenize(line, t);
     if (t.size() < map.width)
       fail(file, ln, line.size() + 1, "row " + std::to_string(y + 1) + " has " + std::to_string(t.size()) +
                                           " values, the map is " + std::to_string(map.width) + " wide");
@@ -86,15 +92,16 @@ std::vector<std::uint64_t> parse_exposure(std::string_view text_in, const std::s
                                                                    ": the map is " + std::to_string(map.width) + " wide");
     for (std::uint32_t x = 0; x < map.width; ++x) {
       if (!map.is_passable(x, y)) continue;  // blocked cells may hold anything
-      std::uint64_t value = 0;
-      if (!movingai_text::parse_unsigned(t[x].text, UINT64_MAX, value))
-        fail(file, ln, t[x].column, "expected a non-negative integer exposure, found " + quoted(t[x].text));
-      exposure[std::size_t{y} * map.width + x] = value;
+      const auto value = to_u64(t[x].text);
+      if (!value) fail(file, ln, t[x].column, "expected a non-negative integer exposure, found " + quoted(t[x].text));
+      exposure[std::size_t{y} * map.width + x] = *value;
     }
   }
-  while (lines.next(line))
-    if (!movingai_text::tokenize(line).empty())
+  while (lines.next(line)) {
+    text::tokenize(line, t);
+    if (!t.empty())
       fail(file, lines.number(), 1, "text after the " + std::to_string(map.height) + " rows of the grid");
+  }
   return exposure;
 }
 

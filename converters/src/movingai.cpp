@@ -1,68 +1,15 @@
 #include "mosb/converters/movingai.hpp"
 
-#include <charconv>
-#include <cmath>
 #include <optional>
 
+#include "mosb/converters/text_scan.hpp"
 #include "mosb/error.hpp"
 
 namespace mosb::converters {
 
-namespace movingai_text {
-
-bool Lines::next(std::string_view& line) {
-  if (pos_ >= text_.size()) return false;
-  auto end = text_.find('\n', pos_);
-  if (end == std::string_view::npos) end = text_.size();
-  line = text_.substr(pos_, end - pos_);
-  pos_ = end + 1;
-  ++number_;
-  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-  return true;
-}
-
-std::vector<Token> tokenize(std::string_view line) {
-  std::vector<Token> tokens;
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
-    if (i >= line.size()) break;
-    const std::size_t start = i;
-    while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
-    tokens.push_back({line.substr(start, i - start), static_cast<std::uint32_t>(start + 1)});
-  }
-  return tokens;
-}
-
-std::string quoted(std::string_view token) {
-  std::string out = "'";
-  const std::size_t limit = 40;
-  for (std::size_t i = 0; i < token.size() && i < limit; ++i) {
-    const auto c = static_cast<unsigned char>(token[i]);
-    out += (c < 0x20 || c >= 0x7F) ? '?' : static_cast<char>(c);
-  }
-  if (token.size() > limit) out += "...";
-  return out + "'";
-}
-
-void fail(const std::string& file, std::uint64_t line, std::uint64_t column, const std::string& message) {
-  throw Error(file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " + message);
-}
-
-bool parse_unsigned(std::string_view s, std::uint64_t max, std::uint64_t& value) {
-  if (s.empty()) return false;
-  for (char c : s)
-    if (c < '0' || c > '9') return false;
-  const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
-  return ec == std::errc() && ptr == s.data() + s.size() && value <= max;
-}
-
-}  // namespace movingai_text
-
 namespace {
 
-using movingai_text::fail;
-using movingai_text::quoted;
+using namespace text;  // the shared primitives of text_scan.hpp
 
 constexpr std::uint64_t kMaxCells = 0xFFFFFFFEULL;  // vertex ids are u32 with one value to spare
 
@@ -77,19 +24,20 @@ std::optional<std::uint8_t> terrain(char c, const TerrainRules& rules) {
   }
 }
 
-std::uint32_t parse_dimension(const std::string& file, std::uint64_t ln, const movingai_text::Token& t, const char* what) {
-  std::uint64_t value = 0;
-  if (!movingai_text::parse_unsigned(t.text, 0xFFFFFFFFULL, value) || value == 0)
+std::uint32_t parse_dimension(const std::string& file, std::uint64_t ln, const Token& t, const char* what) {
+  const auto value = to_u64(t.text, 0xFFFFFFFFULL);
+  if (!value || *value == 0)
     fail(file, ln, t.column, std::string("expected the map ") + what + " (an integer from 1 to 4294967295), found " +
                                  quoted(t.text));
-  return static_cast<std::uint32_t>(value);
+  return static_cast<std::uint32_t>(*value);
 }
 
 }  // namespace
 
 OctileMap parse_octile_map(std::string_view text_in, const std::string& file, const TerrainRules& rules) {
-  movingai_text::Lines lines(text_in);
+  text::LineScanner lines(text_in, text::LineEnd::cr);
   std::string_view line;
+  std::vector<Token> t;
   OctileMap map;
   std::uint64_t header_line = 0;
   bool have_type = false;
@@ -98,7 +46,7 @@ OctileMap parse_octile_map(std::string_view text_in, const std::string& file, co
     if (!lines.next(line))
       fail(file, lines.number() + 1, 1, have_type ? "missing 'map' line after the header" : "empty file: expected 'type octile'");
     const auto ln = lines.number();
-    const auto t = movingai_text::tokenize(line);
+    text::tokenize(line, t);
     if (!have_type) {
       if (t.size() < 1 || t[0].text != "type") fail(file, ln, t.empty() ? 1 : t[0].column, "expected 'type octile'");
       if (t.size() < 2 || t[1].text != "octile")
@@ -152,13 +100,14 @@ OctileMap parse_octile_map(std::string_view text_in, const std::string& file, co
 }
 
 std::vector<ScenarioEntry> parse_scenario(std::string_view text_in, const std::string& file) {
-  movingai_text::Lines lines(text_in);
+  text::LineScanner lines(text_in, text::LineEnd::cr);
   std::string_view line;
+  std::vector<Token> words, fields;
   bool have_version = false;
   std::vector<ScenarioEntry> entries;
   while (lines.next(line)) {
     const auto ln = lines.number();
-    const auto words = movingai_text::tokenize(line);
+    text::tokenize(line, words);
     if (words.empty()) continue;
     if (!have_version) {
       if (words[0].text != "version") fail(file, ln, words[0].column, "expected 'version 1'");
@@ -170,13 +119,13 @@ std::vector<ScenarioEntry> parse_scenario(std::string_view text_in, const std::s
       continue;
     }
     // Fields are tab-separated (a map path may hold blanks); a row without tabs is split on blanks.
-    std::vector<movingai_text::Token> fields;
     if (line.find('\t') != std::string_view::npos) {
+      fields.clear();
       std::size_t start = 0;
       while (true) {
         const auto tab = line.find('\t', start);
         const auto end = tab == std::string_view::npos ? line.size() : tab;
-        fields.push_back({line.substr(start, end - start), static_cast<std::uint32_t>(start + 1)});
+        fields.push_back({line.substr(start, end - start), start + 1});
         if (tab == std::string_view::npos) break;
         start = tab + 1;
       }
@@ -189,25 +138,25 @@ std::vector<ScenarioEntry> parse_scenario(std::string_view text_in, const std::s
     if (fields.size() > 9) fail(file, ln, fields[9].column, "extra field " + quoted(fields[9].text));
     ScenarioEntry e;
     e.line = ln;
-    for (std::size_t k = 0; k < 9; ++k) e.columns[k] = fields[k].column;
-    if (!movingai_text::parse_unsigned(fields[0].text, UINT64_MAX, e.bucket))
-      fail(file, ln, fields[0].column, "expected a bucket number, found " + quoted(fields[0].text));
+    for (std::size_t k = 0; k < 9; ++k) e.columns[k] = static_cast<std::uint32_t>(fields[k].column);
+    const auto bucket = to_u64(fields[0].text);
+    if (!bucket) fail(file, ln, fields[0].column, "expected a bucket number, found " + quoted(fields[0].text));
+    e.bucket = *bucket;
     if (fields[1].text.empty()) fail(file, ln, fields[1].column, "empty map name");
     e.map = std::string(fields[1].text);
     std::uint32_t* targets[] = {&e.map_width, &e.map_height, &e.start_x, &e.start_y, &e.goal_x, &e.goal_y};
     const char* names[] = {"map width", "map height", "start x", "start y", "goal x", "goal y"};
     for (std::size_t k = 0; k < 6; ++k) {
-      std::uint64_t value = 0;
-      if (!movingai_text::parse_unsigned(fields[2 + k].text, 0xFFFFFFFFULL, value))
+      const auto value = to_u64(fields[2 + k].text, 0xFFFFFFFFULL);
+      if (!value)
         fail(file, ln, fields[2 + k].column, std::string("expected the ") + names[k] + ", found " + quoted(fields[2 + k].text));
-      *targets[k] = static_cast<std::uint32_t>(value);
+      *targets[k] = static_cast<std::uint32_t>(*value);
     }
     const auto opt = fields[8].text;
-    const bool well_formed = !opt.empty() && opt.find_first_not_of("0123456789.eE+-") == std::string_view::npos &&
-                             opt[0] >= '0' && opt[0] <= '9';
-    const auto [ptr, ec] = std::from_chars(opt.data(), opt.data() + opt.size(), e.optimal);
-    if (!well_formed || ec != std::errc() || ptr != opt.data() + opt.size() || !std::isfinite(e.optimal))
+    const auto optimal = text::to_real(opt);
+    if (!optimal || opt[0] < '0' || opt[0] > '9')
       fail(file, ln, fields[8].column, "expected the optimal length (a non-negative number), found " + quoted(opt));
+    e.optimal = *optimal;
     entries.push_back(std::move(e));
   }
   if (!have_version) fail(file, std::max<std::uint64_t>(lines.number(), 1), 1, "empty file: expected 'version 1'");

@@ -1,12 +1,16 @@
 #include "mosb/converters/query_import.hpp"
 
-#include <charconv>
-
+#include "mosb/converters/text_scan.hpp"
 #include "mosb/error.hpp"
 
 namespace mosb::converters {
 
 namespace {
+
+using namespace text;  // the shared primitives of text_scan.hpp
+
+// Fields and --match texts are shown up to 60 bytes, more than a token elsewhere.
+std::string quoted_field(std::string_view field) { return quoted(field, 60); }
 
 // A field of a data line, or one of the separators ',' and ';' (which are items of their own).
 struct Item {
@@ -39,28 +43,10 @@ bool is_comment(const std::vector<Item>& items) {
   return first[0] == '#' || first == "c";
 }
 
-bool is_digits(std::string_view s) {
-  if (s.empty()) return false;
-  for (char c : s)
-    if (c < '0' || c > '9') return false;
-  return true;
-}
-
-// A field quoted for a one-line message: control bytes shown as '?', long fields cut.
-std::string quoted(std::string_view field, std::size_t limit = 60) {
-  std::string out = "'";
-  for (std::size_t i = 0; i < field.size() && i < limit; ++i) {
-    const auto c = static_cast<unsigned char>(field[i]);
-    out += (c < 0x20 || c == 0x7F) ? '?' : static_cast<char>(c);
-  }
-  if (field.size() > limit) out += "...";
-  return out + "'";
-}
-
 // Graph paths differ in their ends (the file name), so a long one keeps its last characters.
 std::string quoted_path(std::string_view path) {
   const std::size_t limit = 80;
-  if (path.size() <= limit) return quoted(path);
+  if (path.size() <= limit) return quoted_field(path);
   return "'..." + quoted(path.substr(path.size() - limit), limit).substr(1);
 }
 
@@ -80,12 +66,12 @@ class QueryParser {
     const Item *graph = nullptr, *start = nullptr, *goal = nullptr;
     auto expect_field = [&](std::size_t k) -> const Item& {
       if (k >= items_.size()) fail(end_column, std::string("missing field: expected ") + expected());
-      if (items_[k].separator) fail(items_[k].column, "unexpected " + quoted(items_[k].text));
+      if (items_[k].separator) fail(items_[k].column, "unexpected " + quoted_field(items_[k].text));
       return items_[k];
     };
     auto expect_end = [&](std::size_t k) {
       if (k < items_.size())
-        fail(items_[k].column, "extra field " + quoted(items_[k].text) + ": expected " + expected());
+        fail(items_[k].column, "extra field " + quoted_field(items_[k].text) + ": expected " + expected());
     };
     start = &expect_field(0);
     if (items_.size() > 1 && items_[1].separator) {
@@ -94,9 +80,9 @@ class QueryParser {
     } else {
       goal = &expect_field(1);
       if (items_.size() > 2) {
-        if (items_[2].separator) fail(items_[2].column, "unexpected " + quoted(items_[2].text));
+        if (items_[2].separator) fail(items_[2].column, "unexpected " + quoted_field(items_[2].text));
         if (is_digits(start->text))
-          fail(items_[2].column, "extra field " + quoted(items_[2].text) + ": expected " + expected());
+          fail(items_[2].column, "extra field " + quoted_field(items_[2].text) + ": expected " + expected());
         graph = start;
         start = goal;
         goal = &expect_field(2);
@@ -112,7 +98,7 @@ class QueryParser {
                   " is " + form_text(*form_));
     }
     if (form == LineForm::pair && options_.match)
-      fail(1, "--match " + quoted(*options_.match) + " given, but the lines have no graph field");
+      fail(1, "--match " + quoted_field(*options_.match) + " given, but the lines have no graph field");
     if (graph && !select(*graph)) return;
     out.push_back({parse_id(*start), parse_id(*goal)});
   }
@@ -120,13 +106,13 @@ class QueryParser {
   void finish(const std::vector<Query>& out) const {
     if (!out.empty()) return;
     if (options_.match && form_)
-      throw Error(file_ + ": no line's graph field contains " + quoted(*options_.match));
+      throw Error(file_ + ": no line's graph field contains " + quoted_field(*options_.match));
     throw Error(file_ + ": no queries");
   }
 
  private:
   [[noreturn]] void fail(std::uint64_t column, const std::string& message) const {
-    throw Error(file_ + ":" + std::to_string(line_) + ":" + std::to_string(column) + ": " + message);
+    text::fail(file_, line_, column, message);
   }
 
   const char* expected() const {
@@ -145,7 +131,7 @@ class QueryParser {
       const std::string both = "(" + quoted_path(graph_) + " on line " + std::to_string(graph_line_) +
                                ", " + quoted_path(graph.text) + " here)";
       if (options_.match)
-        fail(graph.column, "--match " + quoted(*options_.match) + " selects more than one graph " + both);
+        fail(graph.column, "--match " + quoted_field(*options_.match) + " selects more than one graph " + both);
       fail(graph.column, "the file names more than one graph " + both + ": choose one with --match TEXT");
     }
     return true;
@@ -153,15 +139,14 @@ class QueryParser {
 
   std::uint32_t parse_id(const Item& item) const {
     const auto s = item.text;
-    if (!is_digits(s)) fail(item.column, "expected a vertex id, found " + quoted(s));
-    std::uint64_t value = 0;
-    const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
+    if (!is_digits(s)) fail(item.column, "expected a vertex id, found " + quoted_field(s));
+    const auto value = text::to_u64(s);
     const std::uint64_t base = options_.id_base, n = options_.vertex_count;
-    if (ec != std::errc() || ptr != s.data() + s.size() || value < base || value - base >= n)
-      fail(item.column, "vertex id " + quoted(s) + " outside " +
+    if (!value || *value < base || *value - base >= n)
+      fail(item.column, "vertex id " + quoted_field(s) + " outside " +
                             (n == 0 ? std::string("(none: the graph has no vertices)")
                                     : std::to_string(base) + ".." + std::to_string(n - 1 + base)));
-    return static_cast<std::uint32_t>(value - base);
+    return static_cast<std::uint32_t>(*value - base);
   }
 
   const std::string& file_;
@@ -184,17 +169,9 @@ std::vector<Query> parse_query_file(std::string_view text, const std::string& di
   if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);  // a UTF-8 byte-order mark
   QueryParser parser(display_name, options);
   std::vector<Query> out;
-  std::uint64_t number = 0;
-  std::size_t pos = 0;
-  while (pos < text.size()) {
-    auto end = text.find('\n', pos);
-    if (end == std::string_view::npos) end = text.size();
-    auto line = text.substr(pos, end - pos);
-    pos = end + 1;
-    ++number;
-    while (!line.empty() && (line.back() == '\r' || is_blank(line.back()))) line.remove_suffix(1);
-    parser.parse_line(line, number, out);
-  }
+  text::LineScanner lines(text);
+  std::string_view line;
+  while (lines.next(line)) parser.parse_line(line, lines.number(), out);
   parser.finish(out);
   return out;
 }

@@ -8,6 +8,7 @@
 
 #include "mosb/converters/graphml_reader.hpp"
 #include "mosb/converters/text_input.hpp"
+#include "mosb/converters/text_scan.hpp"
 #include "mosb/error.hpp"
 
 namespace mosb::converters {
@@ -16,64 +17,19 @@ namespace {
 
 constexpr std::uint64_t kMaxCount = 0xFFFFFFFEULL;  // n and m are at most 2^32 - 2 (FORMAT.md §4)
 
-struct Token {
-  std::string_view text;
-  std::uint64_t column;  // 1-based
-};
+using namespace text;  // the shared primitives of text_scan.hpp
 
-// Calls f(line_number, tokens) for each line; '\n' ends a line, blanks, tabs and '\r' separate tokens.
+// Calls f(line_number, tokens, end_column) for each line: '\r' separates tokens like blanks and tabs,
+// and the end column counts every byte of the line.
 template <class F>
-void for_each_line(std::string_view text, F&& f) {
+void for_each_line(std::string_view text_in, F&& f) {
+  text::LineScanner lines(text_in, text::LineEnd::keep);
+  std::string_view line;
   std::vector<Token> tokens;
-  std::uint64_t number = 0;
-  std::size_t pos = 0;
-  while (pos < text.size()) {
-    auto end = text.find('\n', pos);
-    if (end == std::string_view::npos) end = text.size();
-    const auto line = text.substr(pos, end - pos);
-    ++number;
-    tokens.clear();
-    std::size_t i = 0;
-    const auto blank = [&](std::size_t k) { return line[k] == ' ' || line[k] == '\t' || line[k] == '\r'; };
-    while (i < line.size()) {
-      while (i < line.size() && blank(i)) ++i;
-      const auto start = i;
-      while (i < line.size() && !blank(i)) ++i;
-      if (i > start) tokens.push_back({line.substr(start, i - start), start + 1});
-    }
-    f(number, tokens, line.size() + 1);
-    pos = end + 1;
+  while (lines.next(line)) {
+    text::tokenize(line, tokens, text::Separators::blanks_and_cr);
+    f(lines.number(), tokens, line.size() + 1);
   }
-}
-
-std::string shown(std::string_view s) {
-  std::string out = "'";
-  for (std::size_t i = 0; i < s.size() && i < 40; ++i) {
-    const auto c = static_cast<unsigned char>(s[i]);
-    out += (c < 0x20 || c == 0x7F) ? '?' : static_cast<char>(c);
-  }
-  return out + (s.size() > 40 ? "...'" : "'");
-}
-
-[[noreturn]] void fail_at(const std::string& file, std::uint64_t line, std::uint64_t column, const std::string& message) {
-  throw Error(file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " + message);
-}
-
-std::optional<std::uint64_t> to_u64(std::string_view s) {
-  if (s.empty() || s.find_first_not_of("0123456789") != std::string_view::npos) return std::nullopt;
-  std::uint64_t value = 0;
-  const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
-  if (ec != std::errc() || ptr != s.data() + s.size()) return std::nullopt;
-  return value;
-}
-
-// A finite real in plain decimal or exponent notation (no inf, nan, hex).
-std::optional<double> to_real(std::string_view s) {
-  if (s.empty() || s.find_first_not_of("0123456789.eE+-") != std::string_view::npos) return std::nullopt;
-  double value = 0;
-  const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), value, std::chars_format::general);
-  if (ec != std::errc() || ptr != s.data() + s.size() || !std::isfinite(value)) return std::nullopt;
-  return value;
 }
 
 // Shortest text that reads back as the same double: metadata values stay byte-identical.
@@ -146,9 +102,9 @@ std::vector<double> vertex_configs(const VertexFile& vf, std::uint64_t n, const 
   for (std::size_t k = 0; k < order.size(); ++k) {
     const auto id = vf.ids[order[k]];
     if (id >= n)
-      fail_at(file, vf.lines[order[k]], 1, "vertex id " + std::to_string(id) + " outside " + declared_range(n));
+      fail(file, vf.lines[order[k]], 1, "vertex id " + std::to_string(id) + " outside " + declared_range(n));
     if (k > 0 && vf.ids[order[k - 1]] == id)
-      fail_at(file, vf.lines[order[k]], 1, "second line for vertex " + std::to_string(id) + " (the first is line " +
+      fail(file, vf.lines[order[k]], 1, "second line for vertex " + std::to_string(id) + " (the first is line " +
                                                std::to_string(vf.lines[order[k - 1]]) + ")");
     if (id != k) throw Error(file + ": no line for vertex " + std::to_string(k));
   }
@@ -185,7 +141,7 @@ GraphInput convert_gr_files(const RoadmapOptions& o) {
     scans.push_back(scan_gr(inputs.back().text));
     const auto& s = scans.back();
     if (i > 0 && s.header_line && scans[0].header_line && s.declared != scans[0].declared)
-      fail_at(inputs[i].display_name, s.header_line, 1,
+      fail(inputs[i].display_name, s.header_line, 1,
               "declares " + std::to_string(s.declared) + " vertices, " + inputs[0].display_name + " declares " +
                   std::to_string(scans[0].declared));
   }
@@ -204,7 +160,7 @@ GraphInput convert_gr_files(const RoadmapOptions& o) {
       const auto& s = scans[i];
       if (!s.largest || *s.largest < declared) continue;
       if (!o.vertices_from_ids)
-        fail_at(inputs[i].display_name, s.largest_line, s.largest_column,
+        fail(inputs[i].display_name, s.largest_line, s.largest_column,
                 "the largest vertex id, " + std::to_string(*s.largest) + ", is outside the " +
                     std::to_string(declared) + " vertices declared on line " + std::to_string(s.header_line) +
                     " (0-based ids " + declared_range(declared) + ")" + kFromIdsHint);
@@ -214,7 +170,7 @@ GraphInput convert_gr_files(const RoadmapOptions& o) {
       const auto at = std::max_element(vertices->ids.begin(), vertices->ids.end()) - vertices->ids.begin();
       const auto largest = vertices->ids[static_cast<std::size_t>(at)];
       if (largest >= declared && !o.vertices_from_ids)
-        fail_at(vertex_name, vertices->lines[static_cast<std::size_t>(at)], 1,
+        fail(vertex_name, vertices->lines[static_cast<std::size_t>(at)], 1,
                 "the largest vertex id, " + std::to_string(largest) + ", is outside the " + std::to_string(declared) +
                     " vertices declared on " + inputs[0].display_name + ":" + std::to_string(scans[0].header_line) +
                     " (0-based ids " + declared_range(declared) + ")" + kFromIdsHint);
@@ -269,7 +225,7 @@ std::vector<double> parse_coords(const std::string& text, const std::string& fil
     while (!part.empty() && (part.front() == ' ' || part.front() == '\t')) part.remove_prefix(1);
     while (!part.empty() && (part.back() == ' ' || part.back() == '\t')) part.remove_suffix(1);
     const auto value = to_real(part);
-    if (!value) throw Error(file + ": node " + shown(node) + ": coords " + shown(text) + ": expected comma-separated reals");
+    if (!value) throw Error(file + ": node " + quoted(node) + ": coords " + quoted(text) + ": expected comma-separated reals");
     q.push_back(*value);
     if (end == text.size()) return q;
     pos = end + 1;
@@ -291,7 +247,7 @@ ClearanceKeys find_clearance_keys(const GraphmlGraph& g, const std::string& file
     const auto suffix = name.substr(10);
     const auto i = to_u64(suffix);
     if (!i || (suffix.size() > 1 && suffix[0] == '0') || *i > 1000)
-      throw Error(file + ": edge key " + shown(name) + ": expected clearance_0, clearance_1, ...");
+      throw Error(file + ": edge key " + quoted(name) + ": expected clearance_0, clearance_1, ...");
     links.emplace_back(*i, k);
   }
   std::sort(links.begin(), links.end());
@@ -319,12 +275,12 @@ GraphInput convert_graphml_file(const RoadmapOptions& o) {
   std::size_t dof = 0;
   for (std::size_t v = 0; v < n; ++v) {
     const auto& text = g.node_value(v, *coords_key);
-    if (!text) throw Error(file + ": node " + shown(g.node_ids[v]) + " has no coords");
+    if (!text) throw Error(file + ": node " + quoted(g.node_ids[v]) + " has no coords");
     const auto q = parse_coords(*text, file, g.node_ids[v]);
     if (v == 0) dof = q.size();
     if (q.size() != dof)
-      throw Error(file + ": node " + shown(g.node_ids[v]) + " has " + std::to_string(q.size()) + " coordinates, node " +
-                  shown(g.node_ids[0]) + " has " + std::to_string(dof));
+      throw Error(file + ": node " + quoted(g.node_ids[v]) + " has " + std::to_string(q.size()) + " coordinates, node " +
+                  quoted(g.node_ids[0]) + " has " + std::to_string(dof));
     configs.insert(configs.end(), q.begin(), q.end());
   }
 
@@ -345,9 +301,9 @@ GraphInput convert_graphml_file(const RoadmapOptions& o) {
   const auto real_of = [&](std::size_t e, std::size_t key) {
     const auto& text = g.edge_value(e, key);
     const auto& name = g.edge_keys[key].name;
-    if (!text) throw Error(file + ": " + g.describe_edge(e) + " has no " + shown(name));
+    if (!text) throw Error(file + ": " + g.describe_edge(e) + " has no " + quoted(name));
     const auto value = to_real(*text);
-    if (!value) throw Error(file + ": " + g.describe_edge(e) + ": " + name + " " + shown(*text) + " is not a finite real");
+    if (!value) throw Error(file + ": " + g.describe_edge(e) + ": " + name + " " + quoted(*text) + " is not a finite real");
     return *value;
   };
   const auto clearance_of = [&](std::size_t e, std::size_t key) {
@@ -379,7 +335,7 @@ GraphInput convert_graphml_file(const RoadmapOptions& o) {
     double w = 0;
     if (o.weight) {
       w = real_of(e, *weight_key);
-      if (w < 0) throw Error(file + ": " + g.describe_edge(e) + ": negative weight " + shown(*g.edge_value(e, *weight_key)));
+      if (w < 0) throw Error(file + ": " + g.describe_edge(e) + ": negative weight " + quoted(*g.edge_value(e, *weight_key)));
     }
     // An undirected edge is two opposite arcs with the same costs; an undirected loop is one arc.
     const int copies = edge.directed || edge.source == edge.target ? 1 : 2;
@@ -452,21 +408,21 @@ VertexFile parse_vertex_file(std::string_view text, const std::string& display_n
   for_each_line(text, [&](std::uint64_t line, const std::vector<Token>& t, std::uint64_t end_column) {
     if (t.empty() || t[0].text.starts_with("#")) return;
     const auto id = to_u64(t[0].text);
-    if (!id) fail_at(display_name, line, t[0].column, "expected a vertex id, found " + shown(t[0].text));
-    if (*id >= kMaxCount) fail_at(display_name, line, t[0].column, "vertex id " + shown(t[0].text) + " exceeds " + std::to_string(kMaxCount - 1));
+    if (!id) fail(display_name, line, t[0].column, "expected a vertex id, found " + quoted(t[0].text));
+    if (*id >= kMaxCount) fail(display_name, line, t[0].column, "vertex id " + quoted(t[0].text) + " exceeds " + std::to_string(kMaxCount - 1));
     if (first_line == 0) {
-      if (t.size() < 2) fail_at(display_name, line, end_column, "missing field: a vertex line is 'id q1 .. qdof'");
-      if (t.size() - 1 > 1000) fail_at(display_name, line, t[1001].column, "more than 1000 coordinates");
+      if (t.size() < 2) fail(display_name, line, end_column, "missing field: a vertex line is 'id q1 .. qdof'");
+      if (t.size() - 1 > 1000) fail(display_name, line, t[1001].column, "more than 1000 coordinates");
       vf.dof = static_cast<std::uint32_t>(t.size() - 1);
       first_line = line;
     } else if (t.size() - 1 != vf.dof) {
       const std::string expected = "expected " + std::to_string(vf.dof) + " coordinates as on line " + std::to_string(first_line);
-      if (t.size() - 1 < vf.dof) fail_at(display_name, line, end_column, "missing field: " + expected);
-      fail_at(display_name, line, t[1 + vf.dof].column, "extra field " + shown(t[1 + vf.dof].text) + ": " + expected);
+      if (t.size() - 1 < vf.dof) fail(display_name, line, end_column, "missing field: " + expected);
+      fail(display_name, line, t[1 + vf.dof].column, "extra field " + quoted(t[1 + vf.dof].text) + ": " + expected);
     }
     for (std::size_t k = 1; k < t.size(); ++k) {
       const auto value = to_real(t[k].text);
-      if (!value) fail_at(display_name, line, t[k].column, "expected a finite real coordinate, found " + shown(t[k].text));
+      if (!value) fail(display_name, line, t[k].column, "expected a finite real coordinate, found " + quoted(t[k].text));
       vf.coords.push_back(*value);
     }
     vf.ids.push_back(*id);

@@ -12,21 +12,14 @@
 #include "mosb/error.hpp"
 #include "mosb/graph_reader.hpp"
 #include "temp_dir.hpp"
+#include "test_files.hpp"
 
 using namespace mosb;
 namespace fs = std::filesystem;
 
 namespace {
 
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-}
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using namespace mosb::testing;  // write_text, slurp
 
 std::map<std::string, std::uint64_t> checksums(const GraphReader& r) {
   std::map<std::string, std::uint64_t> out;

@@ -10,6 +10,7 @@
 #include "mosb/error.hpp"
 #include "mosb/graph_reader.hpp"
 #include "temp_dir.hpp"
+#include "test_files.hpp"
 
 using namespace mosb;
 using converters::AvgOutdegreeMode;
@@ -17,10 +18,7 @@ using converters::ExtendedOptions;
 
 namespace {
 
-void write_text(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-}
+using namespace mosb::testing;  // write_text
 
 // Out-degrees 3, 2, 1, 1: vertex 1 has a parallel pair to 2, vertex 2 a loop.
 const char* kGraph =

@@ -11,21 +11,14 @@
 #include "mosb/graph_reader.hpp"
 #include "mosb/verify.hpp"
 #include "temp_dir.hpp"
+#include "test_files.hpp"
 
 using namespace mosb;
 using converters::FmiOptions;
 
 namespace {
 
-void write_text(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-}
-
-std::string slurp(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using namespace mosb::testing;  // write_text, slurp
 
 // OsmGraphCreator's maxspeed layout: 4 nodes, 5 edges `src trg cost type maxspeed`.
 const char* kMaxspeed =

@@ -6,12 +6,15 @@
 
 #include "mosb/converters/query_import.hpp"
 #include "mosb/error.hpp"
+#include "test_files.hpp"
 
 using mosb::Query;
 using mosb::converters::parse_query_file;
 using mosb::converters::QueryFileOptions;
 
 namespace {
+
+using namespace mosb::testing;  // slurp
 
 QueryFileOptions options(unsigned id_base, std::uint64_t n, const char* match = nullptr) {
   QueryFileOptions o;
@@ -32,11 +35,6 @@ std::string error_of(const std::string& text, const QueryFileOptions& o) {
     return e.what();
   }
   return "(no error)";
-}
-
-std::string slurp(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 const std::vector<Query> kThree = {{0, 1}, {2, 3}, {4, 0}};

@@ -11,6 +11,7 @@
 #include "mosb/graph_reader.hpp"
 #include "mosb/verify.hpp"
 #include "temp_dir.hpp"
+#include "test_files.hpp"
 
 using namespace mosb;
 using converters::ClearanceMode;
@@ -18,15 +19,7 @@ using converters::RoadmapOptions;
 
 namespace {
 
-void write_text(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
-}
-
-std::string slurp(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using namespace mosb::testing;  // write_text, slurp
 
 GraphReader convert(const RoadmapOptions& o, const std::filesystem::path& out) {
   write_graph(converters::convert_roadmap(o), out);

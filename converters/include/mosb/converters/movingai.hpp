@@ -49,39 +49,4 @@ std::vector<ScenarioEntry> parse_scenario(std::string_view text, const std::stri
 void check_scenario(const std::vector<ScenarioEntry>& entries, const std::string& display_name,
                     const OctileMap& map, const std::string& map_name);
 
-// Text helpers shared by the Moving AI and GUARDS parsers.
-namespace movingai_text {
-
-// Lines of a buffer: '\n' ends a line, one trailing '\r' is dropped; 1-based numbers.
-class Lines {
- public:
-  explicit Lines(std::string_view text) : text_(text) {}
-  bool next(std::string_view& line);
-  std::uint64_t number() const { return number_; }
-
- private:
-  std::string_view text_;
-  std::size_t pos_ = 0;
-  std::uint64_t number_ = 0;
-};
-
-struct Token {
-  std::string_view text;
-  std::uint32_t column;  // 1-based
-};
-
-// Splits on blanks and tabs.
-std::vector<Token> tokenize(std::string_view line);
-
-// A token quoted for a one-line message: control bytes shown as '?', long tokens cut.
-std::string quoted(std::string_view token);
-
-[[noreturn]] void fail(const std::string& file, std::uint64_t line, std::uint64_t column,
-                       const std::string& message);
-
-// Plain decimal digits only (no sign), within [0, max]; false otherwise.
-bool parse_unsigned(std::string_view s, std::uint64_t max, std::uint64_t& value);
-
-}  // namespace movingai_text
-
 }  // namespace mosb::converters

@@ -1,0 +1,88 @@
+// Text primitives shared by the line-oriented parsers (DIMACS, FMI, Moving AI, GUARDS, roadmaps,
+// query files): lines, blank-separated tokens with their columns, and the pieces of the one-line
+// "FILE:LINE:COLUMN: message" errors.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace mosb::converters::text {
+
+struct Token {
+  std::string_view text;
+  std::uint64_t column;  // 1-based
+};
+
+// What a line loses at its end; end-of-line columns (line.size() + 1) are counted after that.
+enum class LineEnd {
+  trim,  // a trailing run of '\r', blanks and tabs
+  cr,    // one trailing '\r' only: trailing blanks are data (a Moving AI map row)
+  keep,  // nothing (pair with Separators::blanks_and_cr so that a '\r' still ends a token)
+};
+
+// Lines of a text buffer, '\n' ending each; numbered from 1. Inline: it is on every parser's hot path.
+class LineScanner {
+ public:
+  explicit LineScanner(std::string_view text, LineEnd end = LineEnd::trim) : text_(text), end_(end) {}
+
+  bool next(std::string_view& line) {
+    if (pos_ >= text_.size()) return false;
+    auto end = text_.find('\n', pos_);
+    if (end == std::string_view::npos) end = text_.size();
+    line = text_.substr(pos_, end - pos_);
+    pos_ = end + 1;
+    ++number_;
+    if (end_ == LineEnd::trim) {
+      while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '\t'))
+        line.remove_suffix(1);
+    } else if (end_ == LineEnd::cr) {
+      if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    }
+    return true;
+  }
+
+  // The number of the last line returned (0 before the first).
+  std::uint64_t number() const { return number_; }
+
+ private:
+  std::string_view text_;
+  LineEnd end_;
+  std::size_t pos_ = 0;
+  std::uint64_t number_ = 0;
+};
+
+enum class Separators { blanks, blanks_and_cr };  // blanks: ' ' and '\t'
+
+// Splits a line into tokens, reusing `tokens` (cleared first) to spare an allocation per line.
+void tokenize(std::string_view line, std::vector<Token>& tokens, Separators separators = Separators::blanks);
+
+// A token quoted for a one-line message: control bytes and DEL shown as '?', long tokens cut
+// after `limit` bytes with "...".
+std::string quoted(std::string_view token, std::size_t limit = 40);
+// For a std::string, an unqualified call would otherwise pick std::quoted (argument-dependent lookup).
+inline std::string quoted(const std::string& token, std::size_t limit = 40) {
+  return quoted(std::string_view(token), limit);
+}
+
+// Throws mosb::Error("FILE:LINE:COLUMN: message").
+[[noreturn]] void fail(const std::string& file, std::uint64_t line, std::uint64_t column, const std::string& message);
+
+// One or more decimal digits and nothing else.
+bool is_digits(std::string_view s);
+
+// Plain decimal digits (no sign, no blanks) whose value is at most `max`.
+std::optional<std::uint64_t> to_u64(std::string_view s, std::uint64_t max = UINT64_MAX);
+
+// An optional '-' then decimal digits, within the range of int64.
+std::optional<std::int64_t> to_i64(std::string_view s);
+
+// A finite real: digits, '.', an exponent, signs; no inf, nan or hex, no leading '+'.
+std::optional<double> to_real(std::string_view s);
+
+// "1 arc", "2 arcs"; "vertex" becomes "vertices".
+std::string plural(std::uint64_t n, const char* word);
+
+}  // namespace mosb::converters::text
