@@ -207,8 +207,10 @@ std::span<const std::uint64_t> checked_forward_offsets(const GraphReader& graph)
   return offsets;
 }
 
-// Self-loops and parallel arcs.
-void count_loops_and_parallels(const GraphReader& graph, GraphStats& stats) {
+}  // namespace
+
+ArcMultiplicity count_loops_and_parallel_arcs(const GraphReader& graph) {
+  ArcMultiplicity stats;
   const auto offsets = checked_forward_offsets(graph);
   const auto targets = graph.forward_targets();
   const auto n = static_cast<std::uint32_t>(graph.vertex_count());
@@ -224,9 +226,8 @@ void count_loops_and_parallels(const GraphReader& graph, GraphStats& stats) {
       if (last_tail[v] == u) ++stats.parallel_arcs;
       else last_tail[v] = u;
     }
+  return stats;
 }
-
-}  // namespace
 
 ArcGroupStats objective_stats(const GraphReader& graph, const std::vector<std::size_t>& objectives) {
   return std::move(grouped_stats(graph, objectives, {}, 1).front());
@@ -326,7 +327,9 @@ GraphStats compute_stats(const GraphReader& graph, const StatsOptions& options) 
   stats.arc_count = graph.arc_count();
   stats.out_degree = degrees(graph, graph.forward_offsets(), "forward_offsets");
   stats.in_degree = degrees(graph, graph.reverse_offsets(), "reverse_offsets");
-  count_loops_and_parallels(graph, stats);
+  const auto multiplicity = count_loops_and_parallel_arcs(graph);
+  stats.self_loops = multiplicity.self_loops;
+  stats.parallel_arcs = multiplicity.parallel_arcs;
   const auto scc = strongly_connected_components(graph);
   stats.scc_count = scc.count;
   stats.largest_scc = scc.largest;

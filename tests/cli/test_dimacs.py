@@ -6,6 +6,7 @@
 The real files of /work/shared/data/dimacs-small are used when present (skipped visibly otherwise).
 """
 
+import json
 import os
 import struct
 import subprocess
@@ -137,6 +138,18 @@ class RealData(DimacsCase):
         self.fails("USA-road-d.NY.head.gr:5:13: the header declares 733846 arcs, found 92",
                    "convert", "dimacs", "--gr", os.path.join(DATA, "USA-road-d.NY.head.gr"), "-o", "ny.mosb")
         self.assertFalse(os.path.exists(self.path("ny.mosb")))
+
+
+class ParallelArcsAndLoops(DimacsCase):
+    def test_kept_and_counted_by_inspect(self):
+        # GRAPH lists 1->2 twice (one parallel copy) and 2->2 (one self-loop).
+        self.write("g.gr", GRAPH)
+        self.ok("convert", "dimacs", "--gr", "g.gr", "-o", "g.mosb")
+        report = json.loads(self.ok("inspect", "--json", "g.mosb").out)
+        self.assertEqual((report["arcs"], report["self_loops"], report["parallel_arcs"]), (7, 1, 1))
+        text = self.ok("inspect", "g.mosb").out
+        self.assertIn("self-loops  1", text)
+        self.assertIn("parallel    1", text)
 
 
 class Extended(DimacsCase):

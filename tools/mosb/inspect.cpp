@@ -6,6 +6,7 @@
 #include "commands.hpp"
 #include "json_writer.hpp"
 #include "mosb/graph_reader.hpp"
+#include "mosb/stats.hpp"
 
 namespace mosb::cli {
 
@@ -33,7 +34,10 @@ void print_text(const GraphReader& r) {
             << "benchmark   " << metadata.get("benchmark").value_or("") << '\n'
             << "family      " << metadata.get("family").value_or("") << '\n'
             << "vertices    " << r.vertex_count() << '\n'
-            << "arcs        " << r.arc_count() << '\n'
+            << "arcs        " << r.arc_count() << '\n';
+  const auto multiplicity = count_loops_and_parallel_arcs(r);
+  std::cout << "self-loops  " << multiplicity.self_loops << '\n'
+            << "parallel    " << multiplicity.parallel_arcs << " (extra copies of an arc)\n"
             << "objectives  " << r.objective_count() << '\n';
   for (std::size_t i = 0; i < r.objective_count(); ++i) {
     const auto& s = r.objective(i);
@@ -67,6 +71,9 @@ void print_json(const GraphReader& r) {
   json.key("digest").value(r.digest());
   json.key("vertices").value(r.vertex_count());
   json.key("arcs").value(r.arc_count());
+  const auto multiplicity = count_loops_and_parallel_arcs(r);
+  json.key("self_loops").value(multiplicity.self_loops);
+  json.key("parallel_arcs").value(multiplicity.parallel_arcs);
   json.key("objectives").begin_array();
   for (std::size_t i = 0; i < r.objective_count(); ++i) {
     const auto& s = r.objective(i);

@@ -69,4 +69,11 @@ struct SccSummary {
 };
 SccSummary strongly_connected_components(const GraphReader& graph);
 
+// Self-loops, and parallel arcs (each extra copy of an earlier (tail, head) of the same tail).
+// Checks the CSR it walks and throws mosb::Error ("run mosb verify") on a damaged one.
+struct ArcMultiplicity {
+  std::uint64_t self_loops = 0, parallel_arcs = 0;
+};
+ArcMultiplicity count_loops_and_parallel_arcs(const GraphReader& graph);
+
 }  // namespace mosb
