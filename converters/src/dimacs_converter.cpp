@@ -269,22 +269,6 @@ std::vector<std::int64_t> parse_dimacs_co(std::string_view text, const std::stri
 
 namespace {
 
-std::string default_benchmark(std::string base) {
-  for (const char* ext : {".gz", ".bz2", ".xz", ".zst", ".zstd", ".gr"}) {
-    const std::string e = ext;
-    if (base.size() > e.size() && base.compare(base.size() - e.size(), e.size(), e) == 0)
-      base.resize(base.size() - e.size());
-  }
-  return base;
-}
-
-void record_input(Metadata& m, std::size_t i, const TextInput& in) {
-  const std::string key = "source.input." + std::to_string(i);
-  m.set(key + ".name", in.base_name);
-  m.set(key + ".size", std::to_string(in.raw_size));
-  m.set(key + ".xxh3", in.raw_xxh3);
-}
-
 }  // namespace
 
 GraphInput convert_dimacs(const DimacsOptions& options) {
@@ -347,7 +331,7 @@ GraphInput convert_dimacs(const DimacsOptions& options) {
     m.set("coords.unit", "degree");
   }
   m.set("benchmark", options.name ? *options.name
-                                  : default_benchmark(std::filesystem::path(options.gr_files[0]).filename().string()));
+                                  : benchmark_name_from(std::filesystem::path(options.gr_files[0]).filename().string(), {".gr"}));
   m.set("family", "road");
   m.set("id_base", std::to_string(options.id_base));
   m.set("source.command", "convert dimacs");

@@ -253,15 +253,6 @@ const std::vector<std::string>& ger10_objective_names() {
 
 namespace {
 
-std::string default_benchmark(std::string base) {
-  for (const char* ext : {".gz", ".bz2", ".xz", ".zst", ".zstd", ".txt", ".fmi", ".graph"}) {
-    const std::string e = ext;
-    if (base.size() > e.size() && base.compare(base.size() - e.size(), e.size(), e) == 0)
-      base.resize(base.size() - e.size());
-  }
-  return base;
-}
-
 // Narrowest unsigned type holding every value.
 DataColumn unsigned_column(std::string name, const std::vector<std::uint64_t>& values) {
   const auto max = values.empty() ? 0 : *std::max_element(values.begin(), values.end());
@@ -334,7 +325,7 @@ GraphInput convert_fmi(const FmiOptions& options) {
   m.set("source.input.0.name", input.base_name);
   m.set("source.input.0.size", std::to_string(input.raw_size));
   m.set("source.input.0.xxh3", input.raw_xxh3);
-  m.set("benchmark", options.name ? *options.name : default_benchmark(input.base_name));
+  m.set("benchmark", options.name ? *options.name : benchmark_name_from(input.base_name, {".txt", ".fmi", ".graph"}));
   m.set("family", "road");
   m.set("id_base", "0");
   m.set("coords.order", "lat,lon");

@@ -243,22 +243,6 @@ GraphInput build_guards_graph(const OctileMap& map, const std::vector<std::uint6
 
 namespace {
 
-void record_input(Metadata& m, std::size_t i, const TextInput& in) {
-  const std::string key = "source.input." + std::to_string(i);
-  m.set(key + ".name", in.base_name);
-  m.set(key + ".size", std::to_string(in.raw_size));
-  m.set(key + ".xxh3", in.raw_xxh3);
-}
-
-std::string default_benchmark(std::string base) {
-  for (const char* ext : {".gz", ".bz2", ".xz", ".zst", ".zstd", ".map"}) {
-    const std::string e = ext;
-    if (base.size() > e.size() && base.compare(base.size() - e.size(), e.size(), e) == 0)
-      base.resize(base.size() - e.size());
-  }
-  return base;
-}
-
 }  // namespace
 
 GuardsResult convert_guards(const GuardsOptions& o) {
@@ -295,7 +279,7 @@ GuardsResult convert_guards(const GuardsOptions& o) {
   }
   auto& m = r.graph.metadata;
   for (const auto& [key, value] : inputs.entries()) m.set(key, value);
-  m.set("benchmark", o.name ? *o.name : default_benchmark(map_input.base_name));
+  m.set("benchmark", o.name ? *o.name : benchmark_name_from(map_input.base_name, {".map"}));
   m.set("family", "games");
   m.set("id_base", "0");
   m.set("source.command", "convert guards");

@@ -39,22 +39,6 @@ std::string real_text(double value) {
   return std::string(buffer, ec == std::errc() ? ptr : buffer);
 }
 
-void record_input(Metadata& m, std::size_t i, const TextInput& in) {
-  const std::string key = "source.input." + std::to_string(i);
-  m.set(key + ".name", in.base_name);
-  m.set(key + ".size", std::to_string(in.raw_size));
-  m.set(key + ".xxh3", in.raw_xxh3);
-}
-
-std::string default_benchmark(std::string base) {
-  for (const char* ext : {".gz", ".bz2", ".xz", ".zst", ".zstd", ".gr", ".xml", ".graphml"}) {
-    const std::string e = ext;
-    if (base.size() > e.size() && base.compare(base.size() - e.size(), e.size(), e) == 0)
-      base.resize(base.size() - e.size());
-  }
-  return base;
-}
-
 // What a first pass over a .gr text finds: the `p sp n m` header and the largest vertex id.
 struct GrScan {
   std::uint64_t header_line = 0;  // 0: none found (the parser reports it)
@@ -209,7 +193,7 @@ GraphInput convert_gr_files(const RoadmapOptions& o) {
     out.vertex_data.push_back(DataColumn::from("config", vertices->dof, vertex_configs(*vertices, n, vertex_name)));
     m.set("roadmap.dof", std::to_string(vertices->dof));
   }
-  m.set("benchmark", o.name ? *o.name : default_benchmark(inputs[0].base_name));
+  m.set("benchmark", o.name ? *o.name : benchmark_name_from(inputs[0].base_name, {".gr", ".xml", ".graphml"}));
   m.set("source.param.vertices_from_ids", o.vertices_from_ids ? "true" : "false");
   return out;
 }
@@ -366,7 +350,7 @@ GraphInput convert_graphml_file(const RoadmapOptions& o) {
     m.set("view.Panda-RRG_8.objectives", list);
   }
   if (dof > 0) out.vertex_data.push_back(DataColumn::from("config", static_cast<std::uint32_t>(dof), configs));
-  m.set("benchmark", o.name ? *o.name : default_benchmark(input.base_name));
+  m.set("benchmark", o.name ? *o.name : benchmark_name_from(input.base_name, {".gr", ".xml", ".graphml"}));
   m.set("roadmap.dof", std::to_string(dof));
   m.set("roadmap.edgedefault", g.edge_default_directed ? "directed" : "undirected");
   m.set("roadmap.edges", std::to_string(g.edges.size()));

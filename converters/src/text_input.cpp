@@ -108,4 +108,21 @@ TextInput read_text_input(const std::filesystem::path& path) {
   return input;
 }
 
+void record_input(Metadata& metadata, std::size_t index, const TextInput& input) {
+  const std::string key = "source.input." + std::to_string(index);
+  metadata.set(key + ".name", input.base_name);
+  metadata.set(key + ".size", std::to_string(input.raw_size));
+  metadata.set(key + ".xxh3", input.raw_xxh3);
+}
+
+std::string benchmark_name_from(std::string base, std::initializer_list<std::string_view> extensions) {
+  // Each suffix in turn, so "bw.fmi.txt" with {".txt", ".fmi"} gives "bw".
+  auto strip = [&](std::string_view ext) {
+    if (base.size() > ext.size() && std::string_view(base).ends_with(ext)) base.resize(base.size() - ext.size());
+  };
+  for (std::string_view compression : {".gz", ".bz2", ".xz", ".zst", ".zstd"}) strip(compression);
+  for (auto ext : extensions) strip(ext);
+  return base;
+}
+
 }  // namespace mosb::converters

@@ -4,8 +4,11 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <initializer_list>
 #include <string>
 #include <string_view>
+
+#include "mosb/metadata.hpp"
 
 namespace mosb::converters {
 
@@ -29,5 +32,12 @@ struct TextInput {
 
 // Throws mosb::Error naming the file when it cannot be read or decompressed.
 TextInput read_text_input(const std::filesystem::path& path);
+
+// Provenance of raw input `index`: metadata source.input.<index>.name, .size and .xxh3 (spec §7).
+void record_input(Metadata& metadata, std::size_t index, const TextInput& input);
+
+// A default benchmark name: `base` stripped of each compression suffix (.gz .bz2 .xz .zst .zstd),
+// then of each of `extensions`, in that order ("NY.gr.gz" with {".gr"} -> "NY").
+std::string benchmark_name_from(std::string base, std::initializer_list<std::string_view> extensions);
 
 }  // namespace mosb::converters
