@@ -1,3 +1,4 @@
+#include "mosb/hex.hpp"
 #include "mosb/converters/text_input.hpp"
 
 #include <xxhash.h>
@@ -29,12 +30,6 @@ bool starts_with_bytes(std::string_view raw, std::initializer_list<unsigned char
   return true;
 }
 
-std::string hex64(std::uint64_t value) {
-  static const char digits[] = "0123456789abcdef";
-  std::string out(16, '0');
-  for (int i = 15; i >= 0; --i, value >>= 4) out[static_cast<std::size_t>(i)] = digits[value & 0xF];
-  return out;
-}
 
 struct FileCloser {
   void operator()(std::FILE* f) const { std::fclose(f); }

@@ -1,3 +1,4 @@
+#include "mosb/hex.hpp"
 #include "mosb/graph_reader.hpp"
 
 #include <fcntl.h>
@@ -18,11 +19,6 @@ using format::SectionKind;
 
 namespace {
 
-std::string hex64(std::uint64_t value) {
-  char buffer[17];
-  std::snprintf(buffer, sizeof buffer, "%016llx", static_cast<unsigned long long>(value));
-  return buffer;
-}
 
 std::string version_text(std::uint16_t major, std::uint16_t minor) {
   return std::to_string(major) + "." + std::to_string(minor);

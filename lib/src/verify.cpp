@@ -1,3 +1,4 @@
+#include "mosb/hex.hpp"
 #include "mosb/verify.hpp"
 
 #include "xxh3.hpp"
@@ -21,11 +22,6 @@ namespace {
 
 using Problem = std::optional<std::string>;
 
-std::string hex64(std::uint64_t value) {
-  char buffer[17];
-  std::snprintf(buffer, sizeof buffer, "%016llx", static_cast<unsigned long long>(value));
-  return buffer;
-}
 
 std::string in_section(const Section& s, std::string_view rule, const std::string& detail) {
   return "section '" + s.name + "': [" + std::string(rule) + "] " + detail;

@@ -7,6 +7,7 @@
 #include <map>
 #include <string>
 
+#include "mosb/hex.hpp"
 #include "file_patch.hpp"
 #include "mosb/converters/dimacs_converter.hpp"
 #include "mosb/converters/text_input.hpp"
@@ -72,11 +73,6 @@ std::vector<double> costs(const GraphReader& r, std::size_t j) {
   return c;
 }
 
-std::string hex64(std::uint64_t v) {
-  char buffer[17];
-  std::snprintf(buffer, sizeof buffer, "%016llx", static_cast<unsigned long long>(v));
-  return buffer;
-}
 
 bool have_command(const std::string& name) {
   return std::system(("command -v " + name + " >/dev/null 2>&1").c_str()) == 0;

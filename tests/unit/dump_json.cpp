@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "mosb/graph_reader.hpp"
+#include "mosb/hex.hpp"
 
 using namespace mosb;
 using format::ElementType;
@@ -64,11 +65,9 @@ int main(int argc, char** argv) {
     std::cout << "},\"sections\":[";
     separator = "";
     for (const auto& s : r.sections()) {
-      char checksum[17];
-      std::snprintf(checksum, sizeof checksum, "%016llx", static_cast<unsigned long long>(s.entry.checksum));
       std::cout << separator << "{\"name\":" << json_string(s.name) << ",\"kind\":" << s.entry.kind
                 << ",\"type\":\"" << format::to_string(s.type) << "\",\"width\":" << s.entry.row_width
-                << ",\"rows\":" << s.entry.row_count << ",\"checksum\":\"" << checksum << "\"";
+                << ",\"rows\":" << s.entry.row_count << ",\"checksum\":\"" << hex64(s.entry.checksum) << "\"";
       separator = ",";
       if (s.kind != format::SectionKind::metadata) {
         std::cout << ",\"values\":[";

@@ -3,6 +3,7 @@
 #include <iostream>
 #include <memory>
 
+#include "mosb/hex.hpp"
 #include "commands.hpp"
 #include "json_writer.hpp"
 #include "mosb/graph_reader.hpp"
@@ -12,11 +13,6 @@ namespace mosb::cli {
 
 namespace {
 
-std::string hex64(std::uint64_t value) {
-  std::ostringstream out;
-  out << std::hex << std::setw(16) << std::setfill('0') << value;
-  return out.str();
-}
 
 std::string kind_name(const Section& s) {
   return s.kind ? std::string(format::to_string(*s.kind)) : "unknown(" + std::to_string(s.entry.kind) + ")";
