@@ -102,7 +102,7 @@ TEST_CASE("dimacs export: convert -> export -> convert keeps every non-metadata 
   }
 }
 
-TEST_CASE("dimacs export: --view exports only its columns, in its order; its query set only") {
+TEST_CASE("dimacs export: --view exports only its columns, in its order and its query set only") {
   testing::TempDir dir;
   GraphInput g;
   g.vertex_count = 3;

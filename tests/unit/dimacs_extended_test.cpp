@@ -116,7 +116,7 @@ TEST_CASE("dimacs-extended: elevation files with errors give FILE:LINE:COLUMN") 
   CHECK(ok == std::vector<std::int64_t>{7, INT64_MIN});
 }
 
-TEST_CASE("dimacs-extended: views record objectives; .queries only for a query set the file has") {
+TEST_CASE("dimacs-extended: views record objectives and .queries only for a query set the file has") {
   testing::TempDir dir;
   ExtendedOptions o;
   o.hop = true;

@@ -211,7 +211,7 @@ TEST_CASE("dimacs: malformed lines give FILE:LINE:COLUMN messages") {
   check_parse_error("c only a comment\n", "t.gr:1:1: no 'p sp n m' line");
 }
 
-TEST_CASE("dimacs: decimal columns are real-valued; --cost-type forces every column") {
+TEST_CASE("dimacs: decimal columns are real-valued and --cost-type forces every column") {
   testing::TempDir dir;
   write_text(dir / "d.gr", "p sp 3 3\na 1 2 1 7\na 2 3 2.5 8\na 3 1 1e1 9\n");
   auto r = convert(gr({dir / "d.gr"}), dir / "d.mosb");

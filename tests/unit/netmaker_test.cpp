@@ -209,7 +209,7 @@ TEST_CASE("NetMaker generation is deterministic, and the seed matters") {
   CHECK(testing::read_bytes(dir / "a.mosb") != testing::read_bytes(dir / "c.mosb"));
 }
 
-TEST_CASE("a narrow locality window limits the locality arcs; a huge one does not blow up") {
+TEST_CASE("a narrow locality window limits the locality arcs and a huge one does not blow up") {
   testing::TempDir dir;
   NetMakerParameters p;
   p.vertices = 500;
@@ -267,7 +267,7 @@ TEST_CASE("a suite's files and MANIFEST do not depend on the thread count") {
   CHECK(one[0].size == std::filesystem::file_size(dir / "one" / one[0].file));
 }
 
-TEST_CASE("a suite subset reproduces the full suite's instance; a failing instance stops the suite") {
+TEST_CASE("a suite subset reproduces the full suite's instance and a failing instance stops the suite") {
   testing::TempDir dir;
   const auto entries = converters::run_suite(dir / "s", converters::grid_suite(1, {30, 20, 30}), {2, {}});
   REQUIRE(entries.size() == 4);  // 20x20, 20x30, 30x20, 30x30: the repeated size counts once
