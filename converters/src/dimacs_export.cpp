@@ -94,17 +94,6 @@ std::string file_stem_for(const GraphReader& reader, const std::filesystem::path
   return name;
 }
 
-std::vector<std::string> split_list(const std::string& list) {
-  std::vector<std::string> items;
-  std::size_t start = 0;
-  while (true) {
-    const auto comma = list.find(',', start);
-    items.push_back(list.substr(start, comma - start));
-    if (comma == std::string::npos) return items;
-    start = comma + 1;
-  }
-}
-
 unsigned export_id_base(const GraphReader& reader, const DimacsExportOptions& options) {
   if (options.id_base) {
     if (*options.id_base > 1) throw Error("export dimacs: --id-base must be 0 or 1");
@@ -150,18 +139,9 @@ void export_coordinates(const std::filesystem::path& path, const GraphReader& re
   out << "c coordinate scale " << comment_safe(meta.get("coords.scale").value_or("1")) << " unit "
       << comment_safe(meta.get("coords.unit").value_or("")) << "\n";
   out << "p aux sp co " << reader.vertex_count() << "\n";
-  switch (coords.type) {
-    case ElementType::u8: write_coordinates<std::uint8_t>(out, reader, coords, id_base); break;
-    case ElementType::u16: write_coordinates<std::uint16_t>(out, reader, coords, id_base); break;
-    case ElementType::u32: write_coordinates<std::uint32_t>(out, reader, coords, id_base); break;
-    case ElementType::u64: write_coordinates<std::uint64_t>(out, reader, coords, id_base); break;
-    case ElementType::i8: write_coordinates<std::int8_t>(out, reader, coords, id_base); break;
-    case ElementType::i16: write_coordinates<std::int16_t>(out, reader, coords, id_base); break;
-    case ElementType::i32: write_coordinates<std::int32_t>(out, reader, coords, id_base); break;
-    case ElementType::i64: write_coordinates<std::int64_t>(out, reader, coords, id_base); break;
-    case ElementType::f32: write_coordinates<float>(out, reader, coords, id_base); break;
-    case ElementType::f64: write_coordinates<double>(out, reader, coords, id_base); break;
-  }
+  format::visit_element_type(coords.type, [&](auto tag) {
+    write_coordinates<typename decltype(tag)::type>(out, reader, coords, id_base);
+  });
   out.commit();
 }
 
@@ -217,17 +197,18 @@ std::string format_real_cost(double value) {
 std::vector<std::filesystem::path> export_dimacs(const std::filesystem::path& instance,
                                                  const DimacsExportOptions& options) {
   const auto reader = GraphReader::open(instance);
-  const auto& meta = reader.metadata();
   const auto benchmark = file_stem_for(reader, instance);
   const auto id_base = export_id_base(reader, options);
 
   std::vector<std::size_t> objectives;
   std::vector<std::string> query_sets;
   if (options.view) {
-    const auto list = meta.get("view." + *options.view + ".objectives");
-    if (!list) throw Error(reader.display_name() + ": no view '" + comment_safe(*options.view) + "'");
-    for (const auto& name : split_list(*list)) objectives.push_back(reader.objective_index(name));
-    if (const auto set = meta.get("view." + *options.view + ".queries")) query_sets.push_back(*set);
+    const auto view = reader.find_view(*options.view);
+    if (!view)
+      throw Error(ErrorCode::not_found,
+                  reader.display_name() + ": no view '" + comment_safe(*options.view) + "'");
+    objectives = view->objectives;
+    if (!view->query_set.empty()) query_sets.push_back(view->query_set);
   } else {
     for (std::size_t j = 0; j < reader.objective_count(); ++j) objectives.push_back(j);
     for (const auto* s : reader.all(SectionKind::queries)) query_sets.push_back(s->name);

@@ -38,15 +38,11 @@ std::optional<std::size_t> first_misfit(const std::vector<In>& values) {
 
 template <class In>
 std::optional<std::size_t> first_misfit_as(ElementType type, const std::vector<In>& values) {
-  switch (type) {
-    case ElementType::u8: return first_misfit<std::uint8_t>(values);
-    case ElementType::u16: return first_misfit<std::uint16_t>(values);
-    case ElementType::u32: return first_misfit<std::uint32_t>(values);
-    case ElementType::u64: return first_misfit<std::uint64_t>(values);
-    case ElementType::f32: return first_misfit<float>(values);
-    case ElementType::f64: return first_misfit<double>(values);
-    default: return 0;
-  }
+  return format::visit_element_type(type, [&](auto tag) -> std::optional<std::size_t> {
+    using Out = typename decltype(tag)::type;
+    if constexpr (format::is_cost_type_v<Out>) return first_misfit<Out>(values);
+    return 0;
+  });
 }
 
 template <class T>
@@ -80,15 +76,13 @@ void write_permuted(FileWriter& writer, const std::vector<In>& values,
 template <class In>
 void write_cost(FileWriter& writer, ElementType type, const std::vector<In>& values,
                 const std::vector<std::uint32_t>& order) {
-  switch (type) {
-    case ElementType::u8: return write_permuted<std::uint8_t>(writer, values, order);
-    case ElementType::u16: return write_permuted<std::uint16_t>(writer, values, order);
-    case ElementType::u32: return write_permuted<std::uint32_t>(writer, values, order);
-    case ElementType::u64: return write_permuted<std::uint64_t>(writer, values, order);
-    case ElementType::f32: return write_permuted<float>(writer, values, order);
-    case ElementType::f64: return write_permuted<double>(writer, values, order);
-    default: throw Error("internal error: cost type " + std::string(format::to_string(type)));
-  }
+  format::visit_element_type(type, [&](auto tag) {
+    using Out = typename decltype(tag)::type;
+    if constexpr (format::is_cost_type_v<Out>)
+      write_permuted<Out>(writer, values, order);
+    else
+      throw Error("internal error: cost type " + std::string(format::to_string(type)));
+  });
 }
 
 void check_name(std::string_view what, const std::string& name) {
@@ -195,7 +189,8 @@ void write_graph(const GraphInput& in, const std::filesystem::path& path) {
   for (const auto& q : in.queries) query_names.push_back(q.name);
   Metadata metadata = in.metadata;
   for (const auto& c : in.costs) metadata.set("objective." + c.name + ".unit", c.unit);
-  metadata.set("source.tool", std::string("mosb ") + kVersion);
+  // An input may name the program that made it (a converter of another tool, a pinned test).
+  if (!metadata.get("source.tool")) metadata.set("source.tool", std::string("mosb ") + kVersion);
   if (auto problem = find_view_problem(metadata, cost_names, query_names)) throw Error(*problem);
 
   // Counting sort by tail; iterating arcs in input order keeps it stable.

@@ -44,26 +44,30 @@ bool mul_overflows(std::uint64_t a, std::uint64_t b, std::uint64_t& out) {
 
 }  // namespace
 
-void GraphReader::fail(const std::string& what) const { throw Error(display_name_ + ": " + what); }
+void GraphReader::fail(const std::string& what) const { fail(ErrorCode::damaged, what); }
+void GraphReader::fail(ErrorCode code, const std::string& what) const {
+  throw Error(code, display_name_ + ": " + what);
+}
 
 GraphReader GraphReader::open(const std::filesystem::path& path) {
   const std::string name = path.string();
   int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) throw Error(name + ": cannot open: " + std::strerror(errno));
+  if (fd < 0) throw Error(ErrorCode::io, name + ": cannot open: " + std::strerror(errno));
   struct stat st {};
   if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
     ::close(fd);
-    throw Error(name + ": not a regular file");
+    throw Error(ErrorCode::not_mosb, name + ": not a regular file");
   }
   const auto size = static_cast<std::size_t>(st.st_size);
   if (size < format::kHeaderSize) {
     ::close(fd);
-    throw Error(name + ": not a mosb file: " + std::to_string(size) +
+    throw Error(ErrorCode::not_mosb, name + ": not a mosb file: " + std::to_string(size) +
                 " bytes is shorter than the 128-byte header");
   }
   void* address = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
   ::close(fd);
-  if (address == MAP_FAILED) throw Error(name + ": cannot map: " + std::strerror(errno));
+  if (address == MAP_FAILED)
+    throw Error(ErrorCode::io, name + ": cannot map: " + std::strerror(errno));
   GraphReader reader;
   reader.mapping_ = std::shared_ptr<const void>(address, [size](const void* p) {
     ::munmap(const_cast<void*>(p), size);
@@ -87,7 +91,7 @@ GraphReader GraphReader::from_memory(std::span<const std::byte> bytes, std::stri
 
 void GraphReader::validate() {
   if (bytes_.size() < format::kHeaderSize)
-    fail("not a mosb file: " + std::to_string(bytes_.size()) +
+    fail(ErrorCode::not_mosb, "not a mosb file: " + std::to_string(bytes_.size()) +
          " bytes is shorter than the 128-byte header");
   std::memcpy(&header_, bytes_.data(), sizeof header_);
 
@@ -104,13 +108,13 @@ void GraphReader::validate() {
     if (mos && magic[0] == (format::kMagic[0] & 0x7F))
       fail("mosb file damaged by a 7-bit transfer (the high bit of its first byte was cleared); "
            "copy it in binary mode");
-    fail("not a mosb file (wrong magic)");
+    fail(ErrorCode::not_mosb, "not a mosb file (wrong magic)");
   }
   if (header_.byte_order_mark != format::kByteOrderMark)
     fail("byte-swapped mosb file (byte-order mark reads " + hex64(header_.byte_order_mark) + ")");
   // 2. Version and kind.
   if (header_.version_major != format::kVersionMajor)
-    fail("prepared with format " + version_text(header_.version_major, header_.version_minor) +
+    fail(ErrorCode::version, "prepared with format " + version_text(header_.version_major, header_.version_minor) +
          ", this reader reads format " + std::to_string(format::kVersionMajor) + ".x (up to " +
          version_text(format::kVersionMajor, format::kVersionMinor) + ")");
   if (header_.header_size != format::kHeaderSize)
@@ -154,7 +158,7 @@ void GraphReader::validate() {
   // 6. Features.
   if (std::uint64_t unknown = header_.required_features & ~format::kKnownRequiredFeatures) {
     const int bit = std::countr_zero(unknown);
-    fail("requires feature bit " + std::to_string(bit) + ", unknown to this reader (format " +
+    fail(ErrorCode::version, "requires feature bit " + std::to_string(bit) + ", unknown to this reader (format " +
          version_text(format::kVersionMajor, format::kVersionMinor) + ")");
   }
 
@@ -298,11 +302,11 @@ const Section& GraphReader::required(SectionKind kind) const {
 
 void GraphReader::check_access(const Section& s, ElementType wanted) const {
   if (s.is_packed())
-    fail("section '" + s.name + "' is zstd-packed and cannot be mapped zero-copy; unpack the "
+    fail(ErrorCode::packed, "section '" + s.name + "' is zstd-packed and cannot be mapped zero-copy; unpack the "
          "file first");
   if (s.type != wanted)
-    fail("section '" + s.name + "' holds " + std::string(format::to_string(s.type)) +
-         " values, not " + std::string(format::to_string(wanted)));
+    fail(ErrorCode::invalid_argument,
+         "section '" + s.name + "' holds " + std::string(format::to_string(s.type)) + " values, not " + std::string(format::to_string(wanted)));
 }
 
 std::span<const std::byte> GraphReader::raw_bytes(const Section& s) const {
@@ -328,7 +332,7 @@ std::span<const std::uint32_t> GraphReader::reverse_arcs() const {
 
 const Section& GraphReader::objective(std::size_t i) const {
   if (i >= cost_indices_.size())
-    fail("objective index " + std::to_string(i) + " out of range (the file has " +
+    fail(ErrorCode::invalid_argument, "objective index " + std::to_string(i) + " out of range (the file has " +
          std::to_string(cost_indices_.size()) + " objectives)");
   return sections_[cost_indices_[i]];
 }
@@ -341,40 +345,33 @@ std::optional<std::size_t> GraphReader::find_objective(std::string_view name) co
 
 std::size_t GraphReader::objective_index(std::string_view name) const {
   if (auto i = find_objective(name)) return *i;
-  fail("no objective named '" + std::string(name) + "'");
+  fail(ErrorCode::not_found, "no objective named '" + std::string(name) + "'");
 }
 
 namespace {
 template <class Out>
-void convert_column(const GraphReader& reader, const Section& s, std::span<Out> out) {
+void convert_column(const GraphReader& reader, std::size_t i, std::span<Out> out) {
+  const Section& s = reader.objective(i);
   if (out.size() != s.element_count())
-    throw Error(reader.display_name() + ": section '" + s.name + "' has " +
-                std::to_string(s.element_count()) + " values, the buffer " +
-                std::to_string(out.size()));
-  auto copy = [&](auto in) { std::copy(in.begin(), in.end(), out.begin()); };
-  switch (s.type) {
-    case ElementType::u8: return copy(reader.values<std::uint8_t>(s));
-    case ElementType::u16: return copy(reader.values<std::uint16_t>(s));
-    case ElementType::u32: return copy(reader.values<std::uint32_t>(s));
-    case ElementType::u64: return copy(reader.values<std::uint64_t>(s));
-    case ElementType::f32: return copy(reader.values<float>(s));
-    case ElementType::f64: return copy(reader.values<double>(s));
-    default:
-      throw Error(reader.display_name() + ": section '" + s.name + "' is not a cost column");
-  }
+    throw Error(ErrorCode::invalid_argument,
+                reader.display_name() + ": section '" + s.name + "' has " +
+                    std::to_string(s.element_count()) + " values, the buffer " +
+                    std::to_string(out.size()));
+  reader.visit_cost(i, [&](auto in) { std::copy(in.begin(), in.end(), out.begin()); });
 }
 }  // namespace
 
 void GraphReader::read_cost_as(std::size_t i, std::span<double> out) const {
-  convert_column(*this, objective(i), out);
+  convert_column(*this, i, out);
 }
 
 void GraphReader::read_cost_as(std::size_t i, std::span<std::uint64_t> out) const {
   const auto& s = objective(i);
   if (format::is_float(s.type))
-    fail("objective '" + s.name + "' holds " + std::string(format::to_string(s.type)) +
-         " values, which do not convert to integers");
-  convert_column(*this, s, out);
+    fail(ErrorCode::invalid_argument, "objective '" + s.name + "' holds " +
+                                          std::string(format::to_string(s.type)) +
+                                          " values, which do not convert to integers");
+  convert_column(*this, i, out);
 }
 
 const Section* GraphReader::find(SectionKind kind, std::string_view name) const {
@@ -392,25 +389,26 @@ std::vector<const Section*> GraphReader::all(SectionKind kind) const {
 
 std::span<const Query> GraphReader::queries(std::string_view name) const {
   const Section* s = find(SectionKind::queries, name);
-  if (!s) fail("no query set named '" + std::string(name) + "'");
+  if (!s) fail(ErrorCode::not_found, "no query set named '" + std::string(name) + "'");
   auto raw = values<std::uint32_t>(*s);
   return {reinterpret_cast<const Query*>(raw.data()), raw.size() / 2};
 }
 
 const Metadata& GraphReader::metadata() const {
-  if (!metadata_) {
+  // A throw leaves the flag unset: every call on malformed metadata reports the same error.
+  std::call_once(metadata_->parsed, [this] {
     const Section* s = nullptr;
     for (const auto& candidate : sections_)
       if (candidate.kind == SectionKind::metadata) s = &candidate;
     auto raw = raw_bytes(*s);
     try {
-      metadata_ = std::make_shared<Metadata>(Metadata::parse(
-          std::string_view(reinterpret_cast<const char*>(raw.data()), raw.size())));
+      metadata_->value = Metadata::parse(
+          std::string_view(reinterpret_cast<const char*>(raw.data()), raw.size()));
     } catch (const Error& e) {
       fail(std::string("section 'metadata': ") + e.what());
     }
-  }
-  return *metadata_;
+  });
+  return *metadata_->value;
 }
 
 std::string GraphReader::digest() const {

@@ -1,5 +1,7 @@
 #include "mosb/metadata.hpp"
 
+#include <algorithm>
+
 #include "mosb/error.hpp"
 #include "mosb/utf8.hpp"
 
@@ -82,33 +84,52 @@ Metadata Metadata::parse(std::string_view text) {
 
 namespace mosb {
 
+std::vector<ViewKeys> view_keys(const Metadata& metadata) {
+  constexpr std::string_view kPrefix = "view.", kObjectives = ".objectives", kQueries = ".queries";
+  std::vector<ViewKeys> views;
+  auto entry = [&](std::string_view name) -> ViewKeys& {
+    for (auto& v : views)
+      if (v.name == name) return v;
+    return views.emplace_back(ViewKeys{std::string(name), {}, {}});
+  };
+  for (const auto& [key, value] : metadata.entries()) {
+    std::string_view k = key;
+    if (!k.starts_with(kPrefix)) continue;
+    k.remove_prefix(kPrefix.size());
+    if (k.size() > kObjectives.size() && k.ends_with(kObjectives)) {
+      auto& view = entry(k.substr(0, k.size() - kObjectives.size()));
+      for (std::string_view rest = value; !value.empty();) {
+        const auto comma = rest.find(',');
+        view.objectives.emplace_back(rest.substr(0, comma));
+        if (comma == std::string_view::npos) break;
+        rest.remove_prefix(comma + 1);
+      }
+    } else if (k.size() > kQueries.size() && k.ends_with(kQueries)) {
+      entry(k.substr(0, k.size() - kQueries.size())).query_set = value;
+    }
+  }
+  std::sort(views.begin(), views.end(), [](auto& a, auto& b) { return a.name < b.name; });
+  return views;
+}
+
 std::optional<std::string> find_view_problem(const Metadata& metadata,
                                              const std::vector<std::string>& objective_names,
                                              const std::vector<std::string>& query_set_names) {
   auto contains = [](const std::vector<std::string>& names, std::string_view name) {
-    for (const auto& n : names)
-      if (n == name) return true;
-    return false;
+    return std::find(names.begin(), names.end(), name) != names.end();
   };
-  for (const auto& [key, value] : metadata.entries()) {
-    if (!key.starts_with("view.")) continue;
-    if (key.ends_with(".objectives")) {
-      if (value.empty()) return "metadata key '" + key + "' lists no objective";
-      std::string_view rest = value;
-      while (true) {
-        auto comma = rest.find(',');
-        auto name = rest.substr(0, comma);
+  for (const auto& view : view_keys(metadata)) {
+    const std::string key = "view." + view.name;
+    if (metadata.get(key + ".objectives")) {
+      if (view.objectives.empty()) return "metadata key '" + key + ".objectives' lists no objective";
+      for (const auto& name : view.objectives)
         if (!contains(objective_names, name))
-          return "metadata key '" + key + "' names objective '" + std::string(name) +
+          return "metadata key '" + key + ".objectives' names objective '" + name +
                  "', which is not a cost section";
-        if (comma == std::string_view::npos) break;
-        rest.remove_prefix(comma + 1);
-      }
-    } else if (key.ends_with(".queries")) {
-      if (!contains(query_set_names, value))
-        return "metadata key '" + key + "' names query set '" + value +
-               "', which is not a queries section";
     }
+    if (metadata.get(key + ".queries") && !contains(query_set_names, view.query_set))
+      return "metadata key '" + key + ".queries' names query set '" + view.query_set +
+             "', which is not a queries section";
   }
   return std::nullopt;
 }

@@ -22,26 +22,6 @@ constexpr std::size_t kKindGroups = 256;
   throw Error(graph.display_name() + ": " + what);
 }
 
-// Calls f with the objective's column as a span of its stored type.
-template <class F>
-void with_column(const GraphReader& graph, std::size_t objective, F&& f) {
-  const auto& s = graph.objective(objective);
-  if (s.element_count() != graph.arc_count())
-    fail(graph, "objective '" + s.name + "' has " + std::to_string(s.element_count()) +
-                    " values for " + std::to_string(graph.arc_count()) + " arcs");
-  switch (s.type) {
-    case ElementType::u8: return f(graph.cost<std::uint8_t>(objective));
-    case ElementType::u16: return f(graph.cost<std::uint16_t>(objective));
-    case ElementType::u32: return f(graph.cost<std::uint32_t>(objective));
-    case ElementType::u64: return f(graph.cost<std::uint64_t>(objective));
-    case ElementType::f32: return f(graph.cost<float>(objective));
-    case ElementType::f64: return f(graph.cost<double>(objective));
-    default:
-      fail(graph, "objective '" + s.name + "' holds " + std::string(format::to_string(s.type)) +
-                      " values, not an unsigned or float cost type");
-  }
-}
-
 // Per (group, objective): count, range and mean, from one pass over the column.
 struct Moments {
   std::uint64_t count = 0;
@@ -95,7 +75,7 @@ std::vector<ArcGroupStats> grouped_stats(const GraphReader& graph, const std::ve
   const std::size_t m = graph.arc_count();
   std::vector<Moments> moments(groups * d);
   for (std::size_t i = 0; i < d; ++i)
-    with_column(graph, objectives[i], [&](auto column) { first_pass(column, kind, groups, i, d, moments); });
+    graph.visit_cost(objectives[i], [&](auto column) { first_pass(column, kind, groups, i, d, moments); });
 
   // Co-moments Σ (x − mean_x)(y − mean_y) per group, for every i ≤ j (the diagonal gives variances).
   std::vector<std::pair<std::size_t, std::size_t>> pairs;
@@ -106,7 +86,7 @@ std::vector<ArcGroupStats> grouped_stats(const GraphReader& graph, const std::ve
   for (std::size_t start = 0; start < m; start += kBlock) {
     const std::size_t length = std::min(kBlock, m - start);
     for (std::size_t i = 0; i < d; ++i)
-      with_column(graph, objectives[i], [&](auto column) {
+      graph.visit_cost(objectives[i], [&](auto column) {
         long double* c = centred.data() + i * kBlock;
         for (std::size_t k = 0; k < length; ++k) {
           const std::size_t g = kind.empty() ? 0 : kind[start + k];
@@ -304,20 +284,7 @@ SccSummary strongly_connected_components(const GraphReader& graph) {
 GraphStats compute_stats(const GraphReader& graph, const StatsOptions& options) {
   std::vector<std::size_t> objectives;
   if (options.view) {
-    const auto list = graph.metadata().get("view." + *options.view + ".objectives");
-    if (!list) {
-      std::string views;
-      for (const auto& [key, value] : graph.metadata().entries())
-        if (key.starts_with("view.") && key.ends_with(".objectives"))
-          views += (views.empty() ? "" : ", ") + key.substr(5, key.size() - 5 - 11);
-      fail(graph, "no view '" + *options.view + "' (views: " + (views.empty() ? "none" : views) + ")");
-    }
-    std::size_t start = 0;
-    while (start <= list->size()) {
-      const auto comma = std::min(list->find(',', start), list->size());
-      objectives.push_back(graph.objective_index(std::string_view(*list).substr(start, comma - start)));
-      start = comma + 1;
-    }
+    objectives = graph.view(*options.view).objectives;
   } else {
     for (std::size_t i = 0; i < graph.objective_count(); ++i) objectives.push_back(i);
   }

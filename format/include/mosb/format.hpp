@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <optional>
 #include <string_view>
+#include <type_traits>
 
 namespace mosb::format {
 
@@ -155,6 +156,29 @@ template <> constexpr ElementType element_type_of<std::int32_t>() { return Eleme
 template <> constexpr ElementType element_type_of<std::int64_t>() { return ElementType::i64; }
 template <> constexpr ElementType element_type_of<float>() { return ElementType::f32; }
 template <> constexpr ElementType element_type_of<double>() { return ElementType::f64; }
+
+// The one place that maps an element type to its C++ type: calls f(std::type_identity<T>{}) and
+// returns its result (the same type for every T). `type` must be a known element type.
+template <class F>
+constexpr decltype(auto) visit_element_type(ElementType type, F&& f) {
+  switch (type) {
+    case ElementType::u8: return std::forward<F>(f)(std::type_identity<std::uint8_t>{});
+    case ElementType::u16: return std::forward<F>(f)(std::type_identity<std::uint16_t>{});
+    case ElementType::u32: return std::forward<F>(f)(std::type_identity<std::uint32_t>{});
+    case ElementType::u64: return std::forward<F>(f)(std::type_identity<std::uint64_t>{});
+    case ElementType::i8: return std::forward<F>(f)(std::type_identity<std::int8_t>{});
+    case ElementType::i16: return std::forward<F>(f)(std::type_identity<std::int16_t>{});
+    case ElementType::i32: return std::forward<F>(f)(std::type_identity<std::int32_t>{});
+    case ElementType::i64: return std::forward<F>(f)(std::type_identity<std::int64_t>{});
+    case ElementType::f32: return std::forward<F>(f)(std::type_identity<float>{});
+    case ElementType::f64: break;
+  }
+  return std::forward<F>(f)(std::type_identity<double>{});
+}
+
+// Cost columns hold unsigned integers or floats (§6).
+template <class T>
+inline constexpr bool is_cost_type_v = std::is_floating_point_v<T> || std::is_unsigned_v<T>;
 
 constexpr std::uint64_t align_up(std::uint64_t x) { return (x + kAlignment - 1) / kAlignment * kAlignment; }
 

@@ -5,10 +5,29 @@
 
 namespace mosb {
 
+// What kind of failure an Error reports, so that callers branch on it instead of on the text.
+enum class ErrorCode {
+  other,             // not classified (text input errors of the converters, among others)
+  io,                // the file system refused: cannot open, map, read or write
+  not_mosb,          // the bytes are not a mosb file (wrong magic, too short, not a regular file)
+  version,           // a format major version or a required feature this reader does not know
+  damaged,           // a mosb file that breaks a rule of spec/FORMAT.md §9 (checksums included)
+  not_found,         // no objective, query set, view or metadata key of that name
+  invalid_argument,  // a call the file cannot answer as asked: wrong element type, index out of range
+  packed,            // a zstd-packed section, which cannot be mapped zero-copy
+};
+
 // Every failure mosb reports to a user: the message is one line and names the file it concerns.
 class Error : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit Error(const std::string& what) : Error(ErrorCode::other, what) {}
+  explicit Error(const char* what) : Error(ErrorCode::other, what) {}
+  Error(ErrorCode code, const std::string& what) : std::runtime_error(what), code_(code) {}
+
+  ErrorCode code() const noexcept { return code_; }
+
+ private:
+  ErrorCode code_;
 };
 
 }  // namespace mosb

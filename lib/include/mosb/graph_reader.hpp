@@ -1,11 +1,20 @@
 // Opens a mosb instance by memory-mapping it. Opening checks the header, the section table and
 // every cross-section count (spec/FORMAT.md §9), in time independent of the file size; after that,
 // every accessor hands out a bounds-checked, zero-copy view into the mapping.
+//
+// Lifetime: every span, pointer and reference a GraphReader hands out (CSR arrays, cost columns,
+// queries, sections, metadata) points into its mapping and stays valid as long as the reader or
+// any copy of it lives (copies share the mapping); for from_memory, as long as the caller's bytes.
+// Threads: after open() returns, every const member function may be called from any number of
+// threads at once (metadata() parses once, under std::call_once). Assigning to or destroying a
+// reader while another thread uses it is a race, as for any object.
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <span>
 #include <string>
@@ -30,6 +39,16 @@ struct Section {
   bool is_packed() const { return entry.encoding != static_cast<std::uint8_t>(format::Encoding::raw); }
   std::uint64_t element_count() const { return entry.row_count * entry.row_width; }
 };
+
+// A benchmark view (§7 `view.<name>.objectives` and `view.<name>.queries`).
+struct View {
+  std::string name;
+  std::vector<std::size_t> objectives;  // objective indices, in the view's order
+  std::string query_set;                // empty when the view names none
+};
+
+template <class T>
+class CostAs;
 
 class GraphReader {
  public:
@@ -65,6 +84,15 @@ class GraphReader {
   std::span<const T> cost(std::string_view name) const {
     return cost<T>(objective_index(name));
   }
+  // Calls f(std::span<const T>) with cost column i in its stored type T (std::uint8_t, uint16_t,
+  // uint32_t, uint64_t, float or double) and returns what f returns, which must be one type for
+  // every T: the way to read a column whatever type a file chose, with no copy.
+  template <class F>
+  decltype(auto) visit_cost(std::size_t i, F&& f) const;
+  // Cost column i read as T whatever its stored type, element by element (no copy); refuses to
+  // read float columns as integers.
+  template <class T>
+  CostAs<T> cost_as(std::size_t i) const;
   // Widens (or converts) a cost column into a caller-owned buffer of m values.
   void read_cost_as(std::size_t objective_index, std::span<double> out) const;
   void read_cost_as(std::size_t objective_index, std::span<std::uint64_t> out) const;
@@ -75,6 +103,12 @@ class GraphReader {
 
   // Parsed on first use: malformed metadata is an error of that call, not of open().
   const Metadata& metadata() const;
+
+  // Views, from the metadata: names in sorted order; a view naming an objective the file lacks
+  // is an Error (ErrorCode::damaged); view() throws ErrorCode::not_found when absent.
+  std::vector<std::string> view_names() const;
+  std::optional<View> find_view(std::string_view name) const;
+  View view(std::string_view name) const;
 
   // Zero-copy view of a section's elements, checked for type and encoding.
   template <class T>
@@ -88,7 +122,8 @@ class GraphReader {
   GraphReader() = default;
   void validate();
   void check_access(const Section& s, format::ElementType wanted) const;
-  [[noreturn]] void fail(const std::string& what) const;
+  [[noreturn]] void fail(const std::string& what) const;  // ErrorCode::damaged
+  [[noreturn]] void fail(ErrorCode code, const std::string& what) const;
   const Section& required(format::SectionKind kind) const;
 
   std::shared_ptr<const void> mapping_;
@@ -98,7 +133,62 @@ class GraphReader {
   std::vector<Section> sections_;
   std::vector<std::size_t> cost_indices_;
   std::size_t structural_[7] = {};  // section index per structural kind 1..6
-  mutable std::shared_ptr<Metadata> metadata_;
+  struct MetadataCache {
+    std::once_flag parsed;
+    std::optional<Metadata> value;
+  };
+  // Shared by copies of the reader, like the mapping; filled once by metadata().
+  std::shared_ptr<MetadataCache> metadata_ = std::make_shared<MetadataCache>();
 };
+
+template <class F>
+decltype(auto) GraphReader::visit_cost(std::size_t i, F&& f) const {
+  const Section& s = objective(i);
+  using Result = std::invoke_result_t<F, std::span<const std::uint8_t>>;
+  return format::visit_element_type(s.type, [&](auto tag) -> Result {
+    using T = typename decltype(tag)::type;
+    if constexpr (format::is_cost_type_v<T>)
+      return std::invoke(std::forward<F>(f), values<T>(s));
+    else
+      fail("section '" + s.name + "' holds " + std::string(format::to_string(s.type)) +
+           " values, not a cost type");
+  });
+}
+
+// A cost column read as T by value, whatever its stored type (see GraphReader::cost_as).
+template <class T>
+class CostAs {
+ public:
+  T operator[](std::size_t arc) const {
+    return format::visit_element_type(type_, [&](auto tag) -> T {
+      using Stored = typename decltype(tag)::type;
+      return static_cast<T>(static_cast<const Stored*>(data_)[arc]);
+    });
+  }
+  std::size_t size() const { return size_; }
+  format::ElementType stored_type() const { return type_; }
+
+ private:
+  friend class GraphReader;
+  CostAs(const void* data, std::size_t size, format::ElementType type)
+      : data_(data), size_(size), type_(type) {}
+  const void* data_;
+  std::size_t size_;
+  format::ElementType type_;
+};
+
+template <class T>
+CostAs<T> GraphReader::cost_as(std::size_t i) const {
+  static_assert(format::is_cost_type_v<T>, "cost_as reads unsigned or floating-point values");
+  const Section& s = objective(i);
+  if constexpr (!std::is_floating_point_v<T>)
+    if (format::is_float(s.type))
+      throw Error(ErrorCode::invalid_argument,
+                  display_name_ + ": objective '" + s.name + "' holds " +
+                      std::string(format::to_string(s.type)) + " values, which do not convert to " +
+                      "integers");
+  const auto raw = raw_bytes(s);
+  return CostAs<T>(raw.data(), s.element_count(), s.type);
+}
 
 }  // namespace mosb

@@ -32,6 +32,16 @@ class Metadata {
 
 namespace mosb {
 
+// The §7 `view.<view>.objectives` / `view.<view>.queries` keys of one view, as written: the one
+// parser of those keys (GraphReader::view resolves the names to indices).
+struct ViewKeys {
+  std::string name;
+  std::vector<std::string> objectives;  // empty when the view has no `objectives` key
+  std::string query_set;                // empty when the view has no `queries` key
+};
+// Every view the metadata mentions, sorted by name.
+std::vector<ViewKeys> view_keys(const Metadata& metadata);
+
 // The first view (§7 `view.*` keys) that names a missing objective or query set, as a message;
 // nullopt when every view is sound.
 std::optional<std::string> find_view_problem(const Metadata& metadata,

@@ -1,0 +1,364 @@
+// The C ABI of mosb.h over GraphReader: every entry point catches, records the message per thread
+// and returns a status; outputs are written only on success.
+#include "mosb.h"
+
+#include <cstring>
+#include <mutex>
+#include <new>
+#include <string>
+#include <vector>
+
+#include "mosb/graph_reader.hpp"
+#include "mosb/verify.hpp"
+#include "mosb/version.hpp"
+
+struct mosb_graph {
+  explicit mosb_graph(mosb::GraphReader r) : reader(std::move(r)), digest(reader.digest()) {
+    for (const auto* s : reader.all(mosb::format::SectionKind::queries)) query_sets.push_back(s);
+  }
+  mosb::GraphReader reader;
+  std::string digest;
+  std::vector<const mosb::Section*> query_sets;
+  // Parsed from the metadata on first use, so that malformed metadata fails those calls only.
+  std::once_flag described;
+  std::vector<std::string> units;
+  std::vector<mosb::View> views;
+};
+
+namespace {
+
+thread_local std::string last_error;
+
+mosb_status status_of(mosb::ErrorCode code) {
+  switch (code) {
+    case mosb::ErrorCode::other: return MOSB_ERROR_OTHER;
+    case mosb::ErrorCode::io: return MOSB_ERROR_IO;
+    case mosb::ErrorCode::not_mosb: return MOSB_ERROR_NOT_MOSB;
+    case mosb::ErrorCode::version: return MOSB_ERROR_VERSION;
+    case mosb::ErrorCode::damaged: return MOSB_ERROR_DAMAGED;
+    case mosb::ErrorCode::not_found: return MOSB_ERROR_NOT_FOUND;
+    case mosb::ErrorCode::invalid_argument: return MOSB_ERROR_INVALID_ARGUMENT;
+    case mosb::ErrorCode::packed: return MOSB_ERROR_PACKED;
+  }
+  return MOSB_ERROR_OTHER;
+}
+
+mosb_status failed(mosb_status status, const char* what) {
+  try {
+    last_error = what;
+  } catch (...) {
+    // Keep the previous message rather than throw out of a C function.
+  }
+  return status;
+}
+
+// Runs body, turning every exception into a status and a message.
+template <class Body>
+mosb_status guarded(Body&& body) noexcept {
+  try {
+    body();
+    return MOSB_OK;
+  } catch (const mosb::Error& e) {
+    return failed(status_of(e.code()), e.what());
+  } catch (const std::bad_alloc&) {
+    return failed(MOSB_ERROR_NO_MEMORY, "out of memory");
+  } catch (const std::exception& e) {
+    return failed(MOSB_ERROR_OTHER, e.what());
+  } catch (...) {
+    return failed(MOSB_ERROR_OTHER, "unknown internal error");
+  }
+}
+
+void require(const void* pointer, const char* what) {
+  if (!pointer)
+    throw mosb::Error(mosb::ErrorCode::invalid_argument, std::string(what) + " is NULL");
+}
+
+const mosb_graph& checked(const mosb_graph* graph) {
+  require(graph, "the graph handle");
+  return *graph;
+}
+
+mosb_graph& described(const mosb_graph* graph) {
+  auto& g = const_cast<mosb_graph&>(checked(graph));
+  std::call_once(g.described, [&g] {
+    std::vector<std::string> units;
+    for (std::size_t i = 0; i < g.reader.objective_count(); ++i)
+      units.push_back(g.reader.metadata()
+                          .get("objective." + g.reader.objective(i).name + ".unit")
+                          .value_or(""));
+    std::vector<mosb::View> views;
+    for (const auto& name : g.reader.view_names()) views.push_back(g.reader.view(name));
+    g.units = std::move(units);
+    g.views = std::move(views);
+  });
+  return g;
+}
+
+mosb::VerifyLevel level_of(mosb_verify_level level) {
+  switch (level) {
+    case MOSB_VERIFY_HEADER: return mosb::VerifyLevel::header;
+    case MOSB_VERIFY_CHECKSUMS: return mosb::VerifyLevel::checksums;
+    case MOSB_VERIFY_STRUCTURE: return mosb::VerifyLevel::structure;
+    case MOSB_VERIFY_FULL: return mosb::VerifyLevel::full;
+  }
+  throw mosb::Error(mosb::ErrorCode::invalid_argument,
+                    "unknown verify level " + std::to_string(static_cast<int>(level)));
+}
+
+void verify(const mosb_graph& g, mosb_verify_level level) {
+  if (auto problem = mosb::verify(g.reader, level_of(level)))
+    throw mosb::Error(mosb::ErrorCode::damaged, g.reader.display_name() + ": " + *problem);
+}
+
+const mosb::View& view_named(const mosb_graph& g, const char* name) {
+  require(name, "the view name");
+  for (const auto& v : g.views)
+    if (v.name == name) return v;
+  g.reader.view(name);  // throws not_found with the list of views
+  throw mosb::Error(mosb::ErrorCode::not_found, std::string("no view '") + name + "'");
+}
+
+}  // namespace
+
+extern "C" {
+
+const char* mosb_version(void) { return mosb::version(); }
+
+const char* mosb_last_error(void) { return last_error.c_str(); }
+
+mosb_status mosb_open(const char* path, mosb_graph** graph) {
+  return guarded([&] {
+    require(path, "the path");
+    require(graph, "the output handle");
+    *graph = new mosb_graph(mosb::GraphReader::open(path));
+  });
+}
+
+mosb_status mosb_open_verified(const char* path, mosb_verify_level level, mosb_graph** graph) {
+  return guarded([&] {
+    require(path, "the path");
+    require(graph, "the output handle");
+    level_of(level);
+    std::unique_ptr<mosb_graph> opened(new mosb_graph(mosb::GraphReader::open(path)));
+    verify(*opened, level);
+    *graph = opened.release();
+  });
+}
+
+void mosb_close(mosb_graph* graph) { delete graph; }
+
+mosb_status mosb_verify(const mosb_graph* graph, mosb_verify_level level) {
+  return guarded([&] { verify(checked(graph), level); });
+}
+
+mosb_status mosb_vertex_count(const mosb_graph* graph, uint64_t* count) {
+  return guarded([&] {
+    const auto& g = checked(graph);
+    require(count, "the output count");
+    *count = g.reader.vertex_count();
+  });
+}
+
+mosb_status mosb_arc_count(const mosb_graph* graph, uint64_t* count) {
+  return guarded([&] {
+    const auto& g = checked(graph);
+    require(count, "the output count");
+    *count = g.reader.arc_count();
+  });
+}
+
+mosb_status mosb_forward_csr(const mosb_graph* graph, const uint64_t** offsets,
+                             const uint32_t** targets) {
+  return guarded([&] {
+    const auto& g = checked(graph);
+    require(offsets, "the output offsets");
+    require(targets, "the output targets");
+    const auto o = g.reader.forward_offsets();
+    const auto t = g.reader.forward_targets();
+    *offsets = o.data();
+    *targets = t.data();
+  });
+}
+
+mosb_status mosb_reverse_csr(const mosb_graph* graph, const uint64_t** offsets,
+                             const uint32_t** sources, const uint32_t** arcs) {
+  return guarded([&] {
+    const auto& g = checked(graph);
+    require(offsets, "the output offsets");
+    require(sources, "the output sources");
+    require(arcs, "the output arcs");
+    const auto o = g.reader.reverse_offsets();
+    const auto s = g.reader.reverse_sources();
+    const auto a = g.reader.reverse_arcs();
+    *offsets = o.data();
+    *sources = s.data();
+    *arcs = a.data();
+  });
+}
+
+mosb_status mosb_objective_count(const mosb_graph* graph, size_t* count) {
+  return guarded([&] {
+    const auto& g = checked(graph);
+    require(count, "the output count");
+    *count = g.reader.objective_count();
+  });
+}
+
+mosb_status mosb_objective_name(const mosb_graph* graph, size_t objective, const char** name) {
+  return guarded([&] {
+    const auto& g = checked(graph);
+    require(name, "the output name");
+    *name = g.reader.objective(objective).name.c_str();
+  });
+}
+
+mosb_status mosb_objective_unit(const mosb_graph* graph, size_t objective, const char** unit) {
+  return guarded([&] {
+    const auto& g = described(graph);
+    require(unit, "the output unit");
+    g.reader.objective(objective);  // range check with the reader's message
+    *unit = g.units[objective].c_str();
+  });
+}
+
+mosb_status mosb_objective_type(const mosb_graph* graph, size_t objective,
+                                mosb_element_type* type) {
+  return guarded([&] {
+    const auto& g = checked(graph);
+    require(type, "the output type");
+    *type = static_cast<mosb_element_type>(g.reader.objective(objective).type);
+  });
+}
+
+mosb_status mosb_find_objective(const mosb_graph* graph, const char* name, size_t* objective) {
+  return guarded([&] {
+    const auto& g = checked(graph);
+    require(name, "the objective name");
+    require(objective, "the output index");
+    *objective = g.reader.objective_index(name);
+  });
+}
+
+mosb_status mosb_cost(const mosb_graph* graph, size_t objective, mosb_element_type* type,
+                      const void** values) {
+  return guarded([&] {
+    const auto& g = checked(graph);
+    require(type, "the output type");
+    require(values, "the output values");
+    const void* data = g.reader.visit_cost(
+        objective, [](auto column) -> const void* { return column.data(); });
+    *type = static_cast<mosb_element_type>(g.reader.objective(objective).type);
+    *values = data;
+  });
+}
+
+mosb_status mosb_cost_copy_u64(const mosb_graph* graph, size_t objective, uint64_t* out,
+                               size_t count) {
+  return guarded([&] {
+    const auto& g = checked(graph);
+    require(out, "the output buffer");
+    g.reader.read_cost_as(objective, std::span<std::uint64_t>(out, count));
+  });
+}
+
+mosb_status mosb_cost_copy_f64(const mosb_graph* graph, size_t objective, double* out,
+                               size_t count) {
+  return guarded([&] {
+    const auto& g = checked(graph);
+    require(out, "the output buffer");
+    g.reader.read_cost_as(objective, std::span<double>(out, count));
+  });
+}
+
+mosb_status mosb_view_count(const mosb_graph* graph, size_t* count) {
+  return guarded([&] {
+    const auto& g = described(graph);
+    require(count, "the output count");
+    *count = g.views.size();
+  });
+}
+
+mosb_status mosb_view_name(const mosb_graph* graph, size_t view, const char** name) {
+  return guarded([&] {
+    const auto& g = described(graph);
+    require(name, "the output name");
+    if (view >= g.views.size())
+      throw mosb::Error(mosb::ErrorCode::invalid_argument,
+                        g.reader.display_name() + ": view index " + std::to_string(view) +
+                            " out of range (the file has " + std::to_string(g.views.size()) +
+                            " views)");
+    *name = g.views[view].name.c_str();
+  });
+}
+
+mosb_status mosb_view(const mosb_graph* graph, const char* name, const size_t** objectives,
+                      size_t* count, const char** query_set) {
+  return guarded([&] {
+    const auto& v = view_named(described(graph), name);
+    if (objectives) *objectives = v.objectives.data();
+    if (count) *count = v.objectives.size();
+    if (query_set) *query_set = v.query_set.c_str();
+  });
+}
+
+mosb_status mosb_query_set_count(const mosb_graph* graph, size_t* count) {
+  return guarded([&] {
+    const auto& g = checked(graph);
+    require(count, "the output count");
+    *count = g.query_sets.size();
+  });
+}
+
+mosb_status mosb_query_set_name(const mosb_graph* graph, size_t set, const char** name) {
+  return guarded([&] {
+    const auto& g = checked(graph);
+    require(name, "the output name");
+    if (set >= g.query_sets.size())
+      throw mosb::Error(mosb::ErrorCode::invalid_argument,
+                        g.reader.display_name() + ": query set index " + std::to_string(set) +
+                            " out of range (the file has " + std::to_string(g.query_sets.size()) +
+                            " query sets)");
+    *name = g.query_sets[set]->name.c_str();
+  });
+}
+
+mosb_status mosb_queries(const mosb_graph* graph, const char* name, const uint32_t** pairs,
+                         size_t* count) {
+  return guarded([&] {
+    const auto& g = checked(graph);
+    require(name, "the query set name");
+    require(pairs, "the output pairs");
+    require(count, "the output count");
+    const auto queries = g.reader.queries(name);
+    static_assert(sizeof(mosb::Query) == 2 * sizeof(std::uint32_t));
+    *pairs = reinterpret_cast<const std::uint32_t*>(queries.data());
+    *count = queries.size();
+  });
+}
+
+mosb_status mosb_metadata(const mosb_graph* graph, const char* key, const char** value,
+                          size_t* length) {
+  return guarded([&] {
+    const auto& g = checked(graph);
+    require(key, "the key");
+    require(value, "the output value");
+    const auto& entries = g.reader.metadata().entries();
+    const auto it = entries.find(std::string_view(key));
+    if (it == entries.end())
+      throw mosb::Error(mosb::ErrorCode::not_found,
+                        g.reader.display_name() + ": no metadata key '" + key + "'");
+    *value = it->second.c_str();
+    if (length) *length = it->second.size();
+  });
+}
+
+mosb_status mosb_digest(const mosb_graph* graph, const char** digest) {
+  return guarded([&] {
+    const auto& g = checked(graph);
+    require(digest, "the output digest");
+    *digest = g.digest.c_str();
+  });
+}
+
+}  // extern "C"

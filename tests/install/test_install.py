@@ -1,0 +1,212 @@
+"""The installed package, used as a solver author would (issue 9).
+
+Installs the build under test into a temporary prefix, builds tests/install/consumer (the README's
+C and C++ programs, extracted from README.md, and examples/dijkstra.c) out of tree once through
+find_package and once through pkg-config, and runs them on a generated grid, checking their output
+against values computed independently with the reference reader (spec/reference). A second,
+library-only shared build shows the package needs neither CLI11, Boost nor doctest, and carries a
+SONAME. Environment: MOSB_BUILD_DIR, MOSB_SOURCE_DIR, MOSB_VERSION, CMAKE.
+"""
+import heapq
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import unittest
+
+BUILD = os.environ["MOSB_BUILD_DIR"]
+SOURCE = os.environ["MOSB_SOURCE_DIR"]
+VERSION = os.environ["MOSB_VERSION"]
+CMAKE = os.environ.get("CMAKE", "cmake")
+sys.path.insert(0, os.path.join(SOURCE, "spec", "reference"))
+import mosb_reader  # noqa: E402
+
+
+def run(*args, env=None, cwd=None):
+    r = subprocess.run([str(a) for a in args], capture_output=True, text=True, env=env, cwd=cwd)
+    if r.returncode != 0:
+        raise AssertionError("%s failed (%d):\n%s\n%s" % (" ".join(map(str, args)), r.returncode,
+                                                          r.stdout[-3000:], r.stderr[-3000:]))
+    return r.stdout
+
+
+def readme_programs(directory):
+    """The ```c and ```cpp blocks of README.md's "Use mosb in your solver" section."""
+    with open(os.path.join(SOURCE, "README.md")) as f:
+        text = f.read()
+    section = text.split("## Use mosb in your solver", 1)[1].split("\n## ", 1)[0]
+    blocks = dict(re.findall(r"```(c|cpp)\n(.*?)```", section, re.S))
+    for lang in ("c", "cpp"):
+        with open(os.path.join(directory, "readme." + lang), "w") as f:
+            f.write(blocks[lang])
+    with open(os.path.join(SOURCE, "docs", "C_API.md")) as f:
+        example = f.read().split("## A complete example", 1)[1]
+    with open(os.path.join(directory, "c_api_doc.c"), "w") as f:
+        f.write(re.search(r"```c\n(.*?)```", example, re.S).group(1))
+
+
+def libdir(prefix):
+    for name in ("lib", "lib64"):
+        if os.path.isdir(os.path.join(prefix, name, "pkgconfig")):
+            return os.path.join(prefix, name)
+    raise AssertionError("no lib/pkgconfig under " + prefix)
+
+
+def expected_outputs(path):
+    """What readme_c, readme_cpp and dijkstra must print, from the reference reader."""
+    inst = mosb_reader.open_instance(path)
+    costs = inst.costs()
+    readme_c = ["%d vertices, %d arcs" % (inst.n, inst.m)]
+    for name, column in costs:
+        total = 0.0
+        for x in column.tolist():  # one addition at a time, in arc order, as the C program does
+            total += float(x)
+        readme_c.append("%s total %.17g" % (name, total))
+    md = inst.metadata
+    views = sorted(k[5:-11] for k in md if k.startswith("view.") and k.endswith(".objectives"))
+    readme_cpp = ["mosb %s: %d vertices, %d arcs" % (VERSION, inst.n, inst.m)]
+    names = [name for name, _ in costs]
+    for view in views:
+        line = "view %s:" % view
+        for name in md["view.%s.objectives" % view].split(","):
+            line += " %s<=%g" % (name, max(costs[names.index(name)][1].tolist()))
+        readme_cpp.append(line + " queries " + md.get("view.%s.queries" % view, "-"))
+    offsets = inst.array("forward_offsets").tolist()
+    targets = inst.array("forward_targets").tolist()
+    first = md["view.%s.objectives" % views[0]].split(",")[0]
+    cost = [float(x) for x in costs[names.index(first)][1].tolist()]
+    dijkstra = []
+    for start, goal in inst.queries()[md["view.%s.queries" % views[0]]].tolist():
+        dist = {start: 0.0}
+        heap, done = [(0.0, start)], set()
+        while heap:
+            d, v = heapq.heappop(heap)
+            if v in done:
+                continue
+            done.add(v)
+            for a in range(offsets[v], offsets[v + 1]):
+                w = targets[a]
+                if d + cost[a] < dist.get(w, float("inf")):
+                    dist[w] = d + cost[a]
+                    heapq.heappush(heap, (dist[w], w))
+        d = dist.get(goal, float("inf"))
+        dijkstra.append("%d %d %s" % (start, goal, "inf" if d == float("inf") else "%.17g" % d))
+    # docs/C_API.md's example: the digest, one line per objective, the arcs out of the first start.
+    start = inst.queries()[md["view.%s.queries" % views[0]]].tolist()[0][0]
+    view_costs = [costs[names.index(n)][1].tolist() for n in md["view.%s.objectives" % views[0]].split(",")]
+    doc = ["digest " + inst.content_digest()]
+    for i, (name, column) in enumerate(costs):
+        doc.append("objective %d: %s [%s] element type %d" % (
+            i, name, md.get("objective.%s.unit" % name, ""),
+            mosb_reader._type_code(inst.section(name, mosb_reader.COST).element_type)))
+    doc.append("view %s, %d objectives, query set %s; arcs out of %d:" % (
+        views[0], len(view_costs), md["view.%s.queries" % views[0]], start))
+    for a in range(offsets[start], offsets[start + 1]):
+        doc.append("  -> %d" % targets[a] + "".join(" %g" % c[a] for c in view_costs))
+    return {"readme_c": readme_c, "readme_cpp": readme_cpp, "dijkstra": dijkstra, "c_api_doc": doc}
+
+
+class InstalledPackage(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.mkdtemp(prefix="mosb-install-")
+        cls.prefix = os.path.join(cls.tmp, "prefix")
+        run(CMAKE, "--install", BUILD, "--prefix", cls.prefix)
+        cls.snippets = os.path.join(cls.tmp, "snippets")
+        os.mkdir(cls.snippets)
+        readme_programs(cls.snippets)
+        mosb = os.path.join(cls.prefix, "bin", "mosb")
+        cls.grid = os.path.join(cls.tmp, "grid.mosb")
+        run(mosb, "generate", "grid", "--width", "30", "--height", "20", "--objectives", "3",
+            "--seed", "11", "-o", cls.grid)
+        run(mosb, "queries", "generate", "--into", cls.grid, "--name", "default", "--count", "25",
+            "--seed", "5", "--replace")
+        cls.expected = expected_outputs(cls.grid)
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.tmp, ignore_errors=True)
+
+    def consumer(self, prefix, via, name):
+        build = os.path.join(self.tmp, name)
+        env = dict(os.environ, PKG_CONFIG_PATH=os.path.join(libdir(prefix), "pkgconfig"))
+        env.pop("CMAKE_CXX_COMPILER_LAUNCHER", None)
+        run(CMAKE, "-S", os.path.join(SOURCE, "tests", "install", "consumer"), "-B", build,
+            "-DMOSB_VIA=" + via, "-DSNIPPETS=" + self.snippets,
+            "-DEXAMPLES=" + os.path.join(SOURCE, "examples"), "-DCMAKE_PREFIX_PATH=" + prefix,
+            env=env)
+        run(CMAKE, "--build", build, "-j2", env=env)
+        for program in ("readme_c", "readme_cpp", "dijkstra", "c_api_doc"):
+            out = run(os.path.join(build, program), self.grid).splitlines()
+            self.assertEqual(out, self.expected[program], program + " via " + via)
+        return build
+
+    def test_installs_library_headers_program_and_package_files(self):
+        lib = libdir(self.prefix)
+        for path in ("include/mosb.h", "include/mosb/graph_reader.hpp", "include/mosb/format.hpp",
+                     "include/mosb/version.hpp", "bin/mosb"):
+            self.assertTrue(os.path.isfile(os.path.join(self.prefix, path)), path)
+        for path in ("cmake/mosb/mosbConfig.cmake", "cmake/mosb/mosbConfigVersion.cmake",
+                     "pkgconfig/mosb.pc", "pkgconfig/mosb_c.pc"):
+            self.assertTrue(os.path.isfile(os.path.join(lib, path)), path)
+        self.assertEqual(run(os.path.join(self.prefix, "bin", "mosb"), "--version").strip(),
+                         "mosb " + VERSION)
+        env = dict(os.environ, PKG_CONFIG_PATH=os.path.join(lib, "pkgconfig"))
+        self.assertEqual(run("pkg-config", "--modversion", "mosb", env=env).strip(), VERSION)
+        self.assertEqual(run("pkg-config", "--modversion", "mosb_c", env=env).strip(), VERSION)
+        with open(os.path.join(self.prefix, "include", "mosb", "version.hpp")) as f:
+            self.assertIn('#define MOSB_VERSION_STRING "%s"' % VERSION, f.read())
+
+    def test_version_file_accepts_same_minor_only(self):
+        major, minor, _ = VERSION.split(".")
+        script = os.path.join(self.tmp, "version_check.cmake")
+        config = os.path.join(libdir(self.prefix), "cmake", "mosb", "mosbConfigVersion.cmake")
+        for wanted, compatible in (("%s.%s" % (major, minor), True),
+                                   ("%s.%d" % (major, int(minor) + 1), False),
+                                   ("%d.0" % (int(major) + 1), False)):
+            with open(script, "w") as f:
+                f.write('set(PACKAGE_FIND_VERSION "%s")\ninclude("%s")\n'
+                        'message("${PACKAGE_VERSION_COMPATIBLE}")\n' % (wanted, config))
+            r = subprocess.run([CMAKE, "-P", script], capture_output=True, text=True)
+            self.assertEqual(r.stderr.strip() in ("TRUE", "1"), compatible, (wanted, r.stderr))
+
+    def test_consumer_through_find_package(self):
+        self.consumer(self.prefix, "cmake", "consumer-cmake")
+
+    def test_consumer_through_pkg_config(self):
+        self.consumer(self.prefix, "pkg-config", "consumer-pkg-config")
+
+    def test_examples_build_through_find_package(self):
+        examples = os.path.join(SOURCE, "examples")
+        if not os.path.isfile(os.path.join(examples, "CMakeLists.txt")):
+            self.skipTest("examples/CMakeLists.txt does not exist yet")
+        build = os.path.join(self.tmp, "examples")
+        run(CMAKE, "-S", examples, "-B", build, "-DCMAKE_PREFIX_PATH=" + self.prefix)
+        run(CMAKE, "--build", build, "-j2")
+
+    def test_shared_library_only_build(self):
+        # mosb as a library only: no CLI11, Boost or doctest may be looked up, and the shared
+        # libraries carry a SONAME of major.minor.
+        build = os.path.join(self.tmp, "shared-build")
+        prefix = os.path.join(self.tmp, "shared-prefix")
+        run(CMAKE, "-S", SOURCE, "-B", build, "-G", "Ninja", "-DCMAKE_BUILD_TYPE=Release",
+            "-DBUILD_SHARED_LIBS=ON", "-DMOSB_BUILD_TOOLS=OFF", "-DMOSB_BUILD_TESTS=OFF",
+            "-DMOSB_BENCHMARKS=OFF", "-DCMAKE_DISABLE_FIND_PACKAGE_CLI11=ON",
+            "-DCMAKE_DISABLE_FIND_PACKAGE_Boost=ON", "-DCMAKE_DISABLE_FIND_PACKAGE_doctest=ON")
+        run(CMAKE, "--build", build, "-j2")
+        run(CMAKE, "--install", build, "--prefix", prefix)
+        self.assertFalse(os.path.exists(os.path.join(prefix, "bin", "mosb")))
+        major, minor, _ = VERSION.split(".")
+        for lib in ("libmosb", "libmosb_c"):
+            path = os.path.join(libdir(prefix), lib + ".so")
+            self.assertTrue(os.path.islink(path), path)
+            dynamic = run("readelf", "-d", path)
+            self.assertIn("Library soname: [%s.so.%s.%s]" % (lib, major, minor), dynamic)
+        build_consumer = self.consumer(prefix, "pkg-config", "consumer-shared")
+        self.assertIn("libmosb_c.so." + major, run("ldd", os.path.join(build_consumer, "readme_c")))
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=2)
