@@ -88,7 +88,7 @@ static void check_graph(const mosb_graph* g) {
   for (i = 0; i < m; ++i) CHECK(cost_at(type, column, i) == time[i]);
   CHECK(mosb_cost_copy_u64(g, 0, widened, 7) == MOSB_OK);
   for (i = 0; i < m; ++i) CHECK((double)widened[i] == distance[i]);
-  CHECK(mosb_cost_copy_u64(g, 4, widened, 7) == MOSB_OK && widened[6] == (uint64_t)1 << 33);
+  CHECK(mosb_cost_copy_u64(g, 4, widened, 7) == MOSB_OK && widened[3] == (uint64_t)1 << 33);
   CHECK(mosb_cost_copy_f64(g, 1, real, 7) == MOSB_OK);
   for (i = 0; i < m; ++i) CHECK(real[i] == time[i]);
   CHECK(mosb_cost_copy_u64(g, 1, widened, 7) == MOSB_ERROR_INVALID_ARGUMENT);
