@@ -1,0 +1,222 @@
+"""Read mosb multi-objective shortest-path instances (.mosb) from Python, zero-copy.
+
+    import mosb
+    g = mosb.open("grid.mosb")
+    g.forward_offsets, g.forward_targets      # read-only numpy views into the mapping
+    g.cost("c1"), g.queries("default"), g.metadata
+
+The reading, the checks and the error messages are those of the C++ library (the same sources the
+`mosb` program is built from); every failure is a `mosb.Error` whose message names the file.
+Arrays are views into the memory-mapped file: they are read-only and each keeps the mapping alive,
+so they stay valid after the object that handed them out is gone.
+"""
+import collections
+import importlib
+import operator
+import os
+
+import numpy as np
+
+from . import _mosb
+from ._mosb import Error
+
+__version__ = _mosb.__version__
+__all__ = ["Error", "Instance", "View", "VERIFY_LEVELS", "open"]
+
+VERIFY_LEVELS = ("header", "checksums", "structure", "full")
+
+# A view (spec/FORMAT.md §7 `view.NAME.*`): objective indices in view order, and the name of the
+# view's query set (None when the view names none).
+View = collections.namedtuple("View", "name objectives query_set")
+
+
+def open(path, verify=None):  # noqa: A001 (the package's entry point, like io.open)
+    """Maps and checks the instance at `path` (FORMAT.md §9); `verify` is an optional level of
+    VERIFY_LEVELS run right after opening. Raises mosb.Error naming the file."""
+    instance = Instance(_mosb.Reader.open(os.fspath(path)))
+    if verify is not None:
+        instance.verify(verify)
+    return instance
+
+
+def _require(module, package, purpose):
+    """Imports an optional dependency, or says which package is missing and what needs it."""
+    try:
+        return importlib.import_module(module)
+    except ImportError as e:
+        raise ImportError("mosb: %s needs the Python package '%s', which is not installed "
+                          "(Debian: apt-get install python3-%s)" % (purpose, package, package)) from e
+
+
+class Instance:
+    """An open .mosb file. Obtain one with mosb.open()."""
+
+    def __init__(self, reader):
+        self._reader = reader
+
+    def __repr__(self):
+        return "<mosb.Instance %r: %d vertices, %d arcs, objectives %s>" % (
+            self.path, self.vertex_count, self.arc_count, ",".join(self.objectives))
+
+    # --- graph ------------------------------------------------------------------------------
+    @property
+    def path(self):
+        return self._reader.display_name
+
+    @property
+    def format_version(self):
+        return self._reader.format_version
+
+    @property
+    def vertex_count(self):
+        return self._reader.vertex_count
+
+    @property
+    def arc_count(self):
+        return self._reader.arc_count
+
+    @property
+    def forward_offsets(self):
+        """u64, n+1: the out-arcs of v are arcs forward_offsets[v] .. forward_offsets[v+1]-1."""
+        return self._reader.forward_offsets()
+
+    @property
+    def forward_targets(self):
+        """u32, m: the head of each arc (arc ids are positions in the forward CSR)."""
+        return self._reader.forward_targets()
+
+    @property
+    def reverse_offsets(self):
+        return self._reader.reverse_offsets()
+
+    @property
+    def reverse_sources(self):
+        return self._reader.reverse_sources()
+
+    @property
+    def reverse_arcs(self):
+        """u32, m: the forward arc id of each in-arc entry (its cost is cost[reverse_arcs[j]])."""
+        return self._reader.reverse_arcs()
+
+    def arc_sources(self):
+        """u32, m: the tail of each forward arc (computed, not stored: a new array)."""
+        offsets = self.forward_offsets
+        return np.repeat(np.arange(self.vertex_count, dtype=np.uint32), np.diff(offsets))
+
+    # --- objectives, views, queries --------------------------------------------------------
+    @property
+    def objectives(self):
+        """Objective names in objective order."""
+        return tuple(self._reader.objective_names())
+
+    def objective_index(self, name_or_index):
+        if isinstance(name_or_index, str):
+            return self._reader.objective_index(name_or_index)
+        index = operator.index(name_or_index)
+        if index < 0:
+            raise IndexError("mosb: objective index %d is negative" % index)
+        return index
+
+    def cost(self, name_or_index):
+        """One objective's cost per arc, in its stored type (u8/u16/u32/u64/f32/f64)."""
+        return self._reader.cost(self.objective_index(name_or_index))
+
+    @property
+    def views(self):
+        """View names (metadata `view.NAME.objectives`), sorted."""
+        return tuple(self._reader.view_names())
+
+    def view(self, name):
+        """The view `name` as a View(name, objectives, query_set); mosb.Error when absent."""
+        name, objectives, query_set = self._reader.view(name)
+        return View(name, tuple(objectives), query_set or None)
+
+    @property
+    def query_sets(self):
+        return tuple(self._reader.query_set_names())
+
+    def queries(self, name):
+        """The query set `name` as a read-only (q, 2) u32 array of (start, goal) rows."""
+        return self._reader.queries(name)
+
+    @property
+    def metadata(self):
+        """The metadata section as a new dict (key -> unescaped value)."""
+        return self._reader.metadata()
+
+    @property
+    def digest(self):
+        """The content digest (FORMAT.md §8), 32 hex digits."""
+        return self._reader.digest()
+
+    def verify(self, level="full"):
+        """Runs `mosb verify --level LEVEL`'s checks; raises mosb.Error with the same message
+        the CLI prints after FAIL."""
+        self._reader.verify(level)
+
+    # --- adapters ---------------------------------------------------------------------------
+    def _objective_list(self, view):
+        """Objective indices of `view` (a name or a View), or all objectives when None."""
+        if view is None:
+            return list(range(len(self.objectives)))
+        if isinstance(view, str):
+            view = self.view(view)
+        return list(view.objectives)
+
+    def to_scipy_csr(self, objective):
+        """The graph as an n x n scipy.sparse.csr_matrix whose values are one objective's costs.
+
+        The cost data is not copied: the matrix's `data` is the mapped column (every cost type,
+        u8..u64, f32 and f64, is a scipy data type). The structure is the forward CSR; scipy
+        keeps one index type for indices and indptr, so forward_targets is reinterpreted as int32
+        without a copy when n < 2^31 and indptr (u64 on disk) becomes a new int32 array of n+1
+        entries. Parallel arcs stay separate entries (scipy sums them only if asked to).
+        """
+        sparse = _require("scipy.sparse", "scipy", "to_scipy_csr")
+        data = self.cost(objective)
+        n = self.vertex_count
+        # Ids are < n and offsets <= m < 2^32, so the signed reinterpretations hold the same values.
+        if n <= np.iinfo(np.int32).max:
+            indices = self.forward_targets.view(np.int32)
+        else:
+            indices = self.forward_targets.astype(np.int64)
+        indptr = self.forward_offsets.view(np.int64)
+        return sparse.csr_matrix((data, indices, indptr), shape=(n, n), copy=False)
+
+    def to_networkx(self, view=None):
+        """A networkx.MultiDiGraph: vertices 0..n-1, one edge per arc keyed by its arc id, with
+        one attribute per objective of `view` (all objectives when None)."""
+        nx = _require("networkx", "networkx", "to_networkx")
+        graph = nx.MultiDiGraph()
+        graph.add_nodes_from(range(self.vertex_count))
+        names = self.objectives
+        columns = [(names[i], self.cost(i).tolist()) for i in self._objective_list(view)]
+        sources = self.arc_sources().tolist()
+        targets = self.forward_targets.tolist()
+        graph.add_edges_from(
+            (sources[a], targets[a], a, {name: values[a] for name, values in columns})
+            for a in range(self.arc_count))
+        return graph
+
+    def to_igraph(self, view=None):
+        """A directed igraph.Graph: vertices 0..n-1, edge i = arc i, one edge attribute per
+        objective of `view` (all objectives when None)."""
+        ig = _require("igraph", "igraph", "to_igraph")
+        edges = np.column_stack((self.arc_sources(), self.forward_targets)).tolist()
+        graph = ig.Graph(n=self.vertex_count, edges=edges, directed=True)
+        names = self.objectives
+        for i in self._objective_list(view):
+            graph.es[names[i]] = self.cost(i).tolist()
+        return graph
+
+    def arcs_frame(self, view=None):
+        """A pandas.DataFrame with one row per arc (index: arc id): source, target, then one
+        column per objective of `view` (all objectives when None). pandas copies the columns."""
+        pd = _require("pandas", "pandas", "arcs_frame")
+        columns = {"source": self.arc_sources(), "target": self.forward_targets}
+        names = self.objectives
+        for i in self._objective_list(view):
+            columns[names[i]] = self.cost(i)
+        frame = pd.DataFrame(columns)
+        frame.index.name = "arc"
+        return frame

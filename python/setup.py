@@ -1,0 +1,55 @@
+"""Builds mosb._mosb from the repository's own reader sources (../lib, ../format).
+
+Compiling the library sources into the extension, rather than linking an installed libmosb, needs
+nothing but this checkout, a C++20 compiler, pybind11 and libxxhash: no prior `cmake --install`,
+no library search path at run time, and no chance of binding a different version of the reader
+than the one in this tree. The sources are the same files the CLI is built from, so validation and
+error messages are identical.
+"""
+import glob
+import os
+import re
+
+from pybind11.setup_helpers import ParallelCompile, Pybind11Extension
+from setuptools import setup
+
+here = os.path.dirname(os.path.abspath(__file__))
+root = os.path.dirname(here)
+
+
+def relative(path):
+    # setuptools wants source paths relative to setup.py.
+    return os.path.relpath(path, here)
+
+
+def library_sources():
+    sources = sorted(glob.glob(os.path.join(root, "lib", "src", "*.cpp")) +
+                     glob.glob(os.path.join(root, "format", "src", "*.cpp")))
+    if not sources:
+        raise SystemExit("mosb: python/ must be built from inside the mosb repository "
+                         "(../lib/src and ../format/src not found)")
+    return [relative(s) for s in sources]
+
+
+def project_version():
+    # The one version number: project(mosb VERSION x.y.z) in the top-level CMakeLists.txt.
+    with open(os.path.join(root, "CMakeLists.txt"), encoding="utf-8") as f:
+        match = re.search(r"project\(\s*mosb\s+VERSION\s+([0-9.]+)", f.read())
+    if not match:
+        raise SystemExit("mosb: no project(mosb VERSION ...) in ../CMakeLists.txt")
+    return match.group(1)
+
+
+# Two jobs: the build machines are shared (see README); NPY_NUM_BUILD_JOBS overrides.
+ParallelCompile("NPY_NUM_BUILD_JOBS", default=2).install()
+
+extension = Pybind11Extension(
+    "mosb._mosb",
+    [relative(os.path.join(here, "src", "mosb_module.cpp"))] + library_sources(),
+    include_dirs=[os.path.join(root, "lib", "include"), os.path.join(root, "format", "include"),
+                  os.path.join(root, "lib", "src")],
+    libraries=["xxhash"],
+    cxx_std=20,
+)
+
+setup(version=project_version(), ext_modules=[extension])

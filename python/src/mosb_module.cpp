@@ -1,0 +1,158 @@
+// mosb._mosb: the Python binding of the C++ reader (lib/). Every array handed out is a read-only
+// numpy view into the mapping whose base owns a reference to the reader, so an array outlives the
+// Python object it came from and the mapping stays valid as long as any array does.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "mosb/error.hpp"
+#include "mosb/graph_reader.hpp"
+#include "mosb/verify.hpp"
+#include "mosb/version.hpp"
+
+namespace py = pybind11;
+
+namespace {
+
+using ReaderPtr = std::shared_ptr<mosb::GraphReader>;  // the holder type of Reader
+
+// The base object of every array: a capsule holding one more owner of the reader.
+py::capsule owner_of(const ReaderPtr& reader) {
+  return py::capsule(new ReaderPtr(reader),
+                     [](void* p) { delete static_cast<ReaderPtr*>(p); });
+}
+
+template <class T>
+py::array read_only_array(const ReaderPtr& reader, const T* data, std::vector<py::ssize_t> shape) {
+  py::array array(py::dtype::of<T>(), std::move(shape), data, owner_of(reader));
+  py::detail::array_proxy(array.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  return array;
+}
+
+template <class T>
+py::array column(const ReaderPtr& reader, std::span<const T> values) {
+  return read_only_array(reader, values.data(), {static_cast<py::ssize_t>(values.size())});
+}
+
+template <class T>
+py::array section_array(const ReaderPtr& reader, const mosb::Section& s) {
+  return column(reader, reader->values<T>(s));
+}
+
+// A cost column in its stored type (u8..u64, f32, f64; §5), without a copy.
+py::array cost_column(const ReaderPtr& reader, std::size_t index) {
+  using mosb::format::ElementType;
+  const auto& s = reader->objective(index);
+  switch (s.type) {
+    case ElementType::u8: return section_array<std::uint8_t>(reader, s);
+    case ElementType::u16: return section_array<std::uint16_t>(reader, s);
+    case ElementType::u32: return section_array<std::uint32_t>(reader, s);
+    case ElementType::u64: return section_array<std::uint64_t>(reader, s);
+    case ElementType::i8: return section_array<std::int8_t>(reader, s);
+    case ElementType::i16: return section_array<std::int16_t>(reader, s);
+    case ElementType::i32: return section_array<std::int32_t>(reader, s);
+    case ElementType::i64: return section_array<std::int64_t>(reader, s);
+    case ElementType::f32: return section_array<float>(reader, s);
+    case ElementType::f64: return section_array<double>(reader, s);
+  }
+  throw mosb::Error(reader->display_name() + ": section '" + s.name + "' has an unknown type");
+}
+
+std::vector<std::string> names_of(const std::vector<const mosb::Section*>& sections) {
+  std::vector<std::string> names;
+  for (const auto* s : sections) names.push_back(s->name);
+  return names;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_mosb, m) {
+  m.doc() = "Binding of the mosb C++ reader; use the `mosb` package, not this module.";
+  m.attr("__version__") = mosb::kVersion;
+  py::register_exception<mosb::Error>(m, "Error");
+
+  py::class_<mosb::GraphReader, std::shared_ptr<mosb::GraphReader>>(m, "Reader")
+      .def_static(
+          "open",
+          [](const std::string& path) {
+            return std::make_shared<mosb::GraphReader>(mosb::GraphReader::open(path));
+          },
+          py::arg("path"), py::call_guard<py::gil_scoped_release>())
+      .def_property_readonly("display_name", &mosb::GraphReader::display_name)
+      .def_property_readonly("vertex_count", &mosb::GraphReader::vertex_count)
+      .def_property_readonly("arc_count", &mosb::GraphReader::arc_count)
+      .def_property_readonly("format_version",
+                             [](const mosb::GraphReader& r) {
+                               return py::make_tuple(r.header().version_major,
+                                                     r.header().version_minor);
+                             })
+      .def("digest", &mosb::GraphReader::digest)
+      .def("forward_offsets",
+           [](const ReaderPtr& r) { return column(r, r->forward_offsets()); })
+      .def("forward_targets",
+           [](const ReaderPtr& r) { return column(r, r->forward_targets()); })
+      .def("reverse_offsets",
+           [](const ReaderPtr& r) { return column(r, r->reverse_offsets()); })
+      .def("reverse_sources",
+           [](const ReaderPtr& r) { return column(r, r->reverse_sources()); })
+      .def("reverse_arcs", [](const ReaderPtr& r) { return column(r, r->reverse_arcs()); })
+      .def("objective_names",
+           [](const mosb::GraphReader& r) {
+             std::vector<std::string> names;
+             for (std::size_t i = 0; i < r.objective_count(); ++i)
+               names.push_back(r.objective(i).name);
+             return names;
+           })
+      .def("objective_index", &mosb::GraphReader::objective_index, py::arg("name"))
+      .def("objective_type",
+           [](const mosb::GraphReader& r, std::size_t i) {
+             return std::string(mosb::format::to_string(r.objective(i).type));
+           })
+      .def("cost", &cost_column, py::arg("index"))
+      .def("query_set_names",
+           [](const mosb::GraphReader& r) {
+             return names_of(r.all(mosb::format::SectionKind::queries));
+           })
+      .def(
+          "queries",
+          [](const ReaderPtr& r, const std::string& name) {
+            const auto queries = r->queries(name);
+            static_assert(sizeof(mosb::Query) == 2 * sizeof(std::uint32_t));
+            return read_only_array(r, reinterpret_cast<const std::uint32_t*>(queries.data()),
+                                   {static_cast<py::ssize_t>(queries.size()), 2});
+          },
+          py::arg("name"))
+      .def("metadata",
+           [](const mosb::GraphReader& r) {
+             py::dict entries;
+             for (const auto& [key, value] : r.metadata().entries())
+               entries[py::str(key)] = py::str(value);
+             return entries;
+           })
+      .def(
+          "verify",
+          [](const mosb::GraphReader& r, const std::string& level) {
+            const auto parsed = mosb::parse_verify_level(level);
+            if (!parsed)
+              throw py::value_error("verify level '" + level +
+                                    "' is not one of header, checksums, structure, full");
+            std::optional<std::string> problem;
+            {
+              py::gil_scoped_release release;
+              problem = mosb::verify(r, *parsed);
+            }
+            // The message the CLI's `mosb verify` prints after FAIL.
+            if (problem) throw mosb::Error(r.display_name() + ": " + *problem);
+          },
+          py::arg("level"))
+      .def("mapping_range", [](const mosb::GraphReader& r) {
+        return py::make_tuple(reinterpret_cast<std::uintptr_t>(r.bytes().data()),
+                              r.bytes().size());
+      });
+}
