@@ -48,6 +48,10 @@ extension = Pybind11Extension(
     [relative(os.path.join(here, "src", "mosb_module.cpp"))] + library_sources(),
     include_dirs=[os.path.join(root, "lib", "include"), os.path.join(root, "format", "include"),
                   os.path.join(root, "lib", "src")],
+    # Headers too: setuptools rebuilds the extension only when one of these is newer than it.
+    depends=[relative(h) for pattern in ("lib/include/mosb/*.hpp", "format/include/mosb/*.hpp",
+                                         "lib/src/*.hpp")
+             for h in sorted(glob.glob(os.path.join(root, pattern)))],
     libraries=["xxhash"],
     cxx_std=20,
 )

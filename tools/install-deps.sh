@@ -10,6 +10,8 @@ packages=(
   gzip bzip2 xz-utils zstd                  # compressed test fixtures
   doctest-dev                               # unit tests
   python3 python3-numpy python3-xxhash      # the reference reader and the CLI tests
+  python3-dev python3-pybind11 pybind11-dev python3-setuptools python3-pip python3-venv  # python/
+  python3-scipy python3-pandas python3-networkx python3-igraph  # python/'s adapters (optional)
   clang libclang-rt-14-dev                  # libFuzzer
 )
 missing=()

@@ -100,8 +100,8 @@ class Instance:
 
     def arc_sources(self):
         """u32, m: the tail of each forward arc (computed, not stored: a new array)."""
-        offsets = self.forward_offsets
-        return np.repeat(np.arange(self.vertex_count, dtype=np.uint32), np.diff(offsets))
+        out_degrees = np.diff(self.forward_offsets.view(np.int64))  # offsets <= m < 2^32
+        return np.repeat(np.arange(self.vertex_count, dtype=np.uint32), out_degrees)
 
     # --- objectives, views, queries --------------------------------------------------------
     @property

@@ -1,14 +1,15 @@
 #!/usr/bin/python3
 """Independent reference reader for .mosb instance files (format 1.0).
 
-Written from spec/FORMAT.md alone. Standard library + numpy; XXH3 checks
-(header checksum, section checksums) run only when the `xxhash` module is
-importable (Debian: python3-xxhash), else they are skipped silently.
+Written from spec/FORMAT.md alone. Standard library + numpy + xxhash (the
+header checksum is an open check, §9 step 5, so the reader refuses to run
+without the `xxhash` module; Debian: python3-xxhash).
 
     inst = open_instance("grid.mosb")
     inst.n, inst.m, inst.version, inst.metadata
     inst.array(inst.section("forward_offsets"))   # zero-copy numpy.memmap
     inst.costs(), inst.queries()
+    inst.verify("structure")   # §9 verification levels
 """
 import collections
 import os
@@ -20,8 +21,9 @@ import numpy as np
 
 try:
     import xxhash
-except ImportError:  # header checksum (§9 step 5) is then skipped
-    xxhash = None
+except ImportError as e:  # §9 step 5 cannot be skipped: refuse to run rather than read unchecked
+    raise ImportError("mosb_reader: the xxhash module is required for the header checksum "
+                      "(FORMAT.md §9 step 5); install python3-xxhash") from e
 
 MAGIC = b"\x89MOS\r\n\x1a\n"
 BOM = 0x01020304
@@ -51,7 +53,10 @@ KIND_NAMES = {1: "metadata", 2: "forward_offsets", 3: "forward_targets",
               7: "cost", 8: "vertex_data", 9: "arc_data", 10: "queries"}
 STRUCTURAL = (METADATA, FORWARD_OFFSETS, FORWARD_TARGETS,
               REVERSE_OFFSETS, REVERSE_SOURCES, REVERSE_ARCS)
-KNOWN_REQUIRED_FEATURES = 1 << 0  # bit 0: zstd-sections (§6)
+ZSTD_SECTIONS = 1 << 0  # required bit 0 (§6)
+KNOWN_REQUIRED_FEATURES = ZSTD_SECTIONS
+ID_LIMIT = (1 << 32) - 2  # §4, §9 step 8: n and m at most 2^32-2
+VERIFY_LEVELS = ("header", "checksums", "structure", "full")
 
 NAME_RE = re.compile(rb"[A-Za-z0-9_.+-]{1,24}")
 KEY_RE = re.compile(r"[A-Za-z0-9_.+-]+")
@@ -152,22 +157,90 @@ class Instance:
         return {s.name: self.array(s) for s in self.of_kind(QUERIES)}
 
     def verify_checksums(self):
-        """Recompute every raw section's XXH3-64. Returns False if xxhash is unavailable."""
-        if xxhash is None:
-            return False
+        """Recompute every raw section's XXH3-64 (§8); FormatError on a mismatch."""
         for s in self.sections:
             if s.encoding != 0:
-                continue
+                raise FormatError("section %r is packed: its checksum covers the decoded "
+                                  "elements, which this reader does not decode" % s.name)
             h = xxhash.xxh3_64_intdigest(np.ascontiguousarray(self.array(s)).tobytes())
             if h != s.checksum:
-                raise FormatError("section %r: checksum %016x, stored %016x"
+                raise FormatError("section %r: checksum mismatch: computed %016x, stored %016x"
                                   % (s.name, h, s.checksum))
-        return True
+
+    def verify_structure(self):
+        """The structure level of §9: CSR, transpose, costs, queries, metadata and views."""
+        n, m = self.n, self.m
+        for kind, ids, bound, what in ((FORWARD_OFFSETS, None, None, None),
+                                       (REVERSE_OFFSETS, None, None, None),
+                                       (FORWARD_TARGETS, True, n, "target"),
+                                       (REVERSE_SOURCES, True, n, "source"),
+                                       (REVERSE_ARCS, True, m, "arc id")):
+            s = self.of_kind(kind)[0]
+            a = self.array(s)
+            if ids is None:
+                bad = np.flatnonzero(a[1:] < a[:-1])
+                if bad.size:
+                    raise FormatError("%s: offsets decrease at entry %d" % (s.name, bad[0] + 1))
+            else:
+                bad = np.flatnonzero(a >= bound)
+                if bad.size:
+                    raise FormatError("%s: entry %d is %s %d, not < %d"
+                                      % (s.name, bad[0], what, a[bad[0]], bound))
+        # The reverse CSR must be exactly the transpose (§4): in-arcs of v are the arcs with
+        # head v in increasing arc id, and each entry's source is that arc's tail.
+        offsets = self.array(self.of_kind(FORWARD_OFFSETS)[0]).astype(np.int64)
+        targets = self.array(self.of_kind(FORWARD_TARGETS)[0])
+        tails = np.repeat(np.arange(n, dtype=np.uint32), np.diff(offsets))
+        expected_arcs = np.argsort(targets, kind="stable").astype(np.uint32)
+        expected_offsets = np.concatenate(([0], np.cumsum(np.bincount(targets, minlength=n))))
+        for kind, expected in ((REVERSE_OFFSETS, expected_offsets),
+                               (REVERSE_ARCS, expected_arcs),
+                               (REVERSE_SOURCES, tails[expected_arcs])):
+            s = self.of_kind(kind)[0]
+            bad = np.flatnonzero(self.array(s) != expected)
+            if bad.size:
+                raise FormatError("%s: entry %d is not the transpose of the forward CSR"
+                                  % (s.name, bad[0]))
+        for s in self.of_kind(COST):
+            if s.element_type in ("f32", "f64"):
+                a = self.array(s)
+                bad = np.flatnonzero(~(np.isfinite(a) & (a >= 0)))
+                if bad.size:
+                    raise FormatError("cost %r: arc %d has %r, not finite and >= 0"
+                                      % (s.name, bad[0], a[bad[0]]))
+        for s in self.of_kind(QUERIES):
+            a = self.array(s)
+            bad = np.flatnonzero((a >= n).any(axis=1)) if a.size else []
+            if len(bad):
+                raise FormatError("query set %r: row %d has a vertex id not < n=%d"
+                                  % (s.name, bad[0], n))
+        metadata = self.metadata
+        objectives = {s.name for s in self.of_kind(COST)}
+        query_sets = {s.name for s in self.of_kind(QUERIES)}
+        for key, value in metadata.items():
+            if not key.startswith("view."):
+                continue
+            if key.endswith(".objectives"):
+                missing = [o for o in value.split(",") if o not in objectives]
+                if missing:
+                    raise FormatError("metadata %s names objective %r, not a cost section"
+                                      % (key, missing[0]))
+            elif key.endswith(".queries") and value not in query_sets:
+                raise FormatError("metadata %s names query set %r, not a queries section"
+                                  % (key, value))
+
+    def verify(self, level="full"):
+        """§9 verification levels: header (the open checks, already done), checksums,
+        structure, full. FormatError on the first problem."""
+        if level not in VERIFY_LEVELS:
+            raise ValueError("level %r is not one of %s" % (level, ", ".join(VERIFY_LEVELS)))
+        if level in ("checksums", "full"):
+            self.verify_checksums()
+        if level in ("structure", "full"):
+            self.verify_structure()
 
     def content_digest(self):
-        """§8: XXH3-128 of the table with encoding, offset, stored_length zeroed (or None)."""
-        if xxhash is None:
-            return None
+        """§8: XXH3-128 of the table with encoding, offset, stored_length zeroed."""
         table = b"".join(ENTRY.pack(s.name.encode().ljust(24, b"\0"), s.kind,
                                     _type_code(s.element_type), 0, s.row_width,
                                     s.row_count, 0, 0, s.checksum) for s in self.sections)
@@ -193,7 +266,7 @@ def _check_magic(magic):
 
 
 def open_instance(path):
-    """Open and validate a .mosb file (§9 steps 1-9, step 5 when xxhash is available)."""
+    """Open and validate a .mosb file (§9 steps 1-9)."""
     with open(path, "rb") as f:
         actual_size = os.fstat(f.fileno()).st_size
         head = f.read(HEADER_SIZE)
@@ -233,11 +306,10 @@ def open_instance(path):
         f.seek(to)
         table = f.read(ENTRY_SIZE * count)
     # 5. header checksum
-    if xxhash is not None:
-        got = xxhash.xxh3_64_intdigest(head[:120] + table)
-        if got != h["header_checksum"]:
-            raise FormatError("header checksum mismatch: computed %016x, stored %016x"
-                              % (got, h["header_checksum"]))
+    got = xxhash.xxh3_64_intdigest(head[:120] + table)
+    if got != h["header_checksum"]:
+        raise FormatError("header checksum mismatch: computed %016x, stored %016x"
+                          % (got, h["header_checksum"]))
     # 6. required features (encodings are refused later, by array())
     unknown = h["required_features"] & ~KNOWN_REQUIRED_FEATURES
     if unknown:
@@ -268,13 +340,17 @@ def open_instance(path):
         if enc == 0 and stored != length:
             raise FormatError("%s: raw stored_length %d != rows*width*size %d"
                               % (where, stored, length))
-        if enc == 1 and not h["required_features"] & 1:
+        if enc == 1 and not h["required_features"] & ZSTD_SECTIONS:
             raise FormatError("%s: zstd encoding but required bit 0 (zstd-sections) "
                               "is not set" % where)
         if off % ALIGN or off < HEADER_SIZE or off + stored > to:
             raise FormatError("%s: payload [%d, %d) must start 64-aligned and lie in "
                               "[128, table_offset=%d)" % (where, off, off + stored, to))
         sections.append(s)
+    # §6: bit 0 is set if and only if some section is zstd-encoded; both mismatches are refused.
+    if h["required_features"] & ZSTD_SECTIONS and not any(s.encoding == 1 for s in sections):
+        raise FormatError("required bit 0 (zstd-sections) is set but no section is "
+                          "zstd-encoded")
     spans = sorted((s.offset, s.offset + s.stored_length, s.name)
                    for s in sections if s.stored_length)
     for (a0, a1, an), (b0, b1, bn) in zip(spans, spans[1:]):
@@ -283,8 +359,8 @@ def open_instance(path):
                               % (an, a0, a1, bn, b0, b1))
     # 8. kinds, types, widths, counts
     n, m = h["vertex_count"], h["arc_count"]
-    if n >= (1 << 32) or m >= (1 << 32):
-        raise FormatError("n=%d or m=%d too large (vertex ids < 2^32-1, m < 2^32)" % (n, m))
+    if n > ID_LIMIT or m > ID_LIMIT:
+        raise FormatError("n=%d or m=%d too large (both must be at most 2^32-2)" % (n, m))
     expect = {  # kind: (allowed types or None, width or None, rows or None)
         METADATA: ({"u8"}, 1, None), FORWARD_OFFSETS: ({"u64"}, 1, n + 1),
         FORWARD_TARGETS: ({"u32"}, 1, m), REVERSE_OFFSETS: ({"u64"}, 1, n + 1),
@@ -329,10 +405,14 @@ def open_instance(path):
 
 
 def main(argv):
-    if len(argv) != 2:
-        sys.exit("usage: mosb_reader.py FILE.mosb")
+    level = "header"
+    if len(argv) == 4 and argv[2] == "--level" and argv[3] in VERIFY_LEVELS:
+        level = argv[3]
+    elif len(argv) != 2:
+        sys.exit("usage: mosb_reader.py FILE.mosb [--level %s]" % "|".join(VERIFY_LEVELS))
     try:
         inst = open_instance(argv[1])
+        inst.verify(level)
     except FormatError as e:
         sys.exit("%s: %s" % (argv[1], e))
     print("n=%d m=%d version=%d.%d sections=%d" % (inst.n, inst.m, inst.version[0],

@@ -1,0 +1,368 @@
+#!/usr/bin/python3
+"""The `mosb` Python package (python/), installed the way the README says: a venv with
+--system-site-packages and `pip install --no-build-isolation --no-index ./python`.
+
+Run under /usr/bin/python3 by ctest with MOSB (the program), MOSB_DUMP_JSON (the C++ dump tool),
+MOSB_SOURCE_DIR and MOSB_PY_VENV (where to build the venv). The script installs the package into
+that venv, then re-runs itself with the venv's interpreter, so every test imports the installed
+package, not the source tree.
+"""
+import gc
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import unittest
+
+import numpy as np
+
+SOURCE = os.environ["MOSB_SOURCE_DIR"]
+MOSB = os.environ["MOSB"]
+DUMP_JSON = os.environ["MOSB_DUMP_JSON"]
+VENV = os.environ["MOSB_PY_VENV"]
+SHARED_DATA = os.path.join(SOURCE, "..", "shared", "data")
+NETMAKER = os.path.join(SHARED_DATA, "netmaker",
+                        "netMaker_3o_10000n_1amin_10amax_20i_1s_scorr_79134.gr")
+DTYPES = {"u8": "uint8", "u16": "uint16", "u32": "uint32", "u64": "uint64", "f32": "float32",
+          "f64": "float64"}
+GOLDEN_SMALL = os.path.join(SOURCE, "spec", "golden", "1.0", "valid", "small.mosb")
+
+
+def install_and_reexec():
+    """The README's route, verbatim apart from the paths."""
+    python = os.path.join(VENV, "bin", "python")
+    subprocess.run(["/usr/bin/python3", "-m", "venv", "--system-site-packages", VENV], check=True)
+    env = dict(os.environ)
+    if shutil.which("ccache"):  # the extension compiles the library sources: cache them
+        env.setdefault("CC", "ccache gcc")
+        env.setdefault("CCACHE_BASEDIR", os.path.dirname(SOURCE))
+    log = os.path.join(os.path.dirname(VENV), "pip-install.log")
+    with open(log, "w") as out:
+        done = subprocess.run([python, "-m", "pip", "install", "--no-build-isolation", "--no-index",
+                               os.path.join(SOURCE, "python")],
+                              stdout=out, stderr=subprocess.STDOUT, env=env)
+    if done.returncode != 0:
+        with open(log) as f:
+            sys.exit("pip install ./python failed:\n" + f.read()[-4000:])
+    os.environ["MOSB_PY_INSTALLED"] = "1"
+    os.execv(python, [python, os.path.abspath(__file__)] + sys.argv[1:])
+
+
+if __name__ == "__main__" and not os.environ.get("MOSB_PY_INSTALLED"):
+    install_and_reexec()
+
+import mosb  # noqa: E402 (only importable once installed)
+
+
+def run(*args):
+    return subprocess.run([str(a) for a in args], capture_output=True, text=True)
+
+
+def cpp_dump(path):
+    """Everything the C++ reader sees in the file (tests/unit/dump_json.cpp)."""
+    done = run(DUMP_JSON, path)
+    if done.returncode != 0:
+        raise AssertionError(done.stderr)
+    return json.loads(done.stdout)
+
+
+def patch(path, offset, data):
+    with open(path, "r+b") as f:
+        f.seek(offset)
+        f.write(data)
+
+
+class Temp(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="mosb-python-")
+        self.addCleanup(shutil.rmtree, self.dir)
+
+    def generate_grid(self, name="grid.mosb", *extra):
+        out = os.path.join(self.dir, name)
+        done = run(MOSB, "generate", "grid", "--width", 30, "--height", 20, "--objectives", 3,
+                   "--seed", 4, *extra, "-o", out)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        return out
+
+    def assert_same_as_cpp(self, path):
+        """Every array, the metadata and the digest equal what the C++ reader reports."""
+        g = mosb.open(path)
+        dump = cpp_dump(path)
+        self.assertEqual((g.vertex_count, g.arc_count), (dump["n"], dump["m"]))
+        self.assertEqual(g.metadata, dump["metadata"])
+        by_kind = {}
+        for s in dump["sections"]:
+            by_kind.setdefault(s["kind"], []).append(s)
+        structural = {2: g.forward_offsets, 3: g.forward_targets, 4: g.reverse_offsets,
+                      5: g.reverse_sources, 6: g.reverse_arcs}
+        for kind, array in structural.items():
+            (s,) = by_kind[kind]
+            self.assertEqual(array.dtype.name, DTYPES[s["type"]])
+            self.assertEqual(array.tolist(), s["values"], s["name"])
+        costs = by_kind.get(7, [])
+        self.assertEqual(g.objectives, tuple(s["name"] for s in costs))
+        for i, s in enumerate(costs):
+            for key in (i, s["name"]):
+                column = g.cost(key)
+                self.assertEqual(column.dtype.name, DTYPES[s["type"]])
+                self.assertEqual(column.tolist(), s["values"], s["name"])
+        queries = by_kind.get(10, [])
+        self.assertEqual(g.query_sets, tuple(s["name"] for s in queries))
+        for s in queries:
+            rows = g.queries(s["name"])
+            self.assertEqual(rows.shape, (s["rows"], 2))
+            self.assertEqual(rows.reshape(-1).tolist(), s["values"])
+        inspect = json.loads(run(MOSB, "inspect", "--json", path).stdout)
+        self.assertEqual(g.digest, inspect["digest"])
+        return g
+
+
+class InstallTest(unittest.TestCase):
+    def test_imported_from_the_venv_not_the_source_tree(self):
+        package_dir = os.path.realpath(os.path.dirname(mosb.__file__))
+        self.assertTrue(package_dir.startswith(os.path.realpath(VENV)), package_dir)
+        self.assertIn("site-packages", package_dir)
+
+    def test_version_is_the_projects(self):
+        with open(os.path.join(SOURCE, "CMakeLists.txt")) as f:
+            version = re.search(r"project\(\s*mosb\s+VERSION\s+([0-9.]+)", f.read()).group(1)
+        self.assertEqual(mosb.__version__, version)
+        self.assertIn(version, run(MOSB, "--version").stdout + run(MOSB, "--version").stderr)
+
+    def test_import_loads_no_optional_library(self):
+        done = run(sys.executable, "-c",
+                   "import sys, mosb; print(sorted(m for m in ('scipy', 'pandas', 'networkx', "
+                   "'igraph') if m in sys.modules))")
+        self.assertEqual(done.returncode, 0, done.stderr)
+        self.assertEqual(done.stdout.strip(), "[]")
+
+
+class ValuesTest(Temp):
+    def test_golden_small_equals_cpp(self):
+        g = self.assert_same_as_cpp(GOLDEN_SMALL)
+        # small.mosb holds u16, f32, f64, u32 and u64 cost columns.
+        self.assertEqual({g.cost(o).dtype.name for o in g.objectives},
+                         {"uint16", "float32", "float64", "uint32", "uint64"})
+
+    def test_generated_grids_equal_cpp(self):
+        self.assert_same_as_cpp(self.generate_grid())
+        tiny = os.path.join(self.dir, "tiny.mosb")
+        run(MOSB, "generate", "grid", "--width", 1, "--height", 1, "--objectives", 1, "--seed", 1,
+            "-o", tiny)
+        g = self.assert_same_as_cpp(tiny)
+        self.assertEqual(g.arc_count, 0)
+        self.assertEqual(g.forward_targets.shape, (0,))
+
+    def test_open_accepts_path_objects_and_verify(self):
+        import pathlib
+        g = mosb.open(pathlib.Path(GOLDEN_SMALL), verify="full")
+        self.assertEqual(g.path, GOLDEN_SMALL)
+        for level in mosb.VERIFY_LEVELS:
+            g.verify(level)
+        with self.assertRaisesRegex(ValueError, "header, checksums, structure, full"):
+            g.verify("everything")
+
+
+class ZeroCopyTest(Temp):
+    def test_two_accessors_share_the_mapping(self):
+        g = mosb.open(self.generate_grid())
+        start, size = g._reader.mapping_range()
+        for name in ("forward_offsets", "forward_targets", "reverse_offsets", "reverse_sources",
+                     "reverse_arcs"):
+            first, second = getattr(g, name), getattr(g, name)
+            self.assertTrue(np.shares_memory(first, second), name)
+            self.assertTrue(start <= first.ctypes.data and
+                            first.ctypes.data + first.nbytes <= start + size, name)
+        for i, objective in enumerate(g.objectives):
+            self.assertTrue(np.shares_memory(g.cost(i), g.cost(objective)))
+            self.assertTrue(start <= g.cost(i).ctypes.data < start + size)
+        rows = g.queries(g.query_sets[0])
+        self.assertTrue(np.shares_memory(rows, g.queries(g.query_sets[0])))
+        self.assertTrue(start <= rows.ctypes.data < start + size)
+
+    def test_arrays_are_read_only(self):
+        g = mosb.open(GOLDEN_SMALL)
+        for array in (g.forward_offsets, g.forward_targets, g.reverse_arcs, g.cost("time"),
+                      g.queries("default")):
+            self.assertFalse(array.flags.writeable)
+            self.assertFalse(array.flags.owndata)
+            with self.assertRaises(ValueError):
+                array[0] = 1
+            with self.assertRaisesRegex(ValueError, "WRITEABLE"):
+                array.setflags(write=True)
+
+    def test_array_outlives_the_handle_and_the_file_name(self):
+        path = self.generate_grid()
+        expected = cpp_dump(path)
+        g = mosb.open(path)
+        targets, cost = g.forward_targets, g.cost(1)
+        del g
+        gc.collect()
+        os.unlink(path)  # the mapping, not the name, holds the data
+        gc.collect()
+        self.assertEqual(targets.tolist(), next(s["values"] for s in expected["sections"]
+                                                if s["kind"] == 3))
+        self.assertEqual(cost.tolist(), [s for s in expected["sections"] if s["kind"] == 7][1]
+                         ["values"])
+
+
+class ErrorTest(Temp):
+    def cli_verify_failure(self, path, level):
+        done = run(MOSB, "verify", "--level", level, path)
+        self.assertEqual(done.returncode, 1)
+        self.assertTrue(done.stdout.startswith("FAIL "), done.stdout)
+        return done.stdout[len("FAIL "):].rstrip("\n")
+
+    def test_damaged_header_same_message_as_cli(self):
+        path = self.generate_grid("damaged.mosb")
+        patch(path, 64, b"\x07")  # vertex_count: the header checksum no longer matches
+        with self.assertRaises(mosb.Error) as caught:
+            mosb.open(path)
+        message = str(caught.exception)
+        self.assertIn(path, message)
+        self.assertNotIn("\n", message)
+        self.assertEqual(message, self.cli_verify_failure(path, "header"))
+        done = run(MOSB, "inspect", path)
+        self.assertEqual(done.stderr.strip(), "mosb: " + message)
+
+    def test_damaged_section_same_message_as_cli(self):
+        path = self.generate_grid("targets.mosb")
+        g = mosb.open(path)
+        offset = int(g.forward_targets.ctypes.data - g._reader.mapping_range()[0])
+        del g
+        patch(path, offset, (0xFFFFFFF0).to_bytes(4, "little"))
+        g = mosb.open(path)  # open checks are O(1): the damage shows when verifying
+        for level in ("checksums", "structure"):
+            with self.assertRaises(mosb.Error) as caught:
+                g.verify(level)
+            self.assertIn(path, str(caught.exception))
+            self.assertEqual(str(caught.exception), self.cli_verify_failure(path, level))
+        with self.assertRaises(mosb.Error):
+            mosb.open(path, verify="full")
+
+    def test_golden_invalid_files_fail_where_expected(self):
+        directory = os.path.join(SOURCE, "spec", "golden", "1.0", "invalid")
+        with open(os.path.join(directory, "EXPECTED.tsv")) as f:
+            rows = [line.rstrip("\n").split("\t") for line in f if not line.startswith("#")]
+        for name, level, fragment in rows:
+            path = os.path.join(directory, name)
+            with self.assertRaises(mosb.Error, msg=name) as caught:
+                mosb.open(path, verify="header" if level == "open" else level)
+            self.assertIn(fragment, str(caught.exception))
+            self.assertIn(path, str(caught.exception))
+
+    def test_lookup_errors(self):
+        g = mosb.open(GOLDEN_SMALL)
+        with self.assertRaisesRegex(mosb.Error, "no objective named 'nope'"):
+            g.cost("nope")
+        with self.assertRaisesRegex(mosb.Error, "objective index 9 out of range"):
+            g.cost(9)
+        with self.assertRaises(IndexError):
+            g.cost(-1)
+        with self.assertRaisesRegex(mosb.Error, "no query set named 'nope'"):
+            g.queries("nope")
+        with self.assertRaisesRegex(mosb.Error, "cannot open"):
+            mosb.open(os.path.join(self.dir, "missing.mosb"))
+
+
+class AdapterTest(Temp):
+    def test_scipy_csr_shares_every_cost_type(self):
+        import scipy.sparse
+        g = mosb.open(GOLDEN_SMALL)
+        n = g.vertex_count
+        sources = g.arc_sources()
+        for objective in g.objectives:
+            matrix = g.to_scipy_csr(objective)
+            cost = g.cost(objective)
+            self.assertIsInstance(matrix, scipy.sparse.csr_matrix)
+            self.assertEqual(matrix.shape, (n, n))
+            self.assertEqual(matrix.dtype, cost.dtype, objective)
+            self.assertTrue(np.shares_memory(matrix.data, cost), objective)
+            self.assertTrue(np.shares_memory(matrix.indices, g.forward_targets), objective)
+            dense = np.zeros((n, n), dtype=np.float64)
+            np.add.at(dense, (sources, g.forward_targets), cost.astype(np.float64))
+            self.assertTrue(np.array_equal(matrix.toarray().astype(np.float64), dense), objective)
+
+    def test_networkx_igraph_pandas(self):
+        g = mosb.open(GOLDEN_SMALL)
+        sources, targets = g.arc_sources().tolist(), g.forward_targets.tolist()
+        nx_graph = g.to_networkx()
+        self.assertEqual(nx_graph.number_of_nodes(), g.vertex_count)
+        self.assertEqual(nx_graph.number_of_edges(), g.arc_count)
+        for a in range(g.arc_count):
+            attributes = nx_graph.edges[sources[a], targets[a], a]
+            self.assertEqual(attributes, {o: g.cost(o)[a].item() for o in g.objectives})
+        ig_graph = g.to_igraph()
+        self.assertTrue(ig_graph.is_directed())
+        self.assertEqual(ig_graph.vcount(), g.vertex_count)
+        self.assertEqual([e.tuple for e in ig_graph.es], list(zip(sources, targets)))
+        for o in g.objectives:
+            self.assertEqual(ig_graph.es[o], g.cost(o).tolist())
+        frame = g.arcs_frame()
+        self.assertEqual(list(frame.columns), ["source", "target"] + list(g.objectives))
+        self.assertEqual(frame["source"].tolist(), sources)
+        self.assertEqual(frame["target"].tolist(), targets)
+        for o in g.objectives:
+            self.assertEqual(frame[o].tolist(), g.cost(o).tolist())
+            self.assertEqual(frame[o].dtype, g.cost(o).dtype)
+
+    def test_missing_library_named(self):
+        g = mosb.open(GOLDEN_SMALL)
+        for method, module, package in (("to_scipy_csr", "scipy.sparse", "scipy"),
+                                        ("to_networkx", "networkx", "networkx"),
+                                        ("to_igraph", "igraph", "igraph"),
+                                        ("arcs_frame", "pandas", "pandas")):
+            saved = sys.modules.get(module)
+            sys.modules[module] = None  # makes `import module` raise ImportError
+            try:
+                args = (0,) if method == "to_scipy_csr" else ()
+                with self.assertRaisesRegex(ImportError, "%s needs the Python package '%s'"
+                                            % (method, package)):
+                    getattr(g, method)(*args)
+            finally:
+                if saved is None:
+                    del sys.modules[module]
+                else:
+                    sys.modules[module] = saved
+
+
+@unittest.skipUnless(os.path.isfile(NETMAKER),
+                     "real NetMaker fixture not found: ../shared/data is absent")
+class RealNetMakerTest(Temp):
+    def setUp(self):
+        super().setUp()
+        self.path = os.path.join(self.dir, "netmaker.mosb")
+        done = run(MOSB, "convert", "netmaker", NETMAKER, "-o", self.path)
+        self.assertEqual(done.returncode, 0, done.stderr)
+
+    def test_values_equal_cpp(self):
+        g = self.assert_same_as_cpp(self.path)
+        self.assertEqual((g.vertex_count, g.arc_count), (10000, 59750))
+        g.verify("full")
+
+    def test_scipy_matrix_without_copying_costs(self):
+        g = mosb.open(self.path)
+        start, size = g._reader.mapping_range()
+        with open(NETMAKER) as f:
+            arcs = [line.split() for line in f if line.startswith("a ")]
+        for i, objective in enumerate(g.objectives):
+            matrix = g.to_scipy_csr(objective)
+            self.assertTrue(np.shares_memory(matrix.data, g.cost(objective)))
+            self.assertTrue(start <= matrix.data.ctypes.data < start + size)
+            self.assertFalse(matrix.data.flags.writeable)
+            # Every arc of the text file is an entry of the matrix (the sum over parallel arcs).
+            expected = {}
+            for a in arcs:
+                key = (int(a[1]), int(a[2]))
+                expected[key] = expected.get(key, 0) + int(a[3 + i])
+            coo = matrix.tocoo()
+            self.assertEqual(int(coo.sum()), sum(expected.values()))
+            tail, head = arcs[123][1:3]
+            self.assertEqual(matrix[int(tail), int(head)], expected[int(tail), int(head)])
+
+
+if __name__ == "__main__":
+    unittest.main()
