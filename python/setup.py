@@ -40,20 +40,41 @@ def project_version():
     return match.group(1)
 
 
+def generated_include_dir(version):
+    """Headers CMake generates with configure_file (lib/*.hpp.in -> include/mosb/*.hpp), made
+    here the same way, from the same templates and the same version."""
+    out = os.path.join(here, "build", "generated")
+    major, minor, patch = (version.split(".") + ["0", "0"])[:3]
+    values = {"PROJECT_VERSION": version, "PROJECT_VERSION_MAJOR": major,
+              "PROJECT_VERSION_MINOR": minor, "PROJECT_VERSION_PATCH": patch}
+    for template in sorted(glob.glob(os.path.join(root, "lib", "*.hpp.in"))):
+        with open(template, encoding="utf-8") as f:
+            text = re.sub(r"@([A-Za-z_]+)@", lambda m: values[m.group(1)], f.read())
+        target = os.path.join(out, "mosb", os.path.basename(template)[:-len(".in")])
+        os.makedirs(os.path.dirname(target), exist_ok=True)
+        with open(target, "w", encoding="utf-8") as f:
+            f.write(text)
+    return out
+
+
+version = project_version()
+
 # Two jobs: the build machines are shared (see README); NPY_NUM_BUILD_JOBS overrides.
 ParallelCompile("NPY_NUM_BUILD_JOBS", default=2).install()
 
 extension = Pybind11Extension(
     "mosb._mosb",
     [relative(os.path.join(here, "src", "mosb_module.cpp"))] + library_sources(),
-    include_dirs=[os.path.join(root, "lib", "include"), os.path.join(root, "format", "include"),
-                  os.path.join(root, "lib", "src")],
-    # Headers too: setuptools rebuilds the extension only when one of these is newer than it.
-    depends=[relative(h) for pattern in ("lib/include/mosb/*.hpp", "format/include/mosb/*.hpp",
-                                         "lib/src/*.hpp")
+    include_dirs=[generated_include_dir(version), os.path.join(root, "lib", "include"),
+                  os.path.join(root, "format", "include"), os.path.join(root, "lib", "src")],
+    # Headers and templates too: setuptools rebuilds the extension only when one of these (or a
+    # source) is newer than it.
+    depends=[relative(h) for pattern in ("lib/include/*.h", "lib/include/mosb/*.hpp",
+                                         "format/include/mosb/*.hpp", "lib/src/*.hpp",
+                                         "lib/*.hpp.in", "CMakeLists.txt")
              for h in sorted(glob.glob(os.path.join(root, pattern)))],
     libraries=["xxhash"],
     cxx_std=20,
 )
 
-setup(version=project_version(), ext_modules=[extension])
+setup(version=version, ext_modules=[extension])

@@ -140,6 +140,31 @@ class InstallTest(unittest.TestCase):
         self.assertEqual(done.stdout.strip(), "[]")
 
 
+def readme_python_blocks():
+    """The ```sh and ```python blocks of the README's '## Python' section."""
+    with open(os.path.join(SOURCE, "README.md"), encoding="utf-8") as f:
+        text = f.read()
+    section = text.split("\n## Python\n", 1)[1].split("\n## ", 1)[0]
+    return dict(re.findall(r"```(sh|python)\n(.*?)```", section, re.S))
+
+
+class ReadmeTest(Temp):
+    def test_install_commands_are_the_ones_this_test_ran(self):
+        commands = readme_python_blocks()["sh"].splitlines()
+        self.assertIn("/usr/bin/python3 -m venv --system-site-packages .venv", commands)
+        self.assertIn(".venv/bin/pip install --no-build-isolation --no-index ./python", commands)
+
+    def test_example_runs(self):
+        example = readme_python_blocks()["python"]
+        self.assertLessEqual(len(example.splitlines()), 12)
+        self.generate_grid("grid.mosb")
+        done = subprocess.run([sys.executable, "-c", example], cwd=self.dir, capture_output=True,
+                              text=True)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        last = done.stdout.splitlines()[-1]
+        self.assertTrue(last.startswith("602 2340 ('c1', 'c2', 'c3') Grid-30x20 "), last)
+
+
 class ValuesTest(Temp):
     def test_golden_small_equals_cpp(self):
         g = self.assert_same_as_cpp(GOLDEN_SMALL)
