@@ -177,9 +177,22 @@ class ValuesTest(Temp):
         tiny = os.path.join(self.dir, "tiny.mosb")
         run(MOSB, "generate", "grid", "--width", 1, "--height", 1, "--objectives", 1, "--seed", 1,
             "-o", tiny)
-        g = self.assert_same_as_cpp(tiny)
+        self.assert_same_as_cpp(tiny)
+
+    def test_no_arcs(self):
+        text = os.path.join(self.dir, "empty.gr")
+        with open(text, "w") as f:
+            f.write("p sp 3 0\n")
+        path = os.path.join(self.dir, "empty.mosb")
+        done = run(MOSB, "convert", "netmaker", text, "-o", path)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        g = self.assert_same_as_cpp(path)
         self.assertEqual(g.arc_count, 0)
-        self.assertEqual(g.forward_targets.shape, (0,))
+        for array in (g.forward_targets, g.reverse_arcs, g.cost(0)):
+            self.assertEqual(array.shape, (0,))
+            self.assertFalse(array.flags.writeable)
+        self.assertEqual(g.forward_offsets.tolist(), [0, 0, 0, 0])
+        self.assertEqual(g.to_scipy_csr(0).nnz, 0)
 
     def test_open_accepts_path_objects_and_verify(self):
         import pathlib
