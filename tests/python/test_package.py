@@ -308,8 +308,12 @@ class ErrorTest(Temp):
 
 class AdapterTest(Temp):
     def test_scipy_csr_shares_every_cost_type(self):
+        # small.mosb: u16, f32, f64, u32, u64; the grid: u8. Costs are never of another type.
+        for path in (GOLDEN_SMALL, self.generate_grid()):
+            self.check_scipy_csr(mosb.open(path))
+
+    def check_scipy_csr(self, g):
         import scipy.sparse
-        g = mosb.open(GOLDEN_SMALL)
         n = g.vertex_count
         sources = g.arc_sources()
         for objective in g.objectives:
@@ -346,6 +350,20 @@ class AdapterTest(Temp):
         for o in g.objectives:
             self.assertEqual(frame[o].tolist(), g.cost(o).tolist())
             self.assertEqual(frame[o].dtype, g.cost(o).dtype)
+
+    def test_views(self):
+        g = mosb.open(GOLDEN_SMALL)
+        self.assertEqual(g.views, ("Small_2", "Small_5"))
+        self.assertEqual(g.view("Small_2"), mosb.View("Small_2", (0, 1), "default"))
+        self.assertEqual(g.view("Small_5"), mosb.View("Small_5", (0, 1, 2, 3, 4), "reverse"))
+        with self.assertRaisesRegex(mosb.Error, "no view 'nope'"):
+            g.view("nope")
+        edge = next(iter(g.to_networkx("Small_2").edges(data=True)))[2]
+        self.assertEqual(sorted(edge), ["distance", "time"])
+        self.assertEqual(sorted(g.to_igraph(g.view("Small_2")).es.attributes()),
+                         ["distance", "time"])
+        self.assertEqual(list(g.arcs_frame("Small_2").columns),
+                         ["source", "target", "distance", "time"])
 
     def test_missing_library_named(self):
         g = mosb.open(GOLDEN_SMALL)
