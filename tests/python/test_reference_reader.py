@@ -77,6 +77,21 @@ class GoldenTest(unittest.TestCase):
         self.assertIn(bad + ": ", failed.stderr)
 
 
+class IndependenceTest(unittest.TestCase):
+    def test_reference_reader_and_package_share_no_code(self):
+        """The reference reader is the spec's second implementation: it must not use the mosb
+        package (which binds the C++ reader), nor the package the reference reader."""
+        import re
+        for directory, forbidden in (("spec/reference", r"^\s*(import|from)\s+mosb\b"),
+                                     ("python", r"mosb_reader")):
+            for base, _, files in os.walk(os.path.join(SOURCE, directory)):
+                for name in files:
+                    if name.endswith((".py", ".cpp")):
+                        with open(os.path.join(base, name), encoding="utf-8") as f:
+                            self.assertIsNone(re.search(forbidden, f.read(), re.M),
+                                              os.path.join(base, name))
+
+
 class PatchedHeaderTest(unittest.TestCase):
     """Files made from small.mosb with one header or entry field changed, the header checksum
     recomputed, so that only the check under test can refuse them."""
