@@ -6,7 +6,9 @@
     g.cost("c1"), g.queries("default"), g.metadata
 
 The reading, the checks and the error messages are those of the C++ library (the same sources the
-`mosb` program is built from); every failure is a `mosb.Error` whose message names the file.
+`mosb` program is built from); every failure is a `mosb.Error` whose message names the file and
+whose `code` is the C++ ErrorCode's name ("io", "not_mosb", "version", "damaged", "not_found",
+"invalid_argument", "packed", "other").
 Arrays are views into the memory-mapped file: they are read-only and each keeps the mapping alive,
 so they stay valid after the object that handed them out is gone.
 """

@@ -70,12 +70,37 @@ std::vector<std::string> names_of(const std::vector<const mosb::Section*>& secti
   return names;
 }
 
+// mosb.Error.code: the C++ ErrorCode as its enumerator's name, for callers to branch on.
+const char* code_name(mosb::ErrorCode code) {
+  switch (code) {
+    case mosb::ErrorCode::other: return "other";
+    case mosb::ErrorCode::io: return "io";
+    case mosb::ErrorCode::not_mosb: return "not_mosb";
+    case mosb::ErrorCode::version: return "version";
+    case mosb::ErrorCode::damaged: return "damaged";
+    case mosb::ErrorCode::not_found: return "not_found";
+    case mosb::ErrorCode::invalid_argument: return "invalid_argument";
+    case mosb::ErrorCode::packed: return "packed";
+  }
+  return "other";
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_mosb, m) {
   m.doc() = "Binding of the mosb C++ reader; use the `mosb` package, not this module.";
   m.attr("__version__") = mosb::kVersion;
-  py::register_exception<mosb::Error>(m, "Error");
+  // One message line (naming the file) as str(error), and the C++ ErrorCode as error.code.
+  static py::exception<mosb::Error> error_type(m, "Error");
+  py::register_exception_translator([](std::exception_ptr thrown) {
+    try {
+      if (thrown) std::rethrow_exception(thrown);
+    } catch (const mosb::Error& e) {
+      py::object error = py::reinterpret_borrow<py::object>(error_type.ptr())(e.what());
+      error.attr("code") = code_name(e.code());
+      PyErr_SetObject(error_type.ptr(), error.ptr());
+    }
+  });
 
   py::class_<mosb::GraphReader, std::shared_ptr<mosb::GraphReader>>(m, "Reader")
       .def_static(
@@ -128,6 +153,14 @@ PYBIND11_MODULE(_mosb, m) {
                                    {static_cast<py::ssize_t>(queries.size()), 2});
           },
           py::arg("name"))
+      .def("view_names", &mosb::GraphReader::view_names)
+      .def(
+          "view",
+          [](const mosb::GraphReader& r, const std::string& name) {
+            auto view = r.view(name);
+            return py::make_tuple(view.name, view.objectives, view.query_set);
+          },
+          py::arg("name"))
       .def("metadata",
            [](const mosb::GraphReader& r) {
              py::dict entries;
@@ -148,7 +181,8 @@ PYBIND11_MODULE(_mosb, m) {
               problem = mosb::verify(r, *parsed);
             }
             // The message the CLI's `mosb verify` prints after FAIL.
-            if (problem) throw mosb::Error(r.display_name() + ": " + *problem);
+            if (problem)
+              throw mosb::Error(mosb::ErrorCode::damaged, r.display_name() + ": " + *problem);
           },
           py::arg("level"))
       .def("mapping_range", [](const mosb::GraphReader& r) {

@@ -292,6 +292,25 @@ class ErrorTest(Temp):
             self.assertIn(fragment, str(caught.exception))
             self.assertIn(path, str(caught.exception))
 
+    def test_error_codes(self):
+        """mosb.Error.code is the C++ ErrorCode's name, so callers need not match messages."""
+        golden = os.path.join(SOURCE, "spec", "golden", "1.0")
+        g = mosb.open(GOLDEN_SMALL)
+        cases = (
+            (lambda: g.cost("nope"), "not_found"), (lambda: g.view("nope"), "not_found"),
+            (lambda: g.queries("nope"), "not_found"), (lambda: g.cost(9), "invalid_argument"),
+            (lambda: mosb.open(os.path.join(self.dir, "missing.mosb")), "io"),
+            (lambda: mosb.open(os.path.join(golden, "invalid", "bad-magic.mosb")), "not_mosb"),
+            (lambda: mosb.open(os.path.join(golden, "invalid", "newer-major.mosb")), "version"),
+            (lambda: mosb.open(os.path.join(golden, "invalid", "truncated.mosb")), "damaged"),
+            (lambda: mosb.open(os.path.join(golden, "invalid", "target-range.mosb"),
+                               verify="structure"), "damaged"))
+        for call, code in cases:
+            with self.assertRaises(mosb.Error) as caught:
+                call()
+            self.assertEqual(caught.exception.code, code, str(caught.exception))
+            self.assertEqual(caught.exception.args, (str(caught.exception),))
+
     def test_lookup_errors(self):
         g = mosb.open(GOLDEN_SMALL)
         with self.assertRaisesRegex(mosb.Error, "no objective named 'nope'"):
