@@ -129,13 +129,15 @@ class InstalledPackage(unittest.TestCase):
     def tearDownClass(cls):
         shutil.rmtree(cls.tmp, ignore_errors=True)
 
-    def consumer(self, prefix, via, name):
-        build = os.path.join(self.tmp, name)
-        env = dict(os.environ, PKG_CONFIG_PATH=os.path.join(libdir(prefix), "pkgconfig"))
+    def consumer(self, prefix, via, name, build=None, *extra):
+        build = build or os.path.join(self.tmp, name)
+        env = dict(os.environ)
+        if prefix:
+            env["PKG_CONFIG_PATH"] = os.path.join(libdir(prefix), "pkgconfig")
+            extra += ("-DCMAKE_PREFIX_PATH=" + prefix,)
         run(CMAKE, "-S", os.path.join(SOURCE, "tests", "install", "consumer"), "-B", build,
             "-DMOSB_VIA=" + via, "-DSNIPPETS=" + self.snippets,
-            "-DEXAMPLES=" + os.path.join(SOURCE, "examples"), "-DCMAKE_PREFIX_PATH=" + prefix,
-            env=env)
+            "-DEXAMPLES=" + os.path.join(SOURCE, "examples"), *extra, env=env)
         run(CMAKE, "--build", build, "-j2", env=env)
         for program in ("readme_c", "readme_cpp", "dijkstra", "c_api_doc"):
             out = run(os.path.join(build, program), self.grid).splitlines()
@@ -188,6 +190,16 @@ class InstalledPackage(unittest.TestCase):
         build = os.path.join(self.tmp, "examples")
         run(CMAKE, "-S", examples, "-B", build, "-DCMAKE_PREFIX_PATH=" + self.prefix)
         run(CMAKE, "--build", build, "-j2")
+
+    def test_add_subdirectory_builds_the_libraries_only(self):
+        # As a subproject, mosb must not look for CLI11, Boost or doctest, nor build the program.
+        build = os.path.join(BUILD, "install-test-subdirectory")
+        self.consumer(None, "subdirectory", None, build, "-DMOSB_SOURCE=" + SOURCE, "-G", "Ninja",
+                      "-DCMAKE_DISABLE_FIND_PACKAGE_CLI11=ON",
+                      "-DCMAKE_DISABLE_FIND_PACKAGE_Boost=ON",
+                      "-DCMAKE_DISABLE_FIND_PACKAGE_doctest=ON")
+        self.assertFalse(os.path.exists(os.path.join(build, "mosb", "tools")))
+        self.assertFalse(os.path.exists(os.path.join(build, "mosb", "tests")))
 
     def test_shared_library_only_build(self):
         # mosb as a library only: no CLI11, Boost or doctest may be looked up, and the shared
