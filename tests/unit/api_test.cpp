@@ -5,6 +5,7 @@
 #include <thread>
 #include <typeinfo>
 
+#include "file_patch.hpp"
 #include "golden_input.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/version.hpp"
@@ -95,6 +96,28 @@ TEST_CASE("a view without a query set has an empty one, and order follows the ke
   CHECK(v.objectives == std::vector<std::size_t>{4, 0});
   CHECK(v.query_set.empty());
   CHECK(r.view_names() == std::vector<std::string>{"Reordered", "Small_2", "Small_5"});
+}
+
+TEST_CASE("a view naming a missing objective or query set is damage, found by view()") {
+  testing::TempDir dir;
+  auto bytes = testing::read_bytes(kGolden / "valid" / "small.mosb");
+  // Same-length edits inside the metadata section (open checks no section checksum).
+  auto replace = [&](std::string_view from, std::string_view to) {
+    const auto* begin = reinterpret_cast<const char*>(bytes.data());
+    const auto at = std::string_view(begin, bytes.size()).find(from);
+    REQUIRE(at != std::string_view::npos);
+    std::memcpy(bytes.data() + at, to.data(), to.size());
+  };
+  replace("view.Small_2.objectives=distance,time", "view.Small_2.objectives=distance,tame");
+  replace("view.Small_5.queries=reverse", "view.Small_5.queries=reverso");
+  testing::write_bytes(dir / "bad-view.mosb", bytes);
+  const auto r = GraphReader::open(dir / "bad-view.mosb");
+  CHECK_THROWS_WITH_AS((void)r.view("Small_2"),
+                       doctest::Contains("view 'Small_2' names objective 'tame'"), Error);
+  CHECK(code_of([&] { (void)r.view("Small_2"); }) == ErrorCode::damaged);
+  CHECK_THROWS_WITH_AS((void)r.find_view("Small_5"),
+                       doctest::Contains("view 'Small_5' names query set 'reverso'"), Error);
+  CHECK(r.view_names() == std::vector<std::string>{"Small_2", "Small_5"});
 }
 
 TEST_CASE("errors carry a code to branch on") {
