@@ -4,6 +4,7 @@
 #include <limits>
 #include <string>
 
+#include "mosb/converters/narrow_column.hpp"
 #include "mosb/converters/text_input.hpp"
 #include "mosb/converters/text_scan.hpp"
 #include "mosb/error.hpp"
@@ -299,7 +300,6 @@ GraphInput convert_dimacs(const DimacsOptions& options) {
   out.tails = std::move(first.tails);
   out.heads = std::move(first.heads);
   first.arc_lines = {};
-  std::string objective_list;
   for (std::size_t j = 0; j < columns.size(); ++j) {
     CostColumn c;
     if (options.objectives.empty()) {
@@ -307,7 +307,6 @@ GraphInput convert_dimacs(const DimacsOptions& options) {
     } else {
       c.name = options.objectives[j].name;
       c.unit = options.objectives[j].unit;
-      objective_list += (j ? "," : "") + c.name + (c.unit.empty() ? "" : ":" + c.unit);
     }
     c.values = std::move(columns[j]);
     c.forced_type = options.cost_type;
@@ -318,15 +317,7 @@ GraphInput convert_dimacs(const DimacsOptions& options) {
     auto input = read_text_input(*options.co_file);
     record_input(m, options.gr_files.size(), input);
     const auto xy = parse_dimacs_co(input.text, input.display_name, options.id_base, out.vertex_count);
-    bool fits = true;
-    for (auto v : xy)
-      fits &= v >= std::numeric_limits<std::int32_t>::min() && v <= std::numeric_limits<std::int32_t>::max();
-    if (fits) {
-      std::vector<std::int32_t> narrow(xy.begin(), xy.end());
-      out.vertex_data.push_back(DataColumn::from("coords", 2, narrow));
-    } else {
-      out.vertex_data.push_back(DataColumn::from("coords", 2, xy));
-    }
+    out.vertex_data.push_back(narrowest_column<std::int32_t, std::int64_t>("coords", 2, xy));
     m.set("coords.scale", "1e-6");
     m.set("coords.unit", "degree");
   }
@@ -337,7 +328,7 @@ GraphInput convert_dimacs(const DimacsOptions& options) {
   m.set("source.command", "convert dimacs");
   m.set("source.param.id_base", std::to_string(options.id_base));
   if (options.name) m.set("source.param.name", *options.name);
-  if (!objective_list.empty()) m.set("source.param.objectives", objective_list);
+  if (!options.objectives.empty()) m.set("source.param.objectives", objective_list(options.objectives));
   if (options.cost_type) m.set("source.param.cost_type", format::to_string(*options.cost_type));
   return out;
 }

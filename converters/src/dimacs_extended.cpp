@@ -15,10 +15,11 @@ constexpr std::uint64_t kMaxCount = 0xFFFFFFFEULL;
 
 using namespace text;  // the shared primitives of text_scan.hpp
 
-std::string input_key(const Metadata& m) {
+// The index after the inputs the converter already recorded.
+std::size_t next_input_index(const Metadata& m) {
   std::size_t i = 0;
   while (m.get("source.input." + std::to_string(i) + ".name")) ++i;
-  return "source.input." + std::to_string(i);
+  return i;
 }
 
 std::uint64_t absolute_difference(std::int64_t a, std::int64_t b) {
@@ -129,10 +130,7 @@ void append_derived_columns(GraphInput& graph, const ExtendedOptions& options, u
   auto& meta = graph.metadata;
   if (options.elevation_file) {
     auto input = read_text_input(*options.elevation_file);
-    const auto key = input_key(meta);
-    meta.set(key + ".name", input.base_name);
-    meta.set(key + ".size", std::to_string(input.raw_size));
-    meta.set(key + ".xxh3", input.raw_xxh3);
+    record_input(meta, next_input_index(meta), input);
     const auto elevation = parse_dimacs_elevation(input.text, input.display_name, id_base, graph.vertex_count);
     std::vector<std::uint64_t> cost(m);
     for (std::size_t k = 0; k < m; ++k)

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <limits>
 
+#include "mosb/converters/narrow_column.hpp"
 #include "mosb/converters/text_input.hpp"
 #include "mosb/converters/text_scan.hpp"
 #include "mosb/error.hpp"
@@ -253,23 +254,13 @@ const std::vector<std::string>& ger10_objective_names() {
 
 namespace {
 
-// Narrowest unsigned type holding every value.
 DataColumn unsigned_column(std::string name, const std::vector<std::uint64_t>& values) {
-  const auto max = values.empty() ? 0 : *std::max_element(values.begin(), values.end());
-  if (max <= UINT8_MAX) return DataColumn::from(std::move(name), 1, std::vector<std::uint8_t>(values.begin(), values.end()));
-  if (max <= UINT16_MAX) return DataColumn::from(std::move(name), 1, std::vector<std::uint16_t>(values.begin(), values.end()));
-  if (max <= UINT32_MAX) return DataColumn::from(std::move(name), 1, std::vector<std::uint32_t>(values.begin(), values.end()));
-  return DataColumn::from(std::move(name), 1, values);
+  return narrowest_column<std::uint8_t, std::uint16_t, std::uint32_t, std::uint64_t>(std::move(name), 1, values);
 }
 
 DataColumn elevation_column(const Elevation& elevation) {
   if (const auto* reals = std::get_if<std::vector<double>>(&elevation)) return DataColumn::from("elevation", 1, *reals);
-  const auto& ints = std::get<std::vector<std::int64_t>>(elevation);
-  const bool fits = std::all_of(ints.begin(), ints.end(), [](std::int64_t v) {
-    return v >= std::numeric_limits<std::int32_t>::min() && v <= std::numeric_limits<std::int32_t>::max();
-  });
-  if (fits) return DataColumn::from("elevation", 1, std::vector<std::int32_t>(ints.begin(), ints.end()));
-  return DataColumn::from("elevation", 1, ints);
+  return narrowest_column<std::int32_t, std::int64_t>("elevation", 1, std::get<std::vector<std::int64_t>>(elevation));
 }
 
 }  // namespace
@@ -298,13 +289,11 @@ GraphInput convert_fmi(const FmiOptions& options) {
   out.vertex_count = graph.vertex_count;
   out.tails = std::move(graph.tails);
   out.heads = std::move(graph.heads);
-  std::string objective_list;
   for (std::size_t j = 0; j < d; ++j) {
     CostColumn c;
     if (!options.objectives.empty()) {
       c.name = options.objectives[j].name;
       c.unit = options.objectives[j].unit;
-      objective_list += (j ? "," : "") + c.name + (c.unit.empty() ? "" : ":" + c.unit);
     } else if (d == 10) {
       c.name = ger10_objective_names()[j];
     } else {
@@ -322,9 +311,7 @@ GraphInput convert_fmi(const FmiOptions& options) {
   if (!graph.maxspeeds.empty()) out.arc_data.push_back(unsigned_column("maxspeed", graph.maxspeeds));
 
   auto& m = out.metadata;
-  m.set("source.input.0.name", input.base_name);
-  m.set("source.input.0.size", std::to_string(input.raw_size));
-  m.set("source.input.0.xxh3", input.raw_xxh3);
+  record_input(m, 0, input);
   m.set("benchmark", options.name ? *options.name : benchmark_name_from(input.base_name, {".txt", ".fmi", ".graph"}));
   m.set("family", "road");
   m.set("id_base", "0");
@@ -333,7 +320,7 @@ GraphInput convert_fmi(const FmiOptions& options) {
   m.set("source.command", "convert fmi");
   if (options.cost_count) m.set("source.param.costs", std::to_string(*options.cost_count));
   if (options.ignore_extra_fields) m.set("source.param.ignore_extra_fields", "1");
-  if (!objective_list.empty()) m.set("source.param.objectives", objective_list);
+  if (!options.objectives.empty()) m.set("source.param.objectives", objective_list(options.objectives));
   if (options.name) m.set("source.param.name", *options.name);
   if (options.extract_bfs) {
     m.set("source.param.extract_bfs_root", std::to_string(options.extract_bfs->root));

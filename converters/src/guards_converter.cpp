@@ -11,6 +11,7 @@
 #include "mosb/converters/text_input.hpp"
 #include "mosb/converters/text_scan.hpp"
 #include "mosb/error.hpp"
+#include "octile_steps.hpp"
 
 namespace mosb::converters {
 
@@ -193,100 +194,31 @@ void write_text_atomically(const std::filesystem::path& path, std::string_view c
 }
 
 GraphInput build_guards_graph(const OctileMap& map, const std::vector<std::uint64_t>& exposure) {
-  GraphInput g;
-  constexpr std::uint32_t kNone = 0xFFFFFFFFu;
-  std::vector<std::uint32_t> id(map.passable.size(), kNone);
-  const bool narrow = map.width <= 65536 && map.height <= 65536;
-  std::vector<std::uint16_t> cells16;
-  std::vector<std::uint32_t> cells32;
-  std::uint32_t n = 0;
-  for (std::uint32_t y = 0; y < map.height; ++y)
-    for (std::uint32_t x = 0; x < map.width; ++x)
-      if (map.is_passable(x, y)) {
-        id[std::size_t{y} * map.width + x] = n++;
-        if (narrow) cells16.insert(cells16.end(), {static_cast<std::uint16_t>(x), static_cast<std::uint16_t>(y)});
-        else cells32.insert(cells32.end(), {x, y});
-      }
-  g.vertex_count = n;
-  std::vector<std::uint64_t> length, cost;
-  auto at = [&](std::int64_t x, std::int64_t y) { return static_cast<std::size_t>(y) * map.width + static_cast<std::size_t>(x); };
-  auto inside = [&](std::int64_t x, std::int64_t y) { return x >= 0 && y >= 0 && x < map.width && y < map.height; };
-  for (std::uint32_t y = 0; y < map.height; ++y) {
-    for (std::uint32_t x = 0; x < map.width; ++x) {
-      const auto tail = id[at(x, y)];
-      if (tail == kNone) continue;
-      // Neighbours in row-major order of the 3x3 block, so each tail's heads are increasing.
-      for (std::int64_t dy = -1; dy <= 1; ++dy) {
-        for (std::int64_t dx = -1; dx <= 1; ++dx) {
-          const std::int64_t hx = std::int64_t{x} + dx, hy = std::int64_t{y} + dy;
-          if ((dx == 0 && dy == 0) || !inside(hx, hy) || !map.passable[at(hx, hy)]) continue;
-          const bool diagonal = dx != 0 && dy != 0;
-          if (diagonal && (!map.passable[at(hx, y)] || !map.passable[at(x, hy)])) continue;
-          g.tails.push_back(tail);
-          g.heads.push_back(id[at(hx, hy)]);
-          length.push_back(diagonal ? 14 : 10);
-          auto e = exposure[at(hx, hy)];
-          if (diagonal) e = std::max({e, exposure[at(hx, y)], exposure[at(x, hy)]});
-          cost.push_back(e);
-        }
-      }
-    }
-  }
-  g.costs.push_back({"length", "0.1 cell", std::move(length), std::nullopt});
-  g.costs.push_back({"exposure", "guards", std::move(cost), std::nullopt});
-  g.vertex_data.push_back(narrow ? DataColumn::from("cell", 2, cells16) : DataColumn::from("cell", 2, cells32));
-  g.metadata.set("map.width", std::to_string(map.width));
-  g.metadata.set("map.height", std::to_string(map.height));
+  const CellObjective objective{"exposure", "guards", &exposure};
+  auto g = build_octile_graph(map, &objective);
   g.metadata.set("view.GUARDS_2.objectives", "length,exposure");
   return g;
 }
-
-namespace {
-
-}  // namespace
 
 GuardsResult convert_guards(const GuardsOptions& o) {
   if (o.exposure_file.has_value() == o.guards_file.has_value())
     throw Error("convert guards: give exactly one of --exposure and --guards");
   GuardsResult r;
   Metadata inputs;
-  const auto map_input = read_text_input(o.map_file);
-  record_input(inputs, 0, map_input);
-  r.map = parse_octile_map(map_input.text, map_input.display_name, o.terrain);
+  auto map = octile::read_map(o.map_file, o.terrain, inputs, 0);
   const auto cells_input = read_text_input(o.exposure_file ? *o.exposure_file : *o.guards_file);
   record_input(inputs, 1, cells_input);
   if (o.exposure_file) {
-    r.exposure = parse_exposure(cells_input.text, cells_input.display_name, r.map);
+    r.exposure = parse_exposure(cells_input.text, cells_input.display_name, map.map);
   } else {
-    r.exposure = compute_exposure(r.map, parse_guards(cells_input.text, cells_input.display_name, r.map));
+    r.exposure = compute_exposure(map.map, parse_guards(cells_input.text, cells_input.display_name, map.map));
   }
-  r.graph = build_guards_graph(r.map, r.exposure);
+  r.graph = build_guards_graph(map.map, r.exposure);
   if (o.exposure_file) r.graph.costs[1].unit = "";
-  if (o.scen_file) {
-    const auto scen_input = read_text_input(*o.scen_file);
-    record_input(inputs, 2, scen_input);
-    const auto entries = parse_scenario(scen_input.text, scen_input.display_name);
-    check_scenario(entries, scen_input.display_name, r.map, map_input.display_name);
-    std::vector<std::uint32_t> id(r.map.passable.size(), 0);
-    std::uint32_t n = 0;
-    for (std::size_t c = 0; c < id.size(); ++c)
-      if (r.map.passable[c]) id[c] = n++;
-    QuerySet scen{"scen", {}};
-    for (const auto& e : entries)
-      scen.pairs.push_back({id[std::size_t{e.start_y} * r.map.width + e.start_x],
-                            id[std::size_t{e.goal_y} * r.map.width + e.goal_x]});
-    r.graph.queries.push_back(std::move(scen));
-  }
-  auto& m = r.graph.metadata;
-  for (const auto& [key, value] : inputs.entries()) m.set(key, value);
-  m.set("benchmark", o.name ? *o.name : benchmark_name_from(map_input.base_name, {".map"}));
-  m.set("family", "games");
-  m.set("id_base", "0");
-  m.set("source.command", "convert guards");
-  m.set("source.param.exposure", o.exposure_file ? "file" : "guards");
-  m.set("source.param.swamp", o.terrain.swamp_passable ? "passable" : "blocked");
-  m.set("source.param.water", o.terrain.water_passable ? "passable" : "blocked");
-  if (o.name) m.set("source.param.name", *o.name);
+  if (o.scen_file) octile::add_scenario(r.graph, *o.scen_file, map, inputs, 2);
+  octile::set_metadata(r.graph.metadata, inputs, map, o.name, "convert guards", o.terrain);
+  r.graph.metadata.set("source.param.exposure", o.exposure_file ? "file" : "guards");
+  r.map = std::move(map.map);
   return r;
 }
 

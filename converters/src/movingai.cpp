@@ -1,9 +1,13 @@
 #include "mosb/converters/movingai.hpp"
 
+#include <algorithm>
 #include <optional>
 
+#include "mosb/converters/narrow_column.hpp"
+#include "mosb/converters/text_input.hpp"
 #include "mosb/converters/text_scan.hpp"
 #include "mosb/error.hpp"
+#include "octile_steps.hpp"
 
 namespace mosb::converters {
 
@@ -185,6 +189,110 @@ void check_scenario(const std::vector<ScenarioEntry>& entries, const std::string
              std::string("the ") + end.what + " cell " + cell + " is blocked in " + map_name);
     }
   }
+}
+
+GraphInput build_octile_graph(const OctileMap& map, const CellObjective* cell_objective) {
+  GraphInput g;
+  constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+  std::vector<std::uint32_t> id(map.passable.size(), kNone);
+  std::vector<std::uint32_t> cells;  // (x, y) per vertex
+  std::uint32_t n = 0;
+  for (std::uint32_t y = 0; y < map.height; ++y)
+    for (std::uint32_t x = 0; x < map.width; ++x)
+      if (map.is_passable(x, y)) {
+        id[std::size_t{y} * map.width + x] = n++;
+        cells.insert(cells.end(), {x, y});
+      }
+  g.vertex_count = n;
+  std::vector<std::uint64_t> length, cell_cost;
+  const auto* value = cell_objective ? cell_objective->values : nullptr;
+  auto at = [&](std::int64_t x, std::int64_t y) { return static_cast<std::size_t>(y) * map.width + static_cast<std::size_t>(x); };
+  auto inside = [&](std::int64_t x, std::int64_t y) { return x >= 0 && y >= 0 && x < map.width && y < map.height; };
+  for (std::uint32_t y = 0; y < map.height; ++y) {
+    for (std::uint32_t x = 0; x < map.width; ++x) {
+      const auto tail = id[at(x, y)];
+      if (tail == kNone) continue;
+      // Neighbours in row-major order of the 3x3 block, so each tail's heads are increasing.
+      for (std::int64_t dy = -1; dy <= 1; ++dy) {
+        for (std::int64_t dx = -1; dx <= 1; ++dx) {
+          const std::int64_t hx = std::int64_t{x} + dx, hy = std::int64_t{y} + dy;
+          if ((dx == 0 && dy == 0) || !inside(hx, hy) || !map.passable[at(hx, hy)]) continue;
+          const bool diagonal = dx != 0 && dy != 0;
+          if (diagonal && (!map.passable[at(hx, y)] || !map.passable[at(x, hy)])) continue;
+          g.tails.push_back(tail);
+          g.heads.push_back(id[at(hx, hy)]);
+          length.push_back(diagonal ? 14 : 10);
+          if (!value) continue;
+          auto e = (*value)[at(hx, hy)];
+          if (diagonal) e = std::max({e, (*value)[at(hx, y)], (*value)[at(x, hy)]});
+          cell_cost.push_back(e);
+        }
+      }
+    }
+  }
+  g.costs.push_back({"length", "0.1 cell", std::move(length), std::nullopt});
+  if (value) g.costs.push_back({cell_objective->name, cell_objective->unit, std::move(cell_cost), std::nullopt});
+  g.vertex_data.push_back(narrowest_column<std::uint16_t, std::uint32_t>("cell", 2, cells));
+  g.metadata.set("map.width", std::to_string(map.width));
+  g.metadata.set("map.height", std::to_string(map.height));
+  return g;
+}
+
+QuerySet scenario_queries(const std::vector<ScenarioEntry>& entries, const OctileMap& map) {
+  std::vector<std::uint32_t> id(map.passable.size(), 0);
+  std::uint32_t n = 0;
+  for (std::size_t c = 0; c < id.size(); ++c)
+    if (map.passable[c]) id[c] = n++;
+  QuerySet scen{"scen", {}};
+  for (const auto& e : entries)
+    scen.pairs.push_back({id[std::size_t{e.start_y} * map.width + e.start_x],
+                          id[std::size_t{e.goal_y} * map.width + e.goal_x]});
+  return scen;
+}
+
+namespace octile {
+
+MapInput read_map(const std::string& path, const TerrainRules& terrain, Metadata& inputs, std::size_t index) {
+  const auto input = read_text_input(path);
+  record_input(inputs, index, input);
+  MapInput r{parse_octile_map(input.text, input.display_name, terrain), input.display_name, input.base_name};
+  if (std::find(r.map.passable.begin(), r.map.passable.end(), 1) == r.map.passable.end())
+    throw Error(input.display_name + ": the map has no passable cell (with swamp " +
+                (terrain.swamp_passable ? "passable" : "blocked") + ", water " +
+                (terrain.water_passable ? "passable" : "blocked") + "): the instance would have no vertex");
+  return r;
+}
+
+void add_scenario(GraphInput& graph, const std::string& path, const MapInput& map, Metadata& inputs,
+                  std::size_t index) {
+  const auto input = read_text_input(path);
+  record_input(inputs, index, input);
+  const auto entries = parse_scenario(input.text, input.display_name);
+  check_scenario(entries, input.display_name, map.map, map.display_name);
+  graph.queries.push_back(scenario_queries(entries, map.map));
+}
+
+void set_metadata(Metadata& m, const Metadata& inputs, const MapInput& map, const std::optional<std::string>& name,
+                  const char* command, const TerrainRules& terrain) {
+  for (const auto& [key, value] : inputs.entries()) m.set(key, value);
+  m.set("benchmark", name ? *name : benchmark_name_from(map.base_name, {".map"}));
+  m.set("family", "games");
+  m.set("id_base", "0");
+  m.set("source.command", command);
+  m.set("source.param.swamp", terrain.swamp_passable ? "passable" : "blocked");
+  m.set("source.param.water", terrain.water_passable ? "passable" : "blocked");
+  if (name) m.set("source.param.name", *name);
+}
+
+}  // namespace octile
+
+GraphInput convert_movingai(const MovingaiOptions& o) {
+  Metadata inputs;
+  const auto map = octile::read_map(o.map_file, o.terrain, inputs, 0);
+  auto graph = build_octile_graph(map.map);
+  if (o.scen_file) octile::add_scenario(graph, *o.scen_file, map, inputs, 1);
+  octile::set_metadata(graph.metadata, inputs, map, o.name, "convert movingai", o.terrain);
+  return graph;
 }
 
 }  // namespace mosb::converters

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <limits>
 
+#include "mosb/converters/dimacs_converter.hpp"
 #include "mosb/converters/graphml_reader.hpp"
 #include "mosb/converters/text_input.hpp"
 #include "mosb/converters/text_scan.hpp"
@@ -105,13 +106,11 @@ void name_objectives(GraphInput& out, const std::vector<Objective>& names) {
   if (names.size() != out.costs.size())
     throw Error("convert roadmap: " + std::to_string(names.size()) + " --objective names given, the input has " +
                 std::to_string(out.costs.size()) + " objectives");
-  std::string list;
   for (std::size_t j = 0; j < names.size(); ++j) {
     out.costs[j].name = names[j].name;
     out.costs[j].unit = names[j].unit;
-    list += (j ? "," : "") + names[j].name + (names[j].unit.empty() ? "" : ":" + names[j].unit);
   }
-  out.metadata.set("source.param.objectives", list);
+  out.metadata.set("source.param.objectives", objective_list(names));
 }
 
 GraphInput convert_gr_files(const RoadmapOptions& o) {
@@ -131,15 +130,21 @@ GraphInput convert_gr_files(const RoadmapOptions& o) {
   }
   std::optional<VertexFile> vertices;
   std::string vertex_name;
+  std::uint64_t input_bytes = 0;  // of every text read: what --vertices-from-ids may add at most
+  for (const auto& input : inputs) input_bytes += input.text.size();
   if (o.vertex_file) {
     const auto input = read_text_input(*o.vertex_file);
     record_input(m, inputs.size(), input);
     vertices = parse_vertex_file(input.text, input.display_name);
     vertex_name = input.display_name;
+    input_bytes += input.text.size();
   }
   const std::uint64_t declared = scans[0].declared;
   std::uint64_t n = declared;
   if (scans[0].header_line) {
+    // The id that sizes the graph beyond the header, and where it is.
+    const std::string* largest_file = nullptr;
+    std::uint64_t largest_line = 0, largest_column = 0;
     for (std::size_t i = 0; i < scans.size(); ++i) {
       const auto& s = scans[i];
       if (!s.largest || *s.largest < declared) continue;
@@ -148,7 +153,10 @@ GraphInput convert_gr_files(const RoadmapOptions& o) {
                 "the largest vertex id, " + std::to_string(*s.largest) + ", is outside the " +
                     std::to_string(declared) + " vertices declared on line " + std::to_string(s.header_line) +
                     " (0-based ids " + declared_range(declared) + ")" + kFromIdsHint);
-      n = std::max(n, *s.largest + 1);
+      if (*s.largest + 1 > n) {
+        n = *s.largest + 1;
+        largest_file = &inputs[i].display_name, largest_line = s.largest_line, largest_column = s.largest_column;
+      }
     }
     if (vertices && !vertices->ids.empty()) {
       const auto at = std::max_element(vertices->ids.begin(), vertices->ids.end()) - vertices->ids.begin();
@@ -158,8 +166,18 @@ GraphInput convert_gr_files(const RoadmapOptions& o) {
                 "the largest vertex id, " + std::to_string(largest) + ", is outside the " + std::to_string(declared) +
                     " vertices declared on " + inputs[0].display_name + ":" + std::to_string(scans[0].header_line) +
                     " (0-based ids " + declared_range(declared) + ")" + kFromIdsHint);
-      if (largest >= declared) n = std::max(n, largest + 1);
+      if (largest + 1 > n) {
+        n = largest + 1;
+        largest_file = &vertex_name, largest_line = vertices->lines[static_cast<std::size_t>(at)], largest_column = 1;
+      }
     }
+    // Untrusted ids: the vertices added beyond the header must be paid for by the input's bytes, so
+    // one huge id cannot make the graph (and the memory it needs) unbounded.
+    if (largest_file && (n > kMaxCount || n - declared > input_bytes))
+      fail(*largest_file, largest_line, largest_column,
+           "vertex id " + std::to_string(n - 1) + " would size the graph to " + std::to_string(n) +
+               " vertices: --vertices-from-ids adds at most as many vertices beyond the " + std::to_string(declared) +
+               " declared as the input has bytes (" + std::to_string(input_bytes) + ")");
     if (n > kMaxCount) throw Error("convert roadmap: vertex ids reach " + std::to_string(n - 1) + ", beyond the format's limit");
   }
   if (n > declared) {
@@ -272,6 +290,9 @@ GraphInput convert_graphml_file(const RoadmapOptions& o) {
   auto mode = o.clearance;
   if (mode == ClearanceMode::automatic)
     mode = keys.aggregate || !keys.links.empty() ? ClearanceMode::aggregate : ClearanceMode::none;
+  if (o.clearance == ClearanceMode::automatic && mode == ClearanceMode::none)
+    m.set("warning.clearance", "no edge key 'clearance' or 'clearance_0'.. in " + input.base_name +
+                                   ": only the objective 'length' is written (--clearance none: no warning)");
   const bool want_aggregate = mode == ClearanceMode::aggregate || mode == ClearanceMode::both;
   const bool want_links = mode == ClearanceMode::per_link || mode == ClearanceMode::both;
   if (want_aggregate && !keys.aggregate && keys.links.empty())

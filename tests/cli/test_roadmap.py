@@ -9,6 +9,8 @@ Counts on the real fixtures are checked independently of mosb: lines of the .gr 
 
 import json
 import os
+import re
+import shlex
 import subprocess
 import tempfile
 import unittest
@@ -18,6 +20,7 @@ MOSB = os.path.abspath(os.environ.get("MOSB", "mosb"))
 DATA = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "shared", "data"))
 POINT_ROBOT = os.path.join(DATA, "roadmap-point-robot", "exp_4_obs")
 GRAPHML = os.path.join(DATA, "roadmap-graphml", "roadmap.xml")
+README = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "README.md")
 NS = "{http://graphml.graphdrawing.org/xmlns}"
 
 
@@ -120,6 +123,71 @@ class HandMade(unittest.TestCase):
         self.assertEqual(header_counts(out), (3, 2, 1))
         self.assertEqual(inspect(out)["metadata"]["warning.vertex_count"], "declared 2, ids reach 2")
 
+    def test_gr_huge_id_with_vertices_from_ids_is_refused(self):
+        # One id of 4e9 in a 24-byte file would size the graph to 4e9 vertices (it died of
+        # std::bad_alloc): refused at the id, before anything that large is allocated.
+        gr = self.write("huge.gr", "p sp 2 1\na 0 4000000000 1.5\n")
+        out = os.path.join(self.dir, "x.mosb")
+        result = run("convert", "roadmap", "--gr", gr, "--vertices-from-ids", "-o", out)
+        self.assertEqual(result.returncode, 1, result.stderr)
+        self.assertEqual(result.stderr.count("\n"), 1, result.stderr)
+        self.assertIn(gr + ":2:5: vertex id 4000000000 would size the graph to 4000000001 vertices", result.stderr)
+        self.assertFalse(os.path.exists(out))
+        # The same from the vertex file.
+        gr = self.write("ok.gr", "p sp 2 1\na 0 1 1.5\n")
+        vertices = self.write("v.txt", "0 0.0\n1 1.0\n3000000000 2.0\n")
+        result = run("convert", "roadmap", "--gr", gr, "--vertices", vertices, "--vertices-from-ids", "-o", out)
+        self.assertEqual(result.returncode, 1, result.stderr)
+        self.assertIn(vertices + ":3:1: vertex id 3000000000 would size the graph", result.stderr)
+        self.assertFalse(os.path.exists(out))
+        # Ids a little beyond the header, within what the input can hold, still work.
+        gr = self.write("gap.gr", "p sp 2 1\na 0 9 1.5\n")
+        result = run("convert", "roadmap", "--gr", gr, "--vertices-from-ids", "-o", out)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(header_counts(out), (10, 1, 1))
+
+    def test_gr_objective_names_and_units(self):
+        a = self.write("a.gr", "p sp 3 2\na 0 1 0.5\na 1 2 1.25\n")
+        b = self.write("b.gr", "p sp 3 2\na 0 1 2\na 1 2 3\n")
+        out = os.path.join(self.dir, "n.mosb")
+        result = run("convert", "roadmap", "--gr", a, "--gr", b, "--objective", "length:m", "--objective", "risk",
+                     "-o", out)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        info = inspect(out)
+        self.assertEqual([o["name"] for o in info["objectives"]], ["length", "risk"])
+        self.assertEqual(info["metadata"]["objective.length.unit"], "m")
+        self.assertEqual(info["metadata"]["source.param.objectives"], "length:m,risk")
+        result = run("convert", "roadmap", "--gr", a, "--gr", b, "--objective", "length", "-o", out + "2")
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("1 --objective names given, the input has 2 objectives", result.stderr)
+        result = run("convert", "roadmap", "--gr", a, "--objective", ":m", "-o", out + "3")
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("convert roadmap: --objective ':m' has an empty name", result.stderr)
+
+    def test_graphml_without_clearance_warns(self):
+        src = self.write("plain.graphml", """<?xml version="1.0"?>
+<graphml xmlns="http://graphml.graphdrawing.org/xmlns">
+  <key id="q" for="node" attr.name="coords" attr.type="string"/>
+  <graph edgedefault="directed">
+    <node id="a"><data key="q">0,0</data></node>
+    <node id="b"><data key="q">3,4</data></node>
+    <edge source="a" target="b"/>
+  </graph>
+</graphml>
+""")
+        out = os.path.join(self.dir, "p.mosb")
+        result = run("convert", "roadmap", "--graphml", src, "-o", out)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn("mosb: warning: clearance: no edge key 'clearance' or 'clearance_0'.. in plain.graphml",
+                      result.stderr)
+        self.assertEqual(header_counts(out), (2, 1, 1))
+        self.assertIn("only the objective 'length'", inspect(out)["metadata"]["warning.clearance"])
+        # Asked for explicitly: no warning.
+        result = run("convert", "roadmap", "--graphml", src, "--clearance", "none", "-o", out)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertNotIn("warning", result.stderr)
+        self.assertNotIn("warning.clearance", inspect(out)["metadata"])
+
 
 @unittest.skipUnless(os.path.isdir(POINT_ROBOT) and os.path.isfile(GRAPHML), f"shared data absent: {DATA}")
 class RealFixtures(unittest.TestCase):
@@ -173,6 +241,24 @@ class RealFixtures(unittest.TestCase):
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertEqual(header_counts(out), (nodes, expected_arcs, 2))
         self.assertEqual((nodes, expected_arcs), (170, 698))
+        # The sample has no clearance keys: the default writes length alone and says so.
+        out = os.path.join(self.tmp.name, "plain.mosb")
+        result = run("convert", "roadmap", "--graphml", GRAPHML, "-o", out)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn("mosb: warning: clearance: no edge key", result.stderr)
+        self.assertEqual(header_counts(out), (nodes, expected_arcs, 1))
+        self.assertIn("warning.clearance", inspect(out)["metadata"])
+
+    def test_readme_example_runs_on_the_sample(self):
+        with open(README) as f:
+            commands = re.findall(r"`(mosb convert roadmap --graphml [^`]*)`", f.read())
+        self.assertEqual(len(commands), 1, commands)
+        out = os.path.join(self.tmp.name, "readme.mosb")
+        args = [GRAPHML if a == "roadmap.xml" else out if a == "F" else a for a in shlex.split(commands[0])[1:]]
+        self.assertIn(GRAPHML, args)
+        result = run(*args)
+        self.assertEqual(result.returncode, 0, commands[0] + ": " + result.stderr)
+        self.assertEqual(header_counts(out)[:2], (170, 698))
 
 
 if __name__ == "__main__":

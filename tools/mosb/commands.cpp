@@ -26,7 +26,7 @@ int report_written(const std::string& path) {
 
 Command add_convert(CLI::App& app) {
   auto* convert = app.add_subcommand("convert", "Convert a benchmark from its source format");
-  return group(convert, {add_convert_dimacs(*convert), add_convert_netmaker(*convert), add_convert_fmi(*convert), add_convert_guards(*convert), add_convert_roadmap(*convert)});
+  return group(convert, {add_convert_dimacs(*convert), add_convert_netmaker(*convert), add_convert_fmi(*convert), add_convert_guards(*convert), add_convert_movingai(*convert), add_convert_roadmap(*convert)});
 }
 
 Command add_generate(CLI::App& app) {

@@ -40,6 +40,7 @@ Command add_convert_dimacs(CLI::App& convert);
 Command add_convert_netmaker(CLI::App& convert);
 Command add_convert_fmi(CLI::App& convert);
 Command add_convert_guards(CLI::App& convert);
+Command add_convert_movingai(CLI::App& convert);
 Command add_convert_roadmap(CLI::App& convert);
 
 }  // namespace mosb::cli

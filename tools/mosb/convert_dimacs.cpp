@@ -28,13 +28,7 @@ struct DimacsArgs {
 int run_dimacs(const DimacsArgs& a) {
   converters::DimacsOptions o;
   o.gr_files = a.gr;
-  for (const auto& spec : a.objectives) {
-    const auto colon = spec.find(':');
-    converters::Objective objective{spec.substr(0, colon),
-                                    colon == std::string::npos ? "" : spec.substr(colon + 1)};
-    if (objective.name.empty()) throw Error("convert dimacs: --objective '" + spec + "' has an empty name");
-    o.objectives.push_back(std::move(objective));
-  }
+  for (const auto& spec : a.objectives) o.objectives.push_back(converters::parse_objective(spec, "convert dimacs"));
   if (!a.co.empty()) o.co_file = a.co;
   if (!a.name.empty()) o.name = a.name;
   o.id_base = a.id_base;

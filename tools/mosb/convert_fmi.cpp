@@ -29,13 +29,7 @@ int run_fmi(const FmiArgs& a) {
   o.file = a.file;
   if (a.costs_option->count() > 0) o.cost_count = a.costs;
   o.ignore_extra_fields = a.ignore_extra_fields;
-  for (const auto& spec : a.objectives) {
-    const auto colon = spec.find(':');
-    converters::Objective objective{spec.substr(0, colon),
-                                    colon == std::string::npos ? "" : spec.substr(colon + 1)};
-    if (objective.name.empty()) throw Error("convert fmi: --objective '" + spec + "' has an empty name");
-    o.objectives.push_back(std::move(objective));
-  }
+  for (const auto& spec : a.objectives) o.objectives.push_back(converters::parse_objective(spec, "convert fmi"));
   if (a.bfs_option->count() > 0) o.extract_bfs = converters::FmiBfs{a.bfs_root, a.bfs_count, a.bfs_undirected};
   if (!a.name.empty()) o.name = a.name;
   write_graph(converters::convert_fmi(o), a.output);

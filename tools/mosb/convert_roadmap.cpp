@@ -35,13 +35,7 @@ int run_roadmap(const RoadmapArgs& a) {
   o.clearance = *mode;
   o.delta = a.delta;
   o.weight = a.weight;
-  for (const auto& spec : a.objectives) {
-    const auto colon = spec.find(':');
-    converters::Objective objective{spec.substr(0, colon),
-                                    colon == std::string::npos ? "" : spec.substr(colon + 1)};
-    if (objective.name.empty()) throw Error("convert roadmap: --objective '" + spec + "' has an empty name");
-    o.objectives.push_back(std::move(objective));
-  }
+  for (const auto& spec : a.objectives) o.objectives.push_back(converters::parse_objective(spec, "convert roadmap"));
   if (!a.name.empty()) o.name = a.name;
   const auto input = converters::convert_roadmap(o);
   for (const auto& [key, value] : input.metadata.entries())

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "mosb/format.hpp"
+#include "mosb/converters/objective.hpp"
 #include "mosb/graph_builder.hpp"
 
 namespace mosb::converters {
@@ -37,11 +38,6 @@ DimacsGraph parse_dimacs_gr(std::string_view text, const std::string& display_na
 // Parses .co text: `p aux sp co n`, then one `v id x y` per vertex (integers). x, y interleaved.
 std::vector<std::int64_t> parse_dimacs_co(std::string_view text, const std::string& display_name,
                                           unsigned id_base, std::uint64_t vertex_count);
-
-struct Objective {
-  std::string name;
-  std::string unit;
-};
 
 struct DimacsOptions {
   std::vector<std::string> gr_files;

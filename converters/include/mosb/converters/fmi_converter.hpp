@@ -10,7 +10,7 @@
 #include <variant>
 #include <vector>
 
-#include "mosb/converters/dimacs_converter.hpp"  // Objective
+#include "mosb/converters/objective.hpp"
 #include "mosb/graph_builder.hpp"
 
 namespace mosb::converters {

@@ -1,12 +1,16 @@
-// Moving AI grid benchmarks (spec/families/games.md): octile maps (.map) and scenarios (.scen).
+// Moving AI grid benchmarks (spec/families/games.md): octile maps (.map) and scenarios (.scen), the
+// graph of an octile map, and `convert movingai` (the map alone, objective length).
 // Every input error is one line "FILE:LINE:COLUMN: message".
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "mosb/graph_builder.hpp"
 
 namespace mosb::converters {
 
@@ -48,5 +52,33 @@ std::vector<ScenarioEntry> parse_scenario(std::string_view text, const std::stri
 // goal lies outside the map or on a blocked cell.
 void check_scenario(const std::vector<ScenarioEntry>& entries, const std::string& display_name,
                     const OctileMap& map, const std::string& map_name);
+
+// A per-cell value E turned into an arc objective (the GUARDS exposure): a move to cell d costs E(d),
+// a diagonal move the largest of E(d) and E of its two side cells.
+struct CellObjective {
+  std::string name;
+  std::string unit;
+  const std::vector<std::uint64_t>* values = nullptr;  // row-major, like OctileMap::passable
+};
+
+// The graph of an octile map (spec/families/games.md §2): vertices the passable cells in row-major
+// order (vertex data `cell` (x, y)), 8-connected arcs without corner cutting, objective `length`
+// (10 / 14, unit `0.1 cell`), then the cell objective when given; metadata map.width, map.height.
+GraphInput build_octile_graph(const OctileMap& map, const CellObjective* cell_objective = nullptr);
+
+// The vertex of each passable cell (row-major numbering), for rows already checked against the map:
+// the query set `scen`, in file order.
+QuerySet scenario_queries(const std::vector<ScenarioEntry>& entries, const OctileMap& map);
+
+struct MovingaiOptions {
+  std::string map_file;
+  std::optional<std::string> scen_file;
+  TerrainRules terrain;
+  std::optional<std::string> name;  // benchmark; default: the map's base name without ".map"
+};
+
+// Reads the inputs (decompressing as needed) and builds the one-objective instance; throws
+// mosb::Error, also for a map without any passable cell.
+GraphInput convert_movingai(const MovingaiOptions& options);
 
 }  // namespace mosb::converters

@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-#include "mosb/converters/dimacs_converter.hpp"
+#include "mosb/converters/objective.hpp"
 #include "mosb/graph_builder.hpp"
 
 namespace mosb::converters {

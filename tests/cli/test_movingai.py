@@ -1,0 +1,156 @@
+#!/usr/bin/python3
+"""End-to-end tests of `mosb convert movingai` (spec/families/games.md §6).
+
+    MOSB=build/release/tools/mosb /usr/bin/python3 tests/cli/test_movingai.py
+
+Vertex and arc counts and arc lengths are recomputed with numpy array shifts (test_guards.py's
+expected_arcs, with a zero exposure), independently of the converter's per-cell loops. The real maps
+come from shared/data/movingai (skipped visibly when absent).
+"""
+
+import os
+import sys
+import tempfile
+import unittest
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+sys.path.insert(0, os.path.join(HERE, "..", "..", "spec", "reference"))
+import mosb_reader  # noqa: E402
+from test_guards import DATA, expected_arcs, read_map, run  # noqa: E402
+
+HAND_MADE = "type octile\nheight 4\nwidth 5\nmap\n..@.S\n.@...\n...W.\nT.G..\n"
+
+
+class MovingaiCli(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = self.tmp.name
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def path(self, name):
+        return os.path.join(self.dir, name)
+
+    def write(self, name, text):
+        with open(self.path(name), "w", newline="") as f:
+            f.write(text)
+        return self.path(name)
+
+    def check_instance(self, out, passable):
+        """The instance is the octile graph of `passable`: cells, arcs and lengths."""
+        inst = mosb_reader.open_instance(out)
+        tx, ty, hx, hy, length, _ = expected_arcs(passable, np.zeros(passable.shape, dtype=np.int64))
+        self.assertEqual(inst.n, int(passable.sum()))
+        self.assertEqual(inst.m, len(tx))
+        self.assertEqual([name for name, _ in inst.costs()], ["length"])
+        self.assertEqual(inst.metadata["objective.length.unit"], "0.1 cell")
+        cell_section = inst.section("cell", mosb_reader.VERTEX_DATA)
+        self.assertEqual(np.dtype(cell_section.dtype), np.dtype("<u2"))
+        cells = np.asarray(inst.array(cell_section), dtype=np.int64)
+        w = passable.shape[1]
+        self.assertTrue(np.array_equal(cells[:, 1] * w + cells[:, 0], np.flatnonzero(passable.ravel())))
+        offsets = np.asarray(inst.array(inst.of_kind(mosb_reader.FORWARD_OFFSETS)[0]), dtype=np.int64)
+        targets = np.asarray(inst.array(inst.of_kind(mosb_reader.FORWARD_TARGETS)[0]), dtype=np.int64)
+        tails = np.repeat(np.arange(inst.n), np.diff(offsets))
+        got = np.stack([cells[tails, 0], cells[tails, 1], cells[targets, 0], cells[targets, 1],
+                        np.asarray(dict(inst.costs())["length"], dtype=np.int64)], axis=1)
+        want = np.stack([tx, ty, hx, hy, length], axis=1)
+        sort = lambda a: a[np.lexsort(a.T[::-1])]  # noqa: E731
+        self.assertTrue(np.array_equal(sort(got), sort(want)))
+        self.assertEqual(inst.metadata["map.width"], str(passable.shape[1]))
+        self.assertEqual(inst.metadata["map.height"], str(passable.shape[0]))
+        self.assertEqual(inst.metadata["family"], "games")
+        self.assertEqual(inst.metadata["source.command"], "convert movingai")
+        self.assertNotIn("view.GUARDS_2.objectives", inst.metadata)
+        r = run("verify", out, "--level", "full")
+        self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+        return inst
+
+    def test_hand_made_map(self):
+        m = self.write("hand.map", HAND_MADE)
+        out = self.path("hand.mosb")
+        r = run("convert", "movingai", "--map", m, "-o", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        inst = self.check_instance(out, read_map(m))
+        # Worked by hand: 16 passable cells ('.', 'G', 'S'); 'W', '@' and 'T' blocked.
+        self.assertEqual(inst.n, 16)
+        self.assertEqual(inst.metadata["benchmark"], "hand")
+        self.assertEqual(inst.metadata["source.param.water"], "blocked")
+        for swamp, water in (("blocked", "passable"), ("blocked", "blocked")):
+            r = run("convert", "movingai", "--map", m, "--swamp", swamp, "--water", water, "-o", out)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            self.check_instance(out, read_map(m, swamp == "passable", water == "passable"))
+        # Determinism, and --name.
+        a, b = self.path("a.mosb"), self.path("b.mosb")
+        for path in (a, b):
+            self.assertEqual(run("convert", "movingai", "--map", m, "--name", "H", "-o", path).returncode, 0)
+        with open(a, "rb") as fa, open(b, "rb") as fb:
+            self.assertEqual(fa.read(), fb.read())
+        self.assertEqual(mosb_reader.open_instance(a).metadata["benchmark"], "H")
+
+    def test_same_graph_as_guards(self):
+        """The one octile graph: `convert guards` with zero exposure has the same arcs and lengths."""
+        m = self.write("hand.map", HAND_MADE)
+        zeros = self.write("zero.txt", "0 0 0 0 0\n" * 4)
+        a, b = self.path("m.mosb"), self.path("g.mosb")
+        self.assertEqual(run("convert", "movingai", "--map", m, "-o", a).returncode, 0)
+        self.assertEqual(run("convert", "guards", "--map", m, "--exposure", zeros, "-o", b).returncode, 0)
+        x, y = mosb_reader.open_instance(a), mosb_reader.open_instance(b)
+        for kind in (mosb_reader.FORWARD_OFFSETS, mosb_reader.FORWARD_TARGETS):
+            self.assertTrue(np.array_equal(x.array(x.of_kind(kind)[0]), y.array(y.of_kind(kind)[0])))
+        self.assertTrue(np.array_equal(dict(x.costs())["length"], dict(y.costs())["length"]))
+
+    def test_no_passable_cell_is_an_error(self):
+        m = self.write("walls.map", "type octile\nheight 2\nwidth 3\nmap\n@T@\nOW@\n")
+        zeros = self.write("zero.txt", "0 0 0\n0 0 0\n")
+        for command, extra in (("movingai", []), ("guards", ["--exposure", zeros])):
+            with self.subTest(command=command):
+                out = self.path("x.mosb")
+                r = run("convert", command, "--map", m, *extra, "-o", out)
+                self.assertEqual(r.returncode, 1, r.stdout + r.stderr)
+                self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+                self.assertIn(m + ": the map has no passable cell", r.stderr)
+                self.assertFalse(os.path.exists(out))
+        # Water made passable: the same map has one vertex.
+        out = self.path("w.mosb")
+        r = run("convert", "movingai", "--map", m, "--water", "passable", "-o", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(mosb_reader.open_instance(out).n, 1)
+
+    def test_scenario_errors_are_located(self):
+        m = self.write("hand.map", HAND_MADE)
+        s = self.write("s.scen", "version 1\n0\thand.map\t5\t4\t0\t0\t2\t0\t1\n")
+        r = run("convert", "movingai", "--map", m, "--scen", s, "-o", self.path("x.mosb"))
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("s.scen:2:20: the goal cell (2, 0) is blocked", r.stderr)
+        self.assertFalse(os.path.exists(self.path("x.mosb")))
+
+    def test_real_maps(self):
+        if not os.path.exists(os.path.join(DATA, "arena2.map")):
+            self.skipTest("shared/data/movingai is absent: real-map test skipped")
+        for name, rows in (("arena2.map", 929), ("random512-20-1.map", 1770)):
+            with self.subTest(map=name):
+                m, s = os.path.join(DATA, name), os.path.join(DATA, name + ".scen")
+                out = self.path(name + ".mosb")
+                r = run("convert", "movingai", "--map", m, "--scen", s, "-o", out)
+                self.assertEqual(r.returncode, 0, r.stderr)
+                inst = self.check_instance(out, read_map(m))
+                with open(s) as f:
+                    scen_lines = [line for line in f.read().split("\n")[1:] if line.strip()]
+                self.assertEqual(len(scen_lines), rows)
+                q = np.asarray(inst.queries()["scen"], dtype=np.int64)
+                cells = np.asarray(inst.array(inst.section("cell", mosb_reader.VERTEX_DATA)), dtype=np.int64)
+                fields = np.array([[int(v) for v in line.split("\t")[4:8]] for line in scen_lines])
+                self.assertTrue(np.array_equal(cells[q[:, 0]], fields[:, 0:2]))
+                self.assertTrue(np.array_equal(cells[q[:, 1]], fields[:, 2:4]))
+                self.assertEqual(inst.metadata["benchmark"], name[:-4])
+                self.assertEqual(inst.metadata["source.input.0.name"], name)
+                self.assertEqual(inst.metadata["source.input.1.name"], name + ".scen")
+
+
+if __name__ == "__main__":
+    unittest.main()

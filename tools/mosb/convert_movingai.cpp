@@ -1,0 +1,50 @@
+#include <CLI/CLI.hpp>
+#include <memory>
+
+#include "commands.hpp"
+#include "mosb/converters/movingai.hpp"
+#include "mosb/graph_builder.hpp"
+
+namespace mosb::cli {
+
+namespace {
+
+struct MovingaiArgs {
+  std::string map;
+  std::string scen;
+  std::string swamp = "passable";
+  std::string water = "blocked";
+  std::string name;
+  std::string output;
+};
+
+int run_movingai(const MovingaiArgs& a) {
+  converters::MovingaiOptions o;
+  o.map_file = a.map;
+  if (!a.scen.empty()) o.scen_file = a.scen;
+  o.terrain.swamp_passable = a.swamp == "passable";
+  o.terrain.water_passable = a.water == "passable";
+  if (!a.name.empty()) o.name = a.name;
+  write_graph(converters::convert_movingai(o), a.output);
+  return report_written(a.output);
+}
+
+}  // namespace
+
+Command add_convert_movingai(CLI::App& convert) {
+  auto* movingai = convert.add_subcommand(
+      "movingai", "Moving AI octile map (8-connected, no corner cutting): objective length");
+  auto args = std::make_shared<MovingaiArgs>();
+  movingai->add_option("--map", args->map, "the octile .map file")->required()->check(CLI::ExistingFile);
+  movingai->add_option("--scen", args->scen, "a Moving AI scenario, imported as query set 'scen'")
+      ->check(CLI::ExistingFile);
+  movingai->add_option("--swamp", args->swamp, "terrain 'S'")->check(CLI::IsMember({"passable", "blocked"}))
+      ->capture_default_str();
+  movingai->add_option("--water", args->water, "terrain 'W'")->check(CLI::IsMember({"passable", "blocked"}))
+      ->capture_default_str();
+  movingai->add_option("--name", args->name, "benchmark name (default: the map's base name without .map)");
+  movingai->add_option("-o,--output", args->output, "the .mosb file to write")->required();
+  return {movingai, [args] { return run_movingai(*args); }};
+}
+
+}  // namespace mosb::cli
