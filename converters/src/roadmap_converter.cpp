@@ -292,7 +292,7 @@ GraphInput convert_graphml_file(const RoadmapOptions& o) {
     mode = keys.aggregate || !keys.links.empty() ? ClearanceMode::aggregate : ClearanceMode::none;
   if (o.clearance == ClearanceMode::automatic && mode == ClearanceMode::none)
     m.set("warning.clearance", "no edge key 'clearance' or 'clearance_0'.. in " + input.base_name +
-                                   ": only the objective 'length' is written (--clearance none: no warning)");
+                                   ": no clearance objective is written (--clearance none: no warning)");
   const bool want_aggregate = mode == ClearanceMode::aggregate || mode == ClearanceMode::both;
   const bool want_links = mode == ClearanceMode::per_link || mode == ClearanceMode::both;
   if (want_aggregate && !keys.aggregate && keys.links.empty())

@@ -181,7 +181,7 @@ class HandMade(unittest.TestCase):
         self.assertIn("mosb: warning: clearance: no edge key 'clearance' or 'clearance_0'.. in plain.graphml",
                       result.stderr)
         self.assertEqual(header_counts(out), (2, 1, 1))
-        self.assertIn("only the objective 'length'", inspect(out)["metadata"]["warning.clearance"])
+        self.assertIn("no clearance objective is written", inspect(out)["metadata"]["warning.clearance"])
         # Asked for explicitly: no warning.
         result = run("convert", "roadmap", "--graphml", src, "--clearance", "none", "-o", out)
         self.assertEqual(result.returncode, 0, result.stderr)

@@ -1,6 +1,7 @@
-// libFuzzer target: the Moving AI map and scenario parsers and the GUARDS guard and exposure
-// parsers. The input is split at 0x01 bytes into map, scenario, guards and exposure text; the later
-// parts are read against the parsed map (or a fixed 3 x 2 map when the first part is not one).
+// libFuzzer target: the Moving AI map and scenario parsers, the GUARDS guard and exposure parsers,
+// and the octile graph both converters build. The input is split at 0x01 bytes into map, scenario,
+// guards and exposure text; the later parts are read against the parsed map (or a fixed 3 x 2 map
+// when the first part is not one).
 // Any outcome but a clean mosb::Error or success is a bug.
 #include <cstdint>
 #include <string>
@@ -56,6 +57,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const auto graph = build_guards_graph(map, exposure);
     for (std::size_t k = 0; k < graph.tails.size(); ++k)
       if (graph.tails[k] >= graph.vertex_count || graph.heads[k] >= graph.vertex_count) __builtin_trap();
+    // `convert movingai`'s graph is the same graph with the length alone.
+    const auto plain = build_octile_graph(map);
+    if (plain.tails != graph.tails || plain.heads != graph.heads || plain.costs.size() != 1) __builtin_trap();
   }
   return 0;
 }
