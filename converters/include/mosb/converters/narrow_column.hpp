@@ -2,6 +2,7 @@
 // holds every value exactly (the candidates listed narrowest first).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <type_traits>
@@ -22,8 +23,7 @@ DataColumn narrowest_column(std::string name, std::uint32_t width, const std::ve
   std::size_t rank = 0;
   auto take_if_all_fit = [&]<class C>() {
     const bool last = ++rank == sizeof...(Candidates);
-    for (const T v : values)
-      if (!last && !std::in_range<C>(v)) return false;
+    if (!last && !std::all_of(values.begin(), values.end(), [](T v) { return std::in_range<C>(v); })) return false;
     column = DataColumn::from(std::move(name), width, std::vector<C>(values.begin(), values.end()));
     return true;
   };
