@@ -1,0 +1,253 @@
+#!/usr/bin/python3
+"""The example solvers (examples/): exact Pareto fronts on small random graphs, agreement of
+boa_star and namoa on the real NetMaker and Moving AI fixtures, the command line and its errors.
+
+    MOSB=build/release/tools/mosb EXAMPLES=build/release/examples /usr/bin/python3 tests/cli/test_examples.py
+
+The exact front of a small graph is computed here by enumerating every simple path, independently
+of the solvers. The real-data parts skip with a message when shared/data is absent.
+"""
+
+import itertools
+import os
+import random
+import subprocess
+import sys
+import tempfile
+import unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "spec", "reference"))
+import mosb_reader  # noqa: E402
+
+MOSB = os.path.abspath(os.environ.get("MOSB", "mosb"))
+EXAMPLES = os.path.abspath(os.environ.get("EXAMPLES", "examples"))
+DATA = os.path.join(HERE, "..", "..", "..", "shared", "data")
+
+
+def solver(name):
+    return os.path.join(EXAMPLES, name)
+
+
+def run(program, *args):
+    return subprocess.run([program, *args], capture_output=True, text=True, timeout=600)
+
+
+def random_gr(rng, n, d):
+    """A random multi-column .gr (1-based ids): a cycle through all vertices, random arcs,
+    parallel arcs with other costs and a self-loop; costs 0..4 so equal cost vectors are common."""
+    arcs = [(v, (v + 1) % n) for v in range(n)]
+    arcs += [(rng.randrange(n), rng.randrange(n)) for _ in range(rng.randrange(n, 2 * n + 1))]
+    arcs += [arcs[rng.randrange(len(arcs))] for _ in range(2)]
+    arcs.append((0, 0))
+    rows = [(u, v, tuple(rng.randrange(5) for _ in range(d))) for u, v in arcs]
+    text = "p sp %d %d\n" % (n, len(rows))
+    text += "".join("a %d %d %s\n" % (u + 1, v + 1, " ".join(map(str, c))) for u, v, c in rows)
+    return rows, text
+
+
+def exact_front(rows, n, start, goal, objectives):
+    """Cost vectors of every simple path start -> goal, reduced to the deduplicated Pareto set."""
+    out = [[] for _ in range(n)]
+    for u, v, c in rows:
+        out[u].append((v, tuple(c[k] for k in objectives)))
+    costs = set()
+    zero = tuple(0 for _ in objectives)
+
+    def walk(v, seen, g):
+        if v == goal:
+            costs.add(g)
+            return
+        for w, c in out[v]:
+            if w not in seen:
+                seen.add(w)
+                walk(w, seen, tuple(a + b for a, b in zip(g, c)))
+                seen.remove(w)
+
+    walk(start, {start}, zero)
+    return sorted(c for c in costs
+                  if not any(o != c and all(a <= b for a, b in zip(o, c)) for o in costs))
+
+
+def read_fronts(directory, count):
+    fronts = []
+    for i in range(count):
+        with open(os.path.join(directory, "%d.txt" % i)) as f:
+            fronts.append([tuple(int(x) for x in line.split(" ")) for line in f.read().splitlines()])
+    return fronts
+
+
+class Base(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def path(self, name):
+        return os.path.join(self.tmp.name, name)
+
+    def write(self, name, text):
+        with open(self.path(name), "w") as f:
+            f.write(text)
+        return self.path(name)
+
+    def mosb(self, *args):
+        r = run(MOSB, *args)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        return r
+
+    def solve(self, name, instance, *args, fronts=None):
+        """Runs a solver; returns (output rows, fronts) and checks the output line format."""
+        fronts_dir = self.path("fronts-%s-%d" % (name, len(os.listdir(self.tmp.name))))
+        r = run(solver(name), instance, *args, "--fronts", fronts_dir)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        rows = [line.split() for line in r.stdout.splitlines()]
+        for row in rows:
+            self.assertEqual(len(row), 5, row)
+            int(row[0]), int(row[1]), int(row[2]), float(row[3]), int(row[4])
+        got = read_fronts(fronts_dir, len(rows))
+        for row, front in zip(rows, got):
+            self.assertEqual(int(row[2]), len(front))
+            self.assertEqual(front, sorted(front))
+        self.assertEqual(len(os.listdir(fronts_dir)), len(rows))
+        return rows, got
+
+
+class RandomGraphs(Base):
+    def check(self, seed, d):
+        rng = random.Random(seed)
+        n = rng.randrange(3, 8)
+        rows, text = random_gr(rng, n, d)
+        gr = self.write("g%d.gr" % seed, text)
+        inst = self.path("g%d.mosb" % seed)
+        views = ["--view", "P13=c1,c3"] if d == 3 else []
+        self.mosb("convert", "dimacs", "--gr", gr, *views, "-o", inst)
+        pairs = [(s, t) for s in range(n) for t in range(n)]
+        query_args = [x for s, t in pairs for x in ("--query", str(s), str(t))]
+        expected = [exact_front(rows, n, s, t, range(d)) for s, t in pairs]
+        out, fronts = self.solve("namoa", inst, *query_args)
+        self.assertEqual([(int(r[0]), int(r[1])) for r in out], pairs)
+        self.assertEqual(fronts, expected, "namoa, seed %d" % seed)
+        if d == 2:
+            self.assertEqual(self.solve("boa_star", inst, *query_args)[1], expected, "boa_star, seed %d" % seed)
+        else:
+            # Two of three objectives: through the file's view, and through --objectives.
+            expected = [exact_front(rows, n, s, t, (0, 2)) for s, t in pairs]
+            for args in (["--view", "P13"], ["--objectives", "c1,c3"]):
+                for name in ("boa_star", "namoa"):
+                    self.assertEqual(self.solve(name, inst, *args, *query_args)[1], expected,
+                                     "%s %s, seed %d" % (name, args, seed))
+        # The text-loader build of namoa (the benchmark's baseline) finds the same fronts.
+        text_args = [x for s, t in pairs for x in ("--query", str(s + 1), str(t + 1))]
+        self.assertEqual(self.solve("namoa_text", gr, *text_args)[1],
+                         [exact_front(rows, n, s, t, range(d)) for s, t in pairs])
+
+    def test_two_objectives(self):
+        for seed in range(40):
+            with self.subTest(seed=seed):
+                self.check(seed, 2)
+
+    def test_three_objectives(self):
+        for seed in range(100, 130):
+            with self.subTest(seed=seed):
+                self.check(seed, 3)
+
+    def test_default_query_set_and_determinism(self):
+        rng = random.Random(7)
+        rows, text = random_gr(rng, 7, 2)
+        inst = self.path("q.mosb")
+        self.mosb("convert", "dimacs", "--gr", self.write("q.gr", text), "-o", inst)
+        self.mosb("queries", "generate", "--into", inst, "--name", "some", "--count", "6", "--seed", "3")
+        stored = [tuple(int(x) for x in q) for q in mosb_reader.open_instance(inst).queries()["some"]]
+        self.assertEqual(len(stored), 6)
+        for name in ("boa_star", "namoa"):
+            out, fronts = self.solve(name, inst)
+            self.assertEqual([(int(r[0]), int(r[1])) for r in out], stored)
+            self.assertEqual(fronts, [exact_front(rows, 7, s, t, (0, 1)) for s, t in stored])
+            # Same input, same front files, byte for byte.
+            a, b = self.path("a-" + name), self.path("b-" + name)
+            for d in (a, b):
+                self.assertEqual(run(solver(name), inst, "--fronts", d).returncode, 0)
+            for i in range(6):
+                with open(os.path.join(a, "%d.txt" % i), "rb") as fa, open(os.path.join(b, "%d.txt" % i), "rb") as fb:
+                    self.assertEqual(fa.read(), fb.read())
+
+
+class Errors(Base):
+    def test_bad_input_and_usage(self):
+        rows, text = random_gr(random.Random(1), 5, 3)
+        inst = self.path("e.mosb")
+        self.mosb("convert", "dimacs", "--gr", self.write("e.gr", text), "-o", inst)
+        garbage = self.write("garbage.mosb", "not a mosb file at all\n" * 10)
+        for name in ("boa_star", "namoa"):
+            for args, code, needle in (
+                    ([self.path("missing.mosb"), "--query", "0", "1"], 1, "missing.mosb"),
+                    ([garbage, "--query", "0", "1"], 1, "garbage.mosb"),
+                    ([inst, "--query", "0", "9"], 1, "e.mosb"),
+                    ([inst, "--view", "nope", "--query", "0", "1"], 1, "e.mosb"),
+                    ([inst, "--objectives", "c1,zz", "--query", "0", "1"], 1, "e.mosb"),
+                    ([inst], 1, "e.mosb"),  # no view and no query set
+                    ([], 2, "usage"),
+                    ([inst, "--bogus"], 2, "--bogus"),
+                    ([inst, "--query", "0"], 2, "--query"),
+                    ([inst, "--query", "0", "x"], 2, "'x'"),
+                    ([inst, "--queries", "a", "--query", "0", "1"], 2, "exclude")):
+                with self.subTest(solver=name, args=args):
+                    r = run(solver(name), *args)
+                    self.assertEqual(r.returncode, code, r.stderr)
+                    self.assertIn(needle, r.stderr.splitlines()[0])
+                    self.assertEqual(r.stdout, "")
+        # boa_star needs exactly two objectives; this file has three.
+        r = run(solver("boa_star"), inst, "--query", "0", "1")
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("--objectives", r.stderr)
+
+
+class RealData(Base):
+    def agree(self, inst, args):
+        boa, boa_fronts = self.solve("boa_star", inst, *args)
+        namoa, namoa_fronts = self.solve("namoa", inst, *args)
+        self.assertEqual([r[:3] for r in boa], [r[:3] for r in namoa])
+        self.assertEqual(boa_fronts, namoa_fronts)
+        return boa
+
+    def test_netmaker(self):
+        gr = os.path.join(DATA, "netmaker", "netMaker_3o_10000n_1amin_10amax_20i_1s_scorr_79134.gr")
+        if not os.path.isfile(gr):
+            self.skipTest("%s is absent: NetMaker agreement test skipped" % gr)
+        inst = self.path("nm.mosb")
+        self.mosb("convert", "netmaker", gr, "-o", inst)
+        self.mosb("queries", "import", os.path.join(DATA, "netmaker", "netMaker_4d.inst"), "--into", inst,
+                  "--name", "nm", "--match", "_79134.gr")
+        # Every published query, on the first two objectives of the file's only view (NetMaker_3).
+        rows = self.agree(inst, ["--objectives", "c1,c2", "--queries", "nm"])
+        self.assertEqual(len(rows), 40)
+        self.assertEqual(rows[0][:2], ["8326", "5528"])
+        self.assertGreater(sum(int(r[2]) for r in rows), 40)
+
+    def test_arena2_guards(self):
+        m = os.path.join(DATA, "movingai", "arena2.map")
+        if not os.path.isfile(m):
+            self.skipTest("%s is absent: Moving AI agreement test skipped" % m)
+        with open(m) as f:
+            lines = f.read().split("\n")
+        h = int(lines[1].split()[1])
+        grid = lines[4:4 + h]
+        guards = []
+        for y, radius in ((h // 4, " 25"), (h // 2, ""), (3 * h // 4, " 25")):
+            guards.append("%d %d%s" % (grid[y].index("."), y, radius))
+        inst = self.path("arena2.mosb")
+        self.mosb("convert", "guards", "--map", m, "--guards", self.write("guards.txt", "\n".join(guards) + "\n"),
+                  "--scen", m + ".scen", "-o", inst)
+        queries = [tuple(int(x) for x in q) for q in mosb_reader.open_instance(inst).queries()["scen"]]
+        self.assertEqual(len(queries), 929)
+        picked = queries[::116]  # buckets from short to long
+        args = [x for s, t in picked for x in ("--query", str(s), str(t))]
+        rows = self.agree(inst, ["--view", "GUARDS_2"] + args)
+        self.assertEqual(len(rows), len(picked))
+        self.assertTrue(all(int(r[2]) >= 1 for r in rows))
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=2)
