@@ -1,8 +1,13 @@
 #include "mosb/converters/dimacs_converter.hpp"
 
+#include <algorithm>
+#include <atomic>
 #include <charconv>
+#include <exception>
 #include <limits>
+#include <memory>
 #include <string>
+#include <thread>
 
 #include "mosb/converters/narrow_column.hpp"
 #include "mosb/converters/text_input.hpp"
@@ -102,13 +107,10 @@ bool scan_integer_arc(std::string_view line, std::size_t cost_count, unsigned id
   return true;
 }
 
-}  // namespace
-
-DimacsGraph parse_dimacs_gr(std::string_view text, const std::string& display_name, unsigned id_base,
-                            const DimacsReference* reference) {
+DimacsGraph parse_gr(LineScanner& lines, std::uint64_t size_hint, const std::string& display_name,
+                     unsigned id_base, const DimacsReference* reference, bool record_arc_lines) {
   if (id_base > 1) throw Error(display_name + ": id base must be 0 or 1");
   DimacsGraph g;
-  LineScanner lines(text);
   std::string_view line;
   std::vector<Token> t;
   std::uint64_t p_line = 0, m_column = 0, declared_arcs = 0, first_arc_line = 0;
@@ -128,7 +130,7 @@ DimacsGraph parse_dimacs_gr(std::string_view text, const std::string& display_na
         for (std::size_t j = 0; j < cost_count; ++j) integer_columns[j]->push_back(fast_costs[j]);
         g.tails.push_back(fast_u);
         g.heads.push_back(fast_v);
-        g.arc_lines.push_back(ln);
+        if (record_arc_lines) g.arc_lines.push_back(ln);
         continue;
       }
     }
@@ -173,7 +175,7 @@ DimacsGraph parse_dimacs_gr(std::string_view text, const std::string& display_na
       }
       g.tails.push_back(u);
       g.heads.push_back(v);
-      g.arc_lines.push_back(ln);
+      if (record_arc_lines) g.arc_lines.push_back(ln);
       integer_columns.clear();
       for (auto& c : g.columns)
         if (auto* ints = std::get_if<std::vector<std::uint64_t>>(&c)) integer_columns.push_back(ints);
@@ -188,6 +190,7 @@ DimacsGraph parse_dimacs_gr(std::string_view text, const std::string& display_na
       if (t.size() > 4) fail(display_name, ln, t[4].column, "extra field " + quoted(t[4].text) + ": the header is 'p sp n m'");
       g.vertex_count = parse_count(display_name, ln, t[2], "vertex count");
       declared_arcs = parse_count(display_name, ln, t[3], "arc count");
+      check_declared_vertices(display_name, ln, t[2].column, g.vertex_count);
       p_line = ln;
       m_column = t[3].column;
       if (reference) {
@@ -202,10 +205,10 @@ DimacsGraph parse_dimacs_gr(std::string_view text, const std::string& display_na
                                        std::to_string(ref.tails.size()));
       }
       // The header is untrusted: reserve no more than the text could hold (a line is >= 8 bytes).
-      const auto reserve = std::min<std::uint64_t>(declared_arcs, text.size() / 8 + 1);
+      const auto reserve = std::min<std::uint64_t>(declared_arcs, size_hint / 8 + 1);
       g.tails.reserve(reserve);
       g.heads.reserve(reserve);
-      g.arc_lines.reserve(reserve);
+      if (record_arc_lines) g.arc_lines.reserve(reserve);
     } else {
       fail(display_name, ln, t[0].column, "unknown line type " + quoted(t[0].text));
     }
@@ -220,9 +223,37 @@ DimacsGraph parse_dimacs_gr(std::string_view text, const std::string& display_na
   return g;
 }
 
-std::vector<std::int64_t> parse_dimacs_co(std::string_view text, const std::string& display_name,
-                                          unsigned id_base, std::uint64_t vertex_count) {
+}  // namespace
+
+DimacsGraph parse_dimacs_gr(std::string_view text, const std::string& display_name, unsigned id_base,
+                            const DimacsReference* reference) {
   LineScanner lines(text);
+  return parse_gr(lines, text.size(), display_name, id_base, reference, true);
+}
+
+DimacsGraph parse_dimacs_gr(TextSource& source, std::uint64_t size_hint, const std::string& display_name,
+                            unsigned id_base, const DimacsReference* reference, bool record_arc_lines) {
+  LineScanner lines(source);
+  return parse_gr(lines, size_hint, display_name, id_base, reference, record_arc_lines);
+}
+
+std::vector<std::uint64_t> dimacs_arc_lines(TextSource& source) {
+  LineScanner lines(source);
+  std::string_view line;
+  std::vector<std::uint64_t> numbers;
+  while (lines.next(line)) {
+    const auto first = line.find_first_not_of(" \t");
+    if (first != std::string_view::npos && line[first] == 'a' &&
+        (first + 1 == line.size() || line[first + 1] == ' ' || line[first + 1] == '\t'))
+      numbers.push_back(lines.number());
+  }
+  return numbers;
+}
+
+namespace {
+
+std::vector<std::int64_t> parse_co(LineScanner& lines, const std::string& display_name, unsigned id_base,
+                                   std::uint64_t vertex_count) {
   std::string_view line;
   std::vector<Token> t;
   std::uint64_t p_line = 0, n = 0;
@@ -268,7 +299,62 @@ std::vector<std::int64_t> parse_dimacs_co(std::string_view text, const std::stri
   return xy;
 }
 
+}  // namespace
+
+std::vector<std::int64_t> parse_dimacs_co(std::string_view text, const std::string& display_name,
+                                          unsigned id_base, std::uint64_t vertex_count) {
+  LineScanner lines(text);
+  return parse_co(lines, display_name, id_base, vertex_count);
+}
+
+std::vector<std::int64_t> parse_dimacs_co(TextSource& source, const std::string& display_name, unsigned id_base,
+                                          std::uint64_t vertex_count) {
+  LineScanner lines(source);
+  return parse_co(lines, display_name, id_base, vertex_count);
+}
+
 namespace {
+
+// One .gr file opened and parsed on its own (no reference, no arc lines), or how that failed.
+struct ParsedGr {
+  std::optional<InputFacts> facts;
+  DimacsGraph graph;
+  std::exception_ptr error;
+};
+
+ParsedGr parse_gr_file(const std::string& path, unsigned id_base) {
+  ParsedGr out;
+  try {
+    InputFile file(path);  // unmapped again as soon as it is parsed
+    out.facts = file.facts();
+    out.graph = naming_input_on_out_of_memory(file.display_name(), [&] {
+      return parse_dimacs_gr(file, file.size_hint(), file.display_name(), id_base, nullptr, false);
+    });
+  } catch (...) {
+    out.error = std::current_exception();
+  }
+  return out;
+}
+
+// Every file parsed, on up to hardware_concurrency threads.
+std::vector<ParsedGr> parse_gr_files(const std::vector<std::string>& paths, unsigned id_base) {
+  std::vector<ParsedGr> parsed(paths.size());
+  const std::size_t threads =
+      std::min<std::size_t>(paths.size(), std::max(1u, std::thread::hardware_concurrency()));
+  std::atomic<std::size_t> next{0};
+  auto work = [&] {
+    for (std::size_t i = next++; i < paths.size(); i = next++) parsed[i] = parse_gr_file(paths[i], id_base);
+  };
+  std::vector<std::thread> pool;
+  for (std::size_t k = 1; k < threads; ++k) pool.emplace_back(work);
+  work();
+  for (auto& t : pool) t.join();
+  return parsed;
+}
+
+bool same_arcs(const DimacsGraph& a, const DimacsGraph& b) {
+  return a.vertex_count == b.vertex_count && a.tails == b.tails && a.heads == b.heads;
+}
 
 }  // namespace
 
@@ -276,22 +362,38 @@ GraphInput convert_dimacs(const DimacsOptions& options) {
   if (options.gr_files.empty()) throw Error("convert dimacs: no .gr file given");
   if (options.id_base > 1) throw Error("convert dimacs: --id-base must be 0 or 1");
   GraphInput out;
+  // Each file is parsed on its own, in parallel. A later file that fails or disagrees with the
+  // first is parsed again against it, sequentially, which gives the message (and the first of
+  // several errors) a file-by-file parse gives; the first file's arc lines, which that message
+  // cites, are found by scanning it again.
+  auto parsed = parse_gr_files(options.gr_files, options.id_base);
   DimacsGraph first;
-  std::string first_name;
   std::vector<Column> columns;
-  for (std::size_t i = 0; i < options.gr_files.size(); ++i) {
-    auto input = read_text_input(options.gr_files[i]);
-    record_input(out.metadata, i, input);
+  for (std::size_t i = 0; i < parsed.size(); ++i) {
+    auto& p = parsed[i];
     if (i == 0) {
-      first = parse_dimacs_gr(input.text, input.display_name, options.id_base);
-      first_name = input.display_name;
-      for (auto& c : first.columns) columns.push_back(std::move(c));
-      first.columns.clear();
-    } else {
-      const DimacsReference ref{&first_name, &first};
-      auto g = parse_dimacs_gr(input.text, input.display_name, options.id_base, &ref);
-      for (auto& c : g.columns) columns.push_back(std::move(c));
+      if (p.error) std::rethrow_exception(p.error);
+      first = std::move(p.graph);
+    } else if (p.error || !same_arcs(first, p.graph)) {
+      const std::string& first_name = parsed[0].facts->display_name;
+      naming_input_on_out_of_memory(options.gr_files[i], [&] {
+        InputFile reference_file(options.gr_files[0]);
+        first.arc_lines = dimacs_arc_lines(reference_file);
+        InputFile file(options.gr_files[i]);
+        const DimacsReference ref{&first_name, &first};
+        (void)parse_dimacs_gr(file, file.size_hint(), file.display_name(), options.id_base, &ref, false);
+      });
+      if (p.error) std::rethrow_exception(p.error);
+      throw Error(p.facts->display_name + ": internal error: the arcs differ from " + first_name +
+                  " but no line says where");
     }
+    record_input(out.metadata, i, *p.facts);
+    auto& g = i == 0 ? first : p.graph;
+    // A later file without arcs adds no column (as many as the first file's, which are moved out).
+    if (i > 0 && g.tails.empty()) g.columns.clear();
+    for (auto& c : g.columns) columns.push_back(std::move(c));
+    g.columns.clear();
+    if (i > 0) p.graph = DimacsGraph{};
   }
   if (!options.objectives.empty() && options.objectives.size() != columns.size())
     throw Error("convert dimacs: " + plural(options.objectives.size(), "objective name") +
@@ -299,7 +401,6 @@ GraphInput convert_dimacs(const DimacsOptions& options) {
   out.vertex_count = first.vertex_count;
   out.tails = std::move(first.tails);
   out.heads = std::move(first.heads);
-  first.arc_lines = {};
   for (std::size_t j = 0; j < columns.size(); ++j) {
     CostColumn c;
     if (options.objectives.empty()) {
@@ -314,9 +415,11 @@ GraphInput convert_dimacs(const DimacsOptions& options) {
   }
   auto& m = out.metadata;
   if (options.co_file) {
-    auto input = read_text_input(*options.co_file);
-    record_input(m, options.gr_files.size(), input);
-    const auto xy = parse_dimacs_co(input.text, input.display_name, options.id_base, out.vertex_count);
+    InputFile input(*options.co_file);
+    record_input(m, options.gr_files.size(), input.facts());
+    const auto xy = naming_input_on_out_of_memory(input.display_name(), [&] {
+      return parse_dimacs_co(input, input.display_name(), options.id_base, out.vertex_count);
+    });
     out.vertex_data.push_back(narrowest_column<std::int32_t, std::int64_t>("coords", 2, xy));
     m.set("coords.scale", "1e-6");
     m.set("coords.unit", "degree");

@@ -62,12 +62,13 @@ ViewSpec parse_view_spec(std::string_view text) {
   return view;
 }
 
-std::vector<std::int64_t> parse_dimacs_elevation(std::string_view text, const std::string& display_name,
-                                                 unsigned id_base, std::uint64_t vertex_count) {
+namespace {
+
+std::vector<std::int64_t> parse_elevation(LineScanner& lines, const std::string& display_name, unsigned id_base,
+                                          std::uint64_t vertex_count) {
   std::uint64_t p_line = 0, n = 0;
   std::vector<std::int64_t> elevation;
   std::vector<bool> seen;
-  LineScanner lines(text);
   std::string_view line;
   std::vector<Token> t;
   while (lines.next(line)) {
@@ -119,6 +120,20 @@ std::vector<std::int64_t> parse_dimacs_elevation(std::string_view text, const st
   return elevation;
 }
 
+}  // namespace
+
+std::vector<std::int64_t> parse_dimacs_elevation(std::string_view text, const std::string& display_name,
+                                                 unsigned id_base, std::uint64_t vertex_count) {
+  LineScanner lines(text);
+  return parse_elevation(lines, display_name, id_base, vertex_count);
+}
+
+std::vector<std::int64_t> parse_dimacs_elevation(TextSource& source, const std::string& display_name,
+                                                 unsigned id_base, std::uint64_t vertex_count) {
+  LineScanner lines(source);
+  return parse_elevation(lines, display_name, id_base, vertex_count);
+}
+
 std::vector<std::uint32_t> out_degrees(std::uint64_t vertex_count, const std::vector<std::uint32_t>& tails) {
   std::vector<std::uint32_t> degree(vertex_count, 0);
   for (auto t : tails) ++degree[t];  // m <= 2^32 - 2, so no overflow
@@ -129,14 +144,16 @@ void append_derived_columns(GraphInput& graph, const ExtendedOptions& options, u
   const auto m = graph.tails.size();
   auto& meta = graph.metadata;
   if (options.elevation_file) {
-    auto input = read_text_input(*options.elevation_file);
-    record_input(meta, next_input_index(meta), input);
-    const auto elevation = parse_dimacs_elevation(input.text, input.display_name, id_base, graph.vertex_count);
-    std::vector<std::uint64_t> cost(m);
-    for (std::size_t k = 0; k < m; ++k)
-      cost[k] = absolute_difference(elevation[graph.tails[k]], elevation[graph.heads[k]]);
-    graph.costs.push_back({"elevation", "", std::move(cost), std::nullopt});
-    meta.set("source.param.elevation", input.base_name);
+    InputFile input(*options.elevation_file);
+    record_input(meta, next_input_index(meta), input.facts());
+    naming_input_on_out_of_memory(input.display_name(), [&] {
+      const auto elevation = parse_dimacs_elevation(input, input.display_name(), id_base, graph.vertex_count);
+      std::vector<std::uint64_t> cost(m);
+      for (std::size_t k = 0; k < m; ++k)
+        cost[k] = absolute_difference(elevation[graph.tails[k]], elevation[graph.heads[k]]);
+      graph.costs.push_back({"elevation", "", std::move(cost), std::nullopt});
+    });
+    meta.set("source.param.elevation", input.facts().base_name);
   }
   if (options.avg_outdegree) {
     const auto degree = out_degrees(graph.vertex_count, graph.tails);

@@ -89,10 +89,11 @@ bool next_data_line(LineScanner& lines, std::vector<Token>& t) {
 
 }  // namespace
 
-FmiGraph parse_fmi(std::string_view text, const std::string& display_name, std::optional<unsigned> cost_count,
-                   bool ignore_extra_fields) {
+namespace {
+
+FmiGraph parse(LineScanner& lines, std::uint64_t size_hint, const std::string& display_name,
+               std::optional<unsigned> cost_count, bool ignore_extra_fields) {
   FmiGraph g;
-  LineScanner lines(text);
   std::vector<Token> t;
   const auto end_line = [&] { return std::max<std::uint64_t>(lines.number(), 1); };
 
@@ -107,7 +108,7 @@ FmiGraph parse_fmi(std::string_view text, const std::string& display_name, std::
   }
   const std::uint64_t n = counts[0], m = counts[1];
   // The counts are untrusted: reserve no more than the text could hold.
-  const std::uint64_t max_lines = text.size() / 8 + 1;
+  const std::uint64_t max_lines = size_hint / 8 + 1;
   g.osm_ids.reserve(std::min(n, max_lines));
   g.coords.reserve(2 * std::min(n, max_lines));
 
@@ -165,6 +166,20 @@ FmiGraph parse_fmi(std::string_view text, const std::string& display_name, std::
   if (next_data_line(lines, t))
     fail(display_name, lines.number(), t[0].column, "the header declares " + plural(m, "edge") + ", found more");
   return g;
+}
+
+}  // namespace
+
+FmiGraph parse_fmi(std::string_view text, const std::string& display_name, std::optional<unsigned> cost_count,
+                   bool ignore_extra_fields) {
+  LineScanner lines(text);
+  return parse(lines, text.size(), display_name, cost_count, ignore_extra_fields);
+}
+
+FmiGraph parse_fmi(TextSource& source, std::uint64_t size_hint, const std::string& display_name,
+                   std::optional<unsigned> cost_count, bool ignore_extra_fields) {
+  LineScanner lines(source);
+  return parse(lines, size_hint, display_name, cost_count, ignore_extra_fields);
 }
 
 std::vector<std::uint32_t> bfs_select(const FmiGraph& graph, std::uint32_t root, std::uint64_t count,
@@ -268,11 +283,14 @@ DataColumn elevation_column(const Elevation& elevation) {
 GraphInput convert_fmi(const FmiOptions& options) {
   if (options.cost_count && (*options.cost_count == 0 || *options.cost_count > 64))
     throw Error("convert fmi: --costs must be 1..64");
-  auto input = read_text_input(options.file);
+  std::optional<InputFile> file(std::in_place, options.file);
+  const InputFacts input = file->facts();
   if (options.ignore_extra_fields && !options.cost_count)
     throw Error("convert fmi: --ignore-extra-fields needs --costs");
-  FmiGraph graph = parse_fmi(input.text, input.display_name, options.cost_count, options.ignore_extra_fields);
-  input.text = {};
+  FmiGraph graph = naming_input_on_out_of_memory(input.display_name, [&] {
+    return parse_fmi(*file, file->size_hint(), input.display_name, options.cost_count, options.ignore_extra_fields);
+  });
+  file.reset();  // unmapped
   const std::size_t d = graph.costs.size();
   if (!options.objectives.empty() && options.objectives.size() != d)
     throw Error("convert fmi: " + plural(options.objectives.size(), "objective name") + " given, " +

@@ -1,5 +1,6 @@
 #include "mosb/converters/query_import.hpp"
 
+#include "mosb/converters/text_input.hpp"
 #include "mosb/converters/text_scan.hpp"
 #include "mosb/error.hpp"
 
@@ -159,21 +160,35 @@ class QueryParser {
   std::uint64_t graph_line_ = 0;
 };
 
+std::vector<Query> parse_queries(text::LineScanner& lines, const std::string& display_name,
+                                 const QueryFileOptions& options) {
+  if (options.id_base > 1) throw Error(display_name + ": id base must be 0 or 1");
+  // Ids are u32 with one value to spare (spec/FORMAT.md §4).
+  if (options.vertex_count > 0xFFFFFFFEULL) throw Error(display_name + ": vertex count exceeds 2^32-2");
+  QueryParser parser(display_name, options);
+  std::vector<Query> out;
+  std::string_view line;
+  while (lines.next(line)) {
+    // A UTF-8 byte-order mark; columns count from after it.
+    if (lines.number() == 1 && line.starts_with("\xEF\xBB\xBF")) line.remove_prefix(3);
+    parser.parse_line(line, lines.number(), out);
+  }
+  parser.finish(out);
+  return out;
+}
+
 }  // namespace
 
 std::vector<Query> parse_query_file(std::string_view text, const std::string& display_name,
                                     const QueryFileOptions& options) {
-  if (options.id_base > 1) throw Error(display_name + ": id base must be 0 or 1");
-  // Ids are u32 with one value to spare (spec/FORMAT.md §4).
-  if (options.vertex_count > 0xFFFFFFFEULL) throw Error(display_name + ": vertex count exceeds 2^32-2");
-  if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);  // a UTF-8 byte-order mark
-  QueryParser parser(display_name, options);
-  std::vector<Query> out;
   text::LineScanner lines(text);
-  std::string_view line;
-  while (lines.next(line)) parser.parse_line(line, lines.number(), out);
-  parser.finish(out);
-  return out;
+  return parse_queries(lines, display_name, options);
+}
+
+std::vector<Query> parse_query_file(text::TextSource& source, const std::string& display_name,
+                                    const QueryFileOptions& options) {
+  text::LineScanner lines(source);
+  return naming_input_on_out_of_memory(display_name, [&] { return parse_queries(lines, display_name, options); });
 }
 
 }  // namespace mosb::converters

@@ -1,22 +1,24 @@
-#include "mosb/hex.hpp"
 #include "mosb/converters/text_input.hpp"
 
+#include <bzlib.h>
+#include <fcntl.h>
+#include <lzma.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <xxhash.h>
+#include <zlib.h>
+#include <zstd.h>
+#include <zstd_errors.h>
 
-#include <boost/iostreams/copy.hpp>
-#include <boost/iostreams/device/array.hpp>
-#include <boost/iostreams/device/back_inserter.hpp>
-#include <boost/iostreams/filter/bzip2.hpp>
-#include <boost/iostreams/filter/gzip.hpp>
-#include <boost/iostreams/filter/lzma.hpp>
-#include <boost/iostreams/filter/zstd.hpp>
-#include <boost/iostreams/filtering_streambuf.hpp>
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
-#include <memory>
+#include <vector>
 
 #include "mosb/error.hpp"
+#include "mosb/hex.hpp"
 
 namespace mosb::converters {
 
@@ -30,10 +32,153 @@ bool starts_with_bytes(std::string_view raw, std::initializer_list<unsigned char
   return true;
 }
 
-
-struct FileCloser {
-  void operator()(std::FILE* f) const { std::fclose(f); }
+// A decoder of one compression format, stepped over input and output windows.
+class Codec {
+ public:
+  virtual ~Codec() = default;
+  // Decodes from `in` into `out`, setting what it consumed and produced; true when a stream
+  // (gzip member, bzip2 stream, zstd frame; for xz all of them) has ended. `last` says that `in`
+  // reaches the end of the file. Throws std::runtime_error with the library's words on bad data.
+  virtual bool step(const char* in, std::size_t in_size, bool last, std::size_t& consumed, char* out,
+                    std::size_t out_size, std::size_t& produced) = 0;
+  // Ready for a further concatenated stream.
+  virtual void reset() = 0;
 };
+
+constexpr std::size_t kStepInput = std::size_t{1} << 30;  // the libraries count in 32 bits
+
+class GzipCodec final : public Codec {
+ public:
+  GzipCodec() {
+    if (inflateInit2(&z_, 16 + MAX_WBITS) != Z_OK) throw std::bad_alloc();
+  }
+  ~GzipCodec() override { inflateEnd(&z_); }
+  bool step(const char* in, std::size_t in_size, bool, std::size_t& consumed, char* out, std::size_t out_size,
+            std::size_t& produced) override {
+    z_.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(in));
+    z_.avail_in = static_cast<uInt>(std::min(in_size, kStepInput));
+    z_.next_out = reinterpret_cast<Bytef*>(out);
+    z_.avail_out = static_cast<uInt>(std::min(out_size, kStepInput));
+    const auto in_before = z_.avail_in, out_before = z_.avail_out;
+    const int r = inflate(&z_, Z_NO_FLUSH);
+    consumed = in_before - z_.avail_in;
+    produced = out_before - z_.avail_out;
+    if (r == Z_STREAM_END) return true;
+    if (r == Z_OK || r == Z_BUF_ERROR) return false;
+    if (r == Z_MEM_ERROR) throw std::bad_alloc();
+    throw std::runtime_error(z_.msg ? z_.msg : "zlib error " + std::to_string(r));
+  }
+  void reset() override { inflateReset(&z_); }
+
+ private:
+  z_stream z_{};
+};
+
+class Bzip2Codec final : public Codec {
+ public:
+  Bzip2Codec() { init(); }
+  ~Bzip2Codec() override { BZ2_bzDecompressEnd(&s_); }
+  bool step(const char* in, std::size_t in_size, bool, std::size_t& consumed, char* out, std::size_t out_size,
+            std::size_t& produced) override {
+    s_.next_in = const_cast<char*>(in);
+    s_.avail_in = static_cast<unsigned>(std::min(in_size, kStepInput));
+    s_.next_out = out;
+    s_.avail_out = static_cast<unsigned>(std::min(out_size, kStepInput));
+    const auto in_before = s_.avail_in, out_before = s_.avail_out;
+    const int r = BZ2_bzDecompress(&s_);
+    consumed = in_before - s_.avail_in;
+    produced = out_before - s_.avail_out;
+    if (r == BZ_STREAM_END) return true;
+    if (r == BZ_OK) return false;
+    if (r == BZ_MEM_ERROR) throw std::bad_alloc();
+    throw std::runtime_error(r == BZ_DATA_ERROR_MAGIC ? "not bzip2 data"
+                             : r == BZ_DATA_ERROR     ? "data integrity error"
+                                                      : "bzip2 error " + std::to_string(r));
+  }
+  void reset() override {
+    BZ2_bzDecompressEnd(&s_);
+    init();
+  }
+
+ private:
+  void init() {
+    s_ = bz_stream{};
+    if (BZ2_bzDecompressInit(&s_, 0, 0) != BZ_OK) throw std::bad_alloc();
+  }
+  bz_stream s_{};
+};
+
+class XzCodec final : public Codec {
+ public:
+  XzCodec() { init(); }
+  ~XzCodec() override { lzma_end(&s_); }
+  bool step(const char* in, std::size_t in_size, bool last, std::size_t& consumed, char* out, std::size_t out_size,
+            std::size_t& produced) override {
+    s_.next_in = reinterpret_cast<const std::uint8_t*>(in);
+    s_.avail_in = in_size;
+    s_.next_out = reinterpret_cast<std::uint8_t*>(out);
+    s_.avail_out = out_size;
+    const lzma_ret r = lzma_code(&s_, last ? LZMA_FINISH : LZMA_RUN);
+    consumed = in_size - s_.avail_in;
+    produced = out_size - s_.avail_out;
+    if (r == LZMA_STREAM_END) return true;
+    if (r == LZMA_OK || r == LZMA_BUF_ERROR) return false;
+    if (r == LZMA_MEM_ERROR) throw std::bad_alloc();
+    throw std::runtime_error(r == LZMA_FORMAT_ERROR ? "not xz data"
+                             : r == LZMA_DATA_ERROR ? "data error"
+                                                    : "xz error " + std::to_string(static_cast<int>(r)));
+  }
+  void reset() override {
+    lzma_end(&s_);
+    init();
+  }
+
+ private:
+  void init() {
+    s_ = LZMA_STREAM_INIT;
+    // Concatenated streams and stream padding are decoded in one go (LZMA_FINISH ends them).
+    if (lzma_stream_decoder(&s_, UINT64_MAX, LZMA_CONCATENATED) != LZMA_OK) throw std::bad_alloc();
+  }
+  lzma_stream s_ = LZMA_STREAM_INIT;
+};
+
+class ZstdCodec final : public Codec {
+ public:
+  ZstdCodec() : d_(ZSTD_createDStream()) {
+    if (d_ == nullptr) throw std::bad_alloc();
+  }
+  ~ZstdCodec() override { ZSTD_freeDStream(d_); }
+  bool step(const char* in, std::size_t in_size, bool, std::size_t& consumed, char* out, std::size_t out_size,
+            std::size_t& produced) override {
+    ZSTD_inBuffer input{in, in_size, 0};
+    ZSTD_outBuffer output{out, out_size, 0};
+    const std::size_t r = ZSTD_decompressStream(d_, &output, &input);
+    consumed = input.pos;
+    produced = output.pos;
+    if (ZSTD_isError(r)) {
+      if (ZSTD_getErrorCode(r) == ZSTD_error_memory_allocation) throw std::bad_alloc();
+      throw std::runtime_error(ZSTD_getErrorName(r));
+    }
+    return r == 0;  // a frame ended and its output is flushed
+  }
+  void reset() override { ZSTD_DCtx_reset(d_, ZSTD_reset_session_only); }
+
+ private:
+  ZSTD_DStream* d_;
+};
+
+std::unique_ptr<Codec> make_codec(Compression c) {
+  switch (c) {
+    case Compression::gzip: return std::make_unique<GzipCodec>();
+    case Compression::bzip2: return std::make_unique<Bzip2Codec>();
+    case Compression::xz: return std::make_unique<XzCodec>();
+    case Compression::zstd: return std::make_unique<ZstdCodec>();
+    case Compression::none: break;
+  }
+  return nullptr;
+}
+
+constexpr std::size_t kChunkBytes = std::size_t{1} << 20;
 
 }  // namespace
 
@@ -56,54 +201,165 @@ const char* compression_name(Compression c) {
   return "unknown";
 }
 
-std::string decompress(std::string_view raw, Compression c, const std::string& display_name) {
-  if (c == Compression::none) return std::string(raw);
-  namespace io = boost::iostreams;
-  std::string out;
-  try {
-    io::filtering_istreambuf in;
-    switch (c) {
-      case Compression::gzip: in.push(io::gzip_decompressor()); break;
-      case Compression::bzip2: in.push(io::bzip2_decompressor()); break;
-      case Compression::xz: in.push(io::lzma_decompressor()); break;
-      case Compression::zstd: in.push(io::zstd_decompressor()); break;
-      case Compression::none: break;
-    }
-    in.push(io::array_source(raw.data(), raw.size()));
-    io::copy(in, io::back_inserter(out));
-  } catch (const std::exception& e) {
-    throw Error(display_name + ": cannot decompress " + compression_name(c) + " data: " + e.what());
+// The raw bytes (mapped, or read whole when the file cannot be mapped) and, for compressed
+// input, the decoder with its bounded buffer.
+struct InputFile::Stream {
+  void* mapping = nullptr;
+  std::size_t mapped_size = 0;
+  std::string owned;  // raw bytes of an input that is not a regular file
+  std::string_view raw;
+
+  std::unique_ptr<Codec> codec;
+  std::size_t raw_pos = 0;
+  bool decoded_all = false;
+  std::vector<char> buffer;
+  std::size_t filled = 0;     // bytes of `buffer` holding text
+  std::size_t delivered = 0;  // bytes of `buffer` already returned as a chunk
+  bool plain_delivered = false;
+
+  ~Stream() {
+    if (mapping != nullptr) munmap(mapping, mapped_size);
   }
-  return out;
+
+  // Decodes into buffer[filled, end); returns the bytes added (0 only at the end of the data).
+  std::size_t decode(const InputFacts& facts) {
+    const char* format = compression_name(facts.compression);
+    std::size_t added = 0;
+    while (filled + added < buffer.size() && !decoded_all) {
+      std::size_t consumed = 0, produced = 0;
+      bool ended = false;
+      try {
+        ended = codec->step(raw.data() + raw_pos, raw.size() - raw_pos, true, consumed,
+                            buffer.data() + filled + added, buffer.size() - filled - added, produced);
+      } catch (const std::runtime_error& e) {
+        throw Error(facts.display_name + ": corrupt " + format + " data (" + e.what() +
+                    "): the file is truncated or corrupt");
+      }
+      raw_pos += consumed;
+      added += produced;
+      if (ended) {
+        if (raw_pos == raw.size()) decoded_all = true;
+        else codec->reset();  // a further concatenated stream follows
+        continue;
+      }
+      if (consumed == 0 && produced == 0) {
+        if (raw_pos == raw.size())
+          throw Error(facts.display_name + ": the " + format +
+                      " data ends before its end marker: the file is truncated or corrupt");
+        throw Error(facts.display_name + ": corrupt " + format + " data: the file is truncated or corrupt");
+      }
+    }
+    return added;
+  }
+};
+
+InputFile::InputFile(const std::filesystem::path& path) : stream_(std::make_unique<Stream>()) {
+  facts_.display_name = path.string();
+  facts_.base_name = path.filename().string();
+  auto& s = *stream_;
+  const int fd = ::open(facts_.display_name.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw Error(facts_.display_name + ": cannot open: " + std::strerror(errno));
+  struct stat st {};
+  bool mapped = false;
+  if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode)) {
+    if (st.st_size == 0) {
+      mapped = true;
+    } else {
+      // MAP_POPULATE faults the pages in at once, much cheaper than one fault per page.
+      void* p = ::mmap(nullptr, static_cast<std::size_t>(st.st_size), PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
+      if (p != MAP_FAILED) {
+        s.mapping = p;
+        s.mapped_size = static_cast<std::size_t>(st.st_size);
+        s.raw = std::string_view(static_cast<const char*>(p), s.mapped_size);
+        ::madvise(p, s.mapped_size, MADV_SEQUENTIAL);
+        mapped = true;
+      }
+    }
+  }
+  if (!mapped) {
+    char buffer[1 << 16];
+    for (;;) {
+      const ssize_t got = ::read(fd, buffer, sizeof buffer);
+      if (got < 0 && errno == EINTR) continue;
+      if (got < 0) {
+        const int e = errno;
+        ::close(fd);
+        throw Error(facts_.display_name + ": read error: " + std::strerror(e));
+      }
+      if (got == 0) break;
+      s.owned.append(buffer, static_cast<std::size_t>(got));
+    }
+    s.raw = s.owned;
+  }
+  ::close(fd);
+  facts_.raw_size = s.raw.size();
+  facts_.raw_xxh3 = hex64(XXH3_64bits(s.raw.data(), s.raw.size()));
+  facts_.compression = detect_compression(s.raw);
+  rewind();
+}
+
+InputFile::~InputFile() = default;
+
+std::uint64_t InputFile::size_hint() const {
+  return facts_.compression == Compression::none ? facts_.raw_size : 16 * facts_.raw_size;
+}
+
+void InputFile::rewind() {
+  auto& s = *stream_;
+  s.plain_delivered = false;
+  s.raw_pos = 0;
+  s.decoded_all = false;
+  s.filled = s.delivered = 0;
+  s.codec.reset();
+  if (facts_.compression != Compression::none) {
+    s.codec = make_codec(facts_.compression);
+    if (s.buffer.size() < kChunkBytes) s.buffer.resize(kChunkBytes);
+  }
+}
+
+bool InputFile::next_chunk(std::string_view& chunk) {
+  auto& s = *stream_;
+  if (!s.codec) {
+    if (s.plain_delivered || s.raw.empty()) return false;
+    s.plain_delivered = true;
+    chunk = s.raw;
+    return true;
+  }
+  // The bytes after the last chunk (a line not yet ended) move to the front.
+  std::memmove(s.buffer.data(), s.buffer.data() + s.delivered, s.filled - s.delivered);
+  s.filled -= s.delivered;
+  s.delivered = 0;
+  for (;;) {
+    if (s.filled == s.buffer.size()) s.buffer.resize(2 * s.buffer.size());  // a line longer than the buffer
+    const std::size_t before = s.filled;
+    const std::size_t added = s.decode(facts_);
+    s.filled += added;
+    if (added == 0) {  // the end of the text
+      if (s.filled == 0) return false;
+      chunk = std::string_view(s.buffer.data(), s.filled);
+      s.delivered = s.filled;
+      return true;
+    }
+    const std::string_view fresh(s.buffer.data() + before, added);
+    const auto last_newline = fresh.rfind('\n');
+    if (last_newline != std::string_view::npos) {
+      s.delivered = before + last_newline + 1;
+      chunk = std::string_view(s.buffer.data(), s.delivered);
+      return true;
+    }
+  }
 }
 
 TextInput read_text_input(const std::filesystem::path& path) {
+  InputFile file(path);
   TextInput input;
-  input.display_name = path.string();
-  input.base_name = path.filename().string();
-  std::unique_ptr<std::FILE, FileCloser> file(std::fopen(input.display_name.c_str(), "rb"));
-  if (!file) throw Error(input.display_name + ": cannot open: " + std::strerror(errno));
-  std::string raw;
-  char buffer[1 << 16];
-  for (;;) {
-    const std::size_t got = std::fread(buffer, 1, sizeof buffer, file.get());
-    raw.append(buffer, got);
-    if (got < sizeof buffer) {
-      if (std::ferror(file.get())) throw Error(input.display_name + ": read error");
-      break;
-    }
-  }
-  input.raw_size = raw.size();
-  input.raw_xxh3 = hex64(XXH3_64bits(raw.data(), raw.size()));
-  input.compression = detect_compression(raw);
-  if (input.compression == Compression::none)
-    input.text = std::move(raw);
-  else
-    input.text = decompress(raw, input.compression, input.display_name);
+  static_cast<InputFacts&>(input) = file.facts();
+  std::string_view chunk;
+  while (file.next_chunk(chunk)) input.text.append(chunk);
   return input;
 }
 
-void record_input(Metadata& metadata, std::size_t index, const TextInput& input) {
+void record_input(Metadata& metadata, std::size_t index, const InputFacts& input) {
   const std::string key = "source.input." + std::to_string(index);
   metadata.set(key + ".name", input.base_name);
   metadata.set(key + ".size", std::to_string(input.raw_size));
@@ -118,6 +374,31 @@ std::string benchmark_name_from(std::string base, std::initializer_list<std::str
   for (std::string_view compression : {".gz", ".bz2", ".xz", ".zst", ".zstd"}) strip(compression);
   for (auto ext : extensions) strip(ext);
   return base;
+}
+
+std::uint64_t physical_memory_bytes() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page_size = ::sysconf(_SC_PAGE_SIZE);
+  if (pages <= 0 || page_size <= 0) return UINT64_MAX;  // unknown: no bound
+  return static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page_size);
+}
+
+void check_declared_vertices(const std::string& file, std::uint64_t line, std::uint64_t column,
+                             std::uint64_t vertex_count) {
+  const std::uint64_t limit = physical_memory_bytes();
+  if (vertex_count <= limit / kBuildBytesPerVertex) return;
+  auto gib = [](double bytes) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f", bytes / double(std::uint64_t{1} << 30));
+    return std::string(text);
+  };
+  text::fail(file, line, column,
+             "the header declares " + text::plural(vertex_count, "vertex") + ": " +
+                 gib(double(vertex_count) * double(kBuildBytesPerVertex)) + " GiB, more than the " +
+                 gib(double(limit)) + " GiB of physical memory");
+}
+
+void fail_out_of_memory(const std::string& file) {
+  throw Error(file + ": out of memory converting this input");
 }
 
 }  // namespace mosb::converters

@@ -23,6 +23,20 @@ void split(std::string_view line, std::vector<Token>& tokens, IsSeparator is_sep
 
 }  // namespace
 
+bool LineScanner::refill() {
+  if (source_ == nullptr) return false;
+  std::string_view chunk;
+  while (source_->next_chunk(chunk)) {
+    if (chunk.empty()) continue;
+    text_ = chunk;
+    pos_ = 0;
+    return true;
+  }
+  text_ = {};
+  pos_ = 0;
+  return false;
+}
+
 void tokenize(std::string_view line, std::vector<Token>& tokens, Separators separators) {
   tokens.clear();
   if (separators == Separators::blanks)

@@ -4,6 +4,7 @@
 #include "commands.hpp"
 #include "mosb/converters/dimacs_converter.hpp"
 #include "mosb/converters/dimacs_extended.hpp"
+#include "mosb/converters/text_input.hpp"
 #include "mosb/error.hpp"
 #include "mosb/graph_builder.hpp"
 
@@ -46,10 +47,13 @@ int run_dimacs(const DimacsArgs& a) {
   if (a.avg_outdegree_mode == "round-half-up")
     extended.avg_outdegree_mode = converters::AvgOutdegreeMode::round_half_up;
   for (const auto& v : a.views) extended.views.push_back(converters::parse_view_spec(v));
-  auto graph = converters::convert_dimacs(o);
-  converters::append_derived_columns(graph, extended, o.id_base);
-  converters::add_views(graph, extended.views);
-  write_graph(graph, a.output);
+  // Out of memory anywhere in the conversion names the input (a parser names the file it reads).
+  converters::naming_input_on_out_of_memory(a.gr.front(), [&] {
+    auto graph = converters::convert_dimacs(o);
+    converters::append_derived_columns(graph, extended, o.id_base);
+    converters::add_views(graph, extended.views);
+    write_graph(graph, a.output);
+  });
   return report_written(a.output);
 }
 

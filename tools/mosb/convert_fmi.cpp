@@ -3,6 +3,7 @@
 
 #include "commands.hpp"
 #include "mosb/converters/fmi_converter.hpp"
+#include "mosb/converters/text_input.hpp"
 #include "mosb/error.hpp"
 #include "mosb/graph_builder.hpp"
 
@@ -32,7 +33,8 @@ int run_fmi(const FmiArgs& a) {
   for (const auto& spec : a.objectives) o.objectives.push_back(converters::parse_objective(spec, "convert fmi"));
   if (a.bfs_option->count() > 0) o.extract_bfs = converters::FmiBfs{a.bfs_root, a.bfs_count, a.bfs_undirected};
   if (!a.name.empty()) o.name = a.name;
-  write_graph(converters::convert_fmi(o), a.output);
+  // Out of memory anywhere in the conversion names the input.
+  converters::naming_input_on_out_of_memory(a.file, [&] { write_graph(converters::convert_fmi(o), a.output); });
   return report_written(a.output);
 }
 

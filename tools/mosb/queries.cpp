@@ -80,12 +80,13 @@ int run_import(const ImportArgs& a) {
   const auto reader = GraphReader::open(a.instance);
   check_new_set(reader, a.instance, a.name, a.replace);
   const unsigned id_base = a.id_base >= 0 ? static_cast<unsigned>(a.id_base) : instance_id_base(reader, a.instance);
-  const auto input = converters::read_text_input(a.file);
+  converters::InputFile file(a.file);
+  const auto& input = file.facts();
   converters::QueryFileOptions options;
   options.id_base = id_base;
   options.vertex_count = reader.vertex_count();
   if (!a.match.empty()) options.match = a.match;
-  QuerySet set{a.name, converters::parse_query_file(input.text, input.display_name, options)};
+  QuerySet set{a.name, converters::parse_query_file(file, input.display_name, options)};
 
   Metadata metadata = without_query_keys(reader.metadata(), a.name);
   const std::string key = "queries." + a.name + ".";

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "mosb/converters/text_scan.hpp"
 #include "mosb/graph_builder.hpp"
 
 namespace mosb::converters {
@@ -40,6 +41,8 @@ ViewSpec parse_view_spec(std::string_view text);
 // Parses an elevation file: `c` comments, one `p aux sp elev n` line, then one `v id elevation`
 // line (signed integer) per vertex. Errors are "FILE:LINE:COLUMN: message".
 std::vector<std::int64_t> parse_dimacs_elevation(std::string_view text, const std::string& display_name,
+                                                 unsigned id_base, std::uint64_t vertex_count);
+std::vector<std::int64_t> parse_dimacs_elevation(text::TextSource& source, const std::string& display_name,
                                                  unsigned id_base, std::uint64_t vertex_count);
 
 // Out-degree of every vertex in the directed graph as read (parallel arcs and loops counted).

@@ -34,6 +34,9 @@ struct FmiGraph {
 // and with `ignore_extra_fields` further fields (the same number on every edge line) are skipped.
 FmiGraph parse_fmi(std::string_view text, const std::string& display_name,
                    std::optional<unsigned> cost_count, bool ignore_extra_fields = false);
+// The same over text in chunks; `size_hint` (the text's size or an estimate) bounds reservations.
+FmiGraph parse_fmi(text::TextSource& source, std::uint64_t size_hint, const std::string& display_name,
+                   std::optional<unsigned> cost_count, bool ignore_extra_fields = false);
 
 // The first `count` vertices in BFS order from `root` (along out-arcs, or along arcs in both
 // directions when `undirected`; neighbours in file order), sorted by id. Throws mosb::Error naming

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "mosb/converters/text_scan.hpp"
 #include "mosb/query.hpp"
 
 namespace mosb::converters {
@@ -22,6 +23,9 @@ struct QueryFileOptions {
 // Parses query text held in memory; `display_name` stands for the file in messages. Returns the
 // selected pairs, 0-based, in file order. Throws mosb::Error.
 std::vector<Query> parse_query_file(std::string_view text, const std::string& display_name,
+                                    const QueryFileOptions& options);
+// The same over text in chunks (an InputFile).
+std::vector<Query> parse_query_file(text::TextSource& source, const std::string& display_name,
                                     const QueryFileOptions& options);
 
 }  // namespace mosb::converters

@@ -23,13 +23,24 @@ enum class LineEnd {
   keep,  // nothing (pair with Separators::blanks_and_cr so that a '\r' still ends a token)
 };
 
-// Lines of a text buffer, '\n' ending each; numbered from 1. Inline: it is on every parser's hot path.
+// Text delivered in pieces (a file streamed through a bounded buffer). Every chunk but the last
+// ends just after a '\n', so no line crosses two chunks.
+class TextSource {
+ public:
+  virtual ~TextSource() = default;
+  // The next chunk, valid until the following call; false at the end of the text.
+  virtual bool next_chunk(std::string_view& chunk) = 0;
+};
+
+// Lines of a text buffer or of a TextSource, '\n' ending each; numbered from 1 across chunks. A
+// line returned stays valid until the next call. Inline: it is on every parser's hot path.
 class LineScanner {
  public:
   explicit LineScanner(std::string_view text, LineEnd end = LineEnd::trim) : text_(text), end_(end) {}
+  explicit LineScanner(TextSource& source, LineEnd end = LineEnd::trim) : end_(end), source_(&source) {}
 
   bool next(std::string_view& line) {
-    if (pos_ >= text_.size()) return false;
+    if (pos_ >= text_.size() && !refill()) return false;
     auto end = text_.find('\n', pos_);
     if (end == std::string_view::npos) end = text_.size();
     line = text_.substr(pos_, end - pos_);
@@ -48,8 +59,12 @@ class LineScanner {
   std::uint64_t number() const { return number_; }
 
  private:
+  // The source's next non-empty chunk; false at the end (or without a source).
+  bool refill();
+
   std::string_view text_;
   LineEnd end_;
+  TextSource* source_ = nullptr;
   std::size_t pos_ = 0;
   std::uint64_t number_ = 0;
 };
