@@ -1,5 +1,7 @@
 #include "mosb/converters/dimacs_converter.hpp"
 
+#include <sys/mman.h>
+
 #include <algorithm>
 #include <atomic>
 #include <charconv>
@@ -46,6 +48,17 @@ std::uint32_t parse_id(const std::string& file, std::uint64_t line, const Token&
 }
 
 using Column = std::variant<std::vector<std::uint64_t>, std::vector<double>>;
+
+// Asks for transparent huge pages on a reserved array: filling FLA-size arrays otherwise costs one
+// page fault per 4 KiB, a fifth of the conversion's time. Advice only; ignored where unsupported.
+template <class T>
+void advise_huge_pages(const std::vector<T>& v) {
+  constexpr std::uintptr_t kHuge = std::uintptr_t{2} << 20;
+  const auto begin = reinterpret_cast<std::uintptr_t>(v.data());
+  const auto end = begin + v.capacity() * sizeof(T);
+  const auto first = (begin + kHuge - 1) & ~(kHuge - 1), last = end & ~(kHuge - 1);
+  if (last > first) ::madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+}
 
 void add_cost(const std::string& file, std::uint64_t line, const Token& t, Column& column) {
   const auto s = t.text;
@@ -148,7 +161,11 @@ DimacsGraph parse_gr(LineScanner& lines, std::uint64_t size_hint, const std::str
         first_arc_line = ln;
         cost_count = t.size() - 3;
         g.columns.assign(cost_count, Column{});
-        for (auto& c : g.columns) std::get<std::vector<std::uint64_t>>(c).reserve(g.tails.capacity());
+        for (auto& c : g.columns) {
+          auto& values = std::get<std::vector<std::uint64_t>>(c);
+          values.reserve(g.tails.capacity());
+          advise_huge_pages(values);
+        }
       } else if (t.size() - 3 != cost_count) {
         const std::string expected = "expected " + plural(cost_count, "cost") + " as on line " +
                                      std::to_string(first_arc_line);
@@ -209,6 +226,8 @@ DimacsGraph parse_gr(LineScanner& lines, std::uint64_t size_hint, const std::str
       g.tails.reserve(reserve);
       g.heads.reserve(reserve);
       if (record_arc_lines) g.arc_lines.reserve(reserve);
+      advise_huge_pages(g.tails);
+      advise_huge_pages(g.heads);
     } else {
       fail(display_name, ln, t[0].column, "unknown line type " + quoted(t[0].text));
     }
