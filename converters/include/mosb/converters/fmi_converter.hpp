@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "mosb/converters/objective.hpp"
+#include "mosb/converters/text_scan.hpp"
 #include "mosb/graph_builder.hpp"
 
 namespace mosb::converters {
