@@ -1,11 +1,8 @@
 #include "mosb/converters/dimacs_export.hpp"
 
-#include <unistd.h>
-
 #include <charconv>
-#include <cstdio>
-#include <memory>
 
+#include "mosb/atomic_file.hpp"
 #include "mosb/error.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/version.hpp"
@@ -17,25 +14,10 @@ namespace {
 using format::ElementType;
 using format::SectionKind;
 
-// A text file written under a temporary name in its final directory and renamed into place by
-// commit(); destroyed uncommitted, it removes the temporary file.
+// Buffered text over an AtomicFile: appears under its name at commit(), complete, or not at all.
 class AtomicTextFile {
  public:
-  explicit AtomicTextFile(std::filesystem::path path)
-      : path_(std::move(path)), temp_(path_.string() + ".tmp-" + std::to_string(::getpid())) {
-    file_.reset(std::fopen(temp_.c_str(), "wb"));
-    if (!file_) throw Error(temp_.string() + ": cannot create the file");
-    buffer_.reserve(kFlushAt + 256);
-  }
-  ~AtomicTextFile() {
-    if (!committed_) {
-      file_.reset();
-      std::error_code ec;
-      std::filesystem::remove(temp_, ec);
-    }
-  }
-  AtomicTextFile(const AtomicTextFile&) = delete;
-  AtomicTextFile& operator=(const AtomicTextFile&) = delete;
+  explicit AtomicTextFile(const std::filesystem::path& path) : file_(path) { buffer_.reserve(kFlushAt + 256); }
 
   AtomicTextFile& operator<<(std::string_view text) {
     buffer_ += text;
@@ -55,28 +37,18 @@ class AtomicTextFile {
 
   void commit() {
     flush();
-    if (std::fclose(file_.release()) != 0) throw Error(temp_.string() + ": write failed");
-    std::error_code ec;
-    std::filesystem::rename(temp_, path_, ec);
-    if (ec) throw Error(path_.string() + ": cannot rename into place: " + ec.message());
-    committed_ = true;
+    file_.commit();
   }
 
  private:
   static constexpr std::size_t kFlushAt = 1 << 20;
   void flush() {
-    if (!buffer_.empty() && std::fwrite(buffer_.data(), 1, buffer_.size(), file_.get()) != buffer_.size())
-      throw Error(temp_.string() + ": write failed");
+    file_.write(buffer_);
     buffer_.clear();
   }
 
-  struct Closer {
-    void operator()(std::FILE* f) const { std::fclose(f); }
-  };
-  std::filesystem::path path_, temp_;
-  std::unique_ptr<std::FILE, Closer> file_;
+  AtomicFile file_;
   std::string buffer_;
-  bool committed_ = false;
 };
 
 // Metadata text in a `c` line: control characters would end the line, so they become '?'.
@@ -220,14 +192,17 @@ std::vector<std::filesystem::path> export_dimacs(const std::filesystem::path& in
   std::vector<std::filesystem::path> written;
   for (auto j : objectives) {
     written.push_back(options.out_dir / (benchmark + "-" + reader.objective(j).name + ".gr"));
+    check_output_is_not_input(written.back(), {instance});
     export_objective(written.back(), reader, j, benchmark, id_base);
   }
   if (const auto* coords = reader.find(SectionKind::vertex_data, "coords")) {
     written.push_back(options.out_dir / (benchmark + ".co"));
+    check_output_is_not_input(written.back(), {instance});
     export_coordinates(written.back(), reader, *coords, benchmark, id_base);
   }
   for (const auto& set : query_sets) {
     written.push_back(options.out_dir / (benchmark + "-" + set + ".queries"));
+    check_output_is_not_input(written.back(), {instance});
     export_queries(written.back(), reader, set, id_base);
   }
   return written;

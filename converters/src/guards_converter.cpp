@@ -10,6 +10,7 @@
 
 #include "mosb/converters/text_input.hpp"
 #include "mosb/converters/text_scan.hpp"
+#include "mosb/atomic_file.hpp"
 #include "mosb/error.hpp"
 #include "octile_steps.hpp"
 
@@ -170,27 +171,9 @@ std::string format_exposure(const OctileMap& map, const std::vector<std::uint64_
 }
 
 void write_text_atomically(const std::filesystem::path& path, std::string_view content) {
-  std::string temp = path.string() + ".tmp-XXXXXX";
-  const int fd = ::mkstemp(temp.data());
-  if (fd < 0) throw Error(path.string() + ": cannot create a temporary file: " + std::strerror(errno));
-  std::size_t done = 0;
-  while (done < content.size()) {
-    const auto n = ::write(fd, content.data() + done, content.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      const std::string reason = std::strerror(errno);
-      ::close(fd);
-      std::remove(temp.c_str());
-      throw Error(path.string() + ": cannot write: " + reason);
-    }
-    done += static_cast<std::size_t>(n);
-  }
-  ::fchmod(fd, 0644);
-  if (::close(fd) != 0 || std::rename(temp.c_str(), path.c_str()) != 0) {
-    const std::string reason = std::strerror(errno);
-    std::remove(temp.c_str());
-    throw Error(path.string() + ": cannot write: " + reason);
-  }
+  AtomicFile file(path);
+  file.write(content);
+  file.commit();
 }
 
 GraphInput build_guards_graph(const OctileMap& map, const std::vector<std::uint64_t>& exposure) {

@@ -12,6 +12,7 @@
 
 #include "mosb/converters/grid_generator.hpp"
 #include "mosb/converters/netmaker_generator.hpp"
+#include "mosb/atomic_file.hpp"
 #include "mosb/error.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/random.hpp"
@@ -21,18 +22,12 @@ namespace mosb::converters {
 namespace {
 
 void write_manifest(const std::filesystem::path& directory, const std::vector<SuiteEntry>& entries) {
-  const auto target = directory / "MANIFEST";
-  const auto temporary = directory / ".MANIFEST.tmp";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    for (const auto& e : entries)
-      out << e.name << '\t' << e.file << '\t' << e.size << '\t' << e.digest << '\n';
-    out.flush();
-    if (!out) throw Error(temporary.string() + ": cannot write the suite manifest");
-  }
-  std::error_code ec;
-  std::filesystem::rename(temporary, target, ec);
-  if (ec) throw Error(target.string() + ": cannot rename the manifest into place: " + ec.message());
+  std::string text;
+  for (const auto& e : entries)
+    text += e.name + '\t' + e.file + '\t' + std::to_string(e.size) + '\t' + e.digest + '\n';
+  AtomicFile file(directory / "MANIFEST");
+  file.write(text);
+  file.commit();
 }
 
 // A size listed twice would make two workers write the same file.

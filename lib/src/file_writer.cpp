@@ -1,13 +1,8 @@
 #include "mosb/file_writer.hpp"
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
 #include "xxh3.hpp"
 
 #include <algorithm>
-#include <cerrno>
-#include <cstring>
 
 #include "mosb/error.hpp"
 #include "mosb/metadata.hpp"
@@ -18,15 +13,8 @@ namespace {
 constexpr std::size_t kBufferSize = 1 << 20;
 }
 
-FileWriter::FileWriter(std::filesystem::path target) : target_(std::move(target)) {
-  auto directory = target_.parent_path();
-  if (directory.empty()) directory = ".";
-  std::string pattern = (directory / ("." + target_.filename().string() + ".tmp-XXXXXX")).string();
-  fd_ = ::mkstemp(pattern.data());
-  if (fd_ < 0) throw Error(target_.string() + ": cannot create a temporary file in '" +
-                           directory.string() + "': " + std::strerror(errno));
-  temporary_ = pattern;
-  ::fchmod(fd_, 0644);
+FileWriter::FileWriter(std::filesystem::path target, AtomicFile::Existing existing)
+    : file_(std::move(target), existing) {
   hash_state_ = XXH3_createState();
   buffer_.reserve(kBufferSize);
   // The header is written last, at commit; until then its bytes are zero, so a partial file never
@@ -35,28 +23,14 @@ FileWriter::FileWriter(std::filesystem::path target) : target_(std::move(target)
   write_at_end(zeros, sizeof zeros);
 }
 
-FileWriter::~FileWriter() {
-  if (fd_ >= 0) ::close(fd_);
-  if (!committed_ && !temporary_.empty()) ::unlink(temporary_.c_str());
-  XXH3_freeState(hash_state_);
-}
+FileWriter::~FileWriter() { XXH3_freeState(hash_state_); }
 
 void FileWriter::fail(const std::string& what) const {
-  throw Error(target_.string() + ": " + what);
+  throw Error(file_.target().string() + ": " + what);
 }
 
 void FileWriter::flush_buffer() {
-  const std::byte* data = buffer_.data();
-  std::size_t left = buffer_.size();
-  while (left > 0) {
-    ssize_t written = ::write(fd_, data, left);
-    if (written < 0) {
-      if (errno == EINTR) continue;
-      fail(std::string("write failed: ") + std::strerror(errno));
-    }
-    data += written;
-    left -= static_cast<std::size_t>(written);
-  }
+  file_.write(buffer_.data(), buffer_.size());
   buffer_.clear();
 }
 
@@ -143,15 +117,8 @@ void FileWriter::commit(std::uint64_t vertex_count, std::uint64_t arc_count) {
   XXH3_64bits_update(hash_state_, table_.data(), table_.size() * sizeof(format::SectionEntry));
   header.header_checksum = XXH3_64bits_digest(hash_state_);
 
-  if (::pwrite(fd_, &header, sizeof header, 0) != static_cast<ssize_t>(sizeof header))
-    fail(std::string("write failed: ") + std::strerror(errno));
-  if (::fsync(fd_) != 0) fail(std::string("fsync failed: ") + std::strerror(errno));
-  ::close(fd_);
-  fd_ = -1;
-  std::error_code ec;
-  std::filesystem::rename(temporary_, target_, ec);
-  if (ec) fail("cannot rename the finished file into place: " + ec.message());
-  committed_ = true;
+  file_.write_at(&header, sizeof header, 0);
+  file_.commit();
 }
 
 }  // namespace mosb

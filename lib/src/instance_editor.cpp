@@ -71,7 +71,11 @@ void rewrite_instance(const GraphReader& source, const Metadata& metadata,
                   "': checksum mismatch, the file is damaged (see mosb verify); not rewritten");
   }
 
-  FileWriter writer(output);
+  // Rewriting the source itself is an edit in place (keep mode, symlink and hard links, refuse a
+  // read-only file); any other output is a new file.
+  std::error_code ec;
+  const bool in_place = std::filesystem::equivalent(output, source.display_name(), ec) && !ec;
+  FileWriter writer(output, in_place ? AtomicFile::Existing::rewrite_in_place : AtomicFile::Existing::replace);
   for (const auto& s : source.sections()) {
     if (s.kind == SectionKind::metadata) {
       const std::string text = metadata.serialize();

@@ -2,6 +2,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "mosb/atomic_file.hpp"
 #include "mosb/converters/dimacs_converter.hpp"
 #include "mosb/converters/dimacs_extended.hpp"
 #include "mosb/converters/text_input.hpp"
@@ -27,6 +28,9 @@ struct DimacsArgs {
 };
 
 int run_dimacs(const DimacsArgs& a) {
+  std::vector<std::filesystem::path> inputs(a.gr.begin(), a.gr.end());
+  inputs.insert(inputs.end(), {a.co, a.elevation});
+  check_output_is_not_input(a.output, inputs);
   converters::DimacsOptions o;
   o.gr_files = a.gr;
   for (const auto& spec : a.objectives) o.objectives.push_back(converters::parse_objective(spec, "convert dimacs"));

@@ -2,6 +2,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "mosb/atomic_file.hpp"
 #include "mosb/converters/fmi_converter.hpp"
 #include "mosb/converters/text_input.hpp"
 #include "mosb/error.hpp"
@@ -26,6 +27,7 @@ struct FmiArgs {
 };
 
 int run_fmi(const FmiArgs& a) {
+  check_output_is_not_input(a.output, {a.file});
   converters::FmiOptions o;
   o.file = a.file;
   if (a.costs_option->count() > 0) o.cost_count = a.costs;

@@ -2,6 +2,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "mosb/atomic_file.hpp"
 #include "mosb/converters/guards_converter.hpp"
 #include "mosb/error.hpp"
 #include "mosb/graph_builder.hpp"
@@ -23,6 +24,9 @@ struct GuardsArgs {
 };
 
 int run_guards(const GuardsArgs& a) {
+  const std::vector<std::filesystem::path> inputs = {a.map, a.exposure, a.guards, a.scen};
+  check_output_is_not_input(a.output, inputs);
+  check_output_is_not_input(a.write_exposure, inputs);
   converters::GuardsOptions o;
   o.map_file = a.map;
   if (!a.exposure.empty()) o.exposure_file = a.exposure;

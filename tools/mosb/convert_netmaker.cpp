@@ -3,6 +3,7 @@
 #include <optional>
 
 #include "commands.hpp"
+#include "mosb/atomic_file.hpp"
 #include "mosb/converters/netmaker_generator.hpp"
 #include "mosb/graph_builder.hpp"
 
@@ -27,6 +28,7 @@ Command add_convert_netmaker(CLI::App& convert) {
   netmaker->add_option("--name", args->name, "benchmark name (default: the file's base name)");
   netmaker->add_option("-o,--output", args->output, "the .mosb file to write")->required();
   return {netmaker, [args] {
+            check_output_is_not_input(args->output, {args->input});
             const auto name = args->name.empty() ? std::nullopt : std::optional<std::string>(args->name);
             write_graph(converters::convert_netmaker(args->input, name), args->output);
             return report_written(args->output);

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "mosb/atomic_file.hpp"
 #include "mosb/converters/roadmap_converter.hpp"
 #include "mosb/error.hpp"
 #include "mosb/graph_builder.hpp"
@@ -25,6 +26,9 @@ struct RoadmapArgs {
 };
 
 int run_roadmap(const RoadmapArgs& a) {
+  std::vector<std::filesystem::path> inputs(a.gr.begin(), a.gr.end());
+  inputs.insert(inputs.end(), {a.vertices, a.graphml});
+  check_output_is_not_input(a.output, inputs);
   converters::RoadmapOptions o;
   o.gr_files = a.gr;
   if (!a.vertices.empty()) o.vertex_file = a.vertices;

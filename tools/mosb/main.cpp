@@ -1,7 +1,9 @@
 #include <CLI/CLI.hpp>
+#include <csignal>
 #include <iostream>
 
 #include "commands.hpp"
+#include "mosb/atomic_file.hpp"
 #include "mosb/error.hpp"
 #include "mosb/version.hpp"
 
@@ -23,6 +25,13 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
+  // Interrupted writes leave no temporary; a file size limit is a write error (EFBIG), reported
+  // in one line, rather than a core dump; a temporary left by a killed run is removed and said.
+  mosb::remove_temporaries_on_signals();
+  std::signal(SIGXFSZ, SIG_IGN);
+  mosb::set_stale_temporary_handler([](const std::filesystem::path& path) {
+    std::cerr << "mosb: removed " << path.string() << ", left by an earlier run that was killed\n";
+  });
   try {
     for (const auto& command : commands)
       if (command.subcommand->parsed()) return command.run();

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "mosb/atomic_file.hpp"
 #include "mosb/converters/query_import.hpp"
 #include "mosb/converters/text_input.hpp"
 #include "mosb/error.hpp"
@@ -77,6 +78,7 @@ unsigned instance_id_base(const GraphReader& reader, const std::string& instance
 }
 
 int run_import(const ImportArgs& a) {
+  check_output_is_not_input(a.instance, {a.file});
   const auto reader = GraphReader::open(a.instance);
   check_new_set(reader, a.instance, a.name, a.replace);
   const unsigned id_base = a.id_base >= 0 ? static_cast<unsigned>(a.id_base) : instance_id_base(reader, a.instance);

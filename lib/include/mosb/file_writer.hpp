@@ -1,5 +1,6 @@
 // Streams sections into a new mosb file. The file appears under its final name only when commit()
-// succeeds; until then it lives under a temporary name in the same directory, removed on failure.
+// succeeds; until then it lives under a temporary name in the same directory, removed on failure
+// (mosb::AtomicFile, whose header states the guarantees).
 #pragma once
 
 #include <cstddef>
@@ -10,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "mosb/atomic_file.hpp"
 #include "mosb/format.hpp"
 
 struct XXH3_state_s;
@@ -18,7 +20,8 @@ namespace mosb {
 
 class FileWriter {
  public:
-  explicit FileWriter(std::filesystem::path target);
+  explicit FileWriter(std::filesystem::path target,
+                      AtomicFile::Existing existing = AtomicFile::Existing::replace);
   ~FileWriter();
   FileWriter(const FileWriter&) = delete;
   FileWriter& operator=(const FileWriter&) = delete;
@@ -48,10 +51,7 @@ class FileWriter {
   void flush_buffer();
   [[noreturn]] void fail(const std::string& what) const;
 
-  std::filesystem::path target_;
-  std::filesystem::path temporary_;
-  int fd_ = -1;
-  bool committed_ = false;
+  AtomicFile file_;
   std::uint64_t position_ = 0;  // bytes written or buffered so far
   std::vector<std::byte> buffer_;
   std::vector<format::SectionEntry> table_;

@@ -1,0 +1,85 @@
+// One way to write a file so that its name never shows a partial file: every mosb writer (the
+// .mosb writer, in-place query-set edits, DIMACS export, suite MANIFESTs, exposure grids) goes
+// through AtomicFile.
+//
+// Guarantees:
+//  * The data is written to a temporary `.NAME.tmp-PID-XXXXXX` (PID of the writing process,
+//    XXXXXX random) in the directory the final file goes to, created with O_CREAT|O_EXCL|
+//    O_NOFOLLOW, so an existing file or symlink at that name is never opened or followed.
+//  * commit() fsyncs the data and renames the temporary onto the target: a reader sees the old
+//    file or the complete new one, never a mixture. Until then the target is untouched.
+//  * The temporary is removed by the destructor of an uncommitted AtomicFile, so on every error
+//    path (a write error such as EFBIG or ENOSPC, a failed fsync or rename, an exception of the
+//    caller); and, once remove_temporaries_on_signals() is installed, on SIGINT and SIGTERM.
+//  * Only kill -9 (or a crash, or power loss) can leave a temporary behind. The next AtomicFile
+//    for the same target removes temporaries of that target whose PID is no longer alive (in this
+//    PID namespace; temporaries of live processes are kept) and reports each removal to the
+//    handler given to set_stale_temporary_handler().
+//  * Existing::replace (new outputs): the new file's mode is 0666 & ~umask, like any new file; an
+//    existing target, or a symlink at the target's name, is replaced.
+//  * Existing::rewrite_in_place (editing a file): the target must exist; a symlink is followed and
+//    its final target rewritten (the symlink stays); the mode (and, where permitted, the owner and
+//    group) is kept; a target without any write permission bit, or not writable by this process,
+//    is refused; a target with several hard links is refused, since renaming a new file over one
+//    name would split it from the others.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string_view>
+#include <vector>
+
+namespace mosb {
+
+class AtomicFile {
+ public:
+  enum class Existing { replace, rewrite_in_place };
+
+  // Creates the temporary; throws mosb::Error naming `target` when it cannot.
+  explicit AtomicFile(std::filesystem::path target, Existing existing = Existing::replace);
+  ~AtomicFile();  // removes the temporary unless committed
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+
+  // Appends all of `size` bytes (retrying short writes); a failure throws mosb::Error naming the
+  // target, e.g. "out.mosb: write failed: File too large".
+  void write(const void* data, std::size_t size);
+  void write(std::string_view text) { write(text.data(), text.size()); }
+  // Writes at `offset` without moving the append position.
+  void write_at(const void* data, std::size_t size, std::uint64_t offset);
+  // fsync, close, rename onto the target. Throws mosb::Error (and keeps the target) on failure.
+  void commit();
+
+  // The file that is replaced at commit (for an in-place rewrite through a symlink: its target).
+  const std::filesystem::path& target() const { return target_; }
+  const std::filesystem::path& temporary() const { return temporary_; }
+
+ private:
+  [[noreturn]] void fail(const std::string& what) const;
+
+  std::filesystem::path target_;
+  std::filesystem::path temporary_;
+  int fd_ = -1;
+  int slot_ = -1;  // in the signal registry, or -1
+  bool committed_ = false;
+};
+
+// Called (from the writing thread, one call at a time) with each stale temporary that was
+// removed; the library prints nothing itself. An empty function removes them silently (the
+// default).
+void set_stale_temporary_handler(std::function<void(const std::filesystem::path&)> handler);
+
+// Installs handlers for SIGINT and SIGTERM that unlink every live temporary and then re-raise the
+// signal with its default action (so the exit status is the usual one). A signal that is ignored
+// when this is called stays ignored. For programs: a library embedding mosb keeps its own
+// handlers unless it calls this.
+void remove_temporaries_on_signals();
+
+// Throws mosb::Error when `output` exists and is the same file (device and inode, after following
+// symlinks) as one of `inputs`: writing it would destroy that input. Empty paths are skipped.
+void check_output_is_not_input(const std::filesystem::path& output,
+                               const std::vector<std::filesystem::path>& inputs);
+
+}  // namespace mosb
