@@ -8,6 +8,8 @@
 #include <regex>
 
 #include "mosb/atomic_file.hpp"
+#include "mosb/converters/grid_generator.hpp"
+#include "mosb/converters/suite.hpp"
 #include "mosb/error.hpp"
 #include "temp_dir.hpp"
 
@@ -124,4 +126,28 @@ TEST_CASE("atomic file: an output that is an input is refused by device and inod
   CHECK_NOTHROW(check_output_is_not_input(dir / "copy", {dir / "in"}));
   CHECK_NOTHROW(check_output_is_not_input(dir / "new", {dir / "in"}));
   CHECK_NOTHROW(check_output_is_not_input(dir / "in", {""}));
+}
+
+TEST_CASE("atomic file: a suite's files and MANIFEST get mode 0666 & ~umask") {
+  testing::TempDir dir;
+  converters::GridParameters grid;
+  grid.width = grid.height = 2;
+  const std::vector<converters::SuiteInstance> instances = {
+      {"a", [grid] { return converters::generate_grid(grid); }}};
+  converters::SuiteOptions options;
+  options.threads = 1;
+  const mode_t saved = ::umask(077);
+  try {
+    converters::run_suite(dir.path(), instances, options);
+  } catch (...) {
+    ::umask(saved);
+    throw;
+  }
+  ::umask(saved);
+  struct stat st {};
+  REQUIRE(::stat((dir / "MANIFEST").c_str(), &st) == 0);
+  CHECK((st.st_mode & 07777) == 0600);
+  REQUIRE(::stat((dir / "a.mosb").c_str(), &st) == 0);
+  CHECK((st.st_mode & 07777) == 0600);
+  CHECK(names_in(dir.path()) == std::vector<std::string>{"MANIFEST", "a.mosb"});
 }
