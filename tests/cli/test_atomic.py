@@ -242,6 +242,10 @@ class OutputIsAnInput(Base):
         e = self.write("e.txt", "0 1\n")
         self.refused(["convert", "guards", "--map", m, "--exposure", e, "-o", "OUT"], m)
 
+    def test_convert_movingai(self):
+        m = self.write("s.map", "type octile\nheight 1\nwidth 2\nmap\n..\n")
+        self.refused(["convert", "movingai", "--map", m, "-o", "OUT"], m)
+
     def test_convert_guards_write_exposure(self):
         m = self.write("s.map", "type octile\nheight 1\nwidth 2\nmap\n..\n")
         e = self.write("e.txt", "0 1\n")

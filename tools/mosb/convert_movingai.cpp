@@ -2,6 +2,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "mosb/atomic_file.hpp"
 #include "mosb/converters/movingai.hpp"
 #include "mosb/graph_builder.hpp"
 
@@ -19,6 +20,7 @@ struct MovingaiArgs {
 };
 
 int run_movingai(const MovingaiArgs& a) {
+  check_output_is_not_input(a.output, {a.map, a.scen});
   converters::MovingaiOptions o;
   o.map_file = a.map;
   if (!a.scen.empty()) o.scen_file = a.scen;
