@@ -190,20 +190,26 @@ std::vector<std::filesystem::path> export_dimacs(const std::filesystem::path& in
   std::filesystem::create_directories(options.out_dir, ec);
   if (ec) throw Error(options.out_dir.string() + ": cannot create the directory: " + ec.message());
   std::vector<std::filesystem::path> written;
+  const auto* coords = reader.find(SectionKind::vertex_data, "coords");
+  const std::uint64_t file_count = objectives.size() + (coords ? 1 : 0) + query_sets.size();
+  report(options.progress, "export", 0, file_count);
   for (auto j : objectives) {
     written.push_back(options.out_dir / (benchmark + "-" + reader.objective(j).name + ".gr"));
     check_output_is_not_input(written.back(), {instance});
     export_objective(written.back(), reader, j, benchmark, id_base);
+    report(options.progress, "export", written.size(), file_count);
   }
-  if (const auto* coords = reader.find(SectionKind::vertex_data, "coords")) {
+  if (coords) {
     written.push_back(options.out_dir / (benchmark + ".co"));
     check_output_is_not_input(written.back(), {instance});
     export_coordinates(written.back(), reader, *coords, benchmark, id_base);
+    report(options.progress, "export", written.size(), file_count);
   }
   for (const auto& set : query_sets) {
     written.push_back(options.out_dir / (benchmark + "-" + set + ".queries"));
     check_output_is_not_input(written.back(), {instance});
     export_queries(written.back(), reader, set, id_base);
+    report(options.progress, "export", written.size(), file_count);
   }
   return written;
 }

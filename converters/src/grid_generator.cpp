@@ -7,7 +7,7 @@
 
 namespace mosb::converters {
 
-GraphInput generate_grid(const GridParameters& p) {
+StreamedGraph grid_graph(const GridParameters& p) {
   if (p.width < 1 || p.height < 1) throw Error("grid width and height must be at least 1");
   if (p.objectives < 1 || p.objectives > 16) throw Error("grid objectives must be 1 to 16");
   if (p.min_cost > p.max_cost) throw Error("grid minimum cost exceeds the maximum cost");
@@ -16,33 +16,29 @@ GraphInput generate_grid(const GridParameters& p) {
   const auto K = p.width, M = p.height;
   const auto source = static_cast<std::uint32_t>(cells), target = source + 1;
 
-  GraphInput g;
+  StreamedGraph g;
   g.vertex_count = cells + 2;
-  const std::uint64_t arcs = 2 * (std::uint64_t{K - 1} * M + std::uint64_t{M - 1} * K) + 2ULL * M;
-  g.tails.reserve(arcs);
-  g.heads.reserve(arcs);
-  auto arc = [&](std::uint64_t u, std::uint64_t v) {
-    g.tails.push_back(static_cast<std::uint32_t>(u));
-    g.heads.push_back(static_cast<std::uint32_t>(v));
+  g.arc_count = 2 * (std::uint64_t{K - 1} * M + std::uint64_t{M - 1} * K) + 2ULL * M;
+  // Arcs in vertex order; per cell: left, right, up (y-1), down (y+1); the source's arcs last.
+  g.replay_arcs = [K, M, source, target](const StreamedGraph::ArcSink& arc) {
+    for (std::uint32_t y = 0; y < M; ++y)
+      for (std::uint32_t x = 0; x < K; ++x) {
+        const auto v = y * K + x;  // below 2^32 - 2: checked above
+        if (x > 0) arc(v, v - 1);
+        if (x + 1 < K) arc(v, v + 1);
+        if (y > 0) arc(v, v - K);
+        if (y + 1 < M) arc(v, v + K);
+        if (x + 1 == K) arc(v, target);
+      }
+    for (std::uint32_t y = 0; y < M; ++y) arc(source, y * K);
   };
-  // Arcs in vertex order; per cell: left, right, up (y-1), down (y+1).
-  for (std::uint32_t y = 0; y < M; ++y)
-    for (std::uint32_t x = 0; x < K; ++x) {
-      const std::uint64_t v = std::uint64_t{y} * K + x;
-      if (x > 0) arc(v, v - 1);
-      if (x + 1 < K) arc(v, v + 1);
-      if (y > 0) arc(v, v - K);
-      if (y + 1 < M) arc(v, v + K);
-      if (x + 1 == K) arc(v, target);
-    }
-  for (std::uint32_t y = 0; y < M; ++y) arc(source, std::uint64_t{y} * K);
-
-  for (std::uint32_t j = 0; j < p.objectives; ++j) {
-    auto rng = stream(p.seed, j);
-    std::vector<std::uint64_t> costs(g.tails.size());
-    for (auto& c : costs) c = rng.uniform(p.min_cost, p.max_cost);
-    g.costs.push_back({"c" + std::to_string(j + 1), "", std::move(costs), std::nullopt});
-  }
+  // Objective j: the j-th random stream, one draw per arc in arc order.
+  for (std::uint32_t j = 0; j < p.objectives; ++j)
+    g.costs.push_back({"c" + std::to_string(j + 1), "",
+                       [p, j, arcs = g.arc_count](const StreamedGraph::CostSink& cost) {
+                         auto rng = stream(p.seed, j);
+                         for (std::uint64_t a = 0; a < arcs; ++a) cost(rng.uniform(p.min_cost, p.max_cost));
+                       }});
   g.queries.push_back({"default", {{source, target}}});
 
   const std::string size = std::to_string(K) + "x" + std::to_string(M);
@@ -65,5 +61,7 @@ GraphInput generate_grid(const GridParameters& p) {
   }
   return g;
 }
+
+GraphInput generate_grid(const GridParameters& p) { return materialize(grid_graph(p)); }
 
 }  // namespace mosb::converters

@@ -4,11 +4,8 @@
 #include <atomic>
 #include <exception>
 #include <fstream>
-#include <iostream>
 #include <mutex>
 #include <thread>
-
-#include <unistd.h>
 
 #include "mosb/converters/grid_generator.hpp"
 #include "mosb/converters/netmaker_generator.hpp"
@@ -39,13 +36,6 @@ std::vector<std::uint32_t> sorted_unique(std::vector<std::uint32_t> values) {
 
 }  // namespace
 
-std::function<void(std::size_t, std::size_t, const std::string&)> terminal_progress() {
-  if (!::isatty(STDERR_FILENO)) return {};
-  return [](std::size_t done, std::size_t total, const std::string& file) {
-    std::cerr << '[' << done << '/' << total << "] " << file << std::endl;
-  };
-}
-
 std::vector<SuiteEntry> run_suite(const std::filesystem::path& directory,
                                   const std::vector<SuiteInstance>& instances, const SuiteOptions& options) {
   std::error_code ec;
@@ -58,17 +48,18 @@ std::vector<SuiteEntry> run_suite(const std::filesystem::path& directory,
   std::atomic<bool> failed{false};
   std::mutex progress_mutex;
   std::size_t done = 0;
+  report(options.progress, "suite", 0, instances.size());
 
   auto work = [&] {
     for (std::size_t i = next++; i < instances.size() && !failed; i = next++) {
       try {
         const auto file = instances[i].name + ".mosb";
-        write_graph(instances[i].build(), directory / file);
+        std::visit([&](const auto& graph) { write_graph(graph, directory / file); }, instances[i].build());
         const auto reader = GraphReader::open(directory / file);
         entries[i] = {instances[i].name, file, reader.bytes().size(), reader.digest()};
         std::lock_guard lock(progress_mutex);
         ++done;
-        if (options.progress) options.progress(done, instances.size(), file);
+        report(options.progress, "suite", done, instances.size());
       } catch (...) {
         errors[i] = std::current_exception();
         failed = true;
@@ -107,7 +98,7 @@ std::vector<SuiteInstance> grid_suite(std::uint64_t suite_seed, const std::vecto
       const GridParameters p{width, height, 3,
                              suite_instance_seed(suite_seed, (std::uint64_t{width} << 20) + height)};
       out.push_back({"Grid-" + std::to_string(width) + "x" + std::to_string(height),
-                     [p] { return generate_grid(p); }});
+                     [p] { return grid_graph(p); }});
     }
   return out;
 }

@@ -85,6 +85,10 @@ void write_cost(FileWriter& writer, ElementType type, const std::vector<In>& val
   });
 }
 
+ElementType narrowest_unsigned(std::uint64_t max);
+void check_counts(std::uint64_t n, std::uint64_t m);
+void check_queries(const std::vector<QuerySet>& queries, std::uint64_t n);
+
 void check_name(std::string_view what, const std::string& name) {
   if (name.empty() || name.size() > format::kNameSize || !Metadata::is_valid_key(name))
     throw Error(std::string(what) + " name '" + name +
@@ -104,10 +108,7 @@ void check_unique_names(std::string_view what, const std::vector<Item>& items) {
 void check_input(const GraphInput& in) {
   const std::uint64_t n = in.vertex_count;
   const std::uint64_t m = in.tails.size();
-  if (n >= std::numeric_limits<std::uint32_t>::max())
-    throw Error("vertex count " + std::to_string(n) + " exceeds the format limit of 2^32-2");
-  if (m >= std::numeric_limits<std::uint32_t>::max())
-    throw Error("arc count " + std::to_string(m) + " exceeds the format limit of 2^32-2");
+  check_counts(n, m);
   if (in.heads.size() != m) throw Error("arc list has " + std::to_string(m) + " tails but " +
                                         std::to_string(in.heads.size()) + " heads");
   for (std::uint64_t a = 0; a < m; ++a)
@@ -132,13 +133,107 @@ void check_input(const GraphInput& in) {
   };
   for (const auto& d : in.vertex_data) check_rows(d, n, "vertex");
   for (const auto& d : in.arc_data) check_rows(d, m, "arc");
-  for (const auto& q : in.queries)
+  check_queries(in.queries, n);
+}
+
+
+ElementType narrowest_unsigned(std::uint64_t max) {
+  if (max <= std::numeric_limits<std::uint8_t>::max()) return ElementType::u8;
+  if (max <= std::numeric_limits<std::uint16_t>::max()) return ElementType::u16;
+  if (max <= std::numeric_limits<std::uint32_t>::max()) return ElementType::u32;
+  return ElementType::u64;
+}
+
+void check_counts(std::uint64_t n, std::uint64_t m) {
+  if (n >= std::numeric_limits<std::uint32_t>::max())
+    throw Error("vertex count " + std::to_string(n) + " exceeds the format limit of 2^32-2");
+  if (m >= std::numeric_limits<std::uint32_t>::max())
+    throw Error("arc count " + std::to_string(m) + " exceeds the format limit of 2^32-2");
+}
+
+void check_queries(const std::vector<QuerySet>& queries, std::uint64_t n) {
+  for (const auto& q : queries)
     for (std::size_t i = 0; i < q.pairs.size(); ++i)
       if (q.pairs[i].start >= n || q.pairs[i].goal >= n)
         throw Error("query set '" + q.name + "', query " + std::to_string(i) +
                     ": an endpoint is not below the vertex count " + std::to_string(n));
 }
 
+// The stored metadata: the input's, the unit of every objective and the writing tool.
+template <class Cost>
+Metadata stored_metadata(const Metadata& input, const std::vector<Cost>& costs,
+                         const std::vector<QuerySet>& queries) {
+  std::vector<std::string> cost_names, query_names;
+  for (const auto& c : costs) cost_names.push_back(c.name);
+  for (const auto& q : queries) query_names.push_back(q.name);
+  Metadata metadata = input;
+  for (const auto& c : costs) metadata.set("objective." + c.name + ".unit", c.unit);
+  // An input may name the program that made it (a converter of another tool, a pinned test).
+  if (!metadata.get("source.tool")) metadata.set("source.tool", std::string("mosb ") + kVersion);
+  if (auto problem = find_view_problem(metadata, cost_names, query_names)) throw Error(*problem);
+  return metadata;
+}
+
+void add_metadata_section(FileWriter& writer, const Metadata& metadata) {
+  const std::string text = metadata.serialize();
+  writer.add_section(SectionKind::metadata, "metadata", 1,
+                     std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
+}
+
+void add_query_sections(FileWriter& writer, const std::vector<QuerySet>& queries) {
+  for (const auto& q : queries) {
+    writer.begin_section(SectionKind::queries, q.name, ElementType::u32, 2);
+    writer.append(std::as_bytes(std::span(q.pairs)));
+    writer.end_section();
+  }
+}
+
+// Appends values one at a time through a fixed buffer.
+template <class T>
+class ChunkedAppender {
+ public:
+  explicit ChunkedAppender(FileWriter& writer) : writer_(writer) { chunk_.reserve(kChunk); }
+  void push(T value) {
+    chunk_.push_back(value);
+    if (chunk_.size() == kChunk) flush();
+  }
+  void flush() {
+    writer_.append_values(std::span<const T>(chunk_));
+    chunk_.clear();
+  }
+
+ private:
+  static constexpr std::size_t kChunk = 1 << 14;
+  FileWriter& writer_;
+  std::vector<T> chunk_;
+};
+
+// Counts arcs over every pass of the streamed writer and reports every 2^20 of them.
+class PassCounter {
+ public:
+  PassCounter(const Progress& progress, std::uint64_t total) : progress_(progress), total_(total) {
+    report(progress_, "write", 0, total_);
+  }
+  void tick() {
+    if ((++done_ & 0xFFFFF) == 0) report(progress_, "write", done_, total_);
+  }
+  void finish() { report(progress_, "write", total_, total_); }
+
+ private:
+  const Progress& progress_;
+  std::uint64_t total_;
+  std::uint64_t done_ = 0;
+};
+
+template <class Out>
+void write_streamed_cost(FileWriter& writer, const StreamedGraph::Costs& costs, PassCounter& counter) {
+  ChunkedAppender<Out> out(writer);
+  costs.replay([&](std::uint64_t value) {
+    out.push(static_cast<Out>(value));
+    counter.tick();
+  });
+  out.flush();
+}
 }  // namespace
 
 format::ElementType choose_cost_type(const CostColumn& column) {
@@ -165,33 +260,23 @@ format::ElementType choose_cost_type(const CostColumn& column) {
         if constexpr (std::is_floating_point_v<In>) {
           return first_misfit<float>(values) ? ElementType::f64 : ElementType::f32;
         } else {
-          const std::uint64_t max = values.empty() ? 0 : *std::max_element(values.begin(), values.end());
-          if (max <= std::numeric_limits<std::uint8_t>::max()) return ElementType::u8;
-          if (max <= std::numeric_limits<std::uint16_t>::max()) return ElementType::u16;
-          if (max <= std::numeric_limits<std::uint32_t>::max()) return ElementType::u32;
-          return ElementType::u64;
+          return narrowest_unsigned(values.empty() ? 0 : *std::max_element(values.begin(), values.end()));
         }
       },
       column.values);
 }
 
-void write_graph(const GraphInput& in, const std::filesystem::path& path) {
+void write_graph(const GraphInput& in, const std::filesystem::path& path, const Progress& progress) {
   check_input(in);
   const std::uint64_t n = in.vertex_count;
   const std::size_t m = in.tails.size();
 
   std::vector<ElementType> cost_types;
-  std::vector<std::string> cost_names, query_names;
-  for (const auto& c : in.costs) {
-    cost_types.push_back(choose_cost_type(c));
-    cost_names.push_back(c.name);
-  }
-  for (const auto& q : in.queries) query_names.push_back(q.name);
-  Metadata metadata = in.metadata;
-  for (const auto& c : in.costs) metadata.set("objective." + c.name + ".unit", c.unit);
-  // An input may name the program that made it (a converter of another tool, a pinned test).
-  if (!metadata.get("source.tool")) metadata.set("source.tool", std::string("mosb ") + kVersion);
-  if (auto problem = find_view_problem(metadata, cost_names, query_names)) throw Error(*problem);
+  for (const auto& c : in.costs) cost_types.push_back(choose_cost_type(c));
+  const Metadata metadata = stored_metadata(in.metadata, in.costs, in.queries);
+  const std::uint64_t section_total =
+      6 + in.costs.size() + in.arc_data.size() + in.vertex_data.size() + in.queries.size();
+  report(progress, "write", 0, section_total);
 
   // Counting sort by tail; iterating arcs in input order keeps it stable.
   std::vector<std::uint64_t> offsets(n + 1, 0);
@@ -221,10 +306,7 @@ void write_graph(const GraphInput& in, const std::filesystem::path& path) {
   }
 
   FileWriter writer(path);
-  const std::string metadata_text = metadata.serialize();
-  writer.add_section(SectionKind::metadata, "metadata", 1,
-                     std::span(reinterpret_cast<const std::uint8_t*>(metadata_text.data()),
-                               metadata_text.size()));
+  add_metadata_section(writer, metadata);
   writer.add_section(SectionKind::forward_offsets, "forward_offsets", 1, std::span<const std::uint64_t>(offsets));
   writer.add_section(SectionKind::forward_targets, "forward_targets", 1, std::span<const std::uint32_t>(targets));
   writer.add_section(SectionKind::reverse_offsets, "reverse_offsets", 1,
@@ -237,6 +319,7 @@ void write_graph(const GraphInput& in, const std::filesystem::path& path) {
     std::visit([&](const auto& values) { write_cost(writer, cost_types[i], values, order); },
                in.costs[i].values);
     writer.end_section();
+    report(progress, "write", 6 + i + 1, section_total);
   }
   for (const auto& d : in.arc_data) {
     const std::size_t row_bytes = d.width * format::element_size(d.type);
@@ -250,12 +333,123 @@ void write_graph(const GraphInput& in, const std::filesystem::path& path) {
     writer.append(std::span(d.bytes));
     writer.end_section();
   }
-  for (const auto& q : in.queries) {
-    writer.begin_section(SectionKind::queries, q.name, ElementType::u32, 2);
-    writer.append(std::as_bytes(std::span(q.pairs)));
+  add_query_sections(writer, in.queries);
+  writer.commit(n, m);
+  report(progress, "write", section_total, section_total);
+}
+
+void write_graph(const StreamedGraph& in, const std::filesystem::path& path, const Progress& progress) {
+  const std::uint64_t n = in.vertex_count;
+  const std::uint64_t m = in.arc_count;
+  check_counts(n, m);
+  check_unique_names("objective", in.costs);
+  check_unique_names("query set", in.queries);
+  check_queries(in.queries, n);
+  const Metadata metadata = stored_metadata(in.metadata, in.costs, in.queries);
+  PassCounter counter(progress, m * (4 + 2 * in.costs.size()));
+
+  // Every pass sees the same arcs: the first checks them, the others rely on that.
+  FileWriter writer(path);
+  add_metadata_section(writer, metadata);
+  {
+    writer.begin_section(SectionKind::forward_offsets, "forward_offsets", ElementType::u64, 1);
+    ChunkedAppender<std::uint64_t> out(writer);
+    std::uint64_t arcs = 0, emitted = 0;  // offsets[v] = arcs with a tail below v
+    in.replay_arcs([&](std::uint32_t tail, std::uint32_t head) {
+      if (tail >= n || head >= n)
+        throw Error("arc " + std::to_string(arcs) + " (" + std::to_string(tail) + " -> " +
+                    std::to_string(head) + ") has an endpoint not below the vertex count " +
+                    std::to_string(n));
+      if (tail + std::uint64_t{1} < emitted)
+        throw Error("internal error: streamed arc " + std::to_string(arcs) + " breaks tail order");
+      if (arcs == m) throw Error("internal error: more streamed arcs than the " + std::to_string(m) + " declared");
+      for (; emitted <= tail; ++emitted) out.push(arcs);
+      ++arcs;
+      counter.tick();
+    });
+    if (arcs != m)
+      throw Error("internal error: " + std::to_string(arcs) + " streamed arcs, " + std::to_string(m) + " declared");
+    for (; emitted <= n; ++emitted) out.push(arcs);
+    out.flush();
     writer.end_section();
   }
+  {
+    writer.begin_section(SectionKind::forward_targets, "forward_targets", ElementType::u32, 1);
+    ChunkedAppender<std::uint32_t> out(writer);
+    in.replay_arcs([&](std::uint32_t, std::uint32_t head) {
+      out.push(head);
+      counter.tick();
+    });
+    out.flush();
+    writer.end_section();
+  }
+  // The transpose, as write_graph builds it: forward arcs in id order keep each in-list ascending.
+  std::vector<std::uint64_t> reverse_offsets(n + 1, 0);
+  in.replay_arcs([&](std::uint32_t, std::uint32_t head) {
+    ++reverse_offsets[head + 1];
+    counter.tick();
+  });
+  for (std::uint64_t v = 0; v < n; ++v) reverse_offsets[v + 1] += reverse_offsets[v];
+  writer.add_section(SectionKind::reverse_offsets, "reverse_offsets", 1,
+                     std::span<const std::uint64_t>(reverse_offsets));
+  {
+    std::vector<std::uint32_t> reverse_sources(m), reverse_arcs(m);
+    auto& cursor = reverse_offsets;  // written already: reused as the next free slot per head
+    std::uint32_t arc = 0;
+    in.replay_arcs([&](std::uint32_t tail, std::uint32_t head) {
+      const auto slot = cursor[head]++;
+      reverse_sources[slot] = tail;
+      reverse_arcs[slot] = arc++;
+      counter.tick();
+    });
+    writer.add_section(SectionKind::reverse_sources, "reverse_sources", 1,
+                       std::span<const std::uint32_t>(reverse_sources));
+    writer.add_section(SectionKind::reverse_arcs, "reverse_arcs", 1,
+                       std::span<const std::uint32_t>(reverse_arcs));
+  }
+  for (const auto& costs : in.costs) {
+    std::uint64_t max = 0, count = 0;
+    costs.replay([&](std::uint64_t value) {
+      max = std::max(max, value);
+      ++count;
+      counter.tick();
+    });
+    if (count != m)
+      throw Error("objective '" + costs.name + "' has " + std::to_string(count) + " costs for " +
+                  std::to_string(m) + " arcs");
+    const auto type = narrowest_unsigned(max);
+    writer.begin_section(SectionKind::cost, costs.name, type, 1);
+    switch (type) {
+      case ElementType::u8: write_streamed_cost<std::uint8_t>(writer, costs, counter); break;
+      case ElementType::u16: write_streamed_cost<std::uint16_t>(writer, costs, counter); break;
+      case ElementType::u32: write_streamed_cost<std::uint32_t>(writer, costs, counter); break;
+      default: write_streamed_cost<std::uint64_t>(writer, costs, counter); break;
+    }
+    writer.end_section();
+  }
+  add_query_sections(writer, in.queries);
   writer.commit(n, m);
+  counter.finish();
+}
+
+GraphInput materialize(const StreamedGraph& in) {
+  GraphInput out;
+  out.vertex_count = in.vertex_count;
+  out.tails.reserve(in.arc_count);
+  out.heads.reserve(in.arc_count);
+  in.replay_arcs([&](std::uint32_t tail, std::uint32_t head) {
+    out.tails.push_back(tail);
+    out.heads.push_back(head);
+  });
+  for (const auto& costs : in.costs) {
+    std::vector<std::uint64_t> values;
+    values.reserve(in.arc_count);
+    costs.replay([&](std::uint64_t value) { values.push_back(value); });
+    out.costs.push_back({costs.name, costs.unit, std::move(values), std::nullopt});
+  }
+  out.queries = in.queries;
+  out.metadata = in.metadata;
+  return out;
 }
 
 }  // namespace mosb

@@ -13,6 +13,7 @@ checksum and the header checksum (§8) so that every earlier check still passes.
 import json
 import math
 import os
+import re
 import shutil
 import struct
 import subprocess
@@ -800,22 +801,39 @@ class SeveralFiles(CliTest):
 
 
 class UsageErrors(CliTest):
+    """Every usage error: exit 2, nothing on stdout, exactly one line on stderr starting 'mosb:'."""
+
     def check_usage_error(self, *args):
         before = sorted(os.listdir(self.dir))
         r = self.mosb(*args)
-        self.assertNotIn(r.code, (0,), r)
+        self.assertEqual(r.code, 2, r)
         self.assertEqual(r.out, "", r)
-        self.assertNotEqual(r.err, "", r)
+        self.assertEqual(len(r.err_lines), 1, r)
+        self.assertTrue(r.err_lines[0].startswith("mosb: "), r)
         self.assertEqual(sorted(os.listdir(self.dir)), before, "a usage error wrote files")
         return r
 
     def test_no_arguments(self):
         self.check_usage_error()
 
+    def test_no_subcommand_of_a_group(self):
+        r = self.check_usage_error("convert")
+        self.assertIn("convert", r.err)
+
     def test_unknown_subcommand(self):
         self.check_usage_error("frobnicate", "x.mosb")
 
+    def test_unknown_option(self):
+        r = self.check_usage_error("inspect", "--frobnicate", "x.mosb")
+        self.assertIn("--frobnicate", r.err)
+
+    def test_missing_required_option(self):
+        r = self.check_usage_error("convert", "dimacs", "-o", "x.mosb")
+        self.assertIn("--gr", r.err)
+        self.assertIn("convert dimacs", r.err)
+
     def test_missing_output(self):
+        # Found after parsing (--output or --suite): still a usage error.
         r = self.check_usage_error(*GRID)
         self.assertIn("--output", r.err)
 
@@ -824,11 +842,103 @@ class UsageErrors(CliTest):
         r = self.check_usage_error("verify", path, "--level", "bogus")
         self.assertIn("bogus", r.err)
 
+    def test_bad_number(self):
+        self.check_usage_error("generate", "grid", "--width", "many", "-o", "w.mosb")
+
     def test_width_out_of_range(self):
         self.check_usage_error("generate", "grid", "--width", "0", "-o", "w.mosb")
 
     def test_verify_without_files(self):
         self.check_usage_error("verify")
+
+    def test_excluded_options(self):
+        self.check_usage_error("generate", "grid", "--suite", "s", "--width", "10")
+
+    def test_queries_need_a_destination(self):
+        path = self.generate()
+        r = self.check_usage_error("queries", "generate", path, "--set", "r")
+        self.assertIn("--in-place", r.err)
+
+    def test_runtime_error_is_exit_1(self):
+        r = self.mosb("inspect", self.write("junk.mosb", b"not a mosb file"))
+        self.assertEqual(r.code, 1, r)
+        self.assertEqual(len(r.err_lines), 1, r)
+        self.assertTrue(r.err_lines[0].startswith("mosb: "), r)
+
+
+class VersionAndHelp(CliTest):
+    def test_version(self):
+        with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "CMakeLists.txt")) as f:
+            version = re.search(r"project\(mosb VERSION ([0-9.]+)", f.read()).group(1)
+        for flag in ("--version", "-V"):
+            r = self.mosb(flag)
+            self.assertEqual(r.code, 0, r)
+            self.assertEqual(r.out_lines, ["mosb " + version], r)
+
+    def test_help_documents_exit_codes(self):
+        r = self.mosb("--help")
+        self.assertEqual(r.code, 0, r)
+        text = " ".join(r.out.split())
+        self.assertIn("Exit status: 0 success; 1 runtime error", text)
+        self.assertIn("2 usage error", text)
+
+    def test_one_name_for_the_instance_argument(self):
+        for command in (["inspect"], ["verify"], ["stats"], ["export", "dimacs"], ["queries", "import"],
+                        ["queries", "generate"]):
+            r = self.mosb(*command, "--help")
+            self.assertEqual(r.code, 0, r)
+            self.assertIn("INSTANCE", r.out, command)
+            for other in ("FILE ", "instance TEXT"):
+                self.assertNotIn(other, r.out.split("Options:")[0], command)
+
+
+class JsonReports(CliTest):
+    """--json on every reporting command: one JSON object on stdout."""
+
+    def json_of(self, *args, code=0):
+        r = self.mosb(*args, "--json")
+        self.assertEqual(r.code, code, r)
+        return json.loads(r.out)
+
+    def test_generate_and_convert(self):
+        out = self.path("j.mosb")
+        report = self.json_of(*GRID, "-o", out)
+        self.assertEqual(report["file"], out)
+        self.assertEqual(report["vertices"], 5 * 4 + 2)
+        self.assertEqual(report["objectives"], 3)
+        self.assertEqual(report["digest"], self.json_of("inspect", out)["digest"])
+        with open(self.path("g.gr"), "w") as f:
+            f.write("p sp 3 2\na 1 2 5\na 2 3 7\n")
+        report = self.json_of("convert", "dimacs", "--gr", self.path("g.gr"), "-o", self.path("d.mosb"))
+        self.assertEqual((report["vertices"], report["arcs"], report["objectives"]), (3, 2, 1))
+
+    def test_verify(self):
+        good = self.generate()
+        data = self.grid_bytes()
+        data[0] ^= 0xFF
+        bad = self.write("bad.mosb", data)
+        report = self.json_of("verify", good, bad, code=1)
+        self.assertFalse(report["ok"])
+        self.assertEqual(report["level"], "full")
+        self.assertEqual([f["ok"] for f in report["files"]], [True, False])
+        self.assertEqual(report["files"][0]["file"], good)
+        self.assertIn("problem", report["files"][1])
+        self.assertTrue(self.json_of("verify", good)["ok"])
+
+    def test_queries_and_export(self):
+        g = self.generate()
+        report = self.json_of("queries", "generate", g, "--set", "r", "--count", "5", "-o", self.path("q.mosb"))
+        self.assertEqual((report["file"], report["set"], report["queries"]), (self.path("q.mosb"), "r", 5))
+        report = self.json_of("export", "dimacs", self.path("q.mosb"), "-o", self.path("text"))
+        self.assertEqual(report["directory"], self.path("text"))
+        self.assertTrue(all(os.path.exists(p) for p in report["wrote"]), report)
+        self.assertIn(os.path.join(self.path("text"), "Grid-5x4-r.queries"), report["wrote"])
+
+    def test_suite(self):
+        report = self.json_of("generate", "grid", "--suite", self.path("s"), "--sizes", "3,4")
+        self.assertEqual([i["name"] for i in report["instances"]],
+                         ["Grid-3x3", "Grid-3x4", "Grid-4x3", "Grid-4x4"])
+        self.assertEqual(report["instances"][0]["size"], os.path.getsize(self.path("s/Grid-3x3.mosb")))
 
 
 class AtomicOutput(CliTest):

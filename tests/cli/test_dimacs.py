@@ -124,7 +124,7 @@ class RealData(DimacsCase):
                 "--derive", "hop,avg-outdegree", "--view", "ex1_3=distance,time,hop", "--name", "ex1"]
         r = self.ok("convert", "dimacs", *args, "-o", "a.mosb")
         self.assertIn("5 vertices, 14 arcs, 4 objectives", r.out)
-        r = self.ok("export", "dimacs", "a.mosb", "--out-dir", "out")
+        r = self.ok("export", "dimacs", "a.mosb", "-o", "out")
         self.assertEqual(sorted(os.listdir(self.path("out"))),
                          ["ex1-avg_outdegree.gr", "ex1-distance.gr", "ex1-hop.gr", "ex1-time.gr"])
         self.assertEqual(r.out.count("wrote "), 4)
@@ -163,7 +163,7 @@ class Extended(DimacsCase):
         self.assertEqual(r.code, 0, r)
         names = [name for (kind, name) in sections(self.path("g.mosb")) if kind == 7]
         self.assertEqual(sorted(names), ["avg_outdegree", "c1", "elevation", "hop"])
-        self.ok("export", "dimacs", "g.mosb", "--out-dir", "x")
+        self.ok("export", "dimacs", "g.mosb", "-o", "x")
         arcs = lambda name: [line.split()[3] for line in self.read("x/g-%s.gr" % name).splitlines()
                              if line.startswith("a ")]
         self.assertEqual(arcs("elevation"), ["120", "50", "120", "70", "0", "0", "50"])
@@ -175,7 +175,7 @@ class Extended(DimacsCase):
     def test_round_half_up(self):
         r = self.convert("--derive", "avg-outdegree", "--avg-outdegree-mode", "round-half-up")
         self.assertEqual(r.code, 0, r)
-        self.ok("export", "dimacs", "g.mosb", "--out-dir", "x")
+        self.ok("export", "dimacs", "g.mosb", "-o", "x")
         values = [line.split()[3] for line in self.read("x/g-avg_outdegree.gr").splitlines() if line[0] == "a"]
         self.assertEqual(values, ["3", "2", "3", "2", "2", "1", "2"])
 
@@ -187,7 +187,7 @@ class Extended(DimacsCase):
         self.assertEqual(m["view.one.objectives"], "c1")
         self.assertNotIn("view.one.queries", m)
         self.assertEqual(m["source.param.view.one"], "c1@ny100")
-        self.ok("export", "dimacs", "g.mosb", "--out-dir", "v", "--view", "two", "--id-base", "0")
+        self.ok("export", "dimacs", "g.mosb", "-o", "v", "--view", "two", "--id-base", "0")
         self.assertEqual(sorted(os.listdir(self.path("v"))), ["g-c1.gr", "g-hop.gr"])
         self.assertIn("\na 0 1 3\n", self.read("v/g-c1.gr"))
 
@@ -201,8 +201,8 @@ class Extended(DimacsCase):
         r = self.mosb(*self.convert_args("--derive", "elevation"))
         self.assertNotEqual(r.code, 0, r)
         self.ok("convert", "dimacs", "--gr", "g.gr", "-o", "g.mosb")
-        self.fails("no view 'nope'", "export", "dimacs", "g.mosb", "--out-dir", "o", "--view", "nope")
-        self.fails("g.gr", "export", "dimacs", "g.gr", "--out-dir", "o")
+        self.fails("no view 'nope'", "export", "dimacs", "g.mosb", "-o", "o", "--view", "nope")
+        self.fails("g.gr", "export", "dimacs", "g.gr", "-o", "o")
 
     def convert_args(self, *extra):
         self.write("g.gr", GRAPH)

@@ -109,7 +109,7 @@ class DimacsAtScale(unittest.TestCase):
                 self.assertEqual(self.convert(tool + ".mosb", "d.gr", "t-" + tool + ".txt"), self.reference)
 
     def test_export_then_convert_gives_the_same_sections(self):
-        r = self.run_mosb("export", "dimacs", "plain.mosb", "--out-dir", "exported")
+        r = self.run_mosb("export", "dimacs", "plain.mosb", "-o", "exported")
         self.assertEqual(r.returncode, 0, r.stderr)
         files = sorted(os.listdir(os.path.join(self.dir, "exported")))
         gr = [f for f in files if f.endswith(".gr")]

@@ -163,7 +163,7 @@ class QueriesTest(unittest.TestCase):
         g = self.grid()
         before = read_file(g)
         q = self.text("pairs.txt", "# two pairs\r\n1 2\r\n3 ,4\r\n\r\nc end\r\n5;21")
-        c = self.ok("queries", "import", q, "--into", g, "--name", "mine")
+        c = self.ok("queries", "import", g, q, "--in-place", "--set", "mine")
         self.assert_wrote(c, g, "mine", 3)
         after = read_file(g)
         self.assertEqual(query_pairs(after, "mine"), [(1, 2), (3, 4), (5, 21)])
@@ -182,10 +182,10 @@ class QueriesTest(unittest.TestCase):
         g = self.grid()
         q = self.text("q.txt", "1 2\n1 22\n")
         before = read_file(g)
-        err = self.fails("queries", "import", q, "--into", g, "--name", "x")
+        err = self.fails("queries", "import", g, q, "--in-place", "--set", "x")
         self.assertEqual(err, "mosb: %s:2:3: vertex id '22' outside 0..21" % q)
         self.assertEqual(read_file(g), before)  # untouched
-        self.ok("queries", "import", q, "--into", g, "--name", "x", "--id-base", "1")
+        self.ok("queries", "import", g, q, "--in-place", "--set", "x", "--id-base", "1")
         self.assertEqual(query_pairs(read_file(g), "x"), [(0, 1), (0, 21)])
         self.assertEqual(metadata(read_file(g))["queries.x.id_base"], "1")
         self.verify_full(g)
@@ -193,17 +193,17 @@ class QueriesTest(unittest.TestCase):
     def test_replace_keeps_position(self):
         g = self.grid()
         q = self.text("q.txt", "0 1\n")
-        err = self.fails("queries", "import", q, "--into", g, "--name", "default")
+        err = self.fails("queries", "import", g, q, "--in-place", "--set", "default")
         self.assertIn("query set 'default' exists", err)
         self.assertIn("--replace", err)
         before = read_file(g)
-        self.ok("queries", "import", q, "--into", g, "--name", "default", "--replace")
+        self.ok("queries", "import", g, q, "--in-place", "--set", "default", "--replace")
         after = read_file(g)
         self.assertEqual([n for n, *_ in sections(after)], [n for n, *_ in sections(before)])
         self.assertEqual(query_pairs(after, "default"), [(0, 1)])
         self.assert_others_unchanged(before, after, "default")
         # Replacing an imported set by a generated one drops the import's keys.
-        self.ok("queries", "generate", "--into", g, "--name", "default", "--seed", "1", "--replace")
+        self.ok("queries", "generate", g, "--in-place", "--set", "default", "--seed", "1", "--replace")
         meta = metadata(read_file(g))
         self.assertEqual(meta["queries.default.source"], "generate")
         self.assertNotIn("queries.default.input.name", meta)
@@ -212,7 +212,7 @@ class QueriesTest(unittest.TestCase):
     def test_generate(self):
         g = self.grid()
         before = read_file(g)
-        c = self.ok("queries", "generate", "--into", g, "--name", "rand", "--count", "200", "--seed", "9")
+        c = self.ok("queries", "generate", g, "--in-place", "--set", "rand", "--count", "200", "--seed", "9")
         self.assert_wrote(c, g, "rand", 200)
         after = read_file(g)
         pairs = query_pairs(after, "rand")
@@ -224,7 +224,7 @@ class QueriesTest(unittest.TestCase):
                           meta["queries.rand.count"], meta["queries.rand.allow_same"]),
                          ("generate", "9", "200", "0"))
         self.verify_full(g)
-        self.ok("queries", "generate", "--into", g, "--name", "same", "--count", "300", "--seed", "9",
+        self.ok("queries", "generate", g, "--in-place", "--set", "same", "--count", "300", "--seed", "9",
                 "--allow-same")
         same = query_pairs(read_file(g), "same")
         self.assertEqual(same, expected_generated(9, 300, N, True))
@@ -233,19 +233,19 @@ class QueriesTest(unittest.TestCase):
     def test_generate_is_deterministic(self):
         a, b = self.grid("a.mosb"), self.grid("b.mosb")
         for path in (a, b):
-            self.ok("queries", "generate", "--into", path, "--name", "r", "--count", "50", "--seed", "4")
+            self.ok("queries", "generate", path, "--in-place", "--set", "r", "--count", "50", "--seed", "4")
         self.assertEqual(read_file(a), read_file(b))
-        self.ok("queries", "generate", "--into", b, "--name", "r", "--count", "50", "--seed", "5",
+        self.ok("queries", "generate", b, "--in-place", "--set", "r", "--count", "50", "--seed", "5",
                 "--replace")
         self.assertNotEqual(read_file(a), read_file(b))
 
     def test_graph_lines_and_match(self):
         g = self.grid()
         q = self.text("x.inst", "/c/one_1.gr 1 2\n/c/two_2.gr 3 4\n/c/one_1.gr 5 6\n")
-        err = self.fails("queries", "import", q, "--into", g, "--name", "t")
+        err = self.fails("queries", "import", g, q, "--in-place", "--set", "t")
         self.assertIn("%s:2:1: the file names more than one graph" % q, err)
         self.assertIn("--match", err)
-        self.ok("queries", "import", q, "--into", g, "--name", "t", "--match", "one_1")
+        self.ok("queries", "import", g, q, "--in-place", "--set", "t", "--match", "one_1")
         self.assertEqual(query_pairs(read_file(g), "t"), [(1, 2), (5, 6)])
         self.assertEqual(metadata(read_file(g))["queries.t.match"], "one_1")
         self.verify_full(g)
@@ -257,7 +257,7 @@ class QueriesTest(unittest.TestCase):
         # A 100x100 grid has 10002 vertices: every netMaker id (< 10000) is in range.
         g = self.path("big.mosb")
         self.ok("generate", "grid", "--width", "100", "--height", "100", "--objectives", "1", "-o", g)
-        c = self.ok("queries", "import", inst, "--into", g, "--name", "nm", "--match", "_79134.gr")
+        c = self.ok("queries", "import", g, inst, "--in-place", "--set", "nm", "--match", "_79134.gr")
         self.assert_wrote(c, g, "nm", 40)
         self.assertEqual(query_pairs(read_file(g), "nm")[0], (8326, 5528))
 

@@ -5,6 +5,7 @@
 
 #include "file_patch.hpp"
 #include "mosb/converters/grid_generator.hpp"
+#include "mosb/error.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/verify.hpp"
 #include "temp_dir.hpp"
@@ -75,4 +76,52 @@ TEST_CASE("every cost value 1..10 appears about equally often") {
   for (auto c : r.cost<std::uint8_t>(0)) ++counts[c];
   const double expected = double(r.arc_count()) / 10;  // ~3980 each, sd ~ 60
   for (int v = 1; v <= 10; ++v) CHECK(std::abs(double(counts[v]) - expected) < 400);
+}
+
+TEST_CASE("a streamed grid is byte-identical to the grid built in memory") {
+  testing::TempDir dir;
+  for (const converters::GridParameters& p :
+       {converters::GridParameters{1, 1, 1, 2}, converters::GridParameters{7, 5, 3, 11},
+        converters::GridParameters{20, 3, 16, 4, 1, 300}, converters::GridParameters{9, 9, 2, 5, 0, 70000}}) {
+    write_graph(converters::grid_graph(p), dir / "streamed.mosb");
+    write_graph(converters::generate_grid(p), dir / "built.mosb");
+    CHECK(testing::read_bytes(dir / "streamed.mosb") == testing::read_bytes(dir / "built.mosb"));
+    CHECK_FALSE(verify(GraphReader::open(dir / "streamed.mosb"), VerifyLevel::full).has_value());
+  }
+}
+
+TEST_CASE("the streamed writer reports progress up to its total and refuses arcs out of tail order") {
+  testing::TempDir dir;
+  std::uint64_t last_done = 0, last_total = 0, calls = 0;
+  write_graph(converters::grid_graph({30, 20, 3, 1}), dir / "g.mosb",
+              [&](std::string_view stage, std::uint64_t done, std::uint64_t total) {
+                CHECK(stage == "write");
+                CHECK(done >= last_done);
+                last_done = done;
+                last_total = total;
+                ++calls;
+              });
+  CHECK(calls >= 2);
+  CHECK(last_done == last_total);
+  CHECK(last_total == GraphReader::open(dir / "g.mosb").arc_count() * (4 + 2 * 3));
+
+  StreamedGraph unordered;
+  unordered.vertex_count = 3;
+  unordered.arc_count = 2;
+  unordered.replay_arcs = [](const StreamedGraph::ArcSink& arc) {
+    arc(2, 0);
+    arc(1, 0);
+  };
+  CHECK_THROWS_AS(write_graph(unordered, dir / "u.mosb"), Error);
+  CHECK_FALSE(std::filesystem::exists(dir / "u.mosb"));
+  StreamedGraph short_count = unordered;
+  short_count.replay_arcs = [](const StreamedGraph::ArcSink& arc) { arc(0, 1); };
+  CHECK_THROWS_AS(write_graph(short_count, dir / "s.mosb"), Error);
+  StreamedGraph bad_head = unordered;
+  bad_head.replay_arcs = [](const StreamedGraph::ArcSink& arc) {
+    arc(0, 1);
+    arc(1, 3);
+  };
+  CHECK_THROWS_WITH_AS(write_graph(bad_head, dir / "h.mosb"),
+                       "arc 1 (1 -> 3) has an endpoint not below the vertex count 3", Error);
 }

@@ -246,11 +246,12 @@ TEST_CASE("a suite's files and MANIFEST do not depend on the thread count") {
   const auto one = converters::run_suite(dir / "one", instances, {1, {}});
   std::size_t progress_calls = 0;
   const auto three = converters::run_suite(dir / "three", instances,
-                                           {3, [&](std::size_t done, std::size_t total, const std::string&) {
-                                              CHECK(done == ++progress_calls);
+                                           {3, [&](std::string_view stage, std::uint64_t done, std::uint64_t total) {
+                                              CHECK(stage == "suite");
+                                              CHECK(done == progress_calls++);
                                               CHECK(total == 4);
                                             }});
-  CHECK(progress_calls == 4);
+  CHECK(progress_calls == 5);
   REQUIRE(one.size() == 4);
   for (std::size_t i = 0; i < 4; ++i) {
     CHECK(one[i].name == three[i].name);

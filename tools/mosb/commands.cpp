@@ -3,6 +3,8 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "json_writer.hpp"
+#include "mosb/converters/suite.hpp"
 #include "mosb/graph_reader.hpp"
 
 namespace mosb::cli {
@@ -16,17 +18,72 @@ Command group(CLI::App* parent, std::vector<Command> children) {
           }};
 }
 
-int report_written(const std::string& path) {
+void add_json_flag(CLI::App* subcommand, bool& json) {
+  subcommand->add_flag("--json", json, "print the report as one JSON object on stdout");
+}
+
+CLI::Option* add_id_base_option(CLI::App* subcommand, unsigned& id_base, const std::string& default_text) {
+  return subcommand
+      ->add_option("--id-base", id_base,
+                   "0 or 1: the id of the first vertex in the text files (default: " + default_text + ")")
+      ->check(CLI::IsMember({0u, 1u}));
+}
+
+CLI::Option* add_seed_option(CLI::App* subcommand, std::uint64_t& seed, const std::string& what) {
+  seed = 1;
+  return subcommand->add_option("--seed", seed, what + " (default 1)");
+}
+
+CLI::Option* add_output_option(CLI::App* subcommand, std::string& output, const std::string& what) {
+  return subcommand->add_option("-o,--output", output, what);
+}
+
+int report_written(const std::string& path, bool json) {
   const auto reader = GraphReader::open(path);
+  if (json) {
+    JsonWriter out(std::cout);
+    out.begin_object();
+    out.key("file").value(path);
+    out.key("vertices").value(reader.vertex_count());
+    out.key("arcs").value(reader.arc_count());
+    out.key("objectives").value(std::uint64_t{reader.objective_count()});
+    out.key("digest").value(reader.digest());
+    out.end_object();
+    return 0;
+  }
   std::cout << "wrote " << path << ": " << reader.vertex_count() << " vertices, "
             << reader.arc_count() << " arcs, " << reader.objective_count() << " objectives, digest "
             << reader.digest() << '\n';
   return 0;
 }
 
+int report_suite(const std::string& directory, const std::string& family,
+                 const std::vector<converters::SuiteEntry>& entries, bool json) {
+  if (!json) {
+    std::cout << "wrote " << entries.size() << ' ' << family << " instances and MANIFEST to " << directory << '\n';
+    return 0;
+  }
+  JsonWriter out(std::cout);
+  out.begin_object();
+  out.key("directory").value(directory);
+  out.key("instances").begin_array();
+  for (const auto& e : entries) {
+    out.begin_object();
+    out.key("name").value(e.name);
+    out.key("file").value(e.file);
+    out.key("size").value(e.size);
+    out.key("digest").value(e.digest);
+    out.end_object();
+  }
+  out.end_array();
+  out.end_object();
+  return 0;
+}
+
 Command add_convert(CLI::App& app) {
   auto* convert = app.add_subcommand("convert", "Convert a benchmark from its source format");
-  return group(convert, {add_convert_dimacs(*convert), add_convert_netmaker(*convert), add_convert_fmi(*convert), add_convert_guards(*convert), add_convert_movingai(*convert), add_convert_roadmap(*convert)});
+  return group(convert, {add_convert_dimacs(*convert), add_convert_netmaker(*convert), add_convert_fmi(*convert),
+                         add_convert_guards(*convert), add_convert_movingai(*convert), add_convert_roadmap(*convert)});
 }
 
 Command add_generate(CLI::App& app) {

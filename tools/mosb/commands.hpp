@@ -2,12 +2,21 @@
 // when that subcommand is chosen; `run` returns the process exit code.
 #pragma once
 
+#include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "mosb/error.hpp"
+
 namespace CLI {
 class App;
+class Option;
+}
+
+namespace mosb::converters {
+struct SuiteEntry;
 }
 
 namespace mosb::cli {
@@ -17,11 +26,38 @@ struct Command {
   std::function<int()> run;
 };
 
+// A usage mistake found only after parsing (say, neither of two alternative options): exit code 2
+// and a one-line message, like the option parser's own errors (main.cpp).
+class UsageError : public Error {
+ public:
+  using Error::Error;
+};
+
+// Registers `--json` (the report as one JSON object on stdout) on a reporting command.
+void add_json_flag(CLI::App* subcommand, bool& json);
+
+// `--id-base 0|1`, the same everywhere: the id of the first vertex in the text files a command
+// reads or writes (the instance itself is always 0-based). `default_text` says what applies
+// when the option is absent (check the returned option's count()).
+CLI::Option* add_id_base_option(CLI::App* subcommand, unsigned& id_base, const std::string& default_text);
+
+// `--seed S`, the same for every generator: the seed of the specified random stream, default 1.
+CLI::Option* add_seed_option(CLI::App* subcommand, std::uint64_t& seed, const std::string& what);
+
+// The `-o,--output` option of a command that writes a file (or, for `export`, a directory).
+CLI::Option* add_output_option(CLI::App* subcommand, std::string& output, const std::string& what);
+
 // A subcommand with one child per family (`convert dimacs`, `generate grid`, ...): runs the chosen one.
 Command group(CLI::App* parent, std::vector<Command> children);
 
-// Prints "wrote FILE: n vertices, m arcs, d objectives, digest D" after reopening FILE; returns 0.
-int report_written(const std::string& path);
+// Prints "wrote FILE: n vertices, m arcs, d objectives, digest D" after reopening FILE, or with
+// `json` {"file", "vertices", "arcs", "objectives", "digest"}; returns 0.
+int report_written(const std::string& path, bool json);
+
+// Prints "wrote N FAMILY instances and MANIFEST to DIR", or with `json` {"directory",
+// "instances": [{"name", "file", "size", "digest"}, ...]}; returns 0.
+int report_suite(const std::string& directory, const std::string& family,
+                 const std::vector<converters::SuiteEntry>& entries, bool json);
 
 Command add_inspect(CLI::App& app);
 Command add_verify(CLI::App& app);

@@ -3,6 +3,7 @@
 
 #include "commands.hpp"
 #include "mosb/atomic_file.hpp"
+#include "terminal_progress.hpp"
 #include "mosb/converters/dimacs_converter.hpp"
 #include "mosb/converters/dimacs_extended.hpp"
 #include "mosb/converters/text_input.hpp"
@@ -25,6 +26,7 @@ struct DimacsArgs {
   std::string avg_outdegree_mode = "twice";
   std::string elevation;
   std::vector<std::string> views;
+  bool json = false;
 };
 
 int run_dimacs(const DimacsArgs& a) {
@@ -51,14 +53,15 @@ int run_dimacs(const DimacsArgs& a) {
   if (a.avg_outdegree_mode == "round-half-up")
     extended.avg_outdegree_mode = converters::AvgOutdegreeMode::round_half_up;
   for (const auto& v : a.views) extended.views.push_back(converters::parse_view_spec(v));
+  TerminalProgress progress;
   // Out of memory anywhere in the conversion names the input (a parser names the file it reads).
   converters::naming_input_on_out_of_memory(a.gr.front(), [&] {
     auto graph = converters::convert_dimacs(o);
     converters::append_derived_columns(graph, extended, o.id_base);
     converters::add_views(graph, extended.views);
-    write_graph(graph, a.output);
+    write_graph(graph, a.output, progress.callback());
   });
-  return report_written(a.output);
+  return report_written(a.output, a.json);
 }
 
 }  // namespace
@@ -73,8 +76,7 @@ Command add_convert_dimacs(CLI::App& convert) {
   dimacs->add_option("--co", args->co, "a .co coordinate file (stored as vertex data 'coords')")
       ->check(CLI::ExistingFile);
   dimacs->add_option("--name", args->name, "benchmark name (default: the first file's base name)");
-  dimacs->add_option("--id-base", args->id_base, "base of vertex ids in the files")
-      ->check(CLI::IsMember({0u, 1u}))->capture_default_str();
+  add_id_base_option(dimacs, args->id_base, "1");
   dimacs->add_option("--cost-type", args->cost_type, "store every cost column as this type (u8..u64, f32, f64)");
   dimacs->add_option("--elevation", args->elevation,
                      "per-vertex elevations ('p aux sp elev n', 'v id elevation'): appends column "
@@ -87,7 +89,8 @@ Command add_convert_dimacs(CLI::App& convert) {
                      "avg_outdegree as outdeg(u)+outdeg(v) (twice, exact) or their mean rounded half up")
       ->check(CLI::IsMember({"twice", "round-half-up"}))->capture_default_str();
   dimacs->add_option("--view", args->views, "NAME=OBJ1,OBJ2,...[@QUERYSET]: a benchmark over some columns (repeatable)");
-  dimacs->add_option("-o,--output", args->output, "the .mosb file to write")->required();
+  add_output_option(dimacs, args->output, "the .mosb file to write")->required();
+  add_json_flag(dimacs, args->json);
   return {dimacs, [args] { return run_dimacs(*args); }};
 }
 

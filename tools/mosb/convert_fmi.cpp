@@ -3,6 +3,7 @@
 
 #include "commands.hpp"
 #include "mosb/atomic_file.hpp"
+#include "terminal_progress.hpp"
 #include "mosb/converters/fmi_converter.hpp"
 #include "mosb/converters/text_input.hpp"
 #include "mosb/error.hpp"
@@ -22,6 +23,7 @@ struct FmiArgs {
   bool bfs_undirected = false;
   std::string name;
   std::string output;
+  bool json = false;
   CLI::Option* costs_option = nullptr;
   CLI::Option* bfs_option = nullptr;
 };
@@ -35,9 +37,11 @@ int run_fmi(const FmiArgs& a) {
   for (const auto& spec : a.objectives) o.objectives.push_back(converters::parse_objective(spec, "convert fmi"));
   if (a.bfs_option->count() > 0) o.extract_bfs = converters::FmiBfs{a.bfs_root, a.bfs_count, a.bfs_undirected};
   if (!a.name.empty()) o.name = a.name;
+  TerminalProgress progress;
   // Out of memory anywhere in the conversion names the input.
-  converters::naming_input_on_out_of_memory(a.file, [&] { write_graph(converters::convert_fmi(o), a.output); });
-  return report_written(a.output);
+  converters::naming_input_on_out_of_memory(
+      a.file, [&] { write_graph(converters::convert_fmi(o), a.output, progress.callback()); });
+  return report_written(a.output, a.json);
 }
 
 }  // namespace
@@ -46,7 +50,7 @@ Command add_convert_fmi(CLI::App& convert) {
   auto* fmi = convert.add_subcommand(
       "fmi", "FMI / OsmGraphCreator text road graphs (GER_10), optionally a BFS-extracted subgraph");
   auto args = std::make_shared<FmiArgs>();
-  fmi->add_option("file", args->file, "the FMI text file (plain, gzip, bzip2, xz or zstd)")
+  fmi->add_option("INPUT", args->file, "the FMI text file (plain, gzip, bzip2, xz or zstd)")
       ->required()->check(CLI::ExistingFile);
   args->costs_option = fmi->add_option(
       "--costs", args->costs,
@@ -67,7 +71,8 @@ Command add_convert_fmi(CLI::App& convert) {
   count->needs(args->bfs_option);
   undirected->needs(args->bfs_option);
   fmi->add_option("--name", args->name, "benchmark name (default: the file's base name)");
-  fmi->add_option("-o,--output", args->output, "the .mosb file to write")->required();
+  add_output_option(fmi, args->output, "the .mosb file to write")->required();
+  add_json_flag(fmi, args->json);
   return {fmi, [args] { return run_fmi(*args); }};
 }
 

@@ -3,6 +3,7 @@
 
 #include "commands.hpp"
 #include "mosb/atomic_file.hpp"
+#include "terminal_progress.hpp"
 #include "mosb/converters/guards_converter.hpp"
 #include "mosb/error.hpp"
 #include "mosb/graph_builder.hpp"
@@ -21,6 +22,7 @@ struct GuardsArgs {
   std::string water = "blocked";
   std::string name;
   std::string output;
+  bool json = false;
 };
 
 int run_guards(const GuardsArgs& a) {
@@ -35,11 +37,12 @@ int run_guards(const GuardsArgs& a) {
   o.terrain.swamp_passable = a.swamp == "passable";
   o.terrain.water_passable = a.water == "passable";
   if (!a.name.empty()) o.name = a.name;
+  TerminalProgress progress;
   const auto result = converters::convert_guards(o);
   if (!a.write_exposure.empty())
     converters::write_text_atomically(a.write_exposure, converters::format_exposure(result.map, result.exposure));
-  write_graph(result.graph, a.output);
-  return report_written(a.output);
+  write_graph(result.graph, a.output, progress.callback());
+  return report_written(a.output, a.json);
 }
 
 }  // namespace
@@ -64,10 +67,11 @@ Command add_convert_guards(CLI::App& convert) {
   guards->add_option("--water", args->water, "terrain 'W'")->check(CLI::IsMember({"passable", "blocked"}))
       ->capture_default_str();
   guards->add_option("--name", args->name, "benchmark name (default: the map's base name without .map)");
-  guards->add_option("-o,--output", args->output, "the .mosb file to write")->required();
+  add_output_option(guards, args->output, "the .mosb file to write")->required();
+  add_json_flag(guards, args->json);
   return {guards, [args] {
             if (args->exposure.empty() == args->guards.empty())
-              throw Error("convert guards: give exactly one of --exposure FILE and --guards FILE");
+              throw UsageError("give exactly one of --exposure FILE and --guards FILE");
             return run_guards(*args);
           }};
 }

@@ -3,6 +3,7 @@
 
 #include "commands.hpp"
 #include "mosb/atomic_file.hpp"
+#include "terminal_progress.hpp"
 #include "mosb/converters/movingai.hpp"
 #include "mosb/graph_builder.hpp"
 
@@ -17,6 +18,7 @@ struct MovingaiArgs {
   std::string water = "blocked";
   std::string name;
   std::string output;
+  bool json = false;
 };
 
 int run_movingai(const MovingaiArgs& a) {
@@ -27,8 +29,9 @@ int run_movingai(const MovingaiArgs& a) {
   o.terrain.swamp_passable = a.swamp == "passable";
   o.terrain.water_passable = a.water == "passable";
   if (!a.name.empty()) o.name = a.name;
-  write_graph(converters::convert_movingai(o), a.output);
-  return report_written(a.output);
+  TerminalProgress progress;
+  write_graph(converters::convert_movingai(o), a.output, progress.callback());
+  return report_written(a.output, a.json);
 }
 
 }  // namespace
@@ -45,7 +48,8 @@ Command add_convert_movingai(CLI::App& convert) {
   movingai->add_option("--water", args->water, "terrain 'W'")->check(CLI::IsMember({"passable", "blocked"}))
       ->capture_default_str();
   movingai->add_option("--name", args->name, "benchmark name (default: the map's base name without .map)");
-  movingai->add_option("-o,--output", args->output, "the .mosb file to write")->required();
+  add_output_option(movingai, args->output, "the .mosb file to write")->required();
+  add_json_flag(movingai, args->json);
   return {movingai, [args] { return run_movingai(*args); }};
 }
 

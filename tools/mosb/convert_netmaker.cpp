@@ -4,6 +4,7 @@
 
 #include "commands.hpp"
 #include "mosb/atomic_file.hpp"
+#include "terminal_progress.hpp"
 #include "mosb/converters/netmaker_generator.hpp"
 #include "mosb/graph_builder.hpp"
 
@@ -15,6 +16,7 @@ struct ConvertNetMakerArgs {
   std::string input;
   std::string name;
   std::string output;
+  bool json = false;
 };
 
 }  // namespace
@@ -23,15 +25,17 @@ Command add_convert_netmaker(CLI::App& convert) {
   auto* netmaker = convert.add_subcommand(
       "netmaker", "An existing NetMaker graph: 0-based DIMACS-like .gr with one cost column per objective");
   auto args = std::make_shared<ConvertNetMakerArgs>();
-  netmaker->add_option("FILE", args->input, "the .gr file (plain, gzip, bzip2, xz or zstd)")
+  netmaker->add_option("INPUT", args->input, "the .gr file (plain, gzip, bzip2, xz or zstd)")
       ->required()->check(CLI::ExistingFile);
   netmaker->add_option("--name", args->name, "benchmark name (default: the file's base name)");
-  netmaker->add_option("-o,--output", args->output, "the .mosb file to write")->required();
+  add_output_option(netmaker, args->output, "the .mosb file to write")->required();
+  add_json_flag(netmaker, args->json);
   return {netmaker, [args] {
             check_output_is_not_input(args->output, {args->input});
             const auto name = args->name.empty() ? std::nullopt : std::optional<std::string>(args->name);
-            write_graph(converters::convert_netmaker(args->input, name), args->output);
-            return report_written(args->output);
+            TerminalProgress progress;
+            write_graph(converters::convert_netmaker(args->input, name), args->output, progress.callback());
+            return report_written(args->output, args->json);
           }};
 }
 

@@ -4,6 +4,7 @@
 
 #include "commands.hpp"
 #include "mosb/atomic_file.hpp"
+#include "terminal_progress.hpp"
 #include "mosb/converters/roadmap_converter.hpp"
 #include "mosb/error.hpp"
 #include "mosb/graph_builder.hpp"
@@ -23,6 +24,7 @@ struct RoadmapArgs {
   std::vector<std::string> objectives;
   std::string name;
   std::string output;
+  bool json = false;
 };
 
 int run_roadmap(const RoadmapArgs& a) {
@@ -41,11 +43,12 @@ int run_roadmap(const RoadmapArgs& a) {
   o.weight = a.weight;
   for (const auto& spec : a.objectives) o.objectives.push_back(converters::parse_objective(spec, "convert roadmap"));
   if (!a.name.empty()) o.name = a.name;
+  TerminalProgress progress;
   const auto input = converters::convert_roadmap(o);
   for (const auto& [key, value] : input.metadata.entries())
     if (key.starts_with("warning.")) std::cerr << "mosb: warning: " << key.substr(8) << ": " << value << '\n';
-  write_graph(input, a.output);
-  return report_written(a.output);
+  write_graph(input, a.output, progress.callback());
+  return report_written(a.output, a.json);
 }
 
 }  // namespace
@@ -68,7 +71,8 @@ Command add_convert_roadmap(CLI::App& convert) {
   roadmap->add_flag("--weight", args->weight, "also store the GraphML edge attribute 'weight' as an objective");
   roadmap->add_option("--objective", args->objectives, "NAME[:UNIT] of each objective, in order");
   roadmap->add_option("--name", args->name, "benchmark name (default: the first file's base name)");
-  roadmap->add_option("-o,--output", args->output, "the .mosb file to write")->required();
+  add_output_option(roadmap, args->output, "the .mosb file to write")->required();
+  add_json_flag(roadmap, args->json);
   return {roadmap, [args] { return run_roadmap(*args); }};
 }
 

@@ -3,7 +3,9 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "json_writer.hpp"
 #include "mosb/converters/dimacs_export.hpp"
+#include "terminal_progress.hpp"
 
 namespace mosb::cli {
 
@@ -11,17 +13,33 @@ namespace {
 
 struct ExportDimacsArgs {
   std::string instance;
-  std::string out_dir;
+  std::string output;
   std::string view;
-  int id_base = -1;  // -1: from the instance's metadata
+  unsigned id_base = 1;
+  CLI::Option* id_base_option = nullptr;
+  bool json = false;
 };
 
 int run_export_dimacs(const ExportDimacsArgs& a) {
   converters::DimacsExportOptions o;
-  o.out_dir = a.out_dir;
+  o.out_dir = a.output;
   if (!a.view.empty()) o.view = a.view;
-  if (a.id_base >= 0) o.id_base = static_cast<unsigned>(a.id_base);
-  for (const auto& path : converters::export_dimacs(a.instance, o)) std::cout << "wrote " << path.string() << '\n';
+  if (a.id_base_option->count() > 0) o.id_base = a.id_base;
+  TerminalProgress progress;
+  o.progress = progress.callback();
+  const auto written = converters::export_dimacs(a.instance, o);
+  if (a.json) {
+    JsonWriter json(std::cout);
+    json.begin_object();
+    json.key("instance").value(a.instance);
+    json.key("directory").value(a.output);
+    json.key("wrote").begin_array();
+    for (const auto& path : written) json.value(path.string());
+    json.end_array();
+    json.end_object();
+  } else {
+    for (const auto& path : written) std::cout << "wrote " << path.string() << '\n';
+  }
   return 0;
 }
 
@@ -29,12 +47,11 @@ Command add_export_dimacs(CLI::App& parent) {
   auto* dimacs = parent.add_subcommand(
       "dimacs", "one DIMACS .gr per objective, a .co for coords, a .queries file per query set");
   auto args = std::make_shared<ExportDimacsArgs>();
-  dimacs->add_option("instance", args->instance, "the .mosb instance")->required()->check(CLI::ExistingFile);
-  dimacs->add_option("--out-dir", args->out_dir, "directory for <benchmark>-<objective>.gr etc. (created)")
-      ->required();
+  dimacs->add_option("INSTANCE", args->instance, "the .mosb instance")->required()->check(CLI::ExistingFile);
+  add_output_option(dimacs, args->output, "directory for <benchmark>-<objective>.gr etc. (created)")->required();
   dimacs->add_option("--view", args->view, "export only this view's objectives and query set");
-  dimacs->add_option("--id-base", args->id_base, "vertex id base of the text files (default: metadata id_base, else 1)")
-      ->check(CLI::IsMember({0, 1}));
+  args->id_base_option = add_id_base_option(dimacs, args->id_base, "the instance's metadata id_base, else 1");
+  add_json_flag(dimacs, args->json);
   return {dimacs, [args] { return run_export_dimacs(*args); }};
 }
 

@@ -1,11 +1,10 @@
 #include <CLI/CLI.hpp>
-#include <iostream>
 #include <memory>
 
 #include "commands.hpp"
 #include "mosb/converters/netmaker_generator.hpp"
 #include "mosb/converters/suite.hpp"
-#include "mosb/error.hpp"
+#include "terminal_progress.hpp"
 
 namespace mosb::cli {
 
@@ -17,22 +16,23 @@ struct NetMakerArgs {
   std::string output;
   std::string suite;
   unsigned threads = 0;
+  bool json = false;
 };
 
 int run_netmaker(NetMakerArgs a, const CLI::App& app) {
+  TerminalProgress progress;
   if (!a.suite.empty()) {
     // The suite's N list, unless --vertices narrows it (tests use a small N).
     const auto counts = app.count("--vertices") ? std::vector<std::uint32_t>{a.params.vertices}
                                                 : converters::paper_netmaker_vertex_counts();
     const auto entries = converters::run_suite(a.suite, converters::netmaker_suite(a.params.seed, counts),
-                                               {a.threads, converters::terminal_progress()});
-    std::cout << "wrote " << entries.size() << " NetMaker instances and MANIFEST to " << a.suite << '\n';
-    return 0;
+                                               {a.threads, progress.callback()});
+    return report_suite(a.suite, "NetMaker", entries, a.json);
   }
-  if (a.output.empty()) throw Error("generate netmaker: --output FILE is required (or --suite DIR)");
+  if (a.output.empty()) throw UsageError("--output FILE is required (or --suite DIR)");
   if (!a.name.empty()) a.params.name = a.name;
-  write_graph(converters::generate_netmaker(a.params), a.output);
-  return report_written(a.output);
+  write_graph(converters::generate_netmaker(a.params), a.output, progress.callback());
+  return report_written(a.output, a.json);
 }
 
 }  // namespace
@@ -50,20 +50,20 @@ Command add_generate_netmaker(CLI::App& generate) {
                    ->check(CLI::Range(1u, 100000u))->capture_default_str();
   auto* locality = netmaker->add_option("--locality", p.locality, "I: locality arcs join u to ids within u +- floor(I/2)")
                        ->capture_default_str();
-  netmaker->add_option("--seed", p.seed, "seed of the specified generator (with --suite: of the suite)")
-      ->capture_default_str();
+  add_seed_option(netmaker, p.seed, "seed of the specified generator (with --suite: of the suite)");
   auto* queries = netmaker->add_option("--queries", p.queries, "number of distinct start-goal pairs")
                       ->check(CLI::Range(1u, 1000000u))->capture_default_str();
   auto* percent = netmaker->add_option("--query-percent", p.query_percent,
                                        "starts among the first, goals among the last P% of vertex ids")
                       ->check(CLI::Range(1u, 50u))->capture_default_str();
   auto* name = netmaker->add_option("--name", args->name, "benchmark name (default NetMaker-N<N>-I<I>)");
-  auto* output = netmaker->add_option("-o,--output", args->output, "the .mosb file to write");
+  auto* output = add_output_option(netmaker, args->output, "the .mosb file to write");
   auto* suite = netmaker->add_option("--suite", args->suite,
                                      "write the paper's 12 NetMaker graphs and a MANIFEST into this directory");
   netmaker->add_option("--threads", args->threads, "worker threads for --suite (default: all cores)")
       ->group("");
   for (auto* single_only : {amin, amax, locality, queries, percent, name, output}) suite->excludes(single_only);
+  add_json_flag(netmaker, args->json);
   return {netmaker, [args, netmaker] { return run_netmaker(*args, *netmaker); }};
 }
 

@@ -115,8 +115,8 @@ Command add_inspect(CLI::App& app) {
   auto* sub = app.add_subcommand("inspect", "Show a file's version, digest, sections and metadata");
   auto file = std::make_shared<std::string>();
   auto as_json = std::make_shared<bool>(false);
-  sub->add_option("FILE", *file, "a .mosb instance")->required();
-  sub->add_flag("--json", *as_json, "print the same information as JSON");
+  sub->add_option("INSTANCE", *file, "a .mosb instance")->required();
+  add_json_flag(sub, *as_json);
   return {sub, [file, as_json] {
             const auto reader = GraphReader::open(*file);
             if (*as_json) print_json(reader);

@@ -7,9 +7,42 @@
 #include "mosb/error.hpp"
 #include "mosb/version.hpp"
 
+namespace {
+
+constexpr int kRuntimeError = 1;
+constexpr int kUsageError = 2;
+
+// "generate grid" for `mosb generate grid ...`: the subcommands given on the command line.
+std::string command_path(const CLI::App& app) {
+  std::string path;
+  for (const CLI::App* current = &app;;) {
+    const CLI::App* next = nullptr;
+    for (const auto* sub : current->get_subcommands())
+      if (sub->count() > 0) next = sub;
+    if (!next) return path;
+    path += (path.empty() ? "" : " ") + next->get_name();
+    current = next;
+  }
+}
+
+// A usage error is one line: what is wrong, and where to read how it should be.
+int usage_error(const CLI::App& app, std::string message) {
+  for (auto& c : message)
+    if (c == '\n' || c == '\r') c = ' ';
+  const auto path = command_path(app);
+  std::cerr << "mosb: " << (path.empty() ? "" : path + ": ") << message << " (see mosb "
+            << (path.empty() ? "" : path + " ") << "--help)\n";
+  return kUsageError;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   CLI::App app{"mosb: multi-objective search benchmark instances in a checksummed binary format"};
-  app.set_version_flag("--version", std::string("mosb ") + mosb::kVersion);
+  app.set_version_flag("-V,--version", std::string("mosb ") + mosb::kVersion);
+  app.footer(
+      "Exit status: 0 success; 1 runtime error (bad or damaged input, failed verification, I/O "
+      "error); 2 usage error (unknown or missing option, bad option value, no subcommand).");
   app.require_subcommand(1);
   const std::vector<mosb::cli::Command> commands = {
       mosb::cli::add_inspect(app),
@@ -23,7 +56,8 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);  // --help, -V
+    return usage_error(app, e.what());
   }
   // Interrupted writes leave no temporary; a file size limit is a write error (EFBIG), reported
   // in one line, rather than a core dump; a temporary left by a killed run is removed and said.
@@ -35,12 +69,14 @@ int main(int argc, char** argv) {
   try {
     for (const auto& command : commands)
       if (command.subcommand->parsed()) return command.run();
+  } catch (const mosb::cli::UsageError& e) {
+    return usage_error(app, e.what());
   } catch (const mosb::Error& e) {
     std::cerr << "mosb: " << e.what() << '\n';
-    return 1;
+    return kRuntimeError;
   } catch (const std::exception& e) {
     std::cerr << "mosb: internal error: " << e.what() << '\n';
-    return 1;
+    return kRuntimeError;
   }
-  return 1;
+  return kRuntimeError;
 }

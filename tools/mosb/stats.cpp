@@ -185,7 +185,7 @@ Command add_stats(CLI::App& app) {
   sub->add_option("INSTANCE", *file, "a .mosb instance")->required();
   auto* view_option = sub->add_option("--view", *view, "only the objectives of this benchmark view, in its order");
   sub->add_flag("--by-kind", *by_kind, "also per value of the u8 arc data 'kind' (NetMaker: 0 cycle, 1 locality)");
-  sub->add_flag("--json", *as_json, "print the same statistics as JSON");
+  add_json_flag(sub, *as_json);
   return {sub, [file, view, view_option, by_kind, as_json] {
             const auto reader = GraphReader::open(*file);
             StatsOptions options;

@@ -5,40 +5,82 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "json_writer.hpp"
+#include "terminal_progress.hpp"
 
 namespace mosb::cli {
 
+namespace {
+
+struct VerifyArgs {
+  std::vector<std::string> files;
+  std::string level = "full";
+  bool json = false;
+};
+
+struct Outcome {
+  std::string file;
+  std::optional<std::string> problem;
+  std::string digest;
+};
+
+int run_verify(const VerifyArgs& a) {
+  const auto verify_level = *parse_verify_level(a.level);
+  TerminalProgress display;
+  const auto progress = display.callback();
+  std::vector<Outcome> outcomes;
+  report(progress, "verify", 0, a.files.size());
+  for (const auto& file : a.files) {
+    Outcome outcome{file, std::nullopt, ""};
+    try {
+      const auto reader = GraphReader::open(file);
+      outcome.problem = verify(reader, verify_level);
+      if (outcome.problem) outcome.problem = file + ": " + *outcome.problem;
+      outcome.digest = reader.digest();
+    } catch (const Error& e) {
+      outcome.problem = e.what();
+    }
+    outcomes.push_back(std::move(outcome));
+    report(progress, "verify", outcomes.size(), a.files.size());
+  }
+  int failures = 0;
+  for (const auto& o : outcomes) failures += o.problem ? 1 : 0;
+  if (a.json) {
+    JsonWriter json(std::cout);
+    json.begin_object();
+    json.key("level").value(a.level);
+    json.key("ok").value(failures == 0);
+    json.key("files").begin_array();
+    for (const auto& o : outcomes) {
+      json.begin_object();
+      json.key("file").value(o.file);
+      json.key("ok").value(!o.problem);
+      if (o.problem) json.key("problem").value(*o.problem);
+      else json.key("digest").value(o.digest);
+      json.end_object();
+    }
+    json.end_array();
+    json.end_object();
+  } else {
+    for (const auto& o : outcomes) {
+      if (o.problem) std::cout << "FAIL " << *o.problem << '\n';
+      else std::cout << "OK   " << o.file << " (" << a.level << ", digest " << o.digest << ")\n";
+    }
+  }
+  return failures == 0 ? 0 : 1;
+}
+
+}  // namespace
+
 Command add_verify(CLI::App& app) {
   auto* sub = app.add_subcommand("verify", "Check files: header, checksums, structure, or all");
-  auto files = std::make_shared<std::vector<std::string>>();
-  auto level = std::make_shared<std::string>("full");
-  sub->add_option("FILE", *files, "the .mosb files to verify")->required();
-  sub->add_option("--level", *level, "how much to check")
+  auto args = std::make_shared<VerifyArgs>();
+  sub->add_option("INSTANCE", args->files, "the .mosb instances to verify")->required();
+  sub->add_option("--level", args->level, "how much to check")
       ->check(CLI::IsMember({"header", "checksums", "structure", "full"}))
       ->capture_default_str();
-  return {sub, [files, level] {
-            const auto verify_level = *parse_verify_level(*level);
-            int failures = 0;
-            for (const auto& file : *files) {
-              std::optional<std::string> problem;
-              std::string digest;
-              try {
-                const auto reader = GraphReader::open(file);
-                problem = verify(reader, verify_level);
-                if (problem) problem = file + ": " + *problem;
-                digest = reader.digest();
-              } catch (const Error& e) {
-                problem = e.what();
-              }
-              if (problem) {
-                ++failures;
-                std::cout << "FAIL " << *problem << '\n';
-              } else {
-                std::cout << "OK   " << file << " (" << *level << ", digest " << digest << ")\n";
-              }
-            }
-            return failures == 0 ? 0 : 1;
-          }};
+  add_json_flag(sub, args->json);
+  return {sub, [args] { return run_verify(*args); }};
 }
 
 }  // namespace mosb::cli

@@ -7,12 +7,15 @@
 #include <string>
 #include <vector>
 
+#include "mosb/progress.hpp"
+
 namespace mosb::converters {
 
 struct DimacsExportOptions {
   std::filesystem::path out_dir;      // created when missing
   std::optional<std::string> view;    // only the view's objectives and query set
   std::optional<unsigned> id_base;    // default: metadata id_base, else 1 (the DIMACS convention)
+  Progress progress;                  // stage "export": files written of the files to write
 };
 
 // Reads `instance` through GraphReader; writes each file atomically and returns their paths in

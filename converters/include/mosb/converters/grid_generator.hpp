@@ -16,7 +16,11 @@ struct GridParameters {
   std::uint32_t max_cost = 10;
 };
 
-// Vertices: cell (x, y) is y*K + x; the source is K*M, the target K*M + 1.
+// Vertices: cell (x, y) is y*K + x; the source is K*M, the target K*M + 1. The arcs come out in
+// tail order, so the instance streams into its file (write_graph) without an arc list in memory.
+StreamedGraph grid_graph(const GridParameters& p);
+
+// The same instance held in memory.
 GraphInput generate_grid(const GridParameters& p);
 
 }  // namespace mosb::converters

@@ -7,15 +7,18 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "mosb/graph_builder.hpp"
+#include "mosb/progress.hpp"
 
 namespace mosb::converters {
 
 struct SuiteInstance {
   std::string name;                    // the file is name + ".mosb"
-  std::function<GraphInput()> build;   // called on a worker thread; must not share mutable state
+  // Called on a worker thread; must not share mutable state.
+  std::function<std::variant<GraphInput, StreamedGraph>()> build;
 };
 
 struct SuiteEntry {
@@ -27,12 +30,9 @@ struct SuiteEntry {
 
 struct SuiteOptions {
   unsigned threads = 0;  // 0: std::thread::hardware_concurrency()
-  // Called once per finished instance, serialized, `done` counting from 1.
-  std::function<void(std::size_t done, std::size_t total, const std::string& file)> progress;
+  // Stage "suite": called with 0 first, then once per finished instance, serialized.
+  Progress progress;
 };
-
-// Prints "[k/total] FILE" lines on stderr when stderr is a terminal; empty (quiet) otherwise.
-std::function<void(std::size_t done, std::size_t total, const std::string& file)> terminal_progress();
 
 // Creates `directory` if needed, writes every instance and then MANIFEST; returns the MANIFEST
 // lines. On failure throws the error of the lowest-index failing instance (no MANIFEST is written).

@@ -1,0 +1,46 @@
+#include "terminal_progress.hpp"
+
+#include <unistd.h>
+
+#include <cstdio>
+
+namespace mosb::cli {
+
+TerminalProgress::TerminalProgress() : enabled_(::isatty(STDERR_FILENO) == 1) {}
+
+TerminalProgress::~TerminalProgress() { end_line(); }
+
+Progress TerminalProgress::callback() {
+  if (!enabled_) return {};
+  return [this](std::string_view stage, std::uint64_t done, std::uint64_t total) { update(stage, done, total); };
+}
+
+void TerminalProgress::update(std::string_view stage, std::uint64_t done, std::uint64_t total) {
+  std::lock_guard lock(mutex_);
+  const auto now = std::chrono::steady_clock::now();
+  const bool new_stage = stage != stage_;
+  const bool finished = total != 0 && done >= total;
+  if (!new_stage && !finished && now - last_draw_ < std::chrono::milliseconds(100)) return;
+  if (new_stage && line_open_) std::fputc('\n', stderr);
+  stage_ = stage;
+  last_draw_ = now;
+  // "\r" and erase-to-end-of-line redraw the same line.
+  if (total != 0)
+    std::fprintf(stderr, "\r\033[Kmosb: %.*s %llu/%llu (%.0f%%)", static_cast<int>(stage.size()), stage.data(),
+                 static_cast<unsigned long long>(done), static_cast<unsigned long long>(total),
+                 100.0 * static_cast<double>(done) / static_cast<double>(total));
+  else
+    std::fprintf(stderr, "\r\033[Kmosb: %.*s %llu", static_cast<int>(stage.size()), stage.data(),
+                 static_cast<unsigned long long>(done));
+  line_open_ = !finished;  // a finished stage keeps its line, so a report on stdout follows cleanly
+  if (finished) std::fputc('\n', stderr);
+  std::fflush(stderr);
+}
+
+void TerminalProgress::end_line() {
+  std::lock_guard lock(mutex_);
+  if (line_open_) std::fputc('\n', stderr);
+  line_open_ = false;
+}
+
+}  // namespace mosb::cli
