@@ -167,7 +167,7 @@ std::string format_real_cost(double value) {
 }
 
 std::vector<std::filesystem::path> export_dimacs(const std::filesystem::path& instance,
-                                                 const DimacsExportOptions& options) {
+                                                 const DimacsExportOptions& options, const Progress& progress) {
   const auto reader = GraphReader::open(instance);
   const auto benchmark = file_stem_for(reader, instance);
   const auto id_base = export_id_base(reader, options);
@@ -192,24 +192,24 @@ std::vector<std::filesystem::path> export_dimacs(const std::filesystem::path& in
   std::vector<std::filesystem::path> written;
   const auto* coords = reader.find(SectionKind::vertex_data, "coords");
   const std::uint64_t file_count = objectives.size() + (coords ? 1 : 0) + query_sets.size();
-  report(options.progress, "export", 0, file_count);
+  report(progress, "export", 0, file_count);
   for (auto j : objectives) {
     written.push_back(options.out_dir / (benchmark + "-" + reader.objective(j).name + ".gr"));
     check_output_is_not_input(written.back(), {instance});
     export_objective(written.back(), reader, j, benchmark, id_base);
-    report(options.progress, "export", written.size(), file_count);
+    report(progress, "export", written.size(), file_count);
   }
   if (coords) {
     written.push_back(options.out_dir / (benchmark + ".co"));
     check_output_is_not_input(written.back(), {instance});
     export_coordinates(written.back(), reader, *coords, benchmark, id_base);
-    report(options.progress, "export", written.size(), file_count);
+    report(progress, "export", written.size(), file_count);
   }
   for (const auto& set : query_sets) {
     written.push_back(options.out_dir / (benchmark + "-" + set + ".queries"));
     check_output_is_not_input(written.back(), {instance});
     export_queries(written.back(), reader, set, id_base);
-    report(options.progress, "export", written.size(), file_count);
+    report(progress, "export", written.size(), file_count);
   }
   return written;
 }

@@ -879,7 +879,7 @@ class VersionAndHelp(CliTest):
         r = self.mosb("--help")
         self.assertEqual(r.code, 0, r)
         text = " ".join(r.out.split())
-        self.assertIn("Exit status: 0 success; 1 runtime error", text)
+        self.assertIn("Exit status: 0 success; 1 failure while running", text)
         self.assertIn("2 usage error", text)
 
     def test_one_name_for_the_instance_argument(self):
@@ -887,9 +887,10 @@ class VersionAndHelp(CliTest):
                         ["queries", "generate"]):
             r = self.mosb(*command, "--help")
             self.assertEqual(r.code, 0, r)
-            self.assertIn("INSTANCE", r.out, command)
-            for other in ("FILE ", "instance TEXT"):
-                self.assertNotIn(other, r.out.split("Options:")[0], command)
+            positionals = r.out.split("Positionals:")[1].split("Options:")[0]
+            self.assertEqual(positionals.split()[0], "INSTANCE", command)
+            for other in ("\n  FILE ", "\n  instance ", "\n  file "):
+                self.assertNotIn(other, positionals, command)
 
 
 class JsonReports(CliTest):

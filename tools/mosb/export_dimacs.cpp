@@ -26,8 +26,7 @@ int run_export_dimacs(const ExportDimacsArgs& a) {
   if (!a.view.empty()) o.view = a.view;
   if (a.id_base_option->count() > 0) o.id_base = a.id_base;
   TerminalProgress progress;
-  o.progress = progress.callback();
-  const auto written = converters::export_dimacs(a.instance, o);
+  const auto written = converters::export_dimacs(a.instance, o, progress.callback());
   if (a.json) {
     JsonWriter json(std::cout);
     json.begin_object();

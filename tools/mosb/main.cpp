@@ -41,8 +41,8 @@ int main(int argc, char** argv) {
   CLI::App app{"mosb: multi-objective search benchmark instances in a checksummed binary format"};
   app.set_version_flag("-V,--version", std::string("mosb ") + mosb::kVersion);
   app.footer(
-      "Exit status: 0 success; 1 runtime error (bad or damaged input, failed verification, I/O "
-      "error); 2 usage error (unknown or missing option, bad option value, no subcommand).");
+      "Exit status: 0 success; 1 failure while running (bad or damaged input, failed verification, "
+      "I/O error); 2 usage error (unknown or missing option, bad option value, no subcommand).");
   app.require_subcommand(1);
   const std::vector<mosb::cli::Command> commands = {
       mosb::cli::add_inspect(app),
