@@ -121,7 +121,7 @@ class InstalledPackage(unittest.TestCase):
         cls.grid = os.path.join(cls.tmp, "grid.mosb")
         run(mosb, "generate", "grid", "--width", "30", "--height", "20", "--objectives", "3",
             "--seed", "11", "-o", cls.grid)
-        run(mosb, "queries", "generate", "--into", cls.grid, "--name", "default", "--count", "25",
+        run(mosb, "queries", "generate", cls.grid, "--in-place", "--set", "default", "--count", "25",
             "--seed", "5", "--replace")
         cls.expected = expected_outputs(cls.grid)
 
