@@ -160,7 +160,7 @@ class RandomGraphs(Base):
         rows, text = random_gr(rng, 7, 2)
         inst = self.path("q.mosb")
         self.mosb("convert", "dimacs", "--gr", self.write("q.gr", text), "-o", inst)
-        self.mosb("queries", "generate", "--into", inst, "--name", "some", "--count", "6", "--seed", "3")
+        self.mosb("queries", "generate", inst, "--in-place", "--set", "some", "--count", "6", "--seed", "3")
         stored = [tuple(int(x) for x in q) for q in mosb_reader.open_instance(inst).queries()["some"]]
         self.assertEqual(len(stored), 6)
         for name in ("boa_star", "namoa"):
@@ -220,8 +220,8 @@ class RealData(Base):
             self.skipTest("%s is absent: NetMaker agreement test skipped" % gr)
         inst = self.path("nm.mosb")
         self.mosb("convert", "netmaker", gr, "-o", inst)
-        self.mosb("queries", "import", os.path.join(DATA, "netmaker", "netMaker_4d.inst"), "--into", inst,
-                  "--name", "nm", "--match", "_79134.gr")
+        self.mosb("queries", "import", inst, os.path.join(DATA, "netmaker", "netMaker_4d.inst"), "--in-place",
+                  "--set", "nm", "--match", "_79134.gr")
         # Every published query, on the first two objectives of the file's only view (NetMaker_3).
         rows = self.agree(inst, ["--objectives", "c1,c2", "--queries", "nm"])
         self.assertEqual(len(rows), 40)
