@@ -128,7 +128,7 @@ class WriteErrors(Base):
         self.assertEqual(run("generate", "grid", "--width", "300", "--height", "300", "-o", inst).returncode, 0)
         out = self.path("text")
         os.mkdir(out)
-        r = run("export", "dimacs", inst, "--out-dir", out, fsize=1 << 20)
+        r = run("export", "dimacs", inst, "-o", out, fsize=1 << 20)
         self.assertEqual(r.returncode, 1, r.stderr)
         self.assertEqual(len(r.stderr.splitlines()), 1, r.stderr)
         self.assertRegex(r.stderr, r"^mosb: %s/[^ ]+\.gr: write failed: File too large$" % re.escape(out))
@@ -142,7 +142,7 @@ class Modes(Base):
             self.assertEqual(run(*SMALL, "-o", out, umask=umask).returncode, 0)
             self.assertEqual(mode(out), expected, "umask %o" % umask)
             text = self.path("text%o" % umask)
-            self.assertEqual(run("export", "dimacs", out, "--out-dir", text, umask=umask).returncode, 0)
+            self.assertEqual(run("export", "dimacs", out, "-o", text, umask=umask).returncode, 0)
             for name in os.listdir(text):
                 self.assertEqual(mode(os.path.join(text, name)), expected, name)
 
@@ -154,7 +154,7 @@ class InPlace(Base):
         return out
 
     def add_queries(self, target):
-        return run("queries", "generate", "--into", target, "--name", "r", "--count", "3", "--seed", "1")
+        return run("queries", "generate", target, "--in-place", "--set", "r", "--count", "3", "--seed", "1")
 
     def test_mode_is_kept(self):
         inst = self.instance()
@@ -259,14 +259,14 @@ class OutputIsAnInput(Base):
     def test_queries_import(self):
         inst = self.path("g.mosb")
         self.assertEqual(run(*SMALL, "-o", inst).returncode, 0)
-        self.refused(["queries", "import", inst, "--into", "OUT", "--name", "q"], inst)
+        self.refused(["queries", "import", "OUT", inst, "--in-place", "--set", "q"], inst)
 
     def test_export_dimacs(self):
         os.mkdir(self.path("out"))
         inst = self.path("out/Grid-5x4-c1.gr")  # the name export gives objective c1 of this grid
         self.assertEqual(run(*SMALL, "-o", inst).returncode, 0)
         before = read(inst)
-        r = run("export", "dimacs", inst, "--out-dir", self.path("out"))
+        r = run("export", "dimacs", inst, "-o", self.path("out"))
         self.assertEqual(r.returncode, 1, r.stdout)
         self.assertIn("is the same file as the input", r.stderr)
         self.assertEqual(read(inst), before)
