@@ -168,7 +168,8 @@ std::string format_real_cost(double value) {
 
 std::vector<std::filesystem::path> export_dimacs(const std::filesystem::path& instance,
                                                  const DimacsExportOptions& options, const Progress& progress) {
-  const auto reader = GraphReader::open(instance);
+  // The export walks the CSR and copies costs: only a file whose payload passes verify.
+  const auto reader = GraphReader::open(instance, VerifyLevel::full);
   const auto benchmark = file_stem_for(reader, instance);
   const auto id_base = export_id_base(reader, options);
 

@@ -5,6 +5,7 @@
 #include "mosb/converters/text_input.hpp"
 #include "mosb/converters/text_scan.hpp"
 #include "mosb/error.hpp"
+#include "mosb/format.hpp"
 #include "mosb/metadata.hpp"
 
 namespace mosb::converters {
@@ -27,13 +28,6 @@ std::uint64_t absolute_difference(std::int64_t a, std::int64_t b) {
                 : static_cast<std::uint64_t>(b) - static_cast<std::uint64_t>(a);
 }
 
-bool is_name(std::string_view s) {
-  if (s.empty()) return false;
-  for (char c : s)
-    if (!Metadata::is_name_char(c)) return false;
-  return true;
-}
-
 }  // namespace
 
 ViewSpec parse_view_spec(std::string_view text) {
@@ -47,13 +41,16 @@ ViewSpec parse_view_spec(std::string_view text) {
     view.queries = std::string(rest.substr(at + 1));
     rest = rest.substr(0, at);
   }
-  if (!is_name(view.name)) throw Error(where + "the view name must be 1 or more of [A-Za-z0-9_.+-]");
-  if (!is_name(view.queries)) throw Error(where + "the query set name must be 1 or more of [A-Za-z0-9_.+-]");
+  if (!Metadata::is_valid_key(view.name))
+    throw Error(where + "the view name must be 1 or more of [A-Za-z0-9_.+-]");
+  if (!format::is_valid_section_name(view.queries))
+    throw Error(where + "the query set name must be " + std::string(format::kSectionNameRule));
   std::set<std::string> seen;
   while (true) {
     const auto comma = rest.find(',');
     const std::string objective(rest.substr(0, comma));
-    if (!is_name(objective)) throw Error(where + "empty or invalid objective name " + quoted(objective));
+    if (!format::is_valid_section_name(objective))
+      throw Error(where + "empty or invalid objective name " + quoted(objective));
     if (!seen.insert(objective).second) throw Error(where + "objective '" + objective + "' listed twice");
     view.objectives.push_back(objective);
     if (comma == std::string_view::npos) break;

@@ -49,8 +49,9 @@ void FileWriter::write_at_end(const void* data, std::size_t size) {
 void FileWriter::begin_section(format::SectionKind kind, std::string_view name,
                                format::ElementType type, std::uint32_t row_width) {
   if (in_section_) fail("internal error: section '" + std::string(name) + "' begun inside another");
-  if (name.empty() || name.size() > format::kNameSize || !Metadata::is_valid_key(name))
-    fail("invalid section name '" + std::string(name) + "' (1-24 characters from [A-Za-z0-9_.+-])");
+  if (!format::is_valid_section_name(name))
+    fail("invalid section name '" + std::string(name) + "' (" +
+         std::string(format::kSectionNameRule) + ")");
   if (row_width == 0) fail("section '" + std::string(name) + "' has row width 0");
   static constexpr std::byte zeros[format::kAlignment] = {};
   write_at_end(zeros, format::align_up(position_) - position_);

@@ -90,9 +90,9 @@ void check_counts(std::uint64_t n, std::uint64_t m);
 void check_queries(const std::vector<QuerySet>& queries, std::uint64_t n);
 
 void check_name(std::string_view what, const std::string& name) {
-  if (name.empty() || name.size() > format::kNameSize || !Metadata::is_valid_key(name))
-    throw Error(std::string(what) + " name '" + name +
-                "' must be 1-24 characters from [A-Za-z0-9_.+-]");
+  if (!format::is_valid_section_name(name))
+    throw Error(std::string(what) + " name '" + name + "' must be " +
+                std::string(format::kSectionNameRule));
 }
 
 template <class Item>

@@ -1,5 +1,7 @@
-#include "mosb/hex.hpp"
 #include "mosb/graph_reader.hpp"
+
+#include "mosb/hex.hpp"
+#include "mosb/verify.hpp"
 
 #include <fcntl.h>
 #include <sys/mman.h>
@@ -11,6 +13,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <unordered_set>
 
 namespace mosb {
 
@@ -49,14 +52,33 @@ void GraphReader::fail(ErrorCode code, const std::string& what) const {
   throw Error(code, display_name_ + ": " + what);
 }
 
+namespace {
+const char* file_type_name(mode_t mode) {
+  if (S_ISDIR(mode)) return "a directory";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
+}  // namespace
+
 GraphReader GraphReader::open(const std::filesystem::path& path) {
   const std::string name = path.string();
-  int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  // O_NONBLOCK: opening a FIFO for reading would otherwise wait for a writer, before fstat could
+  // tell what it is. Reads go through mmap, which the flag does not affect.
+  int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) throw Error(ErrorCode::io, name + ": cannot open: " + std::strerror(errno));
   struct stat st {};
-  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+  if (::fstat(fd, &st) != 0) {
+    const int error = errno;
     ::close(fd);
-    throw Error(ErrorCode::not_mosb, name + ": not a regular file");
+    throw Error(ErrorCode::io, name + ": cannot stat: " + std::strerror(error));
+  }
+  if (!S_ISREG(st.st_mode)) {
+    ::close(fd);
+    throw Error(ErrorCode::not_mosb, name + ": is " + std::string(file_type_name(st.st_mode)) +
+                ", not a regular file; a mosb file must be a regular file");
   }
   const auto size = static_cast<std::size_t>(st.st_size);
   if (size < format::kHeaderSize) {
@@ -76,6 +98,36 @@ GraphReader GraphReader::open(const std::filesystem::path& path) {
   reader.display_name_ = name;
   reader.validate();
   return reader;
+}
+
+GraphReader GraphReader::open(const std::filesystem::path& path, VerifyLevel level) {
+  auto reader = open(path);
+  reader.verify_at_open(level);
+  return reader;
+}
+
+GraphReader GraphReader::from_memory(std::span<const std::byte> bytes, std::string display_name,
+                                     VerifyLevel level) {
+  auto reader = from_memory(bytes, std::move(display_name));
+  reader.verify_at_open(level);
+  return reader;
+}
+
+void GraphReader::verify_at_open(VerifyLevel level) {
+  if (level != VerifyLevel::header)
+    for (const auto& s : sections_)
+      if (s.is_packed())
+        fail(ErrorCode::packed, "section '" + s.name + "' is zstd-packed; its payload cannot be verified or walked "
+             "in place; unpack the file first");
+  if (auto problem = verify(*this, level))
+    fail("file is damaged: " + *problem + "; run mosb verify");
+  verified_level_ = level;
+}
+
+void GraphReader::require_verified(VerifyLevel level, std::string_view user) const {
+  if (!covers(verified_level_, level))
+    fail(ErrorCode::invalid_argument, std::string(user) +
+         " walks the payload and needs a reader opened with GraphReader::open(path, level)");
 }
 
 GraphReader GraphReader::from_memory(std::span<const std::byte> bytes, std::string display_name) {
@@ -174,7 +226,8 @@ void GraphReader::validate() {
     s.name = std::string(format::name_of(e));
     for (std::size_t k = s.name.size(); k < format::kNameSize; ++k)
       if (e.name[k] != '\0') fail(where + ": name has bytes after its NUL padding");
-    if (!Metadata::is_valid_key(s.name)) fail(where + ": invalid name");
+    if (!format::is_valid_section_name(s.name))
+      fail(where + ": invalid name (" + std::string(format::kSectionNameRule) + ")");
     const std::string label = "section '" + s.name + "'";
     auto type = format::element_type_from(e.element_type);
     if (!type) fail(label + ": unknown element type " + std::to_string(e.element_type));
@@ -226,6 +279,19 @@ void GraphReader::validate() {
   if (n >= 0xFFFFFFFFULL || m >= 0xFFFFFFFFULL)
     fail("vertex count " + std::to_string(n) + " or arc count " + std::to_string(m) +
          " exceeds the format limit of 2^32-2");
+  // Names are unique within a kind (§4), known or not: one hash set keeps open O(section_count).
+  {
+    std::unordered_set<std::string> seen;
+    seen.reserve(sections_.size());
+    for (const auto& s : sections_) {
+      std::string key(reinterpret_cast<const char*>(&s.entry.kind), sizeof s.entry.kind);
+      key += s.name;
+      if (!seen.insert(std::move(key)).second)
+        fail("section '" + s.name + "': a second " +
+             (s.kind ? std::string(format::to_string(*s.kind)) : "kind " + std::to_string(s.entry.kind)) +
+             " section of that name");
+    }
+  }
   std::fill(std::begin(structural_), std::end(structural_), SIZE_MAX);
   std::size_t metadata_index = SIZE_MAX;
   cost_indices_.clear();
@@ -241,9 +307,6 @@ void GraphReader::validate() {
                                             what + " is " + std::to_string(rows));
     };
     const auto k = *s.kind;
-    for (std::size_t j = 0; j < i; ++j)
-      if (sections_[j].kind == s.kind && sections_[j].name == s.name)
-        fail(label + ": a second " + std::string(format::to_string(k)) + " section of that name");
     switch (k) {
       case SectionKind::metadata:
         expect(metadata_index == SIZE_MAX, "a second metadata section");

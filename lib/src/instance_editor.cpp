@@ -16,9 +16,9 @@ void check_query_sets(const GraphReader& source, const std::vector<QuerySet>& qu
   const std::uint64_t n = source.vertex_count();
   for (std::size_t i = 0; i < query_sets.size(); ++i) {
     const auto& set = query_sets[i];
-    if (set.name.empty() || set.name.size() > format::kNameSize || !Metadata::is_valid_key(set.name))
-      throw Error(source.display_name() + ": query set name '" + set.name +
-                  "' must be 1-24 characters from [A-Za-z0-9_.+-]");
+    if (!format::is_valid_section_name(set.name))
+      throw Error(source.display_name() + ": query set name '" + set.name + "' must be " +
+                  std::string(format::kSectionNameRule));
     for (std::size_t j = 0; j < i; ++j)
       if (query_sets[j].name == set.name)
         throw Error(source.display_name() + ": query set '" + set.name + "' given twice");

@@ -3,19 +3,18 @@
 #include <algorithm>
 
 #include "mosb/error.hpp"
+#include "mosb/format.hpp"
 #include "mosb/utf8.hpp"
 
-namespace mosb {
+#include <algorithm>
+#include <initializer_list>
 
-bool Metadata::is_name_char(char c) {
-  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
-         c == '.' || c == '+' || c == '-';
-}
+namespace mosb {
 
 bool Metadata::is_valid_key(std::string_view key) {
   if (key.empty()) return false;
   for (char c : key)
-    if (!is_name_char(c)) return false;
+    if (!format::is_name_char(c)) return false;
   return true;
 }
 
@@ -131,6 +130,42 @@ std::optional<std::string> find_view_problem(const Metadata& metadata,
       return "metadata key '" + key + ".queries' names query set '" + view.query_set +
              "', which is not a queries section";
   }
+  return std::nullopt;
+}
+
+}  // namespace mosb
+
+namespace mosb {
+
+namespace {
+// A key's defined value set, from spec/FORMAT.md §7 and spec/QUERIES.md.
+struct ValueSet {
+  std::string_view key_prefix, key_suffix;  // the key is prefix + (anything, for a set name) + suffix
+  bool exact;                                 // true: the key is exactly key_prefix
+  std::initializer_list<std::string_view> values;
+};
+const ValueSet kValueSets[] = {
+    {"id_base", "", true, {"0", "1"}},
+    {"family", "", true, {"road", "synthetic", "games", "robots"}},
+    {"queries.", ".id_base", false, {"0", "1"}},
+    {"queries.", ".allow_same", false, {"0", "1"}},
+};
+}  // namespace
+
+std::optional<std::string> find_value_problem(const Metadata& metadata) {
+  for (const auto& [key, value] : metadata.entries())
+    for (const auto& set : kValueSets) {
+      const bool applies =
+          set.exact ? key == set.key_prefix
+                    : key.size() > set.key_prefix.size() + set.key_suffix.size() &&
+                          key.starts_with(set.key_prefix) && key.ends_with(set.key_suffix);
+      if (!applies) continue;
+      if (std::find(set.values.begin(), set.values.end(), value) != set.values.end()) continue;
+      std::string allowed;
+      for (auto v : set.values) allowed += (allowed.empty() ? "" : ", ") + std::string(v);
+      return "metadata key '" + key + "' is '" + escape_for_terminal(value) + "', not one of " +
+             allowed;
+    }
   return std::nullopt;
 }
 

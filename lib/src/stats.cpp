@@ -156,18 +156,13 @@ std::span<const std::uint8_t> kind_column(const GraphReader& graph) {
   return values;
 }
 
-// Degrees from a CSR offsets column, checking what later loops rely on (open() does not).
-DegreeStats degrees(const GraphReader& graph, std::span<const std::uint64_t> offsets, const char* section) {
+// Degrees from a CSR offsets column of a verified reader (offsets non-decreasing from 0 to m).
+DegreeStats degrees(const GraphReader& graph, std::span<const std::uint64_t> offsets) {
   const std::uint64_t n = graph.vertex_count(), m = graph.arc_count();
-  if (offsets.size() != n + 1 || offsets.front() != 0 || offsets.back() != m)
-    fail(graph, std::string("section '") + section + "' does not run from 0 to the arc count");
   DegreeStats d;
   if (n == 0) return d;
   std::uint64_t lo = std::numeric_limits<std::uint64_t>::max(), hi = 0;
   for (std::uint64_t v = 0; v < n; ++v) {
-    if (offsets[v + 1] < offsets[v])
-      fail(graph, std::string("section '") + section + "' decreases at vertex " + std::to_string(v) +
-                      "; run mosb verify");
     const std::uint64_t degree = offsets[v + 1] - offsets[v];
     lo = std::min(lo, degree);
     hi = std::max(hi, degree);
@@ -178,20 +173,18 @@ DegreeStats degrees(const GraphReader& graph, std::span<const std::uint64_t> off
   return d;
 }
 
-// open() checks only the ends of the offsets; the walks below also need them non-decreasing.
-std::span<const std::uint64_t> checked_forward_offsets(const GraphReader& graph) {
-  const auto offsets = graph.forward_offsets();
-  for (std::size_t v = 0; v + 1 < offsets.size(); ++v)
-    if (offsets[v + 1] < offsets[v])
-      fail(graph, "section 'forward_offsets' decreases at vertex " + std::to_string(v) + "; run mosb verify");
-  return offsets;
+// Every walk below indexes by stored offsets and targets: they run only on a reader whose payload
+// passed the checksum and structure checks (GraphReader::open(path, VerifyLevel::full)).
+void require_verified(const GraphReader& graph, std::string_view function) {
+  graph.require_verified(VerifyLevel::full, function);
 }
 
 }  // namespace
 
 ArcMultiplicity count_loops_and_parallel_arcs(const GraphReader& graph) {
+  require_verified(graph, "count_loops_and_parallel_arcs");
   ArcMultiplicity stats;
-  const auto offsets = checked_forward_offsets(graph);
+  const auto offsets = graph.forward_offsets();
   const auto targets = graph.forward_targets();
   const auto n = static_cast<std::uint32_t>(graph.vertex_count());
   constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
@@ -199,9 +192,6 @@ ArcMultiplicity count_loops_and_parallel_arcs(const GraphReader& graph) {
   for (std::uint32_t u = 0; u < n; ++u)
     for (std::uint64_t a = offsets[u]; a < offsets[u + 1]; ++a) {
       const std::uint32_t v = targets[a];
-      if (v >= n)
-        fail(graph, "arc " + std::to_string(a) + " has head " + std::to_string(v) +
-                        ", not a vertex; run mosb verify");
       if (v == u) ++stats.self_loops;
       if (last_tail[v] == u) ++stats.parallel_arcs;
       else last_tail[v] = u;
@@ -210,11 +200,13 @@ ArcMultiplicity count_loops_and_parallel_arcs(const GraphReader& graph) {
 }
 
 ArcGroupStats objective_stats(const GraphReader& graph, const std::vector<std::size_t>& objectives) {
+  require_verified(graph, "objective_stats");
   return std::move(grouped_stats(graph, objectives, {}, 1).front());
 }
 
 std::vector<KindGroupStats> objective_stats_by_kind(const GraphReader& graph,
                                                     const std::vector<std::size_t>& objectives) {
+  require_verified(graph, "objective_stats_by_kind");
   const auto kind = kind_column(graph);
   std::vector<std::uint64_t> count(kKindGroups, 0);
   for (auto k : kind) ++count[k];
@@ -230,7 +222,8 @@ std::vector<KindGroupStats> objective_stats_by_kind(const GraphReader& graph,
 
 // Iterative Tarjan over the forward CSR: an explicit stack of (vertex, next arc) replaces recursion.
 SccSummary strongly_connected_components(const GraphReader& graph) {
-  const auto offsets = checked_forward_offsets(graph);
+  require_verified(graph, "strongly_connected_components");
+  const auto offsets = graph.forward_offsets();
   const auto targets = graph.forward_targets();
   const auto n = static_cast<std::uint32_t>(graph.vertex_count());
   constexpr std::uint32_t kUnvisited = std::numeric_limits<std::uint32_t>::max();  // n ≤ 2^32 − 2
@@ -253,9 +246,6 @@ SccSummary strongly_connected_components(const GraphReader& graph) {
       const std::uint32_t v = calls.back().first;
       if (calls.back().second < offsets[v + 1]) {
         const std::uint32_t w = targets[calls.back().second++];
-        if (w >= n)
-          fail(graph, "arc " + std::to_string(calls.back().second - 1) + " has head " + std::to_string(w) +
-                          ", not a vertex; run mosb verify");
         if (index[w] == kUnvisited) visit(w);
         else if (on_stack[w]) low[v] = std::min(low[v], index[w]);
         continue;
@@ -282,6 +272,7 @@ SccSummary strongly_connected_components(const GraphReader& graph) {
 }
 
 GraphStats compute_stats(const GraphReader& graph, const StatsOptions& options) {
+  require_verified(graph, "compute_stats");
   std::vector<std::size_t> objectives;
   if (options.view) {
     objectives = graph.view(*options.view).objectives;
@@ -292,8 +283,8 @@ GraphStats compute_stats(const GraphReader& graph, const StatsOptions& options) 
   GraphStats stats;
   stats.vertex_count = graph.vertex_count();
   stats.arc_count = graph.arc_count();
-  stats.out_degree = degrees(graph, graph.forward_offsets(), "forward_offsets");
-  stats.in_degree = degrees(graph, graph.reverse_offsets(), "reverse_offsets");
+  stats.out_degree = degrees(graph, graph.forward_offsets());
+  stats.in_degree = degrees(graph, graph.reverse_offsets());
   const auto multiplicity = count_loops_and_parallel_arcs(graph);
   stats.self_loops = multiplicity.self_loops;
   stats.parallel_arcs = multiplicity.parallel_arcs;

@@ -1,9 +1,14 @@
-#include "mosb/hex.hpp"
 #include "mosb/verify.hpp"
 
-#include "xxh3.hpp"
-
+#include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <exception>
+#include <functional>
+#include <thread>
+
+#include "mosb/hex.hpp"
+#include "xxh3.hpp"
 
 namespace mosb {
 
@@ -22,20 +27,15 @@ namespace {
 
 using Problem = std::optional<std::string>;
 
-
 std::string in_section(const Section& s, std::string_view rule, const std::string& detail) {
   return "section '" + s.name + "': [" + std::string(rule) + "] " + detail;
 }
 
-Problem check_checksums(const GraphReader& reader) {
-  for (const auto& s : reader.sections()) {
-    if (s.is_packed())
-      return in_section(s, "checksum", "zstd-packed sections are verified after unpacking");
-    const std::uint64_t computed = XXH3_64bits(s.stored.data(), s.stored.size());
-    if (computed != s.entry.checksum)
-      return in_section(s, "checksum", "mismatch (stored " + hex64(s.entry.checksum) +
-                                           ", computed " + hex64(computed) + ")");
-  }
+Problem check_checksum(const Section& s) {
+  const std::uint64_t computed = XXH3_64bits(s.stored.data(), s.stored.size());
+  if (computed != s.entry.checksum)
+    return in_section(s, "checksum", "mismatch (stored " + hex64(s.entry.checksum) +
+                                         ", computed " + hex64(computed) + ")");
   return std::nullopt;
 }
 
@@ -50,6 +50,10 @@ Problem check_offsets(const Section& s, std::span<const std::uint64_t> offsets) 
 
 Problem check_ids(const Section& s, std::span<const std::uint32_t> ids, std::uint64_t n,
                   std::string_view rule, std::string_view what) {
+  // Branch-free scan; the slow loop names the first id out of range.
+  std::uint32_t largest = 0;
+  for (const std::uint32_t id : ids) largest = std::max(largest, id);
+  if (ids.empty() || largest < n) return std::nullopt;
   for (std::size_t i = 0; i < ids.size(); ++i)
     if (ids[i] >= n)
       return in_section(s, rule, std::string(what) + " " + std::to_string(i) + " is vertex " +
@@ -57,62 +61,71 @@ Problem check_ids(const Section& s, std::span<const std::uint32_t> ids, std::uin
   return std::nullopt;
 }
 
-Problem check_csr(const GraphReader& reader) {
-  const std::uint64_t n = reader.vertex_count();
-  const auto& sections = reader.sections();
-  auto section = [&](SectionKind kind) -> const Section& {
-    for (const auto& s : sections)
-      if (s.kind == kind) return s;
-    return sections.front();  // unreachable: open() requires every structural section
-  };
-  const auto offsets = reader.forward_offsets();
-  const auto targets = reader.forward_targets();
-  const auto roffsets = reader.reverse_offsets();
-  const auto rsources = reader.reverse_sources();
-  const auto rarcs = reader.reverse_arcs();
-  if (auto p = check_offsets(section(SectionKind::forward_offsets), offsets)) return p;
-  if (auto p = check_offsets(section(SectionKind::reverse_offsets), roffsets)) return p;
-  if (auto p = check_ids(section(SectionKind::forward_targets), targets, n, "target-range", "arc"))
-    return p;
-  if (auto p = check_ids(section(SectionKind::reverse_sources), rsources, n, "source-range", "entry"))
-    return p;
-  // Transpose: each entry j of v's in-list is an arc a into v whose tail is rsources[j], and the
-  // arc ids ascend strictly within a list. With m entries in all, that makes every arc appear once.
-  const Section& rs = section(SectionKind::reverse_arcs);
-  const std::uint64_t m = targets.size();
+// The sections check_csr reads, found once.
+struct Csr {
+  const Section *forward_offsets, *forward_targets, *reverse_offsets, *reverse_sources,
+      *reverse_arcs;
+  std::span<const std::uint64_t> offsets, roffsets;
+  std::span<const std::uint32_t> targets, rsources, rarcs;
+};
+
+Csr csr_of(const GraphReader& reader) {
+  auto section = [&](SectionKind kind) { return reader.all(kind).front(); };
+  return {section(SectionKind::forward_offsets), section(SectionKind::forward_targets),
+          section(SectionKind::reverse_offsets), section(SectionKind::reverse_sources),
+          section(SectionKind::reverse_arcs),    reader.forward_offsets(),
+          reader.reverse_offsets(),              reader.forward_targets(),
+          reader.reverse_sources(),              reader.reverse_arcs()};
+}
+
+// Transpose (§4) over the in-lists of vertices [first, last): each entry j of v's in-list is an arc
+// a into v whose tail is rsources[j], and the arc ids ascend strictly within a list. With m entries
+// in all, that makes every arc appear exactly once. Needs offsets non-decreasing and every stored
+// vertex id below n (checked before). The fast loop is branch-free and prefetches the two random
+// reads of each entry (targets[a], offsets[u]) a few entries ahead, so their cache misses overlap;
+// the slow loop runs only to name the first broken entry.
+Problem check_transpose(const Csr& c, std::uint64_t first, std::uint64_t last) {
+  const std::uint64_t m = c.targets.size();
   auto broken = [&](std::uint64_t v, std::uint64_t j, const std::string& what) {
-    return in_section(rs, "reverse-transpose", "entry " + std::to_string(j) + " (vertex " +
-                                                   std::to_string(v) + ") " + what);
+    return in_section(*c.reverse_arcs, "reverse-transpose",
+                      "entry " + std::to_string(j) + " (vertex " + std::to_string(v) + ") " + what);
   };
-  for (std::uint64_t v = 0; v < n; ++v) {
-    // Branch-free over the whole in-list (targets[a] is read only for a < m); the slow loop below
-    // runs only to name the first broken entry.
+  constexpr std::uint64_t kAhead = 16;
+  const std::uint64_t end_entry = c.roffsets[last];
+  for (std::uint64_t v = first; v < last; ++v) {
     bool broken_list = false;
-    for (auto j = roffsets[v]; j < roffsets[v + 1]; ++j) {
-      const std::uint32_t a = rarcs[j];
-      const std::uint32_t u = rsources[j];
+    const std::uint64_t list_end = c.roffsets[v + 1];
+    for (auto j = c.roffsets[v]; j < list_end; ++j) {
+      if (j + kAhead < end_entry) {
+        const std::uint32_t ahead = c.rarcs[j + kAhead];
+        __builtin_prefetch(&c.targets[ahead < m ? ahead : 0]);
+        __builtin_prefetch(&c.offsets[c.rsources[j + kAhead]]);
+      }
+      const std::uint32_t a = c.rarcs[j];
+      const std::uint32_t u = c.rsources[j];
       const bool in_range = a < m;
       // Integer ORs, not ||, so every test is evaluated without branches.
-      const unsigned bad = unsigned{!in_range} | unsigned{targets[in_range ? a : 0] != v} |
-                           unsigned{offsets[u] > a} | unsigned{a >= offsets[u + 1]} |
-                           unsigned{j > roffsets[v] && rarcs[j - 1] >= a};
+      const unsigned bad = unsigned{!in_range} | unsigned{c.targets[in_range ? a : 0] != v} |
+                           unsigned{c.offsets[u] > a} | unsigned{a >= c.offsets[u + 1]} |
+                           unsigned{j > c.roffsets[v] && c.rarcs[j - 1] >= a};
       broken_list |= bad != 0;
     }
     if (!broken_list) continue;
-    for (auto j = roffsets[v]; j < roffsets[v + 1]; ++j) {
-      const std::uint32_t a = rarcs[j];
-      const std::uint32_t u = rsources[j];
-      if (a < m && targets[a] == v && offsets[u] <= a && a < offsets[u + 1] &&
-          (j == roffsets[v] || rarcs[j - 1] < a))
+    for (auto j = c.roffsets[v]; j < list_end; ++j) {
+      const std::uint32_t a = c.rarcs[j];
+      const std::uint32_t u = c.rsources[j];
+      if (a < m && c.targets[a] == v && c.offsets[u] <= a && a < c.offsets[u + 1] &&
+          (j == c.roffsets[v] || c.rarcs[j - 1] < a))
         continue;
-      if (a >= m) return broken(v, j, "names arc " + std::to_string(a) + ", not below m = " + std::to_string(m));
-      if (targets[a] != v)
+      if (a >= m)
+        return broken(v, j, "names arc " + std::to_string(a) + ", not below m = " + std::to_string(m));
+      if (c.targets[a] != v)
         return broken(v, j, "names arc " + std::to_string(a) + ", which enters vertex " +
-                                std::to_string(targets[a]));
-      if (!(offsets[u] <= a && a < offsets[u + 1]))
+                                std::to_string(c.targets[a]));
+      if (!(c.offsets[u] <= a && a < c.offsets[u + 1]))
         return broken(v, j, "says arc " + std::to_string(a) + " leaves vertex " +
                                 std::to_string(u) + ", the forward CSR disagrees");
-      return broken(v, j, "breaks the ascending arc order (" + std::to_string(rarcs[j - 1]) +
+      return broken(v, j, "breaks the ascending arc order (" + std::to_string(c.rarcs[j - 1]) +
                               " then " + std::to_string(a) + ")");
     }
   }
@@ -121,6 +134,9 @@ Problem check_csr(const GraphReader& reader) {
 
 template <class T>
 Problem check_float_costs(const Section& s, std::span<const T> costs) {
+  bool all_good = true;
+  for (const T cost : costs) all_good &= std::isfinite(cost) & (cost >= 0);
+  if (all_good) return std::nullopt;
   for (std::size_t a = 0; a < costs.size(); ++a) {
     if (!std::isfinite(costs[a]))
       return in_section(s, "cost-finite", "arc " + std::to_string(a) + " costs " +
@@ -132,19 +148,7 @@ Problem check_float_costs(const Section& s, std::span<const T> costs) {
   return std::nullopt;
 }
 
-Problem check_structure(const GraphReader& reader) {
-  if (auto p = check_csr(reader)) return p;
-  for (const auto* s : reader.all(SectionKind::cost)) {
-    if (s->type == ElementType::f32) {
-      if (auto p = check_float_costs(*s, reader.values<float>(*s))) return p;
-    } else if (s->type == ElementType::f64) {
-      if (auto p = check_float_costs(*s, reader.values<double>(*s))) return p;
-    }
-  }
-  for (const auto* s : reader.all(SectionKind::queries))
-    if (auto p = check_ids(*s, reader.values<std::uint32_t>(*s), reader.vertex_count(),
-                           "query-range", "endpoint"))
-      return p;
+Problem check_metadata(const GraphReader& reader) {
   const Section& metadata_section = *reader.all(SectionKind::metadata).front();
   const Metadata* metadata = nullptr;
   try {
@@ -160,20 +164,158 @@ Problem check_structure(const GraphReader& reader) {
   for (const auto* s : reader.all(SectionKind::queries)) query_sets.push_back(s->name);
   if (auto problem = find_view_problem(*metadata, objectives, query_sets))
     return in_section(metadata_section, "metadata-views", *problem);
+  if (auto problem = find_value_problem(*metadata))
+    return in_section(metadata_section, "metadata-values", *problem);
   return std::nullopt;
 }
+
+// §1: every byte of [128, table_offset) outside the sections' stored bytes is zero.
+Problem check_padding(const GraphReader& reader) {
+  std::vector<const Section*> by_offset;
+  for (const auto& s : reader.sections())
+    if (s.entry.stored_length > 0) by_offset.push_back(&s);
+  std::sort(by_offset.begin(), by_offset.end(),
+            [](auto* a, auto* b) { return a->entry.offset < b->entry.offset; });
+  const auto bytes = reader.bytes();
+  auto gap = [&](std::uint64_t from, std::uint64_t to, const std::string& where) -> Problem {
+    for (auto i = from; i < to; ++i)
+      if (bytes[i] != std::byte{0})
+        return "[padding] byte " + std::to_string(i) + " (" + where + ") is 0x" +
+               hex64(std::to_integer<std::uint64_t>(bytes[i])).substr(14) +
+               ", but bytes outside every section are zero";
+    return std::nullopt;
+  };
+  std::uint64_t position = format::kHeaderSize;
+  for (const auto* s : by_offset) {
+    if (auto p = gap(position, s->entry.offset, "before section '" + s->name + "'")) return p;
+    position = s->entry.offset + s->entry.stored_length;
+  }
+  return gap(position, reader.header().table_offset, "before the section table");
+}
+
+// Runs every task on up to `threads` threads; results stay in task order, so the first problem
+// reported does not depend on the scheduling. Tasks run longest first (by their `cost`).
+struct Task {
+  std::uint64_t cost;
+  std::function<Problem()> run;
+};
+
+std::vector<Problem> run_all(std::vector<Task>& tasks, unsigned threads) {
+  std::vector<Problem> results(tasks.size());
+  std::vector<std::exception_ptr> errors(tasks.size());
+  std::vector<std::size_t> order(tasks.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return tasks[a].cost > tasks[b].cost; });
+  std::atomic<std::size_t> next{0};
+  auto work = [&] {
+    for (std::size_t k; (k = next.fetch_add(1)) < order.size();) {
+      const std::size_t i = order[k];
+      try {
+        results[i] = tasks[i].run();
+      } catch (...) {
+        errors[i] = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> helpers;
+  for (unsigned t = 1; t < threads && t < tasks.size(); ++t) helpers.emplace_back(work);
+  work();
+  for (auto& helper : helpers) helper.join();
+  for (auto& error : errors)
+    if (error) std::rethrow_exception(error);
+  return results;
+}
+
+Problem first_problem(const std::vector<Problem>& results) {
+  for (const auto& p : results)
+    if (p) return p;
+  return std::nullopt;
+}
+
+// Below this size threads cost more than they save.
+constexpr std::uint64_t kParallelFrom = 1 << 20;
 
 }  // namespace
 
 std::optional<std::string> verify(const GraphReader& reader, VerifyLevel level) {
   // Opening already performed the header level.
-  if (level == VerifyLevel::checksums || level == VerifyLevel::full)
-    if (auto p = check_checksums(reader)) return p;
-  if (level == VerifyLevel::structure || level == VerifyLevel::full) {
-    for (const auto& s : reader.sections())
-      if (s.is_packed()) return in_section(s, "structure", "zstd-packed; unpack the file first");
-    if (auto p = check_structure(reader)) return p;
+  const bool checksums = level == VerifyLevel::checksums || level == VerifyLevel::full;
+  const bool structure = level == VerifyLevel::structure || level == VerifyLevel::full;
+  if (!checksums && !structure) return std::nullopt;
+  for (const auto& s : reader.sections()) {
+    if (s.is_packed() && checksums)
+      return in_section(s, "checksum", "zstd-packed sections are verified after unpacking");
+    if (s.is_packed()) return in_section(s, "structure", "zstd-packed; unpack the file first");
   }
+  const unsigned threads =
+      reader.bytes().size() < kParallelFrom ? 1 : std::max(1u, std::thread::hardware_concurrency());
+
+  // Phase 1, in the order problems are reported: every checksum; the CSR checks the transpose
+  // relies on; then the other structural rules. Phase 2: the transpose, in vertex blocks.
+  std::vector<Task> tasks;
+  if (checksums)
+    for (const auto& s : reader.sections())
+      tasks.push_back({s.stored.size(), [&s] { return check_checksum(s); }});
+  std::optional<Csr> csr;
+  const std::uint64_t n = reader.vertex_count(), m = reader.arc_count();
+  if (structure) {
+    csr = csr_of(reader);
+    const Csr& c = *csr;
+    tasks.push_back({8 * n, [&c] { return check_offsets(*c.forward_offsets, c.offsets); }});
+    tasks.push_back({8 * n, [&c] { return check_offsets(*c.reverse_offsets, c.roffsets); }});
+    tasks.push_back({4 * m, [&c, n] {
+                       return check_ids(*c.forward_targets, c.targets, n, "target-range", "arc");
+                     }});
+    tasks.push_back({4 * m, [&c, n] {
+                       return check_ids(*c.reverse_sources, c.rsources, n, "source-range", "entry");
+                     }});
+  }
+  const std::size_t csr_last = tasks.size();
+  if (structure) {
+    for (const auto* s : reader.all(SectionKind::cost)) {
+      if (s->type == ElementType::f32)
+        tasks.push_back({s->stored.size(), [&reader, s] {
+                           return check_float_costs(*s, reader.values<float>(*s));
+                         }});
+      else if (s->type == ElementType::f64)
+        tasks.push_back({s->stored.size(), [&reader, s] {
+                           return check_float_costs(*s, reader.values<double>(*s));
+                         }});
+    }
+    for (const auto* s : reader.all(SectionKind::queries))
+      tasks.push_back({s->stored.size(), [&reader, s, n] {
+                         return check_ids(*s, reader.values<std::uint32_t>(*s), n, "query-range",
+                                          "endpoint");
+                       }});
+    tasks.push_back({0, [&reader] { return check_metadata(reader); }});
+    tasks.push_back({0, [&reader] { return check_padding(reader); }});
+  }
+  const auto phase1 = run_all(tasks, threads);
+  for (std::size_t i = 0; i < csr_last; ++i)
+    if (phase1[i]) return phase1[i];
+  if (structure) {
+    // Blocks of about equal entry counts, several per thread so that uneven cache behaviour evens out.
+    const Csr& c = *csr;
+    const std::uint64_t blocks = threads == 1 ? 1 : 8 * threads;
+    std::vector<Task> transpose;
+    std::uint64_t first = 0;
+    for (std::uint64_t b = 1; b <= blocks && first < n; ++b) {
+      const std::uint64_t target_entries = m / blocks * b;
+      std::uint64_t last =
+          b == blocks ? n
+                      : static_cast<std::uint64_t>(
+                            std::upper_bound(c.roffsets.begin(), c.roffsets.end(), target_entries) -
+                            c.roffsets.begin()) - 1;
+      last = std::clamp(last, first + 1, n);
+      transpose.push_back({c.roffsets[last] - c.roffsets[first],
+                           [&c, first, last] { return check_transpose(c, first, last); }});
+      first = last;
+    }
+    if (auto p = first_problem(run_all(transpose, threads))) return p;
+  }
+  for (std::size_t i = csr_last; i < phase1.size(); ++i)
+    if (phase1[i]) return phase1[i];
   return std::nullopt;
 }
 

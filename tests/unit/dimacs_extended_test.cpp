@@ -153,7 +153,7 @@ TEST_CASE("dimacs-extended: malformed --view texts are refused with one line") {
   CHECK_THROWS_WITH_AS(converters::parse_view_spec("v=a,a"),
                        "convert dimacs: --view 'v=a,a': objective 'a' listed twice", Error);
   CHECK_THROWS_WITH_AS(converters::parse_view_spec("v=a@"),
-                       "convert dimacs: --view 'v=a@': the query set name must be 1 or more of [A-Za-z0-9_.+-]", Error);
+                       "convert dimacs: --view 'v=a@': the query set name must be 1-24 characters from [A-Za-z0-9_.+-]", Error);
   const auto v = converters::parse_view_spec("DIMACS-NY_2=distance,time@ny100");
   CHECK(v.name == "DIMACS-NY_2");
   CHECK(v.objectives == std::vector<std::string>{"distance", "time"});

@@ -51,6 +51,9 @@ const Fault kFaults[] = {
      [](Bytes& b) { auto s = find_entry(b, "forward_targets"); poke<std::uint32_t>(b, s, 0, 9); reseal_section(b, s); }},
     {"not-transpose.mosb", "structure", "section 'reverse_arcs': [reverse-transpose]",
      [](Bytes& b) { auto s = find_entry(b, "reverse_arcs"); poke<std::uint32_t>(b, s, 0, 1); reseal_section(b, s); }},
+    // A non-zero byte in the alignment gap after the metadata payload: every checksum still holds.
+    {"padding.mosb", "structure", "[padding] byte",
+     [](Bytes& b) { const auto e = entry_of(b, find_entry(b, "metadata")); b[e.offset + e.stored_length] = std::byte{0x2A}; }},
 };
 
 }  // namespace

@@ -2,7 +2,9 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstring>
 
 #include "file_patch.hpp"
 #include "mosb/converters/grid_generator.hpp"
@@ -308,4 +310,117 @@ TEST_CASE("opening a path that is not a mosb file") {
   write_bytes(dir / "empty.mosb", {});
   CHECK_THROWS_WITH_AS(GraphReader::open(dir / "empty.mosb"),
                        doctest::Contains("empty.mosb: not a mosb file: 0 bytes is shorter than the 128-byte header"), Error);
+}
+
+TEST_CASE("open with a verify level refuses a damaged payload that plain open accepts") {
+  TempDir dir;
+  Bytes b = grid_bytes(dir);
+  const auto s = find_entry(b, "c1");
+  const auto e = entry_of(b, s);
+  b[e.offset + 3] ^= std::byte{0x10};
+  write_bytes(dir / "d.mosb", b);
+  CHECK_NOTHROW(GraphReader::open(dir / "d.mosb"));
+  CHECK(GraphReader::open(dir / "d.mosb").verified_level() == VerifyLevel::header);
+  CHECK_NOTHROW(GraphReader::open(dir / "d.mosb", VerifyLevel::structure));  // costs are u8: any value fits
+  CHECK_THROWS_WITH_AS(GraphReader::open(dir / "d.mosb", VerifyLevel::full),
+                       doctest::Contains("d.mosb: file is damaged: section 'c1': [checksum] mismatch"), Error);
+  CHECK_THROWS_WITH_AS(GraphReader::open(dir / "d.mosb", VerifyLevel::checksums),
+                       doctest::Contains("; run mosb verify"), Error);
+  CHECK(GraphReader::open(dir / "grid.mosb", VerifyLevel::full).verified_level() == VerifyLevel::full);
+  CHECK(covers(VerifyLevel::full, VerifyLevel::structure));
+  CHECK_FALSE(covers(VerifyLevel::structure, VerifyLevel::checksums));
+  CHECK_FALSE(covers(VerifyLevel::header, VerifyLevel::full));
+}
+
+TEST_CASE("the structure level refuses non-zero bytes in alignment padding") {
+  TempDir dir;
+  const Bytes good = grid_bytes(dir);
+  // The first gap after a section whose length is not a multiple of 64.
+  std::size_t gap = 0;
+  for (std::size_t i = 0; i < header_of(good).section_count && gap == 0; ++i) {
+    const auto e = entry_of(good, i);
+    if (e.stored_length % 64 != 0) gap = e.offset + e.stored_length;
+  }
+  REQUIRE(gap != 0);
+  Bytes b = good;
+  b[gap] = std::byte{0x5A};
+  CHECK(verify_problem(b, VerifyLevel::checksums) == "(passed)");  // no checksum covers padding
+  const auto problem = verify_problem(b, VerifyLevel::structure);
+  CHECK_MESSAGE(problem.starts_with("[padding] byte " + std::to_string(gap) + " (before section '"), problem);
+  CHECK(problem.find("is 0x5a") != std::string::npos);
+  CHECK(verify_problem(b, VerifyLevel::full) == problem);
+  b = good;
+  b[header_of(good).table_offset - 1] = std::byte{1};  // the gap before the table
+  CHECK(verify_problem(b, VerifyLevel::structure).find("before the section table") != std::string::npos);
+  CHECK(verify_problem(good, VerifyLevel::full) == "(passed)");
+}
+
+TEST_CASE("the structure level checks metadata keys with a defined value set") {
+  TempDir dir;
+  auto problem_with = [&](const std::string& key, const std::string& value) {
+    auto g = converters::generate_grid({4, 3, 2, 5});
+    g.metadata.set(key, value);
+    write_graph(g, dir / "m.mosb");
+    const auto r = GraphReader::open(dir / "m.mosb");
+    CHECK(verify(r, VerifyLevel::checksums) == std::nullopt);
+    return verify(r, VerifyLevel::structure).value_or("(passed)");
+  };
+  CHECK(problem_with("id_base", "7") ==
+        "section 'metadata': [metadata-values] metadata key 'id_base' is '7', not one of 0, 1");
+  CHECK(problem_with("id_base", "1") == "(passed)");
+  CHECK(problem_with("family", "rood").find("'family' is 'rood', not one of road, synthetic") !=
+        std::string::npos);
+  CHECK(problem_with("queries.a.b.id_base", "2").find("'queries.a.b.id_base' is '2'") != std::string::npos);
+  CHECK(problem_with("queries.q.allow_same", "yes").find("not one of 0, 1") != std::string::npos);
+  CHECK(problem_with("family", "\x1b[2Jx").find("is '\\x1b[2Jx'") != std::string::npos);
+  CHECK(problem_with("queries.q.seed", "anything") == "(passed)");
+}
+
+namespace {
+// The grid file with `extra` more empty sections of `kind` named x0, x1, ... appended to its table;
+// the last one repeats the name of the first when `duplicate_last`.
+Bytes with_many_sections(const Bytes& good, std::size_t extra, std::uint16_t kind, bool duplicate_last) {
+  const auto h = header_of(good);
+  Bytes b(good.begin(), good.end());
+  b.resize(b.size() + extra * sizeof(format::SectionEntry));
+  for (std::size_t i = 0; i < extra; ++i) {
+    format::SectionEntry e{};
+    const std::string name = "x" + std::to_string(duplicate_last && i + 1 == extra ? 0 : i);
+    std::memcpy(e.name.data(), name.data(), name.size());
+    e.kind = kind;
+    e.element_type = static_cast<std::uint8_t>(format::ElementType::u32);
+    e.row_width = 2;
+    e.offset = format::kHeaderSize;
+    e.checksum = XXH3_64bits(nullptr, 0);
+    std::memcpy(b.data() + h.table_offset + (h.section_count + i) * sizeof e, &e, sizeof e);
+  }
+  auto nh = h;
+  nh.section_count = static_cast<std::uint32_t>(h.section_count + extra);
+  nh.file_size = b.size();
+  set_header(b, nh);
+  reseal_header(b);
+  return b;
+}
+}  // namespace
+
+TEST_CASE("section names are unique within a kind, known or not, checked in linear time") {
+  TempDir dir;
+  const Bytes good = grid_bytes(dir);
+  const auto queries = static_cast<std::uint16_t>(format::SectionKind::queries);
+  // 10^6 empty query sets: a pairwise check would make 5*10^11 comparisons.
+  const Bytes many = with_many_sections(good, 1'000'000, queries, false);
+  const auto start = std::chrono::steady_clock::now();
+  CHECK(open_error(many) == "(opened)");
+  CHECK(open_error(with_many_sections(good, 1'000'000, queries, true)) ==
+        "f.mosb: section 'x0': a second queries section of that name");
+  MESSAGE("opening two files of 10^6 sections took "
+          << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s");
+  // A kind this reader does not know is held to the same rule.
+  CHECK(open_error(with_many_sections(good, 3, 200, true)) ==
+        "f.mosb: section 'x0': a second kind 200 section of that name");
+  CHECK(open_error(with_many_sections(good, 3, 200, false)) == "(opened)");
+  // The same name in two kinds is allowed.
+  Bytes two_kinds = with_many_sections(good, 1, 200, false);
+  two_kinds = with_many_sections(two_kinds, 1, queries, false);
+  CHECK(open_error(two_kinds) == "(opened)");
 }

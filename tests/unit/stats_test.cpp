@@ -20,7 +20,7 @@ CostColumn integer_column(std::string name, std::vector<std::uint64_t> values) {
 GraphReader write_and_open(const testing::TempDir& dir, GraphInput input) {
   const auto path = dir / "g.mosb";
   write_graph(input, path);
-  return GraphReader::open(path);
+  return GraphReader::open(path, VerifyLevel::full);
 }
 
 // Four arcs on a 2-vertex cycle, enough for correlations: 0→1, 1→0, 0→1, 1→0.
@@ -205,4 +205,18 @@ TEST_CASE("stats: an empty graph has undefined ranges and degrees") {
   CHECK_FALSE(s.out_degree.min.has_value());
   CHECK_FALSE(s.all_arcs.objectives[0].mean.has_value());
   CHECK_FALSE(s.all_arcs.correlations[0].rho.has_value());
+}
+
+TEST_CASE("stats: payload walkers refuse a reader opened without verification") {
+  testing::TempDir dir;
+  GraphInput g;
+  g.vertex_count = 2;
+  g.tails = {0};
+  g.heads = {1};
+  g.costs.push_back(integer_column("c", {1}));
+  write_and_open(dir, g);
+  const auto plain = GraphReader::open(dir / "g.mosb");
+  CHECK_THROWS_WITH_AS(compute_stats(plain), doctest::Contains("GraphReader::open(path, level)"), Error);
+  CHECK_THROWS_AS(count_loops_and_parallel_arcs(plain), Error);
+  CHECK_THROWS_AS(strongly_connected_components(plain), Error);
 }

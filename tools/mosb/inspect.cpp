@@ -2,12 +2,14 @@
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "mosb/hex.hpp"
 #include "commands.hpp"
 #include "json_writer.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/stats.hpp"
+#include "mosb/utf8.hpp"
 
 namespace mosb::cli {
 
@@ -16,6 +18,24 @@ namespace {
 
 std::string kind_name(const Section& s) {
   return s.kind ? std::string(format::to_string(*s.kind)) : "unknown(" + std::to_string(s.entry.kind) + ")";
+}
+
+// Metadata values are file content: escaped so they cannot move the cursor or fake a line.
+std::string shown(const std::optional<std::string>& value) {
+  return escape_for_terminal(value.value_or(""));
+}
+
+bool is_packed(const GraphReader& r) {
+  for (const auto& s : r.sections())
+    if (s.is_packed()) return true;
+  return false;
+}
+
+// The counts walk the CSR: only on a reader verified in full (nullopt for a packed file, which
+// cannot be verified in place and is shown from its table alone).
+std::optional<ArcMultiplicity> loops_and_parallel_arcs(const GraphReader& r) {
+  if (is_packed(r)) return std::nullopt;
+  return count_loops_and_parallel_arcs(r);
 }
 
 std::string version(const GraphReader& r) {
@@ -27,19 +47,22 @@ void print_text(const GraphReader& r) {
   std::cout << "file        " << r.display_name() << '\n'
             << "format      " << version(r) << "\n"
             << "digest      " << r.digest() << '\n'
-            << "benchmark   " << metadata.get("benchmark").value_or("") << '\n'
-            << "family      " << metadata.get("family").value_or("") << '\n'
+            << "benchmark   " << shown(metadata.get("benchmark")) << '\n'
+            << "family      " << shown(metadata.get("family")) << '\n'
             << "vertices    " << r.vertex_count() << '\n'
             << "arcs        " << r.arc_count() << '\n';
-  const auto multiplicity = count_loops_and_parallel_arcs(r);
-  std::cout << "self-loops  " << multiplicity.self_loops << '\n'
-            << "parallel    " << multiplicity.parallel_arcs << " (extra copies of an arc)\n"
-            << "objectives  " << r.objective_count() << '\n';
+  if (const auto multiplicity = loops_and_parallel_arcs(r))
+    std::cout << "self-loops  " << multiplicity->self_loops << '\n'
+              << "parallel    " << multiplicity->parallel_arcs << " (extra copies of an arc)\n";
+  else
+    std::cout << "self-loops  n/a (zstd-packed file)\n"
+              << "parallel    n/a (zstd-packed file)\n";
+  std::cout << "objectives  " << r.objective_count() << '\n';
   for (std::size_t i = 0; i < r.objective_count(); ++i) {
     const auto& s = r.objective(i);
     std::cout << "  " << i << "  " << std::left << std::setw(24) << s.name << std::setw(5)
               << format::to_string(s.type)
-              << "unit '" << metadata.get("objective." + s.name + ".unit").value_or("") << "'\n";
+              << "unit '" << shown(metadata.get("objective." + s.name + ".unit")) << "'\n";
   }
   std::cout << "query sets\n";
   for (const auto* s : r.all(format::SectionKind::queries))
@@ -55,7 +78,7 @@ void print_text(const GraphReader& r) {
               << s.entry.stored_length << std::setw(13) << s.entry.offset << "  "
               << hex64(s.entry.checksum) << (s.is_packed() ? " (zstd)" : "") << '\n';
   std::cout << "metadata\n";
-  for (const auto& [key, value] : metadata.entries()) std::cout << "  " << key << " = " << value << '\n';
+  for (const auto& [key, value] : metadata.entries()) std::cout << "  " << key << " = " << escape_for_terminal(value) << '\n';
 }
 
 void print_json(const GraphReader& r) {
@@ -67,9 +90,13 @@ void print_json(const GraphReader& r) {
   json.key("digest").value(r.digest());
   json.key("vertices").value(r.vertex_count());
   json.key("arcs").value(r.arc_count());
-  const auto multiplicity = count_loops_and_parallel_arcs(r);
-  json.key("self_loops").value(multiplicity.self_loops);
-  json.key("parallel_arcs").value(multiplicity.parallel_arcs);
+  if (const auto multiplicity = loops_and_parallel_arcs(r)) {
+    json.key("self_loops").value(multiplicity->self_loops);
+    json.key("parallel_arcs").value(multiplicity->parallel_arcs);
+  } else {
+    json.key("self_loops").null();
+    json.key("parallel_arcs").null();
+  }
   json.key("objectives").begin_array();
   for (std::size_t i = 0; i < r.objective_count(); ++i) {
     const auto& s = r.objective(i);
@@ -118,7 +145,10 @@ Command add_inspect(CLI::App& app) {
   sub->add_option("INSTANCE", *file, "a .mosb instance")->required();
   add_json_flag(sub, *as_json);
   return {sub, [file, as_json] {
-            const auto reader = GraphReader::open(*file);
+            // The loop counts walk the CSR, so a file is verified in full before anything is
+            // printed; a packed file cannot be, and is shown without the counts.
+            auto reader = GraphReader::open(*file);
+            if (!is_packed(reader)) reader = GraphReader::open(*file, VerifyLevel::full);
             if (*as_json) print_json(reader);
             else print_text(reader);
             return 0;

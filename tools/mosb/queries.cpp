@@ -85,7 +85,7 @@ Command add_queries_import(CLI::App& queries) {
   import->add_option("--match", a->match, "keep only 'graph s t' lines whose graph field contains TEXT");
   return {import, [a] {
             check_output_is_not_input(destination(a->target), {a->file});  // checks before any work
-            const auto reader = GraphReader::open(a->target.instance);
+            const auto reader = GraphReader::open(a->target.instance, VerifyLevel::full);  // its payload is copied
             converters::QueryImportOptions options;
             options.file = a->file;
             if (a->id_base_option->count() > 0) options.id_base = a->id_base;
@@ -105,7 +105,7 @@ Command add_queries_generate(CLI::App& queries) {
   generate->add_flag("--allow-same", a->draw.allow_same, "keep pairs with start = goal (redrawn otherwise)");
   return {generate, [a] {
             destination(a->target);
-            const auto reader = GraphReader::open(a->target.instance);
+            const auto reader = GraphReader::open(a->target.instance, VerifyLevel::full);  // its payload is copied
             return write_and_report(reader, converters::draw_query_set(reader, a->target.set, a->draw, a->target.replace),
                                     a->target);
           }};

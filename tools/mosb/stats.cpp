@@ -187,7 +187,7 @@ Command add_stats(CLI::App& app) {
   sub->add_flag("--by-kind", *by_kind, "also per value of the u8 arc data 'kind' (NetMaker: 0 cycle, 1 locality)");
   add_json_flag(sub, *as_json);
   return {sub, [file, view, view_option, by_kind, as_json] {
-            const auto reader = GraphReader::open(*file);
+            const auto reader = GraphReader::open(*file, VerifyLevel::full);
             StatsOptions options;
             if (view_option->count() > 0) options.view = *view;
             options.by_kind = *by_kind;

@@ -117,6 +117,21 @@ static_assert(offsetof(SectionEntry, offset) == 40);
 static_assert(offsetof(SectionEntry, stored_length) == 48);
 static_assert(offsetof(SectionEntry, checksum) == 56);
 
+// Section names and metadata keys share one alphabet (§3, §7): [A-Za-z0-9_.+-].
+constexpr bool is_name_char(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+         c == '.' || c == '+' || c == '-';
+}
+
+// The section-name rule of §3, the one every writer, editor, converter and the reader apply.
+inline constexpr std::string_view kSectionNameRule = "1-24 characters from [A-Za-z0-9_.+-]";
+constexpr bool is_valid_section_name(std::string_view name) {
+  if (name.empty() || name.size() > kNameSize) return false;
+  for (char c : name)
+    if (!is_name_char(c)) return false;
+  return true;
+}
+
 // The name without its NUL padding.
 inline std::string_view name_of(const SectionEntry& e) {
   std::size_t length = 0;

@@ -1,6 +1,24 @@
-// Opens a mosb instance by memory-mapping it. Opening checks the header, the section table and
-// every cross-section count (spec/FORMAT.md §9), in time independent of the file size; after that,
-// every accessor hands out a bounds-checked, zero-copy view into the mapping.
+// Opens a mosb instance by memory-mapping it. Every accessor hands out a bounds-checked (per
+// section), zero-copy view into the mapping.
+//
+// What plain open(path) checks (spec/FORMAT.md §9 steps 1-9, in time independent of the file size):
+// the path is a regular file (a FIFO, directory or device is refused before anything can block);
+// magic, byte order, version, header size and file kind; the file length; the section table's
+// place and the header checksum (which covers every offset and length in the table); feature bits;
+// each entry's name, type, width, size, alignment and extent inside the data area; no overlaps;
+// exactly one of each structural kind with the right type, width and row count; the objective
+// count; unique names within a kind (over every kind, known or not); the two ends of each offsets
+// column (0 and m).
+//
+// What plain open does NOT check: the payload. No section checksum is computed, so a cost, target
+// or offset may carry any value; offsets between the ends may decrease or exceed m; targets,
+// reverse sources and query endpoints may be ≥ n; the reverse CSR may not be the transpose; float
+// costs may be NaN or negative; alignment padding may be non-zero; the metadata text is not parsed
+// (metadata() parses it on first use). Walking the CSR of a plainly opened file can therefore read
+// out of bounds. open(path, level) runs the verify() checks of `level` before returning and throws
+// "FILE: file is damaged: PROBLEM; run mosb verify" when they fail; code that walks payload should
+// open with VerifyLevel::full (checksums and structure), which is what the library's own payload
+// walkers (stats.hpp, dimacs_export) require (see verified_level()).
 //
 // Lifetime: every span, pointer and reference a GraphReader hands out (CSR arrays, cost columns,
 // queries, sections, metadata) points into its mapping and stays valid as long as the reader or
@@ -28,6 +46,15 @@
 
 namespace mosb {
 
+// How much of a file to check (spec/FORMAT.md §9 "Verification levels"). `structure` does not
+// include `checksums`; `full` is both.
+enum class VerifyLevel { header, checksums, structure, full };
+
+// True when a file verified at `done` has passed every check of `wanted`.
+constexpr bool covers(VerifyLevel done, VerifyLevel wanted) {
+  return done == wanted || done == VerifyLevel::full || wanted == VerifyLevel::header;
+}
+
 struct Section {
   format::SectionEntry entry;
   std::string name;
@@ -53,8 +80,18 @@ class CostAs;
 class GraphReader {
  public:
   static GraphReader open(const std::filesystem::path& path);
+  // Opens, then runs verify(reader, level); throws "FILE: file is damaged: ...; run mosb verify".
+  static GraphReader open(const std::filesystem::path& path, VerifyLevel level);
   // Reads bytes the caller keeps alive; `display_name` stands for the file in messages.
   static GraphReader from_memory(std::span<const std::byte> bytes, std::string display_name);
+  static GraphReader from_memory(std::span<const std::byte> bytes, std::string display_name,
+                                 VerifyLevel level);
+
+  // The level verified before the reader was handed out: `header` for plain open/from_memory.
+  VerifyLevel verified_level() const { return verified_level_; }
+  // Throws mosb::Error unless the reader was verified at a level covering `level`; for payload
+  // walkers that must not run on unverified bytes. `user` names the caller in the message.
+  void require_verified(VerifyLevel level, std::string_view user) const;
 
   const std::string& display_name() const { return display_name_; }
   const format::FileHeader& header() const { return header_; }
@@ -121,6 +158,7 @@ class GraphReader {
  private:
   GraphReader() = default;
   void validate();
+  void verify_at_open(VerifyLevel level);
   void check_access(const Section& s, format::ElementType wanted) const;
   [[noreturn]] void fail(const std::string& what) const;  // ErrorCode::damaged
   [[noreturn]] void fail(ErrorCode code, const std::string& what) const;
@@ -139,6 +177,7 @@ class GraphReader {
   };
   // Shared by copies of the reader, like the mapping; filled once by metadata().
   std::shared_ptr<MetadataCache> metadata_ = std::make_shared<MetadataCache>();
+  VerifyLevel verified_level_ = VerifyLevel::header;
 };
 
 template <class F>

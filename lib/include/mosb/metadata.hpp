@@ -18,8 +18,8 @@ class Metadata {
   // Throws mosb::Error("metadata line N: ...") on text that breaks §7.
   static Metadata parse(std::string_view text);
 
-  // Keys and section names share one alphabet: [A-Za-z0-9_.+-].
-  static bool is_name_char(char c);
+  // 1 or more of the name alphabet (format::is_name_char); section names add a length limit
+  // (format::is_valid_section_name).
   static bool is_valid_key(std::string_view key);
 
  private:
@@ -47,5 +47,12 @@ std::vector<ViewKeys> view_keys(const Metadata& metadata);
 std::optional<std::string> find_view_problem(const Metadata& metadata,
                                              const std::vector<std::string>& objective_names,
                                              const std::vector<std::string>& query_set_names);
+
+// The first key whose value lies outside the value set the spec defines for it, as a message;
+// nullopt when every such key is sound. Keys with a defined set (spec/FORMAT.md §7,
+// spec/QUERIES.md): `id_base` and `queries.<set>.id_base` in {0, 1}; `family` in {road, synthetic,
+// games, robots}; `queries.<set>.allow_same` in {0, 1}. Other keys are free text (the set of
+// `queries.<set>.source` values grows with the commands that write query sets).
+std::optional<std::string> find_value_problem(const Metadata& metadata);
 
 }  // namespace mosb

@@ -56,6 +56,8 @@ struct StatsOptions {
   bool by_kind = false;             // also group by the u8 arc-data section `kind`
 };
 
+// Every function here walks payload and requires a reader opened with
+// GraphReader::open(path, VerifyLevel::full); given another, it throws mosb::Error.
 // Throws mosb::Error naming the file for an unknown view, a missing or malformed `kind` section
 // (with by_kind), or a packed column.
 GraphStats compute_stats(const GraphReader& graph, const StatsOptions& options = {});
@@ -70,7 +72,6 @@ struct SccSummary {
 SccSummary strongly_connected_components(const GraphReader& graph);
 
 // Self-loops, and parallel arcs (each extra copy of an earlier (tail, head) of the same tail).
-// Checks the CSR it walks and throws mosb::Error ("run mosb verify") on a damaged one.
 struct ArcMultiplicity {
   std::uint64_t self_loops = 0, parallel_arcs = 0;
 };

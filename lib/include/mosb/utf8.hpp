@@ -1,6 +1,8 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <string>
 #include <string_view>
 
 namespace mosb {
@@ -39,6 +41,48 @@ inline bool is_valid_utf8(std::string_view s) {
     i += length;
   }
   return true;
+}
+
+// Text from a file, made safe to print on a terminal as one line: `\` becomes `\\`, LF `\n`, CR
+// `\r`, tab `\t`, other C0 controls and DEL `\xHH`; C1 controls (U+0080-U+009F, e.g. the 8-bit CSI),
+// line/paragraph separators and bidirectional overrides `\u{XXXX}`; bytes that are not UTF-8
+// `\xHH`. So a value can neither move the cursor, recolour, reorder nor fake a line.
+inline std::string escape_for_terminal(std::string_view s) {
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string out;
+  out.reserve(s.size());
+  for (std::size_t i = 0; i < s.size();) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    const auto length = utf8_sequence_length(s, i);
+    if (length == 1 && c >= 0x20 && c != 0x7F && c != '\\') {
+      out += static_cast<char>(c);
+    } else if (length == 1) {
+      if (c == '\\') out += "\\\\";
+      else if (c == '\n') out += "\\n";
+      else if (c == '\r') out += "\\r";
+      else if (c == '\t') out += "\\t";
+      else out += std::string("\\x") + kHex[c >> 4] + kHex[c & 15];
+    } else if (length == 0) {
+      out += std::string("\\x") + kHex[c >> 4] + kHex[c & 15];
+      i += 1;
+      continue;
+    } else {
+      std::uint32_t code = c & (0xFF >> (length + 1));
+      for (std::size_t k = 1; k < length; ++k) code = (code << 6) | (static_cast<unsigned char>(s[i + k]) & 0x3F);
+      const bool hidden = (code >= 0x80 && code <= 0x9F) || code == 0x2028 || code == 0x2029 ||
+                          (code >= 0x202A && code <= 0x202E) || (code >= 0x2066 && code <= 0x2069) ||
+                          code == 0x200E || code == 0x200F || code == 0x061C;
+      if (hidden) {
+        out += "\\u{";
+        for (int shift = 12; shift >= 0; shift -= 4) out += kHex[(code >> shift) & 15];
+        out += '}';
+      } else {
+        out.append(s.substr(i, length));
+      }
+    }
+    i += length;
+  }
+  return out;
 }
 
 }  // namespace mosb

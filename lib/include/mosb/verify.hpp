@@ -10,7 +10,7 @@
 
 namespace mosb {
 
-enum class VerifyLevel { header, checksums, structure, full };
+// VerifyLevel is declared in graph_reader.hpp (GraphReader::open takes one).
 
 std::optional<VerifyLevel> parse_verify_level(std::string_view text);
 
