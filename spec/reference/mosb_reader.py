@@ -119,6 +119,7 @@ class Instance:
         self.required_features = header["required_features"]
         self.optional_features = header["optional_features"]
         self.sections = sections
+        self.table_offset = header["table_offset"]
         self._metadata = None
 
     def section(self, name, kind=None):
@@ -228,6 +229,25 @@ class Instance:
             elif key.endswith(".queries") and value not in query_sets:
                 raise FormatError("metadata %s names query set %r, not a queries section"
                                   % (key, value))
+        # §9: keys whose value set §7 / QUERIES.md define.
+        closed = {"id_base": ("0", "1"), "family": ("road", "synthetic", "games", "robots")}
+        for key, value in metadata.items():
+            allowed = closed.get(key)
+            if key.startswith("queries.") and key.endswith((".id_base", ".allow_same")):
+                allowed = ("0", "1")
+            if allowed is not None and value not in allowed:
+                raise FormatError("metadata %s is %r, not one of %s" % (key, value, ", ".join(allowed)))
+        # §1: bytes of [128, table_offset) that no section stores are zero.
+        with open(self.path, "rb") as f:
+            data = f.read(self.table_offset)
+        used = sorted((s.offset, s.offset + s.stored_length) for s in self.sections if s.stored_length)
+        start = 128
+        for begin, end in used + [(self.table_offset, self.table_offset)]:
+            gap = data[start:begin]
+            if gap.strip(b"\0"):
+                bad = start + next(i for i, byte in enumerate(gap) if byte)
+                raise FormatError("padding byte at offset %d is not zero" % bad)
+            start = max(start, end)
 
     def verify(self, level="full"):
         """§9 verification levels: header (the open checks, already done), checksums,

@@ -27,6 +27,7 @@ REASONS = {
     "misaligned.mosb": "64-aligned", "count-mismatch.mosb": "rows, expected",
     "table-past-end.mosb": "section table", "section-checksum.mosb": "'time': checksum mismatch",
     "target-range.mosb": "target 9, not < 4", "not-transpose.mosb": "not the transpose",
+    "padding.mosb": "padding byte at offset",
 }
 
 
