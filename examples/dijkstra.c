@@ -8,7 +8,10 @@
 
 #include "mosb.h"
 
-typedef struct { double key; uint32_t v; } Entry;
+typedef struct {
+  double key;
+  uint32_t v;
+} Entry;
 static Entry* heap;
 static size_t heap_size;
 
@@ -61,7 +64,8 @@ int main(int argc, char** argv) {
     while (heap_size > 0 && (e = pop()).v != queries[1]) {
       if (e.key > dist[e.v]) continue; /* a stale entry */
       for (a = offsets[e.v]; a < offsets[e.v + 1]; ++a)
-        if (e.key + cost[a] < dist[targets[a]]) push(dist[targets[a]] = e.key + cost[a], targets[a]);
+        if (e.key + cost[a] < dist[targets[a]])
+          push(dist[targets[a]] = e.key + cost[a], targets[a]);
     }
     printf("%u %u %.17g\n", (unsigned)queries[0], (unsigned)queries[1], dist[queries[1]]);
   }

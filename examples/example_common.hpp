@@ -157,7 +157,8 @@ inline Instance open_mosb(const Options& o) {
     if (set.empty()) {
       auto sets = r.all(mosb::format::SectionKind::queries);
       if (sets.size() != 1)
-        throw mosb::Error(file + ": " + (view ? "view '" + view->name + "' names no query set" : "no view") +
+        throw mosb::Error(file + ": " +
+                          (view ? "view '" + view->name + "' names no query set" : "no view") +
                           " and the file has " + std::to_string(sets.size()) +
                           " query sets; choose one with --queries or give --query S T");
       set = sets.front()->name;
@@ -168,7 +169,8 @@ inline Instance open_mosb(const Options& o) {
   for (const auto& q : in.queries)
     if (q.start >= r.vertex_count() || q.goal >= r.vertex_count())
       throw mosb::Error(file + ": query " + std::to_string(q.start) + " " + std::to_string(q.goal) +
-                        " names a vertex beyond the " + std::to_string(r.vertex_count()) + " vertices");
+                        " names a vertex beyond the " + std::to_string(r.vertex_count()) +
+                        " vertices");
 
   Graph& g = in.graph;
   g.vertex_count = r.vertex_count();
@@ -185,7 +187,8 @@ inline Instance open_mosb(const Options& o) {
 
 // Exact distance from every vertex to `goal` under one objective, on the reverse CSR: a consistent
 // heuristic for the forward search (infinity where the goal is unreachable).
-inline std::vector<double> distances_to(const Graph& g, std::uint32_t goal, const CostColumn& cost) {
+inline std::vector<double> distances_to(const Graph& g, std::uint32_t goal,
+                                        const CostColumn& cost) {
   std::vector<double> dist(g.vertex_count, kInfinity);
   using Entry = std::pair<double, std::uint32_t>;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> open;
@@ -237,7 +240,8 @@ int run(int argc, char** argv, Open open, Solve solve, std::size_t needed_object
     if (needed_objectives && in.graph.costs.size() != needed_objectives)
       usage_error(o.program, o.instance + ": " + std::to_string(in.graph.costs.size()) +
                                  " objectives chosen, this solver needs " +
-                                 std::to_string(needed_objectives) + " (pick them with --objectives)");
+                                 std::to_string(needed_objectives) +
+                                 " (pick them with --objectives)");
     if (!o.fronts_dir.empty()) std::filesystem::create_directories(o.fronts_dir);
     for (std::size_t i = 0; i < in.queries.size(); ++i) {
       const auto started = std::chrono::steady_clock::now();

@@ -27,7 +27,8 @@ class TruncatedSet {
  public:
   bool weakly_dominates(const double* t, std::size_t width) const {
     for (std::size_t i = 0; i < count_; ++i)
-      if (std::equal(t, t + width, values_.begin() + i * width, std::greater_equal<>())) return true;
+      if (std::equal(t, t + width, values_.begin() + i * width, std::greater_equal<>()))
+        return true;
     return false;
   }
   // Adds t (not weakly dominated by the set) and drops the entries t dominates.

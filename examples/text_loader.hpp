@@ -38,7 +38,9 @@ inline Instance open_text(const Options& o) {
     std::uint64_t line_number = 0, arc = 0;
     while (std::getline(in, line)) {
       ++line_number;
-      auto fail = [&] { throw mosb::Error(file + ":" + std::to_string(line_number) + ": bad line"); };
+      auto fail = [&] {
+        throw mosb::Error(file + ":" + std::to_string(line_number) + ": bad line");
+      };
       std::istringstream fields(line);
       std::string kind;
       fields >> kind;
@@ -59,7 +61,8 @@ inline Instance open_text(const Options& o) {
           tails.push_back(static_cast<std::uint32_t>(u - 1));
           heads.push_back(static_cast<std::uint32_t>(v - 1));
         } else if (arc >= tails.size() || tails[arc] != u - 1 || heads[arc] != v - 1) {
-          throw mosb::Error(file + ":" + std::to_string(line_number) + ": not the arc of the first file");
+          throw mosb::Error(file + ":" + std::to_string(line_number) +
+                            ": not the arc of the first file");
         }
         ++arc;
       }
@@ -71,7 +74,8 @@ inline Instance open_text(const Options& o) {
   const std::size_t m = tails.size();
   text->offsets.assign(n + 1, 0);
   text->reverse_offsets.assign(n + 1, 0);
-  for (std::size_t a = 0; a < m; ++a) ++text->offsets[tails[a] + 1], ++text->reverse_offsets[heads[a] + 1];
+  for (std::size_t a = 0; a < m; ++a)
+    ++text->offsets[tails[a] + 1], ++text->reverse_offsets[heads[a] + 1];
   for (std::size_t v = 0; v < n; ++v) {
     text->offsets[v + 1] += text->offsets[v];
     text->reverse_offsets[v + 1] += text->reverse_offsets[v];
@@ -108,7 +112,8 @@ inline Instance open_text(const Options& o) {
   g.reverse_offsets = text->reverse_offsets;
   g.reverse_sources = text->reverse_sources;
   g.reverse_arcs = text->reverse_arcs;
-  for (const auto& column : text->costs) g.costs.push_back(column_of(std::span<const std::uint32_t>(column)));
+  for (const auto& column : text->costs)
+    g.costs.push_back(column_of(std::span<const std::uint32_t>(column)));
   in.owner = text;
   return in;
 }

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Every test: installs what is missing, then the release build and its tests, a bounded fuzz run
-# of the binary reader, and the tests again under AddressSanitizer + UndefinedBehaviorSanitizer.
+# Every test: installs what is missing, then the release build and its tests, the style and static
+# checks, a bounded fuzz run of every parser, and the tests again under AddressSanitizer and
+# UndefinedBehaviorSanitizer.
 # MOSB_FUZZ_SECONDS sets the fuzz time (default 60).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -11,6 +12,9 @@ echo "== release build and tests"
 cmake --preset release >/dev/null
 cmake --build --preset release -j "$jobs"
 ctest --preset release -j "$jobs"
+
+echo "== clang-format and clang-tidy"
+bash tools/lint.sh build/release
 
 echo "== fuzz the reader for ${MOSB_FUZZ_SECONDS:-60}s"
 cmake --preset fuzz >/dev/null

@@ -13,6 +13,7 @@ packages=(
   python3-dev python3-pybind11 pybind11-dev python3-setuptools python3-pip python3-venv  # python/
   python3-scipy python3-pandas python3-networkx python3-igraph  # python/'s adapters (optional)
   clang libclang-rt-14-dev                  # libFuzzer
+  clang-format clang-tidy                   # style and static checks (tools/lint.sh)
 )
 missing=()
 for package in "${packages[@]}"; do

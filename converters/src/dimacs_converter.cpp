@@ -30,17 +30,22 @@ std::string id_range(unsigned id_base, std::uint64_t n) {
 }
 
 // A count field of a header line (n or m).
-std::uint64_t parse_count(const std::string& file, std::uint64_t line, const Token& t, const char* what) {
-  if (!is_digits(t.text)) fail(file, line, t.column, std::string("expected the ") + what + ", found " + quoted(t.text));
+std::uint64_t parse_count(const std::string& file, std::uint64_t line, const Token& t,
+                          const char* what) {
+  if (!is_digits(t.text))
+    fail(file, line, t.column, std::string("expected the ") + what + ", found " + quoted(t.text));
   const auto value = to_u64(t.text);
   if (!value || *value > kMaxCount)
-    fail(file, line, t.column, std::string("the ") + what + " " + quoted(t.text) + " exceeds " + std::to_string(kMaxCount));
+    fail(file, line, t.column,
+         std::string("the ") + what + " " + quoted(t.text) + " exceeds " +
+             std::to_string(kMaxCount));
   return *value;
 }
 
-std::uint32_t parse_id(const std::string& file, std::uint64_t line, const Token& t, unsigned id_base,
-                       std::uint64_t n) {
-  if (!is_digits(t.text)) fail(file, line, t.column, "expected a vertex id, found " + quoted(t.text));
+std::uint32_t parse_id(const std::string& file, std::uint64_t line, const Token& t,
+                       unsigned id_base, std::uint64_t n) {
+  if (!is_digits(t.text))
+    fail(file, line, t.column, "expected a vertex id, found " + quoted(t.text));
   const auto value = to_u64(t.text);
   if (!value || *value < id_base || *value - id_base >= n)
     fail(file, line, t.column, "vertex id " + quoted(t.text) + " outside " + id_range(id_base, n));
@@ -57,7 +62,9 @@ void advise_huge_pages(const std::vector<T>& v) {
   const auto begin = reinterpret_cast<std::uintptr_t>(v.data());
   const auto end = begin + v.capacity() * sizeof(T);
   const auto first = (begin + kHuge - 1) & ~(kHuge - 1), last = end & ~(kHuge - 1);
-  if (last > first) ::madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+  if (last >
+      first)  // NOLINTNEXTLINE(performance-no-int-to-ptr): madvise takes page-aligned addresses
+    ::madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
 }
 
 void add_cost(const std::string& file, std::uint64_t line, const Token& t, Column& column) {
@@ -67,22 +74,26 @@ void add_cost(const std::string& file, std::uint64_t line, const Token& t, Colum
   if (!real) {
     if (!is_digits(s)) fail(file, line, t.column, "expected a cost, found " + quoted(s));
     const auto value = to_u64(s);
-    if (!value) fail(file, line, t.column, "cost " + quoted(s) + " exceeds " + std::to_string(UINT64_MAX));
+    if (!value)
+      fail(file, line, t.column, "cost " + quoted(s) + " exceeds " + std::to_string(UINT64_MAX));
     if (auto* ints = std::get_if<std::vector<std::uint64_t>>(&column))
       ints->push_back(*value);
     else
       std::get<std::vector<double>>(column).push_back(static_cast<double>(*value));
     return;
   }
-  // Digits, at most one '.', then an optional exponent: what from_chars accepts without inf/nan/hex.
+  // Digits, at most one '.', then an optional exponent: what from_chars accepts without
+  // inf/nan/hex.
   for (char c : s)
     if (!((c >= '0' && c <= '9') || c == '.' || c == 'e' || c == 'E' || c == '+' || c == '-'))
       fail(file, line, t.column, "expected a cost, found " + quoted(s));
   if (s[0] == '+' || s[0] == 'e' || s[0] == 'E')
     fail(file, line, t.column, "expected a cost, found " + quoted(s));
   double value = 0;
-  const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), value, std::chars_format::general);
-  if (ec == std::errc::result_out_of_range) fail(file, line, t.column, "cost " + quoted(s) + " out of range");
+  const auto [ptr, ec] =
+      std::from_chars(s.data(), s.data() + s.size(), value, std::chars_format::general);
+  if (ec == std::errc::result_out_of_range)
+    fail(file, line, t.column, "cost " + quoted(s) + " out of range");
   if (ec != std::errc() || ptr != s.data() + s.size())
     fail(file, line, t.column, "expected a cost, found " + quoted(s));
   if (auto* ints = std::get_if<std::vector<std::uint64_t>>(&column)) {
@@ -96,8 +107,8 @@ void add_cost(const std::string& file, std::uint64_t line, const Token& t, Colum
 // The common case in one pass: `a u v c1 .. cd` with plain integers and valid ids. Anything else
 // (reals, signs, bad ids, wrong field counts) returns false and takes the general path, which
 // reports the precise error.
-bool scan_integer_arc(std::string_view line, std::size_t cost_count, unsigned id_base, std::uint64_t n,
-                      std::uint32_t& u, std::uint32_t& v, std::uint64_t* costs) {
+bool scan_integer_arc(std::string_view line, std::size_t cost_count, unsigned id_base,
+                      std::uint64_t n, std::uint32_t& u, std::uint32_t& v, std::uint64_t* costs) {
   const char* p = line.data() + 1;
   const char* const end = line.data() + line.size();
   auto field = [&](std::uint64_t& out) {
@@ -105,7 +116,8 @@ bool scan_integer_arc(std::string_view line, std::size_t cost_count, unsigned id
     while (p != end && (*p == ' ' || *p == '\t')) ++p;
     const char* const start = p;
     std::uint64_t x = 0;
-    while (p != end && static_cast<unsigned>(*p - '0') < 10) x = x * 10 + static_cast<unsigned>(*p++ - '0');
+    while (p != end && static_cast<unsigned>(*p - '0') < 10)
+      x = x * 10 + static_cast<unsigned>(*p++ - '0');
     out = x;
     return p != start && p - start <= 19;  // 19 digits cannot overflow
   };
@@ -134,7 +146,8 @@ DimacsGraph parse_gr(LineScanner& lines, std::uint64_t size_hint, const std::str
     const auto ln = lines.number();
     std::uint32_t fast_u = 0, fast_v = 0;
     if (!integer_columns.empty() && line.size() > 1 && line[0] == 'a' &&
-        scan_integer_arc(line, cost_count, id_base, g.vertex_count, fast_u, fast_v, fast_costs.data())) {
+        scan_integer_arc(line, cost_count, id_base, g.vertex_count, fast_u, fast_v,
+                         fast_costs.data())) {
       const auto k = g.tails.size();
       const bool matches_reference = !reference || (k < reference->graph->tails.size() &&
                                                     reference->graph->tails[k] == fast_u &&
@@ -169,42 +182,54 @@ DimacsGraph parse_gr(LineScanner& lines, std::uint64_t size_hint, const std::str
       } else if (t.size() - 3 != cost_count) {
         const std::string expected = "expected " + plural(cost_count, "cost") + " as on line " +
                                      std::to_string(first_arc_line);
-        if (t.size() - 3 < cost_count) fail(display_name, ln, end_column, "missing field: " + expected);
-        fail(display_name, ln, t[3 + cost_count].column, "extra field " + quoted(t[3 + cost_count].text) + ": " + expected);
+        if (t.size() - 3 < cost_count)
+          fail(display_name, ln, end_column, "missing field: " + expected);
+        fail(display_name, ln, t[3 + cost_count].column,
+             "extra field " + quoted(t[3 + cost_count].text) + ": " + expected);
       }
       const auto u = parse_id(display_name, ln, t[1], id_base, g.vertex_count);
       const auto v = parse_id(display_name, ln, t[2], id_base, g.vertex_count);
-      for (std::size_t j = 0; j < cost_count; ++j) add_cost(display_name, ln, t[3 + j], g.columns[j]);
+      for (std::size_t j = 0; j < cost_count; ++j)
+        add_cost(display_name, ln, t[3 + j], g.columns[j]);
       const auto k = g.tails.size();
-      if (k >= kMaxCount) fail(display_name, ln, t[0].column, "more than " + std::to_string(kMaxCount) + " arcs");
+      if (k >= kMaxCount)
+        fail(display_name, ln, t[0].column, "more than " + std::to_string(kMaxCount) + " arcs");
       if (reference) {
         const auto& ref = *reference->graph;
         if (k >= ref.tails.size())
-          fail(display_name, ln, t[1].column, "arc beyond the " + plural(ref.tails.size(), "arc") + " of " +
-                                       *reference->display_name);
+          fail(display_name, ln, t[1].column,
+               "arc beyond the " + plural(ref.tails.size(), "arc") + " of " +
+                   *reference->display_name);
         if (ref.tails[k] != u || ref.heads[k] != v)
           fail(display_name, ln, t[1].column,
-                  "arc " + std::to_string(u + id_base) + " " + std::to_string(v + id_base) +
-                      " differs from arc " + std::to_string(ref.tails[k] + id_base) + " " +
-                      std::to_string(ref.heads[k] + id_base) + " at " + *reference->display_name + ":" +
-                      std::to_string(ref.arc_lines[k]) +
-                      " (per-objective files must list the same arcs in the same order)");
+               "arc " + std::to_string(u + id_base) + " " + std::to_string(v + id_base) +
+                   " differs from arc " + std::to_string(ref.tails[k] + id_base) + " " +
+                   std::to_string(ref.heads[k] + id_base) + " at " + *reference->display_name +
+                   ":" + std::to_string(ref.arc_lines[k]) +
+                   " (per-objective files must list the same arcs in the same order)");
       }
       g.tails.push_back(u);
       g.heads.push_back(v);
       if (record_arc_lines) g.arc_lines.push_back(ln);
       integer_columns.clear();
       for (auto& c : g.columns)
-        if (auto* ints = std::get_if<std::vector<std::uint64_t>>(&c)) integer_columns.push_back(ints);
+        if (auto* ints = std::get_if<std::vector<std::uint64_t>>(&c))
+          integer_columns.push_back(ints);
       if (integer_columns.size() != cost_count || cost_count == 0) integer_columns.clear();
       fast_costs.resize(cost_count);
     } else if (t[0].text == "p") {
       if (p_line != 0)
-        fail(display_name, ln, t[0].column, "second 'p' line (the first is line " + std::to_string(p_line) + ")");
-      if (t.size() < 2) fail(display_name, ln, end_column, "missing field: the header is 'p sp n m'");
-      if (t[1].text != "sp") fail(display_name, ln, t[1].column, "expected 'sp' after 'p', found " + quoted(t[1].text));
-      if (t.size() < 4) fail(display_name, ln, end_column, "missing field: the header is 'p sp n m'");
-      if (t.size() > 4) fail(display_name, ln, t[4].column, "extra field " + quoted(t[4].text) + ": the header is 'p sp n m'");
+        fail(display_name, ln, t[0].column,
+             "second 'p' line (the first is line " + std::to_string(p_line) + ")");
+      if (t.size() < 2)
+        fail(display_name, ln, end_column, "missing field: the header is 'p sp n m'");
+      if (t[1].text != "sp")
+        fail(display_name, ln, t[1].column, "expected 'sp' after 'p', found " + quoted(t[1].text));
+      if (t.size() < 4)
+        fail(display_name, ln, end_column, "missing field: the header is 'p sp n m'");
+      if (t.size() > 4)
+        fail(display_name, ln, t[4].column,
+             "extra field " + quoted(t[4].text) + ": the header is 'p sp n m'");
       g.vertex_count = parse_count(display_name, ln, t[2], "vertex count");
       declared_arcs = parse_count(display_name, ln, t[3], "arc count");
       check_declared_vertices(display_name, ln, t[2].column, g.vertex_count);
@@ -213,13 +238,13 @@ DimacsGraph parse_gr(LineScanner& lines, std::uint64_t size_hint, const std::str
       if (reference) {
         const auto& ref = *reference->graph;
         if (g.vertex_count != ref.vertex_count)
-          fail(display_name, ln, t[2].column, "declares " + plural(g.vertex_count, "vertex") + ", " +
-                                       *reference->display_name + " has " +
-                                       std::to_string(ref.vertex_count));
+          fail(display_name, ln, t[2].column,
+               "declares " + plural(g.vertex_count, "vertex") + ", " + *reference->display_name +
+                   " has " + std::to_string(ref.vertex_count));
         if (declared_arcs != ref.tails.size())
-          fail(display_name, ln, t[3].column, "declares " + plural(declared_arcs, "arc") + ", " +
-                                       *reference->display_name + " has " +
-                                       std::to_string(ref.tails.size()));
+          fail(display_name, ln, t[3].column,
+               "declares " + plural(declared_arcs, "arc") + ", " + *reference->display_name +
+                   " has " + std::to_string(ref.tails.size()));
       }
       // The header is untrusted: reserve no more than the text could hold (a line is >= 8 bytes).
       const auto reserve = std::min<std::uint64_t>(declared_arcs, size_hint / 8 + 1);
@@ -232,10 +257,12 @@ DimacsGraph parse_gr(LineScanner& lines, std::uint64_t size_hint, const std::str
       fail(display_name, ln, t[0].column, "unknown line type " + quoted(t[0].text));
     }
   }
-  if (p_line == 0) fail(display_name, std::max<std::uint64_t>(lines.number(), 1), 1, "no 'p sp n m' line");
+  if (p_line == 0)
+    fail(display_name, std::max<std::uint64_t>(lines.number(), 1), 1, "no 'p sp n m' line");
   if (g.tails.size() != declared_arcs)
-    fail(display_name, p_line, m_column, "the header declares " + plural(declared_arcs, "arc") + ", found " +
-                                  std::to_string(g.tails.size()));
+    fail(display_name, p_line, m_column,
+         "the header declares " + plural(declared_arcs, "arc") + ", found " +
+             std::to_string(g.tails.size()));
   if (first_arc_line == 0 && reference)  // no arcs at all: as many (zero) columns as the reference
     g.columns.assign(reference->graph->columns.size(), Column{});
   if (first_arc_line == 0 && !reference) g.columns.assign(1, Column{});
@@ -244,14 +271,15 @@ DimacsGraph parse_gr(LineScanner& lines, std::uint64_t size_hint, const std::str
 
 }  // namespace
 
-DimacsGraph parse_dimacs_gr(std::string_view text, const std::string& display_name, unsigned id_base,
-                            const DimacsReference* reference) {
+DimacsGraph parse_dimacs_gr(std::string_view text, const std::string& display_name,
+                            unsigned id_base, const DimacsReference* reference) {
   LineScanner lines(text);
   return parse_gr(lines, text.size(), display_name, id_base, reference, true);
 }
 
-DimacsGraph parse_dimacs_gr(TextSource& source, std::uint64_t size_hint, const std::string& display_name,
-                            unsigned id_base, const DimacsReference* reference, bool record_arc_lines) {
+DimacsGraph parse_dimacs_gr(TextSource& source, std::uint64_t size_hint,
+                            const std::string& display_name, unsigned id_base,
+                            const DimacsReference* reference, bool record_arc_lines) {
   LineScanner lines(source);
   return parse_gr(lines, size_hint, display_name, id_base, reference, record_arc_lines);
 }
@@ -271,8 +299,8 @@ std::vector<std::uint64_t> dimacs_arc_lines(TextSource& source) {
 
 namespace {
 
-std::vector<std::int64_t> parse_co(LineScanner& lines, const std::string& display_name, unsigned id_base,
-                                   std::uint64_t vertex_count) {
+std::vector<std::int64_t> parse_co(LineScanner& lines, const std::string& display_name,
+                                   unsigned id_base, std::uint64_t vertex_count) {
   std::string_view line;
   std::vector<Token> t;
   std::uint64_t p_line = 0, n = 0;
@@ -284,27 +312,40 @@ std::vector<std::int64_t> parse_co(LineScanner& lines, const std::string& displa
     if (t.empty() || t[0].text == "c") continue;
     const auto end_column = line.size() + 1;
     if (t[0].text == "v") {
-      if (p_line == 0) fail(display_name, ln, t[0].column, "'v' line before the 'p aux sp co' line");
-      if (t.size() < 4) fail(display_name, ln, end_column, "missing field: a coordinate line is 'v id x y'");
-      if (t.size() > 4) fail(display_name, ln, t[4].column, "extra field " + quoted(t[4].text) + ": a coordinate line is 'v id x y'");
+      if (p_line == 0)
+        fail(display_name, ln, t[0].column, "'v' line before the 'p aux sp co' line");
+      if (t.size() < 4)
+        fail(display_name, ln, end_column, "missing field: a coordinate line is 'v id x y'");
+      if (t.size() > 4)
+        fail(display_name, ln, t[4].column,
+             "extra field " + quoted(t[4].text) + ": a coordinate line is 'v id x y'");
       const auto id = parse_id(display_name, ln, t[1], id_base, n);
-      if (seen[id]) fail(display_name, ln, t[1].column, "second 'v' line for vertex " + std::to_string(id + id_base));
+      if (seen[id])
+        fail(display_name, ln, t[1].column,
+             "second 'v' line for vertex " + std::to_string(id + id_base));
       seen[id] = true;
       for (int k = 0; k < 2; ++k) {
         const auto value = to_i64(t[2 + k].text);
-        if (!value) fail(display_name, ln, t[2 + k].column, "expected an integer coordinate, found " + quoted(t[2 + k].text));
+        if (!value)
+          fail(display_name, ln, t[2 + k].column,
+               "expected an integer coordinate, found " + quoted(t[2 + k].text));
         xy[2 * std::size_t{id} + k] = *value;
       }
     } else if (t[0].text == "p") {
       if (p_line != 0)
-        fail(display_name, ln, t[0].column, "second 'p' line (the first is line " + std::to_string(p_line) + ")");
-      if (t.size() < 5) fail(display_name, ln, end_column, "missing field: the header is 'p aux sp co n'");
+        fail(display_name, ln, t[0].column,
+             "second 'p' line (the first is line " + std::to_string(p_line) + ")");
+      if (t.size() < 5)
+        fail(display_name, ln, end_column, "missing field: the header is 'p aux sp co n'");
       if (t[1].text != "aux" || t[2].text != "sp" || t[3].text != "co")
         fail(display_name, ln, t[1].column, "expected 'p aux sp co n'");
-      if (t.size() > 5) fail(display_name, ln, t[5].column, "extra field " + quoted(t[5].text) + ": the header is 'p aux sp co n'");
+      if (t.size() > 5)
+        fail(display_name, ln, t[5].column,
+             "extra field " + quoted(t[5].text) + ": the header is 'p aux sp co n'");
       n = parse_count(display_name, ln, t[4], "vertex count");
       if (n != vertex_count)
-        fail(display_name, ln, t[4].column, "declares " + plural(n, "vertex") + ", the graph has " + std::to_string(vertex_count));
+        fail(display_name, ln, t[4].column,
+             "declares " + plural(n, "vertex") + ", the graph has " + std::to_string(vertex_count));
       p_line = ln;
       xy.assign(2 * n, 0);
       seen.assign(n, false);
@@ -312,9 +353,11 @@ std::vector<std::int64_t> parse_co(LineScanner& lines, const std::string& displa
       fail(display_name, ln, t[0].column, "unknown line type " + quoted(t[0].text));
     }
   }
-  if (p_line == 0) fail(display_name, std::max<std::uint64_t>(lines.number(), 1), 1, "no 'p aux sp co n' line");
+  if (p_line == 0)
+    fail(display_name, std::max<std::uint64_t>(lines.number(), 1), 1, "no 'p aux sp co n' line");
   for (std::uint64_t id = 0; id < n; ++id)
-    if (!seen[id]) fail(display_name, p_line, 1, "no 'v' line for vertex " + std::to_string(id + id_base));
+    if (!seen[id])
+      fail(display_name, p_line, 1, "no 'v' line for vertex " + std::to_string(id + id_base));
   return xy;
 }
 
@@ -326,8 +369,8 @@ std::vector<std::int64_t> parse_dimacs_co(std::string_view text, const std::stri
   return parse_co(lines, display_name, id_base, vertex_count);
 }
 
-std::vector<std::int64_t> parse_dimacs_co(TextSource& source, const std::string& display_name, unsigned id_base,
-                                          std::uint64_t vertex_count) {
+std::vector<std::int64_t> parse_dimacs_co(TextSource& source, const std::string& display_name,
+                                          unsigned id_base, std::uint64_t vertex_count) {
   LineScanner lines(source);
   return parse_co(lines, display_name, id_base, vertex_count);
 }
@@ -362,7 +405,8 @@ std::vector<ParsedGr> parse_gr_files(const std::vector<std::string>& paths, unsi
       std::min<std::size_t>(paths.size(), std::max(1u, std::thread::hardware_concurrency()));
   std::atomic<std::size_t> next{0};
   auto work = [&] {
-    for (std::size_t i = next++; i < paths.size(); i = next++) parsed[i] = parse_gr_file(paths[i], id_base);
+    for (std::size_t i = next++; i < paths.size(); i = next++)
+      parsed[i] = parse_gr_file(paths[i], id_base);
   };
   std::vector<std::thread> pool;
   for (std::size_t k = 1; k < threads; ++k) pool.emplace_back(work);
@@ -400,7 +444,8 @@ GraphInput convert_dimacs(const DimacsOptions& options) {
         first.arc_lines = dimacs_arc_lines(reference_file);
         InputFile file(options.gr_files[i]);
         const DimacsReference ref{&first_name, &first};
-        (void)parse_dimacs_gr(file, file.size_hint(), file.display_name(), options.id_base, &ref, false);
+        (void)parse_dimacs_gr(file, file.size_hint(), file.display_name(), options.id_base, &ref,
+                              false);
       });
       if (p.error) std::rethrow_exception(p.error);
       throw Error(p.facts->display_name + ": internal error: the arcs differ from " + first_name +
@@ -443,14 +488,18 @@ GraphInput convert_dimacs(const DimacsOptions& options) {
     m.set("coords.scale", "1e-6");
     m.set("coords.unit", "degree");
   }
-  m.set("benchmark", options.name ? *options.name
-                                  : benchmark_name_from(std::filesystem::path(options.gr_files[0]).filename().string(), {".gr"}));
+  m.set("benchmark",
+        options.name
+            ? *options.name
+            : benchmark_name_from(std::filesystem::path(options.gr_files[0]).filename().string(),
+                                  {".gr"}));
   m.set("family", "road");
   m.set("id_base", std::to_string(options.id_base));
   m.set("source.command", "convert dimacs");
   m.set("source.param.id_base", std::to_string(options.id_base));
   if (options.name) m.set("source.param.name", *options.name);
-  if (!options.objectives.empty()) m.set("source.param.objectives", objective_list(options.objectives));
+  if (!options.objectives.empty())
+    m.set("source.param.objectives", objective_list(options.objectives));
   if (options.cost_type) m.set("source.param.cost_type", format::to_string(*options.cost_type));
   return out;
 }

@@ -17,7 +17,9 @@ using format::SectionKind;
 // Buffered text over an AtomicFile: appears under its name at commit(), complete, or not at all.
 class AtomicTextFile {
  public:
-  explicit AtomicTextFile(const std::filesystem::path& path) : file_(path) { buffer_.reserve(kFlushAt + 256); }
+  explicit AtomicTextFile(const std::filesystem::path& path) : file_(path) {
+    buffer_.reserve(kFlushAt + 256);
+  }
 
   AtomicTextFile& operator<<(std::string_view text) {
     buffer_ += text;
@@ -62,7 +64,9 @@ std::string file_stem_for(const GraphReader& reader, const std::filesystem::path
   auto name = reader.metadata().get("benchmark").value_or(instance.stem().string());
   bool usable = !name.empty() && name != "." && name != "..";
   for (char c : name) usable &= c != '/' && c != '\\' && static_cast<unsigned char>(c) >= 0x20;
-  if (!usable) throw Error(reader.display_name() + ": benchmark name '" + comment_safe(name) + "' cannot name a file");
+  if (!usable)
+    throw Error(reader.display_name() + ": benchmark name '" + comment_safe(name) +
+                "' cannot name a file");
   return name;
 }
 
@@ -74,17 +78,21 @@ unsigned export_id_base(const GraphReader& reader, const DimacsExportOptions& op
   const auto stored = reader.metadata().get("id_base");
   if (!stored) return 1;
   if (*stored != "0" && *stored != "1")
-    throw Error(reader.display_name() + ": metadata id_base '" + comment_safe(*stored) + "' is not 0 or 1");
+    throw Error(reader.display_name() + ": metadata id_base '" + comment_safe(*stored) +
+                "' is not 0 or 1");
   return *stored == "0" ? 0 : 1;
 }
 
-void write_header_comments(AtomicTextFile& out, const GraphReader& reader, const std::string& benchmark) {
-  out << "c written by mosb " << kVersion << " (export dimacs) from benchmark " << comment_safe(benchmark) << "\n";
+void write_header_comments(AtomicTextFile& out, const GraphReader& reader,
+                           const std::string& benchmark) {
+  out << "c written by mosb " << kVersion << " (export dimacs) from benchmark "
+      << comment_safe(benchmark) << "\n";
   out << "c instance digest " << reader.digest() << "\n";
 }
 
 template <class T>
-void write_coordinates(AtomicTextFile& out, const GraphReader& reader, const Section& coords, unsigned id_base) {
+void write_coordinates(AtomicTextFile& out, const GraphReader& reader, const Section& coords,
+                       unsigned id_base) {
   const auto xy = reader.values<T>(coords);
   for (std::uint64_t v = 0; v < reader.vertex_count(); ++v) {
     out << "v " << (v + id_base);
@@ -100,8 +108,8 @@ void write_coordinates(AtomicTextFile& out, const GraphReader& reader, const Sec
   }
 }
 
-void export_coordinates(const std::filesystem::path& path, const GraphReader& reader, const Section& coords,
-                        const std::string& benchmark, unsigned id_base) {
+void export_coordinates(const std::filesystem::path& path, const GraphReader& reader,
+                        const Section& coords, const std::string& benchmark, unsigned id_base) {
   if (coords.entry.row_width != 2)
     throw Error(reader.display_name() + ": vertex data 'coords' has width " +
                 std::to_string(coords.entry.row_width) + ", a .co needs 2");
@@ -124,7 +132,8 @@ void export_objective(const std::filesystem::path& path, const GraphReader& read
   AtomicTextFile out(path);
   write_header_comments(out, reader, benchmark);
   const auto unit = reader.metadata().get("objective." + section.name + ".unit").value_or("");
-  out << "c objective " << section.name << (unit.empty() ? "" : " unit " + comment_safe(unit)) << "\n";
+  out << "c objective " << section.name << (unit.empty() ? "" : " unit " + comment_safe(unit))
+      << "\n";
   out << "p sp " << reader.vertex_count() << " " << m << "\n";
   const auto offsets = reader.forward_offsets();
   const auto targets = reader.forward_targets();
@@ -147,8 +156,8 @@ void export_objective(const std::filesystem::path& path, const GraphReader& read
   out.commit();
 }
 
-void export_queries(const std::filesystem::path& path, const GraphReader& reader, const std::string& set,
-                    unsigned id_base) {
+void export_queries(const std::filesystem::path& path, const GraphReader& reader,
+                    const std::string& set, unsigned id_base) {
   AtomicTextFile out(path);
   for (const auto& q : reader.queries(set))
     out << (std::uint64_t{q.start} + id_base) << " " << (std::uint64_t{q.goal} + id_base) << "\n";
@@ -167,7 +176,8 @@ std::string format_real_cost(double value) {
 }
 
 std::vector<std::filesystem::path> export_dimacs(const std::filesystem::path& instance,
-                                                 const DimacsExportOptions& options, const Progress& progress) {
+                                                 const DimacsExportOptions& options,
+                                                 const Progress& progress) {
   // The export walks the CSR and copies costs: only a file whose payload passes verify.
   const auto reader = GraphReader::open(instance, VerifyLevel::full);
   const auto benchmark = file_stem_for(reader, instance);

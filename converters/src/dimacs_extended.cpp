@@ -33,7 +33,8 @@ std::uint64_t absolute_difference(std::int64_t a, std::int64_t b) {
 ViewSpec parse_view_spec(std::string_view text) {
   const std::string where = "convert dimacs: --view " + quoted(text) + ": ";
   const auto equals = text.find('=');
-  if (equals == std::string_view::npos) throw Error(where + "expected NAME=OBJ1,OBJ2,...[@QUERYSET]");
+  if (equals == std::string_view::npos)
+    throw Error(where + "expected NAME=OBJ1,OBJ2,...[@QUERYSET]");
   ViewSpec view;
   view.name = std::string(text.substr(0, equals));
   auto rest = text.substr(equals + 1);
@@ -51,7 +52,8 @@ ViewSpec parse_view_spec(std::string_view text) {
     const std::string objective(rest.substr(0, comma));
     if (!format::is_valid_section_name(objective))
       throw Error(where + "empty or invalid objective name " + quoted(objective));
-    if (!seen.insert(objective).second) throw Error(where + "objective '" + objective + "' listed twice");
+    if (!seen.insert(objective).second)
+      throw Error(where + "objective '" + objective + "' listed twice");
     view.objectives.push_back(objective);
     if (comma == std::string_view::npos) break;
     rest = rest.substr(comma + 1);
@@ -61,8 +63,8 @@ ViewSpec parse_view_spec(std::string_view text) {
 
 namespace {
 
-std::vector<std::int64_t> parse_elevation(LineScanner& lines, const std::string& display_name, unsigned id_base,
-                                          std::uint64_t vertex_count) {
+std::vector<std::int64_t> parse_elevation(LineScanner& lines, const std::string& display_name,
+                                          unsigned id_base, std::uint64_t vertex_count) {
   std::uint64_t p_line = 0, n = 0;
   std::vector<std::int64_t> elevation;
   std::vector<bool> seen;
@@ -74,10 +76,14 @@ std::vector<std::int64_t> parse_elevation(LineScanner& lines, const std::string&
     if (t.empty() || t[0].text == "c") continue;
     const auto end_column = line.size() + 1;
     if (t[0].text == "v") {
-      if (p_line == 0) fail(display_name, line_number, t[0].column, "'v' line before the 'p aux sp elev n' line");
-      if (t.size() < 3) fail(display_name, line_number, end_column, "missing field: an elevation line is 'v id elevation'");
+      if (p_line == 0)
+        fail(display_name, line_number, t[0].column, "'v' line before the 'p aux sp elev n' line");
+      if (t.size() < 3)
+        fail(display_name, line_number, end_column,
+             "missing field: an elevation line is 'v id elevation'");
       if (t.size() > 3)
-        fail(display_name, line_number, t[3].column, "extra field " + quoted(t[3].text) + ": an elevation line is 'v id elevation'");
+        fail(display_name, line_number, t[3].column,
+             "extra field " + quoted(t[3].text) + ": an elevation line is 'v id elevation'");
       const auto id = to_u64(t[1].text);
       if (!id || *id < id_base || *id - id_base >= n)
         fail(display_name, line_number, t[1].column,
@@ -85,24 +91,35 @@ std::vector<std::int64_t> parse_elevation(LineScanner& lines, const std::string&
                  (n == 0 ? std::string("(none: the graph has no vertices)")
                          : std::to_string(id_base) + ".." + std::to_string(n - 1 + id_base)));
       const auto v = *id - id_base;
-      if (seen[v]) fail(display_name, line_number, t[1].column, "second 'v' line for vertex " + std::to_string(*id));
+      if (seen[v])
+        fail(display_name, line_number, t[1].column,
+             "second 'v' line for vertex " + std::to_string(*id));
       const auto value = to_i64(t[2].text);
-      if (!value) fail(display_name, line_number, t[2].column, "expected an integer elevation, found " + quoted(t[2].text));
+      if (!value)
+        fail(display_name, line_number, t[2].column,
+             "expected an integer elevation, found " + quoted(t[2].text));
       seen[v] = true;
       elevation[v] = *value;
     } else if (t[0].text == "p") {
       if (p_line != 0)
-        fail(display_name, line_number, t[0].column, "second 'p' line (the first is line " + std::to_string(p_line) + ")");
-      if (t.size() < 5) fail(display_name, line_number, end_column, "missing field: the header is 'p aux sp elev n'");
+        fail(display_name, line_number, t[0].column,
+             "second 'p' line (the first is line " + std::to_string(p_line) + ")");
+      if (t.size() < 5)
+        fail(display_name, line_number, end_column,
+             "missing field: the header is 'p aux sp elev n'");
       if (t[1].text != "aux" || t[2].text != "sp" || t[3].text != "elev")
         fail(display_name, line_number, t[1].column, "expected 'p aux sp elev n'");
       if (t.size() > 5)
-        fail(display_name, line_number, t[5].column, "extra field " + quoted(t[5].text) + ": the header is 'p aux sp elev n'");
+        fail(display_name, line_number, t[5].column,
+             "extra field " + quoted(t[5].text) + ": the header is 'p aux sp elev n'");
       const auto count = to_u64(t[4].text);
-      if (!count || *count > kMaxCount) fail(display_name, line_number, t[4].column, "expected the vertex count, found " + quoted(t[4].text));
+      if (!count || *count > kMaxCount)
+        fail(display_name, line_number, t[4].column,
+             "expected the vertex count, found " + quoted(t[4].text));
       if (*count != vertex_count)
         fail(display_name, line_number, t[4].column,
-             "declares " + std::to_string(*count) + " vertices, the graph has " + std::to_string(vertex_count));
+             "declares " + std::to_string(*count) + " vertices, the graph has " +
+                 std::to_string(vertex_count));
       n = *count;
       p_line = line_number;
       elevation.assign(n, 0);  // n equals the graph's vertex count, already held in memory
@@ -111,27 +128,32 @@ std::vector<std::int64_t> parse_elevation(LineScanner& lines, const std::string&
       fail(display_name, line_number, t[0].column, "unknown line type " + quoted(t[0].text));
     }
   }
-  if (p_line == 0) fail(display_name, std::max<std::uint64_t>(lines.number(), 1), 1, "no 'p aux sp elev n' line");
+  if (p_line == 0)
+    fail(display_name, std::max<std::uint64_t>(lines.number(), 1), 1, "no 'p aux sp elev n' line");
   for (std::uint64_t v = 0; v < n; ++v)
-    if (!seen[v]) fail(display_name, p_line, 1, "no 'v' line for vertex " + std::to_string(v + id_base));
+    if (!seen[v])
+      fail(display_name, p_line, 1, "no 'v' line for vertex " + std::to_string(v + id_base));
   return elevation;
 }
 
 }  // namespace
 
-std::vector<std::int64_t> parse_dimacs_elevation(std::string_view text, const std::string& display_name,
-                                                 unsigned id_base, std::uint64_t vertex_count) {
+std::vector<std::int64_t> parse_dimacs_elevation(std::string_view text,
+                                                 const std::string& display_name, unsigned id_base,
+                                                 std::uint64_t vertex_count) {
   LineScanner lines(text);
   return parse_elevation(lines, display_name, id_base, vertex_count);
 }
 
-std::vector<std::int64_t> parse_dimacs_elevation(TextSource& source, const std::string& display_name,
-                                                 unsigned id_base, std::uint64_t vertex_count) {
+std::vector<std::int64_t> parse_dimacs_elevation(TextSource& source,
+                                                 const std::string& display_name, unsigned id_base,
+                                                 std::uint64_t vertex_count) {
   LineScanner lines(source);
   return parse_elevation(lines, display_name, id_base, vertex_count);
 }
 
-std::vector<std::uint32_t> out_degrees(std::uint64_t vertex_count, const std::vector<std::uint32_t>& tails) {
+std::vector<std::uint32_t> out_degrees(std::uint64_t vertex_count,
+                                       const std::vector<std::uint32_t>& tails) {
   std::vector<std::uint32_t> degree(vertex_count, 0);
   for (auto t : tails) ++degree[t];  // m <= 2^32 - 2, so no overflow
   return degree;
@@ -144,7 +166,8 @@ void append_derived_columns(GraphInput& graph, const ExtendedOptions& options, u
     InputFile input(*options.elevation_file);
     record_input(meta, next_input_index(meta), input.facts());
     naming_input_on_out_of_memory(input.display_name(), [&] {
-      const auto elevation = parse_dimacs_elevation(input, input.display_name(), id_base, graph.vertex_count);
+      const auto elevation =
+          parse_dimacs_elevation(input, input.display_name(), id_base, graph.vertex_count);
       std::vector<std::uint64_t> cost(m);
       for (std::size_t k = 0; k < m; ++k)
         cost[k] = absolute_difference(elevation[graph.tails[k]], elevation[graph.heads[k]]);
@@ -163,7 +186,8 @@ void append_derived_columns(GraphInput& graph, const ExtendedOptions& options, u
     graph.costs.push_back({"avg_outdegree", "", std::move(cost), std::nullopt});
     meta.set("source.param.avg_outdegree", twice ? "twice" : "round-half-up");
   }
-  if (options.hop) graph.costs.push_back({"hop", "", std::vector<std::uint64_t>(m, 1), std::nullopt});
+  if (options.hop)
+    graph.costs.push_back({"hop", "", std::vector<std::uint64_t>(m, 1), std::nullopt});
   std::string derived;
   if (options.avg_outdegree) derived = "avg-outdegree";
   if (options.hop) derived += derived.empty() ? "hop" : ",hop";
@@ -173,7 +197,8 @@ void append_derived_columns(GraphInput& graph, const ExtendedOptions& options, u
 void add_views(GraphInput& graph, const std::vector<ViewSpec>& views) {
   std::set<std::string> names;
   for (const auto& view : views) {
-    if (!names.insert(view.name).second) throw Error("convert dimacs: --view '" + view.name + "' given twice");
+    if (!names.insert(view.name).second)
+      throw Error("convert dimacs: --view '" + view.name + "' given twice");
     std::string list;
     for (const auto& objective : view.objectives) {
       bool found = false;

@@ -35,8 +35,9 @@ std::string trimmed(std::string_view s) {
   return std::string(s);
 }
 
-// The XML parser recurses once per nesting level, so hostile nesting must be refused before it runs.
-// Over-counts rather than under-counts: every start tag opens a level, every end tag closes one.
+// The XML parser recurses once per nesting level, so hostile nesting must be refused before it
+// runs. Over-counts rather than under-counts: every start tag opens a level, every end tag closes
+// one.
 std::size_t element_depth(std::string_view text) {
   std::size_t depth = 0, deepest = 0, i = 0;
   const auto skip_past = [&](std::string_view end) {
@@ -44,21 +45,45 @@ std::size_t element_depth(std::string_view text) {
     i = at == std::string_view::npos ? text.size() : at + end.size();
   };
   while (i < text.size()) {
-    if (text[i] != '<') { ++i; continue; }
+    if (text[i] != '<') {
+      ++i;
+      continue;
+    }
     const auto rest = text.substr(i);
-    if (rest.starts_with("<!--")) { skip_past("-->"); continue; }
-    if (rest.starts_with("<![CDATA[")) { skip_past("]]>"); continue; }
-    if (rest.starts_with("<?")) { skip_past("?>"); continue; }
-    if (rest.starts_with("<!")) { skip_past(">"); continue; }
+    if (rest.starts_with("<!--")) {
+      skip_past("-->");
+      continue;
+    }
+    if (rest.starts_with("<![CDATA[")) {
+      skip_past("]]>");
+      continue;
+    }
+    if (rest.starts_with("<?")) {
+      skip_past("?>");
+      continue;
+    }
+    if (rest.starts_with("<!")) {
+      skip_past(">");
+      continue;
+    }
     const bool closing = rest.starts_with("</");
     ++i;
     char quote = 0;
     bool self_closing = false;
     while (i < text.size()) {
       const char c = text[i++];
-      if (quote) { if (c == quote) quote = 0; continue; }
-      if (c == '"' || c == '\'') { quote = c; continue; }
-      if (c == '>') { self_closing = i >= 2 && text[i - 2] == '/'; break; }
+      if (quote) {
+        if (c == quote) quote = 0;
+        continue;
+      }
+      if (c == '"' || c == '\'') {
+        quote = c;
+        continue;
+      }
+      if (c == '>') {
+        self_closing = i >= 2 && text[i - 2] == '/';
+        break;
+      }
     }
     if (closing) {
       if (depth > 0) --depth;
@@ -95,7 +120,8 @@ void read_data(const ptree& element, const std::unordered_map<std::string, std::
     const auto key = attribute(child, "key");
     const auto it = keys.find(key);
     if (it == keys.end())
-      throw Error(file + ": " + what + ": <data key=" + shown(key) + "> names no key declared for it");
+      throw Error(file + ": " + what + ": <data key=" + shown(key) +
+                  "> names no key declared for it");
     if (values[it->second])
       throw Error(file + ": " + what + ": second <data> for key " + shown(key));
     values[it->second] = trimmed(child.data());
@@ -128,14 +154,16 @@ const std::optional<std::string>& GraphmlGraph::node_value(std::size_t v, std::s
 
 std::string GraphmlGraph::describe_edge(std::size_t e) const {
   const auto& edge = edges[e];
-  const std::string name = edge.id.empty() ? "edge #" + std::to_string(e) : "edge " + shown(edge.id);
+  const std::string name =
+      edge.id.empty() ? "edge #" + std::to_string(e) : "edge " + shown(edge.id);
   return name + " (" + shown(node_ids[edge.source]) + " -> " + shown(node_ids[edge.target]) + ")";
 }
 
 GraphmlGraph parse_graphml(std::string_view text, const std::string& display_name) {
   const auto& file = display_name;
   if (text.find('\0') != std::string_view::npos)
-    throw Error(file + ": a NUL byte at offset " + std::to_string(text.find('\0')) + " (not XML text)");
+    throw Error(file + ": a NUL byte at offset " + std::to_string(text.find('\0')) +
+                " (not XML text)");
   if (element_depth(text) > kMaxDepth)
     throw Error(file + ": elements nested deeper than " + std::to_string(kMaxDepth) + " levels");
   ptree doc;
@@ -155,11 +183,14 @@ GraphmlGraph parse_graphml(std::string_view text, const std::string& display_nam
   const ptree* graph = nullptr;
   for (const auto& [tag, child] : *root) {
     if (tag == "key") {
-      GraphmlKey key{attribute(child, "id"), attribute(child, "attr.name"), attribute(child, "attr.type"), {}};
+      GraphmlKey key{
+          attribute(child, "id"), attribute(child, "attr.name"), attribute(child, "attr.type"), {}};
       if (key.id.empty()) throw Error(file + ": a <key> without an id");
-      if (const auto d = child.get_child_optional("default")) key.default_value = trimmed(d->data());
+      if (const auto d = child.get_child_optional("default"))
+        key.default_value = trimmed(d->data());
       const auto domain = attribute(child, "for");
-      const bool node = domain == "node" || domain == "all", edge = domain == "edge" || domain == "all";
+      const bool node = domain == "node" || domain == "all",
+                 edge = domain == "edge" || domain == "all";
       if ((node && index.node.count(key.id)) || (edge && index.edge.count(key.id)))
         throw Error(file + ": key " + shown(key.id) + " declared twice");
       if (node) index.node.emplace(key.id, g.node_keys.size()), g.node_keys.push_back(key);
@@ -172,7 +203,8 @@ GraphmlGraph parse_graphml(std::string_view text, const std::string& display_nam
   if (!graph) throw Error(file + ": no <graph> element");
   const auto edge_default = attribute(*graph, "edgedefault");
   if (edge_default != "directed" && edge_default != "undirected")
-    throw Error(file + ": <graph edgedefault=" + shown(edge_default) + ">: expected 'directed' or 'undirected'");
+    throw Error(file + ": <graph edgedefault=" + shown(edge_default) +
+                ">: expected 'directed' or 'undirected'");
   g.edge_default_directed = edge_default == "directed";
 
   // Nodes first: GraphML lets edges precede the nodes they name.
@@ -182,7 +214,8 @@ GraphmlGraph parse_graphml(std::string_view text, const std::string& display_nam
     if (tag != "node") continue;
     if (child.get_child_optional("graph")) throw Error(file + ": nested <graph> inside a node");
     auto id = attribute(child, "id");
-    if (g.node_ids.size() >= kMaxCount) throw Error(file + ": more than " + std::to_string(kMaxCount) + " nodes");
+    if (g.node_ids.size() >= kMaxCount)
+      throw Error(file + ": more than " + std::to_string(kMaxCount) + " nodes");
     if (!vertex_of.emplace(id, static_cast<std::uint32_t>(g.node_ids.size())).second)
       throw Error(file + ": node id " + shown(id) + " appears twice");
     g.node_data.emplace_back(g.node_keys.size());
@@ -193,11 +226,13 @@ GraphmlGraph parse_graphml(std::string_view text, const std::string& display_nam
     if (tag != "edge") continue;
     GraphmlEdge edge;
     edge.id = attribute(child, "id");
-    const std::string what = edge.id.empty() ? "edge #" + std::to_string(g.edges.size()) : "edge " + shown(edge.id);
+    const std::string what =
+        edge.id.empty() ? "edge #" + std::to_string(g.edges.size()) : "edge " + shown(edge.id);
     for (const auto* end : {"source", "target"}) {
       const auto name = attribute(child, end);
       const auto it = vertex_of.find(name);
-      if (it == vertex_of.end()) throw Error(file + ": " + what + ": " + end + " " + shown(name) + " is no node");
+      if (it == vertex_of.end())
+        throw Error(file + ": " + what + ": " + end + " " + shown(name) + " is no node");
       (std::string_view(end) == "source" ? edge.source : edge.target) = it->second;
     }
     edge.directed = g.edge_default_directed;

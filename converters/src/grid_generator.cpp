@@ -12,7 +12,8 @@ StreamedGraph grid_graph(const GridParameters& p) {
   if (p.objectives < 1 || p.objectives > 16) throw Error("grid objectives must be 1 to 16");
   if (p.min_cost > p.max_cost) throw Error("grid minimum cost exceeds the maximum cost");
   const std::uint64_t cells = std::uint64_t{p.width} * p.height;
-  if (cells + 2 >= 0xFFFFFFFFULL) throw Error("grid of " + std::to_string(cells) + " cells is too large");
+  if (cells + 2 >= 0xFFFFFFFFULL)
+    throw Error("grid of " + std::to_string(cells) + " cells is too large");
   const auto K = p.width, M = p.height;
   const auto source = static_cast<std::uint32_t>(cells), target = source + 1;
 
@@ -37,7 +38,8 @@ StreamedGraph grid_graph(const GridParameters& p) {
     g.costs.push_back({"c" + std::to_string(j + 1), "",
                        [p, j, arcs = g.arc_count](const StreamedGraph::CostSink& cost) {
                          auto rng = stream(p.seed, j);
-                         for (std::uint64_t a = 0; a < arcs; ++a) cost(rng.uniform(p.min_cost, p.max_cost));
+                         for (std::uint64_t a = 0; a < arcs; ++a)
+                           cost(rng.uniform(p.min_cost, p.max_cost));
                        }});
   g.queries.push_back({"default", {{source, target}}});
 
@@ -62,6 +64,8 @@ StreamedGraph grid_graph(const GridParameters& p) {
   return g;
 }
 
-GraphInput generate_grid(const GridParameters& p) { return materialize(grid_graph(p)); }
+GraphInput generate_grid(const GridParameters& p) {
+  return materialize(grid_graph(p));
+}
 
 }  // namespace mosb::converters

@@ -8,9 +8,9 @@
 #include <cstdio>
 #include <cstring>
 
+#include "mosb/atomic_file.hpp"
 #include "mosb/converters/text_input.hpp"
 #include "mosb/converters/text_scan.hpp"
-#include "mosb/atomic_file.hpp"
 #include "mosb/error.hpp"
 #include "octile_steps.hpp"
 
@@ -26,7 +26,8 @@ constexpr std::uint64_t kMaxRadiusMilli = 1'000'000'000;  // 10^6 cells: beyond 
 bool parse_radius(std::string_view s, std::uint64_t& milli) {
   const auto dot = s.find('.');
   const auto whole = s.substr(0, dot);
-  std::string_view fraction = dot == std::string_view::npos ? std::string_view() : s.substr(dot + 1);
+  std::string_view fraction =
+      dot == std::string_view::npos ? std::string_view() : s.substr(dot + 1);
   if (dot != std::string_view::npos && (fraction.empty() || fraction.size() > 3)) return false;
   const auto w = to_u64(whole, kMaxRadiusMilli / 1000);
   if (!w) return false;
@@ -43,7 +44,8 @@ bool parse_radius(std::string_view s, std::uint64_t& milli) {
 
 }  // namespace
 
-std::vector<Guard> parse_guards(std::string_view text_in, const std::string& file, const OctileMap& map) {
+std::vector<Guard> parse_guards(std::string_view text_in, const std::string& file,
+                                const OctileMap& map) {
   text::LineScanner lines(text_in, text::LineEnd::cr);
   std::string_view line;
   std::vector<Token> t;
@@ -54,22 +56,32 @@ std::vector<Guard> parse_guards(std::string_view text_in, const std::string& fil
     if (hash != std::string_view::npos) line = line.substr(0, hash);
     text::tokenize(line, t);
     if (t.empty()) continue;
-    if (t.size() < 2) fail(file, ln, line.size() + 1, "missing field: a guard line is 'x y [radius]'");
-    if (t.size() > 3) fail(file, ln, t[3].column, "extra field " + quoted(t[3].text) + ": a guard line is 'x y [radius]'");
+    if (t.size() < 2)
+      fail(file, ln, line.size() + 1, "missing field: a guard line is 'x y [radius]'");
+    if (t.size() > 3)
+      fail(file, ln, t[3].column,
+           "extra field " + quoted(t[3].text) + ": a guard line is 'x y [radius]'");
     Guard g;
     g.line = ln;
     const auto x = to_u64(t[0].text, map.width - 1);
-    if (!x) fail(file, ln, t[0].column, "guard x " + quoted(t[0].text) + " is not a column 0.." + std::to_string(map.width - 1));
+    if (!x)
+      fail(file, ln, t[0].column,
+           "guard x " + quoted(t[0].text) + " is not a column 0.." + std::to_string(map.width - 1));
     const auto y = to_u64(t[1].text, map.height - 1);
-    if (!y) fail(file, ln, t[1].column, "guard y " + quoted(t[1].text) + " is not a row 0.." + std::to_string(map.height - 1));
+    if (!y)
+      fail(file, ln, t[1].column,
+           "guard y " + quoted(t[1].text) + " is not a row 0.." + std::to_string(map.height - 1));
     g.x = static_cast<std::uint32_t>(*x);
     g.y = static_cast<std::uint32_t>(*y);
     if (!map.is_passable(g.x, g.y))
-      fail(file, ln, t[0].column, "guard on the blocked cell (" + std::to_string(*x) + ", " + std::to_string(*y) + ")");
+      fail(file, ln, t[0].column,
+           "guard on the blocked cell (" + std::to_string(*x) + ", " + std::to_string(*y) + ")");
     if (t.size() == 3) {
       std::uint64_t milli = 0;
       if (!parse_radius(t[2].text, milli))
-        fail(file, ln, t[2].column, "expected a radius from 0 to 1000000 with at most 3 decimals, found " + quoted(t[2].text));
+        fail(file, ln, t[2].column,
+             "expected a radius from 0 to 1000000 with at most 3 decimals, found " +
+                 quoted(t[2].text));
       g.radius_milli = milli;
     }
     guards.push_back(g);
@@ -77,40 +89,49 @@ std::vector<Guard> parse_guards(std::string_view text_in, const std::string& fil
   return guards;
 }
 
-std::vector<std::uint64_t> parse_exposure(std::string_view text_in, const std::string& file, const OctileMap& map) {
+std::vector<std::uint64_t> parse_exposure(std::string_view text_in, const std::string& file,
+                                          const OctileMap& map) {
   text::LineScanner lines(text_in, text::LineEnd::cr);
   std::string_view line;
   std::vector<Token> t;
   std::vector<std::uint64_t> exposure(map.passable.size(), 0);
   for (std::uint32_t y = 0; y < map.height; ++y) {
     if (!lines.next(line))
-      fail(file, lines.number() + 1, 1, "missing row " + std::to_string(y + 1) + " of " + std::to_string(map.height));
+      fail(file, lines.number() + 1, 1,
+           "missing row " + std::to_string(y + 1) + " of " + std::to_string(map.height));
     const auto ln = lines.number();
     text::tokenize(line, t);
     if (t.size() < map.width)
-      fail(file, ln, line.size() + 1, "row " + std::to_string(y + 1) + " has " + std::to_string(t.size()) +
-                                          " values, the map is " + std::to_string(map.width) + " wide");
-    if (t.size() > map.width) fail(file, ln, t[map.width].column, "extra value " + quoted(t[map.width].text) +
-                                                                   ": the map is " + std::to_string(map.width) + " wide");
+      fail(file, ln, line.size() + 1,
+           "row " + std::to_string(y + 1) + " has " + std::to_string(t.size()) +
+               " values, the map is " + std::to_string(map.width) + " wide");
+    if (t.size() > map.width)
+      fail(file, ln, t[map.width].column,
+           "extra value " + quoted(t[map.width].text) + ": the map is " +
+               std::to_string(map.width) + " wide");
     for (std::uint32_t x = 0; x < map.width; ++x) {
       if (!map.is_passable(x, y)) continue;  // blocked cells may hold anything
       const auto value = to_u64(t[x].text);
-      if (!value) fail(file, ln, t[x].column, "expected a non-negative integer exposure, found " + quoted(t[x].text));
+      if (!value)
+        fail(file, ln, t[x].column,
+             "expected a non-negative integer exposure, found " + quoted(t[x].text));
       exposure[std::size_t{y} * map.width + x] = *value;
     }
   }
   while (lines.next(line)) {
     text::tokenize(line, t);
     if (!t.empty())
-      fail(file, lines.number(), 1, "text after the " + std::to_string(map.height) + " rows of the grid");
+      fail(file, lines.number(), 1,
+           "text after the " + std::to_string(map.height) + " rows of the grid");
   }
   return exposure;
 }
 
-bool line_of_sight(const OctileMap& map, std::uint32_t x0, std::uint32_t y0, std::uint32_t x1, std::uint32_t y1) {
-  // Walks the cells the segment enters, in order: the next boundary crossed is the vertical one when
-  // (ix + 1/2) / dx < (iy + 1/2) / dy; at equality the segment passes through a grid corner and
-  // touches all four cells around it, so both side cells are checked too.
+bool line_of_sight(const OctileMap& map, std::uint32_t x0, std::uint32_t y0, std::uint32_t x1,
+                   std::uint32_t y1) {
+  // Walks the cells the segment enters, in order: the next boundary crossed is the vertical one
+  // when (ix + 1/2) / dx < (iy + 1/2) / dy; at equality the segment passes through a grid corner
+  // and touches all four cells around it, so both side cells are checked too.
   const std::int64_t dx = x1 >= x0 ? std::int64_t{x1} - x0 : std::int64_t{x0} - x1;
   const std::int64_t dy = y1 >= y0 ? std::int64_t{y1} - y0 : std::int64_t{y0} - y1;
   const std::int64_t sx = x1 >= x0 ? 1 : -1, sy = y1 >= y0 ? 1 : -1;
@@ -134,14 +155,16 @@ bool line_of_sight(const OctileMap& map, std::uint32_t x0, std::uint32_t y0, std
   return true;
 }
 
-std::vector<std::uint64_t> compute_exposure(const OctileMap& map, const std::vector<Guard>& guards) {
+std::vector<std::uint64_t> compute_exposure(const OctileMap& map,
+                                            const std::vector<Guard>& guards) {
   std::vector<std::uint64_t> exposure(map.passable.size(), 0);
   for (const auto& g : guards) {
     std::uint32_t x_lo = 0, y_lo = 0, x_hi = map.width - 1, y_hi = map.height - 1;
     if (g.radius_milli) {
       const auto reach = static_cast<std::uint32_t>(*g.radius_milli / 1000);
       x_lo = g.x - std::min(g.x, reach), y_lo = g.y - std::min(g.y, reach);
-      x_hi = g.x + std::min(map.width - 1 - g.x, reach), y_hi = g.y + std::min(map.height - 1 - g.y, reach);
+      x_hi = g.x + std::min(map.width - 1 - g.x, reach),
+      y_hi = g.y + std::min(map.height - 1 - g.y, reach);
     }
     for (std::uint32_t y = y_lo; y <= y_hi; ++y) {
       for (std::uint32_t x = x_lo; x <= x_hi; ++x) {
@@ -194,7 +217,8 @@ GuardsResult convert_guards(const GuardsOptions& o) {
   if (o.exposure_file) {
     r.exposure = parse_exposure(cells_input.text, cells_input.display_name, map.map);
   } else {
-    r.exposure = compute_exposure(map.map, parse_guards(cells_input.text, cells_input.display_name, map.map));
+    r.exposure = compute_exposure(
+        map.map, parse_guards(cells_input.text, cells_input.display_name, map.map));
   }
   r.graph = build_guards_graph(map.map, r.exposure);
   if (o.exposure_file) r.graph.costs[1].unit = "";

@@ -20,25 +20,36 @@ constexpr std::uint64_t kMaxCells = 0xFFFFFFFEULL;  // vertex ids are u32 with o
 // 1 passable, 0 blocked, nullopt for a character the format does not define.
 std::optional<std::uint8_t> terrain(char c, const TerrainRules& rules) {
   switch (c) {
-    case '.': case 'G': return 1;
-    case '@': case 'O': case 'T': return 0;
-    case 'S': return rules.swamp_passable ? 1 : 0;
-    case 'W': return rules.water_passable ? 1 : 0;
-    default: return std::nullopt;
+    case '.':
+    case 'G':
+      return 1;
+    case '@':
+    case 'O':
+    case 'T':
+      return 0;
+    case 'S':
+      return rules.swamp_passable ? 1 : 0;
+    case 'W':
+      return rules.water_passable ? 1 : 0;
+    default:
+      return std::nullopt;
   }
 }
 
-std::uint32_t parse_dimension(const std::string& file, std::uint64_t ln, const Token& t, const char* what) {
+std::uint32_t parse_dimension(const std::string& file, std::uint64_t ln, const Token& t,
+                              const char* what) {
   const auto value = to_u64(t.text, 0xFFFFFFFFULL);
   if (!value || *value == 0)
-    fail(file, ln, t.column, std::string("expected the map ") + what + " (an integer from 1 to 4294967295), found " +
-                                 quoted(t.text));
+    fail(file, ln, t.column,
+         std::string("expected the map ") + what + " (an integer from 1 to 4294967295), found " +
+             quoted(t.text));
   return static_cast<std::uint32_t>(*value);
 }
 
 }  // namespace
 
-OctileMap parse_octile_map(std::string_view text_in, const std::string& file, const TerrainRules& rules) {
+OctileMap parse_octile_map(std::string_view text_in, const std::string& file,
+                           const TerrainRules& rules) {
   text::LineScanner lines(text_in, text::LineEnd::cr);
   std::string_view line;
   std::vector<Token> t;
@@ -48,13 +59,17 @@ OctileMap parse_octile_map(std::string_view text_in, const std::string& file, co
   // The header: `type octile`, then `height H` and `width W` (either order), then `map`.
   while (true) {
     if (!lines.next(line))
-      fail(file, lines.number() + 1, 1, have_type ? "missing 'map' line after the header" : "empty file: expected 'type octile'");
+      fail(
+          file, lines.number() + 1, 1,
+          have_type ? "missing 'map' line after the header" : "empty file: expected 'type octile'");
     const auto ln = lines.number();
     text::tokenize(line, t);
     if (!have_type) {
-      if (t.size() < 1 || t[0].text != "type") fail(file, ln, t.empty() ? 1 : t[0].column, "expected 'type octile'");
+      if (t.empty() || t[0].text != "type")
+        fail(file, ln, t.empty() ? 1 : t[0].column, "expected 'type octile'");
       if (t.size() < 2 || t[1].text != "octile")
-        fail(file, ln, t.size() < 2 ? line.size() + 1 : t[1].column, "expected 'type octile' (only octile maps are supported)");
+        fail(file, ln, t.size() < 2 ? line.size() + 1 : t[1].column,
+             "expected 'type octile' (only octile maps are supported)");
       if (t.size() > 2) fail(file, ln, t[2].column, "extra field " + quoted(t[2].text));
       have_type = true;
       continue;
@@ -68,7 +83,8 @@ OctileMap parse_octile_map(std::string_view text_in, const std::string& file, co
     }
     const bool is_height = t[0].text == "height";
     if (!is_height && t[0].text != "width")
-      fail(file, ln, t[0].column, "expected 'height H', 'width W' or 'map', found " + quoted(t[0].text));
+      fail(file, ln, t[0].column,
+           "expected 'height H', 'width W' or 'map', found " + quoted(t[0].text));
     auto& field = is_height ? map.height : map.width;
     const char* what = is_height ? "height" : "width";
     if (field != 0) fail(file, ln, t[0].column, std::string("second '") + what + "' line");
@@ -80,12 +96,14 @@ OctileMap parse_octile_map(std::string_view text_in, const std::string& file, co
   const auto cells = std::uint64_t{map.width} * map.height;
   // Untrusted header: the rows must be in the text before anything that large is allocated.
   if (cells > kMaxCells || cells > text_in.size())
-    fail(file, header_line, 1, "a " + std::to_string(map.width) + " x " + std::to_string(map.height) +
-                                   " map cannot be held in this " + std::to_string(text_in.size()) + "-byte file");
+    fail(file, header_line, 1,
+         "a " + std::to_string(map.width) + " x " + std::to_string(map.height) +
+             " map cannot be held in this " + std::to_string(text_in.size()) + "-byte file");
   map.passable.resize(cells);
   for (std::uint32_t y = 0; y < map.height; ++y) {
     if (!lines.next(line))
-      fail(file, lines.number() + 1, 1, "missing row " + std::to_string(y + 1) + " of " + std::to_string(map.height));
+      fail(file, lines.number() + 1, 1,
+           "missing row " + std::to_string(y + 1) + " of " + std::to_string(map.height));
     const auto ln = lines.number();
     const auto n = std::min<std::size_t>(line.size(), map.width);
     for (std::size_t x = 0; x < n; ++x) {
@@ -94,12 +112,14 @@ OctileMap parse_octile_map(std::string_view text_in, const std::string& file, co
       map.passable[std::size_t{y} * map.width + x] = *flag;
     }
     if (line.size() != map.width)
-      fail(file, ln, n + 1, "row " + std::to_string(y + 1) + " has " + std::to_string(line.size()) +
-                                " cells, the map is " + std::to_string(map.width) + " wide");
+      fail(file, ln, n + 1,
+           "row " + std::to_string(y + 1) + " has " + std::to_string(line.size()) +
+               " cells, the map is " + std::to_string(map.width) + " wide");
   }
   while (lines.next(line))
     if (!line.empty())
-      fail(file, lines.number(), 1, "text after the " + std::to_string(map.height) + " rows of the map");
+      fail(file, lines.number(), 1,
+           "text after the " + std::to_string(map.height) + " rows of the map");
   return map;
 }
 
@@ -138,42 +158,50 @@ std::vector<ScenarioEntry> parse_scenario(std::string_view text_in, const std::s
       fields = words;
     }
     if (fields.size() < 9)
-      fail(file, ln, line.size() + 1, "missing field: a row is 'bucket map width height sx sy gx gy optimal'");
-    if (fields.size() > 9) fail(file, ln, fields[9].column, "extra field " + quoted(fields[9].text));
+      fail(file, ln, line.size() + 1,
+           "missing field: a row is 'bucket map width height sx sy gx gy optimal'");
+    if (fields.size() > 9)
+      fail(file, ln, fields[9].column, "extra field " + quoted(fields[9].text));
     ScenarioEntry e;
     e.line = ln;
     for (std::size_t k = 0; k < 9; ++k) e.columns[k] = static_cast<std::uint32_t>(fields[k].column);
     const auto bucket = to_u64(fields[0].text);
-    if (!bucket) fail(file, ln, fields[0].column, "expected a bucket number, found " + quoted(fields[0].text));
+    if (!bucket)
+      fail(file, ln, fields[0].column, "expected a bucket number, found " + quoted(fields[0].text));
     e.bucket = *bucket;
     if (fields[1].text.empty()) fail(file, ln, fields[1].column, "empty map name");
     e.map = std::string(fields[1].text);
-    std::uint32_t* targets[] = {&e.map_width, &e.map_height, &e.start_x, &e.start_y, &e.goal_x, &e.goal_y};
+    std::uint32_t* targets[] = {&e.map_width, &e.map_height, &e.start_x,
+                                &e.start_y,   &e.goal_x,     &e.goal_y};
     const char* names[] = {"map width", "map height", "start x", "start y", "goal x", "goal y"};
     for (std::size_t k = 0; k < 6; ++k) {
       const auto value = to_u64(fields[2 + k].text, 0xFFFFFFFFULL);
       if (!value)
-        fail(file, ln, fields[2 + k].column, std::string("expected the ") + names[k] + ", found " + quoted(fields[2 + k].text));
+        fail(file, ln, fields[2 + k].column,
+             std::string("expected the ") + names[k] + ", found " + quoted(fields[2 + k].text));
       *targets[k] = static_cast<std::uint32_t>(*value);
     }
     const auto opt = fields[8].text;
     const auto optimal = text::to_real(opt);
     if (!optimal || opt[0] < '0' || opt[0] > '9')
-      fail(file, ln, fields[8].column, "expected the optimal length (a non-negative number), found " + quoted(opt));
+      fail(file, ln, fields[8].column,
+           "expected the optimal length (a non-negative number), found " + quoted(opt));
     e.optimal = *optimal;
     entries.push_back(std::move(e));
   }
-  if (!have_version) fail(file, std::max<std::uint64_t>(lines.number(), 1), 1, "empty file: expected 'version 1'");
+  if (!have_version)
+    fail(file, std::max<std::uint64_t>(lines.number(), 1), 1, "empty file: expected 'version 1'");
   return entries;
 }
 
-void check_scenario(const std::vector<ScenarioEntry>& entries, const std::string& file, const OctileMap& map,
-                    const std::string& map_name) {
+void check_scenario(const std::vector<ScenarioEntry>& entries, const std::string& file,
+                    const OctileMap& map, const std::string& map_name) {
   for (const auto& e : entries) {
     if (e.map_width != map.width || e.map_height != map.height)
       fail(file, e.line, e.columns[e.map_width != map.width ? 2 : 3],
-           "the row gives a " + std::to_string(e.map_width) + " x " + std::to_string(e.map_height) + " map, " +
-               map_name + " is " + std::to_string(map.width) + " x " + std::to_string(map.height));
+           "the row gives a " + std::to_string(e.map_width) + " x " + std::to_string(e.map_height) +
+               " map, " + map_name + " is " + std::to_string(map.width) + " x " +
+               std::to_string(map.height));
     const struct {
       std::uint32_t x, y;
       std::size_t field;
@@ -206,8 +234,12 @@ GraphInput build_octile_graph(const OctileMap& map, const CellObjective* cell_ob
   g.vertex_count = n;
   std::vector<std::uint64_t> length, cell_cost;
   const auto* value = cell_objective ? cell_objective->values : nullptr;
-  auto at = [&](std::int64_t x, std::int64_t y) { return static_cast<std::size_t>(y) * map.width + static_cast<std::size_t>(x); };
-  auto inside = [&](std::int64_t x, std::int64_t y) { return x >= 0 && y >= 0 && x < map.width && y < map.height; };
+  auto at = [&](std::int64_t x, std::int64_t y) {
+    return static_cast<std::size_t>(y) * map.width + static_cast<std::size_t>(x);
+  };
+  auto inside = [&](std::int64_t x, std::int64_t y) {
+    return x >= 0 && y >= 0 && x < map.width && y < map.height;
+  };
   for (std::uint32_t y = 0; y < map.height; ++y) {
     for (std::uint32_t x = 0; x < map.width; ++x) {
       const auto tail = id[at(x, y)];
@@ -231,7 +263,9 @@ GraphInput build_octile_graph(const OctileMap& map, const CellObjective* cell_ob
     }
   }
   g.costs.push_back({"length", "0.1 cell", std::move(length), std::nullopt});
-  if (value) g.costs.push_back({cell_objective->name, cell_objective->unit, std::move(cell_cost), std::nullopt});
+  if (value)
+    g.costs.push_back(
+        {cell_objective->name, cell_objective->unit, std::move(cell_cost), std::nullopt});
   g.vertex_data.push_back(narrowest_column<std::uint16_t, std::uint32_t>("cell", 2, cells));
   g.metadata.set("map.width", std::to_string(map.width));
   g.metadata.set("map.height", std::to_string(map.height));
@@ -252,14 +286,17 @@ QuerySet scenario_queries(const std::vector<ScenarioEntry>& entries, const Octil
 
 namespace octile {
 
-MapInput read_map(const std::string& path, const TerrainRules& terrain, Metadata& inputs, std::size_t index) {
+MapInput read_map(const std::string& path, const TerrainRules& terrain, Metadata& inputs,
+                  std::size_t index) {
   const auto input = read_text_input(path);
   record_input(inputs, index, input);
-  MapInput r{parse_octile_map(input.text, input.display_name, terrain), input.display_name, input.base_name};
+  MapInput r{parse_octile_map(input.text, input.display_name, terrain), input.display_name,
+             input.base_name};
   if (std::find(r.map.passable.begin(), r.map.passable.end(), 1) == r.map.passable.end())
     throw Error(input.display_name + ": the map has no passable cell (with swamp " +
                 (terrain.swamp_passable ? "passable" : "blocked") + ", water " +
-                (terrain.water_passable ? "passable" : "blocked") + "): the instance would have no vertex");
+                (terrain.water_passable ? "passable" : "blocked") +
+                "): the instance would have no vertex");
   return r;
 }
 
@@ -272,8 +309,9 @@ void add_scenario(GraphInput& graph, const std::string& path, const MapInput& ma
   graph.queries.push_back(scenario_queries(entries, map.map));
 }
 
-void set_metadata(Metadata& m, const Metadata& inputs, const MapInput& map, const std::optional<std::string>& name,
-                  const char* command, const TerrainRules& terrain) {
+void set_metadata(Metadata& m, const Metadata& inputs, const MapInput& map,
+                  const std::optional<std::string>& name, const char* command,
+                  const TerrainRules& terrain) {
   for (const auto& [key, value] : inputs.entries()) m.set(key, value);
   m.set("benchmark", name ? *name : benchmark_name_from(map.base_name, {".map"}));
   m.set("family", "games");

@@ -17,23 +17,32 @@ namespace mosb::converters {
 namespace {
 
 // Stream indices of the seed (spec/GENERATORS.md, NetMaker).
-enum Stream : std::uint64_t { permutation = 0, degrees = 1, locality_choice = 2, cycle_costs = 3,
-                              locality_costs = 4, query_pairs = 5 };
+enum Stream : std::uint64_t {
+  permutation = 0,
+  degrees = 1,
+  locality_choice = 2,
+  cycle_costs = 3,
+  locality_costs = 4,
+  query_pairs = 5
+};
 
 void check(const NetMakerParameters& p) {
   if (p.vertices < 2) throw Error("netmaker needs at least 2 vertices");
-  if (p.amax <= p.amin) throw Error("netmaker amax must exceed amin (out-degrees are drawn from {amin+1..amax})");
+  if (p.amax <= p.amin)
+    throw Error("netmaker amax must exceed amin (out-degrees are drawn from {amin+1..amax})");
   if (std::uint64_t{p.vertices} * p.amax >= 0xFFFFFFFFULL)
     throw Error("netmaker of " + std::to_string(p.vertices) + " vertices with amax " +
                 std::to_string(p.amax) + " may exceed 2^32 - 1 arcs");
-  if (p.query_percent < 1 || p.query_percent > 50) throw Error("netmaker query percent must be 1 to 50");
+  if (p.query_percent < 1 || p.query_percent > 50)
+    throw Error("netmaker query percent must be 1 to 50");
 }
 
 // The candidates of u: the window [lo, hi] in increasing id order without u and its cycle
 // successor. Read by index without materializing the window, so a huge I costs nothing.
 class Candidates {
  public:
-  Candidates(std::uint64_t lo, std::uint64_t hi, std::uint64_t u, std::uint64_t successor) : lo_(lo) {
+  Candidates(std::uint64_t lo, std::uint64_t hi, std::uint64_t u, std::uint64_t successor)
+      : lo_(lo) {
     excluded_[0] = u;
     excluded_count_ = 1;
     if (successor >= lo && successor <= hi) excluded_[excluded_count_++] = successor;
@@ -87,7 +96,8 @@ GraphInput generate_netmaker(const NetMakerParameters& p) {
   for (std::uint64_t u = 0; u < n; ++u) {
     add_arc(u, successor[u], kNetMakerCycleArc);
     const std::uint64_t wanted = degree.uniform(p.amin + 1, p.amax) - 1;
-    const Candidates candidates(u >= half ? u - half : 0, std::min(n - 1, u + half), u, successor[u]);
+    const Candidates candidates(u >= half ? u - half : 0, std::min(n - 1, u + half), u,
+                                successor[u]);
     const std::uint64_t taken = std::min(wanted, candidates.count());
     swapped.clear();
     auto value = [&](std::uint64_t index) {
@@ -138,8 +148,8 @@ GraphInput generate_netmaker(const NetMakerParameters& p) {
   g.queries.push_back(std::move(queries));
 
   auto& md = g.metadata;
-  md.set("benchmark", p.name ? *p.name
-                             : "NetMaker-N" + std::to_string(n) + "-I" + std::to_string(p.locality));
+  md.set("benchmark",
+         p.name ? *p.name : "NetMaker-N" + std::to_string(n) + "-I" + std::to_string(p.locality));
   md.set("family", "synthetic");
   md.set("id_base", "0");
   md.set("source.command", "generate netmaker");
@@ -156,18 +166,21 @@ GraphInput generate_netmaker(const NetMakerParameters& p) {
   return g;
 }
 
-GraphInput convert_netmaker(const std::filesystem::path& gr_file, const std::optional<std::string>& name) {
+GraphInput convert_netmaker(const std::filesystem::path& gr_file,
+                            const std::optional<std::string>& name) {
   DimacsOptions options;
   options.gr_files = {gr_file.string()};
   options.id_base = 0;
   options.name = name;
   GraphInput g = convert_dimacs(options);
-  if (g.costs.empty()) throw Error(gr_file.string() + ": a NetMaker graph needs at least one cost column");
+  if (g.costs.empty())
+    throw Error(gr_file.string() + ": a NetMaker graph needs at least one cost column");
   auto& md = g.metadata;
   md.set("family", "synthetic");
   md.set("source.command", "convert netmaker");
   std::string objectives;
-  for (std::size_t j = 1; j <= g.costs.size(); ++j) objectives += (j > 1 ? ",c" : "c") + std::to_string(j);
+  for (std::size_t j = 1; j <= g.costs.size(); ++j)
+    objectives += (j > 1 ? ",c" : "c") + std::to_string(j);
   md.set("view.NetMaker_" + std::to_string(g.costs.size()) + ".objectives", objectives);
   return g;
 }

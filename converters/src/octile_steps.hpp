@@ -20,7 +20,8 @@ struct MapInput {
 
 // Reads and parses the map, recording it as input `index` in `inputs`; throws "FILE: ..." when the
 // map has no passable cell (an instance without vertices is no benchmark).
-MapInput read_map(const std::string& path, const TerrainRules& terrain, Metadata& inputs, std::size_t index);
+MapInput read_map(const std::string& path, const TerrainRules& terrain, Metadata& inputs,
+                  std::size_t index);
 
 // Reads, parses and checks the scenario against the map (input `index`); appends query set `scen`.
 void add_scenario(GraphInput& graph, const std::string& path, const MapInput& map, Metadata& inputs,
@@ -28,7 +29,8 @@ void add_scenario(GraphInput& graph, const std::string& path, const MapInput& ma
 
 // The metadata both converters write: the recorded inputs, benchmark, family, id_base,
 // source.command and the terrain readings.
-void set_metadata(Metadata& m, const Metadata& inputs, const MapInput& map, const std::optional<std::string>& name,
-                  const char* command, const TerrainRules& terrain);
+void set_metadata(Metadata& m, const Metadata& inputs, const MapInput& map,
+                  const std::optional<std::string>& name, const char* command,
+                  const TerrainRules& terrain);
 
 }  // namespace mosb::converters::octile

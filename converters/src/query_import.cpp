@@ -11,7 +11,9 @@ namespace {
 using namespace text;  // the shared primitives of text_scan.hpp
 
 // Fields and --match texts are shown up to 60 bytes, more than a token elsewhere.
-std::string quoted_field(std::string_view field) { return quoted(field, 60); }
+std::string quoted_field(std::string_view field) {
+  return quoted(field, 60);
+}
 
 // A field of a data line, or one of the separators ',' and ';' (which are items of their own).
 struct Item {
@@ -20,7 +22,9 @@ struct Item {
   bool separator;
 };
 
-bool is_blank(char c) { return c == ' ' || c == '\t'; }
+bool is_blank(char c) {
+  return c == ' ' || c == '\t';
+}
 
 void split_items(std::string_view line, std::vector<Item>& items) {
   items.clear();
@@ -53,11 +57,14 @@ std::string quoted_path(std::string_view path) {
 
 enum class LineForm { pair, graph };  // `s t` (or `s, t`, `s; t`) and `graph s t`
 
-const char* form_text(LineForm form) { return form == LineForm::pair ? "'start goal'" : "'graph start goal'"; }
+const char* form_text(LineForm form) {
+  return form == LineForm::pair ? "'start goal'" : "'graph start goal'";
+}
 
 class QueryParser {
  public:
-  QueryParser(const std::string& file, const QueryFileOptions& options) : file_(file), options_(options) {}
+  QueryParser(const std::string& file, const QueryFileOptions& options)
+      : file_(file), options_(options) {}
 
   void parse_line(std::string_view line, std::uint64_t number, std::vector<Query>& out) {
     line_ = number;
@@ -66,13 +73,15 @@ class QueryParser {
     const auto end_column = line.size() + 1;
     const Item *graph = nullptr, *start = nullptr, *goal = nullptr;
     auto expect_field = [&](std::size_t k) -> const Item& {
-      if (k >= items_.size()) fail(end_column, std::string("missing field: expected ") + expected());
+      if (k >= items_.size())
+        fail(end_column, std::string("missing field: expected ") + expected());
       if (items_[k].separator) fail(items_[k].column, "unexpected " + quoted_field(items_[k].text));
       return items_[k];
     };
     auto expect_end = [&](std::size_t k) {
       if (k < items_.size())
-        fail(items_[k].column, "extra field " + quoted_field(items_[k].text) + ": expected " + expected());
+        fail(items_[k].column,
+             "extra field " + quoted_field(items_[k].text) + ": expected " + expected());
     };
     start = &expect_field(0);
     if (items_.size() > 1 && items_[1].separator) {
@@ -81,9 +90,11 @@ class QueryParser {
     } else {
       goal = &expect_field(1);
       if (items_.size() > 2) {
-        if (items_[2].separator) fail(items_[2].column, "unexpected " + quoted_field(items_[2].text));
+        if (items_[2].separator)
+          fail(items_[2].column, "unexpected " + quoted_field(items_[2].text));
         if (is_digits(start->text))
-          fail(items_[2].column, "extra field " + quoted_field(items_[2].text) + ": expected " + expected());
+          fail(items_[2].column,
+               "extra field " + quoted_field(items_[2].text) + ": expected " + expected());
         graph = start;
         start = goal;
         goal = &expect_field(2);
@@ -95,11 +106,12 @@ class QueryParser {
       form_ = form;
       form_line_ = number;
     } else if (*form_ != form) {
-      fail(1, std::string("a ") + form_text(form) + " line, but line " + std::to_string(form_line_) +
-                  " is " + form_text(*form_));
+      fail(1, std::string("a ") + form_text(form) + " line, but line " +
+                  std::to_string(form_line_) + " is " + form_text(*form_));
     }
     if (form == LineForm::pair && options_.match)
-      fail(1, "--match " + quoted_field(*options_.match) + " given, but the lines have no graph field");
+      fail(1, "--match " + quoted_field(*options_.match) +
+                  " given, but the lines have no graph field");
     if (graph && !select(*graph)) return;
     out.push_back({parse_id(*start), parse_id(*goal)});
   }
@@ -129,11 +141,14 @@ class QueryParser {
       graph_ = graph.text;
       graph_line_ = line_;
     } else if (graph.text != graph_) {
-      const std::string both = "(" + quoted_path(graph_) + " on line " + std::to_string(graph_line_) +
-                               ", " + quoted_path(graph.text) + " here)";
+      const std::string both = "(" + quoted_path(graph_) + " on line " +
+                               std::to_string(graph_line_) + ", " + quoted_path(graph.text) +
+                               " here)";
       if (options_.match)
-        fail(graph.column, "--match " + quoted_field(*options_.match) + " selects more than one graph " + both);
-      fail(graph.column, "the file names more than one graph " + both + ": choose one with --match TEXT");
+        fail(graph.column,
+             "--match " + quoted_field(*options_.match) + " selects more than one graph " + both);
+      fail(graph.column,
+           "the file names more than one graph " + both + ": choose one with --match TEXT");
     }
     return true;
   }
@@ -164,7 +179,8 @@ std::vector<Query> parse_queries(text::LineScanner& lines, const std::string& di
                                  const QueryFileOptions& options) {
   if (options.id_base > 1) throw Error(display_name + ": id base must be 0 or 1");
   // Ids are u32 with one value to spare (spec/FORMAT.md §4).
-  if (options.vertex_count > 0xFFFFFFFEULL) throw Error(display_name + ": vertex count exceeds 2^32-2");
+  if (options.vertex_count > 0xFFFFFFFEULL)
+    throw Error(display_name + ": vertex count exceeds 2^32-2");
   QueryParser parser(display_name, options);
   std::vector<Query> out;
   std::string_view line;
@@ -188,7 +204,8 @@ std::vector<Query> parse_query_file(std::string_view text, const std::string& di
 std::vector<Query> parse_query_file(text::TextSource& source, const std::string& display_name,
                                     const QueryFileOptions& options) {
   text::LineScanner lines(source);
-  return naming_input_on_out_of_memory(display_name, [&] { return parse_queries(lines, display_name, options); });
+  return naming_input_on_out_of_memory(display_name,
+                                       [&] { return parse_queries(lines, display_name, options); });
 }
 
 }  // namespace mosb::converters

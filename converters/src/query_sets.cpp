@@ -13,8 +13,9 @@ namespace {
 // replaced set never keeps keys of its predecessor. Listed exactly, not by prefix, because set
 // names may contain '.' (set "a" must not clear the keys of set "a.b").
 Metadata without_query_keys(const Metadata& metadata, const std::string& name) {
-  static const char* const kSuffixes[] = {"source", "input.name", "input.size", "input.xxh3", "id_base",
-                                          "match", "seed", "count", "allow_same"};
+  static const char* const kSuffixes[] = {"source",     "input.name", "input.size",
+                                          "input.xxh3", "id_base",    "match",
+                                          "seed",       "count",      "allow_same"};
   Metadata out;
   for (const auto& [key, value] : metadata.entries()) {
     bool ours = false;
@@ -26,7 +27,8 @@ Metadata without_query_keys(const Metadata& metadata, const std::string& name) {
 
 void check_new_set(const GraphReader& reader, const std::string& name, bool replace) {
   if (reader.find(format::SectionKind::queries, name) && !replace)
-    throw Error(reader.display_name() + ": query set '" + name + "' exists; pass --replace to overwrite it");
+    throw Error(reader.display_name() + ": query set '" + name +
+                "' exists; pass --replace to overwrite it");
 }
 
 unsigned instance_id_base(const GraphReader& reader) {
@@ -34,7 +36,8 @@ unsigned instance_id_base(const GraphReader& reader) {
   if (!value) return 0;  // file ids are 0-based; an instance without the key came from 0-based data
   if (*value == "0") return 0;
   if (*value == "1") return 1;
-  throw Error(reader.display_name() + ": metadata id_base '" + *value + "' is not 0 or 1; pass --id-base");
+  throw Error(reader.display_name() + ": metadata id_base '" + *value +
+              "' is not 0 or 1; pass --id-base");
 }
 
 }  // namespace
@@ -65,7 +68,8 @@ QuerySetEdit draw_query_set(const GraphReader& reader, const std::string& set,
                             const QueryDrawOptions& options, bool replace) {
   check_new_set(reader, set, replace);
   const std::uint64_t n = reader.vertex_count();
-  if (n == 0) throw Error(reader.display_name() + ": the graph has no vertices to draw queries from");
+  if (n == 0)
+    throw Error(reader.display_name() + ": the graph has no vertices to draw queries from");
   if (n == 1 && !options.allow_same)
     throw Error(reader.display_name() +
                 ": the graph has one vertex, so every query has start = goal; pass --allow-same");
@@ -79,7 +83,8 @@ QuerySetEdit draw_query_set(const GraphReader& reader, const std::string& set,
   for (std::uint64_t i = 0; i < options.count; ++i) {
     const auto start = static_cast<std::uint32_t>(random.uniform(0, n - 1));
     auto goal = static_cast<std::uint32_t>(random.uniform(0, n - 1));
-    while (!options.allow_same && goal == start) goal = static_cast<std::uint32_t>(random.uniform(0, n - 1));
+    while (!options.allow_same && goal == start)
+      goal = static_cast<std::uint32_t>(random.uniform(0, n - 1));
     pairs.push_back({start, goal});
   }
   const std::string key = "queries." + set + ".";

@@ -20,8 +20,8 @@ constexpr std::uint64_t kMaxCount = 0xFFFFFFFEULL;  // n and m are at most 2^32 
 
 using namespace text;  // the shared primitives of text_scan.hpp
 
-// Calls f(line_number, tokens, end_column) for each line: '\r' separates tokens like blanks and tabs,
-// and the end column counts every byte of the line.
+// Calls f(line_number, tokens, end_column) for each line: '\r' separates tokens like blanks and
+// tabs, and the end column counts every byte of the line.
 template <class F>
 void for_each_line(std::string_view text_in, F&& f) {
   text::LineScanner lines(text_in, text::LineEnd::keep);
@@ -37,7 +37,7 @@ void for_each_line(std::string_view text_in, F&& f) {
 std::string real_text(double value) {
   char buffer[32];
   const auto [ptr, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return std::string(buffer, ec == std::errc() ? ptr : buffer);
+  return {buffer, ec == std::errc() ? ptr : buffer};
 }
 
 // What a first pass over a .gr text finds: the `p sp n m` header and the largest vertex id.
@@ -87,10 +87,12 @@ std::vector<double> vertex_configs(const VertexFile& vf, std::uint64_t n, const 
   for (std::size_t k = 0; k < order.size(); ++k) {
     const auto id = vf.ids[order[k]];
     if (id >= n)
-      fail(file, vf.lines[order[k]], 1, "vertex id " + std::to_string(id) + " outside " + declared_range(n));
+      fail(file, vf.lines[order[k]], 1,
+           "vertex id " + std::to_string(id) + " outside " + declared_range(n));
     if (k > 0 && vf.ids[order[k - 1]] == id)
-      fail(file, vf.lines[order[k]], 1, "second line for vertex " + std::to_string(id) + " (the first is line " +
-                                               std::to_string(vf.lines[order[k - 1]]) + ")");
+      fail(file, vf.lines[order[k]], 1,
+           "second line for vertex " + std::to_string(id) + " (the first is line " +
+               std::to_string(vf.lines[order[k - 1]]) + ")");
     if (id != k) throw Error(file + ": no line for vertex " + std::to_string(k));
   }
   if (order.size() != n) throw Error(file + ": no line for vertex " + std::to_string(order.size()));
@@ -104,8 +106,9 @@ std::vector<double> vertex_configs(const VertexFile& vf, std::uint64_t n, const 
 void name_objectives(GraphInput& out, const std::vector<Objective>& names) {
   if (names.empty()) return;
   if (names.size() != out.costs.size())
-    throw Error("convert roadmap: " + std::to_string(names.size()) + " --objective names given, the input has " +
-                std::to_string(out.costs.size()) + " objectives");
+    throw Error("convert roadmap: " + std::to_string(names.size()) +
+                " --objective names given, the input has " + std::to_string(out.costs.size()) +
+                " objectives");
   for (std::size_t j = 0; j < names.size(); ++j) {
     out.costs[j].name = names[j].name;
     out.costs[j].unit = names[j].unit;
@@ -125,8 +128,8 @@ GraphInput convert_gr_files(const RoadmapOptions& o) {
     const auto& s = scans.back();
     if (i > 0 && s.header_line && scans[0].header_line && s.declared != scans[0].declared)
       fail(inputs[i].display_name, s.header_line, 1,
-              "declares " + std::to_string(s.declared) + " vertices, " + inputs[0].display_name + " declares " +
-                  std::to_string(scans[0].declared));
+           "declares " + std::to_string(s.declared) + " vertices, " + inputs[0].display_name +
+               " declares " + std::to_string(scans[0].declared));
   }
   std::optional<VertexFile> vertices;
   std::string vertex_name;
@@ -150,25 +153,30 @@ GraphInput convert_gr_files(const RoadmapOptions& o) {
       if (!s.largest || *s.largest < declared) continue;
       if (!o.vertices_from_ids)
         fail(inputs[i].display_name, s.largest_line, s.largest_column,
-                "the largest vertex id, " + std::to_string(*s.largest) + ", is outside the " +
-                    std::to_string(declared) + " vertices declared on line " + std::to_string(s.header_line) +
-                    " (0-based ids " + declared_range(declared) + ")" + kFromIdsHint);
+             "the largest vertex id, " + std::to_string(*s.largest) + ", is outside the " +
+                 std::to_string(declared) + " vertices declared on line " +
+                 std::to_string(s.header_line) + " (0-based ids " + declared_range(declared) + ")" +
+                 kFromIdsHint);
       if (*s.largest + 1 > n) {
         n = *s.largest + 1;
-        largest_file = &inputs[i].display_name, largest_line = s.largest_line, largest_column = s.largest_column;
+        largest_file = &inputs[i].display_name, largest_line = s.largest_line,
+        largest_column = s.largest_column;
       }
     }
     if (vertices && !vertices->ids.empty()) {
-      const auto at = std::max_element(vertices->ids.begin(), vertices->ids.end()) - vertices->ids.begin();
+      const auto at =
+          std::max_element(vertices->ids.begin(), vertices->ids.end()) - vertices->ids.begin();
       const auto largest = vertices->ids[static_cast<std::size_t>(at)];
       if (largest >= declared && !o.vertices_from_ids)
         fail(vertex_name, vertices->lines[static_cast<std::size_t>(at)], 1,
-                "the largest vertex id, " + std::to_string(largest) + ", is outside the " + std::to_string(declared) +
-                    " vertices declared on " + inputs[0].display_name + ":" + std::to_string(scans[0].header_line) +
-                    " (0-based ids " + declared_range(declared) + ")" + kFromIdsHint);
+             "the largest vertex id, " + std::to_string(largest) + ", is outside the " +
+                 std::to_string(declared) + " vertices declared on " + inputs[0].display_name +
+                 ":" + std::to_string(scans[0].header_line) + " (0-based ids " +
+                 declared_range(declared) + ")" + kFromIdsHint);
       if (largest + 1 > n) {
         n = largest + 1;
-        largest_file = &vertex_name, largest_line = vertices->lines[static_cast<std::size_t>(at)], largest_column = 1;
+        largest_file = &vertex_name, largest_line = vertices->lines[static_cast<std::size_t>(at)],
+        largest_column = 1;
       }
     }
     // Untrusted ids: the vertices added beyond the header must be paid for by the input's bytes, so
@@ -176,12 +184,16 @@ GraphInput convert_gr_files(const RoadmapOptions& o) {
     if (largest_file && (n > kMaxCount || n - declared > input_bytes))
       fail(*largest_file, largest_line, largest_column,
            "vertex id " + std::to_string(n - 1) + " would size the graph to " + std::to_string(n) +
-               " vertices: --vertices-from-ids adds at most as many vertices beyond the " + std::to_string(declared) +
-               " declared as the input has bytes (" + std::to_string(input_bytes) + ")");
-    if (n > kMaxCount) throw Error("convert roadmap: vertex ids reach " + std::to_string(n - 1) + ", beyond the format's limit");
+               " vertices: --vertices-from-ids adds at most as many vertices beyond the " +
+               std::to_string(declared) + " declared as the input has bytes (" +
+               std::to_string(input_bytes) + ")");
+    if (n > kMaxCount)
+      throw Error("convert roadmap: vertex ids reach " + std::to_string(n - 1) +
+                  ", beyond the format's limit");
   }
   if (n > declared) {
-    m.set("warning.vertex_count", "declared " + std::to_string(declared) + ", ids reach " + std::to_string(n - 1));
+    m.set("warning.vertex_count",
+          "declared " + std::to_string(declared) + ", ids reach " + std::to_string(n - 1));
     // The DIMACS parser sizes the graph from the header: give it the header the ids call for.
     for (std::size_t i = 0; i < inputs.size(); ++i)
       if (scans[i].header_line != 0)
@@ -208,16 +220,19 @@ GraphInput convert_gr_files(const RoadmapOptions& o) {
   }
   name_objectives(out, o.objectives);
   if (vertices) {
-    out.vertex_data.push_back(DataColumn::from("config", vertices->dof, vertex_configs(*vertices, n, vertex_name)));
+    out.vertex_data.push_back(
+        DataColumn::from("config", vertices->dof, vertex_configs(*vertices, n, vertex_name)));
     m.set("roadmap.dof", std::to_string(vertices->dof));
   }
-  m.set("benchmark", o.name ? *o.name : benchmark_name_from(inputs[0].base_name, {".gr", ".xml", ".graphml"}));
+  m.set("benchmark",
+        o.name ? *o.name : benchmark_name_from(inputs[0].base_name, {".gr", ".xml", ".graphml"}));
   m.set("source.param.vertices_from_ids", o.vertices_from_ids ? "true" : "false");
   return out;
 }
 
 // Parses a comma-separated configuration of a GraphML node.
-std::vector<double> parse_coords(const std::string& text, const std::string& file, const std::string& node) {
+std::vector<double> parse_coords(const std::string& text, const std::string& file,
+                                 const std::string& node) {
   std::vector<double> q;
   std::size_t pos = 0;
   while (true) {
@@ -227,7 +242,9 @@ std::vector<double> parse_coords(const std::string& text, const std::string& fil
     while (!part.empty() && (part.front() == ' ' || part.front() == '\t')) part.remove_prefix(1);
     while (!part.empty() && (part.back() == ' ' || part.back() == '\t')) part.remove_suffix(1);
     const auto value = to_real(part);
-    if (!value) throw Error(file + ": node " + quoted(node) + ": coords " + quoted(text) + ": expected comma-separated reals");
+    if (!value)
+      throw Error(file + ": node " + quoted(node) + ": coords " + quoted(text) +
+                  ": expected comma-separated reals");
     q.push_back(*value);
     if (end == text.size()) return q;
     pos = end + 1;
@@ -255,8 +272,9 @@ ClearanceKeys find_clearance_keys(const GraphmlGraph& g, const std::string& file
   std::sort(links.begin(), links.end());
   for (std::size_t i = 0; i < links.size(); ++i) {
     if (links[i].first != i)
-      throw Error(file + ": edge key 'clearance_" + std::to_string(links[i].first) + "' declared, 'clearance_" +
-                  std::to_string(i) + "' is missing (links are numbered 0..L-1)");
+      throw Error(file + ": edge key 'clearance_" + std::to_string(links[i].first) +
+                  "' declared, 'clearance_" + std::to_string(i) +
+                  "' is missing (links are numbered 0..L-1)");
     keys.links.push_back(links[i].second);
   }
   return keys;
@@ -271,7 +289,8 @@ GraphInput convert_graphml_file(const RoadmapOptions& o) {
   const auto g = parse_graphml(input.text, file);
 
   const auto coords_key = g.node_key("coords");
-  if (!coords_key) throw Error(file + ": no node key named 'coords' (the configurations the length needs)");
+  if (!coords_key)
+    throw Error(file + ": no node key named 'coords' (the configurations the length needs)");
   const std::size_t n = g.node_ids.size();
   std::vector<double> configs;
   std::size_t dof = 0;
@@ -281,8 +300,8 @@ GraphInput convert_graphml_file(const RoadmapOptions& o) {
     const auto q = parse_coords(*text, file, g.node_ids[v]);
     if (v == 0) dof = q.size();
     if (q.size() != dof)
-      throw Error(file + ": node " + quoted(g.node_ids[v]) + " has " + std::to_string(q.size()) + " coordinates, node " +
-                  quoted(g.node_ids[0]) + " has " + std::to_string(dof));
+      throw Error(file + ": node " + quoted(g.node_ids[v]) + " has " + std::to_string(q.size()) +
+                  " coordinates, node " + quoted(g.node_ids[0]) + " has " + std::to_string(dof));
     configs.insert(configs.end(), q.begin(), q.end());
   }
 
@@ -291,31 +310,37 @@ GraphInput convert_graphml_file(const RoadmapOptions& o) {
   if (mode == ClearanceMode::automatic)
     mode = keys.aggregate || !keys.links.empty() ? ClearanceMode::aggregate : ClearanceMode::none;
   if (o.clearance == ClearanceMode::automatic && mode == ClearanceMode::none)
-    m.set("warning.clearance", "no edge key 'clearance' or 'clearance_0'.. in " + input.base_name +
-                                   ": no clearance objective is written (--clearance none: no warning)");
+    m.set("warning.clearance",
+          "no edge key 'clearance' or 'clearance_0'.. in " + input.base_name +
+              ": no clearance objective is written (--clearance none: no warning)");
   const bool want_aggregate = mode == ClearanceMode::aggregate || mode == ClearanceMode::both;
   const bool want_links = mode == ClearanceMode::per_link || mode == ClearanceMode::both;
   if (want_aggregate && !keys.aggregate && keys.links.empty())
-    throw Error(file + ": --clearance " + clearance_mode_name(mode) + ": no edge key 'clearance' or 'clearance_0'...");
+    throw Error(file + ": --clearance " + clearance_mode_name(mode) +
+                ": no edge key 'clearance' or 'clearance_0'...");
   if (want_links && keys.links.empty())
-    throw Error(file + ": --clearance " + clearance_mode_name(mode) + ": no edge keys 'clearance_0' .. 'clearance_{L-1}'");
+    throw Error(file + ": --clearance " + clearance_mode_name(mode) +
+                ": no edge keys 'clearance_0' .. 'clearance_{L-1}'");
   const auto weight_key = g.edge_key("weight");
   if (o.weight && !weight_key) throw Error(file + ": --weight: no edge key named 'weight'");
-  if (!(o.delta > 0) || !std::isfinite(o.delta)) throw Error("convert roadmap: --delta must be a positive real");
+  if (!(o.delta > 0) || !std::isfinite(o.delta))
+    throw Error("convert roadmap: --delta must be a positive real");
 
   const auto real_of = [&](std::size_t e, std::size_t key) {
     const auto& text = g.edge_value(e, key);
     const auto& name = g.edge_keys[key].name;
     if (!text) throw Error(file + ": " + g.describe_edge(e) + " has no " + quoted(name));
     const auto value = to_real(*text);
-    if (!value) throw Error(file + ": " + g.describe_edge(e) + ": " + name + " " + quoted(*text) + " is not a finite real");
+    if (!value)
+      throw Error(file + ": " + g.describe_edge(e) + ": " + name + " " + quoted(*text) +
+                  " is not a finite real");
     return *value;
   };
   const auto clearance_of = [&](std::size_t e, std::size_t key) {
     const double d = real_of(e, key);
     if (d <= 0)
-      throw Error(file + ": " + g.describe_edge(e) + ": " + g.edge_keys[key].name + " = " + real_text(d) +
-                  " <= 0: a collision (roadmap edges must be collision-free)");
+      throw Error(file + ": " + g.describe_edge(e) + ": " + g.edge_keys[key].name + " = " +
+                  real_text(d) + " <= 0: a collision (roadmap edges must be collision-free)");
     return d;
   };
 
@@ -330,27 +355,34 @@ GraphInput convert_graphml_file(const RoadmapOptions& o) {
       squared += diff * diff;
     }
     const double len = std::sqrt(squared);
-    if (!std::isfinite(len)) throw Error(file + ": " + g.describe_edge(e) + ": the length overflows");
+    if (!std::isfinite(len))
+      throw Error(file + ": " + g.describe_edge(e) + ": the length overflows");
     std::vector<double> link_d(keys.links.size());
     if (want_links || (want_aggregate && !keys.aggregate))
-      for (std::size_t i = 0; i < keys.links.size(); ++i) link_d[i] = clearance_of(e, keys.links[i]);
+      for (std::size_t i = 0; i < keys.links.size(); ++i)
+        link_d[i] = clearance_of(e, keys.links[i]);
     double d_min = 0;
     if (want_aggregate)
-      d_min = keys.aggregate ? clearance_of(e, *keys.aggregate) : *std::min_element(link_d.begin(), link_d.end());
+      d_min = keys.aggregate ? clearance_of(e, *keys.aggregate)
+                             : *std::min_element(link_d.begin(), link_d.end());
     double w = 0;
     if (o.weight) {
       w = real_of(e, *weight_key);
-      if (w < 0) throw Error(file + ": " + g.describe_edge(e) + ": negative weight " + quoted(*g.edge_value(e, *weight_key)));
+      if (w < 0)
+        throw Error(file + ": " + g.describe_edge(e) + ": negative weight " +
+                    quoted(*g.edge_value(e, *weight_key)));
     }
     // An undirected edge is two opposite arcs with the same costs; an undirected loop is one arc.
     const int copies = edge.directed || edge.source == edge.target ? 1 : 2;
     for (int c = 0; c < copies; ++c) {
-      if (out.tails.size() >= kMaxCount) throw Error(file + ": more than " + std::to_string(kMaxCount) + " arcs");
+      if (out.tails.size() >= kMaxCount)
+        throw Error(file + ": more than " + std::to_string(kMaxCount) + " arcs");
       out.tails.push_back(c == 0 ? edge.source : edge.target);
       out.heads.push_back(c == 0 ? edge.target : edge.source);
       length.push_back(len);
       if (want_aggregate) aggregate.push_back(clearance_penalty(d_min, o.delta));
-      for (std::size_t i = 0; i < links; ++i) per_link[i].push_back(clearance_penalty(link_d[i], o.delta));
+      for (std::size_t i = 0; i < links; ++i)
+        per_link[i].push_back(clearance_penalty(link_d[i], o.delta));
       if (o.weight) weight.push_back(w);
     }
   }
@@ -359,19 +391,23 @@ GraphInput convert_graphml_file(const RoadmapOptions& o) {
   out.costs.push_back({"length", "", std::move(length), std::nullopt});
   if (want_aggregate) out.costs.push_back({"clearance", "", std::move(aggregate), std::nullopt});
   for (std::size_t i = 0; i < links; ++i)
-    out.costs.push_back({"clearance_" + std::to_string(i), "", std::move(per_link[i]), std::nullopt});
+    out.costs.push_back(
+        {"clearance_" + std::to_string(i), "", std::move(per_link[i]), std::nullopt});
   if (o.weight) out.costs.push_back({"weight", "", std::move(weight), std::nullopt});
   name_objectives(out, o.objectives);
   // The paper's views: Panda-RRG_2 is (length, aggregate penalty), Panda-RRG_8 length and 7 links.
-  if (want_aggregate) m.set("view.Panda-RRG_2.objectives", out.costs[0].name + "," + out.costs[1].name);
+  if (want_aggregate)
+    m.set("view.Panda-RRG_2.objectives", out.costs[0].name + "," + out.costs[1].name);
   if (links == 7) {
     std::string list = out.costs[0].name;
     const std::size_t first_link = want_aggregate ? 2 : 1;
     for (std::size_t i = 0; i < links; ++i) list += "," + out.costs[first_link + i].name;
     m.set("view.Panda-RRG_8.objectives", list);
   }
-  if (dof > 0) out.vertex_data.push_back(DataColumn::from("config", static_cast<std::uint32_t>(dof), configs));
-  m.set("benchmark", o.name ? *o.name : benchmark_name_from(input.base_name, {".gr", ".xml", ".graphml"}));
+  if (dof > 0)
+    out.vertex_data.push_back(DataColumn::from("config", static_cast<std::uint32_t>(dof), configs));
+  m.set("benchmark",
+        o.name ? *o.name : benchmark_name_from(input.base_name, {".gr", ".xml", ".graphml"}));
   m.set("roadmap.dof", std::to_string(dof));
   m.set("roadmap.edgedefault", g.edge_default_directed ? "directed" : "undirected");
   m.set("roadmap.edges", std::to_string(g.edges.size()));
@@ -385,19 +421,24 @@ GraphInput convert_graphml_file(const RoadmapOptions& o) {
 }  // namespace
 
 std::optional<ClearanceMode> parse_clearance_mode(std::string_view text) {
-  for (auto mode : {ClearanceMode::automatic, ClearanceMode::none, ClearanceMode::aggregate, ClearanceMode::per_link,
-                    ClearanceMode::both})
+  for (auto mode : {ClearanceMode::automatic, ClearanceMode::none, ClearanceMode::aggregate,
+                    ClearanceMode::per_link, ClearanceMode::both})
     if (text == clearance_mode_name(mode)) return mode;
   return std::nullopt;
 }
 
 const char* clearance_mode_name(ClearanceMode mode) {
   switch (mode) {
-    case ClearanceMode::automatic: return "auto";
-    case ClearanceMode::none: return "none";
-    case ClearanceMode::aggregate: return "aggregate";
-    case ClearanceMode::per_link: return "per-link";
-    case ClearanceMode::both: return "both";
+    case ClearanceMode::automatic:
+      return "auto";
+    case ClearanceMode::none:
+      return "none";
+    case ClearanceMode::aggregate:
+      return "aggregate";
+    case ClearanceMode::per_link:
+      return "per-link";
+    case ClearanceMode::both:
+      return "both";
   }
   return "?";
 }
@@ -410,29 +451,40 @@ double clearance_penalty(double d, double delta) {
 VertexFile parse_vertex_file(std::string_view text, const std::string& display_name) {
   VertexFile vf;
   std::uint64_t first_line = 0;
-  for_each_line(text, [&](std::uint64_t line, const std::vector<Token>& t, std::uint64_t end_column) {
-    if (t.empty() || t[0].text.starts_with("#")) return;
-    const auto id = to_u64(t[0].text);
-    if (!id) fail(display_name, line, t[0].column, "expected a vertex id, found " + quoted(t[0].text));
-    if (*id >= kMaxCount) fail(display_name, line, t[0].column, "vertex id " + quoted(t[0].text) + " exceeds " + std::to_string(kMaxCount - 1));
-    if (first_line == 0) {
-      if (t.size() < 2) fail(display_name, line, end_column, "missing field: a vertex line is 'id q1 .. qdof'");
-      if (t.size() - 1 > 1000) fail(display_name, line, t[1001].column, "more than 1000 coordinates");
-      vf.dof = static_cast<std::uint32_t>(t.size() - 1);
-      first_line = line;
-    } else if (t.size() - 1 != vf.dof) {
-      const std::string expected = "expected " + std::to_string(vf.dof) + " coordinates as on line " + std::to_string(first_line);
-      if (t.size() - 1 < vf.dof) fail(display_name, line, end_column, "missing field: " + expected);
-      fail(display_name, line, t[1 + vf.dof].column, "extra field " + quoted(t[1 + vf.dof].text) + ": " + expected);
-    }
-    for (std::size_t k = 1; k < t.size(); ++k) {
-      const auto value = to_real(t[k].text);
-      if (!value) fail(display_name, line, t[k].column, "expected a finite real coordinate, found " + quoted(t[k].text));
-      vf.coords.push_back(*value);
-    }
-    vf.ids.push_back(*id);
-    vf.lines.push_back(line);
-  });
+  for_each_line(
+      text, [&](std::uint64_t line, const std::vector<Token>& t, std::uint64_t end_column) {
+        if (t.empty() || t[0].text.starts_with("#")) return;
+        const auto id = to_u64(t[0].text);
+        if (!id)
+          fail(display_name, line, t[0].column, "expected a vertex id, found " + quoted(t[0].text));
+        if (*id >= kMaxCount)
+          fail(display_name, line, t[0].column,
+               "vertex id " + quoted(t[0].text) + " exceeds " + std::to_string(kMaxCount - 1));
+        if (first_line == 0) {
+          if (t.size() < 2)
+            fail(display_name, line, end_column, "missing field: a vertex line is 'id q1 .. qdof'");
+          if (t.size() - 1 > 1000)
+            fail(display_name, line, t[1001].column, "more than 1000 coordinates");
+          vf.dof = static_cast<std::uint32_t>(t.size() - 1);
+          first_line = line;
+        } else if (t.size() - 1 != vf.dof) {
+          const std::string expected = "expected " + std::to_string(vf.dof) +
+                                       " coordinates as on line " + std::to_string(first_line);
+          if (t.size() - 1 < vf.dof)
+            fail(display_name, line, end_column, "missing field: " + expected);
+          fail(display_name, line, t[1 + vf.dof].column,
+               "extra field " + quoted(t[1 + vf.dof].text) + ": " + expected);
+        }
+        for (std::size_t k = 1; k < t.size(); ++k) {
+          const auto value = to_real(t[k].text);
+          if (!value)
+            fail(display_name, line, t[k].column,
+                 "expected a finite real coordinate, found " + quoted(t[k].text));
+          vf.coords.push_back(*value);
+        }
+        vf.ids.push_back(*id);
+        vf.lines.push_back(line);
+      });
   return vf;
 }
 
@@ -440,8 +492,10 @@ GraphInput convert_roadmap(const RoadmapOptions& options) {
   const bool text = !options.gr_files.empty();
   if (text == options.graphml_file.has_value())
     throw Error("convert roadmap: give either --gr files or one --graphml file");
-  if (text && options.clearance != ClearanceMode::automatic && options.clearance != ClearanceMode::none)
-    throw Error("convert roadmap: --clearance applies to --graphml input (.gr files carry their costs)");
+  if (text && options.clearance != ClearanceMode::automatic &&
+      options.clearance != ClearanceMode::none)
+    throw Error(
+        "convert roadmap: --clearance applies to --graphml input (.gr files carry their costs)");
   if (text && options.weight) throw Error("convert roadmap: --weight applies to --graphml input");
   if (!text && (options.vertex_file || options.vertices_from_ids))
     throw Error("convert roadmap: --vertices and --vertices-from-ids apply to --gr input");

@@ -7,9 +7,9 @@
 #include <mutex>
 #include <thread>
 
+#include "mosb/atomic_file.hpp"
 #include "mosb/converters/grid_generator.hpp"
 #include "mosb/converters/netmaker_generator.hpp"
-#include "mosb/atomic_file.hpp"
 #include "mosb/error.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/random.hpp"
@@ -18,7 +18,8 @@ namespace mosb::converters {
 
 namespace {
 
-void write_manifest(const std::filesystem::path& directory, const std::vector<SuiteEntry>& entries) {
+void write_manifest(const std::filesystem::path& directory,
+                    const std::vector<SuiteEntry>& entries) {
   std::string text;
   for (const auto& e : entries)
     text += e.name + '\t' + e.file + '\t' + std::to_string(e.size) + '\t' + e.digest + '\n';
@@ -37,7 +38,8 @@ std::vector<std::uint32_t> sorted_unique(std::vector<std::uint32_t> values) {
 }  // namespace
 
 std::vector<SuiteEntry> run_suite(const std::filesystem::path& directory,
-                                  const std::vector<SuiteInstance>& instances, const SuiteOptions& options) {
+                                  const std::vector<SuiteInstance>& instances,
+                                  const SuiteOptions& options) {
   std::error_code ec;
   std::filesystem::create_directories(directory, ec);
   if (ec) throw Error(directory.string() + ": cannot create the suite directory: " + ec.message());
@@ -54,7 +56,8 @@ std::vector<SuiteEntry> run_suite(const std::filesystem::path& directory,
     for (std::size_t i = next++; i < instances.size() && !failed; i = next++) {
       try {
         const auto file = instances[i].name + ".mosb";
-        std::visit([&](const auto& graph) { write_graph(graph, directory / file); }, instances[i].build());
+        std::visit([&](const auto& graph) { write_graph(graph, directory / file); },
+                   instances[i].build());
         const auto reader = GraphReader::open(directory / file);
         entries[i] = {instances[i].name, file, reader.bytes().size(), reader.digest()};
         std::lock_guard lock(progress_mutex);
@@ -66,8 +69,10 @@ std::vector<SuiteEntry> run_suite(const std::filesystem::path& directory,
       }
     }
   };
-  unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
-  threads = static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(1, instances.size())));
+  unsigned threads =
+      options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+  threads = static_cast<unsigned>(
+      std::min<std::size_t>(threads, std::max<std::size_t>(1, instances.size())));
   {
     std::vector<std::jthread> pool;
     for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
@@ -76,7 +81,8 @@ std::vector<SuiteEntry> run_suite(const std::filesystem::path& directory,
   for (const auto& e : errors)
     if (e) std::rethrow_exception(e);
 
-  std::sort(entries.begin(), entries.end(), [](const SuiteEntry& a, const SuiteEntry& b) { return a.name < b.name; });
+  std::sort(entries.begin(), entries.end(),
+            [](const SuiteEntry& a, const SuiteEntry& b) { return a.name < b.name; });
   write_manifest(directory, entries);
   return entries;
 }
@@ -85,18 +91,23 @@ std::uint64_t suite_instance_seed(std::uint64_t suite_seed, std::uint64_t key) {
   return SplitMix64::mix(suite_seed + 0x9E3779B97F4A7C15ULL * key);
 }
 
-std::vector<std::uint32_t> paper_grid_sizes() { return {300, 350, 400, 450, 500, 550, 600}; }
-std::vector<std::uint32_t> paper_netmaker_vertex_counts() { return {10000, 20000, 30000}; }
+std::vector<std::uint32_t> paper_grid_sizes() {
+  return {300, 350, 400, 450, 500, 550, 600};
+}
+std::vector<std::uint32_t> paper_netmaker_vertex_counts() {
+  return {10000, 20000, 30000};
+}
 
-std::vector<SuiteInstance> grid_suite(std::uint64_t suite_seed, const std::vector<std::uint32_t>& sizes) {
+std::vector<SuiteInstance> grid_suite(std::uint64_t suite_seed,
+                                      const std::vector<std::uint32_t>& sizes) {
   std::vector<SuiteInstance> out;
   const auto unique = sorted_unique(sizes);
   for (auto width : unique)
     for (auto height : unique) {
       if (width < 1 || height < 1 || width >= (1u << 20) || height >= (1u << 20))
         throw Error("grid suite: sizes must be 1 to 2^20 - 1");
-      const GridParameters p{width, height, 3,
-                             suite_instance_seed(suite_seed, (std::uint64_t{width} << 20) + height)};
+      const GridParameters p{
+          width, height, 3, suite_instance_seed(suite_seed, (std::uint64_t{width} << 20) + height)};
       out.push_back({"Grid-" + std::to_string(width) + "x" + std::to_string(height),
                      [p] { return grid_graph(p); }});
     }
@@ -115,7 +126,8 @@ std::vector<SuiteInstance> netmaker_suite(std::uint64_t suite_seed,
         p.amax = 10;
         p.locality = locality;
         p.seed = suite_instance_seed(suite_seed, ((std::uint64_t{n} << 16) + locality) * 4 + r);
-        p.name = "NetMaker-N" + std::to_string(n) + "-I" + std::to_string(locality) + "-" + std::to_string(r);
+        p.name = "NetMaker-N" + std::to_string(n) + "-I" + std::to_string(locality) + "-" +
+                 std::to_string(r);
         out.push_back({*p.name, [p] { return generate_netmaker(p); }});
       }
   return out;

@@ -39,8 +39,8 @@ class Codec {
   // Decodes from `in` into `out`, setting what it consumed and produced; true when a stream
   // (gzip member, bzip2 stream, zstd frame; for xz all of them) has ended. `last` says that `in`
   // reaches the end of the file. Throws std::runtime_error with the library's words on bad data.
-  virtual bool step(const char* in, std::size_t in_size, bool last, std::size_t& consumed, char* out,
-                    std::size_t out_size, std::size_t& produced) = 0;
+  virtual bool step(const char* in, std::size_t in_size, bool last, std::size_t& consumed,
+                    char* out, std::size_t out_size, std::size_t& produced) = 0;
   // Ready for a further concatenated stream.
   virtual void reset() = 0;
 };
@@ -53,8 +53,8 @@ class GzipCodec final : public Codec {
     if (inflateInit2(&z_, 16 + MAX_WBITS) != Z_OK) throw std::bad_alloc();
   }
   ~GzipCodec() override { inflateEnd(&z_); }
-  bool step(const char* in, std::size_t in_size, bool, std::size_t& consumed, char* out, std::size_t out_size,
-            std::size_t& produced) override {
+  bool step(const char* in, std::size_t in_size, bool, std::size_t& consumed, char* out,
+            std::size_t out_size, std::size_t& produced) override {
     z_.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(in));
     z_.avail_in = static_cast<uInt>(std::min(in_size, kStepInput));
     z_.next_out = reinterpret_cast<Bytef*>(out);
@@ -78,8 +78,8 @@ class Bzip2Codec final : public Codec {
  public:
   Bzip2Codec() { init(); }
   ~Bzip2Codec() override { BZ2_bzDecompressEnd(&s_); }
-  bool step(const char* in, std::size_t in_size, bool, std::size_t& consumed, char* out, std::size_t out_size,
-            std::size_t& produced) override {
+  bool step(const char* in, std::size_t in_size, bool, std::size_t& consumed, char* out,
+            std::size_t out_size, std::size_t& produced) override {
     s_.next_in = const_cast<char*>(in);
     s_.avail_in = static_cast<unsigned>(std::min(in_size, kStepInput));
     s_.next_out = out;
@@ -112,8 +112,8 @@ class XzCodec final : public Codec {
  public:
   XzCodec() { init(); }
   ~XzCodec() override { lzma_end(&s_); }
-  bool step(const char* in, std::size_t in_size, bool last, std::size_t& consumed, char* out, std::size_t out_size,
-            std::size_t& produced) override {
+  bool step(const char* in, std::size_t in_size, bool last, std::size_t& consumed, char* out,
+            std::size_t out_size, std::size_t& produced) override {
     s_.next_in = reinterpret_cast<const std::uint8_t*>(in);
     s_.avail_in = in_size;
     s_.next_out = reinterpret_cast<std::uint8_t*>(out);
@@ -125,8 +125,9 @@ class XzCodec final : public Codec {
     if (r == LZMA_OK || r == LZMA_BUF_ERROR) return false;
     if (r == LZMA_MEM_ERROR) throw std::bad_alloc();
     throw std::runtime_error(r == LZMA_FORMAT_ERROR ? "not xz data"
-                             : r == LZMA_DATA_ERROR ? "data error"
-                                                    : "xz error " + std::to_string(static_cast<int>(r)));
+                             : r == LZMA_DATA_ERROR
+                                 ? "data error"
+                                 : "xz error " + std::to_string(static_cast<int>(r)));
   }
   void reset() override {
     lzma_end(&s_);
@@ -148,8 +149,8 @@ class ZstdCodec final : public Codec {
     if (d_ == nullptr) throw std::bad_alloc();
   }
   ~ZstdCodec() override { ZSTD_freeDStream(d_); }
-  bool step(const char* in, std::size_t in_size, bool, std::size_t& consumed, char* out, std::size_t out_size,
-            std::size_t& produced) override {
+  bool step(const char* in, std::size_t in_size, bool, std::size_t& consumed, char* out,
+            std::size_t out_size, std::size_t& produced) override {
     ZSTD_inBuffer input{in, in_size, 0};
     ZSTD_outBuffer output{out, out_size, 0};
     const std::size_t r = ZSTD_decompressStream(d_, &output, &input);
@@ -169,11 +170,16 @@ class ZstdCodec final : public Codec {
 
 std::unique_ptr<Codec> make_codec(Compression c) {
   switch (c) {
-    case Compression::gzip: return std::make_unique<GzipCodec>();
-    case Compression::bzip2: return std::make_unique<Bzip2Codec>();
-    case Compression::xz: return std::make_unique<XzCodec>();
-    case Compression::zstd: return std::make_unique<ZstdCodec>();
-    case Compression::none: break;
+    case Compression::gzip:
+      return std::make_unique<GzipCodec>();
+    case Compression::bzip2:
+      return std::make_unique<Bzip2Codec>();
+    case Compression::xz:
+      return std::make_unique<XzCodec>();
+    case Compression::zstd:
+      return std::make_unique<ZstdCodec>();
+    case Compression::none:
+      break;
   }
   return nullptr;
 }
@@ -192,11 +198,16 @@ Compression detect_compression(std::string_view raw) {
 
 const char* compression_name(Compression c) {
   switch (c) {
-    case Compression::none: return "none";
-    case Compression::gzip: return "gzip";
-    case Compression::bzip2: return "bzip2";
-    case Compression::xz: return "xz";
-    case Compression::zstd: return "zstd";
+    case Compression::none:
+      return "none";
+    case Compression::gzip:
+      return "gzip";
+    case Compression::bzip2:
+      return "bzip2";
+    case Compression::xz:
+      return "xz";
+    case Compression::zstd:
+      return "zstd";
   }
   return "unknown";
 }
@@ -229,8 +240,9 @@ struct InputFile::Stream {
       std::size_t consumed = 0, produced = 0;
       bool ended = false;
       try {
-        ended = codec->step(raw.data() + raw_pos, raw.size() - raw_pos, true, consumed,
-                            buffer.data() + filled + added, buffer.size() - filled - added, produced);
+        ended =
+            codec->step(raw.data() + raw_pos, raw.size() - raw_pos, true, consumed,
+                        buffer.data() + filled + added, buffer.size() - filled - added, produced);
       } catch (const std::runtime_error& e) {
         throw Error(facts.display_name + ": corrupt " + format + " data (" + e.what() +
                     "): the file is truncated or corrupt");
@@ -238,15 +250,18 @@ struct InputFile::Stream {
       raw_pos += consumed;
       added += produced;
       if (ended) {
-        if (raw_pos == raw.size()) decoded_all = true;
-        else codec->reset();  // a further concatenated stream follows
+        if (raw_pos == raw.size())
+          decoded_all = true;
+        else
+          codec->reset();  // a further concatenated stream follows
         continue;
       }
       if (consumed == 0 && produced == 0) {
         if (raw_pos == raw.size())
           throw Error(facts.display_name + ": the " + format +
                       " data ends before its end marker: the file is truncated or corrupt");
-        throw Error(facts.display_name + ": corrupt " + format + " data: the file is truncated or corrupt");
+        throw Error(facts.display_name + ": corrupt " + format +
+                    " data: the file is truncated or corrupt");
       }
     }
     return added;
@@ -266,7 +281,8 @@ InputFile::InputFile(const std::filesystem::path& path) : stream_(std::make_uniq
       mapped = true;
     } else {
       // MAP_POPULATE faults the pages in at once, much cheaper than one fault per page.
-      void* p = ::mmap(nullptr, static_cast<std::size_t>(st.st_size), PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
+      void* p = ::mmap(nullptr, static_cast<std::size_t>(st.st_size), PROT_READ,
+                       MAP_PRIVATE | MAP_POPULATE, fd, 0);
       if (p != MAP_FAILED) {
         s.mapping = p;
         s.mapped_size = static_cast<std::size_t>(st.st_size);
@@ -330,7 +346,8 @@ bool InputFile::next_chunk(std::string_view& chunk) {
   s.filled -= s.delivered;
   s.delivered = 0;
   for (;;) {
-    if (s.filled == s.buffer.size()) s.buffer.resize(2 * s.buffer.size());  // a line longer than the buffer
+    if (s.filled == s.buffer.size())
+      s.buffer.resize(2 * s.buffer.size());  // a line longer than the buffer
     const std::size_t before = s.filled;
     const std::size_t added = s.decode(facts_);
     s.filled += added;
@@ -366,10 +383,12 @@ void record_input(Metadata& metadata, std::size_t index, const InputFacts& input
   metadata.set(key + ".xxh3", input.raw_xxh3);
 }
 
-std::string benchmark_name_from(std::string base, std::initializer_list<std::string_view> extensions) {
+std::string benchmark_name_from(std::string base,
+                                std::initializer_list<std::string_view> extensions) {
   // Each suffix in turn, so "bw.fmi.txt" with {".txt", ".fmi"} gives "bw".
   auto strip = [&](std::string_view ext) {
-    if (base.size() > ext.size() && std::string_view(base).ends_with(ext)) base.resize(base.size() - ext.size());
+    if (base.size() > ext.size() && std::string_view(base).ends_with(ext))
+      base.resize(base.size() - ext.size());
   };
   for (std::string_view compression : {".gz", ".bz2", ".xz", ".zst", ".zstd"}) strip(compression);
   for (auto ext : extensions) strip(ext);

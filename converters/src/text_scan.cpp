@@ -55,7 +55,8 @@ std::string quoted(std::string_view token, std::size_t limit) {
   return out + "'";
 }
 
-void fail(const std::string& file, std::uint64_t line, std::uint64_t column, const std::string& message) {
+void fail(const std::string& file, std::uint64_t line, std::uint64_t column,
+          const std::string& message) {
   throw Error(file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " + message);
 }
 
@@ -87,7 +88,8 @@ std::optional<double> to_real(std::string_view s) {
   // from_chars alone would also take "inf", "nan" and (with chars_format::hex) hex digits.
   if (s.find_first_not_of("0123456789.eE+-") != std::string_view::npos) return std::nullopt;
   double value = 0;
-  const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), value, std::chars_format::general);
+  const auto [ptr, ec] =
+      std::from_chars(s.data(), s.data() + s.size(), value, std::chars_format::general);
   if (ec != std::errc() || ptr != s.data() + s.size() || !std::isfinite(value)) return std::nullopt;
   return value;
 }

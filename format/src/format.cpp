@@ -14,32 +14,52 @@ std::optional<SectionKind> section_kind_from(std::uint16_t raw) {
 
 std::string_view to_string(ElementType t) {
   switch (t) {
-    case ElementType::u8: return "u8";
-    case ElementType::u16: return "u16";
-    case ElementType::u32: return "u32";
-    case ElementType::u64: return "u64";
-    case ElementType::i8: return "i8";
-    case ElementType::i16: return "i16";
-    case ElementType::i32: return "i32";
-    case ElementType::i64: return "i64";
-    case ElementType::f32: return "f32";
-    case ElementType::f64: return "f64";
+    case ElementType::u8:
+      return "u8";
+    case ElementType::u16:
+      return "u16";
+    case ElementType::u32:
+      return "u32";
+    case ElementType::u64:
+      return "u64";
+    case ElementType::i8:
+      return "i8";
+    case ElementType::i16:
+      return "i16";
+    case ElementType::i32:
+      return "i32";
+    case ElementType::i64:
+      return "i64";
+    case ElementType::f32:
+      return "f32";
+    case ElementType::f64:
+      return "f64";
   }
   return "?";
 }
 
 std::string_view to_string(SectionKind k) {
   switch (k) {
-    case SectionKind::metadata: return "metadata";
-    case SectionKind::forward_offsets: return "forward_offsets";
-    case SectionKind::forward_targets: return "forward_targets";
-    case SectionKind::reverse_offsets: return "reverse_offsets";
-    case SectionKind::reverse_sources: return "reverse_sources";
-    case SectionKind::reverse_arcs: return "reverse_arcs";
-    case SectionKind::cost: return "cost";
-    case SectionKind::vertex_data: return "vertex_data";
-    case SectionKind::arc_data: return "arc_data";
-    case SectionKind::queries: return "queries";
+    case SectionKind::metadata:
+      return "metadata";
+    case SectionKind::forward_offsets:
+      return "forward_offsets";
+    case SectionKind::forward_targets:
+      return "forward_targets";
+    case SectionKind::reverse_offsets:
+      return "reverse_offsets";
+    case SectionKind::reverse_sources:
+      return "reverse_sources";
+    case SectionKind::reverse_arcs:
+      return "reverse_arcs";
+    case SectionKind::cost:
+      return "cost";
+    case SectionKind::vertex_data:
+      return "vertex_data";
+    case SectionKind::arc_data:
+      return "arc_data";
+    case SectionKind::queries:
+      return "queries";
   }
   return "?";
 }

@@ -21,6 +21,7 @@
 #ifndef MOSB_H
 #define MOSB_H
 
+/* A C header: C++ modernizations do not apply. NOLINTBEGIN(modernize-*) */
 #include <stddef.h>
 #include <stdint.h>
 
@@ -44,9 +45,16 @@ typedef enum mosb_status {
 
 /* The element type of a column; the values are those of the file format (spec/FORMAT.md §6). */
 typedef enum mosb_element_type {
-  MOSB_U8 = 1, MOSB_U16 = 2, MOSB_U32 = 3, MOSB_U64 = 4,
-  MOSB_I8 = 5, MOSB_I16 = 6, MOSB_I32 = 7, MOSB_I64 = 8,
-  MOSB_F32 = 9, MOSB_F64 = 10
+  MOSB_U8 = 1,
+  MOSB_U16 = 2,
+  MOSB_U32 = 3,
+  MOSB_U64 = 4,
+  MOSB_I8 = 5,
+  MOSB_I16 = 6,
+  MOSB_I32 = 7,
+  MOSB_I64 = 8,
+  MOSB_F32 = 9,
+  MOSB_F64 = 10
 } mosb_element_type;
 
 /* How much of the file mosb_verify (and mosb_open_verified) reads: the header only; every
@@ -89,8 +97,7 @@ mosb_status mosb_objective_count(const mosb_graph* graph, size_t* count);
 /* NUL-terminated names; the unit is "" when the file gives none. */
 mosb_status mosb_objective_name(const mosb_graph* graph, size_t objective, const char** name);
 mosb_status mosb_objective_unit(const mosb_graph* graph, size_t objective, const char** unit);
-mosb_status mosb_objective_type(const mosb_graph* graph, size_t objective,
-                                mosb_element_type* type);
+mosb_status mosb_objective_type(const mosb_graph* graph, size_t objective, mosb_element_type* type);
 /* The index of the objective named `name`; MOSB_ERROR_NOT_FOUND when there is none. */
 mosb_status mosb_find_objective(const mosb_graph* graph, const char* name, size_t* objective);
 /* Cost column `objective` in its stored type (*type), arc_count values, zero-copy: cast *values
@@ -129,4 +136,5 @@ mosb_status mosb_digest(const mosb_graph* graph, const char** digest);
 }
 #endif
 
+/* NOLINTEND(modernize-*) */
 #endif /* MOSB_H */

@@ -1,7 +1,6 @@
 #include "mosb/atomic_file.hpp"
 
 #include <fcntl.h>
-#include <signal.h>
 #include <sys/random.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -10,6 +9,7 @@
 #include <atomic>
 #include <cerrno>
 #include <climits>
+#include <csignal>
 #include <cstring>
 #include <mutex>
 #include <optional>
@@ -85,7 +85,8 @@ class SignalsBlocked {
   sigset_t saved_;
 };
 
-// --- Temporary names ------------------------------------------------------------------------------
+// --- Temporary names
+// ------------------------------------------------------------------------------
 // `.NAME.tmp-PID-XXXXXX`; NAME is cut so the whole name fits NAME_MAX (255) bytes.
 
 std::string temporary_prefix(const std::string& file_name) {
@@ -113,7 +114,8 @@ std::optional<pid_t> temporary_pid(const std::string& name, const std::string& p
   if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) return {};
   const std::string rest = name.substr(prefix.size());
   const auto dash = rest.find('-');
-  if (dash == 0 || dash == std::string::npos || dash > 10 || rest.size() - dash - 1 != kSuffixLength)
+  if (dash == 0 || dash == std::string::npos || dash > 10 ||
+      rest.size() - dash - 1 != kSuffixLength)
     return {};
   long long pid = 0;
   for (std::size_t i = 0; i < dash; ++i) {
@@ -146,11 +148,14 @@ void remove_stale_temporaries(const std::filesystem::path& directory, const std:
   }
 }
 
-std::string errno_text() { return std::strerror(errno); }
+std::string errno_text() {
+  return std::strerror(errno);
+}
 
 }  // namespace
 
-AtomicFile::AtomicFile(std::filesystem::path target, Existing existing) : target_(std::move(target)) {
+AtomicFile::AtomicFile(std::filesystem::path target, Existing existing)
+    : target_(std::move(target)) {
   const std::string shown = target_.string();
   struct stat existing_stat {};
   if (existing == Existing::rewrite_in_place) {
@@ -159,9 +164,11 @@ AtomicFile::AtomicFile(std::filesystem::path target, Existing existing) : target
     if (ec) throw Error(shown + ": cannot rewrite in place: " + ec.message());
     if (::stat(resolved.c_str(), &existing_stat) != 0)
       throw Error(shown + ": cannot rewrite in place: " + errno_text());
-    if (!S_ISREG(existing_stat.st_mode)) throw Error(shown + ": cannot rewrite in place: not a regular file");
+    if (!S_ISREG(existing_stat.st_mode))
+      throw Error(shown + ": cannot rewrite in place: not a regular file");
     // Mode bits as well as access(): a privileged process passes access() on a read-only file.
-    if ((existing_stat.st_mode & 0222) == 0 || ::faccessat(AT_FDCWD, resolved.c_str(), W_OK, AT_EACCESS) != 0)
+    if ((existing_stat.st_mode & 0222) == 0 ||
+        ::faccessat(AT_FDCWD, resolved.c_str(), W_OK, AT_EACCESS) != 0)
       throw Error(shown + ": the file is read-only; not rewritten (make it writable first)");
     if (existing_stat.st_nlink > 1)
       throw Error(shown + ": the file has " + std::to_string(existing_stat.st_nlink) +
@@ -190,12 +197,14 @@ AtomicFile::AtomicFile(std::filesystem::path target, Existing existing) : target
     }
   }
   if (fd_ < 0)
-    throw Error(shown + ": cannot create a temporary file in '" + directory.string() + "': " + errno_text());
+    throw Error(shown + ": cannot create a temporary file in '" + directory.string() +
+                "': " + errno_text());
   if (existing == Existing::rewrite_in_place) {
     // Owner and group first (chown clears set-id bits), then the mode; before any data is written.
     if (::fchown(fd_, existing_stat.st_uid, existing_stat.st_gid) != 0)
       (void)!::fchown(fd_, static_cast<uid_t>(-1), existing_stat.st_gid);
-    if (::fchmod(fd_, existing_stat.st_mode & 07777) != 0) fail("cannot set the file mode: " + errno_text());
+    if (::fchmod(fd_, existing_stat.st_mode & 07777) != 0)
+      fail("cannot set the file mode: " + errno_text());
   }
 }
 
@@ -208,7 +217,9 @@ AtomicFile::~AtomicFile() {
   }
 }
 
-void AtomicFile::fail(const std::string& what) const { throw Error(target_.string() + ": " + what); }
+void AtomicFile::fail(const std::string& what) const {
+  throw Error(target_.string() + ": " + what);
+}
 
 void AtomicFile::write(const void* data, std::size_t size) {
   const auto* bytes = static_cast<const char*>(data);
@@ -256,7 +267,8 @@ void set_stale_temporary_handler(std::function<void(const std::filesystem::path&
 void remove_temporaries_on_signals() {
   for (int signal_number : {SIGINT, SIGTERM}) {
     struct sigaction current {};
-    if (::sigaction(signal_number, nullptr, &current) != 0 || current.sa_handler == SIG_IGN) continue;
+    if (::sigaction(signal_number, nullptr, &current) != 0 || current.sa_handler == SIG_IGN)
+      continue;
     struct sigaction action {};
     action.sa_handler = remove_temporaries_and_reraise;
     ::sigemptyset(&action.sa_mask);

@@ -1,13 +1,12 @@
 // The C ABI of mosb.h over GraphReader: every entry point catches, records the message per thread
 // and returns a status; outputs are written only on success.
-#include "mosb.h"
-
 #include <cstring>
 #include <mutex>
 #include <new>
 #include <string>
 #include <vector>
 
+#include "mosb.h"
 #include "mosb/graph_reader.hpp"
 #include "mosb/verify.hpp"
 #include "mosb/version.hpp"
@@ -31,14 +30,22 @@ thread_local std::string last_error;
 
 mosb_status status_of(mosb::ErrorCode code) {
   switch (code) {
-    case mosb::ErrorCode::other: return MOSB_ERROR_OTHER;
-    case mosb::ErrorCode::io: return MOSB_ERROR_IO;
-    case mosb::ErrorCode::not_mosb: return MOSB_ERROR_NOT_MOSB;
-    case mosb::ErrorCode::version: return MOSB_ERROR_VERSION;
-    case mosb::ErrorCode::damaged: return MOSB_ERROR_DAMAGED;
-    case mosb::ErrorCode::not_found: return MOSB_ERROR_NOT_FOUND;
-    case mosb::ErrorCode::invalid_argument: return MOSB_ERROR_INVALID_ARGUMENT;
-    case mosb::ErrorCode::packed: return MOSB_ERROR_PACKED;
+    case mosb::ErrorCode::other:
+      return MOSB_ERROR_OTHER;
+    case mosb::ErrorCode::io:
+      return MOSB_ERROR_IO;
+    case mosb::ErrorCode::not_mosb:
+      return MOSB_ERROR_NOT_MOSB;
+    case mosb::ErrorCode::version:
+      return MOSB_ERROR_VERSION;
+    case mosb::ErrorCode::damaged:
+      return MOSB_ERROR_DAMAGED;
+    case mosb::ErrorCode::not_found:
+      return MOSB_ERROR_NOT_FOUND;
+    case mosb::ErrorCode::invalid_argument:
+      return MOSB_ERROR_INVALID_ARGUMENT;
+    case mosb::ErrorCode::packed:
+      return MOSB_ERROR_PACKED;
   }
   return MOSB_ERROR_OTHER;
 }
@@ -97,10 +104,14 @@ mosb_graph& described(const mosb_graph* graph) {
 
 mosb::VerifyLevel level_of(mosb_verify_level level) {
   switch (level) {
-    case MOSB_VERIFY_HEADER: return mosb::VerifyLevel::header;
-    case MOSB_VERIFY_CHECKSUMS: return mosb::VerifyLevel::checksums;
-    case MOSB_VERIFY_STRUCTURE: return mosb::VerifyLevel::structure;
-    case MOSB_VERIFY_FULL: return mosb::VerifyLevel::full;
+    case MOSB_VERIFY_HEADER:
+      return mosb::VerifyLevel::header;
+    case MOSB_VERIFY_CHECKSUMS:
+      return mosb::VerifyLevel::checksums;
+    case MOSB_VERIFY_STRUCTURE:
+      return mosb::VerifyLevel::structure;
+    case MOSB_VERIFY_FULL:
+      return mosb::VerifyLevel::full;
   }
   throw mosb::Error(mosb::ErrorCode::invalid_argument,
                     "unknown verify level " + std::to_string(static_cast<int>(level)));
@@ -123,9 +134,13 @@ const mosb::View& view_named(const mosb_graph& g, const char* name) {
 
 extern "C" {
 
-const char* mosb_version(void) { return mosb::version(); }
+const char* mosb_version(void) {
+  return mosb::version();
+}
 
-const char* mosb_last_error(void) { return last_error.c_str(); }
+const char* mosb_last_error(void) {
+  return last_error.c_str();
+}
 
 mosb_status mosb_open(const char* path, mosb_graph** graph) {
   return guarded([&] {
@@ -146,7 +161,9 @@ mosb_status mosb_open_verified(const char* path, mosb_verify_level level, mosb_g
   });
 }
 
-void mosb_close(mosb_graph* graph) { delete graph; }
+void mosb_close(mosb_graph* graph) {
+  delete graph;
+}
 
 mosb_status mosb_verify(const mosb_graph* graph, mosb_verify_level level) {
   return guarded([&] { verify(checked(graph), level); });
@@ -246,8 +263,8 @@ mosb_status mosb_cost(const mosb_graph* graph, size_t objective, mosb_element_ty
     const auto& g = checked(graph);
     require(type, "the output type");
     require(values, "the output values");
-    const void* data = g.reader.visit_cost(
-        objective, [](auto column) -> const void* { return column.data(); });
+    const void* data =
+        g.reader.visit_cost(objective, [](auto column) -> const void* { return column.data(); });
     *type = static_cast<mosb_element_type>(g.reader.objective(objective).type);
     *values = data;
   });

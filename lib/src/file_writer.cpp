@@ -1,11 +1,10 @@
 #include "mosb/file_writer.hpp"
 
-#include "xxh3.hpp"
-
 #include <algorithm>
 
 #include "mosb/error.hpp"
 #include "mosb/metadata.hpp"
+#include "xxh3.hpp"
 
 namespace mosb {
 
@@ -23,7 +22,9 @@ FileWriter::FileWriter(std::filesystem::path target, AtomicFile::Existing existi
   write_at_end(zeros, sizeof zeros);
 }
 
-FileWriter::~FileWriter() { XXH3_freeState(hash_state_); }
+FileWriter::~FileWriter() {
+  XXH3_freeState(hash_state_);
+}
 
 void FileWriter::fail(const std::string& what) const {
   throw Error(file_.target().string() + ": " + what);
@@ -104,9 +105,10 @@ void FileWriter::commit(std::uint64_t vertex_count, std::uint64_t arc_count) {
   header.table_offset = position_;
   header.section_count = static_cast<std::uint32_t>(table_.size());
   header.file_size = position_ + table_.size() * sizeof(format::SectionEntry);
-  header.objective_count = static_cast<std::uint32_t>(std::count_if(
-      table_.begin(), table_.end(),
-      [](const auto& e) { return e.kind == static_cast<std::uint16_t>(format::SectionKind::cost); }));
+  header.objective_count =
+      static_cast<std::uint32_t>(std::count_if(table_.begin(), table_.end(), [](const auto& e) {
+        return e.kind == static_cast<std::uint16_t>(format::SectionKind::cost);
+      }));
   header.vertex_count = vertex_count;
   header.arc_count = arc_count;
 

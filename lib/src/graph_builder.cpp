@@ -109,8 +109,9 @@ void check_input(const GraphInput& in) {
   const std::uint64_t n = in.vertex_count;
   const std::uint64_t m = in.tails.size();
   check_counts(n, m);
-  if (in.heads.size() != m) throw Error("arc list has " + std::to_string(m) + " tails but " +
-                                        std::to_string(in.heads.size()) + " heads");
+  if (in.heads.size() != m)
+    throw Error("arc list has " + std::to_string(m) + " tails but " +
+                std::to_string(in.heads.size()) + " heads");
   for (std::uint64_t a = 0; a < m; ++a)
     if (in.tails[a] >= n || in.heads[a] >= n)
       throw Error("arc " + std::to_string(a) + " (" + std::to_string(in.tails[a]) + " -> " +
@@ -122,8 +123,9 @@ void check_input(const GraphInput& in) {
   check_unique_names("query set", in.queries);
   for (const auto& c : in.costs) {
     auto size = std::visit([](const auto& v) { return v.size(); }, c.values);
-    if (size != m) throw Error("objective '" + c.name + "' has " + std::to_string(size) +
-                               " costs for " + std::to_string(m) + " arcs");
+    if (size != m)
+      throw Error("objective '" + c.name + "' has " + std::to_string(size) + " costs for " +
+                  std::to_string(m) + " arcs");
   }
   auto check_rows = [](const DataColumn& d, std::uint64_t rows, std::string_view per) {
     const std::uint64_t row_bytes = d.width * format::element_size(d.type);
@@ -135,7 +137,6 @@ void check_input(const GraphInput& in) {
   for (const auto& d : in.arc_data) check_rows(d, m, "arc");
   check_queries(in.queries, n);
 }
-
 
 ElementType narrowest_unsigned(std::uint64_t max) {
   if (max <= std::numeric_limits<std::uint8_t>::max()) return ElementType::u8;
@@ -226,7 +227,8 @@ class PassCounter {
 };
 
 template <class Out>
-void write_streamed_cost(FileWriter& writer, const StreamedGraph::Costs& costs, PassCounter& counter) {
+void write_streamed_cost(FileWriter& writer, const StreamedGraph::Costs& costs,
+                         PassCounter& counter) {
   ChunkedAppender<Out> out(writer);
   costs.replay([&](std::uint64_t value) {
     out.push(static_cast<Out>(value));
@@ -260,13 +262,15 @@ format::ElementType choose_cost_type(const CostColumn& column) {
         if constexpr (std::is_floating_point_v<In>) {
           return first_misfit<float>(values) ? ElementType::f64 : ElementType::f32;
         } else {
-          return narrowest_unsigned(values.empty() ? 0 : *std::max_element(values.begin(), values.end()));
+          return narrowest_unsigned(
+              values.empty() ? 0 : *std::max_element(values.begin(), values.end()));
         }
       },
       column.values);
 }
 
-void write_graph(const GraphInput& in, const std::filesystem::path& path, const Progress& progress) {
+void write_graph(const GraphInput& in, const std::filesystem::path& path,
+                 const Progress& progress) {
   check_input(in);
   const std::uint64_t n = in.vertex_count;
   const std::size_t m = in.tails.size();
@@ -307,13 +311,16 @@ void write_graph(const GraphInput& in, const std::filesystem::path& path, const 
 
   FileWriter writer(path);
   add_metadata_section(writer, metadata);
-  writer.add_section(SectionKind::forward_offsets, "forward_offsets", 1, std::span<const std::uint64_t>(offsets));
-  writer.add_section(SectionKind::forward_targets, "forward_targets", 1, std::span<const std::uint32_t>(targets));
+  writer.add_section(SectionKind::forward_offsets, "forward_offsets", 1,
+                     std::span<const std::uint64_t>(offsets));
+  writer.add_section(SectionKind::forward_targets, "forward_targets", 1,
+                     std::span<const std::uint32_t>(targets));
   writer.add_section(SectionKind::reverse_offsets, "reverse_offsets", 1,
                      std::span<const std::uint64_t>(reverse_offsets));
   writer.add_section(SectionKind::reverse_sources, "reverse_sources", 1,
                      std::span<const std::uint32_t>(reverse_sources));
-  writer.add_section(SectionKind::reverse_arcs, "reverse_arcs", 1, std::span<const std::uint32_t>(reverse_arcs));
+  writer.add_section(SectionKind::reverse_arcs, "reverse_arcs", 1,
+                     std::span<const std::uint32_t>(reverse_arcs));
   for (std::size_t i = 0; i < in.costs.size(); ++i) {
     writer.begin_section(SectionKind::cost, in.costs[i].name, cost_types[i], 1);
     std::visit([&](const auto& values) { write_cost(writer, cost_types[i], values, order); },
@@ -338,7 +345,8 @@ void write_graph(const GraphInput& in, const std::filesystem::path& path, const 
   report(progress, "write", section_total, section_total);
 }
 
-void write_graph(const StreamedGraph& in, const std::filesystem::path& path, const Progress& progress) {
+void write_graph(const StreamedGraph& in, const std::filesystem::path& path,
+                 const Progress& progress) {
   const std::uint64_t n = in.vertex_count;
   const std::uint64_t m = in.arc_count;
   check_counts(n, m);
@@ -362,13 +370,16 @@ void write_graph(const StreamedGraph& in, const std::filesystem::path& path, con
                     std::to_string(n));
       if (tail + std::uint64_t{1} < emitted)
         throw Error("internal error: streamed arc " + std::to_string(arcs) + " breaks tail order");
-      if (arcs == m) throw Error("internal error: more streamed arcs than the " + std::to_string(m) + " declared");
+      if (arcs == m)
+        throw Error("internal error: more streamed arcs than the " + std::to_string(m) +
+                    " declared");
       for (; emitted <= tail; ++emitted) out.push(arcs);
       ++arcs;
       counter.tick();
     });
     if (arcs != m)
-      throw Error("internal error: " + std::to_string(arcs) + " streamed arcs, " + std::to_string(m) + " declared");
+      throw Error("internal error: " + std::to_string(arcs) + " streamed arcs, " +
+                  std::to_string(m) + " declared");
     for (; emitted <= n; ++emitted) out.push(arcs);
     out.flush();
     writer.end_section();
@@ -420,10 +431,18 @@ void write_graph(const StreamedGraph& in, const std::filesystem::path& path, con
     const auto type = narrowest_unsigned(max);
     writer.begin_section(SectionKind::cost, costs.name, type, 1);
     switch (type) {
-      case ElementType::u8: write_streamed_cost<std::uint8_t>(writer, costs, counter); break;
-      case ElementType::u16: write_streamed_cost<std::uint16_t>(writer, costs, counter); break;
-      case ElementType::u32: write_streamed_cost<std::uint32_t>(writer, costs, counter); break;
-      default: write_streamed_cost<std::uint64_t>(writer, costs, counter); break;
+      case ElementType::u8:
+        write_streamed_cost<std::uint8_t>(writer, costs, counter);
+        break;
+      case ElementType::u16:
+        write_streamed_cost<std::uint16_t>(writer, costs, counter);
+        break;
+      case ElementType::u32:
+        write_streamed_cost<std::uint32_t>(writer, costs, counter);
+        break;
+      default:
+        write_streamed_cost<std::uint64_t>(writer, costs, counter);
+        break;
     }
     writer.end_section();
   }

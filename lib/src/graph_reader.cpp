@@ -1,13 +1,9 @@
 #include "mosb/graph_reader.hpp"
 
-#include "mosb/hex.hpp"
-#include "mosb/verify.hpp"
-
 #include <fcntl.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
-#include "xxh3.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -15,13 +11,16 @@
 #include <cstring>
 #include <unordered_set>
 
+#include "mosb/hex.hpp"
+#include "mosb/verify.hpp"
+#include "xxh3.hpp"
+
 namespace mosb {
 
 using format::ElementType;
 using format::SectionKind;
 
 namespace {
-
 
 std::string version_text(std::uint16_t major, std::uint16_t minor) {
   return std::to_string(major) + "." + std::to_string(minor);
@@ -47,7 +46,9 @@ bool mul_overflows(std::uint64_t a, std::uint64_t b, std::uint64_t& out) {
 
 }  // namespace
 
-void GraphReader::fail(const std::string& what) const { fail(ErrorCode::damaged, what); }
+void GraphReader::fail(const std::string& what) const {
+  fail(ErrorCode::damaged, what);
+}
 void GraphReader::fail(ErrorCode code, const std::string& what) const {
   throw Error(code, display_name_ + ": " + what);
 }
@@ -77,23 +78,23 @@ GraphReader GraphReader::open(const std::filesystem::path& path) {
   }
   if (!S_ISREG(st.st_mode)) {
     ::close(fd);
-    throw Error(ErrorCode::not_mosb, name + ": is " + std::string(file_type_name(st.st_mode)) +
-                ", not a regular file; a mosb file must be a regular file");
+    throw Error(ErrorCode::not_mosb,
+                name + ": is " + std::string(file_type_name(st.st_mode)) +
+                    ", not a regular file; a mosb file must be a regular file");
   }
   const auto size = static_cast<std::size_t>(st.st_size);
   if (size < format::kHeaderSize) {
     ::close(fd);
     throw Error(ErrorCode::not_mosb, name + ": not a mosb file: " + std::to_string(size) +
-                " bytes is shorter than the 128-byte header");
+                                         " bytes is shorter than the 128-byte header");
   }
   void* address = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
   ::close(fd);
   if (address == MAP_FAILED)
     throw Error(ErrorCode::io, name + ": cannot map: " + std::strerror(errno));
   GraphReader reader;
-  reader.mapping_ = std::shared_ptr<const void>(address, [size](const void* p) {
-    ::munmap(const_cast<void*>(p), size);
-  });
+  reader.mapping_ = std::shared_ptr<const void>(
+      address, [size](const void* p) { ::munmap(const_cast<void*>(p), size); });
   reader.bytes_ = {static_cast<const std::byte*>(address), size};
   reader.display_name_ = name;
   reader.validate();
@@ -117,8 +118,9 @@ void GraphReader::verify_at_open(VerifyLevel level) {
   if (level != VerifyLevel::header)
     for (const auto& s : sections_)
       if (s.is_packed())
-        fail(ErrorCode::packed, "section '" + s.name + "' is zstd-packed; its payload cannot be verified or walked "
-             "in place; unpack the file first");
+        fail(ErrorCode::packed, "section '" + s.name +
+                                    "' is zstd-packed; its payload cannot be verified or walked "
+                                    "in place; unpack the file first");
   if (auto problem = verify(*this, level))
     fail("file is damaged: " + *problem + "; run mosb verify");
   verified_level_ = level;
@@ -126,8 +128,9 @@ void GraphReader::verify_at_open(VerifyLevel level) {
 
 void GraphReader::require_verified(VerifyLevel level, std::string_view user) const {
   if (!covers(verified_level_, level))
-    fail(ErrorCode::invalid_argument, std::string(user) +
-         " walks the payload and needs a reader opened with GraphReader::open(path, level)");
+    fail(ErrorCode::invalid_argument,
+         std::string(user) +
+             " walks the payload and needs a reader opened with GraphReader::open(path, level)");
 }
 
 GraphReader GraphReader::from_memory(std::span<const std::byte> bytes, std::string display_name) {
@@ -144,31 +147,35 @@ GraphReader GraphReader::from_memory(std::span<const std::byte> bytes, std::stri
 void GraphReader::validate() {
   if (bytes_.size() < format::kHeaderSize)
     fail(ErrorCode::not_mosb, "not a mosb file: " + std::to_string(bytes_.size()) +
-         " bytes is shorter than the 128-byte header");
+                                  " bytes is shorter than the 128-byte header");
   std::memcpy(&header_, bytes_.data(), sizeof header_);
 
   // 1. Identity.
   const auto& magic = header_.magic;
   if (!std::equal(magic.begin(), magic.end(), format::kMagic.begin())) {
     if (std::equal(magic.begin(), magic.end(), format::kMagic.rbegin()))
-      fail("byte-swapped mosb file (its magic is reversed); it was written or copied with the wrong "
-           "byte order");
+      fail(
+          "byte-swapped mosb file (its magic is reversed); it was written or copied with the wrong "
+          "byte order");
     const bool mos = magic[1] == 'M' && magic[2] == 'O' && magic[3] == 'S';
     if (mos && magic[0] == format::kMagic[0])
-      fail("mosb file damaged by a text-mode transfer (line-end bytes in the magic were changed); "
-           "copy it in binary mode");
+      fail(
+          "mosb file damaged by a text-mode transfer (line-end bytes in the magic were changed); "
+          "copy it in binary mode");
     if (mos && magic[0] == (format::kMagic[0] & 0x7F))
-      fail("mosb file damaged by a 7-bit transfer (the high bit of its first byte was cleared); "
-           "copy it in binary mode");
+      fail(
+          "mosb file damaged by a 7-bit transfer (the high bit of its first byte was cleared); "
+          "copy it in binary mode");
     fail(ErrorCode::not_mosb, "not a mosb file (wrong magic)");
   }
   if (header_.byte_order_mark != format::kByteOrderMark)
     fail("byte-swapped mosb file (byte-order mark reads " + hex64(header_.byte_order_mark) + ")");
   // 2. Version and kind.
   if (header_.version_major != format::kVersionMajor)
-    fail(ErrorCode::version, "prepared with format " + version_text(header_.version_major, header_.version_minor) +
-         ", this reader reads format " + std::to_string(format::kVersionMajor) + ".x (up to " +
-         version_text(format::kVersionMajor, format::kVersionMinor) + ")");
+    fail(ErrorCode::version,
+         "prepared with format " + version_text(header_.version_major, header_.version_minor) +
+             ", this reader reads format " + std::to_string(format::kVersionMajor) + ".x (up to " +
+             version_text(format::kVersionMajor, format::kVersionMinor) + ")");
   if (header_.header_size != format::kHeaderSize)
     fail("header size " + std::to_string(header_.header_size) + " is not 128");
   if (header_.file_kind != static_cast<std::uint32_t>(format::FileKind::instance))
@@ -178,8 +185,8 @@ void GraphReader::validate() {
     fail(header_.file_size > bytes_.size()
              ? "truncated: header says " + std::to_string(header_.file_size) + " bytes, file has " +
                    std::to_string(bytes_.size())
-             : "extended: header says " + std::to_string(header_.file_size) +
-                   " bytes, file has " + std::to_string(bytes_.size()));
+             : "extended: header says " + std::to_string(header_.file_size) + " bytes, file has " +
+                   std::to_string(bytes_.size()));
   // 4. Table bounds.
   std::uint64_t table_bytes = 0;
   if (header_.table_offset % format::kAlignment != 0 || header_.table_offset < format::kHeaderSize)
@@ -210,8 +217,9 @@ void GraphReader::validate() {
   // 6. Features.
   if (std::uint64_t unknown = header_.required_features & ~format::kKnownRequiredFeatures) {
     const int bit = std::countr_zero(unknown);
-    fail(ErrorCode::version, "requires feature bit " + std::to_string(bit) + ", unknown to this reader (format " +
-         version_text(format::kVersionMajor, format::kVersionMinor) + ")");
+    fail(ErrorCode::version, "requires feature bit " + std::to_string(bit) +
+                                 ", unknown to this reader (format " +
+                                 version_text(format::kVersionMajor, format::kVersionMinor) + ")");
   }
 
   // 7. Entries.
@@ -288,7 +296,8 @@ void GraphReader::validate() {
       key += s.name;
       if (!seen.insert(std::move(key)).second)
         fail("section '" + s.name + "': a second " +
-             (s.kind ? std::string(format::to_string(*s.kind)) : "kind " + std::to_string(s.entry.kind)) +
+             (s.kind ? std::string(format::to_string(*s.kind))
+                     : "kind " + std::to_string(s.entry.kind)) +
              " section of that name");
     }
   }
@@ -320,8 +329,12 @@ void GraphReader::validate() {
         expect_rows(m, "the arc count");
         cost_indices_.push_back(i);
         break;
-      case SectionKind::vertex_data: expect_rows(n, "the vertex count"); break;
-      case SectionKind::arc_data: expect_rows(m, "the arc count"); break;
+      case SectionKind::vertex_data:
+        expect_rows(n, "the vertex count");
+        break;
+      case SectionKind::arc_data:
+        expect_rows(m, "the arc count");
+        break;
       case SectionKind::queries:
         expect(s.type == ElementType::u32 && s.entry.row_width == 2, "queries must be u32 x 2");
         break;
@@ -365,11 +378,13 @@ const Section& GraphReader::required(SectionKind kind) const {
 
 void GraphReader::check_access(const Section& s, ElementType wanted) const {
   if (s.is_packed())
-    fail(ErrorCode::packed, "section '" + s.name + "' is zstd-packed and cannot be mapped zero-copy; unpack the "
-         "file first");
+    fail(ErrorCode::packed, "section '" + s.name +
+                                "' is zstd-packed and cannot be mapped zero-copy; unpack the "
+                                "file first");
   if (s.type != wanted)
-    fail(ErrorCode::invalid_argument,
-         "section '" + s.name + "' holds " + std::string(format::to_string(s.type)) + " values, not " + std::string(format::to_string(wanted)));
+    fail(ErrorCode::invalid_argument, "section '" + s.name + "' holds " +
+                                          std::string(format::to_string(s.type)) + " values, not " +
+                                          std::string(format::to_string(wanted)));
 }
 
 std::span<const std::byte> GraphReader::raw_bytes(const Section& s) const {
@@ -395,8 +410,9 @@ std::span<const std::uint32_t> GraphReader::reverse_arcs() const {
 
 const Section& GraphReader::objective(std::size_t i) const {
   if (i >= cost_indices_.size())
-    fail(ErrorCode::invalid_argument, "objective index " + std::to_string(i) + " out of range (the file has " +
-         std::to_string(cost_indices_.size()) + " objectives)");
+    fail(ErrorCode::invalid_argument, "objective index " + std::to_string(i) +
+                                          " out of range (the file has " +
+                                          std::to_string(cost_indices_.size()) + " objectives)");
   return sections_[cost_indices_[i]];
 }
 
@@ -416,10 +432,10 @@ template <class Out>
 void convert_column(const GraphReader& reader, std::size_t i, std::span<Out> out) {
   const Section& s = reader.objective(i);
   if (out.size() != s.element_count())
-    throw Error(ErrorCode::invalid_argument,
-                reader.display_name() + ": section '" + s.name + "' has " +
-                    std::to_string(s.element_count()) + " values, the buffer " +
-                    std::to_string(out.size()));
+    throw Error(ErrorCode::invalid_argument, reader.display_name() + ": section '" + s.name +
+                                                 "' has " + std::to_string(s.element_count()) +
+                                                 " values, the buffer " +
+                                                 std::to_string(out.size()));
   reader.visit_cost(i, [&](auto in) { std::copy(in.begin(), in.end(), out.begin()); });
 }
 }  // namespace
@@ -463,10 +479,11 @@ const Metadata& GraphReader::metadata() const {
     const Section* s = nullptr;
     for (const auto& candidate : sections_)
       if (candidate.kind == SectionKind::metadata) s = &candidate;
+    if (!s) fail("no metadata section");  // open() refuses such a file; kept for the analyzer
     auto raw = raw_bytes(*s);
     try {
-      metadata_->value = Metadata::parse(
-          std::string_view(reinterpret_cast<const char*>(raw.data()), raw.size()));
+      metadata_->value =
+          Metadata::parse(std::string_view(reinterpret_cast<const char*>(raw.data()), raw.size()));
     } catch (const Error& e) {
       fail(std::string("section 'metadata': ") + e.what());
     }

@@ -46,7 +46,8 @@ void write_query_set(FileWriter& writer, const QuerySet& set) {
 }  // namespace
 
 void rewrite_instance(const GraphReader& source, const Metadata& metadata,
-                      const std::vector<QuerySet>& query_sets, const std::filesystem::path& output) {
+                      const std::vector<QuerySet>& query_sets,
+                      const std::filesystem::path& output) {
   const std::string& file = source.display_name();
   for (const auto& s : source.sections())
     if (s.is_packed())
@@ -75,16 +76,19 @@ void rewrite_instance(const GraphReader& source, const Metadata& metadata,
   // read-only file); any other output is a new file.
   std::error_code ec;
   const bool in_place = std::filesystem::equivalent(output, source.display_name(), ec) && !ec;
-  FileWriter writer(output, in_place ? AtomicFile::Existing::rewrite_in_place : AtomicFile::Existing::replace);
+  FileWriter writer(
+      output, in_place ? AtomicFile::Existing::rewrite_in_place : AtomicFile::Existing::replace);
   for (const auto& s : source.sections()) {
     if (s.kind == SectionKind::metadata) {
       const std::string text = metadata.serialize();
-      writer.add_section(SectionKind::metadata, s.name, 1,
-                         std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
+      writer.add_section(
+          SectionKind::metadata, s.name, 1,
+          std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
     } else if (const auto* set = replacement_for(s, query_sets)) {
       write_query_set(writer, *set);
     } else {
-      writer.begin_section(static_cast<SectionKind>(s.entry.kind), s.name, s.type, s.entry.row_width);
+      writer.begin_section(static_cast<SectionKind>(s.entry.kind), s.name, s.type,
+                           s.entry.row_width);
       writer.append(s.stored);
       writer.end_section();
     }

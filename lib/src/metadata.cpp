@@ -1,13 +1,11 @@
 #include "mosb/metadata.hpp"
 
 #include <algorithm>
+#include <initializer_list>
 
 #include "mosb/error.hpp"
 #include "mosb/format.hpp"
 #include "mosb/utf8.hpp"
-
-#include <algorithm>
-#include <initializer_list>
 
 namespace mosb {
 
@@ -35,9 +33,12 @@ std::string Metadata::serialize() const {
     out += key;
     out += '=';
     for (char c : value) {
-      if (c == '\\') out += "\\\\";
-      else if (c == '\n') out += "\\n";
-      else out += c;
+      if (c == '\\')
+        out += "\\\\";
+      else if (c == '\n')
+        out += "\\n";
+      else
+        out += c;
     }
     out += '\n';
   }
@@ -68,11 +69,15 @@ Metadata Metadata::parse(std::string_view text) {
         continue;
       }
       if (++i == line.size()) throw Error(where + "dangling '\\' at end of value");
-      if (line[i] == '\\') value += '\\';
-      else if (line[i] == 'n') value += '\n';
-      else throw Error(where + "unknown escape '\\" + std::string(1, line[i]) + "'");
+      if (line[i] == '\\')
+        value += '\\';
+      else if (line[i] == 'n')
+        value += '\n';
+      else
+        throw Error(where + "unknown escape '\\" + std::string(1, line[i]) + "'");
     }
-    if (!is_valid_utf8(value)) throw Error(where + "value of '" + std::string(key) + "' is not valid UTF-8");
+    if (!is_valid_utf8(value))
+      throw Error(where + "value of '" + std::string(key) + "' is not valid UTF-8");
     previous_key = std::string(key);
     result.entries_.emplace(previous_key, std::move(value));
   }
@@ -120,7 +125,8 @@ std::optional<std::string> find_view_problem(const Metadata& metadata,
   for (const auto& view : view_keys(metadata)) {
     const std::string key = "view." + view.name;
     if (metadata.get(key + ".objectives")) {
-      if (view.objectives.empty()) return "metadata key '" + key + ".objectives' lists no objective";
+      if (view.objectives.empty())
+        return "metadata key '" + key + ".objectives' lists no objective";
       for (const auto& name : view.objectives)
         if (!contains(objective_names, name))
           return "metadata key '" + key + ".objectives' names objective '" + name +
@@ -140,8 +146,9 @@ namespace mosb {
 namespace {
 // A key's defined value set, from spec/FORMAT.md §7 and spec/QUERIES.md.
 struct ValueSet {
-  std::string_view key_prefix, key_suffix;  // the key is prefix + (anything, for a set name) + suffix
-  bool exact;                                 // true: the key is exactly key_prefix
+  std::string_view key_prefix,
+      key_suffix;  // the key is prefix + (anything, for a set name) + suffix
+  bool exact;      // true: the key is exactly key_prefix
   std::initializer_list<std::string_view> values;
 };
 const ValueSet kValueSets[] = {
@@ -155,10 +162,10 @@ const ValueSet kValueSets[] = {
 std::optional<std::string> find_value_problem(const Metadata& metadata) {
   for (const auto& [key, value] : metadata.entries())
     for (const auto& set : kValueSets) {
-      const bool applies =
-          set.exact ? key == set.key_prefix
-                    : key.size() > set.key_prefix.size() + set.key_suffix.size() &&
-                          key.starts_with(set.key_prefix) && key.ends_with(set.key_suffix);
+      const bool applies = set.exact ? key == set.key_prefix
+                                     : key.size() > set.key_prefix.size() + set.key_suffix.size() &&
+                                           key.starts_with(set.key_prefix) &&
+                                           key.ends_with(set.key_suffix);
       if (!applies) continue;
       if (std::find(set.values.begin(), set.values.end(), value) != set.values.end()) continue;
       std::string allowed;

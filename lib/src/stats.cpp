@@ -52,8 +52,10 @@ void first_pass(std::span<const T> column, std::span<const std::uint8_t> kind, s
     if (v < lo[g]) lo[g] = v;
     if (v > hi[g]) hi[g] = v;
     ++count[g];
-    if constexpr (std::is_integral_v<T>) sum[g].add(v);
-    else sum[g] += v;
+    if constexpr (std::is_integral_v<T>)
+      sum[g].add(v);
+    else
+      sum[g] += v;
   }
   for (std::size_t g = 0; g < groups; ++g) {
     auto& m = out[g * objective_count + objective];
@@ -62,22 +64,27 @@ void first_pass(std::span<const T> column, std::span<const std::uint8_t> kind, s
     m.min = lo[g];
     m.max = hi[g];
     long double total;
-    if constexpr (std::is_integral_v<T>) total = sum[g].value();
-    else total = sum[g];
+    if constexpr (std::is_integral_v<T>)
+      total = sum[g].value();
+    else
+      total = sum[g];
     m.mean = total / static_cast<long double>(count[g]);
   }
 }
 
 // Both passes over the arcs for `groups` groups (1, or 256 keyed by `kind`).
-std::vector<ArcGroupStats> grouped_stats(const GraphReader& graph, const std::vector<std::size_t>& objectives,
+std::vector<ArcGroupStats> grouped_stats(const GraphReader& graph,
+                                         const std::vector<std::size_t>& objectives,
                                          std::span<const std::uint8_t> kind, std::size_t groups) {
   const std::size_t d = objectives.size();
   const std::size_t m = graph.arc_count();
   std::vector<Moments> moments(groups * d);
   for (std::size_t i = 0; i < d; ++i)
-    graph.visit_cost(objectives[i], [&](auto column) { first_pass(column, kind, groups, i, d, moments); });
+    graph.visit_cost(objectives[i],
+                     [&](auto column) { first_pass(column, kind, groups, i, d, moments); });
 
-  // Co-moments Σ (x − mean_x)(y − mean_y) per group, for every i ≤ j (the diagonal gives variances).
+  // Co-moments Σ (x − mean_x)(y − mean_y) per group, for every i ≤ j (the diagonal gives
+  // variances).
   std::vector<std::pair<std::size_t, std::size_t>> pairs;
   for (std::size_t i = 0; i < d; ++i)
     for (std::size_t j = i; j < d; ++j) pairs.emplace_back(i, j);
@@ -101,7 +108,8 @@ std::vector<ArcGroupStats> grouped_stats(const GraphReader& graph, const std::ve
         for (std::size_t k = 0; k < length; ++k) s += x[k] * y[k];
         co[p] += s;
       } else {
-        for (std::size_t k = 0; k < length; ++k) co[kind[start + k] * pairs.size() + p] += x[k] * y[k];
+        for (std::size_t k = 0; k < length; ++k)
+          co[kind[start + k] * pairs.size() + p] += x[k] * y[k];
       }
     }
   }
@@ -193,13 +201,16 @@ ArcMultiplicity count_loops_and_parallel_arcs(const GraphReader& graph) {
     for (std::uint64_t a = offsets[u]; a < offsets[u + 1]; ++a) {
       const std::uint32_t v = targets[a];
       if (v == u) ++stats.self_loops;
-      if (last_tail[v] == u) ++stats.parallel_arcs;
-      else last_tail[v] = u;
+      if (last_tail[v] == u)
+        ++stats.parallel_arcs;
+      else
+        last_tail[v] = u;
     }
   return stats;
 }
 
-ArcGroupStats objective_stats(const GraphReader& graph, const std::vector<std::size_t>& objectives) {
+ArcGroupStats objective_stats(const GraphReader& graph,
+                              const std::vector<std::size_t>& objectives) {
   require_verified(graph, "objective_stats");
   return std::move(grouped_stats(graph, objectives, {}, 1).front());
 }
@@ -220,7 +231,8 @@ std::vector<KindGroupStats> objective_stats_by_kind(const GraphReader& graph,
   return result;
 }
 
-// Iterative Tarjan over the forward CSR: an explicit stack of (vertex, next arc) replaces recursion.
+// Iterative Tarjan over the forward CSR: an explicit stack of (vertex, next arc) replaces
+// recursion.
 SccSummary strongly_connected_components(const GraphReader& graph) {
   require_verified(graph, "strongly_connected_components");
   const auto offsets = graph.forward_offsets();
@@ -246,8 +258,10 @@ SccSummary strongly_connected_components(const GraphReader& graph) {
       const std::uint32_t v = calls.back().first;
       if (calls.back().second < offsets[v + 1]) {
         const std::uint32_t w = targets[calls.back().second++];
-        if (index[w] == kUnvisited) visit(w);
-        else if (on_stack[w]) low[v] = std::min(low[v], index[w]);
+        if (index[w] == kUnvisited)
+          visit(w);
+        else if (on_stack[w])
+          low[v] = std::min(low[v], index[w]);
         continue;
       }
       calls.pop_back();

@@ -34,8 +34,9 @@ std::string in_section(const Section& s, std::string_view rule, const std::strin
 Problem check_checksum(const Section& s) {
   const std::uint64_t computed = XXH3_64bits(s.stored.data(), s.stored.size());
   if (computed != s.entry.checksum)
-    return in_section(s, "checksum", "mismatch (stored " + hex64(s.entry.checksum) +
-                                         ", computed " + hex64(computed) + ")");
+    return in_section(
+        s, "checksum",
+        "mismatch (stored " + hex64(s.entry.checksum) + ", computed " + hex64(computed) + ")");
   return std::nullopt;
 }
 
@@ -44,7 +45,8 @@ Problem check_offsets(const Section& s, std::span<const std::uint64_t> offsets) 
     if (offsets[v] > offsets[v + 1])
       return in_section(s, "offsets-monotonic",
                         "offsets decrease at vertex " + std::to_string(v) + " (" +
-                            std::to_string(offsets[v]) + " > " + std::to_string(offsets[v + 1]) + ")");
+                            std::to_string(offsets[v]) + " > " + std::to_string(offsets[v + 1]) +
+                            ")");
   return std::nullopt;
 }
 
@@ -56,8 +58,9 @@ Problem check_ids(const Section& s, std::span<const std::uint32_t> ids, std::uin
   if (ids.empty() || largest < n) return std::nullopt;
   for (std::size_t i = 0; i < ids.size(); ++i)
     if (ids[i] >= n)
-      return in_section(s, rule, std::string(what) + " " + std::to_string(i) + " is vertex " +
-                                     std::to_string(ids[i]) + ", not below n = " + std::to_string(n));
+      return in_section(s, rule,
+                        std::string(what) + " " + std::to_string(i) + " is vertex " +
+                            std::to_string(ids[i]) + ", not below n = " + std::to_string(n));
   return std::nullopt;
 }
 
@@ -71,11 +74,16 @@ struct Csr {
 
 Csr csr_of(const GraphReader& reader) {
   auto section = [&](SectionKind kind) { return reader.all(kind).front(); };
-  return {section(SectionKind::forward_offsets), section(SectionKind::forward_targets),
-          section(SectionKind::reverse_offsets), section(SectionKind::reverse_sources),
-          section(SectionKind::reverse_arcs),    reader.forward_offsets(),
-          reader.reverse_offsets(),              reader.forward_targets(),
-          reader.reverse_sources(),              reader.reverse_arcs()};
+  return {section(SectionKind::forward_offsets),
+          section(SectionKind::forward_targets),
+          section(SectionKind::reverse_offsets),
+          section(SectionKind::reverse_sources),
+          section(SectionKind::reverse_arcs),
+          reader.forward_offsets(),
+          reader.reverse_offsets(),
+          reader.forward_targets(),
+          reader.reverse_sources(),
+          reader.reverse_arcs()};
 }
 
 // Transpose (§4) over the in-lists of vertices [first, last): each entry j of v's in-list is an arc
@@ -118,15 +126,19 @@ Problem check_transpose(const Csr& c, std::uint64_t first, std::uint64_t last) {
           (j == c.roffsets[v] || c.rarcs[j - 1] < a))
         continue;
       if (a >= m)
-        return broken(v, j, "names arc " + std::to_string(a) + ", not below m = " + std::to_string(m));
+        return broken(v, j,
+                      "names arc " + std::to_string(a) + ", not below m = " + std::to_string(m));
       if (c.targets[a] != v)
-        return broken(v, j, "names arc " + std::to_string(a) + ", which enters vertex " +
-                                std::to_string(c.targets[a]));
+        return broken(v, j,
+                      "names arc " + std::to_string(a) + ", which enters vertex " +
+                          std::to_string(c.targets[a]));
       if (!(c.offsets[u] <= a && a < c.offsets[u + 1]))
-        return broken(v, j, "says arc " + std::to_string(a) + " leaves vertex " +
-                                std::to_string(u) + ", the forward CSR disagrees");
-      return broken(v, j, "breaks the ascending arc order (" + std::to_string(c.rarcs[j - 1]) +
-                              " then " + std::to_string(a) + ")");
+        return broken(v, j,
+                      "says arc " + std::to_string(a) + " leaves vertex " + std::to_string(u) +
+                          ", the forward CSR disagrees");
+      return broken(v, j,
+                    "breaks the ascending arc order (" + std::to_string(c.rarcs[j - 1]) + " then " +
+                        std::to_string(a) + ")");
     }
   }
   return std::nullopt;
@@ -139,11 +151,11 @@ Problem check_float_costs(const Section& s, std::span<const T> costs) {
   if (all_good) return std::nullopt;
   for (std::size_t a = 0; a < costs.size(); ++a) {
     if (!std::isfinite(costs[a]))
-      return in_section(s, "cost-finite", "arc " + std::to_string(a) + " costs " +
-                                              std::to_string(costs[a]));
+      return in_section(s, "cost-finite",
+                        "arc " + std::to_string(a) + " costs " + std::to_string(costs[a]));
     if (costs[a] < 0)
-      return in_section(s, "cost-nonnegative", "arc " + std::to_string(a) + " costs " +
-                                                   std::to_string(costs[a]));
+      return in_section(s, "cost-nonnegative",
+                        "arc " + std::to_string(a) + " costs " + std::to_string(costs[a]));
   }
   return std::nullopt;
 }
@@ -275,9 +287,8 @@ std::optional<std::string> verify(const GraphReader& reader, VerifyLevel level) 
   if (structure) {
     for (const auto* s : reader.all(SectionKind::cost)) {
       if (s->type == ElementType::f32)
-        tasks.push_back({s->stored.size(), [&reader, s] {
-                           return check_float_costs(*s, reader.values<float>(*s));
-                         }});
+        tasks.push_back({s->stored.size(),
+                         [&reader, s] { return check_float_costs(*s, reader.values<float>(*s)); }});
       else if (s->type == ElementType::f64)
         tasks.push_back({s->stored.size(), [&reader, s] {
                            return check_float_costs(*s, reader.values<double>(*s));
@@ -295,7 +306,8 @@ std::optional<std::string> verify(const GraphReader& reader, VerifyLevel level) 
   for (std::size_t i = 0; i < csr_last; ++i)
     if (phase1[i]) return phase1[i];
   if (structure) {
-    // Blocks of about equal entry counts, several per thread so that uneven cache behaviour evens out.
+    // Blocks of about equal entry counts, several per thread so that uneven cache behaviour evens
+    // out.
     const Csr& c = *csr;
     const std::uint64_t blocks = threads == 1 ? 1 : 8 * threads;
     std::vector<Task> transpose;
@@ -306,7 +318,8 @@ std::optional<std::string> verify(const GraphReader& reader, VerifyLevel level) 
           b == blocks ? n
                       : static_cast<std::uint64_t>(
                             std::upper_bound(c.roffsets.begin(), c.roffsets.end(), target_entries) -
-                            c.roffsets.begin()) - 1;
+                            c.roffsets.begin()) -
+                            1;
       last = std::clamp(last, first + 1, n);
       transpose.push_back({c.roffsets[last] - c.roffsets[first],
                            [&c, first, last] { return check_transpose(c, first, last); }});

@@ -24,8 +24,7 @@ using ReaderPtr = std::shared_ptr<mosb::GraphReader>;  // the holder type of Rea
 
 // The base object of every array: a capsule holding one more owner of the reader.
 py::capsule owner_of(const ReaderPtr& reader) {
-  return py::capsule(new ReaderPtr(reader),
-                     [](void* p) { delete static_cast<ReaderPtr*>(p); });
+  return py::capsule(new ReaderPtr(reader), [](void* p) { delete static_cast<ReaderPtr*>(p); });
 }
 
 template <class T>
@@ -50,16 +49,26 @@ py::array cost_column(const ReaderPtr& reader, std::size_t index) {
   using mosb::format::ElementType;
   const auto& s = reader->objective(index);
   switch (s.type) {
-    case ElementType::u8: return section_array<std::uint8_t>(reader, s);
-    case ElementType::u16: return section_array<std::uint16_t>(reader, s);
-    case ElementType::u32: return section_array<std::uint32_t>(reader, s);
-    case ElementType::u64: return section_array<std::uint64_t>(reader, s);
-    case ElementType::i8: return section_array<std::int8_t>(reader, s);
-    case ElementType::i16: return section_array<std::int16_t>(reader, s);
-    case ElementType::i32: return section_array<std::int32_t>(reader, s);
-    case ElementType::i64: return section_array<std::int64_t>(reader, s);
-    case ElementType::f32: return section_array<float>(reader, s);
-    case ElementType::f64: return section_array<double>(reader, s);
+    case ElementType::u8:
+      return section_array<std::uint8_t>(reader, s);
+    case ElementType::u16:
+      return section_array<std::uint16_t>(reader, s);
+    case ElementType::u32:
+      return section_array<std::uint32_t>(reader, s);
+    case ElementType::u64:
+      return section_array<std::uint64_t>(reader, s);
+    case ElementType::i8:
+      return section_array<std::int8_t>(reader, s);
+    case ElementType::i16:
+      return section_array<std::int16_t>(reader, s);
+    case ElementType::i32:
+      return section_array<std::int32_t>(reader, s);
+    case ElementType::i64:
+      return section_array<std::int64_t>(reader, s);
+    case ElementType::f32:
+      return section_array<float>(reader, s);
+    case ElementType::f64:
+      return section_array<double>(reader, s);
   }
   throw mosb::Error(reader->display_name() + ": section '" + s.name + "' has an unknown type");
 }
@@ -73,14 +82,22 @@ std::vector<std::string> names_of(const std::vector<const mosb::Section*>& secti
 // mosb.Error.code: the C++ ErrorCode as its enumerator's name, for callers to branch on.
 const char* code_name(mosb::ErrorCode code) {
   switch (code) {
-    case mosb::ErrorCode::other: return "other";
-    case mosb::ErrorCode::io: return "io";
-    case mosb::ErrorCode::not_mosb: return "not_mosb";
-    case mosb::ErrorCode::version: return "version";
-    case mosb::ErrorCode::damaged: return "damaged";
-    case mosb::ErrorCode::not_found: return "not_found";
-    case mosb::ErrorCode::invalid_argument: return "invalid_argument";
-    case mosb::ErrorCode::packed: return "packed";
+    case mosb::ErrorCode::other:
+      return "other";
+    case mosb::ErrorCode::io:
+      return "io";
+    case mosb::ErrorCode::not_mosb:
+      return "not_mosb";
+    case mosb::ErrorCode::version:
+      return "version";
+    case mosb::ErrorCode::damaged:
+      return "damaged";
+    case mosb::ErrorCode::not_found:
+      return "not_found";
+    case mosb::ErrorCode::invalid_argument:
+      return "invalid_argument";
+    case mosb::ErrorCode::packed:
+      return "packed";
   }
   return "other";
 }
@@ -118,14 +135,10 @@ PYBIND11_MODULE(_mosb, m) {
                                                      r.header().version_minor);
                              })
       .def("digest", &mosb::GraphReader::digest)
-      .def("forward_offsets",
-           [](const ReaderPtr& r) { return column(r, r->forward_offsets()); })
-      .def("forward_targets",
-           [](const ReaderPtr& r) { return column(r, r->forward_targets()); })
-      .def("reverse_offsets",
-           [](const ReaderPtr& r) { return column(r, r->reverse_offsets()); })
-      .def("reverse_sources",
-           [](const ReaderPtr& r) { return column(r, r->reverse_sources()); })
+      .def("forward_offsets", [](const ReaderPtr& r) { return column(r, r->forward_offsets()); })
+      .def("forward_targets", [](const ReaderPtr& r) { return column(r, r->forward_targets()); })
+      .def("reverse_offsets", [](const ReaderPtr& r) { return column(r, r->reverse_offsets()); })
+      .def("reverse_sources", [](const ReaderPtr& r) { return column(r, r->reverse_sources()); })
       .def("reverse_arcs", [](const ReaderPtr& r) { return column(r, r->reverse_arcs()); })
       .def("objective_names",
            [](const mosb::GraphReader& r) {
@@ -186,7 +199,6 @@ PYBIND11_MODULE(_mosb, m) {
           },
           py::arg("level"))
       .def("mapping_range", [](const mosb::GraphReader& r) {
-        return py::make_tuple(reinterpret_cast<std::uintptr_t>(r.bytes().data()),
-                              r.bytes().size());
+        return py::make_tuple(reinterpret_cast<std::uintptr_t>(r.bytes().data()), r.bytes().size());
       });
 }

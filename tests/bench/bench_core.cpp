@@ -4,11 +4,11 @@
 //
 // For (a) Grid 600x600 with 3 objectives (converters::generate_grid, seed 1) and (b) a random graph
 // of DIMACS-FLA size (1,070,376 vertices, 2,712,798 arcs, 2 objectives), it prints: the time to
-// write the file and its size; the time to open it and to reach its first arc; the time to sum every
-// cost through the public API; and the throughput of verify (checksums / structure / full) beside a
-// plain memory read of the same mapping. It checks every result and exits 1 on a wrong one, but it
-// never fails because the machine is slow: it has no time limits. Not registered with ctest.
-// BENCHMARKS.md has the commands and the figures of a reference run.
+// write the file and its size; the time to open it and to reach its first arc; the time to sum
+// every cost through the public API; and the throughput of verify (checksums / structure / full)
+// beside a plain memory read of the same mapping. It checks every result and exits 1 on a wrong
+// one, but it never fails because the machine is slow: it has no time limits. Not registered with
+// ctest. BENCHMARKS.md has the commands and the figures of a reference run.
 
 #include <sys/mman.h>
 #include <unistd.h>
@@ -90,7 +90,9 @@ struct Stats {
 
 Stats stats_of(std::vector<double> samples) {
   std::sort(samples.begin(), samples.end());
-  auto at = [&](double q) { return samples[static_cast<std::size_t>(q * (samples.size() - 1) + 0.5)]; };
+  auto at = [&](double q) {
+    return samples[static_cast<std::size_t>(q * (samples.size() - 1) + 0.5)];
+  };
   return {samples.front(), at(0.10), at(0.50), at(0.90), samples.back()};
 }
 
@@ -157,7 +159,8 @@ GraphInput make_road_like(std::uint64_t n, std::uint64_t m) {
     const std::uint64_t step = width - 1 + edge_rng.uniform(0, 2);  // W + delta, delta in {-1,0,1}
     edge(u, u + step < n ? u + step : u - step);
   }
-  check(g.tails.size() == m, "road-like model produced " + std::to_string(g.tails.size()) + " arcs");
+  check(g.tails.size() == m,
+        "road-like model produced " + std::to_string(g.tails.size()) + " arcs");
 
   g.costs.push_back({"distance", "m", std::move(distance), std::nullopt});
   g.costs.push_back({"time", "0.1 s", std::move(time), std::nullopt});
@@ -185,13 +188,20 @@ GraphInput make_road_like(std::uint64_t n, std::uint64_t m) {
 template <class F>
 void with_cost(const GraphReader& reader, std::size_t i, F&& f) {
   switch (reader.objective(i).type) {
-    case ElementType::u8: return f(reader.cost<std::uint8_t>(i));
-    case ElementType::u16: return f(reader.cost<std::uint16_t>(i));
-    case ElementType::u32: return f(reader.cost<std::uint32_t>(i));
-    case ElementType::u64: return f(reader.cost<std::uint64_t>(i));
-    case ElementType::f32: return f(reader.cost<float>(i));
-    case ElementType::f64: return f(reader.cost<double>(i));
-    default: die("objective " + std::to_string(i) + " has a type a cost column cannot have");
+    case ElementType::u8:
+      return f(reader.cost<std::uint8_t>(i));
+    case ElementType::u16:
+      return f(reader.cost<std::uint16_t>(i));
+    case ElementType::u32:
+      return f(reader.cost<std::uint32_t>(i));
+    case ElementType::u64:
+      return f(reader.cost<std::uint64_t>(i));
+    case ElementType::f32:
+      return f(reader.cost<float>(i));
+    case ElementType::f64:
+      return f(reader.cost<double>(i));
+    default:
+      die("objective " + std::to_string(i) + " has a type a cost column cannot have");
   }
 }
 
@@ -287,14 +297,14 @@ Expected expected_of(const GraphInput& g) {
     e.sums.push_back(std::visit(
         [](const auto& v) { return sum_span(std::span(v.data(), v.size())); }, c.values));
   const auto min_tail = *std::min_element(g.tails.begin(), g.tails.end());
-  const auto first = static_cast<std::size_t>(
-      std::find(g.tails.begin(), g.tails.end(), min_tail) - g.tails.begin());
-  e.first_offset_end = min_tail == 0 ? static_cast<std::uint64_t>(
-                                           std::count(g.tails.begin(), g.tails.end(), 0u))
-                                     : 0;
+  const auto first = static_cast<std::size_t>(std::find(g.tails.begin(), g.tails.end(), min_tail) -
+                                              g.tails.begin());
+  e.first_offset_end =
+      min_tail == 0 ? static_cast<std::uint64_t>(std::count(g.tails.begin(), g.tails.end(), 0u))
+                    : 0;
   e.first_target = g.heads[first];
-  e.first_cost = std::visit(
-      [&](const auto& v) { return sum_span(std::span(v.data() + first, 1)); }, g.costs[0].values);
+  e.first_cost = std::visit([&](const auto& v) { return sum_span(std::span(v.data() + first, 1)); },
+                            g.costs[0].values);
   return e;
 }
 
@@ -344,12 +354,12 @@ Result run_instance(const std::string& name, const std::function<GraphInput()>& 
   }
 
   row("file", path.string());
-  row("vertices / arcs / objectives",
-      grouped(expected.n) + " / " + grouped(expected.m) + " / " + std::to_string(expected.sums.size()));
+  row("vertices / arcs / objectives", grouped(expected.n) + " / " + grouped(expected.m) + " / " +
+                                          std::to_string(expected.sums.size()));
   row("sections", std::to_string(reader.sections().size()) + " (cost columns: " + cost_types + ")");
   row("generate input in memory", format("%.3f s", generate_s));
-  row("write_graph (CSR, checksums, fsync)", format("%.3f s", write_s) + "  (" +
-                                                 format("%.0f MB/s", file_size / write_s / 1e6) + ")");
+  row("write_graph (CSR, checksums, fsync)",
+      format("%.3f s", write_s) + "  (" + format("%.0f MB/s", file_size / write_s / 1e6) + ")");
   row("file size", grouped(file_size) + " bytes = " + format("%.1f MB", file_size / 1e6) + ", " +
                        format("%.2f bytes/arc", static_cast<double>(file_size) / expected.m) +
                        " (costs: " + format("%.1f MB", cost_bytes / 1e6) + ")");
@@ -358,8 +368,8 @@ Result run_instance(const std::string& name, const std::function<GraphInput()>& 
   // the page cache already; mincore says how much of it is.
   g_sink = g_sink + sum_words(reader.bytes());
   const double resident = resident_fraction(reader.bytes());
-  row("page cache residency after warm-up", resident < 0 ? "unknown (mincore failed)"
-                                                         : format("%.1f %%", 100 * resident));
+  row("page cache residency after warm-up",
+      resident < 0 ? "unknown (mincore failed)" : format("%.1f %%", 100 * resident));
 
   // Open: median of many repetitions. The reader is destroyed (munmap) outside the timed region.
   {
@@ -407,17 +417,18 @@ Result run_instance(const std::string& name, const std::function<GraphInput()>& 
       times.push_back(seconds_since(start));
       check(sums.size() == expected.sums.size(), name + ": wrong number of cost sums");
       for (std::size_t i = 0; i < sums.size(); ++i)
-        check(sums[i].matches(expected.sums[i]),
-              name + ": objective " + std::to_string(i) + " sums to " + sums[i].text() +
-                  ", the input to " + expected.sums[i].text());
+        check(sums[i].matches(expected.sums[i]), name + ": objective " + std::to_string(i) +
+                                                     " sums to " + sums[i].text() +
+                                                     ", the input to " + expected.sums[i].text());
       g_sink = g_sink + sums[0].integer;
     }
     const Stats s = stats_of(times);
     std::string listed;
     for (std::size_t i = 0; i < sums.size(); ++i)
       listed += (i ? ", " : "") + reader.objective(i).name + " " + sums[i].text();
-    row("sum all costs, fresh mapping (best)", format("%.2f ms", s.min * 1e3) + format(" = %.2f GB/s", cost_bytes / s.min / 1e9) +
-                                         format("  (median %.2f ms)", s.median * 1e3));
+    row("sum all costs, fresh mapping (best)",
+        format("%.2f ms", s.min * 1e3) + format(" = %.2f GB/s", cost_bytes / s.min / 1e9) +
+            format("  (median %.2f ms)", s.median * 1e3));
     row("  sums (checked against the input)", listed);
   }
 
@@ -469,10 +480,11 @@ Result run_instance(const std::string& name, const std::function<GraphInput()>& 
     std::printf("  %-38s %7.2f ms %9.2f %11.2fx\n", pass.label, pass.best * 1e3,
                 file_size / pass.best / 1e9, pass.best / baseline);
   }
-  std::printf("  (x baseline = time / the plain read on the same kind of mapping; GB/s over the\n"
-              "   file size; plain-read word sum %016llx, XXH3-64 %016llx)\n",
-              static_cast<unsigned long long>(passes[0].value),
-              static_cast<unsigned long long>(passes[1].value));
+  std::printf(
+      "  (x baseline = time / the plain read on the same kind of mapping; GB/s over the\n"
+      "   file size; plain-read word sum %016llx, XXH3-64 %016llx)\n",
+      static_cast<unsigned long long>(passes[0].value),
+      static_cast<unsigned long long>(passes[1].value));
   result.baseline_s = passes[0].best;
   result.checksums_s = passes[2].best;
   result.full_s = passes[4].best;
@@ -482,7 +494,9 @@ Result run_instance(const std::string& name, const std::function<GraphInput()>& 
 }
 
 // mosb::verify spreads its work over hardware_concurrency threads (files of 1 MB and more).
-unsigned verify_threads() { return std::max(1u, std::thread::hardware_concurrency()); }
+unsigned verify_threads() {
+  return std::max(1u, std::thread::hardware_concurrency());
+}
 
 void print_targets(const std::vector<Result>& results) {
   std::printf("\n== targets ==\n");
@@ -511,9 +525,10 @@ void print_targets(const std::vector<Result>& results) {
     std::printf("  open time ratio, largest / smallest file: %.2f (file size ratio %.2f)\n",
                 results.back().open_median_us / results.front().open_median_us,
                 static_cast<double>(results.back().file_size) / results.front().file_size);
-  std::printf("  (verify runs on %u threads, so its GB/s per core is the total / %u; the plain read\n"
-              "   runs on one)\n",
-              verify_threads(), verify_threads());
+  std::printf(
+      "  (verify runs on %u threads, so its GB/s per core is the total / %u; the plain read\n"
+      "   runs on one)\n",
+      verify_threads(), verify_threads());
 }
 
 }  // namespace
@@ -527,10 +542,11 @@ int main(int argc, char** argv) {
     } else if (arg == "--dir" && i + 1 < argc) {
       options.dir = argv[++i];
     } else if (arg == "--help" || arg == "-h") {
-      std::printf("usage: %s [--dir DIR] [--quick]\n"
-                  "  --dir DIR  where to write the instance files (default /tmp/mosb-bench)\n"
-                  "  --quick    small instances and few repetitions: a smoke run\n",
-                  argv[0]);
+      std::printf(
+          "usage: %s [--dir DIR] [--quick]\n"
+          "  --dir DIR  where to write the instance files (default /tmp/mosb-bench)\n"
+          "  --quick    small instances and few repetitions: a smoke run\n",
+          argv[0]);
       return 0;
     } else {
       std::fprintf(stderr, "usage: %s [--dir DIR] [--quick]\n", argv[0]);
@@ -547,9 +563,11 @@ int main(int argc, char** argv) {
     std::printf("mosb_bench_core%s\n", options.quick ? " --quick (smoke run: small sizes)" : "");
     std::printf("  cores (hardware_concurrency)   %u\n", std::thread::hardware_concurrency());
     std::printf("  compiler                       %s (%s)\n", MOSB_BENCH_COMPILER, __VERSION__);
-    std::printf("  build type / flags             %s: %s -std=c++20, no -march (library and benchmark\n"
-                "                                 alike; plus warning flags); XXH3 from the system libxxhash\n",
-                MOSB_BENCH_BUILD_TYPE, MOSB_BENCH_CXX_FLAGS);
+    std::printf(
+        "  build type / flags             %s: %s -std=c++20, no -march (library and benchmark\n"
+        "                                 alike; plus warning flags); XXH3 from the system "
+        "libxxhash\n",
+        MOSB_BENCH_BUILD_TYPE, MOSB_BENCH_CXX_FLAGS);
     std::printf("  libxxhash                      %u.%u.%u\n", XXH_versionNumber() / 10000,
                 XXH_versionNumber() / 100 % 100, XXH_versionNumber() % 100);
     std::printf("  instance directory             %s (files are left there)\n",
@@ -558,12 +576,14 @@ int main(int argc, char** argv) {
         "  warm = the file is in the OS page cache (it was just written, then read once in full\n"
         "         through the mapping), so nothing touches the disk. 'mapped' passes reuse that\n"
         "         mapping (no page faults); 'fresh mapping' passes open a new one per run and so\n"
-        "         include minor page faults. Timings are std::chrono::steady_clock. The plain read\n"
-        "         and XXH3 rows run on one thread; verify uses every core (hardware_concurrency).\n");
+        "         include minor page faults. Timings are std::chrono::steady_clock. The plain "
+        "read\n"
+        "         and XXH3 rows run on one thread; verify uses every core "
+        "(hardware_concurrency).\n");
 
     std::vector<Result> results;
-    const std::string grid_name =
-        "Grid " + std::to_string(grid_side) + "x" + std::to_string(grid_side) + ", 3 objectives, seed 1";
+    const std::string grid_name = "Grid " + std::to_string(grid_side) + "x" +
+                                  std::to_string(grid_side) + ", 3 objectives, seed 1";
     results.push_back(run_instance(
         grid_name,
         [&] {

@@ -9,12 +9,12 @@
 
 static int failures = 0;
 
-#define CHECK(cond)                                                 \
-  do {                                                              \
-    if (!(cond)) {                                                  \
+#define CHECK(cond)                                                            \
+  do {                                                                         \
+    if (!(cond)) {                                                             \
       fprintf(stderr, "%s:%d: CHECK(%s) failed\n", __FILE__, __LINE__, #cond); \
-      ++failures;                                                   \
-    }                                                               \
+      ++failures;                                                              \
+    }                                                                          \
   } while (0)
 
 static char path_buffer[4096];
@@ -23,18 +23,27 @@ static const char* golden(const char* dir, const char* name) {
   return path_buffer;
 }
 
-static int contains(const char* text, const char* fragment) { return strstr(text, fragment) != NULL; }
+static int contains(const char* text, const char* fragment) {
+  return strstr(text, fragment) != NULL;
+}
 
 /* Cost value of CSR arc a in any stored type, read through the typed pointer. */
 static double cost_at(mosb_element_type type, const void* values, size_t a) {
   switch (type) {
-    case MOSB_U8: return ((const uint8_t*)values)[a];
-    case MOSB_U16: return ((const uint16_t*)values)[a];
-    case MOSB_U32: return ((const uint32_t*)values)[a];
-    case MOSB_U64: return (double)((const uint64_t*)values)[a];
-    case MOSB_F32: return ((const float*)values)[a];
-    case MOSB_F64: return ((const double*)values)[a];
-    default: return -1;
+    case MOSB_U8:
+      return ((const uint8_t*)values)[a];
+    case MOSB_U16:
+      return ((const uint16_t*)values)[a];
+    case MOSB_U32:
+      return ((const uint32_t*)values)[a];
+    case MOSB_U64:
+      return (double)((const uint64_t*)values)[a];
+    case MOSB_F32:
+      return ((const float*)values)[a];
+    case MOSB_F64:
+      return ((const double*)values)[a];
+    default:
+      return -1;
   }
 }
 
@@ -114,7 +123,8 @@ static void check_graph(const mosb_graph* g) {
 
   CHECK(mosb_metadata(g, "benchmark", &value, &count) == MOSB_OK);
   CHECK(strcmp(value, "golden-small") == 0 && count == 12);
-  CHECK(mosb_metadata(g, "note", &value, NULL) == MOSB_OK && contains(value, "backslash,\nnewline"));
+  CHECK(mosb_metadata(g, "note", &value, NULL) == MOSB_OK &&
+        contains(value, "backslash,\nnewline"));
   CHECK(mosb_metadata(g, "absent", &value, &count) == MOSB_ERROR_NOT_FOUND);
 
   CHECK(mosb_digest(g, &digest) == MOSB_OK && strlen(digest) == 32);
@@ -132,7 +142,8 @@ static void* worker(void* arg) {
   const char* value = NULL;
   *ok = mosb_objective_unit(shared_graph, 1, &unit) == MOSB_OK && strcmp(unit, "s") == 0;
   *ok &= mosb_view_count(shared_graph, &count) == MOSB_OK && count == 2;
-  *ok &= mosb_metadata(shared_graph, "family", &value, NULL) == MOSB_OK && strcmp(value, "road") == 0;
+  *ok &=
+      mosb_metadata(shared_graph, "family", &value, NULL) == MOSB_OK && strcmp(value, "road") == 0;
   *ok &= mosb_find_objective(shared_graph, "thread-only", &index) == MOSB_ERROR_NOT_FOUND;
   *ok &= contains(mosb_last_error(), "thread-only");
   return NULL;
@@ -204,7 +215,9 @@ int main(int argc, char** argv) {
   mosb_close(g);
   check_threads(argv[1]);
   check_failures(argv[1]);
-  if (failures) fprintf(stderr, "%d checks failed\n", failures);
-  else printf("all C ABI checks passed\n");
+  if (failures)
+    fprintf(stderr, "%d checks failed\n", failures);
+  else
+    printf("all C ABI checks passed\n");
   return failures ? 1 : 0;
 }

@@ -1,5 +1,6 @@
 // libFuzzer target: arbitrary bytes through the DIMACS-Extended elevation parser (both id bases,
-// several vertex counts) and the --view parser. Any outcome but a clean mosb::Error or success is a bug.
+// several vertex counts) and the --view parser. Any outcome but a clean mosb::Error or success is a
+// bug.
 #include <cstdint>
 #include <string>
 #include <string_view>

@@ -19,13 +19,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   std::vector<std::string_view> parts;
   for (std::size_t start = 0;;) {
     const auto end = all.find('\x01', start);
-    parts.push_back(all.substr(start, end == std::string_view::npos ? std::string_view::npos : end - start));
+    parts.push_back(
+        all.substr(start, end == std::string_view::npos ? std::string_view::npos : end - start));
     if (end == std::string_view::npos || parts.size() == 4) break;
     start = end + 1;
   }
   parts.resize(4);
   static const std::string name = "fuzz";
-  static const OctileMap fixed = parse_octile_map("type octile\nheight 2\nwidth 3\nmap\n...\n.@.\n", name);
+  static const OctileMap fixed =
+      parse_octile_map("type octile\nheight 2\nwidth 3\nmap\n...\n.@.\n", name);
   OctileMap map = fixed;
   for (const bool swamp : {false, true}) {
     try {
@@ -56,10 +58,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (small) {
     const auto graph = build_guards_graph(map, exposure);
     for (std::size_t k = 0; k < graph.tails.size(); ++k)
-      if (graph.tails[k] >= graph.vertex_count || graph.heads[k] >= graph.vertex_count) __builtin_trap();
+      if (graph.tails[k] >= graph.vertex_count || graph.heads[k] >= graph.vertex_count)
+        __builtin_trap();
     // `convert movingai`'s graph is the same graph with the length alone.
     const auto plain = build_octile_graph(map);
-    if (plain.tails != graph.tails || plain.heads != graph.heads || plain.costs.size() != 1) __builtin_trap();
+    if (plain.tails != graph.tails || plain.heads != graph.heads || plain.costs.size() != 1)
+      __builtin_trap();
   }
   return 0;
 }

@@ -24,7 +24,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     (void)reader.metadata().entries().size();
     std::vector<double> costs(reader.arc_count());
     for (std::size_t i = 0; i < reader.objective_count(); ++i) reader.read_cost_as(i, costs);
-    for (const auto* s : reader.all(mosb::format::SectionKind::queries)) (void)reader.queries(s->name);
+    for (const auto* s : reader.all(mosb::format::SectionKind::queries))
+      (void)reader.queries(s->name);
   } catch (const mosb::Error&) {
   }
   return 0;

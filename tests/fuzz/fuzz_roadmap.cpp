@@ -24,7 +24,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   try {
     const auto vf = mosb::converters::parse_vertex_file(text, "fuzz.txt");
-    if (vf.coords.size() != vf.ids.size() * vf.dof || vf.lines.size() != vf.ids.size()) __builtin_trap();
+    if (vf.coords.size() != vf.ids.size() * vf.dof || vf.lines.size() != vf.ids.size())
+      __builtin_trap();
   } catch (const mosb::Error&) {
   }
   return 0;

@@ -154,7 +154,7 @@ TEST_CASE("metadata() may be called by many threads on a fresh reader") {
 
 TEST_CASE("the library reports the version it was built as") {
   CHECK(std::string(mosb::version()) == MOSB_VERSION_STRING);
-  CHECK(std::string(mosb::version()) ==
-        std::to_string(MOSB_VERSION_MAJOR) + "." + std::to_string(MOSB_VERSION_MINOR) + "." +
-            std::to_string(MOSB_VERSION_PATCH));
+  CHECK(std::string(mosb::version()) == std::to_string(MOSB_VERSION_MAJOR) + "." +
+                                            std::to_string(MOSB_VERSION_MINOR) + "." +
+                                            std::to_string(MOSB_VERSION_PATCH));
 }

@@ -1,3 +1,5 @@
+#include "mosb/atomic_file.hpp"
+
 #include <doctest/doctest.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -7,7 +9,6 @@
 #include <fstream>
 #include <regex>
 
-#include "mosb/atomic_file.hpp"
 #include "mosb/converters/grid_generator.hpp"
 #include "mosb/converters/suite.hpp"
 #include "mosb/error.hpp"
@@ -19,12 +20,15 @@ namespace {
 
 std::vector<std::string> names_in(const std::filesystem::path& directory) {
   std::vector<std::string> names;
-  for (const auto& e : std::filesystem::directory_iterator(directory)) names.push_back(e.path().filename());
+  for (const auto& e : std::filesystem::directory_iterator(directory))
+    names.push_back(e.path().filename());
   std::sort(names.begin(), names.end());
   return names;
 }
 
-void touch(const std::filesystem::path& path, const std::string& text = "x") { std::ofstream(path) << text; }
+void touch(const std::filesystem::path& path, const std::string& text = "x") {
+  std::ofstream(path) << text;
+}
 
 pid_t dead_pid() {
   const pid_t child = ::fork();
@@ -35,12 +39,14 @@ pid_t dead_pid() {
 
 }  // namespace
 
-TEST_CASE("atomic file: the temporary is named .NAME.tmp-PID-XXXXXX and removed when not committed") {
+TEST_CASE(
+    "atomic file: the temporary is named .NAME.tmp-PID-XXXXXX and removed when not committed") {
   testing::TempDir dir;
   {
     AtomicFile file(dir / "out.txt");
     file.write("hello");
-    const std::regex pattern("\\.out\\.txt\\.tmp-" + std::to_string(::getpid()) + "-[A-Za-z0-9]{6}");
+    const std::regex pattern("\\.out\\.txt\\.tmp-" + std::to_string(::getpid()) +
+                             "-[A-Za-z0-9]{6}");
     CHECK(std::regex_match(file.temporary().filename().string(), pattern));
     CHECK(names_in(dir.path()) == std::vector<std::string>{file.temporary().filename()});
   }
@@ -62,7 +68,8 @@ TEST_CASE("atomic file: commit renames into place and replaces a symlink at the 
   CHECK(names_in(dir.path()) == std::vector<std::string>{"elsewhere", "out.txt"});
 }
 
-TEST_CASE("atomic file: stale temporaries of dead processes are removed and reported, others kept") {
+TEST_CASE(
+    "atomic file: stale temporaries of dead processes are removed and reported, others kept") {
   testing::TempDir dir;
   const auto dead = std::to_string(dead_pid());
   const auto live = std::to_string(::getppid());
@@ -89,7 +96,8 @@ TEST_CASE("atomic file: stale temporaries of dead processes are removed and repo
   CHECK(names_in(dir.path()) == expected);
 }
 
-TEST_CASE("atomic file: an in-place rewrite keeps the mode and refuses read-only and hard-linked files") {
+TEST_CASE(
+    "atomic file: an in-place rewrite keeps the mode and refuses read-only and hard-linked files") {
   testing::TempDir dir;
   touch(dir / "f");
   ::chmod((dir / "f").c_str(), 0640);

@@ -20,7 +20,8 @@ TEST_CASE("objective specs: NAME and NAME:UNIT, the unit after the first colon")
   const auto with_unit = parse_objective("time:s:approx", "convert x");
   CHECK(with_unit.name == "time");
   CHECK(with_unit.unit == "s:approx");
-  CHECK_THROWS_WITH_AS(parse_objective(":m", "convert x"), "convert x: --objective ':m' has an empty name", Error);
+  CHECK_THROWS_WITH_AS(parse_objective(":m", "convert x"),
+                       "convert x: --objective ':m' has an empty name", Error);
   CHECK_THROWS_AS(parse_objective("", "convert x"), Error);
   CHECK(objective_list({plain, with_unit, {"risk", ""}}) == "distance,time:s:approx,risk");
   CHECK(objective_list({}).empty());
@@ -40,14 +41,18 @@ TEST_CASE("narrowest data column: the first candidate holding every value") {
   const auto c = u({1, 300});
   CHECK(c.bytes.size() == 4);
   CHECK(c.name == "c");
-  const auto s = [](std::vector<std::int64_t> v) { return narrowest_column<std::int32_t, std::int64_t>("s", 2, v); };
+  const auto s = [](std::vector<std::int64_t> v) {
+    return narrowest_column<std::int32_t, std::int64_t>("s", 2, v);
+  };
   CHECK(s({-5, 7}).type == format::ElementType::i32);
   CHECK(s({std::numeric_limits<std::int32_t>::min(), 0}).type == format::ElementType::i32);
-  CHECK(s({std::int64_t{std::numeric_limits<std::int32_t>::min()} - 1, 0}).type == format::ElementType::i64);
+  CHECK(s({std::int64_t{std::numeric_limits<std::int32_t>::min()} - 1, 0}).type ==
+        format::ElementType::i64);
   CHECK(s({std::int64_t{1} << 31, 0}).type == format::ElementType::i64);
   CHECK(s({1, 2}).width == 2);
   // A smallest candidate: cells are at least u16, whatever the values.
   const auto cells = narrowest_column<u16, u32>("cell", 2, std::vector<u32>{3, 4});
   CHECK(cells.type == format::ElementType::u16);
-  CHECK(narrowest_column<u16, u32>("cell", 2, std::vector<u32>{65536, 0}).type == format::ElementType::u32);
+  CHECK(narrowest_column<u16, u32>("cell", 2, std::vector<u32>{65536, 0}).type ==
+        format::ElementType::u32);
 }

@@ -1,5 +1,7 @@
 // Export to DIMACS: convert -> export -> convert gives the same non-metadata sections, for both id
 // bases; --view exports only its columns; queries and coordinates in the id base.
+#include "mosb/converters/dimacs_export.hpp"
+
 #include <doctest/doctest.h>
 
 #include <fstream>
@@ -7,7 +9,6 @@
 #include <string>
 
 #include "mosb/converters/dimacs_converter.hpp"
-#include "mosb/converters/dimacs_export.hpp"
 #include "mosb/converters/dimacs_extended.hpp"
 #include "mosb/error.hpp"
 #include "mosb/graph_reader.hpp"
@@ -24,7 +25,8 @@ using namespace mosb::testing;  // write_text, slurp
 std::map<std::string, std::uint64_t> checksums(const GraphReader& r) {
   std::map<std::string, std::uint64_t> out;
   for (const auto& s : r.sections())
-    if (s.name != "metadata") out[std::to_string(static_cast<int>(s.entry.kind)) + "/" + s.name] = s.entry.checksum;
+    if (s.name != "metadata")
+      out[std::to_string(static_cast<int>(s.entry.kind)) + "/" + s.name] = s.entry.checksum;
   return out;
 }
 
@@ -36,16 +38,18 @@ std::string graph_text(unsigned base, bool reals) {
   const char* ints[6] = {"7", "300", "1", "65536", "0", "2"};
   const char* floats[6] = {"0.1", "2.5", "1e-7", "3.0", "0.30000000000000004", "12345.678"};
   for (int k = 0; k < 6; ++k)
-    text += "a " + id(arcs[k][0]) + " " + id(arcs[k][1]) + " " + (reals ? floats[k] : ints[k]) + "\n";
+    text +=
+        "a " + id(arcs[k][0]) + " " + id(arcs[k][1]) + " " + (reals ? floats[k] : ints[k]) + "\n";
   return text;
 }
 
 std::string coords_text(unsigned base) {
   std::string text = "p aux sp co 4\n";
-  const long xy[4][2] = {{-73990000, 40750000}, {-73980000, 40760000}, {5, -6}, {2147483647, -2147483648L}};
+  const long xy[4][2] = {
+      {-73990000, 40750000}, {-73980000, 40760000}, {5, -6}, {2147483647, -2147483648L}};
   for (int v = 0; v < 4; ++v)
-    text += "v " + std::to_string(v + static_cast<int>(base)) + " " + std::to_string(xy[v][0]) + " " +
-            std::to_string(xy[v][1]) + "\n";
+    text += "v " + std::to_string(v + static_cast<int>(base)) + " " + std::to_string(xy[v][0]) +
+            " " + std::to_string(xy[v][1]) + "\n";
   return text;
 }
 
@@ -62,7 +66,9 @@ GraphReader convert(const converters::DimacsOptions& o, bool derive, const fs::p
 
 }  // namespace
 
-TEST_CASE("dimacs export: convert -> export -> convert keeps every non-metadata section, id base 0 and 1") {
+TEST_CASE(
+    "dimacs export: convert -> export -> convert keeps every non-metadata section, id base 0 and "
+    "1") {
   for (unsigned base : {0u, 1u}) {
     CAPTURE(base);
     testing::TempDir dir;
@@ -78,7 +84,8 @@ TEST_CASE("dimacs export: convert -> export -> convert keeps every non-metadata 
     const auto first = convert(o, true, dir / "first.mosb");
     REQUIRE(first.objective_count() == 4);
 
-    const auto written = converters::export_dimacs(dir / "first.mosb", {dir / "out", std::nullopt, std::nullopt});
+    const auto written =
+        converters::export_dimacs(dir / "first.mosb", {dir / "out", std::nullopt, std::nullopt});
     REQUIRE(written.size() == 5);
     CHECK(written[0] == dir / "out" / "B-dist.gr");
     CHECK(written[4] == dir / "out" / "B.co");
@@ -119,10 +126,12 @@ TEST_CASE("dimacs export: --view exports only its columns, in its order and its 
   g.metadata.set("view.V.queries", "default");
   write_graph(g, dir / "t.mosb");
 
-  const auto all = converters::export_dimacs(dir / "t.mosb", {dir / "all", std::nullopt, std::nullopt});
+  const auto all =
+      converters::export_dimacs(dir / "t.mosb", {dir / "all", std::nullopt, std::nullopt});
   CHECK(all.size() == 5);
   CHECK(slurp(dir / "all" / "T-other.queries") == "3 3\n");
-  CHECK(slurp(dir / "all" / "T-b.gr").find("p sp 3 2\na 1 2 1.0\na 3 1 0.5\n") != std::string::npos);
+  CHECK(slurp(dir / "all" / "T-b.gr").find("p sp 3 2\na 1 2 1.0\na 3 1 0.5\n") !=
+        std::string::npos);
 
   const auto view = converters::export_dimacs(dir / "t.mosb", {dir / "view", "V", 0u});
   REQUIRE(view.size() == 3);

@@ -1,12 +1,13 @@
 // DIMACS-Extended: derived columns on a hand-made graph with hand-computed values, the elevation
 // parser's located errors, and view metadata.
+#include "mosb/converters/dimacs_extended.hpp"
+
 #include <doctest/doctest.h>
 
 #include <fstream>
 #include <string>
 
 #include "mosb/converters/dimacs_converter.hpp"
-#include "mosb/converters/dimacs_extended.hpp"
 #include "mosb/error.hpp"
 #include "mosb/graph_reader.hpp"
 #include "temp_dir.hpp"
@@ -59,12 +60,14 @@ GraphReader extended(const testing::TempDir& dir, const ExtendedOptions& extra) 
 
 void check_elevation_error(const std::string& text, const std::string& message) {
   CAPTURE(text);
-  CHECK_THROWS_WITH_AS(converters::parse_dimacs_elevation(text, "e.elev", 1, 2), message.c_str(), Error);
+  CHECK_THROWS_WITH_AS(converters::parse_dimacs_elevation(text, "e.elev", 1, 2), message.c_str(),
+                       Error);
 }
 
 }  // namespace
 
-TEST_CASE("dimacs-extended: elevation, avg_outdegree and hop follow the gr columns in a fixed order") {
+TEST_CASE(
+    "dimacs-extended: elevation, avg_outdegree and hop follow the gr columns in a fixed order") {
   testing::TempDir dir;
   ExtendedOptions o;
   o.hop = true;
@@ -104,23 +107,31 @@ TEST_CASE("dimacs-extended: elevation files with errors give FILE:LINE:COLUMN") 
   check_elevation_error("v 1 3\n", "e.elev:1:1: 'v' line before the 'p aux sp elev n' line");
   check_elevation_error("p aux sp elev 3\n", "e.elev:1:15: declares 3 vertices, the graph has 2");
   check_elevation_error("p aux sp co 2\n", "e.elev:1:3: expected 'p aux sp elev n'");
-  check_elevation_error("p aux sp elev 2\nv 1 5\nv 3 5\n", "e.elev:3:3: vertex id '3' outside 1..2");
-  check_elevation_error("p aux sp elev 2\nv 1 5\nv 1 6\n", "e.elev:3:3: second 'v' line for vertex 1");
-  check_elevation_error("p aux sp elev 2\nv 1 5\nv 2 1.5\n", "e.elev:3:5: expected an integer elevation, found '1.5'");
-  check_elevation_error("p aux sp elev 2\nv 1 5\nv 2\n", "e.elev:3:4: missing field: an elevation line is 'v id elevation'");
-  check_elevation_error("p aux sp elev 2\nv 1 5 6\n", "e.elev:2:7: extra field '6': an elevation line is 'v id elevation'");
+  check_elevation_error("p aux sp elev 2\nv 1 5\nv 3 5\n",
+                        "e.elev:3:3: vertex id '3' outside 1..2");
+  check_elevation_error("p aux sp elev 2\nv 1 5\nv 1 6\n",
+                        "e.elev:3:3: second 'v' line for vertex 1");
+  check_elevation_error("p aux sp elev 2\nv 1 5\nv 2 1.5\n",
+                        "e.elev:3:5: expected an integer elevation, found '1.5'");
+  check_elevation_error("p aux sp elev 2\nv 1 5\nv 2\n",
+                        "e.elev:3:4: missing field: an elevation line is 'v id elevation'");
+  check_elevation_error("p aux sp elev 2\nv 1 5 6\n",
+                        "e.elev:2:7: extra field '6': an elevation line is 'v id elevation'");
   check_elevation_error("p aux sp elev 2\nv 2 5\n", "e.elev:1:1: no 'v' line for vertex 1");
   check_elevation_error("c only\n", "e.elev:1:1: no 'p aux sp elev n' line");
   check_elevation_error("p aux sp elev 2\nx\n", "e.elev:2:1: unknown line type 'x'");
-  const auto ok = converters::parse_dimacs_elevation("p aux sp elev 2\r\nv 2 -9223372036854775808\nv 1 7", "e", 1, 2);
+  const auto ok = converters::parse_dimacs_elevation(
+      "p aux sp elev 2\r\nv 2 -9223372036854775808\nv 1 7", "e", 1, 2);
   CHECK(ok == std::vector<std::int64_t>{7, INT64_MIN});
 }
 
-TEST_CASE("dimacs-extended: views record objectives and .queries only for a query set the file has") {
+TEST_CASE(
+    "dimacs-extended: views record objectives and .queries only for a query set the file has") {
   testing::TempDir dir;
   ExtendedOptions o;
   o.hop = true;
-  o.views = {converters::parse_view_spec("NY_2=c1,hop"), converters::parse_view_spec("only_hop=hop@q100")};
+  o.views = {converters::parse_view_spec("NY_2=c1,hop"),
+             converters::parse_view_spec("only_hop=hop@q100")};
   const auto r = extended(dir, o);
   const auto& m = r.metadata();
   CHECK(m.get("view.NY_2.objectives") == "c1,hop");
@@ -140,20 +151,26 @@ TEST_CASE("dimacs-extended: views record objectives and .queries only for a quer
   CHECK(g.metadata.get("view.v.queries") == "default");
   CHECK_NOTHROW(write_graph(g, dir / "q.mosb"));
   CHECK_THROWS_WITH_AS(converters::add_views(g, {converters::parse_view_spec("w=c1,c2")}),
-                       "convert dimacs: --view 'w': objective 'c2' is not a column (columns: c1)", Error);
+                       "convert dimacs: --view 'w': objective 'c2' is not a column (columns: c1)",
+                       Error);
 }
 
 TEST_CASE("dimacs-extended: malformed --view texts are refused with one line") {
   CHECK_THROWS_WITH_AS(converters::parse_view_spec("NY"),
-                       "convert dimacs: --view 'NY': expected NAME=OBJ1,OBJ2,...[@QUERYSET]", Error);
-  CHECK_THROWS_WITH_AS(converters::parse_view_spec("=a"),
-                       "convert dimacs: --view '=a': the view name must be 1 or more of [A-Za-z0-9_.+-]", Error);
+                       "convert dimacs: --view 'NY': expected NAME=OBJ1,OBJ2,...[@QUERYSET]",
+                       Error);
+  CHECK_THROWS_WITH_AS(
+      converters::parse_view_spec("=a"),
+      "convert dimacs: --view '=a': the view name must be 1 or more of [A-Za-z0-9_.+-]", Error);
   CHECK_THROWS_WITH_AS(converters::parse_view_spec("v=a,,b"),
-                       "convert dimacs: --view 'v=a,,b': empty or invalid objective name ''", Error);
+                       "convert dimacs: --view 'v=a,,b': empty or invalid objective name ''",
+                       Error);
   CHECK_THROWS_WITH_AS(converters::parse_view_spec("v=a,a"),
                        "convert dimacs: --view 'v=a,a': objective 'a' listed twice", Error);
   CHECK_THROWS_WITH_AS(converters::parse_view_spec("v=a@"),
-                       "convert dimacs: --view 'v=a@': the query set name must be 1-24 characters from [A-Za-z0-9_.+-]", Error);
+                       "convert dimacs: --view 'v=a@': the query set name must be 1-24 characters "
+                       "from [A-Za-z0-9_.+-]",
+                       Error);
   const auto v = converters::parse_view_spec("DIMACS-NY_2=distance,time@ny100");
   CHECK(v.name == "DIMACS-NY_2");
   CHECK(v.objectives == std::vector<std::string>{"distance", "time"});

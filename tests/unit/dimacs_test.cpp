@@ -7,12 +7,12 @@
 #include <map>
 #include <string>
 
-#include "mosb/hex.hpp"
 #include "file_patch.hpp"
 #include "mosb/converters/dimacs_converter.hpp"
 #include "mosb/converters/text_input.hpp"
 #include "mosb/error.hpp"
 #include "mosb/graph_reader.hpp"
+#include "mosb/hex.hpp"
 #include "mosb/verify.hpp"
 #include "temp_dir.hpp"
 #include "test_files.hpp"
@@ -73,7 +73,6 @@ std::vector<double> costs(const GraphReader& r, std::size_t j) {
   return c;
 }
 
-
 bool have_command(const std::string& name) {
   return std::system(("command -v " + name + " >/dev/null 2>&1").c_str()) == 0;
 }
@@ -94,9 +93,11 @@ TEST_CASE("dimacs: a 2-objective graph converts with the right CSR and costs") {
   CHECK(r.arc_count() == 5);
   REQUIRE(r.objective_count() == 2);
   const auto off = r.forward_offsets();
-  CHECK(std::vector<std::uint64_t>(off.begin(), off.end()) == std::vector<std::uint64_t>{0, 2, 3, 4, 5});
+  CHECK(std::vector<std::uint64_t>(off.begin(), off.end()) ==
+        std::vector<std::uint64_t>{0, 2, 3, 4, 5});
   const auto tgt = r.forward_targets();
-  CHECK(std::vector<std::uint32_t>(tgt.begin(), tgt.end()) == std::vector<std::uint32_t>{1, 2, 2, 3, 0});
+  CHECK(std::vector<std::uint32_t>(tgt.begin(), tgt.end()) ==
+        std::vector<std::uint32_t>{1, 2, 2, 3, 0});
   CHECK(r.objective(0).name == "c1");
   CHECK(r.objective(1).name == "c2");
   CHECK(r.objective(0).type == format::ElementType::u8);
@@ -126,7 +127,8 @@ TEST_CASE("dimacs: a 2-objective graph converts with the right CSR and costs") {
     CHECK(named.metadata().get("objective.distance.unit") == "m");
     o.objectives = {{"distance", "m"}};
     CHECK_THROWS_WITH_AS(converters::convert_dimacs(o),
-                         "convert dimacs: 1 objective name given, the input has 2 cost columns", Error);
+                         "convert dimacs: 1 objective name given, the input has 2 cost columns",
+                         Error);
   }
 }
 
@@ -154,7 +156,8 @@ TEST_CASE("dimacs: gzip, bzip2, xz and zstd inputs are detected by magic bytes")
     }
     // A misleading name: detection must not look at it.
     const auto packed = dir / (tool + "-input.txt");
-    const std::string shell = command + " '" + (dir / "plain.gr").string() + "' > '" + packed.string() + "'";
+    const std::string shell =
+        command + " '" + (dir / "plain.gr").string() + "' > '" + packed.string() + "'";
     REQUIRE(std::system(shell.c_str()) == 0);
     const auto raw = slurp(packed);
     CHECK(converters::detect_compression(raw) != converters::Compression::none);
@@ -178,15 +181,17 @@ TEST_CASE("dimacs: per-objective files that disagree name both files and both li
                            .c_str(),
                        Error);
   write_text(dir / "c.gr", "p sp 5 3\na 1 2 1\na 2 3 1\na 3 4 1\n");
-  CHECK_THROWS_WITH_AS(converters::convert_dimacs(gr({dir / "a.gr", dir / "c.gr"})),
-                       ((dir / "c.gr").string() + ":1:6: declares 5 vertices, " + a + " has 4").c_str(), Error);
+  CHECK_THROWS_WITH_AS(
+      converters::convert_dimacs(gr({dir / "a.gr", dir / "c.gr"})),
+      ((dir / "c.gr").string() + ":1:6: declares 5 vertices, " + a + " has 4").c_str(), Error);
 }
 
 TEST_CASE("dimacs: a header arc count that disagrees gives expected and found counts") {
   testing::TempDir dir;
   write_text(dir / "h.gr", "p sp 4 6\na 1 2 1\na 2 3 1\n");
-  CHECK_THROWS_WITH_AS(converters::convert_dimacs(gr({dir / "h.gr"})),
-                       ((dir / "h.gr").string() + ":1:8: the header declares 6 arcs, found 2").c_str(), Error);
+  CHECK_THROWS_WITH_AS(
+      converters::convert_dimacs(gr({dir / "h.gr"})),
+      ((dir / "h.gr").string() + ":1:8: the header declares 6 arcs, found 2").c_str(), Error);
   check_parse_error("p sp 3 0\na 1 2 1\n", "t.gr:1:8: the header declares 0 arcs, found 1");
 }
 
@@ -202,8 +207,10 @@ TEST_CASE("dimacs: malformed lines give FILE:LINE:COLUMN messages") {
   check_parse_error("p sp 3 1\na 1 2 inf\n", "t.gr:2:7: expected a cost, found 'inf'");
   check_parse_error("p sp 3 1\nx 1 2\n", "t.gr:2:1: unknown line type 'x'");
   check_parse_error("p sp 3 1\na 1 2\n", "t.gr:2:6: missing field: an arc line is 'a u v cost...'");
-  check_parse_error("p sp 3 2\na 1 2 5\na 2 3 5 6\n", "t.gr:3:9: extra field '6': expected 1 cost as on line 2");
-  check_parse_error("p sp 3 2\na 1 2 5 6\na 2 3 5\n", "t.gr:3:8: missing field: expected 2 costs as on line 2");
+  check_parse_error("p sp 3 2\na 1 2 5\na 2 3 5 6\n",
+                    "t.gr:3:9: extra field '6': expected 1 cost as on line 2");
+  check_parse_error("p sp 3 2\na 1 2 5 6\na 2 3 5\n",
+                    "t.gr:3:8: missing field: expected 2 costs as on line 2");
   check_parse_error("p sp 3\n", "t.gr:1:7: missing field: the header is 'p sp n m'");
   check_parse_error("p sp 3 1 9\n", "t.gr:1:10: extra field '9': the header is 'p sp n m'");
   check_parse_error("p max 3 1\n", "t.gr:1:3: expected 'sp' after 'p', found 'max'");
@@ -232,7 +239,8 @@ TEST_CASE("dimacs: decimal columns are real-valued and --cost-type forces every 
 TEST_CASE("dimacs: parallel arcs, self-loops, 0-based ids and .co coordinates") {
   testing::TempDir dir;
   write_text(dir / "z.gr", "p sp 3 4\na 0 1 5\na 0 1 6\na 2 2 1\na 1 0 2\n");
-  write_text(dir / "z.co", "c coords\np aux sp co 3\nv 0 -73530767 41085396\nv 2 1 2\nv 1 -3000000000 4\n");
+  write_text(dir / "z.co",
+             "c coords\np aux sp co 3\nv 0 -73530767 41085396\nv 2 1 2\nv 1 -3000000000 4\n");
   auto o = gr({dir / "z.gr"});
   o.id_base = 0;
   o.co_file = (dir / "z.co").string();
@@ -245,12 +253,13 @@ TEST_CASE("dimacs: parallel arcs, self-loops, 0-based ids and .co coordinates") 
   write_text(dir / "missing.co", "p aux sp co 3\nv 0 1 1\nv 2 1 1\n");
   o.co_file = (dir / "missing.co").string();
   CHECK_THROWS_WITH_AS(converters::convert_dimacs(o),
-                       ((dir / "missing.co").string() + ":1:1: no 'v' line for vertex 1").c_str(), Error);
+                       ((dir / "missing.co").string() + ":1:1: no 'v' line for vertex 1").c_str(),
+                       Error);
   write_text(dir / "small.co", "p aux sp co 2\nv 0 1 1\nv 1 1 1\n");
   o.co_file = (dir / "small.co").string();
-  CHECK_THROWS_WITH_AS(converters::convert_dimacs(o),
-                       ((dir / "small.co").string() + ":1:13: declares 2 vertices, the graph has 3").c_str(),
-                       Error);
+  CHECK_THROWS_WITH_AS(
+      converters::convert_dimacs(o),
+      ((dir / "small.co").string() + ":1:13: declares 2 vertices, the graph has 3").c_str(), Error);
 }
 
 TEST_CASE("dimacs: the same input in two directories gives identical bytes") {
@@ -270,7 +279,8 @@ TEST_CASE("dimacs: real data (shared/data/dimacs-small)") {
     return;
   }
   testing::TempDir dir;
-  auto r = convert(gr({data / "ex1-c1.gr", data / "ex1-c2.gr", data / "ex1-c3.gr"}), dir / "ex1.mosb");
+  auto r =
+      convert(gr({data / "ex1-c1.gr", data / "ex1-c2.gr", data / "ex1-c3.gr"}), dir / "ex1.mosb");
   CHECK_FALSE(verify(r, VerifyLevel::full).has_value());
   CHECK(r.vertex_count() == 5);
   CHECK(r.arc_count() == 14);

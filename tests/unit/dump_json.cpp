@@ -1,5 +1,5 @@
-// Prints everything in a mosb file as JSON, through the C++ reader, for spec/reference/compare_dump.py:
-// the independent Python reader must see exactly the same values.
+// Prints everything in a mosb file as JSON, through the C++ reader, for
+// spec/reference/compare_dump.py: the independent Python reader must see exactly the same values.
 // Usage: mosb_dump_json FILE
 #include <cmath>
 #include <cstdio>
@@ -16,12 +16,14 @@ namespace {
 std::string json_string(std::string_view s) {
   std::string out = "\"";
   for (unsigned char c : s) {
-    if (c == '"' || c == '\\') out += '\\', out += static_cast<char>(c);
+    if (c == '"' || c == '\\')
+      out += '\\', out += static_cast<char>(c);
     else if (c < 0x20) {
       char buffer[8];
       std::snprintf(buffer, sizeof buffer, "\\u%04x", c);
       out += buffer;
-    } else out += static_cast<char>(c);
+    } else
+      out += static_cast<char>(c);
   }
   return out + "\"";
 }
@@ -33,8 +35,10 @@ void print_values(const GraphReader& r, const Section& s) {
     std::cout << separator;
     separator = ",";
     if constexpr (std::is_floating_point_v<T>) {
-      if (std::isnan(v)) std::cout << "\"nan\"";
-      else if (std::isinf(v)) std::cout << (v > 0 ? "\"inf\"" : "\"-inf\"");
+      if (std::isnan(v))
+        std::cout << "\"nan\"";
+      else if (std::isinf(v))
+        std::cout << (v > 0 ? "\"inf\"" : "\"-inf\"");
       else {
         char buffer[40];
         std::snprintf(buffer, sizeof buffer, "%.17g", static_cast<double>(v));
@@ -66,22 +70,43 @@ int main(int argc, char** argv) {
     separator = "";
     for (const auto& s : r.sections()) {
       std::cout << separator << "{\"name\":" << json_string(s.name) << ",\"kind\":" << s.entry.kind
-                << ",\"type\":\"" << format::to_string(s.type) << "\",\"width\":" << s.entry.row_width
-                << ",\"rows\":" << s.entry.row_count << ",\"checksum\":\"" << hex64(s.entry.checksum) << "\"";
+                << ",\"type\":\"" << format::to_string(s.type)
+                << "\",\"width\":" << s.entry.row_width << ",\"rows\":" << s.entry.row_count
+                << ",\"checksum\":\"" << hex64(s.entry.checksum) << "\"";
       separator = ",";
       if (s.kind != format::SectionKind::metadata) {
         std::cout << ",\"values\":[";
         switch (s.type) {
-          case ElementType::u8: print_values<std::uint8_t>(r, s); break;
-          case ElementType::u16: print_values<std::uint16_t>(r, s); break;
-          case ElementType::u32: print_values<std::uint32_t>(r, s); break;
-          case ElementType::u64: print_values<std::uint64_t>(r, s); break;
-          case ElementType::i8: print_values<std::int8_t>(r, s); break;
-          case ElementType::i16: print_values<std::int16_t>(r, s); break;
-          case ElementType::i32: print_values<std::int32_t>(r, s); break;
-          case ElementType::i64: print_values<std::int64_t>(r, s); break;
-          case ElementType::f32: print_values<float>(r, s); break;
-          case ElementType::f64: print_values<double>(r, s); break;
+          case ElementType::u8:
+            print_values<std::uint8_t>(r, s);
+            break;
+          case ElementType::u16:
+            print_values<std::uint16_t>(r, s);
+            break;
+          case ElementType::u32:
+            print_values<std::uint32_t>(r, s);
+            break;
+          case ElementType::u64:
+            print_values<std::uint64_t>(r, s);
+            break;
+          case ElementType::i8:
+            print_values<std::int8_t>(r, s);
+            break;
+          case ElementType::i16:
+            print_values<std::int16_t>(r, s);
+            break;
+          case ElementType::i32:
+            print_values<std::int32_t>(r, s);
+            break;
+          case ElementType::i64:
+            print_values<std::int64_t>(r, s);
+            break;
+          case ElementType::f32:
+            print_values<float>(r, s);
+            break;
+          case ElementType::f64:
+            print_values<double>(r, s);
+            break;
         }
         std::cout << "]";
       }

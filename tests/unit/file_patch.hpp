@@ -25,7 +25,8 @@ inline Bytes read_bytes(const std::filesystem::path& path) {
 
 inline void write_bytes(const std::filesystem::path& path, const Bytes& bytes) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  out.write(reinterpret_cast<const char*>(bytes.data()),
+            static_cast<std::streamsize>(bytes.size()));
 }
 
 inline format::FileHeader header_of(const Bytes& b) {
@@ -34,7 +35,9 @@ inline format::FileHeader header_of(const Bytes& b) {
   return h;
 }
 
-inline void set_header(Bytes& b, const format::FileHeader& h) { std::memcpy(b.data(), &h, sizeof h); }
+inline void set_header(Bytes& b, const format::FileHeader& h) {
+  std::memcpy(b.data(), &h, sizeof h);
+}
 
 inline std::size_t entry_offset(const Bytes& b, std::size_t i) {
   return header_of(b).table_offset + i * sizeof(format::SectionEntry);
@@ -62,7 +65,8 @@ inline void reseal_header(Bytes& b) {
   XXH3_state_t* state = XXH3_createState();
   XXH3_64bits_reset(state);
   XXH3_64bits_update(state, b.data(), format::kHeaderChecksumOffset);
-  XXH3_64bits_update(state, b.data() + h.table_offset, h.section_count * sizeof(format::SectionEntry));
+  XXH3_64bits_update(state, b.data() + h.table_offset,
+                     h.section_count * sizeof(format::SectionEntry));
   h.header_checksum = XXH3_64bits_digest(state);
   XXH3_freeState(state);
   set_header(b, h);

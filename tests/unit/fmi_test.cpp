@@ -173,7 +173,8 @@ void check_parse_error(const std::string& text, const std::string& message,
 
 }  // namespace
 
-TEST_CASE("fmi: the maxspeed layout converts with costs, type, maxspeed, coords, elevation, osm ids") {
+TEST_CASE(
+    "fmi: the maxspeed layout converts with costs, type, maxspeed, coords, elevation, osm ids") {
   testing::TempDir dir;
   write_text(dir / "bw.fmi.txt", kMaxspeed);
   auto r = convert(fmi(dir / "bw.fmi.txt"), dir / "bw.mosb");
@@ -191,7 +192,8 @@ TEST_CASE("fmi: the maxspeed layout converts with costs, type, maxspeed, coords,
   CHECK(vertex_data<double>(r, "coords") ==
         std::vector<double>{48.5, 9.25, 48.51, 9.26, 48.52, 9.27, -33.5, -70.75});
   CHECK(vertex_data<std::int32_t>(r, "elevation") == std::vector<std::int32_t>{300, 310, 305, -2});
-  CHECK(vertex_data<std::uint64_t>(r, "osm_id") == std::vector<std::uint64_t>{100, 101, 102, 9000000000});
+  CHECK(vertex_data<std::uint64_t>(r, "osm_id") ==
+        std::vector<std::uint64_t>{100, 101, 102, 9000000000});
   CHECK(r.find(format::SectionKind::vertex_data, "original_id") == nullptr);
   const auto& m = r.metadata();
   CHECK(m.get("benchmark") == "bw");
@@ -211,7 +213,9 @@ TEST_CASE("fmi: the maxspeed layout converts with costs, type, maxspeed, coords,
   }
 }
 
-TEST_CASE("fmi: CRLF, comments, blank lines and tabs change nothing but metadata, and output is deterministic") {
+TEST_CASE(
+    "fmi: CRLF, comments, blank lines and tabs change nothing but metadata, and output is "
+    "deterministic") {
   testing::TempDir dir;
   write_text(dir / "plain.txt", kMaxspeed);
   write_text(dir / "messy.txt", kMaxspeedMessy);
@@ -222,7 +226,9 @@ TEST_CASE("fmi: CRLF, comments, blank lines and tabs change nothing but metadata
   auto again = convert(fmi(dir / "plain.txt"), dir / "again.mosb");
   CHECK(slurp(dir / "plain.mosb") == slurp(dir / "again.mosb"));
   if (std::system("command -v gzip >/dev/null 2>&1") == 0) {
-    REQUIRE(std::system(("gzip -c '" + (dir / "plain.txt").string() + "' > '" + (dir / "p.gz").string() + "'").c_str()) == 0);
+    REQUIRE(std::system(("gzip -c '" + (dir / "plain.txt").string() + "' > '" +
+                         (dir / "p.gz").string() + "'")
+                            .c_str()) == 0);
     auto packed = convert(fmi(dir / "p.gz"), dir / "packed.mosb");
     CHECK(checksums(packed) == checksums(plain));
   } else {
@@ -237,8 +243,9 @@ TEST_CASE("fmi: ten costs get the GER_10 names in the paper's order") {
   o.cost_count = 10;
   auto r = convert(o, dir / "ger.mosb");
   REQUIRE(r.objective_count() == 10);
-  const std::vector<std::string> names = {"distance",    "time",      "ascent", "large_roads", "medium_roads",
-                                          "small_roads", "gas_price", "energy", "unit",        "quietness"};
+  const std::vector<std::string> names = {"distance",     "time",        "ascent",    "large_roads",
+                                          "medium_roads", "small_roads", "gas_price", "energy",
+                                          "unit",         "quietness"};
   for (std::size_t j = 0; j < 10; ++j) CHECK(r.objective(j).name == names[j]);
   CHECK(format::is_float(r.objective(0).type));
   CHECK(r.objective(1).type == format::ElementType::u8);
@@ -259,7 +266,8 @@ TEST_CASE("fmi: ten costs get the GER_10 names in the paper's order") {
     x.cost_count = 10;
     CHECK_THROWS_WITH_AS(converters::convert_fmi(x),
                          ((dir / "skip.txt").string() +
-                          ":6:26: extra field '-1': an edge line is 'src trg' and 10 costs").c_str(),
+                          ":6:26: extra field '-1': an edge line is 'src trg' and 10 costs")
+                             .c_str(),
                          Error);
     x.ignore_extra_fields = true;
     auto s = convert(x, dir / "skip.mosb");
@@ -277,7 +285,8 @@ TEST_CASE("fmi: ten costs get the GER_10 names in the paper's order") {
     o.objectives = {{"distance", "m"}};
     CHECK_THROWS_WITH_AS(converters::convert_fmi(o),
                          ("convert fmi: 1 objective name given, " + (dir / "ger.txt").string() +
-                          " has 10 cost columns").c_str(),
+                          " has 10 cost columns")
+                             .c_str(),
                          Error);
   }
 }
@@ -287,27 +296,34 @@ TEST_CASE("fmi: malformed input gives FILE:LINE:COLUMN messages") {
   check_parse_error("x\n", "t.fmi:1:1: expected the node count, found 'x'");
   check_parse_error("3 4\n", "t.fmi:1:3: extra field '4' after the node count");
   check_parse_error("3\n", "t.fmi:1:1: missing the edge count");
-  check_parse_error("3\n0\n0 0 0 0 0\n1 0 0 0 0\n", "t.fmi:1:1: the header declares 3 nodes, found 2");
-  check_parse_error("3\n1\n0 0 0 0 0\n2 0 0 0 0\n", "t.fmi:4:1: expected node id 1 (ids 0..n-1 in order), found '2'");
-  check_parse_error("1\n0\n0 0 48\n", "t.fmi:3:7: missing field: a node line is 'id osm_id lat lon elevation'");
+  check_parse_error("3\n0\n0 0 0 0 0\n1 0 0 0 0\n",
+                    "t.fmi:1:1: the header declares 3 nodes, found 2");
+  check_parse_error("3\n1\n0 0 0 0 0\n2 0 0 0 0\n",
+                    "t.fmi:4:1: expected node id 1 (ids 0..n-1 in order), found '2'");
+  check_parse_error("1\n0\n0 0 48\n",
+                    "t.fmi:3:7: missing field: a node line is 'id osm_id lat lon elevation'");
   check_parse_error("1\n0\n0 -4 1 2 3\n", "t.fmi:3:3: expected an OSM id, found '-4'");
   check_parse_error("1\n0\n0 0 91 0 0\n", "t.fmi:3:5: latitude '91' outside -90..90");
   check_parse_error("1\n0\n0 0 1 nan 0\n", "t.fmi:3:7: expected the longitude, found 'nan'");
   check_parse_error("1\n0\n0 0 1 2 x\n", "t.fmi:3:9: expected the elevation, found 'x'");
   const std::string two_nodes = "2\n1\n0 0 0 0 0\n1 0 0 0 0\n";
-  check_parse_error("2\n2\n0 0 0 0 0\n1 0 0 0 0\n0 1 1 1\n", "t.fmi:2:1: the header declares 2 edges, found 1");
-  check_parse_error(two_nodes + "0 1 1 1\n1 0 1 1\n", "t.fmi:6:1: the header declares 1 edge, found more");
+  check_parse_error("2\n2\n0 0 0 0 0\n1 0 0 0 0\n0 1 1 1\n",
+                    "t.fmi:2:1: the header declares 2 edges, found 1");
+  check_parse_error(two_nodes + "0 1 1 1\n1 0 1 1\n",
+                    "t.fmi:6:1: the header declares 1 edge, found more");
   check_parse_error(two_nodes + "0 1 -5 1\n", "t.fmi:5:5: negative cost '-5'");
   check_parse_error(two_nodes + "0 1 5x 1\n", "t.fmi:5:5: expected a cost, found '5x'");
   check_parse_error(two_nodes + "0 2 5 1\n", "t.fmi:5:3: node id '2' outside 0..1");
-  check_parse_error(two_nodes + "0 1 5\n", "t.fmi:5:6: missing field: an edge line is 'src trg cost type [maxspeed]'");
+  check_parse_error(two_nodes + "0 1 5\n",
+                    "t.fmi:5:6: missing field: an edge line is 'src trg cost type [maxspeed]'");
   check_parse_error(two_nodes + "0 1 5 1 50 9\n",
                     "t.fmi:5:12: extra field '9': an edge line is 'src trg cost type [maxspeed]'");
   check_parse_error("2\n2\n0 0 0 0 0\n1 0 0 0 0\n0 1 5 1\n1 0 5 1 50\n",
                     "t.fmi:6:9: extra field '50': expected 4 fields as on line 5");
   check_parse_error(two_nodes + "0 1 5 -1\n", "t.fmi:5:7: expected the edge type, found '-1'");
   check_parse_error(two_nodes + "0 1 3 -5\n", "t.fmi:5:7: negative cost '-5'", 2);
-  check_parse_error(two_nodes + "0 1 1 2\n", "t.fmi:5:8: missing field: an edge line is 'src trg' and 3 costs", 3);
+  check_parse_error(two_nodes + "0 1 1 2\n",
+                    "t.fmi:5:8: missing field: an edge line is 'src trg' and 3 costs", 3);
 }
 
 TEST_CASE("fmi: BFS extraction keeps the first N vertices in BFS order, remapped in id order") {
@@ -342,17 +358,20 @@ TEST_CASE("fmi: BFS extraction keeps the first N vertices in BFS order, remapped
     o.extract_bfs = converters::FmiBfs{3, 5, true};
     auto u = convert(o, dir / "undirected.mosb");
     // 3, then 1, 5, 4 (arcs 3->1, 1->3, 3->5, 4->3), then 0 (from 1).
-    CHECK(vertex_data<std::uint32_t>(u, "original_id") == std::vector<std::uint32_t>{0, 1, 3, 4, 5});
+    CHECK(vertex_data<std::uint32_t>(u, "original_id") ==
+          std::vector<std::uint32_t>{0, 1, 3, 4, 5});
     CHECK(u.metadata().get("source.param.bfs_undirected") == "1");
   }
   SUBCASE("too few reachable vertices and a bad root are errors") {
     const auto name = (dir / "oneway.txt").string();
     o.extract_bfs = converters::FmiBfs{7, 8, false};
-    CHECK_THROWS_WITH_AS(converters::convert_fmi(o),
-                         (name + ": BFS from vertex 7 reaches only 2 vertices, --count asks for 8").c_str(), Error);
+    CHECK_THROWS_WITH_AS(
+        converters::convert_fmi(o),
+        (name + ": BFS from vertex 7 reaches only 2 vertices, --count asks for 8").c_str(), Error);
     o.extract_bfs = converters::FmiBfs{8, 1, false};
     CHECK_THROWS_WITH_AS(converters::convert_fmi(o),
-                         (name + ": BFS root 8 is not a vertex (the graph has 8 vertices)").c_str(), Error);
+                         (name + ": BFS root 8 is not a vertex (the graph has 8 vertices)").c_str(),
+                         Error);
   }
   SUBCASE("the whole reachable set is deterministic") {
     o.extract_bfs = converters::FmiBfs{4, 8, false};

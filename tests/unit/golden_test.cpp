@@ -14,7 +14,8 @@
 using namespace mosb;
 
 namespace {
-const std::filesystem::path kGolden = std::filesystem::path(MOSB_SOURCE_DIR) / "spec" / "golden" / "1.0";
+const std::filesystem::path kGolden =
+    std::filesystem::path(MOSB_SOURCE_DIR) / "spec" / "golden" / "1.0";
 }
 
 TEST_CASE("the writer reproduces the golden file byte for byte") {

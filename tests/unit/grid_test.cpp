@@ -82,7 +82,8 @@ TEST_CASE("a streamed grid is byte-identical to the grid built in memory") {
   testing::TempDir dir;
   for (const converters::GridParameters& p :
        {converters::GridParameters{1, 1, 1, 2}, converters::GridParameters{7, 5, 3, 11},
-        converters::GridParameters{20, 3, 16, 4, 1, 300}, converters::GridParameters{9, 9, 2, 5, 0, 70000}}) {
+        converters::GridParameters{20, 3, 16, 4, 1, 300},
+        converters::GridParameters{9, 9, 2, 5, 0, 70000}}) {
     write_graph(converters::grid_graph(p), dir / "streamed.mosb");
     write_graph(converters::generate_grid(p), dir / "built.mosb");
     CHECK(testing::read_bytes(dir / "streamed.mosb") == testing::read_bytes(dir / "built.mosb"));
@@ -90,7 +91,8 @@ TEST_CASE("a streamed grid is byte-identical to the grid built in memory") {
   }
 }
 
-TEST_CASE("the streamed writer reports progress up to its total and refuses arcs out of tail order") {
+TEST_CASE(
+    "the streamed writer reports progress up to its total and refuses arcs out of tail order") {
   testing::TempDir dir;
   std::uint64_t last_done = 0, last_total = 0, calls = 0;
   write_graph(converters::grid_graph({30, 20, 3, 1}), dir / "g.mosb",

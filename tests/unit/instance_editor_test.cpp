@@ -1,3 +1,5 @@
+#include "mosb/instance_editor.hpp"
+
 #include <doctest/doctest.h>
 
 #include <map>
@@ -7,7 +9,6 @@
 #include "mosb/converters/grid_generator.hpp"
 #include "mosb/error.hpp"
 #include "mosb/graph_reader.hpp"
-#include "mosb/instance_editor.hpp"
 #include "mosb/verify.hpp"
 #include "temp_dir.hpp"
 
@@ -41,8 +42,12 @@ std::vector<Row> table(const GraphReader& r) {
   return rows;
 }
 
-bool is_queries(const Row& row) { return row.kind == static_cast<std::uint16_t>(format::SectionKind::queries); }
-bool is_metadata(const Row& row) { return row.kind == static_cast<std::uint16_t>(format::SectionKind::metadata); }
+bool is_queries(const Row& row) {
+  return row.kind == static_cast<std::uint16_t>(format::SectionKind::queries);
+}
+bool is_metadata(const Row& row) {
+  return row.kind == static_cast<std::uint16_t>(format::SectionKind::metadata);
+}
 
 }  // namespace
 
@@ -84,8 +89,10 @@ TEST_CASE("editor: a replaced query set keeps its position") {
   REQUIRE(after.size() == before.size());
   for (std::size_t i = 0; i < before.size(); ++i) {
     CHECK(after[i].name == before[i].name);
-    if (after[i].name == "default") CHECK(after[i].checksum != before[i].checksum);
-    else CHECK(after[i].checksum == before[i].checksum);  // metadata too: it is unchanged here
+    if (after[i].name == "default")
+      CHECK(after[i].checksum != before[i].checksum);
+    else
+      CHECK(after[i].checksum == before[i].checksum);  // metadata too: it is unchanged here
   }
   CHECK(result.queries("default").size() == 3);
   CHECK(result.queries("extra").size() == 2);
@@ -113,7 +120,8 @@ TEST_CASE("editor: rewriting the file the reader maps, and determinism") {
   CHECK(testing::read_bytes(path) == testing::read_bytes(dir / "other.mosb"));
   // No temporary is left behind.
   std::size_t files = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(dir.path())) files += entry.is_regular_file();
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
+    files += entry.is_regular_file();
   CHECK(files == 3);
 }
 
@@ -133,8 +141,10 @@ TEST_CASE("editor: refusals") {
   const auto n = std::to_string(source.vertex_count());
   CHECK(message(source.metadata(), {{"q", {{0, 14}}}}) ==
         in.string() + ": query set 'q', query 0: an endpoint is not below the vertex count " + n);
-  CHECK(message(source.metadata(), {{"bad name", {}}}).find("query set name 'bad name'") != std::string::npos);
-  CHECK(message(source.metadata(), {{"q", {}}, {"q", {}}}) == in.string() + ": query set 'q' given twice");
+  CHECK(message(source.metadata(), {{"bad name", {}}}).find("query set name 'bad name'") !=
+        std::string::npos);
+  CHECK(message(source.metadata(), {{"q", {}}, {"q", {}}}) ==
+        in.string() + ": query set 'q' given twice");
   Metadata views = source.metadata();
   views.set("view.V.objectives", "c1");
   views.set("view.V.queries", "missing");
@@ -151,11 +161,13 @@ TEST_CASE("editor: a damaged or packed source is refused") {
   bytes[targets.entry.offset] ^= std::byte{1};  // payload only: opening still succeeds
   testing::write_bytes(dir / "damaged.mosb", bytes);
   const auto damaged = GraphReader::open(dir / "damaged.mosb");
-  CHECK_THROWS_WITH_AS(rewrite_instance(damaged, damaged.metadata(), {}, dir / "out.mosb"),
-                       ((dir / "damaged.mosb").string() +
-                        ": section 'forward_targets': checksum mismatch, the file is damaged (see mosb "
-                        "verify); not rewritten").c_str(),
-                       Error);
+  CHECK_THROWS_WITH_AS(
+      rewrite_instance(damaged, damaged.metadata(), {}, dir / "out.mosb"),
+      ((dir / "damaged.mosb").string() +
+       ": section 'forward_targets': checksum mismatch, the file is damaged (see mosb "
+       "verify); not rewritten")
+          .c_str(),
+      Error);
   CHECK_FALSE(std::filesystem::exists(dir / "out.mosb"));
 
   // Marked as zstd (the bytes need not be a real frame: the editor refuses before reading them).
@@ -170,8 +182,10 @@ TEST_CASE("editor: a damaged or packed source is refused") {
   testing::reseal_header(bytes);
   testing::write_bytes(dir / "packed.mosb", bytes);
   const auto packed = GraphReader::open(dir / "packed.mosb");
-  CHECK_THROWS_WITH_AS(rewrite_instance(packed, packed.metadata(), {}, dir / "out.mosb"),
-                       ((dir / "packed.mosb").string() +
-                        ": section 'extra' is packed (zstd); unpack the file before editing its query sets").c_str(),
-                       Error);
+  CHECK_THROWS_WITH_AS(
+      rewrite_instance(packed, packed.metadata(), {}, dir / "out.mosb"),
+      ((dir / "packed.mosb").string() +
+       ": section 'extra' is packed (zstd); unpack the file before editing its query sets")
+          .c_str(),
+      Error);
 }

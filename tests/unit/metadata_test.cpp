@@ -1,7 +1,8 @@
+#include "mosb/metadata.hpp"
+
 #include <doctest/doctest.h>
 
 #include "mosb/error.hpp"
-#include "mosb/metadata.hpp"
 
 using mosb::Metadata;
 
@@ -18,12 +19,17 @@ TEST_CASE("metadata serializes sorted, escaped, and parses back") {
 }
 
 TEST_CASE("malformed metadata is rejected with its line") {
-  CHECK_THROWS_WITH_AS(Metadata::parse("a=1"), "metadata line 1: missing final newline", mosb::Error);
-  CHECK_THROWS_WITH_AS(Metadata::parse("a=1\nnoequals\n"), "metadata line 2: no '=' in line", mosb::Error);
-  CHECK_THROWS_WITH_AS(Metadata::parse("b=1\na=2\n"), doctest::Contains("line 2: key 'a' is not in sorted order"), mosb::Error);
+  CHECK_THROWS_WITH_AS(Metadata::parse("a=1"), "metadata line 1: missing final newline",
+                       mosb::Error);
+  CHECK_THROWS_WITH_AS(Metadata::parse("a=1\nnoequals\n"), "metadata line 2: no '=' in line",
+                       mosb::Error);
+  CHECK_THROWS_WITH_AS(Metadata::parse("b=1\na=2\n"),
+                       doctest::Contains("line 2: key 'a' is not in sorted order"), mosb::Error);
   CHECK_THROWS_WITH_AS(Metadata::parse("a=1\na=2\n"), doctest::Contains("repeated"), mosb::Error);
-  CHECK_THROWS_WITH_AS(Metadata::parse("a b=1\n"), doctest::Contains("invalid key 'a b'"), mosb::Error);
-  CHECK_THROWS_WITH_AS(Metadata::parse("a=x\\t\n"), doctest::Contains("unknown escape '\\t'"), mosb::Error);
+  CHECK_THROWS_WITH_AS(Metadata::parse("a b=1\n"), doctest::Contains("invalid key 'a b'"),
+                       mosb::Error);
+  CHECK_THROWS_WITH_AS(Metadata::parse("a=x\\t\n"), doctest::Contains("unknown escape '\\t'"),
+                       mosb::Error);
   CHECK_THROWS_WITH_AS(Metadata::parse("a=x\\\n"), doctest::Contains("dangling"), mosb::Error);
   CHECK_THROWS_AS(Metadata().set("bad key", "v"), mosb::Error);
 }
@@ -33,6 +39,8 @@ TEST_CASE("views must name existing objectives and query sets") {
   m.set("view.V.objectives", "a,b");
   m.set("view.V.queries", "q");
   CHECK_FALSE(mosb::find_view_problem(m, {"a", "b"}, {"q"}).has_value());
-  CHECK(mosb::find_view_problem(m, {"a"}, {"q"}).value().find("names objective 'b'") != std::string::npos);
-  CHECK(mosb::find_view_problem(m, {"a", "b"}, {}).value().find("names query set 'q'") != std::string::npos);
+  CHECK(mosb::find_view_problem(m, {"a"}, {"q"}).value().find("names objective 'b'") !=
+        std::string::npos);
+  CHECK(mosb::find_view_problem(m, {"a", "b"}, {}).value().find("names query set 'q'") !=
+        std::string::npos);
 }

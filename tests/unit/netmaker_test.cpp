@@ -130,7 +130,8 @@ TEST_CASE("a NetMaker graph follows the paper's construction (N=10000, A=1, B=10
                     sorted[2] >= 667 && sorted[2] <= 1000;
       } else {
         ++local_arcs;
-        locality_ok &= kind[a] == converters::kNetMakerLocalityArc && (v > u ? v - u : u - v) <= half;
+        locality_ok &=
+            kind[a] == converters::kNetMakerLocalityArc && (v > u ? v - u : u - v) <= half;
         for (std::size_t j = 0; j < 3; ++j) costs_ok &= c[j][a] >= 1 && c[j][a] <= 99;
       }
     }
@@ -174,7 +175,7 @@ TEST_CASE("a NetMaker graph follows the paper's construction (N=10000, A=1, B=10
 TEST_CASE("NetMaker correlations: about -0.44 on cycle arcs, about 0 on locality arcs") {
   const double expected = expected_cycle_correlation();
   CHECK(expected == doctest::Approx(-4.0 / 9).epsilon(0.002));  // the continuous limit: -4/9
-  CHECK(expected == doctest::Approx(-0.44).epsilon(0.02));       // the paper's figure
+  CHECK(expected == doctest::Approx(-0.44).epsilon(0.02));      // the paper's figure
 
   testing::TempDir dir;
   write_graph(converters::generate_netmaker(paper_parameters(5)), dir / "n.mosb");
@@ -184,7 +185,8 @@ TEST_CASE("NetMaker correlations: about -0.44 on cycle arcs, about 0 on locality
   for (std::size_t j = 0; j < 3; ++j) {
     std::vector<double> col(r.arc_count());
     r.read_cost_as(j, col);
-    for (std::size_t a = 0; a < col.size(); ++a) (kind[a] == 0 ? cycle : local)[j].push_back(col[a]);
+    for (std::size_t a = 0; a < col.size(); ++a)
+      (kind[a] == 0 ? cycle : local)[j].push_back(col[a]);
   }
   REQUIRE(cycle[0].size() == 10000);
   // The sample correlation of n pairs has sd ~ (1 - rho^2) / sqrt(n): 0.008 for the 10000 cycle
@@ -245,32 +247,38 @@ TEST_CASE("a suite's files and MANIFEST do not depend on the thread count") {
   REQUIRE(instances.size() == 4);
   const auto one = converters::run_suite(dir / "one", instances, {1, {}});
   std::size_t progress_calls = 0;
-  const auto three = converters::run_suite(dir / "three", instances,
-                                           {3, [&](std::string_view stage, std::uint64_t done, std::uint64_t total) {
-                                              CHECK(stage == "suite");
-                                              CHECK(done == progress_calls++);
-                                              CHECK(total == 4);
-                                            }});
+  const auto three = converters::run_suite(
+      dir / "three", instances,
+      {3, [&](std::string_view stage, std::uint64_t done, std::uint64_t total) {
+         CHECK(stage == "suite");
+         CHECK(done == progress_calls++);
+         CHECK(total == 4);
+       }});
   CHECK(progress_calls == 5);
   REQUIRE(one.size() == 4);
   for (std::size_t i = 0; i < 4; ++i) {
     CHECK(one[i].name == three[i].name);
     CHECK(one[i].digest == three[i].digest);
-    CHECK(testing::read_bytes(dir / "one" / one[i].file) == testing::read_bytes(dir / "three" / one[i].file));
+    CHECK(testing::read_bytes(dir / "one" / one[i].file) ==
+          testing::read_bytes(dir / "three" / one[i].file));
   }
-  CHECK(testing::read_bytes(dir / "one" / "MANIFEST") == testing::read_bytes(dir / "three" / "MANIFEST"));
+  CHECK(testing::read_bytes(dir / "one" / "MANIFEST") ==
+        testing::read_bytes(dir / "three" / "MANIFEST"));
   CHECK(one[0].name == "NetMaker-N300-I20-1");
   CHECK(one[3].name == "NetMaker-N300-I50-2");
   std::ifstream manifest(dir / "one" / "MANIFEST");
   std::string line;
   std::getline(manifest, line);
-  CHECK(line == one[0].name + "\t" + one[0].file + "\t" + std::to_string(one[0].size) + "\t" + one[0].digest);
+  CHECK(line == one[0].name + "\t" + one[0].file + "\t" + std::to_string(one[0].size) + "\t" +
+                    one[0].digest);
   CHECK(one[0].size == std::filesystem::file_size(dir / "one" / one[0].file));
 }
 
-TEST_CASE("a suite subset reproduces the full suite's instance and a failing instance stops the suite") {
+TEST_CASE(
+    "a suite subset reproduces the full suite's instance and a failing instance stops the suite") {
   testing::TempDir dir;
-  const auto entries = converters::run_suite(dir / "s", converters::grid_suite(1, {30, 20, 30}), {2, {}});
+  const auto entries =
+      converters::run_suite(dir / "s", converters::grid_suite(1, {30, 20, 30}), {2, {}});
   REQUIRE(entries.size() == 4);  // 20x20, 20x30, 30x20, 30x30: the repeated size counts once
   CHECK(entries[1].name == "Grid-20x30");
   const auto seed = converters::suite_instance_seed(1, (std::uint64_t{20} << 20) + 30);
@@ -278,15 +286,18 @@ TEST_CASE("a suite subset reproduces the full suite's instance and a failing ins
   CHECK(GraphReader::open(dir / "single.mosb").digest() == entries[1].digest);
 
   std::vector<converters::SuiteInstance> broken = {
-      {"good", [] { return converters::generate_grid({5, 5, 3, 1}); }},
+      {"good",
+       [] {
+         return converters::generate_grid({5, 5, 3, 1});
+       }},
       {"bad", []() -> GraphInput { throw Error("bad instance"); }}};
   CHECK_THROWS_WITH_AS(converters::run_suite(dir / "b", broken, {2, {}}), "bad instance", Error);
   CHECK_FALSE(std::filesystem::exists(dir / "b" / "MANIFEST"));
 }
 
 TEST_CASE("the real NetMaker file converts to 10000 vertices, 59750 arcs, 3 objectives") {
-  const std::filesystem::path file =
-      MOSB_SOURCE_DIR "/../shared/data/netmaker/netMaker_3o_10000n_1amin_10amax_20i_1s_scorr_79134.gr";
+  const std::filesystem::path file = MOSB_SOURCE_DIR
+      "/../shared/data/netmaker/netMaker_3o_10000n_1amin_10amax_20i_1s_scorr_79134.gr";
   if (!std::filesystem::exists(file)) {
     MESSAGE("skipped the real-data test: " << file.string() << " is absent");
     return;

@@ -1,10 +1,11 @@
+#include "mosb/converters/query_import.hpp"
+
 #include <doctest/doctest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <string>
 
-#include "mosb/converters/query_import.hpp"
 #include "mosb/error.hpp"
 #include "test_files.hpp"
 
@@ -54,8 +55,11 @@ TEST_CASE("query files: every separator gives the same pairs") {
 TEST_CASE("query files: comments, blank lines, CRLF, no final newline, byte-order mark") {
   const auto o = options(0, 5);
   const std::vector<Query> expected = {{0, 1}, {2, 3}, {4, 0}};
-  CHECK(parse("# pairs\r\n\r\nc dimacs comment\r\nc\r\n0, 1\r\n  \t\r\n# x\r\n2 , 3\r\n4,0", o) == expected);
-  CHECK(parse("\xEF\xBB\xBF" "0 1\n2 3\n4 0\n", o) == expected);
+  CHECK(parse("# pairs\r\n\r\nc dimacs comment\r\nc\r\n0, 1\r\n  \t\r\n# x\r\n2 , 3\r\n4,0", o) ==
+        expected);
+  CHECK(parse("\xEF\xBB\xBF"
+              "0 1\n2 3\n4 0\n",
+              o) == expected);
   CHECK(parse("0 1\n#2 3\n2 3\n4 0\n\n\n", o) == expected);
 }
 
@@ -66,22 +70,29 @@ TEST_CASE("query files: id base and range") {
   CHECK(error_of("1 2\n\n0 , 3\n", options(1, 5)) == "q.txt:3:1: vertex id '0' outside 1..5");
   CHECK(error_of("1 99999999999999999999999\n", options(1, 5)) ==
         "q.txt:1:3: vertex id '99999999999999999999999' outside 1..5");
-  CHECK(error_of("g 1 2\n", options(0, 0)) == "q.txt:1:3: vertex id '1' outside (none: the graph has no vertices)");
+  CHECK(error_of("g 1 2\n", options(0, 0)) ==
+        "q.txt:1:3: vertex id '1' outside (none: the graph has no vertices)");
 }
 
 TEST_CASE("query files: malformed lines name line and column") {
   const auto o = options(0, 10);
   CHECK(error_of("1 2\n3\n", o) == "q.txt:2:2: missing field: expected 'start goal'");
-  CHECK(error_of("1,\n", o) == "q.txt:1:3: missing field: expected 'start goal' or 'graph start goal'");
+  CHECK(error_of("1,\n", o) ==
+        "q.txt:1:3: missing field: expected 'start goal' or 'graph start goal'");
   CHECK(error_of("1,,2\n", o) == "q.txt:1:3: unexpected ','");
   CHECK(error_of(", 1 2\n", o) == "q.txt:1:1: unexpected ','");
-  CHECK(error_of("1 2 3\n", o) == "q.txt:1:5: extra field '3': expected 'start goal' or 'graph start goal'");
-  CHECK(error_of("1, 2, 3\n", o) == "q.txt:1:5: extra field ',': expected 'start goal' or 'graph start goal'");
+  CHECK(error_of("1 2 3\n", o) ==
+        "q.txt:1:5: extra field '3': expected 'start goal' or 'graph start goal'");
+  CHECK(error_of("1, 2, 3\n", o) ==
+        "q.txt:1:5: extra field ',': expected 'start goal' or 'graph start goal'");
   CHECK(error_of("1 x\n", o) == "q.txt:1:3: expected a vertex id, found 'x'");
   CHECK(error_of("1 -2\n", o) == "q.txt:1:3: expected a vertex id, found '-2'");
-  CHECK(error_of("1 2\ng 1 2\n", o) == "q.txt:2:1: a 'graph start goal' line, but line 1 is 'start goal'");
-  CHECK(error_of("g 1 2\n1 2\n", o) == "q.txt:2:1: a 'start goal' line, but line 1 is 'graph start goal'");
-  CHECK(error_of("g 1 2\ng 1 2 3\n", o) == "q.txt:2:7: extra field '3': expected 'graph start goal'");
+  CHECK(error_of("1 2\ng 1 2\n", o) ==
+        "q.txt:2:1: a 'graph start goal' line, but line 1 is 'start goal'");
+  CHECK(error_of("g 1 2\n1 2\n", o) ==
+        "q.txt:2:1: a 'start goal' line, but line 1 is 'graph start goal'");
+  CHECK(error_of("g 1 2\ng 1 2 3\n", o) ==
+        "q.txt:2:7: extra field '3': expected 'graph start goal'");
   CHECK(error_of("", o) == "q.txt: no queries");
   CHECK(error_of("# only a comment\r\n", o) == "q.txt: no queries");
 }
@@ -94,11 +105,14 @@ TEST_CASE("query files: graph fields and --match") {
         "q.txt:2:1: the file names more than one graph ('/a/x_1.gr' on line 1, '/a/y_2.gr' here): "
         "choose one with --match TEXT");
   CHECK(error_of(text, options(0, 10, ".gr")) ==
-        "q.txt:2:1: --match '.gr' selects more than one graph ('/a/x_1.gr' on line 1, '/a/y_2.gr' here)");
+        "q.txt:2:1: --match '.gr' selects more than one graph ('/a/x_1.gr' on line 1, '/a/y_2.gr' "
+        "here)");
   CHECK(error_of(text, options(0, 10, "zzz")) == "q.txt: no line's graph field contains 'zzz'");
-  CHECK(error_of("1 2\n", options(0, 10, "x")) == "q.txt:1:1: --match 'x' given, but the lines have no graph field");
+  CHECK(error_of("1 2\n", options(0, 10, "x")) ==
+        "q.txt:1:1: --match 'x' given, but the lines have no graph field");
   // Unselected lines are not range-checked: their ids belong to another graph.
-  CHECK(parse("big.gr 100 200\nsmall.gr 1 2\n", options(0, 3, "small")) == std::vector<Query>{{1, 2}});
+  CHECK(parse("big.gr 100 200\nsmall.gr 1 2\n", options(0, 3, "small")) ==
+        std::vector<Query>{{1, 2}});
 }
 
 TEST_CASE("query files: the real DIMACS and targeted-MOSP query files") {
@@ -106,7 +120,8 @@ TEST_CASE("query files: the real DIMACS and targeted-MOSP query files") {
   const auto ny = data / "dimacs-queries" / "USA-road-NY-queries";
   const auto bay = data / "dimacs-queries" / "USA-road-BAY-queries";
   const auto inst = data / "netmaker" / "netMaker_4d.inst";
-  if (!std::filesystem::exists(ny) || !std::filesystem::exists(bay) || !std::filesystem::exists(inst)) {
+  if (!std::filesystem::exists(ny) || !std::filesystem::exists(bay) ||
+      !std::filesystem::exists(inst)) {
     MESSAGE("skipped the real-data test: " << data.string() << " lacks the query files");
     return;
   }

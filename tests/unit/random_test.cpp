@@ -1,9 +1,9 @@
+#include "mosb/random.hpp"
+
 #include <doctest/doctest.h>
 
 #include <array>
 #include <cstdlib>
-
-#include "mosb/random.hpp"
 
 using mosb::SplitMix64;
 

@@ -78,7 +78,8 @@ TEST_CASE("open refuses damaged headers and tables with a message naming the pro
     h.version_major = 2;
     h.version_minor = 3;
     set_header(b, h);
-    CHECK(open_error(b) == "f.mosb: prepared with format 2.3, this reader reads format 1.x (up to 1.0)");
+    CHECK(open_error(b) ==
+          "f.mosb: prepared with format 2.3, this reader reads format 1.x (up to 1.0)");
   }
   SUBCASE("newer minor version is read") {
     Bytes b = good;
@@ -174,13 +175,15 @@ TEST_CASE("open refuses damaged headers and tables with a message naming the pro
     e.kind = 99;  // now a kind this reader does not know, so it is ignored ...
     set_entry(b, 4, e);
     reseal_header(b);
-    CHECK(open_error(b) == "f.mosb: no reverse_sources section");  // ... and the real one is missing
+    CHECK(open_error(b) ==
+          "f.mosb: no reverse_sources section");  // ... and the real one is missing
   }
   SUBCASE("offsets that do not end at m") {
     Bytes b = good;
     poke<std::uint64_t>(b, 1, header_of(b).vertex_count, 7);
     reseal_section(b, 1);
-    CHECK(open_error(b).find("offsets run from 0 to 7, not from 0 to the arc count 40") != std::string::npos);
+    CHECK(open_error(b).find("offsets run from 0 to 7, not from 0 to the arc count 40") !=
+          std::string::npos);
   }
   SUBCASE("zstd-encoded section without the feature bit") {
     Bytes b = good;
@@ -223,7 +226,8 @@ TEST_CASE("the structure level names the broken rule, with checksums recomputed"
     Bytes b = good;
     const auto s = find_entry(b, "forward_offsets");
     poke<std::uint64_t>(b, s, 2, 0);
-    expect_rule(b, s, "section 'forward_offsets': [offsets-monotonic] offsets decrease at vertex 1");
+    expect_rule(b, s,
+                "section 'forward_offsets': [offsets-monotonic] offsets decrease at vertex 1");
   }
   SUBCASE("a target out of range") {
     Bytes b = good;
@@ -253,7 +257,9 @@ TEST_CASE("the structure level names the broken rule, with checksums recomputed"
     Bytes b = good;
     const auto s = find_entry(b, "metadata");
     poke<char>(b, s, 0, 'z');  // "benchmark" -> "zenchmark": the next key is now out of order
-    expect_rule(b, s, "section 'metadata': [metadata] metadata line 2: key 'family' is not in sorted order");
+    expect_rule(
+        b, s,
+        "section 'metadata': [metadata] metadata line 2: key 'family' is not in sorted order");
   }
   SUBCASE("a view naming a missing objective") {
     Bytes b = good;
@@ -263,7 +269,9 @@ TEST_CASE("the structure level names the broken rule, with checksums recomputed"
     const auto at = text.find("c1,c2");
     REQUIRE(at != std::string::npos);
     poke<char>(b, s, at + 4, '9');
-    expect_rule(b, s, "section 'metadata': [metadata-views] metadata key 'view.Grid_2.objectives' names objective 'c9'");
+    expect_rule(b, s,
+                "section 'metadata': [metadata-views] metadata key 'view.Grid_2.objectives' names "
+                "objective 'c9'");
   }
 }
 
@@ -284,7 +292,8 @@ TEST_CASE("float cost columns must be finite and non-negative") {
   b = good;
   poke<double>(b, s, 0, -2.0);
   reseal_section(b, s);
-  CHECK(verify_problem(b, VerifyLevel::structure).starts_with("section 'w': [cost-nonnegative] arc 0"));
+  CHECK(verify_problem(b, VerifyLevel::structure)
+            .starts_with("section 'w': [cost-nonnegative] arc 0"));
 }
 
 TEST_CASE("packed sections are refused for zero-copy access") {
@@ -298,18 +307,23 @@ TEST_CASE("packed sections are refused for zero-copy access") {
   set_entry(b, 6, e);
   reseal_header(b);
   auto r = GraphReader::from_memory(b, "f.mosb");
-  CHECK_THROWS_WITH_AS((void)r.cost<std::uint8_t>(0),
-                       doctest::Contains("section 'c1' is zstd-packed and cannot be mapped zero-copy"), Error);
+  CHECK_THROWS_WITH_AS(
+      (void)r.cost<std::uint8_t>(0),
+      doctest::Contains("section 'c1' is zstd-packed and cannot be mapped zero-copy"), Error);
   CHECK(r.forward_targets().size() == 40);
 }
 
 TEST_CASE("opening a path that is not a mosb file") {
   TempDir dir;
-  CHECK_THROWS_WITH_AS(GraphReader::open(dir / "missing.mosb"), doctest::Contains("missing.mosb: cannot open"), Error);
-  CHECK_THROWS_WITH_AS(GraphReader::open(dir.path()), doctest::Contains("not a regular file"), Error);
+  CHECK_THROWS_WITH_AS(GraphReader::open(dir / "missing.mosb"),
+                       doctest::Contains("missing.mosb: cannot open"), Error);
+  CHECK_THROWS_WITH_AS(GraphReader::open(dir.path()), doctest::Contains("not a regular file"),
+                       Error);
   write_bytes(dir / "empty.mosb", {});
-  CHECK_THROWS_WITH_AS(GraphReader::open(dir / "empty.mosb"),
-                       doctest::Contains("empty.mosb: not a mosb file: 0 bytes is shorter than the 128-byte header"), Error);
+  CHECK_THROWS_WITH_AS(
+      GraphReader::open(dir / "empty.mosb"),
+      doctest::Contains("empty.mosb: not a mosb file: 0 bytes is shorter than the 128-byte header"),
+      Error);
 }
 
 TEST_CASE("open with a verify level refuses a damaged payload that plain open accepts") {
@@ -321,12 +335,15 @@ TEST_CASE("open with a verify level refuses a damaged payload that plain open ac
   write_bytes(dir / "d.mosb", b);
   CHECK_NOTHROW(GraphReader::open(dir / "d.mosb"));
   CHECK(GraphReader::open(dir / "d.mosb").verified_level() == VerifyLevel::header);
-  CHECK_NOTHROW(GraphReader::open(dir / "d.mosb", VerifyLevel::structure));  // costs are u8: any value fits
-  CHECK_THROWS_WITH_AS(GraphReader::open(dir / "d.mosb", VerifyLevel::full),
-                       doctest::Contains("d.mosb: file is damaged: section 'c1': [checksum] mismatch"), Error);
+  CHECK_NOTHROW(
+      GraphReader::open(dir / "d.mosb", VerifyLevel::structure));  // costs are u8: any value fits
+  CHECK_THROWS_WITH_AS(
+      GraphReader::open(dir / "d.mosb", VerifyLevel::full),
+      doctest::Contains("d.mosb: file is damaged: section 'c1': [checksum] mismatch"), Error);
   CHECK_THROWS_WITH_AS(GraphReader::open(dir / "d.mosb", VerifyLevel::checksums),
                        doctest::Contains("; run mosb verify"), Error);
-  CHECK(GraphReader::open(dir / "grid.mosb", VerifyLevel::full).verified_level() == VerifyLevel::full);
+  CHECK(GraphReader::open(dir / "grid.mosb", VerifyLevel::full).verified_level() ==
+        VerifyLevel::full);
   CHECK(covers(VerifyLevel::full, VerifyLevel::structure));
   CHECK_FALSE(covers(VerifyLevel::structure, VerifyLevel::checksums));
   CHECK_FALSE(covers(VerifyLevel::header, VerifyLevel::full));
@@ -346,12 +363,14 @@ TEST_CASE("the structure level refuses non-zero bytes in alignment padding") {
   b[gap] = std::byte{0x5A};
   CHECK(verify_problem(b, VerifyLevel::checksums) == "(passed)");  // no checksum covers padding
   const auto problem = verify_problem(b, VerifyLevel::structure);
-  CHECK_MESSAGE(problem.starts_with("[padding] byte " + std::to_string(gap) + " (before section '"), problem);
+  CHECK_MESSAGE(problem.starts_with("[padding] byte " + std::to_string(gap) + " (before section '"),
+                problem);
   CHECK(problem.find("is 0x5a") != std::string::npos);
   CHECK(verify_problem(b, VerifyLevel::full) == problem);
   b = good;
   b[header_of(good).table_offset - 1] = std::byte{1};  // the gap before the table
-  CHECK(verify_problem(b, VerifyLevel::structure).find("before the section table") != std::string::npos);
+  CHECK(verify_problem(b, VerifyLevel::structure).find("before the section table") !=
+        std::string::npos);
   CHECK(verify_problem(good, VerifyLevel::full) == "(passed)");
 }
 
@@ -370,7 +389,8 @@ TEST_CASE("the structure level checks metadata keys with a defined value set") {
   CHECK(problem_with("id_base", "1") == "(passed)");
   CHECK(problem_with("family", "rood").find("'family' is 'rood', not one of road, synthetic") !=
         std::string::npos);
-  CHECK(problem_with("queries.a.b.id_base", "2").find("'queries.a.b.id_base' is '2'") != std::string::npos);
+  CHECK(problem_with("queries.a.b.id_base", "2").find("'queries.a.b.id_base' is '2'") !=
+        std::string::npos);
   CHECK(problem_with("queries.q.allow_same", "yes").find("not one of 0, 1") != std::string::npos);
   CHECK(problem_with("family", "\x1b[2Jx").find("is '\\x1b[2Jx'") != std::string::npos);
   CHECK(problem_with("queries.q.seed", "anything") == "(passed)");
@@ -379,7 +399,8 @@ TEST_CASE("the structure level checks metadata keys with a defined value set") {
 namespace {
 // The grid file with `extra` more empty sections of `kind` named x0, x1, ... appended to its table;
 // the last one repeats the name of the first when `duplicate_last`.
-Bytes with_many_sections(const Bytes& good, std::size_t extra, std::uint16_t kind, bool duplicate_last) {
+Bytes with_many_sections(const Bytes& good, std::size_t extra, std::uint16_t kind,
+                         bool duplicate_last) {
   const auto h = header_of(good);
   Bytes b(good.begin(), good.end());
   b.resize(b.size() + extra * sizeof(format::SectionEntry));
@@ -414,7 +435,8 @@ TEST_CASE("section names are unique within a kind, known or not, checked in line
   CHECK(open_error(with_many_sections(good, 1'000'000, queries, true)) ==
         "f.mosb: section 'x0': a second queries section of that name");
   MESSAGE("opening two files of 10^6 sections took "
-          << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s");
+          << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
+          << " s");
   // A kind this reader does not know is held to the same rule.
   CHECK(open_error(with_many_sections(good, 3, 200, true)) ==
         "f.mosb: section 'x0': a second kind 200 section of that name");

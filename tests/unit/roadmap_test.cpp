@@ -43,9 +43,9 @@ std::string error_of(const RoadmapOptions& o) {
   return "(no error)";
 }
 
-// Three vertices: a = (0,0), b = (3,4), c = (3,0); undirected edges a-b (length 5) and b-c (length 4).
-// Link clearances: a-b (0.05, 0.2), b-c (0.5, 0.01). With delta 0.1: U(0.05) = 0.05^2/0.2 = 0.0125,
-// U(0.01) = 0.09^2/0.2 = 0.0405, U(0.2) = U(0.5) = 0.
+// Three vertices: a = (0,0), b = (3,4), c = (3,0); undirected edges a-b (length 5) and b-c (length
+// 4). Link clearances: a-b (0.05, 0.2), b-c (0.5, 0.01). With delta 0.1: U(0.05) = 0.05^2/0.2 =
+// 0.0125, U(0.01) = 0.09^2/0.2 = 0.0405, U(0.2) = U(0.5) = 0.
 std::string graphml(const std::string& bc_link0 = "0.5") {
   return R"(<?xml version="1.0" encoding="UTF-8"?>
 <graphml xmlns="http://graphml.graphdrawing.org/xmlns">
@@ -58,7 +58,8 @@ std::string graphml(const std::string& bc_link0 = "0.5") {
     <node id="a"><data key="q">0,0</data></node>
     <node id="b"><data key="q"> 3, 4 </data></node>
     <node id="c"><data key="q">3,0</data></node>
-    <edge id="e1" source="b" target="c"><data key="d0">)" + bc_link0 + R"(</data><data key="d1">0.01</data>
+    <edge id="e1" source="b" target="c"><data key="d0">)" +
+         bc_link0 + R"(</data><data key="d1">0.01</data>
       <data key="w">2.5</data></edge>
   </graph>
 </graphml>
@@ -143,9 +144,10 @@ TEST_CASE("GraphML roadmap: a collision edge is refused, naming the edge") {
   RoadmapOptions o;
   o.graphml_file = (dir / "r.graphml").string();
   o.clearance = ClearanceMode::per_link;
-  CHECK(error_of(o) == (dir / "r.graphml").string() +
-                           ": edge 'e1' ('b' -> 'c'): clearance_0 = 0 <= 0: a collision (roadmap edges must be "
-                           "collision-free)");
+  CHECK(error_of(o) ==
+        (dir / "r.graphml").string() +
+            ": edge 'e1' ('b' -> 'c'): clearance_0 = 0 <= 0: a collision (roadmap edges must be "
+            "collision-free)");
   o.clearance = ClearanceMode::aggregate;  // the minimum over links is the colliding one
   CHECK(error_of(o).find("edge 'e1' ('b' -> 'c'): clearance_0 = 0 <= 0") != std::string::npos);
   write_text(dir / "r.graphml", graphml("-0.25"));
@@ -163,21 +165,24 @@ TEST_CASE("GraphML roadmap: malformed documents give one-line errors") {
     return std::string("(no error)");
   };
   CHECK(message("<graphml><graph edgedefault='directed'>").find("x.graphml:1: XML error") == 0);
-  CHECK(message(std::string(200, '<') ).find("x.graphml") == 0);
+  CHECK(message(std::string(200, '<')).find("x.graphml") == 0);
   std::string deep;
   for (int i = 0; i < 100; ++i) deep += "<a>";
   CHECK(message(deep) == "x.graphml: elements nested deeper than 64 levels");
-  CHECK(message("<graphml><graph edgedefault='directed'><node id='a'/><edge source='a' target='z'/></graph></graphml>") ==
-        "x.graphml: edge #0: target 'z' is no node");
-  CHECK(message("<graphml><graph edgedefault='directed'><node id='a'><data key='k'>1</data></node></graph></graphml>") ==
+  CHECK(message("<graphml><graph edgedefault='directed'><node id='a'/><edge source='a' "
+                "target='z'/></graph></graphml>") == "x.graphml: edge #0: target 'z' is no node");
+  CHECK(message("<graphml><graph edgedefault='directed'><node id='a'><data "
+                "key='k'>1</data></node></graph></graphml>") ==
         "x.graphml: node 'a': <data key='k'> names no key declared for it");
   CHECK(message("<graphml><graph><node id='a'/></graph></graphml>") ==
         "x.graphml: <graph edgedefault=''>: expected 'directed' or 'undirected'");
-  CHECK(message("<graphml><graph edgedefault='directed'><node id='a'/><node id='a'/></graph></graphml>") ==
-        "x.graphml: node id 'a' appears twice");
+  CHECK(message("<graphml><graph edgedefault='directed'><node id='a'/><node "
+                "id='a'/></graph></graphml>") == "x.graphml: node id 'a' appears twice");
   const auto g = converters::parse_graphml(
-      "<graphml><key id='c' for='all' attr.name='coords'/><graph edgedefault='directed'><node id='a'/>"
-      "<edge source='a' target='a' directed='false'/></graph></graphml>", name);
+      "<graphml><key id='c' for='all' attr.name='coords'/><graph edgedefault='directed'><node "
+      "id='a'/>"
+      "<edge source='a' target='a' directed='false'/></graph></graphml>",
+      name);
   CHECK(g.node_keys.size() == 1);
   CHECK(g.edge_keys.size() == 1);
   REQUIRE(g.edges.size() == 1);
@@ -193,9 +198,10 @@ TEST_CASE(".gr roadmap: ids beyond the declared count, vertex file, determinism"
   RoadmapOptions o;
   o.gr_files = {(dir / "c1.gr").string(), (dir / "c2.gr").string()};
   o.vertex_file = (dir / "v.txt").string();
-  CHECK(error_of(o) == (dir / "c1.gr").string() +
-                           ":4:5: the largest vertex id, 3, is outside the 3 vertices declared on line 2 (0-based "
-                           "ids 0..2); --vertices-from-ids sizes the graph from the largest id instead");
+  CHECK(error_of(o) ==
+        (dir / "c1.gr").string() +
+            ":4:5: the largest vertex id, 3, is outside the 3 vertices declared on line 2 (0-based "
+            "ids 0..2); --vertices-from-ids sizes the graph from the largest id instead");
   o.vertices_from_ids = true;
   const auto g = convert(o, dir / "a.mosb");
   CHECK(g.vertex_count() == 4);
@@ -217,14 +223,17 @@ TEST_CASE(".gr roadmap: ids beyond the declared count, vertex file, determinism"
   RoadmapOptions p;
   p.gr_files = {(dir / "c3.gr").string()};
   p.vertex_file = (dir / "v5.txt").string();
-  CHECK(error_of(p).find("v5.txt:5:1: the largest vertex id, 4, is outside the 4 vertices declared on") != std::string::npos);
+  CHECK(error_of(p).find(
+            "v5.txt:5:1: the largest vertex id, 4, is outside the 4 vertices declared on") !=
+        std::string::npos);
   p.vertices_from_ids = true;
   CHECK(convert(p, dir / "c.mosb").vertex_count() == 5);
 
   write_text(dir / "v5.txt", "0 0\n1 0\n3 0\n");
   CHECK(error_of(p) == (dir / "v5.txt").string() + ": no line for vertex 2");
   write_text(dir / "v5.txt", "0 0\n1 0 2\n");
-  CHECK(error_of(p) == (dir / "v5.txt").string() + ":2:5: extra field '2': expected 1 coordinates as on line 1");
+  CHECK(error_of(p) ==
+        (dir / "v5.txt").string() + ":2:5: extra field '2': expected 1 coordinates as on line 1");
 }
 
 TEST_CASE("real point-robot roadmap and GraphML fixture") {
@@ -245,9 +254,12 @@ TEST_CASE("real point-robot roadmap and GraphML fixture") {
 
   const auto exp = data / "roadmap-point-robot/exp_4_obs";
   RoadmapOptions p;
-  for (int i = 0; i < 6; ++i) p.gr_files.push_back((exp / ("file_" + std::to_string(i) + ".gr")).string());
+  for (int i = 0; i < 6; ++i)
+    p.gr_files.push_back((exp / ("file_" + std::to_string(i) + ".gr")).string());
   p.vertex_file = (exp / "vertex_positions.txt").string();
-  CHECK(error_of(p) == p.gr_files[0] +
-                           ":146501:8: the largest vertex id, 5002, is outside the 5002 vertices declared on line 2 "
-                           "(0-based ids 0..5001); --vertices-from-ids sizes the graph from the largest id instead");
+  CHECK(
+      error_of(p) ==
+      p.gr_files[0] +
+          ":146501:8: the largest vertex id, 5002, is outside the 5002 vertices declared on line 2 "
+          "(0-based ids 0..5001); --vertices-from-ids sizes the graph from the largest id instead");
 }

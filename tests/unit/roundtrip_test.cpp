@@ -15,7 +15,8 @@ using format::SectionKind;
 
 namespace {
 
-// 5 vertices, arcs deliberately out of tail order, with a parallel pair (1->2 twice) and a loop (3->3).
+// 5 vertices, arcs deliberately out of tail order, with a parallel pair (1->2 twice) and a loop
+// (3->3).
 GraphInput small_graph() {
   GraphInput g;
   g.vertex_count = 5;
@@ -33,7 +34,8 @@ std::vector<T> iota_values(std::size_t count, T first) {
 }
 
 template <class T>
-void check_vertex_column(const GraphReader& r, const std::string& name, const std::vector<T>& expected) {
+void check_vertex_column(const GraphReader& r, const std::string& name,
+                         const std::vector<T>& expected) {
   const Section* s = r.find(SectionKind::vertex_data, name);
   REQUIRE(s != nullptr);
   CHECK(s->type == format::element_type_of<T>());
@@ -53,7 +55,8 @@ TEST_CASE("the builder writes a stable forward CSR and its exact transpose") {
   CHECK(r.arc_count() == 8);
   auto off = r.forward_offsets();
   auto tgt = r.forward_targets();
-  CHECK(std::vector<std::uint64_t>(off.begin(), off.end()) == std::vector<std::uint64_t>{0, 2, 5, 5, 7, 8});
+  CHECK(std::vector<std::uint64_t>(off.begin(), off.end()) ==
+        std::vector<std::uint64_t>{0, 2, 5, 5, 7, 8});
   // Vertex 1 keeps its input order 2, 2, 0; vertex 3 keeps 3, 0.
   CHECK(std::vector<std::uint32_t>(tgt.begin(), tgt.end()) ==
         std::vector<std::uint32_t>{1, 4, 2, 2, 0, 3, 0, 1});
@@ -64,9 +67,12 @@ TEST_CASE("the builder writes a stable forward CSR and its exact transpose") {
   auto roff = r.reverse_offsets();
   auto rsrc = r.reverse_sources();
   auto rarc = r.reverse_arcs();
-  CHECK(std::vector<std::uint64_t>(roff.begin(), roff.end()) == std::vector<std::uint64_t>{0, 2, 4, 6, 7, 8});
-  CHECK(std::vector<std::uint32_t>(rarc.begin(), rarc.end()) == std::vector<std::uint32_t>{4, 6, 0, 7, 2, 3, 5, 1});
-  CHECK(std::vector<std::uint32_t>(rsrc.begin(), rsrc.end()) == std::vector<std::uint32_t>{1, 3, 0, 4, 1, 1, 3, 0});
+  CHECK(std::vector<std::uint64_t>(roff.begin(), roff.end()) ==
+        std::vector<std::uint64_t>{0, 2, 4, 6, 7, 8});
+  CHECK(std::vector<std::uint32_t>(rarc.begin(), rarc.end()) ==
+        std::vector<std::uint32_t>{4, 6, 0, 7, 2, 3, 5, 1});
+  CHECK(std::vector<std::uint32_t>(rsrc.begin(), rsrc.end()) ==
+        std::vector<std::uint32_t>{1, 3, 0, 4, 1, 1, 3, 0});
   CHECK_FALSE(verify(r, VerifyLevel::full).has_value());
 }
 
@@ -85,7 +91,8 @@ TEST_CASE("every cost element type round-trips, chosen narrowest or forced") {
   column("f64", std::vector<double>{0.1, 1.25, 2, 3, 4, 5, 6, 7});
   column("forced_u32", ones, ElementType::u32);
   column("forced_f64", ones, ElementType::f64);
-  column("forced_u16_from_reals", std::vector<double>{1, 2, 3, 4, 5, 6, 7, 65535}, ElementType::u16);
+  column("forced_u16_from_reals", std::vector<double>{1, 2, 3, 4, 5, 6, 7, 65535},
+         ElementType::u16);
   write_graph(g, dir / "types.mosb");
   auto r = GraphReader::open(dir / "types.mosb");
   const ElementType expected[] = {ElementType::u8,  ElementType::u16, ElementType::u32,
@@ -99,7 +106,7 @@ TEST_CASE("every cost element type round-trips, chosen narrowest or forced") {
   r.read_cost_as(r.objective_index("u64"), widened);
   CHECK(widened[7] == double(1ULL << 40));
   r.read_cost_as(r.objective_index("f64"), widened);
-  CHECK(widened[0] == 2);  // input arc 2 (0->1) costs 2
+  CHECK(widened[0] == 2);                     // input arc 2 (0->1) costs 2
   CHECK(widened[5] == doctest::Approx(0.1));  // input arc 0 (3->3) costs 0.1
   std::vector<std::uint64_t> integers(8);
   r.read_cost_as(r.objective_index("u16"), integers);
@@ -108,8 +115,10 @@ TEST_CASE("every cost element type round-trips, chosen narrowest or forced") {
                        doctest::Contains("do not convert to integers"), Error);
   CHECK(r.cost<float>("f32")[7] == 1e10f);
   CHECK(r.cost<std::uint64_t>("u64").size() == 8);
-  CHECK_THROWS_WITH_AS((void)r.cost<std::uint32_t>("u8"), doctest::Contains("holds u8 values, not u32"), Error);
-  CHECK_THROWS_WITH_AS((void)r.cost<float>("nope"), doctest::Contains("no objective named 'nope'"), Error);
+  CHECK_THROWS_WITH_AS((void)r.cost<std::uint32_t>("u8"),
+                       doctest::Contains("holds u8 values, not u32"), Error);
+  CHECK_THROWS_WITH_AS((void)r.cost<float>("nope"), doctest::Contains("no objective named 'nope'"),
+                       Error);
   CHECK(r.metadata().get("objective.u8.unit") == "u");
   CHECK_FALSE(verify(r, VerifyLevel::full).has_value());
 }
@@ -121,8 +130,10 @@ TEST_CASE("costs that do not fit their forced type, negative or non-finite costs
     g.costs.push_back(std::move(column));
     write_graph(g, dir / "bad.mosb");
   };
-  CHECK_THROWS_WITH_AS(attempt({"c", "", std::vector<std::uint64_t>(8, 256), ElementType::u8}),
-                       doctest::Contains("objective 'c', arc 0: cost 256 is not exactly representable as u8"), Error);
+  CHECK_THROWS_WITH_AS(
+      attempt({"c", "", std::vector<std::uint64_t>(8, 256), ElementType::u8}),
+      doctest::Contains("objective 'c', arc 0: cost 256 is not exactly representable as u8"),
+      Error);
   CHECK_THROWS_WITH_AS(attempt({"c", "", std::vector<double>(8, 0.5), ElementType::u32}),
                        doctest::Contains("not exactly representable as u32"), Error);
   CHECK_THROWS_WITH_AS(attempt({"c", "", std::vector<double>(8, 0.1), ElementType::f32}),
@@ -130,7 +141,8 @@ TEST_CASE("costs that do not fit their forced type, negative or non-finite costs
   CHECK_THROWS_WITH_AS(attempt({"c", "", std::vector<std::uint64_t>(8, 1), ElementType::i32}),
                        doctest::Contains("is not unsigned or float"), Error);
   CHECK_THROWS_WITH_AS(attempt({"c", "", std::vector<double>{1, 1, 1, -1, 1, 1, 1, 1}, {}}),
-                       doctest::Contains("arc 3: cost -1 is not a finite non-negative number"), Error);
+                       doctest::Contains("arc 3: cost -1 is not a finite non-negative number"),
+                       Error);
   CHECK_THROWS_WITH_AS(attempt({"c", "", std::vector<double>{1, NAN, 1, 1, 1, 1, 1, 1}, {}}),
                        doctest::Contains("arc 1: cost nan"), Error);
   CHECK_THROWS_WITH_AS(attempt({"c", "", std::vector<std::uint64_t>(7, 1), {}}),
@@ -178,12 +190,14 @@ TEST_CASE("vertex data of every element type, arc data and query sets round-trip
   CHECK(r.find(SectionKind::vertex_data, "coords")->entry.row_width == 2);
   auto arc_kind = r.values<std::uint8_t>(*r.find(SectionKind::arc_data, "kind"));
   // CSR order of input arcs: 2, 5 | 1, 3, 6 | 0, 4 | 7.
-  CHECK(std::vector<int>(arc_kind.begin(), arc_kind.end()) == std::vector<int>{12, 15, 11, 13, 16, 10, 14, 17});
+  CHECK(std::vector<int>(arc_kind.begin(), arc_kind.end()) ==
+        std::vector<int>{12, 15, 11, 13, 16, 10, 14, 17});
   auto q = r.queries("default");
   REQUIRE(q.size() == 3);
   CHECK(q[1] == Query{4, 0});
   CHECK(r.queries("empty").empty());
-  CHECK_THROWS_WITH_AS((void)r.queries("other"), doctest::Contains("no query set named 'other'"), Error);
+  CHECK_THROWS_WITH_AS((void)r.queries("other"), doctest::Contains("no query set named 'other'"),
+                       Error);
   CHECK_FALSE(verify(r, VerifyLevel::full).has_value());
 }
 
@@ -204,16 +218,22 @@ TEST_CASE("the builder rejects inconsistent input, naming what is wrong") {
   testing::TempDir dir;
   auto g = small_graph();
   g.heads[2] = 5;
-  CHECK_THROWS_WITH_AS(write_graph(g, dir / "x.mosb"), doctest::Contains("arc 2 (0 -> 5) has an endpoint not below the vertex count 5"), Error);
+  CHECK_THROWS_WITH_AS(
+      write_graph(g, dir / "x.mosb"),
+      doctest::Contains("arc 2 (0 -> 5) has an endpoint not below the vertex count 5"), Error);
   g = small_graph();
   g.queries = {{"q", {{0, 9}}}};
-  CHECK_THROWS_WITH_AS(write_graph(g, dir / "x.mosb"), doctest::Contains("query set 'q', query 0"), Error);
+  CHECK_THROWS_WITH_AS(write_graph(g, dir / "x.mosb"), doctest::Contains("query set 'q', query 0"),
+                       Error);
   g = small_graph();
   g.metadata.set("view.V.objectives", "missing");
-  CHECK_THROWS_WITH_AS(write_graph(g, dir / "x.mosb"), doctest::Contains("names objective 'missing'"), Error);
+  CHECK_THROWS_WITH_AS(write_graph(g, dir / "x.mosb"),
+                       doctest::Contains("names objective 'missing'"), Error);
   g = small_graph();
-  g.costs.push_back({"a name that is far too long for a section", "", std::vector<std::uint64_t>(8, 1), {}});
-  CHECK_THROWS_WITH_AS(write_graph(g, dir / "x.mosb"), doctest::Contains("must be 1-24 characters"), Error);
+  g.costs.push_back(
+      {"a name that is far too long for a section", "", std::vector<std::uint64_t>(8, 1), {}});
+  CHECK_THROWS_WITH_AS(write_graph(g, dir / "x.mosb"), doctest::Contains("must be 1-24 characters"),
+                       Error);
   CHECK(std::filesystem::is_empty(dir.path()));
 }
 

@@ -1,3 +1,5 @@
+#include "mosb/stats.hpp"
+
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -5,7 +7,6 @@
 #include "mosb/error.hpp"
 #include "mosb/graph_builder.hpp"
 #include "mosb/graph_reader.hpp"
-#include "mosb/stats.hpp"
 #include "temp_dir.hpp"
 
 using namespace mosb;
@@ -48,11 +49,10 @@ double rho(const ArcGroupStats& s, std::size_t i, std::size_t j) {
 TEST_CASE("stats: anti-correlated, independent and constant columns") {
   testing::TempDir dir;
   // Sorted by tail, the stored arc order is input arcs 0, 2, 1, 3; statistics do not depend on it.
-  const auto r = write_and_open(dir, four_arcs({integer_column("up", {1, 2, 3, 4}),
-                                                integer_column("down", {4, 3, 2, 1}),
-                                                integer_column("a", {0, 0, 1, 1}),
-                                                integer_column("b", {0, 1, 0, 1}),
-                                                integer_column("flat", {7, 7, 7, 7})}));
+  const auto r = write_and_open(
+      dir, four_arcs({integer_column("up", {1, 2, 3, 4}), integer_column("down", {4, 3, 2, 1}),
+                      integer_column("a", {0, 0, 1, 1}), integer_column("b", {0, 1, 0, 1}),
+                      integer_column("flat", {7, 7, 7, 7})}));
   const auto s = compute_stats(r);
   REQUIRE(s.all_arcs.objectives.size() == 5);
   REQUIRE(s.all_arcs.correlations.size() == 10);
@@ -78,8 +78,9 @@ TEST_CASE("stats: anti-correlated, independent and constant columns") {
 TEST_CASE("stats: float columns and a u64 column near 2^64 keep exact ranges and means") {
   testing::TempDir dir;
   const std::uint64_t big = ~std::uint64_t{0} - 1;
-  auto input = four_arcs({CostColumn{"f", "", std::vector<double>{0.5, 1.25, 2.0, 0.25}, std::nullopt},
-                          integer_column("big", {big, big, big, big - 4})});
+  auto input =
+      four_arcs({CostColumn{"f", "", std::vector<double>{0.5, 1.25, 2.0, 0.25}, std::nullopt},
+                 integer_column("big", {big, big, big, big - 4})});
   const auto r = write_and_open(dir, input);
   const auto s = objective_stats(r, {0, 1});
   CHECK(*s.objectives[0].min == 0.25L);
@@ -99,8 +100,8 @@ TEST_CASE("stats: self-loops, parallel arcs and degrees") {
   g.heads = {1, 1, 1, 1, 1, 0, 1};
   g.costs.push_back(integer_column("c", {1, 2, 3, 4, 5, 6, 7}));
   const auto s = compute_stats(write_and_open(dir, g));
-  CHECK(s.self_loops == 2);      // 1→1 twice
-  CHECK(s.parallel_arcs == 3);   // two extra 0→1, one extra 1→1; 2→1 repeats no arc of 2
+  CHECK(s.self_loops == 2);     // 1→1 twice
+  CHECK(s.parallel_arcs == 3);  // two extra 0→1, one extra 1→1; 2→1 repeats no arc of 2
   CHECK(s.vertex_count == 3);
   CHECK(s.arc_count == 7);
   CHECK(*s.out_degree.min == 1);
@@ -216,7 +217,8 @@ TEST_CASE("stats: payload walkers refuse a reader opened without verification") 
   g.costs.push_back(integer_column("c", {1}));
   write_and_open(dir, g);
   const auto plain = GraphReader::open(dir / "g.mosb");
-  CHECK_THROWS_WITH_AS(compute_stats(plain), doctest::Contains("GraphReader::open(path, level)"), Error);
+  CHECK_THROWS_WITH_AS(compute_stats(plain), doctest::Contains("GraphReader::open(path, level)"),
+                       Error);
   CHECK_THROWS_AS(count_loops_and_parallel_arcs(plain), Error);
   CHECK_THROWS_AS(strongly_connected_components(plain), Error);
 }

@@ -22,10 +22,12 @@ void add_json_flag(CLI::App* subcommand, bool& json) {
   subcommand->add_flag("--json", json, "print the report as one JSON object on stdout");
 }
 
-CLI::Option* add_id_base_option(CLI::App* subcommand, unsigned& id_base, const std::string& default_text) {
+CLI::Option* add_id_base_option(CLI::App* subcommand, unsigned& id_base,
+                                const std::string& default_text) {
   return subcommand
-      ->add_option("--id-base", id_base,
-                   "0 or 1: the id of the first vertex in the text files (default: " + default_text + ")")
+      ->add_option(
+          "--id-base", id_base,
+          "0 or 1: the id of the first vertex in the text files (default: " + default_text + ")")
       ->check(CLI::IsMember({0u, 1u}));
 }
 
@@ -61,7 +63,8 @@ int report_written(const std::string& path, bool json) {
 int report_suite(const std::string& directory, const std::string& family,
                  const std::vector<converters::SuiteEntry>& entries, bool json) {
   if (!json) {
-    std::cout << "wrote " << entries.size() << ' ' << family << " instances and MANIFEST to " << directory << '\n';
+    std::cout << "wrote " << entries.size() << ' ' << family << " instances and MANIFEST to "
+              << directory << '\n';
     return 0;
   }
   JsonWriter out(std::cout);
@@ -83,8 +86,9 @@ int report_suite(const std::string& directory, const std::string& family,
 
 Command add_convert(CLI::App& app) {
   auto* convert = app.add_subcommand("convert", "Convert a benchmark from its source format");
-  return group(convert, {add_convert_dimacs(*convert), add_convert_netmaker(*convert), add_convert_fmi(*convert),
-                         add_convert_guards(*convert), add_convert_movingai(*convert), add_convert_roadmap(*convert)});
+  return group(convert, {add_convert_dimacs(*convert), add_convert_netmaker(*convert),
+                         add_convert_fmi(*convert), add_convert_guards(*convert),
+                         add_convert_movingai(*convert), add_convert_roadmap(*convert)});
 }
 
 Command add_generate(CLI::App& app) {

@@ -13,7 +13,7 @@
 namespace CLI {
 class App;
 class Option;
-}
+}  // namespace CLI
 
 namespace mosb::converters {
 struct SuiteEntry;
@@ -39,7 +39,8 @@ void add_json_flag(CLI::App* subcommand, bool& json);
 // `--id-base 0|1`, the same everywhere: the id of the first vertex in the text files a command
 // reads or writes (the instance itself is always 0-based). `default_text` says what applies
 // when the option is absent (check the returned option's count()).
-CLI::Option* add_id_base_option(CLI::App* subcommand, unsigned& id_base, const std::string& default_text);
+CLI::Option* add_id_base_option(CLI::App* subcommand, unsigned& id_base,
+                                const std::string& default_text);
 
 // `--seed S`, the same for every generator: the seed of the specified random stream, default 1.
 CLI::Option* add_seed_option(CLI::App* subcommand, std::uint64_t& seed, const std::string& what);
@@ -47,7 +48,8 @@ CLI::Option* add_seed_option(CLI::App* subcommand, std::uint64_t& seed, const st
 // The `-o,--output` option of a command that writes a file (or, for `export`, a directory).
 CLI::Option* add_output_option(CLI::App* subcommand, std::string& output, const std::string& what);
 
-// A subcommand with one child per family (`convert dimacs`, `generate grid`, ...): runs the chosen one.
+// A subcommand with one child per family (`convert dimacs`, `generate grid`, ...): runs the chosen
+// one.
 Command group(CLI::App* parent, std::vector<Command> children);
 
 // Prints "wrote FILE: n vertices, m arcs, d objectives, digest D" after reopening FILE, or with

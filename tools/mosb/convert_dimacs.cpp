@@ -3,12 +3,12 @@
 
 #include "commands.hpp"
 #include "mosb/atomic_file.hpp"
-#include "terminal_progress.hpp"
 #include "mosb/converters/dimacs_converter.hpp"
 #include "mosb/converters/dimacs_extended.hpp"
 #include "mosb/converters/text_input.hpp"
 #include "mosb/error.hpp"
 #include "mosb/graph_builder.hpp"
+#include "terminal_progress.hpp"
 
 namespace mosb::cli {
 
@@ -35,7 +35,8 @@ int run_dimacs(const DimacsArgs& a) {
   check_output_is_not_input(a.output, inputs);
   converters::DimacsOptions o;
   o.gr_files = a.gr;
-  for (const auto& spec : a.objectives) o.objectives.push_back(converters::parse_objective(spec, "convert dimacs"));
+  for (const auto& spec : a.objectives)
+    o.objectives.push_back(converters::parse_objective(spec, "convert dimacs"));
   if (!a.co.empty()) o.co_file = a.co;
   if (!a.name.empty()) o.name = a.name;
   o.id_base = a.id_base;
@@ -70,25 +71,38 @@ Command add_convert_dimacs(CLI::App& convert) {
   auto* dimacs = convert.add_subcommand(
       "dimacs", "DIMACS shortest-path .gr files (plain, gzip, bzip2, xz or zstd), optional .co");
   auto args = std::make_shared<DimacsArgs>();
-  dimacs->add_option("--gr", args->gr, "a .gr file; one per objective in order, or one with several cost columns")
-      ->required()->check(CLI::ExistingFile);
-  dimacs->add_option("--objective", args->objectives, "NAME[:UNIT] of each cost column, in order (default c1..cd)");
+  dimacs
+      ->add_option("--gr", args->gr,
+                   "a .gr file; one per objective in order, or one with several cost columns")
+      ->required()
+      ->check(CLI::ExistingFile);
+  dimacs->add_option("--objective", args->objectives,
+                     "NAME[:UNIT] of each cost column, in order (default c1..cd)");
   dimacs->add_option("--co", args->co, "a .co coordinate file (stored as vertex data 'coords')")
       ->check(CLI::ExistingFile);
   dimacs->add_option("--name", args->name, "benchmark name (default: the first file's base name)");
   add_id_base_option(dimacs, args->id_base, "1");
-  dimacs->add_option("--cost-type", args->cost_type, "store every cost column as this type (u8..u64, f32, f64)");
-  dimacs->add_option("--elevation", args->elevation,
-                     "per-vertex elevations ('p aux sp elev n', 'v id elevation'): appends column "
-                     "'elevation' = |elev(u) - elev(v)|")
+  dimacs->add_option("--cost-type", args->cost_type,
+                     "store every cost column as this type (u8..u64, f32, f64)");
+  dimacs
+      ->add_option("--elevation", args->elevation,
+                   "per-vertex elevations ('p aux sp elev n', 'v id elevation'): appends column "
+                   "'elevation' = |elev(u) - elev(v)|")
       ->check(CLI::ExistingFile);
-  dimacs->add_option("--derive", args->derive,
-                     "append derived columns: avg-outdegree, hop (order fixed: elevation, avg_outdegree, hop)")
-      ->check(CLI::IsMember({"hop", "avg-outdegree"}))->delimiter(',');
-  dimacs->add_option("--avg-outdegree-mode", args->avg_outdegree_mode,
-                     "avg_outdegree as outdeg(u)+outdeg(v) (twice, exact) or their mean rounded half up")
-      ->check(CLI::IsMember({"twice", "round-half-up"}))->capture_default_str();
-  dimacs->add_option("--view", args->views, "NAME=OBJ1,OBJ2,...[@QUERYSET]: a benchmark over some columns (repeatable)");
+  dimacs
+      ->add_option(
+          "--derive", args->derive,
+          "append derived columns: avg-outdegree, hop (order fixed: elevation, avg_outdegree, hop)")
+      ->check(CLI::IsMember({"hop", "avg-outdegree"}))
+      ->delimiter(',');
+  dimacs
+      ->add_option(
+          "--avg-outdegree-mode", args->avg_outdegree_mode,
+          "avg_outdegree as outdeg(u)+outdeg(v) (twice, exact) or their mean rounded half up")
+      ->check(CLI::IsMember({"twice", "round-half-up"}))
+      ->capture_default_str();
+  dimacs->add_option("--view", args->views,
+                     "NAME=OBJ1,OBJ2,...[@QUERYSET]: a benchmark over some columns (repeatable)");
   add_output_option(dimacs, args->output, "the .mosb file to write")->required();
   add_json_flag(dimacs, args->json);
   return {dimacs, [args] { return run_dimacs(*args); }};

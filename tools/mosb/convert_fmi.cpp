@@ -3,11 +3,11 @@
 
 #include "commands.hpp"
 #include "mosb/atomic_file.hpp"
-#include "terminal_progress.hpp"
 #include "mosb/converters/fmi_converter.hpp"
 #include "mosb/converters/text_input.hpp"
 #include "mosb/error.hpp"
 #include "mosb/graph_builder.hpp"
+#include "terminal_progress.hpp"
 
 namespace mosb::cli {
 
@@ -34,8 +34,10 @@ int run_fmi(const FmiArgs& a) {
   o.file = a.file;
   if (a.costs_option->count() > 0) o.cost_count = a.costs;
   o.ignore_extra_fields = a.ignore_extra_fields;
-  for (const auto& spec : a.objectives) o.objectives.push_back(converters::parse_objective(spec, "convert fmi"));
-  if (a.bfs_option->count() > 0) o.extract_bfs = converters::FmiBfs{a.bfs_root, a.bfs_count, a.bfs_undirected};
+  for (const auto& spec : a.objectives)
+    o.objectives.push_back(converters::parse_objective(spec, "convert fmi"));
+  if (a.bfs_option->count() > 0)
+    o.extract_bfs = converters::FmiBfs{a.bfs_root, a.bfs_count, a.bfs_undirected};
   if (!a.name.empty()) o.name = a.name;
   TerminalProgress progress;
   // Out of memory anywhere in the conversion names the input.
@@ -48,25 +50,31 @@ int run_fmi(const FmiArgs& a) {
 
 Command add_convert_fmi(CLI::App& convert) {
   auto* fmi = convert.add_subcommand(
-      "fmi", "FMI / OsmGraphCreator text road graphs (GER_10), optionally a BFS-extracted subgraph");
+      "fmi",
+      "FMI / OsmGraphCreator text road graphs (GER_10), optionally a BFS-extracted subgraph");
   auto args = std::make_shared<FmiArgs>();
   fmi->add_option("INPUT", args->file, "the FMI text file (plain, gzip, bzip2, xz or zstd)")
-      ->required()->check(CLI::ExistingFile);
-  args->costs_option = fmi->add_option(
-      "--costs", args->costs,
-      "D cost fields per edge line: 'src trg c1 .. cD' (default: 'src trg cost type [maxspeed]')")
-      ->check(CLI::Range(1u, 64u));
+      ->required()
+      ->check(CLI::ExistingFile);
+  args->costs_option = fmi->add_option("--costs", args->costs,
+                                       "D cost fields per edge line: 'src trg c1 .. cD' (default: "
+                                       "'src trg cost type [maxspeed]')")
+                           ->check(CLI::Range(1u, 64u));
   fmi->add_flag("--ignore-extra-fields", args->ignore_extra_fields,
                 "with --costs: skip fields after the D costs (the same number on every edge line)")
       ->needs(args->costs_option);
   fmi->add_option("--objective", args->objectives,
-                  "NAME[:UNIT] of each cost column, in order (default: the GER_10 names for D = 10, else c1..cd)");
-  args->bfs_option = fmi->add_option("--extract-bfs", args->bfs_root,
-                                     "keep the first --count vertices in BFS order from this vertex (0-based)");
-  auto* count = fmi->add_option("--count", args->bfs_count, "number of vertices --extract-bfs keeps")
-                    ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{0xFFFFFFFEULL}));
-  auto* undirected = fmi->add_flag("--bfs-undirected", args->bfs_undirected,
-                                   "let the BFS follow arcs in both directions (default: out-arcs only)");
+                  "NAME[:UNIT] of each cost column, in order (default: the GER_10 names for D = "
+                  "10, else c1..cd)");
+  args->bfs_option =
+      fmi->add_option("--extract-bfs", args->bfs_root,
+                      "keep the first --count vertices in BFS order from this vertex (0-based)");
+  auto* count =
+      fmi->add_option("--count", args->bfs_count, "number of vertices --extract-bfs keeps")
+          ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{0xFFFFFFFEULL}));
+  auto* undirected =
+      fmi->add_flag("--bfs-undirected", args->bfs_undirected,
+                    "let the BFS follow arcs in both directions (default: out-arcs only)");
   args->bfs_option->needs(count);
   count->needs(args->bfs_option);
   undirected->needs(args->bfs_option);

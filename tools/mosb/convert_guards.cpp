@@ -3,10 +3,10 @@
 
 #include "commands.hpp"
 #include "mosb/atomic_file.hpp"
-#include "terminal_progress.hpp"
 #include "mosb/converters/guards_converter.hpp"
 #include "mosb/error.hpp"
 #include "mosb/graph_builder.hpp"
+#include "terminal_progress.hpp"
 
 namespace mosb::cli {
 
@@ -40,7 +40,8 @@ int run_guards(const GuardsArgs& a) {
   TerminalProgress progress;
   const auto result = converters::convert_guards(o);
   if (!a.write_exposure.empty())
-    converters::write_text_atomically(a.write_exposure, converters::format_exposure(result.map, result.exposure));
+    converters::write_text_atomically(a.write_exposure,
+                                      converters::format_exposure(result.map, result.exposure));
   write_graph(result.graph, a.output, progress.callback());
   return report_written(a.output, a.json);
 }
@@ -49,24 +50,35 @@ int run_guards(const GuardsArgs& a) {
 
 Command add_convert_guards(CLI::App& convert) {
   auto* guards = convert.add_subcommand(
-      "guards", "Moving AI octile map with guard exposure (GUARDS benchmarks): objectives length, exposure");
+      "guards",
+      "Moving AI octile map with guard exposure (GUARDS benchmarks): objectives length, exposure");
   auto args = std::make_shared<GuardsArgs>();
-  guards->add_option("--map", args->map, "the octile .map file")->required()->check(CLI::ExistingFile);
-  auto* exposure = guards->add_option("--exposure", args->exposure,
-                                      "per-cell exposure: height lines of width non-negative integers")
-                       ->check(CLI::ExistingFile);
-  auto* guard_file = guards->add_option("--guards", args->guards,
-                                        "guard positions 'x y [radius]' (exposure = guards with line of sight)")
-                         ->check(CLI::ExistingFile);
+  guards->add_option("--map", args->map, "the octile .map file")
+      ->required()
+      ->check(CLI::ExistingFile);
+  auto* exposure =
+      guards
+          ->add_option("--exposure", args->exposure,
+                       "per-cell exposure: height lines of width non-negative integers")
+          ->check(CLI::ExistingFile);
+  auto* guard_file =
+      guards
+          ->add_option("--guards", args->guards,
+                       "guard positions 'x y [radius]' (exposure = guards with line of sight)")
+          ->check(CLI::ExistingFile);
   exposure->excludes(guard_file);
   guards->add_option("--scen", args->scen, "a Moving AI scenario, imported as query set 'scen'")
       ->check(CLI::ExistingFile);
-  guards->add_option("--write-exposure", args->write_exposure, "also write the exposure grid (--exposure format)");
-  guards->add_option("--swamp", args->swamp, "terrain 'S'")->check(CLI::IsMember({"passable", "blocked"}))
+  guards->add_option("--write-exposure", args->write_exposure,
+                     "also write the exposure grid (--exposure format)");
+  guards->add_option("--swamp", args->swamp, "terrain 'S'")
+      ->check(CLI::IsMember({"passable", "blocked"}))
       ->capture_default_str();
-  guards->add_option("--water", args->water, "terrain 'W'")->check(CLI::IsMember({"passable", "blocked"}))
+  guards->add_option("--water", args->water, "terrain 'W'")
+      ->check(CLI::IsMember({"passable", "blocked"}))
       ->capture_default_str();
-  guards->add_option("--name", args->name, "benchmark name (default: the map's base name without .map)");
+  guards->add_option("--name", args->name,
+                     "benchmark name (default: the map's base name without .map)");
   add_output_option(guards, args->output, "the .mosb file to write")->required();
   add_json_flag(guards, args->json);
   return {guards, [args] {

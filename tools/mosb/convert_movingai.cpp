@@ -3,9 +3,9 @@
 
 #include "commands.hpp"
 #include "mosb/atomic_file.hpp"
-#include "terminal_progress.hpp"
 #include "mosb/converters/movingai.hpp"
 #include "mosb/graph_builder.hpp"
+#include "terminal_progress.hpp"
 
 namespace mosb::cli {
 
@@ -40,14 +40,19 @@ Command add_convert_movingai(CLI::App& convert) {
   auto* movingai = convert.add_subcommand(
       "movingai", "Moving AI octile map (8-connected, no corner cutting): objective length");
   auto args = std::make_shared<MovingaiArgs>();
-  movingai->add_option("--map", args->map, "the octile .map file")->required()->check(CLI::ExistingFile);
+  movingai->add_option("--map", args->map, "the octile .map file")
+      ->required()
+      ->check(CLI::ExistingFile);
   movingai->add_option("--scen", args->scen, "a Moving AI scenario, imported as query set 'scen'")
       ->check(CLI::ExistingFile);
-  movingai->add_option("--swamp", args->swamp, "terrain 'S'")->check(CLI::IsMember({"passable", "blocked"}))
+  movingai->add_option("--swamp", args->swamp, "terrain 'S'")
+      ->check(CLI::IsMember({"passable", "blocked"}))
       ->capture_default_str();
-  movingai->add_option("--water", args->water, "terrain 'W'")->check(CLI::IsMember({"passable", "blocked"}))
+  movingai->add_option("--water", args->water, "terrain 'W'")
+      ->check(CLI::IsMember({"passable", "blocked"}))
       ->capture_default_str();
-  movingai->add_option("--name", args->name, "benchmark name (default: the map's base name without .map)");
+  movingai->add_option("--name", args->name,
+                       "benchmark name (default: the map's base name without .map)");
   add_output_option(movingai, args->output, "the .mosb file to write")->required();
   add_json_flag(movingai, args->json);
   return {movingai, [args] { return run_movingai(*args); }};

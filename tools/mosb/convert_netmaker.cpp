@@ -4,9 +4,9 @@
 
 #include "commands.hpp"
 #include "mosb/atomic_file.hpp"
-#include "terminal_progress.hpp"
 #include "mosb/converters/netmaker_generator.hpp"
 #include "mosb/graph_builder.hpp"
+#include "terminal_progress.hpp"
 
 namespace mosb::cli {
 
@@ -23,18 +23,22 @@ struct ConvertNetMakerArgs {
 
 Command add_convert_netmaker(CLI::App& convert) {
   auto* netmaker = convert.add_subcommand(
-      "netmaker", "An existing NetMaker graph: 0-based DIMACS-like .gr with one cost column per objective");
+      "netmaker",
+      "An existing NetMaker graph: 0-based DIMACS-like .gr with one cost column per objective");
   auto args = std::make_shared<ConvertNetMakerArgs>();
   netmaker->add_option("INPUT", args->input, "the .gr file (plain, gzip, bzip2, xz or zstd)")
-      ->required()->check(CLI::ExistingFile);
+      ->required()
+      ->check(CLI::ExistingFile);
   netmaker->add_option("--name", args->name, "benchmark name (default: the file's base name)");
   add_output_option(netmaker, args->output, "the .mosb file to write")->required();
   add_json_flag(netmaker, args->json);
   return {netmaker, [args] {
             check_output_is_not_input(args->output, {args->input});
-            const auto name = args->name.empty() ? std::nullopt : std::optional<std::string>(args->name);
+            const auto name =
+                args->name.empty() ? std::nullopt : std::optional<std::string>(args->name);
             TerminalProgress progress;
-            write_graph(converters::convert_netmaker(args->input, name), args->output, progress.callback());
+            write_graph(converters::convert_netmaker(args->input, name), args->output,
+                        progress.callback());
             return report_written(args->output, args->json);
           }};
 }

@@ -4,10 +4,10 @@
 
 #include "commands.hpp"
 #include "mosb/atomic_file.hpp"
-#include "terminal_progress.hpp"
 #include "mosb/converters/roadmap_converter.hpp"
 #include "mosb/error.hpp"
 #include "mosb/graph_builder.hpp"
+#include "terminal_progress.hpp"
 
 namespace mosb::cli {
 
@@ -41,12 +41,14 @@ int run_roadmap(const RoadmapArgs& a) {
   o.clearance = *mode;
   o.delta = a.delta;
   o.weight = a.weight;
-  for (const auto& spec : a.objectives) o.objectives.push_back(converters::parse_objective(spec, "convert roadmap"));
+  for (const auto& spec : a.objectives)
+    o.objectives.push_back(converters::parse_objective(spec, "convert roadmap"));
   if (!a.name.empty()) o.name = a.name;
   TerminalProgress progress;
   const auto input = converters::convert_roadmap(o);
   for (const auto& [key, value] : input.metadata.entries())
-    if (key.starts_with("warning.")) std::cerr << "mosb: warning: " << key.substr(8) << ": " << value << '\n';
+    if (key.starts_with("warning."))
+      std::cerr << "mosb: warning: " << key.substr(8) << ": " << value << '\n';
   write_graph(input, a.output, progress.callback());
   return report_written(a.output, a.json);
 }
@@ -55,20 +57,30 @@ int run_roadmap(const RoadmapArgs& a) {
 
 Command add_convert_roadmap(CLI::App& convert) {
   auto* roadmap = convert.add_subcommand(
-      "roadmap", "Robot motion-planning roadmaps: per-objective .gr files (0-based ids) or OMPL GraphML");
+      "roadmap",
+      "Robot motion-planning roadmaps: per-objective .gr files (0-based ids) or OMPL GraphML");
   auto args = std::make_shared<RoadmapArgs>();
   roadmap->add_option("--gr", args->gr, "a .gr file (0-based ids); one per objective in order")
       ->check(CLI::ExistingFile);
-  roadmap->add_option("--vertices", args->vertices, "vertex file 'id q1 .. qdof' per line (vertex data 'config')")
+  roadmap
+      ->add_option("--vertices", args->vertices,
+                   "vertex file 'id q1 .. qdof' per line (vertex data 'config')")
       ->check(CLI::ExistingFile);
   roadmap->add_flag("--vertices-from-ids", args->vertices_from_ids,
                     "size the graph from the largest vertex id when it exceeds the declared count");
-  roadmap->add_option("--graphml", args->graphml, "a GraphML roadmap (node 'coords', edge 'weight', clearances)")
+  roadmap
+      ->add_option("--graphml", args->graphml,
+                   "a GraphML roadmap (node 'coords', edge 'weight', clearances)")
       ->check(CLI::ExistingFile);
-  roadmap->add_option("--clearance", args->clearance, "auto, none, aggregate, per-link or both (GraphML)")
-      ->check(CLI::IsMember({"auto", "none", "aggregate", "per-link", "both"}))->capture_default_str();
-  roadmap->add_option("--delta", args->delta, "safety band of the clearance penalty U(d)")->capture_default_str();
-  roadmap->add_flag("--weight", args->weight, "also store the GraphML edge attribute 'weight' as an objective");
+  roadmap
+      ->add_option("--clearance", args->clearance,
+                   "auto, none, aggregate, per-link or both (GraphML)")
+      ->check(CLI::IsMember({"auto", "none", "aggregate", "per-link", "both"}))
+      ->capture_default_str();
+  roadmap->add_option("--delta", args->delta, "safety band of the clearance penalty U(d)")
+      ->capture_default_str();
+  roadmap->add_flag("--weight", args->weight,
+                    "also store the GraphML edge attribute 'weight' as an objective");
   roadmap->add_option("--objective", args->objectives, "NAME[:UNIT] of each objective, in order");
   roadmap->add_option("--name", args->name, "benchmark name (default: the first file's base name)");
   add_output_option(roadmap, args->output, "the .mosb file to write")->required();

@@ -46,10 +46,14 @@ Command add_export_dimacs(CLI::App& parent) {
   auto* dimacs = parent.add_subcommand(
       "dimacs", "one DIMACS .gr per objective, a .co for coords, a .queries file per query set");
   auto args = std::make_shared<ExportDimacsArgs>();
-  dimacs->add_option("INSTANCE", args->instance, "the .mosb instance")->required()->check(CLI::ExistingFile);
-  add_output_option(dimacs, args->output, "directory for <benchmark>-<objective>.gr etc. (created)")->required();
+  dimacs->add_option("INSTANCE", args->instance, "the .mosb instance")
+      ->required()
+      ->check(CLI::ExistingFile);
+  add_output_option(dimacs, args->output, "directory for <benchmark>-<objective>.gr etc. (created)")
+      ->required();
   dimacs->add_option("--view", args->view, "export only this view's objectives and query set");
-  args->id_base_option = add_id_base_option(dimacs, args->id_base, "the instance's metadata id_base, else 1");
+  args->id_base_option =
+      add_id_base_option(dimacs, args->id_base, "the instance's metadata id_base, else 1");
   add_json_flag(dimacs, args->json);
   return {dimacs, [args] { return run_export_dimacs(*args); }};
 }

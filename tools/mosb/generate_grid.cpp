@@ -22,8 +22,8 @@ struct GridArgs {
 int run_grid(const GridArgs& a) {
   TerminalProgress progress;
   if (!a.suite.empty()) {
-    const auto entries = converters::run_suite(a.suite, converters::grid_suite(a.params.seed, a.sizes),
-                                               {a.threads, progress.callback()});
+    const auto entries = converters::run_suite(
+        a.suite, converters::grid_suite(a.params.seed, a.sizes), {a.threads, progress.callback()});
     return report_suite(a.suite, "Grid", entries, a.json);
   }
   if (a.output.empty()) throw UsageError("--output FILE is required (or --suite DIR)");
@@ -35,25 +35,32 @@ int run_grid(const GridArgs& a) {
 }  // namespace
 
 Command add_generate_grid(CLI::App& generate) {
-  auto* grid = generate.add_subcommand("grid", "The paper's random-cost 4-connected grid (Grid family)");
+  auto* grid =
+      generate.add_subcommand("grid", "The paper's random-cost 4-connected grid (Grid family)");
   auto args = std::make_shared<GridArgs>();
   auto& p = args->params;
   p.width = 300;
   p.height = 300;
   p.objectives = 3;
   auto* width = grid->add_option("--width", p.width, "K, the number of columns")
-                    ->check(CLI::Range(1u, 60000u))->capture_default_str();
+                    ->check(CLI::Range(1u, 60000u))
+                    ->capture_default_str();
   auto* height = grid->add_option("--height", p.height, "M, the number of rows")
-                     ->check(CLI::Range(1u, 60000u))->capture_default_str();
+                     ->check(CLI::Range(1u, 60000u))
+                     ->capture_default_str();
   auto* objectives = grid->add_option("--objectives", p.objectives, "number of cost columns")
-                         ->check(CLI::Range(1u, 16u))->capture_default_str();
+                         ->check(CLI::Range(1u, 16u))
+                         ->capture_default_str();
   add_seed_option(grid, p.seed, "seed of the specified generator (with --suite: of the suite)");
   auto* out = add_output_option(grid, args->output, "the .mosb file to write");
-  auto* directory = grid->add_option("--suite", args->suite,
-                                     "write the paper's 49 Grid graphs (3 objectives) and a MANIFEST into this directory");
+  auto* directory = grid->add_option(
+      "--suite", args->suite,
+      "write the paper's 49 Grid graphs (3 objectives) and a MANIFEST into this directory");
   // Hidden: a subset of widths/heights (tests), and the worker count.
   auto* sizes = grid->add_option("--sizes", args->sizes, "suite widths and heights")
-                    ->delimiter(',')->check(CLI::Range(1u, 60000u))->group("");
+                    ->delimiter(',')
+                    ->check(CLI::Range(1u, 60000u))
+                    ->group("");
   auto* threads = grid->add_option("--threads", args->threads, "suite worker threads")->group("");
   for (auto* single_only : {width, height, objectives, out}) directory->excludes(single_only);
   sizes->needs(directory);

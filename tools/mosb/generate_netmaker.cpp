@@ -25,8 +25,9 @@ int run_netmaker(NetMakerArgs a, const CLI::App& app) {
     // The suite's N list, unless --vertices narrows it (tests use a small N).
     const auto counts = app.count("--vertices") ? std::vector<std::uint32_t>{a.params.vertices}
                                                 : converters::paper_netmaker_vertex_counts();
-    const auto entries = converters::run_suite(a.suite, converters::netmaker_suite(a.params.seed, counts),
-                                               {a.threads, progress.callback()});
+    const auto entries =
+        converters::run_suite(a.suite, converters::netmaker_suite(a.params.seed, counts),
+                              {a.threads, progress.callback()});
     return report_suite(a.suite, "NetMaker", entries, a.json);
   }
   if (a.output.empty()) throw UsageError("--output FILE is required (or --suite DIR)");
@@ -39,30 +40,44 @@ int run_netmaker(NetMakerArgs a, const CLI::App& app) {
 
 Command add_generate_netmaker(CLI::App& generate) {
   auto* netmaker = generate.add_subcommand(
-      "netmaker", "The paper's NetMaker graph: a random Hamiltonian cycle plus locality arcs (3 objectives)");
+      "netmaker",
+      "The paper's NetMaker graph: a random Hamiltonian cycle plus locality arcs (3 objectives)");
   auto args = std::make_shared<NetMakerArgs>();
   auto& p = args->params;
   netmaker->add_option("--vertices", p.vertices, "N, the number of vertices")
-      ->check(CLI::Range(2u, 100000000u))->capture_default_str();
-  auto* amin = netmaker->add_option("--amin", p.amin, "out-degrees are drawn from {amin+1, ..., amax}")
-                   ->capture_default_str();
+      ->check(CLI::Range(2u, 100000000u))
+      ->capture_default_str();
+  auto* amin =
+      netmaker->add_option("--amin", p.amin, "out-degrees are drawn from {amin+1, ..., amax}")
+          ->capture_default_str();
   auto* amax = netmaker->add_option("--amax", p.amax, "the largest out-degree, cycle arc included")
-                   ->check(CLI::Range(1u, 100000u))->capture_default_str();
-  auto* locality = netmaker->add_option("--locality", p.locality, "I: locality arcs join u to ids within u +- floor(I/2)")
+                   ->check(CLI::Range(1u, 100000u))
+                   ->capture_default_str();
+  auto* locality = netmaker
+                       ->add_option("--locality", p.locality,
+                                    "I: locality arcs join u to ids within u +- floor(I/2)")
                        ->capture_default_str();
   add_seed_option(netmaker, p.seed, "seed of the specified generator (with --suite: of the suite)");
-  auto* queries = netmaker->add_option("--queries", p.queries, "number of distinct start-goal pairs")
-                      ->check(CLI::Range(1u, 1000000u))->capture_default_str();
-  auto* percent = netmaker->add_option("--query-percent", p.query_percent,
-                                       "starts among the first, goals among the last P% of vertex ids")
-                      ->check(CLI::Range(1u, 50u))->capture_default_str();
-  auto* name = netmaker->add_option("--name", args->name, "benchmark name (default NetMaker-N<N>-I<I>)");
+  auto* queries =
+      netmaker->add_option("--queries", p.queries, "number of distinct start-goal pairs")
+          ->check(CLI::Range(1u, 1000000u))
+          ->capture_default_str();
+  auto* percent = netmaker
+                      ->add_option("--query-percent", p.query_percent,
+                                   "starts among the first, goals among the last P% of vertex ids")
+                      ->check(CLI::Range(1u, 50u))
+                      ->capture_default_str();
+  auto* name =
+      netmaker->add_option("--name", args->name, "benchmark name (default NetMaker-N<N>-I<I>)");
   auto* output = add_output_option(netmaker, args->output, "the .mosb file to write");
-  auto* suite = netmaker->add_option("--suite", args->suite,
-                                     "write the paper's 12 NetMaker graphs and a MANIFEST into this directory");
-  netmaker->add_option("--threads", args->threads, "worker threads for --suite (default: all cores)")
+  auto* suite = netmaker->add_option(
+      "--suite", args->suite,
+      "write the paper's 12 NetMaker graphs and a MANIFEST into this directory");
+  netmaker
+      ->add_option("--threads", args->threads, "worker threads for --suite (default: all cores)")
       ->group("");
-  for (auto* single_only : {amin, amax, locality, queries, percent, name, output}) suite->excludes(single_only);
+  for (auto* single_only : {amin, amax, locality, queries, percent, name, output})
+    suite->excludes(single_only);
   add_json_flag(netmaker, args->json);
   return {netmaker, [args, netmaker] { return run_netmaker(*args, *netmaker); }};
 }

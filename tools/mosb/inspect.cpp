@@ -4,10 +4,10 @@
 #include <memory>
 #include <optional>
 
-#include "mosb/hex.hpp"
 #include "commands.hpp"
 #include "json_writer.hpp"
 #include "mosb/graph_reader.hpp"
+#include "mosb/hex.hpp"
 #include "mosb/stats.hpp"
 #include "mosb/utf8.hpp"
 
@@ -15,9 +15,9 @@ namespace mosb::cli {
 
 namespace {
 
-
 std::string kind_name(const Section& s) {
-  return s.kind ? std::string(format::to_string(*s.kind)) : "unknown(" + std::to_string(s.entry.kind) + ")";
+  return s.kind ? std::string(format::to_string(*s.kind))
+                : "unknown(" + std::to_string(s.entry.kind) + ")";
 }
 
 // Metadata values are file content: escaped so they cannot move the cursor or fake a line.
@@ -61,16 +61,18 @@ void print_text(const GraphReader& r) {
   for (std::size_t i = 0; i < r.objective_count(); ++i) {
     const auto& s = r.objective(i);
     std::cout << "  " << i << "  " << std::left << std::setw(24) << s.name << std::setw(5)
-              << format::to_string(s.type)
-              << "unit '" << shown(metadata.get("objective." + s.name + ".unit")) << "'\n";
+              << format::to_string(s.type) << "unit '"
+              << shown(metadata.get("objective." + s.name + ".unit")) << "'\n";
   }
   std::cout << "query sets\n";
   for (const auto* s : r.all(format::SectionKind::queries))
-    std::cout << "  " << std::left << std::setw(24) << s->name << s->entry.row_count << " queries\n";
+    std::cout << "  " << std::left << std::setw(24) << s->name << s->entry.row_count
+              << " queries\n";
   std::cout << "sections\n"
             << "  " << std::left << std::setw(16) << "kind" << std::setw(25) << "name"
             << std::setw(5) << "type" << std::right << std::setw(6) << "width" << std::setw(12)
-            << "rows" << std::setw(13) << "bytes" << std::setw(13) << "offset" << "  checksum\n";
+            << "rows" << std::setw(13) << "bytes" << std::setw(13) << "offset"
+            << "  checksum\n";
   for (const auto& s : r.sections())
     std::cout << "  " << std::left << std::setw(16) << kind_name(s) << std::setw(25) << s.name
               << std::setw(5) << format::to_string(s.type) << std::right << std::setw(6)
@@ -78,7 +80,8 @@ void print_text(const GraphReader& r) {
               << s.entry.stored_length << std::setw(13) << s.entry.offset << "  "
               << hex64(s.entry.checksum) << (s.is_packed() ? " (zstd)" : "") << '\n';
   std::cout << "metadata\n";
-  for (const auto& [key, value] : metadata.entries()) std::cout << "  " << key << " = " << escape_for_terminal(value) << '\n';
+  for (const auto& [key, value] : metadata.entries())
+    std::cout << "  " << key << " = " << escape_for_terminal(value) << '\n';
 }
 
 void print_json(const GraphReader& r) {
@@ -149,8 +152,10 @@ Command add_inspect(CLI::App& app) {
             // printed; a packed file cannot be, and is shown without the counts.
             auto reader = GraphReader::open(*file);
             if (!is_packed(reader)) reader = GraphReader::open(*file, VerifyLevel::full);
-            if (*as_json) print_json(reader);
-            else print_text(reader);
+            if (*as_json)
+              print_json(reader);
+            else
+              print_text(reader);
             return 0;
           }};
 }

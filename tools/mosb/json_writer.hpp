@@ -27,10 +27,16 @@ class JsonWriter {
     after_key_ = true;
     return *this;
   }
-  JsonWriter& value(std::string_view v) { return scalar([&] { write_string(v); }); }
+  JsonWriter& value(std::string_view v) {
+    return scalar([&] { write_string(v); });
+  }
   JsonWriter& value(const char* v) { return value(std::string_view(v)); }
-  JsonWriter& value(std::uint64_t v) { return scalar([&] { out_ << v; }); }
-  JsonWriter& value(bool v) { return scalar([&] { out_ << (v ? "true" : "false"); }); }
+  JsonWriter& value(std::uint64_t v) {
+    return scalar([&] { out_ << v; });
+  }
+  JsonWriter& value(bool v) {
+    return scalar([&] { out_ << (v ? "true" : "false"); });
+  }
   // Shortest text that reads back as the same double; JSON has no NaN or infinity: null.
   JsonWriter& value(double v) {
     return scalar([&] {
@@ -43,7 +49,9 @@ class JsonWriter {
       out_.write(buffer, end - buffer);
     });
   }
-  JsonWriter& null() { return scalar([&] { out_ << "null"; }); }
+  JsonWriter& null() {
+    return scalar([&] { out_ << "null"; });
+  }
 
  private:
   template <class F>
@@ -80,16 +88,22 @@ class JsonWriter {
       const auto c = static_cast<unsigned char>(s[i]);
       if (c >= 0x80) {  // JSON must be UTF-8: a stray byte (say, in a file name) becomes U+FFFD
         const auto length = utf8_sequence_length(s, i);
-        if (length == 0) out_ << "\\ufffd";
-        else out_ << s.substr(i, length);
+        if (length == 0)
+          out_ << "\\ufffd";
+        else
+          out_ << s.substr(i, length);
         i += length == 0 ? 0 : length - 1;
-      } else if (c == '"' || c == '\\') out_ << '\\' << c;
-      else if (c == '\n') out_ << "\\n";
-      else if (c == '\t') out_ << "\\t";
+      } else if (c == '"' || c == '\\')
+        out_ << '\\' << c;
+      else if (c == '\n')
+        out_ << "\\n";
+      else if (c == '\t')
+        out_ << "\\t";
       else if (c < 0x20) {
         static constexpr char kHex[] = "0123456789abcdef";
         out_ << "\\u00" << kHex[c >> 4] << kHex[c & 15];
-      } else out_ << c;
+      } else
+        out_ << c;
     }
     out_ << '"';
   }

@@ -1,5 +1,6 @@
 #include <CLI/CLI.hpp>
 #include <csignal>
+#include <cstdio>
 #include <iostream>
 
 #include "commands.hpp"
@@ -35,9 +36,7 @@ int usage_error(const CLI::App& app, std::string message) {
   return kUsageError;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   CLI::App app{"mosb: multi-objective search benchmark instances in a checksummed binary format"};
   app.set_version_flag("-V,--version", std::string("mosb ") + mosb::kVersion);
   app.footer(
@@ -45,18 +44,15 @@ int main(int argc, char** argv) {
       "I/O error); 2 usage error (unknown or missing option, bad option value, no subcommand).");
   app.require_subcommand(1);
   const std::vector<mosb::cli::Command> commands = {
-      mosb::cli::add_inspect(app),
-      mosb::cli::add_verify(app),
-      mosb::cli::add_generate(app),
-      mosb::cli::add_convert(app),
-      mosb::cli::add_queries(app),
-      mosb::cli::add_stats(app),
+      mosb::cli::add_inspect(app), mosb::cli::add_verify(app),  mosb::cli::add_generate(app),
+      mosb::cli::add_convert(app), mosb::cli::add_queries(app), mosb::cli::add_stats(app),
       mosb::cli::add_export(app),
   };
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);  // --help, -V
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success))
+      return app.exit(e);  // --help, -V
     return usage_error(app, e.what());
   }
   // Interrupted writes leave no temporary; a file size limit is a write error (EFBIG), reported
@@ -79,4 +75,15 @@ int main(int argc, char** argv) {
     return kRuntimeError;
   }
   return kRuntimeError;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (...) {  // run() reports its own errors; this keeps anything else from aborting
+    std::fputs("mosb: internal error while starting\n", stderr);
+    return kRuntimeError;
+  }
 }

@@ -27,9 +27,12 @@ struct Target {
 };
 
 void add_target_options(CLI::App* sub, Target& t) {
-  sub->add_option("INSTANCE", t.instance, "the .mosb instance")->required()->check(CLI::ExistingFile);
+  sub->add_option("INSTANCE", t.instance, "the .mosb instance")
+      ->required()
+      ->check(CLI::ExistingFile);
   sub->add_option("--set", t.set, "the query set name")->required();
-  auto* output = add_output_option(sub, t.output, "write the instance with the set to this new file");
+  auto* output =
+      add_output_option(sub, t.output, "write the instance with the set to this new file");
   sub->add_flag("--in-place", t.in_place, "rewrite INSTANCE itself (atomically)")->excludes(output);
   sub->add_flag("--replace", t.replace, "overwrite an existing query set of that name");
   add_json_flag(sub, t.json);
@@ -80,34 +83,46 @@ Command add_queries_import(CLI::App& queries) {
   auto a = std::make_shared<ImportArgs>();
   add_target_options(import, a->target);
   import->add_option("QUERIES", a->file, "the query file (plain, gzip, bzip2, xz or zstd)")
-      ->required()->check(CLI::ExistingFile);
-  a->id_base_option = add_id_base_option(import, a->id_base, "the instance's metadata id_base, else 0");
-  import->add_option("--match", a->match, "keep only 'graph s t' lines whose graph field contains TEXT");
+      ->required()
+      ->check(CLI::ExistingFile);
+  a->id_base_option =
+      add_id_base_option(import, a->id_base, "the instance's metadata id_base, else 0");
+  import->add_option("--match", a->match,
+                     "keep only 'graph s t' lines whose graph field contains TEXT");
   return {import, [a] {
             check_output_is_not_input(destination(a->target), {a->file});  // checks before any work
-            const auto reader = GraphReader::open(a->target.instance, VerifyLevel::full);  // its payload is copied
+            const auto reader =
+                GraphReader::open(a->target.instance, VerifyLevel::full);  // its payload is copied
             converters::QueryImportOptions options;
             options.file = a->file;
             if (a->id_base_option->count() > 0) options.id_base = a->id_base;
             if (!a->match.empty()) options.match = a->match;
-            return write_and_report(reader, converters::import_query_set(reader, a->target.set, options, a->target.replace),
-                                    a->target);
+            return write_and_report(
+                reader,
+                converters::import_query_set(reader, a->target.set, options, a->target.replace),
+                a->target);
           }};
 }
 
 Command add_queries_generate(CLI::App& queries) {
-  auto* generate = queries.add_subcommand("generate", "Draw uniform random (start, goal) pairs over all vertices");
+  auto* generate = queries.add_subcommand(
+      "generate", "Draw uniform random (start, goal) pairs over all vertices");
   auto a = std::make_shared<GenerateArgs>();
   add_target_options(generate, a->target);
   generate->add_option("--count", a->draw.count, "number of pairs")
-      ->check(CLI::Range(std::uint64_t{1}, converters::kMaxDrawnQueries))->capture_default_str();
+      ->check(CLI::Range(std::uint64_t{1}, converters::kMaxDrawnQueries))
+      ->capture_default_str();
   add_seed_option(generate, a->draw.seed, "seed of the specified random stream");
-  generate->add_flag("--allow-same", a->draw.allow_same, "keep pairs with start = goal (redrawn otherwise)");
+  generate->add_flag("--allow-same", a->draw.allow_same,
+                     "keep pairs with start = goal (redrawn otherwise)");
   return {generate, [a] {
             destination(a->target);
-            const auto reader = GraphReader::open(a->target.instance, VerifyLevel::full);  // its payload is copied
-            return write_and_report(reader, converters::draw_query_set(reader, a->target.set, a->draw, a->target.replace),
-                                    a->target);
+            const auto reader =
+                GraphReader::open(a->target.instance, VerifyLevel::full);  // its payload is copied
+            return write_and_report(
+                reader,
+                converters::draw_query_set(reader, a->target.set, a->draw, a->target.replace),
+                a->target);
           }};
 }
 

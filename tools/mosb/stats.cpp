@@ -1,4 +1,6 @@
 // `mosb stats`: the statistics of spec/STATS.md as an aligned table or as JSON.
+#include "mosb/stats.hpp"
+
 #include <CLI/CLI.hpp>
 #include <charconv>
 #include <iomanip>
@@ -10,7 +12,6 @@
 #include "commands.hpp"
 #include "json_writer.hpp"
 #include "mosb/graph_reader.hpp"
-#include "mosb/stats.hpp"
 
 namespace mosb::cli {
 
@@ -48,9 +49,9 @@ std::string degree_text(const DegreeStats& d) {
 void print_group_text(const ArcGroupStats& g, const std::string& indent) {
   std::size_t width = 9;  // "objective"
   for (const auto& o : g.objectives) width = std::max(width, o.name.size());
-  std::cout << indent << std::left << std::setw(static_cast<int>(width)) << "objective" << "  type"
-            << std::right << std::setw(14) << "min" << std::setw(14) << "mean" << std::setw(14) << "max"
-            << '\n';
+  std::cout << indent << std::left << std::setw(static_cast<int>(width)) << "objective"
+            << "  type" << std::right << std::setw(14) << "min" << std::setw(14) << "mean"
+            << std::setw(14) << "max" << '\n';
   for (const auto& o : g.objectives)
     std::cout << indent << std::left << std::setw(static_cast<int>(width)) << o.name << "  "
               << std::setw(4) << format::to_string(o.type) << std::right << std::setw(14)
@@ -62,8 +63,8 @@ void print_group_text(const ArcGroupStats& g, const std::string& indent) {
     return g.objectives[c.first].name + " ~ " + g.objectives[c.second].name;
   };
   for (const auto& c : g.correlations) pair_width = std::max(pair_width, pair_name(c).size());
-  std::cout << indent << std::left << std::setw(static_cast<int>(pair_width)) << "pair" << std::right
-            << std::setw(12) << "rho" << '\n';
+  std::cout << indent << std::left << std::setw(static_cast<int>(pair_width)) << "pair"
+            << std::right << std::setw(12) << "rho" << '\n';
   for (const auto& c : g.correlations)
     std::cout << indent << std::left << std::setw(static_cast<int>(pair_width)) << pair_name(c)
               << std::right << std::setw(12) << rho_text(c.rho) << '\n';
@@ -92,10 +93,14 @@ void print_text(const GraphReader& r, const std::optional<std::string>& view, co
   }
 }
 
-void optional_number(JsonWriter& json, const std::optional<long double>& v, format::ElementType type) {
-  if (!v) json.null();
-  else if (!format::is_float(type)) json.value(static_cast<std::uint64_t>(*v));
-  else json.value(static_cast<double>(*v));
+void optional_number(JsonWriter& json, const std::optional<long double>& v,
+                     format::ElementType type) {
+  if (!v)
+    json.null();
+  else if (!format::is_float(type))
+    json.value(static_cast<std::uint64_t>(*v));
+  else
+    json.value(static_cast<double>(*v));
 }
 
 void group_json(JsonWriter& json, const ArcGroupStats& g) {
@@ -108,8 +113,10 @@ void group_json(JsonWriter& json, const ArcGroupStats& g) {
     json.key("min");
     optional_number(json, o.min, o.type);
     json.key("mean");
-    if (o.mean) json.value(static_cast<double>(*o.mean));
-    else json.null();
+    if (o.mean)
+      json.value(static_cast<double>(*o.mean));
+    else
+      json.null();
     json.key("max");
     optional_number(json, o.max, o.type);
     json.end_object();
@@ -121,8 +128,10 @@ void group_json(JsonWriter& json, const ArcGroupStats& g) {
     json.key("first").value(g.objectives[c.first].name);
     json.key("second").value(g.objectives[c.second].name);
     json.key("rho");
-    if (c.rho) json.value(*c.rho);
-    else json.null();
+    if (c.rho)
+      json.value(*c.rho);
+    else
+      json.null();
     json.end_object();
   }
   json.end_array();
@@ -131,14 +140,20 @@ void group_json(JsonWriter& json, const ArcGroupStats& g) {
 void degree_json(JsonWriter& json, const DegreeStats& d) {
   json.begin_object();
   json.key("min");
-  if (d.min) json.value(*d.min);
-  else json.null();
+  if (d.min)
+    json.value(*d.min);
+  else
+    json.null();
   json.key("mean");
-  if (d.mean) json.value(*d.mean);
-  else json.null();
+  if (d.mean)
+    json.value(*d.mean);
+  else
+    json.null();
   json.key("max");
-  if (d.max) json.value(*d.max);
-  else json.null();
+  if (d.max)
+    json.value(*d.max);
+  else
+    json.null();
   json.end_object();
 }
 
@@ -147,8 +162,10 @@ void print_json(const GraphReader& r, const std::optional<std::string>& view, co
   json.begin_object();
   json.key("file").value(r.display_name());
   json.key("view");
-  if (view) json.value(*view);
-  else json.null();
+  if (view)
+    json.value(*view);
+  else
+    json.null();
   json.key("vertices").value(s.vertex_count);
   json.key("self_loops").value(s.self_loops);
   json.key("parallel_arcs").value(s.parallel_arcs);
@@ -177,14 +194,17 @@ void print_json(const GraphReader& r, const std::optional<std::string>& view, co
 }  // namespace
 
 Command add_stats(CLI::App& app) {
-  auto* sub = app.add_subcommand("stats", "Cost ranges, objective correlations, degrees and components");
+  auto* sub =
+      app.add_subcommand("stats", "Cost ranges, objective correlations, degrees and components");
   auto file = std::make_shared<std::string>();
   auto view = std::make_shared<std::string>();
   auto by_kind = std::make_shared<bool>(false);
   auto as_json = std::make_shared<bool>(false);
   sub->add_option("INSTANCE", *file, "a .mosb instance")->required();
-  auto* view_option = sub->add_option("--view", *view, "only the objectives of this benchmark view, in its order");
-  sub->add_flag("--by-kind", *by_kind, "also per value of the u8 arc data 'kind' (NetMaker: 0 cycle, 1 locality)");
+  auto* view_option =
+      sub->add_option("--view", *view, "only the objectives of this benchmark view, in its order");
+  sub->add_flag("--by-kind", *by_kind,
+                "also per value of the u8 arc data 'kind' (NetMaker: 0 cycle, 1 locality)");
   add_json_flag(sub, *as_json);
   return {sub, [file, view, view_option, by_kind, as_json] {
             const auto reader = GraphReader::open(*file, VerifyLevel::full);
@@ -192,8 +212,10 @@ Command add_stats(CLI::App& app) {
             if (view_option->count() > 0) options.view = *view;
             options.by_kind = *by_kind;
             const auto stats = compute_stats(reader, options);
-            if (*as_json) print_json(reader, options.view, stats);
-            else print_text(reader, options.view, stats);
+            if (*as_json)
+              print_json(reader, options.view, stats);
+            else
+              print_text(reader, options.view, stats);
             return 0;
           }};
 }

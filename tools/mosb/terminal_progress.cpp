@@ -8,11 +8,15 @@ namespace mosb::cli {
 
 TerminalProgress::TerminalProgress() : enabled_(::isatty(STDERR_FILENO) == 1) {}
 
-TerminalProgress::~TerminalProgress() { end_line(); }
+TerminalProgress::~TerminalProgress() {
+  end_line();
+}
 
 Progress TerminalProgress::callback() {
   if (!enabled_) return {};
-  return [this](std::string_view stage, std::uint64_t done, std::uint64_t total) { update(stage, done, total); };
+  return [this](std::string_view stage, std::uint64_t done, std::uint64_t total) {
+    update(stage, done, total);
+  };
 }
 
 void TerminalProgress::update(std::string_view stage, std::uint64_t done, std::uint64_t total) {
@@ -26,8 +30,9 @@ void TerminalProgress::update(std::string_view stage, std::uint64_t done, std::u
   last_draw_ = now;
   // "\r" and erase-to-end-of-line redraw the same line.
   if (total != 0)
-    std::fprintf(stderr, "\r\033[Kmosb: %.*s %llu/%llu (%.0f%%)", static_cast<int>(stage.size()), stage.data(),
-                 static_cast<unsigned long long>(done), static_cast<unsigned long long>(total),
+    std::fprintf(stderr, "\r\033[Kmosb: %.*s %llu/%llu (%.0f%%)", static_cast<int>(stage.size()),
+                 stage.data(), static_cast<unsigned long long>(done),
+                 static_cast<unsigned long long>(total),
                  100.0 * static_cast<double>(done) / static_cast<double>(total));
   else
     std::fprintf(stderr, "\r\033[Kmosb: %.*s %llu", static_cast<int>(stage.size()), stage.data(),

@@ -55,16 +55,20 @@ int run_verify(const VerifyArgs& a) {
       json.begin_object();
       json.key("file").value(o.file);
       json.key("ok").value(!o.problem);
-      if (o.problem) json.key("problem").value(*o.problem);
-      else json.key("digest").value(o.digest);
+      if (o.problem)
+        json.key("problem").value(*o.problem);
+      else
+        json.key("digest").value(o.digest);
       json.end_object();
     }
     json.end_array();
     json.end_object();
   } else {
     for (const auto& o : outcomes) {
-      if (o.problem) std::cout << "FAIL " << *o.problem << '\n';
-      else std::cout << "OK   " << o.file << " (" << a.level << ", digest " << o.digest << ")\n";
+      if (o.problem)
+        std::cout << "FAIL " << *o.problem << '\n';
+      else
+        std::cout << "OK   " << o.file << " (" << a.level << ", digest " << o.digest << ")\n";
     }
   }
   return failures == 0 ? 0 : 1;

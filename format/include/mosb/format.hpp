@@ -86,9 +86,16 @@ enum class SectionKind : std::uint16_t {
 };
 
 enum class ElementType : std::uint8_t {
-  u8 = 1, u16 = 2, u32 = 3, u64 = 4,
-  i8 = 5, i16 = 6, i32 = 7, i64 = 8,
-  f32 = 9, f64 = 10,
+  u8 = 1,
+  u16 = 2,
+  u32 = 3,
+  u64 = 4,
+  i8 = 5,
+  i16 = 6,
+  i32 = 7,
+  i64 = 8,
+  f32 = 9,
+  f64 = 10,
 };
 
 enum class Encoding : std::uint8_t {
@@ -141,17 +148,30 @@ inline std::string_view name_of(const SectionEntry& e) {
 
 constexpr std::size_t element_size(ElementType t) {
   switch (t) {
-    case ElementType::u8: case ElementType::i8: return 1;
-    case ElementType::u16: case ElementType::i16: return 2;
-    case ElementType::u32: case ElementType::i32: case ElementType::f32: return 4;
-    case ElementType::u64: case ElementType::i64: case ElementType::f64: return 8;
+    case ElementType::u8:
+    case ElementType::i8:
+      return 1;
+    case ElementType::u16:
+    case ElementType::i16:
+      return 2;
+    case ElementType::u32:
+    case ElementType::i32:
+    case ElementType::f32:
+      return 4;
+    case ElementType::u64:
+    case ElementType::i64:
+    case ElementType::f64:
+      return 8;
   }
   return 0;
 }
 
-constexpr bool is_float(ElementType t) { return t == ElementType::f32 || t == ElementType::f64; }
+constexpr bool is_float(ElementType t) {
+  return t == ElementType::f32 || t == ElementType::f64;
+}
 constexpr bool is_unsigned(ElementType t) {
-  return t == ElementType::u8 || t == ElementType::u16 || t == ElementType::u32 || t == ElementType::u64;
+  return t == ElementType::u8 || t == ElementType::u16 || t == ElementType::u32 ||
+         t == ElementType::u64;
 }
 
 std::optional<ElementType> element_type_from(std::uint8_t raw);
@@ -160,33 +180,74 @@ std::string_view to_string(ElementType t);
 std::string_view to_string(SectionKind k);
 std::optional<ElementType> parse_element_type(std::string_view name);
 
-template <class T> constexpr ElementType element_type_of();
-template <> constexpr ElementType element_type_of<std::uint8_t>() { return ElementType::u8; }
-template <> constexpr ElementType element_type_of<std::uint16_t>() { return ElementType::u16; }
-template <> constexpr ElementType element_type_of<std::uint32_t>() { return ElementType::u32; }
-template <> constexpr ElementType element_type_of<std::uint64_t>() { return ElementType::u64; }
-template <> constexpr ElementType element_type_of<std::int8_t>() { return ElementType::i8; }
-template <> constexpr ElementType element_type_of<std::int16_t>() { return ElementType::i16; }
-template <> constexpr ElementType element_type_of<std::int32_t>() { return ElementType::i32; }
-template <> constexpr ElementType element_type_of<std::int64_t>() { return ElementType::i64; }
-template <> constexpr ElementType element_type_of<float>() { return ElementType::f32; }
-template <> constexpr ElementType element_type_of<double>() { return ElementType::f64; }
+template <class T>
+constexpr ElementType element_type_of();
+template <>
+constexpr ElementType element_type_of<std::uint8_t>() {
+  return ElementType::u8;
+}
+template <>
+constexpr ElementType element_type_of<std::uint16_t>() {
+  return ElementType::u16;
+}
+template <>
+constexpr ElementType element_type_of<std::uint32_t>() {
+  return ElementType::u32;
+}
+template <>
+constexpr ElementType element_type_of<std::uint64_t>() {
+  return ElementType::u64;
+}
+template <>
+constexpr ElementType element_type_of<std::int8_t>() {
+  return ElementType::i8;
+}
+template <>
+constexpr ElementType element_type_of<std::int16_t>() {
+  return ElementType::i16;
+}
+template <>
+constexpr ElementType element_type_of<std::int32_t>() {
+  return ElementType::i32;
+}
+template <>
+constexpr ElementType element_type_of<std::int64_t>() {
+  return ElementType::i64;
+}
+template <>
+constexpr ElementType element_type_of<float>() {
+  return ElementType::f32;
+}
+template <>
+constexpr ElementType element_type_of<double>() {
+  return ElementType::f64;
+}
 
 // The one place that maps an element type to its C++ type: calls f(std::type_identity<T>{}) and
 // returns its result (the same type for every T). `type` must be a known element type.
 template <class F>
 constexpr decltype(auto) visit_element_type(ElementType type, F&& f) {
   switch (type) {
-    case ElementType::u8: return std::forward<F>(f)(std::type_identity<std::uint8_t>{});
-    case ElementType::u16: return std::forward<F>(f)(std::type_identity<std::uint16_t>{});
-    case ElementType::u32: return std::forward<F>(f)(std::type_identity<std::uint32_t>{});
-    case ElementType::u64: return std::forward<F>(f)(std::type_identity<std::uint64_t>{});
-    case ElementType::i8: return std::forward<F>(f)(std::type_identity<std::int8_t>{});
-    case ElementType::i16: return std::forward<F>(f)(std::type_identity<std::int16_t>{});
-    case ElementType::i32: return std::forward<F>(f)(std::type_identity<std::int32_t>{});
-    case ElementType::i64: return std::forward<F>(f)(std::type_identity<std::int64_t>{});
-    case ElementType::f32: return std::forward<F>(f)(std::type_identity<float>{});
-    case ElementType::f64: break;
+    case ElementType::u8:
+      return std::forward<F>(f)(std::type_identity<std::uint8_t>{});
+    case ElementType::u16:
+      return std::forward<F>(f)(std::type_identity<std::uint16_t>{});
+    case ElementType::u32:
+      return std::forward<F>(f)(std::type_identity<std::uint32_t>{});
+    case ElementType::u64:
+      return std::forward<F>(f)(std::type_identity<std::uint64_t>{});
+    case ElementType::i8:
+      return std::forward<F>(f)(std::type_identity<std::int8_t>{});
+    case ElementType::i16:
+      return std::forward<F>(f)(std::type_identity<std::int16_t>{});
+    case ElementType::i32:
+      return std::forward<F>(f)(std::type_identity<std::int32_t>{});
+    case ElementType::i64:
+      return std::forward<F>(f)(std::type_identity<std::int64_t>{});
+    case ElementType::f32:
+      return std::forward<F>(f)(std::type_identity<float>{});
+    case ElementType::f64:
+      break;
   }
   return std::forward<F>(f)(std::type_identity<double>{});
 }
@@ -195,6 +256,8 @@ constexpr decltype(auto) visit_element_type(ElementType type, F&& f) {
 template <class T>
 inline constexpr bool is_cost_type_v = std::is_floating_point_v<T> || std::is_unsigned_v<T>;
 
-constexpr std::uint64_t align_up(std::uint64_t x) { return (x + kAlignment - 1) / kAlignment * kAlignment; }
+constexpr std::uint64_t align_up(std::uint64_t x) {
+  return (x + kAlignment - 1) / kAlignment * kAlignment;
+}
 
 }  // namespace mosb::format

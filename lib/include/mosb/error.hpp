@@ -13,7 +13,8 @@ enum class ErrorCode {
   version,           // a format major version or a required feature this reader does not know
   damaged,           // a mosb file that breaks a rule of spec/FORMAT.md §9 (checksums included)
   not_found,         // no objective, query set, view or metadata key of that name
-  invalid_argument,  // a call the file cannot answer as asked: wrong element type, index out of range
+  invalid_argument,  // a call the file cannot answer as asked: wrong element type, index out of
+                     // range
   packed,            // a zstd-packed section, which cannot be mapped zero-copy
 };
 

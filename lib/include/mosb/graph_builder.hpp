@@ -1,5 +1,6 @@
 // Turns an arc list with per-objective costs into a canonical mosb instance file: forward CSR
-// (stable by tail), its exact transpose, one cost column per objective in the narrowest lossless type.
+// (stable by tail), its exact transpose, one cost column per objective in the narrowest lossless
+// type.
 #pragma once
 
 #include <cstdint>
@@ -63,7 +64,8 @@ struct GraphInput {
 format::ElementType choose_cost_type(const CostColumn& column);
 
 // Validates the input and writes the instance atomically to `path`.
-void write_graph(const GraphInput& input, const std::filesystem::path& path, const Progress& progress = {});
+void write_graph(const GraphInput& input, const std::filesystem::path& path,
+                 const Progress& progress = {});
 
 // An instance whose generator can replay its arcs in ascending tail order (and its integer costs
 // in the same order) as often as asked: written without holding the arc list, the permutation or
@@ -85,7 +87,8 @@ struct StreamedGraph {
   Metadata metadata;
 };
 
-void write_graph(const StreamedGraph& graph, const std::filesystem::path& path, const Progress& progress = {});
+void write_graph(const StreamedGraph& graph, const std::filesystem::path& path,
+                 const Progress& progress = {});
 
 // The same instance as a GraphInput (for tests and for callers that edit it before writing).
 GraphInput materialize(const StreamedGraph& graph);

@@ -63,7 +63,9 @@ struct Section {
   std::uint64_t decoded_length;  // row_count * row_width * element size
   std::span<const std::byte> stored;
 
-  bool is_packed() const { return entry.encoding != static_cast<std::uint8_t>(format::Encoding::raw); }
+  bool is_packed() const {
+    return entry.encoding != static_cast<std::uint8_t>(format::Encoding::raw);
+  }
   std::uint64_t element_count() const { return entry.row_count * entry.row_width; }
 };
 

@@ -10,7 +10,8 @@ namespace mosb {
 
 // Called with the name of the current stage, the units done so far and the units in that stage
 // (0 when unknown). Calls come from one thread at a time; an empty Progress reports nothing.
-using Progress = std::function<void(std::string_view stage, std::uint64_t done, std::uint64_t total)>;
+using Progress =
+    std::function<void(std::string_view stage, std::uint64_t done, std::uint64_t total)>;
 
 inline void report(const Progress& progress, std::string_view stage, std::uint64_t done,
                    std::uint64_t total) {

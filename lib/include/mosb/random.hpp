@@ -20,7 +20,7 @@ class SplitMix64 {
   // modulo r, so every value has exactly the same number of preimages.
   constexpr std::uint64_t uniform(std::uint64_t lo, std::uint64_t hi) {
     const std::uint64_t range = hi - lo + 1;
-    if (range == 0) return next();  // [0, 2^64 - 1]
+    if (range == 0) return next();                           // [0, 2^64 - 1]
     const std::uint64_t reject_below = (0 - range) % range;  // 2^64 mod range
     std::uint64_t x = next();
     while (x < reject_below) x = next();

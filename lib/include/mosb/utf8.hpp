@@ -15,7 +15,8 @@ inline std::size_t utf8_sequence_length(std::string_view s, std::size_t i) {
   if (b0 < 0x80) return 1;
   std::size_t length;
   unsigned char low = 0x80, high = 0xBF;  // allowed range of the second byte
-  if (b0 >= 0xC2 && b0 <= 0xDF) length = 2;
+  if (b0 >= 0xC2 && b0 <= 0xDF)
+    length = 2;
   else if (b0 >= 0xE0 && b0 <= 0xEF) {
     length = 3;
     if (b0 == 0xE0) low = 0xA0;
@@ -44,8 +45,8 @@ inline bool is_valid_utf8(std::string_view s) {
 }
 
 // Text from a file, made safe to print on a terminal as one line: `\` becomes `\\`, LF `\n`, CR
-// `\r`, tab `\t`, other C0 controls and DEL `\xHH`; C1 controls (U+0080-U+009F, e.g. the 8-bit CSI),
-// line/paragraph separators and bidirectional overrides `\u{XXXX}`; bytes that are not UTF-8
+// `\r`, tab `\t`, other C0 controls and DEL `\xHH`; C1 controls (U+0080-U+009F, e.g. the 8-bit
+// CSI), line/paragraph separators and bidirectional overrides `\u{XXXX}`; bytes that are not UTF-8
 // `\xHH`. So a value can neither move the cursor, recolour, reorder nor fake a line.
 inline std::string escape_for_terminal(std::string_view s) {
   static constexpr char kHex[] = "0123456789abcdef";
@@ -57,21 +58,28 @@ inline std::string escape_for_terminal(std::string_view s) {
     if (length == 1 && c >= 0x20 && c != 0x7F && c != '\\') {
       out += static_cast<char>(c);
     } else if (length == 1) {
-      if (c == '\\') out += "\\\\";
-      else if (c == '\n') out += "\\n";
-      else if (c == '\r') out += "\\r";
-      else if (c == '\t') out += "\\t";
-      else out += std::string("\\x") + kHex[c >> 4] + kHex[c & 15];
+      if (c == '\\')
+        out += "\\\\";
+      else if (c == '\n')
+        out += "\\n";
+      else if (c == '\r')
+        out += "\\r";
+      else if (c == '\t')
+        out += "\\t";
+      else
+        out += std::string("\\x") + kHex[c >> 4] + kHex[c & 15];
     } else if (length == 0) {
       out += std::string("\\x") + kHex[c >> 4] + kHex[c & 15];
       i += 1;
       continue;
     } else {
       std::uint32_t code = c & (0xFF >> (length + 1));
-      for (std::size_t k = 1; k < length; ++k) code = (code << 6) | (static_cast<unsigned char>(s[i + k]) & 0x3F);
+      for (std::size_t k = 1; k < length; ++k)
+        code = (code << 6) | (static_cast<unsigned char>(s[i + k]) & 0x3F);
       const bool hidden = (code >= 0x80 && code <= 0x9F) || code == 0x2028 || code == 0x2029 ||
-                          (code >= 0x202A && code <= 0x202E) || (code >= 0x2066 && code <= 0x2069) ||
-                          code == 0x200E || code == 0x200F || code == 0x061C;
+                          (code >= 0x202A && code <= 0x202E) ||
+                          (code >= 0x2066 && code <= 0x2069) || code == 0x200E || code == 0x200F ||
+                          code == 0x061C;
       if (hidden) {
         out += "\\u{";
         for (int shift = 12; shift >= 0; shift -= 4) out += kHex[(code >> shift) & 15];

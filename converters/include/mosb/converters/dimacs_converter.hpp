@@ -9,9 +9,9 @@
 #include <variant>
 #include <vector>
 
+#include "mosb/converters/objective.hpp"
 #include "mosb/converters/text_scan.hpp"
 #include "mosb/format.hpp"
-#include "mosb/converters/objective.hpp"
 #include "mosb/graph_builder.hpp"
 
 namespace mosb::converters {
@@ -24,7 +24,8 @@ struct DimacsGraph {
   // 1-based line number of each arc, when asked for (the message of a later file that disagrees
   // cites the line of this file's arc; convert_dimacs finds it by scanning the file again instead).
   std::vector<std::uint64_t> arc_lines;
-  // One entry per cost column: integers, or reals when any value in the column has '.' or an exponent.
+  // One entry per cost column: integers, or reals when any value in the column has '.' or an
+  // exponent.
   std::vector<std::variant<std::vector<std::uint64_t>, std::vector<double>>> columns;
 };
 
@@ -39,8 +40,9 @@ struct DimacsReference {
 // text's size, or an estimate) could hold. The text comes whole, or in chunks from a TextSource.
 DimacsGraph parse_dimacs_gr(std::string_view text, const std::string& display_name,
                             unsigned id_base, const DimacsReference* reference = nullptr);
-DimacsGraph parse_dimacs_gr(text::TextSource& source, std::uint64_t size_hint, const std::string& display_name,
-                            unsigned id_base, const DimacsReference* reference = nullptr,
+DimacsGraph parse_dimacs_gr(text::TextSource& source, std::uint64_t size_hint,
+                            const std::string& display_name, unsigned id_base,
+                            const DimacsReference* reference = nullptr,
                             bool record_arc_lines = true);
 
 // Line numbers of the arc lines of .gr text that parses.
@@ -56,7 +58,7 @@ struct DimacsOptions {
   std::vector<std::string> gr_files;
   std::vector<Objective> objectives;  // empty: c1..cd
   std::optional<std::string> co_file;
-  std::optional<std::string> name;    // benchmark; default: first file's base name without extensions
+  std::optional<std::string> name;  // benchmark; default: first file's base name without extensions
   unsigned id_base = 1;
   std::optional<format::ElementType> cost_type;
 };

@@ -12,16 +12,17 @@
 namespace mosb::converters {
 
 struct DimacsExportOptions {
-  std::filesystem::path out_dir;      // created when missing
-  std::optional<std::string> view;    // only the view's objectives and query set
-  std::optional<unsigned> id_base;    // default: metadata id_base, else 1 (the DIMACS convention)
+  std::filesystem::path out_dir;    // created when missing
+  std::optional<std::string> view;  // only the view's objectives and query set
+  std::optional<unsigned> id_base;  // default: metadata id_base, else 1 (the DIMACS convention)
 };
 
 // Reads `instance` through GraphReader; writes each file atomically and returns their paths in
 // the order written; `progress` gets stage "export", files written of the files to write. Throws
 // mosb::Error naming the file concerned.
 std::vector<std::filesystem::path> export_dimacs(const std::filesystem::path& instance,
-                                                 const DimacsExportOptions& options, const Progress& progress = {});
+                                                 const DimacsExportOptions& options,
+                                                 const Progress& progress = {});
 
 // A cost as DIMACS text that `convert dimacs` reads back to the same stored value: floats as the
 // shortest round-trip form of the value widened to double, always with '.' or an exponent.

@@ -40,13 +40,16 @@ ViewSpec parse_view_spec(std::string_view text);
 
 // Parses an elevation file: `c` comments, one `p aux sp elev n` line, then one `v id elevation`
 // line (signed integer) per vertex. Errors are "FILE:LINE:COLUMN: message".
-std::vector<std::int64_t> parse_dimacs_elevation(std::string_view text, const std::string& display_name,
-                                                 unsigned id_base, std::uint64_t vertex_count);
-std::vector<std::int64_t> parse_dimacs_elevation(text::TextSource& source, const std::string& display_name,
-                                                 unsigned id_base, std::uint64_t vertex_count);
+std::vector<std::int64_t> parse_dimacs_elevation(std::string_view text,
+                                                 const std::string& display_name, unsigned id_base,
+                                                 std::uint64_t vertex_count);
+std::vector<std::int64_t> parse_dimacs_elevation(text::TextSource& source,
+                                                 const std::string& display_name, unsigned id_base,
+                                                 std::uint64_t vertex_count);
 
 // Out-degree of every vertex in the directed graph as read (parallel arcs and loops counted).
-std::vector<std::uint32_t> out_degrees(std::uint64_t vertex_count, const std::vector<std::uint32_t>& tails);
+std::vector<std::uint32_t> out_degrees(std::uint64_t vertex_count,
+                                       const std::vector<std::uint32_t>& tails);
 
 // Cost columns in the fixed order elevation, avg_outdegree, hop, appended after the existing ones.
 void append_derived_columns(GraphInput& graph, const ExtendedOptions& options, unsigned id_base);

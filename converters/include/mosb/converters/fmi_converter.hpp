@@ -25,7 +25,8 @@ struct FmiGraph {
   std::variant<std::vector<std::int64_t>, std::vector<double>> elevation;
   std::vector<std::uint32_t> tails;
   std::vector<std::uint32_t> heads;
-  // One entry per cost column: integers, or reals when any value in the column has '.' or an exponent.
+  // One entry per cost column: integers, or reals when any value in the column has '.' or an
+  // exponent.
   std::vector<std::variant<std::vector<std::uint64_t>, std::vector<double>>> costs;
   std::vector<std::uint64_t> types;      // standard layout only
   std::vector<std::uint64_t> maxspeeds;  // standard layout with the maxspeed field only
@@ -36,16 +37,19 @@ struct FmiGraph {
 FmiGraph parse_fmi(std::string_view text, const std::string& display_name,
                    std::optional<unsigned> cost_count, bool ignore_extra_fields = false);
 // The same over text in chunks; `size_hint` (the text's size or an estimate) bounds reservations.
-FmiGraph parse_fmi(text::TextSource& source, std::uint64_t size_hint, const std::string& display_name,
-                   std::optional<unsigned> cost_count, bool ignore_extra_fields = false);
+FmiGraph parse_fmi(text::TextSource& source, std::uint64_t size_hint,
+                   const std::string& display_name, std::optional<unsigned> cost_count,
+                   bool ignore_extra_fields = false);
 
 // The first `count` vertices in BFS order from `root` (along out-arcs, or along arcs in both
 // directions when `undirected`; neighbours in file order), sorted by id. Throws mosb::Error naming
 // `display_name` when `root` is no vertex or fewer than `count` vertices are reachable.
-std::vector<std::uint32_t> bfs_select(const FmiGraph& graph, std::uint32_t root, std::uint64_t count,
-                                      bool undirected, const std::string& display_name);
+std::vector<std::uint32_t> bfs_select(const FmiGraph& graph, std::uint32_t root,
+                                      std::uint64_t count, bool undirected,
+                                      const std::string& display_name);
 
-// Keeps the vertices `selected` (sorted ids; new id = rank) and the arcs between them, in file order.
+// Keeps the vertices `selected` (sorted ids; new id = rank) and the arcs between them, in file
+// order.
 FmiGraph induced_subgraph(const FmiGraph& graph, const std::vector<std::uint32_t>& selected);
 
 struct FmiBfs {
@@ -60,7 +64,7 @@ struct FmiOptions {
   bool ignore_extra_fields = false;    // with --costs: skip fields after the D costs
   std::vector<Objective> objectives;   // empty: GER_10 names for D = 10, else c1..cd
   std::optional<FmiBfs> extract_bfs;
-  std::optional<std::string> name;     // benchmark; default: the file's base name without extensions
+  std::optional<std::string> name;  // benchmark; default: the file's base name without extensions
 };
 
 // The GER_10 objective names in the paper's order.

@@ -1,5 +1,5 @@
-// GraphML (as written by boost::write_graphml, which OMPL's PlannerData::printGraphML uses) read into
-// nodes, edges and their attribute values as text. Attribute names are resolved through the
+// GraphML (as written by boost::write_graphml, which OMPL's PlannerData::printGraphML uses) read
+// into nodes, edges and their attribute values as text. Attribute names are resolved through the
 // <key id=... for=... attr.name=...> declarations, never by matching the key ids themselves.
 #pragma once
 
@@ -33,7 +33,7 @@ struct GraphmlGraph {
   std::vector<GraphmlKey> edge_keys;  // keys for="edge" or for="all"
   std::vector<std::string> node_ids;  // in document order: vertex k is node_ids[k]
   std::vector<std::vector<std::optional<std::string>>> node_data;  // [vertex][node key]
-  std::vector<GraphmlEdge> edges;     // in document order
+  std::vector<GraphmlEdge> edges;                                  // in document order
 
   std::optional<std::size_t> node_key(std::string_view name) const;
   std::optional<std::size_t> edge_key(std::string_view name) const;

@@ -23,7 +23,8 @@ struct Guard {
 
 // `x y [radius]` per line, `#` starts a comment; a guard outside the map or on a blocked cell is an
 // error naming its line.
-std::vector<Guard> parse_guards(std::string_view text, const std::string& display_name, const OctileMap& map);
+std::vector<Guard> parse_guards(std::string_view text, const std::string& display_name,
+                                const OctileMap& map);
 
 // Exposure grid: `height` lines of `width` whitespace-separated values, non-negative integers on
 // passable cells, any token on blocked cells (stored as 0). Row-major, like OctileMap::passable.
@@ -32,7 +33,8 @@ std::vector<std::uint64_t> parse_exposure(std::string_view text, const std::stri
 
 // Whether the segment between the centres of the two cells touches no blocked cell, each cell a
 // closed unit square (the supercover of the segment). Both cells must lie in the map.
-bool line_of_sight(const OctileMap& map, std::uint32_t x0, std::uint32_t y0, std::uint32_t x1, std::uint32_t y1);
+bool line_of_sight(const OctileMap& map, std::uint32_t x0, std::uint32_t y0, std::uint32_t x1,
+                   std::uint32_t y1);
 
 // Per cell, the number of guards within radius that have line of sight to it (0 on blocked cells).
 std::vector<std::uint64_t> compute_exposure(const OctileMap& map, const std::vector<Guard>& guards);

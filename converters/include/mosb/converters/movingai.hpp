@@ -53,8 +53,8 @@ std::vector<ScenarioEntry> parse_scenario(std::string_view text, const std::stri
 void check_scenario(const std::vector<ScenarioEntry>& entries, const std::string& display_name,
                     const OctileMap& map, const std::string& map_name);
 
-// A per-cell value E turned into an arc objective (the GUARDS exposure): a move to cell d costs E(d),
-// a diagonal move the largest of E(d) and E of its two side cells.
+// A per-cell value E turned into an arc objective (the GUARDS exposure): a move to cell d costs
+// E(d), a diagonal move the largest of E(d) and E of its two side cells.
 struct CellObjective {
   std::string name;
   std::string unit;

@@ -23,7 +23,9 @@ DataColumn narrowest_column(std::string name, std::uint32_t width, const std::ve
   std::size_t rank = 0;
   auto take_if_all_fit = [&]<class C>() {
     const bool last = ++rank == sizeof...(Candidates);
-    if (!last && !std::all_of(values.begin(), values.end(), [](T v) { return std::in_range<C>(v); })) return false;
+    if (!last &&
+        !std::all_of(values.begin(), values.end(), [](T v) { return std::in_range<C>(v); }))
+      return false;
     column = DataColumn::from(std::move(name), width, std::vector<C>(values.begin(), values.end()));
     return true;
   };

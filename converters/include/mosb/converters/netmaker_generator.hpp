@@ -16,7 +16,7 @@ struct NetMakerParameters {
   std::uint32_t vertices = 10000;  // N
   std::uint32_t amin = 1;          // target out-degree is uniform in {amin + 1, ..., amax}
   std::uint32_t amax = 10;
-  std::uint32_t locality = 20;     // I: the window is u +- floor(I / 2)
+  std::uint32_t locality = 20;  // I: the window is u +- floor(I / 2)
   std::uint64_t seed = 1;
   std::uint32_t queries = 50;
   std::uint32_t query_percent = 10;  // sources among the first, targets among the last P% of ids
@@ -31,6 +31,7 @@ GraphInput generate_netmaker(const NetMakerParameters& p);
 
 // An existing NetMaker file: a 0-based DIMACS-like .gr with one cost column per objective (plain
 // or compressed). Views NetMaker_<d> = c1..cd, no query set (`mosb queries import` adds them).
-GraphInput convert_netmaker(const std::filesystem::path& gr_file, const std::optional<std::string>& name);
+GraphInput convert_netmaker(const std::filesystem::path& gr_file,
+                            const std::optional<std::string>& name);
 
 }  // namespace mosb::converters

@@ -1,5 +1,6 @@
 // The name and unit a converter gives a cost column, and the one spelling of both on the command
-// line and in `source.param.objectives`: `NAME[:UNIT]` (the unit is everything after the first ':').
+// line and in `source.param.objectives`: `NAME[:UNIT]` (the unit is everything after the first
+// ':').
 #pragma once
 
 #include <string>

@@ -21,8 +21,9 @@ struct QuerySetEdit {
 };
 
 struct QueryImportOptions {
-  std::filesystem::path file;        // plain or compressed query text
-  std::optional<unsigned> id_base;   // of the ids in `file`; default: the instance's metadata id_base
+  std::filesystem::path file;  // plain or compressed query text
+  std::optional<unsigned>
+      id_base;  // of the ids in `file`; default: the instance's metadata id_base
   std::optional<std::string> match;  // keep only `graph s t` lines whose graph field contains it
 };
 

@@ -1,5 +1,6 @@
-// Robot motion-planning roadmaps (paper §"Robot Motion-Planning Roadmaps"; spec/families/robots.md):
-// (a) per-objective DIMACS-like .gr files (0-based ids, fractional costs) with an optional vertex
+// Robot motion-planning roadmaps (paper §"Robot Motion-Planning Roadmaps";
+// spec/families/robots.md): (a) per-objective DIMACS-like .gr files (0-based ids, fractional costs)
+// with an optional vertex
 //     file `id q1 .. qdof`, or
 // (b) GraphML as written by OMPL's PlannerData (node `coords`, edge `weight`, optional per-link
 //     clearances), from which joint-space length and clearance penalties U(d) are computed.
@@ -17,7 +18,8 @@
 namespace mosb::converters {
 
 // automatic: aggregate when the GraphML declares clearance keys, none otherwise.
-// both: length, the aggregate and every per-link penalty (the Panda-RRG_2 and _8 views in one file).
+// both: length, the aggregate and every per-link penalty (the Panda-RRG_2 and _8 views in one
+// file).
 enum class ClearanceMode { automatic, none, aggregate, per_link, both };
 
 std::optional<ClearanceMode> parse_clearance_mode(std::string_view text);
@@ -31,8 +33,8 @@ struct RoadmapOptions {
   // Style (b).
   std::optional<std::string> graphml_file;
   ClearanceMode clearance = ClearanceMode::automatic;
-  double delta = 0.1;              // the safety band of U(d), in the clearances' unit
-  bool weight = false;             // also store the edge attribute `weight` as an objective
+  double delta = 0.1;   // the safety band of U(d), in the clearances' unit
+  bool weight = false;  // also store the edge attribute `weight` as an objective
   // Both.
   std::vector<Objective> objectives;  // empty: the defaults (c1..cd, or length/clearance...)
   std::optional<std::string> name;

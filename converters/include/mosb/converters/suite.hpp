@@ -1,6 +1,7 @@
 // Writes a whole benchmark suite (many independent instances) into one directory, in parallel,
-// followed by a MANIFEST: one line `name<TAB>file<TAB>size<TAB>digest` per instance, sorted by name,
-// written atomically last (spec/GENERATORS.md, Suites). The bytes never depend on the thread count.
+// followed by a MANIFEST: one line `name<TAB>file<TAB>size<TAB>digest` per instance, sorted by
+// name, written atomically last (spec/GENERATORS.md, Suites). The bytes never depend on the thread
+// count.
 #pragma once
 
 #include <cstdint>
@@ -16,7 +17,7 @@
 namespace mosb::converters {
 
 struct SuiteInstance {
-  std::string name;                    // the file is name + ".mosb"
+  std::string name;  // the file is name + ".mosb"
   // Called on a worker thread; must not share mutable state.
   std::function<std::variant<GraphInput, StreamedGraph>()> build;
 };
@@ -37,7 +38,8 @@ struct SuiteOptions {
 // Creates `directory` if needed, writes every instance and then MANIFEST; returns the MANIFEST
 // lines. On failure throws the error of the lowest-index failing instance (no MANIFEST is written).
 std::vector<SuiteEntry> run_suite(const std::filesystem::path& directory,
-                                  const std::vector<SuiteInstance>& instances, const SuiteOptions& options);
+                                  const std::vector<SuiteInstance>& instances,
+                                  const SuiteOptions& options);
 
 // The seed of one suite instance: mix(suite_seed + 0x9E3779B97F4A7C15 * key), where the key encodes
 // the instance's parameters, so a subset of a suite reproduces the full suite's files exactly.
@@ -48,7 +50,8 @@ std::vector<std::uint32_t> paper_grid_sizes();
 std::vector<std::uint32_t> paper_netmaker_vertex_counts();
 
 // Grid-KxM for every K, M in `sizes`, 3 objectives (views Grid_2 and Grid_3); key K * 2^20 + M.
-std::vector<SuiteInstance> grid_suite(std::uint64_t suite_seed, const std::vector<std::uint32_t>& sizes);
+std::vector<SuiteInstance> grid_suite(std::uint64_t suite_seed,
+                                      const std::vector<std::uint32_t>& sizes);
 
 // NetMaker-N<N>-I<I>-<r> for N in `vertex_counts`, I in {20, 50}, r in {1, 2}; A = 1, B = 10;
 // key (N * 2^16 + I) * 4 + r.

@@ -29,7 +29,7 @@ struct InputFacts {
   std::string display_name;  // the path as given, for messages only
   std::string base_name;     // file name without directories, for metadata
   std::uint64_t raw_size = 0;
-  std::string raw_xxh3;      // XXH3-64 of the raw (possibly compressed) bytes, 16 lowercase hex
+  std::string raw_xxh3;  // XXH3-64 of the raw (possibly compressed) bytes, 16 lowercase hex
   Compression compression = Compression::none;
 };
 
@@ -74,7 +74,8 @@ void record_input(Metadata& metadata, std::size_t index, const InputFacts& input
 
 // A default benchmark name: `base` stripped of each compression suffix (.gz .bz2 .xz .zst .zstd),
 // then of each of `extensions`, in that order ("NY.gr.gz" with {".gr"} -> "NY").
-std::string benchmark_name_from(std::string base, std::initializer_list<std::string_view> extensions);
+std::string benchmark_name_from(std::string base,
+                                std::initializer_list<std::string_view> extensions);
 
 // The bound declared sizes are checked against: this machine's physical memory (sysconf).
 std::uint64_t physical_memory_bytes();

@@ -36,8 +36,10 @@ class TextSource {
 // line returned stays valid until the next call. Inline: it is on every parser's hot path.
 class LineScanner {
  public:
-  explicit LineScanner(std::string_view text, LineEnd end = LineEnd::trim) : text_(text), end_(end) {}
-  explicit LineScanner(TextSource& source, LineEnd end = LineEnd::trim) : end_(end), source_(&source) {}
+  explicit LineScanner(std::string_view text, LineEnd end = LineEnd::trim)
+      : text_(text), end_(end) {}
+  explicit LineScanner(TextSource& source, LineEnd end = LineEnd::trim)
+      : end_(end), source_(&source) {}
 
   bool next(std::string_view& line) {
     if (pos_ >= text_.size() && !refill()) return false;
@@ -72,18 +74,21 @@ class LineScanner {
 enum class Separators { blanks, blanks_and_cr };  // blanks: ' ' and '\t'
 
 // Splits a line into tokens, reusing `tokens` (cleared first) to spare an allocation per line.
-void tokenize(std::string_view line, std::vector<Token>& tokens, Separators separators = Separators::blanks);
+void tokenize(std::string_view line, std::vector<Token>& tokens,
+              Separators separators = Separators::blanks);
 
 // A token quoted for a one-line message: control bytes and DEL shown as '?', long tokens cut
 // after `limit` bytes with "...".
 std::string quoted(std::string_view token, std::size_t limit = 40);
-// For a std::string, an unqualified call would otherwise pick std::quoted (argument-dependent lookup).
+// For a std::string, an unqualified call would otherwise pick std::quoted (argument-dependent
+// lookup).
 inline std::string quoted(const std::string& token, std::size_t limit = 40) {
   return quoted(std::string_view(token), limit);
 }
 
 // Throws mosb::Error("FILE:LINE:COLUMN: message").
-[[noreturn]] void fail(const std::string& file, std::uint64_t line, std::uint64_t column, const std::string& message);
+[[noreturn]] void fail(const std::string& file, std::uint64_t line, std::uint64_t column,
+                       const std::string& message);
 
 // One or more decimal digits and nothing else.
 bool is_digits(std::string_view s);
