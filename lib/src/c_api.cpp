@@ -4,6 +4,7 @@
 #include <mutex>
 #include <new>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "mosb.h"
@@ -102,8 +103,12 @@ mosb_graph& described(const mosb_graph* graph) {
   return g;
 }
 
-mosb::VerifyLevel level_of(mosb_verify_level level) {
-  switch (level) {
+// By reference, and read as its underlying integer: a C caller may pass any int, and loading an
+// out-of-range value as the enum type is undefined behaviour in C++.
+mosb::VerifyLevel level_of(const mosb_verify_level& level) {
+  std::underlying_type_t<mosb_verify_level> raw{};
+  std::memcpy(&raw, &level, sizeof raw);
+  switch (raw) {
     case MOSB_VERIFY_HEADER:
       return mosb::VerifyLevel::header;
     case MOSB_VERIFY_CHECKSUMS:
@@ -114,10 +119,10 @@ mosb::VerifyLevel level_of(mosb_verify_level level) {
       return mosb::VerifyLevel::full;
   }
   throw mosb::Error(mosb::ErrorCode::invalid_argument,
-                    "unknown verify level " + std::to_string(static_cast<int>(level)));
+                    "unknown verify level " + std::to_string(raw));
 }
 
-void verify(const mosb_graph& g, mosb_verify_level level) {
+void verify(const mosb_graph& g, const mosb_verify_level& level) {
   if (auto problem = mosb::verify(g.reader, level_of(level)))
     throw mosb::Error(mosb::ErrorCode::damaged, g.reader.display_name() + ": " + *problem);
 }
