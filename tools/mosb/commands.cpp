@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "json_writer.hpp"
+#include "mosb/converters/movingai.hpp"
 #include "mosb/converters/suite.hpp"
 #include "mosb/graph_reader.hpp"
 
@@ -94,6 +95,19 @@ Command add_convert(CLI::App& app) {
 Command add_generate(CLI::App& app) {
   auto* generate = app.add_subcommand("generate", "Generate a synthetic benchmark instance");
   return group(generate, {add_generate_grid(*generate), add_generate_netmaker(*generate)});
+}
+
+converters::TerrainRules TerrainOptions::rules() const {
+  return {.swamp_passable = swamp == "passable", .water_passable = water == "passable"};
+}
+
+void add_terrain_options(CLI::App* subcommand, TerrainOptions& terrain) {
+  subcommand->add_option("--swamp", terrain.swamp, "terrain 'S'")
+      ->check(CLI::IsMember({"passable", "blocked"}))
+      ->capture_default_str();
+  subcommand->add_option("--water", terrain.water, "terrain 'W'")
+      ->check(CLI::IsMember({"passable", "blocked"}))
+      ->capture_default_str();
 }
 
 }  // namespace mosb::cli

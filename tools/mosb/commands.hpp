@@ -19,6 +19,10 @@ namespace mosb::converters {
 struct SuiteEntry;
 }
 
+namespace mosb::converters {
+struct TerrainRules;
+}
+
 namespace mosb::cli {
 
 struct Command {
@@ -47,6 +51,14 @@ CLI::Option* add_seed_option(CLI::App* subcommand, std::uint64_t& seed, const st
 
 // The `-o,--output` option of a command that writes a file (or, for `export`, a directory).
 CLI::Option* add_output_option(CLI::App* subcommand, std::string& output, const std::string& what);
+
+// --swamp and --water, the Moving AI terrain options of `convert guards` and `convert movingai`.
+struct TerrainOptions {
+  std::string swamp = "passable";
+  std::string water = "blocked";
+  converters::TerrainRules rules() const;
+};
+void add_terrain_options(CLI::App* subcommand, TerrainOptions& terrain);
 
 // A subcommand with one child per family (`convert dimacs`, `generate grid`, ...): runs the chosen
 // one.

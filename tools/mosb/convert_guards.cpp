@@ -18,8 +18,7 @@ struct GuardsArgs {
   std::string guards;
   std::string scen;
   std::string write_exposure;
-  std::string swamp = "passable";
-  std::string water = "blocked";
+  TerrainOptions terrain;
   std::string name;
   std::string output;
   bool json = false;
@@ -34,8 +33,7 @@ int run_guards(const GuardsArgs& a) {
   if (!a.exposure.empty()) o.exposure_file = a.exposure;
   if (!a.guards.empty()) o.guards_file = a.guards;
   if (!a.scen.empty()) o.scen_file = a.scen;
-  o.terrain.swamp_passable = a.swamp == "passable";
-  o.terrain.water_passable = a.water == "passable";
+  o.terrain = a.terrain.rules();
   if (!a.name.empty()) o.name = a.name;
   TerminalProgress progress;
   const auto result = converters::convert_guards(o);
@@ -71,12 +69,7 @@ Command add_convert_guards(CLI::App& convert) {
       ->check(CLI::ExistingFile);
   guards->add_option("--write-exposure", args->write_exposure,
                      "also write the exposure grid (--exposure format)");
-  guards->add_option("--swamp", args->swamp, "terrain 'S'")
-      ->check(CLI::IsMember({"passable", "blocked"}))
-      ->capture_default_str();
-  guards->add_option("--water", args->water, "terrain 'W'")
-      ->check(CLI::IsMember({"passable", "blocked"}))
-      ->capture_default_str();
+  add_terrain_options(guards, args->terrain);
   guards->add_option("--name", args->name,
                      "benchmark name (default: the map's base name without .map)");
   add_output_option(guards, args->output, "the .mosb file to write")->required();

@@ -14,8 +14,7 @@ namespace {
 struct MovingaiArgs {
   std::string map;
   std::string scen;
-  std::string swamp = "passable";
-  std::string water = "blocked";
+  TerrainOptions terrain;
   std::string name;
   std::string output;
   bool json = false;
@@ -26,8 +25,7 @@ int run_movingai(const MovingaiArgs& a) {
   converters::MovingaiOptions o;
   o.map_file = a.map;
   if (!a.scen.empty()) o.scen_file = a.scen;
-  o.terrain.swamp_passable = a.swamp == "passable";
-  o.terrain.water_passable = a.water == "passable";
+  o.terrain = a.terrain.rules();
   if (!a.name.empty()) o.name = a.name;
   TerminalProgress progress;
   write_graph(converters::convert_movingai(o), a.output, progress.callback());
@@ -45,12 +43,7 @@ Command add_convert_movingai(CLI::App& convert) {
       ->check(CLI::ExistingFile);
   movingai->add_option("--scen", args->scen, "a Moving AI scenario, imported as query set 'scen'")
       ->check(CLI::ExistingFile);
-  movingai->add_option("--swamp", args->swamp, "terrain 'S'")
-      ->check(CLI::IsMember({"passable", "blocked"}))
-      ->capture_default_str();
-  movingai->add_option("--water", args->water, "terrain 'W'")
-      ->check(CLI::IsMember({"passable", "blocked"}))
-      ->capture_default_str();
+  add_terrain_options(movingai, args->terrain);
   movingai->add_option("--name", args->name,
                        "benchmark name (default: the map's base name without .map)");
   add_output_option(movingai, args->output, "the .mosb file to write")->required();
