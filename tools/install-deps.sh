@@ -5,6 +5,8 @@ packages=(
   g++ cmake ninja-build pkg-config          # toolchain
   libxxhash-dev                             # XXH3 checksums and digests
   libcli11-dev                              # the mosb command line
+  nlohmann-json3-dev                        # JSON: --json output, solver logs, manifests
+  libssl-dev                                # SHA-256 (libcrypto) for manifests and stores
   libboost-dev                              # Boost.PropertyTree: GraphML roadmaps
   libboost-iostreams-dev zlib1g-dev libbz2-dev liblzma-dev libzstd-dev  # compressed inputs
   gzip bzip2 xz-utils zstd                  # compressed test fixtures
@@ -13,6 +15,7 @@ packages=(
   python3-dev python3-pybind11 pybind11-dev python3-setuptools python3-pip python3-venv  # python/
   python3-scipy python3-pandas python3-networkx python3-igraph  # python/'s adapters (optional)
   clang libclang-rt-14-dev                  # libFuzzer
+  chromium                                  # renders mosb plot's SVG in its test
   clang-format clang-tidy                   # style and static checks (tools/lint.sh)
 )
 missing=()
