@@ -38,6 +38,14 @@ std::string_view to_string(ElementType t) {
   return "?";
 }
 
+std::string_view to_string(FileKind k) {
+  switch (k) {
+    case FileKind::instance:
+      return "graph instance";
+  }
+  return {};
+}
+
 std::string_view to_string(SectionKind k) {
   switch (k) {
     case SectionKind::metadata:

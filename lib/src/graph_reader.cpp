@@ -1,19 +1,10 @@
 #include "mosb/graph_reader.hpp"
 
-#include <fcntl.h>
-#include <sys/mman.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstring>
-#include <unordered_set>
 
-#include "mosb/hex.hpp"
 #include "mosb/verify.hpp"
-#include "xxh3.hpp"
 
 namespace mosb {
 
@@ -21,10 +12,6 @@ using format::ElementType;
 using format::SectionKind;
 
 namespace {
-
-std::string version_text(std::uint16_t major, std::uint16_t minor) {
-  return std::to_string(major) + "." + std::to_string(minor);
-}
 
 // Expected element type, width and row count of each structural kind.
 struct Shape {
@@ -40,10 +27,6 @@ constexpr Shape kStructural[] = {
     {SectionKind::reverse_arcs, ElementType::u32, false},
 };
 
-bool mul_overflows(std::uint64_t a, std::uint64_t b, std::uint64_t& out) {
-  return __builtin_mul_overflow(a, b, &out);
-}
-
 }  // namespace
 
 void GraphReader::fail(const std::string& what) const {
@@ -53,50 +36,12 @@ void GraphReader::fail(ErrorCode code, const std::string& what) const {
   throw Error(code, display_name_ + ": " + what);
 }
 
-namespace {
-const char* file_type_name(mode_t mode) {
-  if (S_ISDIR(mode)) return "a directory";
-  if (S_ISFIFO(mode)) return "a FIFO";
-  if (S_ISCHR(mode)) return "a character device";
-  if (S_ISBLK(mode)) return "a block device";
-  if (S_ISSOCK(mode)) return "a socket";
-  return "not a regular file";
-}
-}  // namespace
-
 GraphReader GraphReader::open(const std::filesystem::path& path) {
-  const std::string name = path.string();
-  // O_NONBLOCK: opening a FIFO for reading would otherwise wait for a writer, before fstat could
-  // tell what it is. Reads go through mmap, which the flag does not affect.
-  int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-  if (fd < 0) throw Error(ErrorCode::io, name + ": cannot open: " + std::strerror(errno));
-  struct stat st {};
-  if (::fstat(fd, &st) != 0) {
-    const int error = errno;
-    ::close(fd);
-    throw Error(ErrorCode::io, name + ": cannot stat: " + std::strerror(error));
-  }
-  if (!S_ISREG(st.st_mode)) {
-    ::close(fd);
-    throw Error(ErrorCode::not_mosb,
-                name + ": is " + std::string(file_type_name(st.st_mode)) +
-                    ", not a regular file; a mosb file must be a regular file");
-  }
-  const auto size = static_cast<std::size_t>(st.st_size);
-  if (size < format::kHeaderSize) {
-    ::close(fd);
-    throw Error(ErrorCode::not_mosb, name + ": not a mosb file: " + std::to_string(size) +
-                                         " bytes is shorter than the 128-byte header");
-  }
-  void* address = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
-  ::close(fd);
-  if (address == MAP_FAILED)
-    throw Error(ErrorCode::io, name + ": cannot map: " + std::strerror(errno));
+  auto file = map_file(path);
   GraphReader reader;
-  reader.mapping_ = std::shared_ptr<const void>(
-      address, [size](const void* p) { ::munmap(const_cast<void*>(p), size); });
-  reader.bytes_ = {static_cast<const std::byte*>(address), size};
-  reader.display_name_ = name;
+  reader.mapping_ = std::move(file.owner);
+  reader.bytes_ = file.bytes;
+  reader.display_name_ = path.string();
   reader.validate();
   return reader;
 }
@@ -145,162 +90,16 @@ GraphReader GraphReader::from_memory(std::span<const std::byte> bytes, std::stri
 }
 
 void GraphReader::validate() {
-  if (bytes_.size() < format::kHeaderSize)
-    fail(ErrorCode::not_mosb, "not a mosb file: " + std::to_string(bytes_.size()) +
-                                  " bytes is shorter than the 128-byte header");
-  std::memcpy(&header_, bytes_.data(), sizeof header_);
+  // 1-7. The container, whatever its kind.
+  auto container = parse_container(bytes_, display_name_, format::FileKind::instance);
+  header_ = container.header;
+  sections_ = std::move(container.sections);
 
-  // 1. Identity.
-  const auto& magic = header_.magic;
-  if (!std::equal(magic.begin(), magic.end(), format::kMagic.begin())) {
-    if (std::equal(magic.begin(), magic.end(), format::kMagic.rbegin()))
-      fail(
-          "byte-swapped mosb file (its magic is reversed); it was written or copied with the wrong "
-          "byte order");
-    const bool mos = magic[1] == 'M' && magic[2] == 'O' && magic[3] == 'S';
-    if (mos && magic[0] == format::kMagic[0])
-      fail(
-          "mosb file damaged by a text-mode transfer (line-end bytes in the magic were changed); "
-          "copy it in binary mode");
-    if (mos && magic[0] == (format::kMagic[0] & 0x7F))
-      fail(
-          "mosb file damaged by a 7-bit transfer (the high bit of its first byte was cleared); "
-          "copy it in binary mode");
-    fail(ErrorCode::not_mosb, "not a mosb file (wrong magic)");
-  }
-  if (header_.byte_order_mark != format::kByteOrderMark)
-    fail("byte-swapped mosb file (byte-order mark reads " + hex64(header_.byte_order_mark) + ")");
-  // 2. Version and kind.
-  if (header_.version_major != format::kVersionMajor)
-    fail(ErrorCode::version,
-         "prepared with format " + version_text(header_.version_major, header_.version_minor) +
-             ", this reader reads format " + std::to_string(format::kVersionMajor) + ".x (up to " +
-             version_text(format::kVersionMajor, format::kVersionMinor) + ")");
-  if (header_.header_size != format::kHeaderSize)
-    fail("header size " + std::to_string(header_.header_size) + " is not 128");
-  if (header_.file_kind != static_cast<std::uint32_t>(format::FileKind::instance))
-    fail("file kind " + std::to_string(header_.file_kind) + " is not a graph instance (1)");
-  // 3. Truncation.
-  if (header_.file_size != bytes_.size())
-    fail(header_.file_size > bytes_.size()
-             ? "truncated: header says " + std::to_string(header_.file_size) + " bytes, file has " +
-                   std::to_string(bytes_.size())
-             : "extended: header says " + std::to_string(header_.file_size) + " bytes, file has " +
-                   std::to_string(bytes_.size()));
-  // 4. Table bounds.
-  std::uint64_t table_bytes = 0;
-  if (header_.table_offset % format::kAlignment != 0 || header_.table_offset < format::kHeaderSize)
-    fail("section table offset " + std::to_string(header_.table_offset) +
-         " is not a 64-aligned offset after the header");
-  if (mul_overflows(header_.section_count, sizeof(format::SectionEntry), table_bytes) ||
-      header_.table_offset > bytes_.size() || table_bytes != bytes_.size() - header_.table_offset)
-    fail("section table (" + std::to_string(header_.section_count) + " entries at offset " +
-         std::to_string(header_.table_offset) + ") does not end at the end of the file (" +
-         std::to_string(bytes_.size()) + " bytes)");
-  // 5. Header checksum.
-  const std::byte* table = bytes_.data() + header_.table_offset;
-  {
-    XXH3_state_t* state = XXH3_createState();
-    XXH3_64bits_reset(state);
-    XXH3_64bits_update(state, bytes_.data(), format::kHeaderChecksumOffset);
-    XXH3_64bits_update(state, table, table_bytes);
-    const std::uint64_t computed = XXH3_64bits_digest(state);
-    XXH3_freeState(state);
-#ifndef FUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION  // lets the fuzzer reach the checks behind it
-    if (computed != header_.header_checksum)
-#else
-    if (computed != header_.header_checksum && false)
-#endif
-      fail("header checksum mismatch (stored " + hex64(header_.header_checksum) + ", computed " +
-           hex64(computed) + "): header or section table is damaged");
-  }
-  // 6. Features.
-  if (std::uint64_t unknown = header_.required_features & ~format::kKnownRequiredFeatures) {
-    const int bit = std::countr_zero(unknown);
-    fail(ErrorCode::version, "requires feature bit " + std::to_string(bit) +
-                                 ", unknown to this reader (format " +
-                                 version_text(format::kVersionMajor, format::kVersionMinor) + ")");
-  }
-
-  // 7. Entries.
-  sections_.clear();
-  sections_.reserve(header_.section_count);
-  bool any_packed = false;
-  for (std::uint32_t i = 0; i < header_.section_count; ++i) {
-    Section s{};
-    std::memcpy(&s.entry, table + i * sizeof(format::SectionEntry), sizeof s.entry);
-    const auto& e = s.entry;
-    const std::string where = "section #" + std::to_string(i);
-    s.name = std::string(format::name_of(e));
-    for (std::size_t k = s.name.size(); k < format::kNameSize; ++k)
-      if (e.name[k] != '\0') fail(where + ": name has bytes after its NUL padding");
-    if (!format::is_valid_section_name(s.name))
-      fail(where + ": invalid name (" + std::string(format::kSectionNameRule) + ")");
-    const std::string label = "section '" + s.name + "'";
-    auto type = format::element_type_from(e.element_type);
-    if (!type) fail(label + ": unknown element type " + std::to_string(e.element_type));
-    s.type = *type;
-    s.kind = format::section_kind_from(e.kind);
-    if (e.row_width == 0) fail(label + ": row width 0");
-    std::uint64_t elements = 0;
-    if (mul_overflows(e.row_count, e.row_width, elements) ||
-        mul_overflows(elements, format::element_size(s.type), s.decoded_length))
-      fail(label + ": size overflows");
-    if (e.encoding == static_cast<std::uint8_t>(format::Encoding::raw)) {
-      if (e.stored_length != s.decoded_length)
-        fail(label + ": stored length " + std::to_string(e.stored_length) + " differs from " +
-             std::to_string(s.decoded_length) + " bytes of elements");
-    } else if (e.encoding == static_cast<std::uint8_t>(format::Encoding::zstd)) {
-      if (!(header_.required_features & format::kFeatureZstdSections))
-        fail(label + ": zstd-encoded but the header lacks the zstd-sections feature");
-      if (e.stored_length == 0) fail(label + ": zstd-encoded with stored length 0");
-      any_packed = true;
-    } else {
-      fail(label + ": unknown encoding " + std::to_string(e.encoding));
-    }
-    if (e.offset % format::kAlignment != 0)
-      fail(label + ": offset " + std::to_string(e.offset) + " is not 64-byte aligned");
-    if (e.offset < format::kHeaderSize || e.offset > header_.table_offset ||
-        e.stored_length > header_.table_offset - e.offset)
-      fail(label + ": bytes " + std::to_string(e.offset) + "+" + std::to_string(e.stored_length) +
-           " lie outside the data area [128, " + std::to_string(header_.table_offset) + ")");
-    s.stored = bytes_.subspan(e.offset, e.stored_length);
-    sections_.push_back(std::move(s));
-  }
-  if ((header_.required_features & format::kFeatureZstdSections) && !any_packed)
-    fail("header declares zstd-sections but no section is zstd-encoded");
-  {
-    std::vector<const Section*> by_offset;
-    for (const auto& s : sections_)
-      if (s.entry.stored_length > 0) by_offset.push_back(&s);
-    std::sort(by_offset.begin(), by_offset.end(),
-              [](auto* a, auto* b) { return a->entry.offset < b->entry.offset; });
-    for (std::size_t i = 1; i < by_offset.size(); ++i) {
-      const auto& prev = by_offset[i - 1]->entry;
-      if (prev.offset + prev.stored_length > by_offset[i]->entry.offset)
-        fail("sections '" + by_offset[i - 1]->name + "' and '" + by_offset[i]->name + "' overlap");
-    }
-  }
-
-  // 8. Kinds, counts and names.
+  // 8. Kinds and counts (names are unique within a kind: checked with the container).
   const std::uint64_t n = header_.vertex_count, m = header_.arc_count;
   if (n >= 0xFFFFFFFFULL || m >= 0xFFFFFFFFULL)
     fail("vertex count " + std::to_string(n) + " or arc count " + std::to_string(m) +
          " exceeds the format limit of 2^32-2");
-  // Names are unique within a kind (§4), known or not: one hash set keeps open O(section_count).
-  {
-    std::unordered_set<std::string> seen;
-    seen.reserve(sections_.size());
-    for (const auto& s : sections_) {
-      std::string key(reinterpret_cast<const char*>(&s.entry.kind), sizeof s.entry.kind);
-      key += s.name;
-      if (!seen.insert(std::move(key)).second)
-        fail("section '" + s.name + "': a second " +
-             (s.kind ? std::string(format::to_string(*s.kind))
-                     : "kind " + std::to_string(s.entry.kind)) +
-             " section of that name");
-    }
-  }
   std::fill(std::begin(structural_), std::end(structural_), SIZE_MAX);
   std::size_t metadata_index = SIZE_MAX;
   cost_indices_.clear();
@@ -492,18 +291,7 @@ const Metadata& GraphReader::metadata() const {
 }
 
 std::string GraphReader::digest() const {
-  std::vector<format::SectionEntry> normalized;
-  normalized.reserve(sections_.size());
-  for (const auto& s : sections_) {
-    auto e = s.entry;
-    e.encoding = 0;
-    e.offset = 0;
-    e.stored_length = 0;
-    normalized.push_back(e);
-  }
-  const XXH128_hash_t hash =
-      XXH3_128bits(normalized.data(), normalized.size() * sizeof(format::SectionEntry));
-  return hex64(hash.high64) + hex64(hash.low64);
+  return content_digest(sections_);
 }
 
 }  // namespace mosb

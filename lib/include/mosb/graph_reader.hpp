@@ -39,6 +39,7 @@
 #include <string_view>
 #include <vector>
 
+#include "mosb/container.hpp"
 #include "mosb/error.hpp"
 #include "mosb/format.hpp"
 #include "mosb/metadata.hpp"
@@ -54,20 +55,6 @@ enum class VerifyLevel { header, checksums, structure, full };
 constexpr bool covers(VerifyLevel done, VerifyLevel wanted) {
   return done == wanted || done == VerifyLevel::full || wanted == VerifyLevel::header;
 }
-
-struct Section {
-  format::SectionEntry entry;
-  std::string name;
-  std::optional<format::SectionKind> kind;  // nullopt: a kind this reader does not know
-  format::ElementType type;
-  std::uint64_t decoded_length;  // row_count * row_width * element size
-  std::span<const std::byte> stored;
-
-  bool is_packed() const {
-    return entry.encoding != static_cast<std::uint8_t>(format::Encoding::raw);
-  }
-  std::uint64_t element_count() const { return entry.row_count * entry.row_width; }
-};
 
 // A benchmark view (§7 `view.<name>.objectives` and `view.<name>.queries`).
 struct View {

@@ -1,0 +1,268 @@
+#include "mosb/container.hpp"
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <bit>
+#include <cerrno>
+#include <cstring>
+#include <unordered_set>
+
+#include "mosb/error.hpp"
+#include "mosb/hex.hpp"
+#include "xxh3.hpp"
+
+namespace mosb {
+
+namespace {
+
+std::string version_text(std::uint16_t major, std::uint16_t minor) {
+  return std::to_string(major) + "." + std::to_string(minor);
+}
+
+bool mul_overflows(std::uint64_t a, std::uint64_t b, std::uint64_t& out) {
+  return __builtin_mul_overflow(a, b, &out);
+}
+
+const char* file_type_name(mode_t mode) {
+  if (S_ISDIR(mode)) return "a directory";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
+
+// Throws "NAME: what", as every check of the container does.
+struct Failure {
+  std::string_view name;
+  [[noreturn]] void operator()(const std::string& what) const { (*this)(ErrorCode::damaged, what); }
+  [[noreturn]] void operator()(ErrorCode code, const std::string& what) const {
+    throw Error(code, std::string(name) + ": " + what);
+  }
+};
+
+}  // namespace
+
+MappedFile map_file(const std::filesystem::path& path) {
+  const std::string name = path.string();
+  // O_NONBLOCK: opening a FIFO for reading would otherwise wait for a writer, before fstat could
+  // tell what it is. Reads go through mmap, which the flag does not affect.
+  int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) throw Error(ErrorCode::io, name + ": cannot open: " + std::strerror(errno));
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) {
+    const int error = errno;
+    ::close(fd);
+    throw Error(ErrorCode::io, name + ": cannot stat: " + std::strerror(error));
+  }
+  if (!S_ISREG(st.st_mode)) {
+    ::close(fd);
+    throw Error(ErrorCode::not_mosb,
+                name + ": is " + std::string(file_type_name(st.st_mode)) +
+                    ", not a regular file; a mosb file must be a regular file");
+  }
+  const auto size = static_cast<std::size_t>(st.st_size);
+  if (size < format::kHeaderSize) {
+    ::close(fd);
+    throw Error(ErrorCode::not_mosb, name + ": not a mosb file: " + std::to_string(size) +
+                                         " bytes is shorter than the 128-byte header");
+  }
+  void* address = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
+  ::close(fd);
+  if (address == MAP_FAILED)
+    throw Error(ErrorCode::io, name + ": cannot map: " + std::strerror(errno));
+  MappedFile file;
+  file.owner = std::shared_ptr<const void>(
+      address, [size](const void* p) { ::munmap(const_cast<void*>(p), size); });
+  file.bytes = {static_cast<const std::byte*>(address), size};
+  return file;
+}
+
+Container parse_container(std::span<const std::byte> bytes, std::string_view display_name,
+                          format::FileKind kind) {
+  using format::ElementType;
+  const Failure fail{display_name};
+  Container result;
+  auto& header = result.header;
+  auto& sections = result.sections;
+  if (bytes.size() < format::kHeaderSize)
+    fail(ErrorCode::not_mosb, "not a mosb file: " + std::to_string(bytes.size()) +
+                                  " bytes is shorter than the 128-byte header");
+  std::memcpy(&header, bytes.data(), sizeof header);
+
+  // 1. Identity.
+  const auto& magic = header.magic;
+  if (!std::equal(magic.begin(), magic.end(), format::kMagic.begin())) {
+    if (std::equal(magic.begin(), magic.end(), format::kMagic.rbegin()))
+      fail(
+          "byte-swapped mosb file (its magic is reversed); it was written or copied with the wrong "
+          "byte order");
+    const bool mos = magic[1] == 'M' && magic[2] == 'O' && magic[3] == 'S';
+    if (mos && magic[0] == format::kMagic[0])
+      fail(
+          "mosb file damaged by a text-mode transfer (line-end bytes in the magic were changed); "
+          "copy it in binary mode");
+    if (mos && magic[0] == (format::kMagic[0] & 0x7F))
+      fail(
+          "mosb file damaged by a 7-bit transfer (the high bit of its first byte was cleared); "
+          "copy it in binary mode");
+    fail(ErrorCode::not_mosb, "not a mosb file (wrong magic)");
+  }
+  if (header.byte_order_mark != format::kByteOrderMark)
+    fail("byte-swapped mosb file (byte-order mark reads " + hex64(header.byte_order_mark) + ")");
+  // 2. Version and kind.
+  if (header.version_major != format::kVersionMajor)
+    fail(ErrorCode::version,
+         "prepared with format " + version_text(header.version_major, header.version_minor) +
+             ", this reader reads format " + std::to_string(format::kVersionMajor) + ".x (up to " +
+             version_text(format::kVersionMajor, format::kVersionMinor) + ")");
+  if (header.header_size != format::kHeaderSize)
+    fail("header size " + std::to_string(header.header_size) + " is not 128");
+  if (header.file_kind != static_cast<std::uint32_t>(kind)) {
+    // A known kind in the wrong place is a caller's mistake; an unknown kind, damage.
+    const auto found = format::to_string(static_cast<format::FileKind>(header.file_kind));
+    fail(found.empty() ? ErrorCode::damaged : ErrorCode::invalid_argument,
+         "file kind " + std::to_string(header.file_kind) +
+             (found.empty() ? "" : " (" + std::string(found) + ")") + " is not a " +
+             std::string(format::to_string(kind)) + " (" +
+             std::to_string(static_cast<std::uint32_t>(kind)) + ")");
+  }
+  // 3. Truncation.
+  if (header.file_size != bytes.size())
+    fail(header.file_size > bytes.size()
+             ? "truncated: header says " + std::to_string(header.file_size) + " bytes, file has " +
+                   std::to_string(bytes.size())
+             : "extended: header says " + std::to_string(header.file_size) + " bytes, file has " +
+                   std::to_string(bytes.size()));
+  // 4. Table bounds.
+  std::uint64_t table_bytes = 0;
+  if (header.table_offset % format::kAlignment != 0 || header.table_offset < format::kHeaderSize)
+    fail("section table offset " + std::to_string(header.table_offset) +
+         " is not a 64-aligned offset after the header");
+  if (mul_overflows(header.section_count, sizeof(format::SectionEntry), table_bytes) ||
+      header.table_offset > bytes.size() || table_bytes != bytes.size() - header.table_offset)
+    fail("section table (" + std::to_string(header.section_count) + " entries at offset " +
+         std::to_string(header.table_offset) + ") does not end at the end of the file (" +
+         std::to_string(bytes.size()) + " bytes)");
+  // 5. Header checksum.
+  const std::byte* table = bytes.data() + header.table_offset;
+  {
+    XXH3_state_t* state = XXH3_createState();
+    XXH3_64bits_reset(state);
+    XXH3_64bits_update(state, bytes.data(), format::kHeaderChecksumOffset);
+    XXH3_64bits_update(state, table, table_bytes);
+    const std::uint64_t computed = XXH3_64bits_digest(state);
+    XXH3_freeState(state);
+#ifndef FUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION  // lets the fuzzer reach the checks behind it
+    if (computed != header.header_checksum)
+#else
+    if (computed != header.header_checksum && false)
+#endif
+      fail("header checksum mismatch (stored " + hex64(header.header_checksum) + ", computed " +
+           hex64(computed) + "): header or section table is damaged");
+  }
+  // 6. Features.
+  if (std::uint64_t unknown = header.required_features & ~format::kKnownRequiredFeatures) {
+    const int bit = std::countr_zero(unknown);
+    fail(ErrorCode::version, "requires feature bit " + std::to_string(bit) +
+                                 ", unknown to this reader (format " +
+                                 version_text(format::kVersionMajor, format::kVersionMinor) + ")");
+  }
+
+  // 7. Entries.
+  sections.clear();
+  sections.reserve(header.section_count);
+  bool any_packed = false;
+  for (std::uint32_t i = 0; i < header.section_count; ++i) {
+    Section s{};
+    std::memcpy(&s.entry, table + i * sizeof(format::SectionEntry), sizeof s.entry);
+    const auto& e = s.entry;
+    const std::string where = "section #" + std::to_string(i);
+    s.name = std::string(format::name_of(e));
+    for (std::size_t k = s.name.size(); k < format::kNameSize; ++k)
+      if (e.name[k] != '\0') fail(where + ": name has bytes after its NUL padding");
+    if (!format::is_valid_section_name(s.name))
+      fail(where + ": invalid name (" + std::string(format::kSectionNameRule) + ")");
+    const std::string label = "section '" + s.name + "'";
+    auto type = format::element_type_from(e.element_type);
+    if (!type) fail(label + ": unknown element type " + std::to_string(e.element_type));
+    s.type = *type;
+    s.kind = format::section_kind_from(e.kind);
+    if (e.row_width == 0) fail(label + ": row width 0");
+    std::uint64_t elements = 0;
+    if (mul_overflows(e.row_count, e.row_width, elements) ||
+        mul_overflows(elements, format::element_size(s.type), s.decoded_length))
+      fail(label + ": size overflows");
+    if (e.encoding == static_cast<std::uint8_t>(format::Encoding::raw)) {
+      if (e.stored_length != s.decoded_length)
+        fail(label + ": stored length " + std::to_string(e.stored_length) + " differs from " +
+             std::to_string(s.decoded_length) + " bytes of elements");
+    } else if (e.encoding == static_cast<std::uint8_t>(format::Encoding::zstd)) {
+      if (!(header.required_features & format::kFeatureZstdSections))
+        fail(label + ": zstd-encoded but the header lacks the zstd-sections feature");
+      if (e.stored_length == 0) fail(label + ": zstd-encoded with stored length 0");
+      any_packed = true;
+    } else {
+      fail(label + ": unknown encoding " + std::to_string(e.encoding));
+    }
+    if (e.offset % format::kAlignment != 0)
+      fail(label + ": offset " + std::to_string(e.offset) + " is not 64-byte aligned");
+    if (e.offset < format::kHeaderSize || e.offset > header.table_offset ||
+        e.stored_length > header.table_offset - e.offset)
+      fail(label + ": bytes " + std::to_string(e.offset) + "+" + std::to_string(e.stored_length) +
+           " lie outside the data area [128, " + std::to_string(header.table_offset) + ")");
+    s.stored = bytes.subspan(e.offset, e.stored_length);
+    sections.push_back(std::move(s));
+  }
+  if ((header.required_features & format::kFeatureZstdSections) && !any_packed)
+    fail("header declares zstd-sections but no section is zstd-encoded");
+  {
+    std::vector<const Section*> by_offset;
+    for (const auto& s : sections)
+      if (s.entry.stored_length > 0) by_offset.push_back(&s);
+    std::sort(by_offset.begin(), by_offset.end(),
+              [](auto* a, auto* b) { return a->entry.offset < b->entry.offset; });
+    for (std::size_t i = 1; i < by_offset.size(); ++i) {
+      const auto& prev = by_offset[i - 1]->entry;
+      if (prev.offset + prev.stored_length > by_offset[i]->entry.offset)
+        fail("sections '" + by_offset[i - 1]->name + "' and '" + by_offset[i]->name + "' overlap");
+    }
+  }
+
+  // Names are unique within a kind (§4), known or not: one hash set keeps open O(section_count).
+  {
+    std::unordered_set<std::string> seen;
+    seen.reserve(sections.size());
+    for (const auto& s : sections) {
+      std::string key(reinterpret_cast<const char*>(&s.entry.kind), sizeof s.entry.kind);
+      key += s.name;
+      if (!seen.insert(std::move(key)).second)
+        fail("section '" + s.name + "': a second " +
+             (s.kind ? std::string(format::to_string(*s.kind))
+                     : "kind " + std::to_string(s.entry.kind)) +
+             " section of that name");
+    }
+  }
+  return result;
+}
+
+std::string content_digest(std::span<const Section> sections) {
+  std::vector<format::SectionEntry> normalized;
+  normalized.reserve(sections.size());
+  for (const auto& s : sections) {
+    auto e = s.entry;
+    e.encoding = 0;
+    e.offset = 0;
+    e.stored_length = 0;
+    normalized.push_back(e);
+  }
+  const XXH128_hash_t hash =
+      XXH3_128bits(normalized.data(), normalized.size() * sizeof(format::SectionEntry));
+  return hex64(hash.high64) + hex64(hash.low64);
+}
+
+}  // namespace mosb
