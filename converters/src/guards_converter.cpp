@@ -199,9 +199,10 @@ void write_text_atomically(const std::filesystem::path& path, std::string_view c
   file.commit();
 }
 
-GraphInput build_guards_graph(const OctileMap& map, const std::vector<std::uint64_t>& exposure) {
-  const CellObjective objective{"exposure", "guards", &exposure};
-  auto g = build_octile_graph(map, &objective);
+StreamedGraph build_guards_graph(const OctileMap& map, const std::vector<std::uint64_t>& exposure) {
+  auto g = build_octile_graph(
+      map, CellObjective{"exposure", "guards",
+                         std::make_shared<const std::vector<std::uint64_t>>(exposure)});
   g.metadata.set("view.GUARDS_2.objectives", "length,exposure");
   return g;
 }

@@ -219,53 +219,81 @@ void check_scenario(const std::vector<ScenarioEntry>& entries, const std::string
   }
 }
 
-GraphInput build_octile_graph(const OctileMap& map, const CellObjective* cell_objective) {
-  GraphInput g;
-  constexpr std::uint32_t kNone = 0xFFFFFFFFu;
-  std::vector<std::uint32_t> id(map.passable.size(), kNone);
+namespace {
+
+// The arcs of an octile map in ascending tail order, replayable: each pass walks the map again, so
+// no arc list is ever held (spec/families/games.md §2 states the memory bound).
+struct OctileArcs {
+  static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+  OctileMap map;
+  std::vector<std::uint32_t> id;  // vertex of each cell, kNone when blocked
+
+  std::size_t at(std::int64_t x, std::int64_t y) const {
+    return static_cast<std::size_t>(y) * map.width + static_cast<std::size_t>(x);
+  }
+  // f(tail, head, diagonal, x, y, hx, hy) per arc. Neighbours in row-major order of the 3x3
+  // block, so each tail's heads are increasing.
+  template <class F>
+  void for_each(F&& f) const {
+    auto inside = [&](std::int64_t x, std::int64_t y) {
+      return x >= 0 && y >= 0 && x < map.width && y < map.height;
+    };
+    for (std::uint32_t y = 0; y < map.height; ++y)
+      for (std::uint32_t x = 0; x < map.width; ++x) {
+        const auto tail = id[at(x, y)];
+        if (tail == kNone) continue;
+        for (std::int64_t dy = -1; dy <= 1; ++dy)
+          for (std::int64_t dx = -1; dx <= 1; ++dx) {
+            const std::int64_t hx = std::int64_t{x} + dx, hy = std::int64_t{y} + dy;
+            if ((dx == 0 && dy == 0) || !inside(hx, hy) || !map.passable[at(hx, hy)]) continue;
+            const bool diagonal = dx != 0 && dy != 0;
+            if (diagonal && (!map.passable[at(hx, y)] || !map.passable[at(x, hy)])) continue;
+            f(tail, id[at(hx, hy)], diagonal, std::int64_t{x}, std::int64_t{y}, hx, hy);
+          }
+      }
+  }
+};
+
+}  // namespace
+
+StreamedGraph build_octile_graph(const OctileMap& map,
+                                 const std::optional<CellObjective>& cell_objective) {
+  auto arcs = std::make_shared<OctileArcs>();
+  arcs->map = map;
+  arcs->id.assign(map.passable.size(), OctileArcs::kNone);
   std::vector<std::uint32_t> cells;  // (x, y) per vertex
   std::uint32_t n = 0;
   for (std::uint32_t y = 0; y < map.height; ++y)
     for (std::uint32_t x = 0; x < map.width; ++x)
       if (map.is_passable(x, y)) {
-        id[std::size_t{y} * map.width + x] = n++;
+        arcs->id[std::size_t{y} * map.width + x] = n++;
         cells.insert(cells.end(), {x, y});
       }
+  StreamedGraph g;
   g.vertex_count = n;
-  std::vector<std::uint64_t> length, cell_cost;
-  const auto* value = cell_objective ? cell_objective->values : nullptr;
-  auto at = [&](std::int64_t x, std::int64_t y) {
-    return static_cast<std::size_t>(y) * map.width + static_cast<std::size_t>(x);
+  arcs->for_each([&](auto...) { ++g.arc_count; });
+  g.replay_arcs = [arcs](const StreamedGraph::ArcSink& sink) {
+    arcs->for_each([&](std::uint32_t tail, std::uint32_t head, auto...) { sink(tail, head); });
   };
-  auto inside = [&](std::int64_t x, std::int64_t y) {
-    return x >= 0 && y >= 0 && x < map.width && y < map.height;
-  };
-  for (std::uint32_t y = 0; y < map.height; ++y) {
-    for (std::uint32_t x = 0; x < map.width; ++x) {
-      const auto tail = id[at(x, y)];
-      if (tail == kNone) continue;
-      // Neighbours in row-major order of the 3x3 block, so each tail's heads are increasing.
-      for (std::int64_t dy = -1; dy <= 1; ++dy) {
-        for (std::int64_t dx = -1; dx <= 1; ++dx) {
-          const std::int64_t hx = std::int64_t{x} + dx, hy = std::int64_t{y} + dy;
-          if ((dx == 0 && dy == 0) || !inside(hx, hy) || !map.passable[at(hx, hy)]) continue;
-          const bool diagonal = dx != 0 && dy != 0;
-          if (diagonal && (!map.passable[at(hx, y)] || !map.passable[at(x, hy)])) continue;
-          g.tails.push_back(tail);
-          g.heads.push_back(id[at(hx, hy)]);
-          length.push_back(diagonal ? 14 : 10);
-          if (!value) continue;
-          auto e = (*value)[at(hx, hy)];
-          if (diagonal) e = std::max({e, (*value)[at(hx, y)], (*value)[at(x, hy)]});
-          cell_cost.push_back(e);
-        }
-      }
-    }
+  g.costs.push_back({"length", "0.1 cell", [arcs](const StreamedGraph::CostSink& sink) {
+                       arcs->for_each([&](std::uint32_t, std::uint32_t, bool diagonal, auto...) {
+                         sink(diagonal ? 14 : 10);
+                       });
+                     }});
+  if (cell_objective) {
+    auto values = cell_objective->values;
+    g.costs.push_back({cell_objective->name, cell_objective->unit,
+                       [arcs, values](const StreamedGraph::CostSink& sink) {
+                         const auto& v = *values;
+                         arcs->for_each([&](std::uint32_t, std::uint32_t, bool diagonal,
+                                            std::int64_t x, std::int64_t y, std::int64_t hx,
+                                            std::int64_t hy) {
+                           auto e = v[arcs->at(hx, hy)];
+                           if (diagonal) e = std::max({e, v[arcs->at(hx, y)], v[arcs->at(x, hy)]});
+                           sink(e);
+                         });
+                       }});
   }
-  g.costs.push_back({"length", "0.1 cell", std::move(length), std::nullopt});
-  if (value)
-    g.costs.push_back(
-        {cell_objective->name, cell_objective->unit, std::move(cell_cost), std::nullopt});
   g.vertex_data.push_back(narrowest_column<std::uint16_t, std::uint32_t>("cell", 2, cells));
   g.metadata.set("map.width", std::to_string(map.width));
   g.metadata.set("map.height", std::to_string(map.height));
@@ -300,8 +328,8 @@ MapInput read_map(const std::string& path, const TerrainRules& terrain, Metadata
   return r;
 }
 
-void add_scenario(GraphInput& graph, const std::string& path, const MapInput& map, Metadata& inputs,
-                  std::size_t index) {
+void add_scenario(StreamedGraph& graph, const std::string& path, const MapInput& map,
+                  Metadata& inputs, std::size_t index) {
   const auto input = read_text_input(path);
   record_input(inputs, index, input);
   const auto entries = parse_scenario(input.text, input.display_name);
@@ -324,7 +352,7 @@ void set_metadata(Metadata& m, const Metadata& inputs, const MapInput& map,
 
 }  // namespace octile
 
-GraphInput convert_movingai(const MovingaiOptions& o) {
+StreamedGraph convert_movingai(const MovingaiOptions& o) {
   Metadata inputs;
   const auto map = octile::read_map(o.map_file, o.terrain, inputs, 0);
   auto graph = build_octile_graph(map.map);

@@ -105,6 +105,13 @@ void check_unique_names(std::string_view what, const std::vector<Item>& items) {
   }
 }
 
+void check_rows(const DataColumn& d, std::uint64_t rows, std::string_view per) {
+  const std::uint64_t row_bytes = d.width * format::element_size(d.type);
+  if (row_bytes == 0 || d.bytes.size() != rows * row_bytes)
+    throw Error("data column '" + d.name + "' must hold one row of " + std::to_string(d.width) +
+                " " + std::string(format::to_string(d.type)) + " per " + std::string(per));
+}
+
 void check_input(const GraphInput& in) {
   const std::uint64_t n = in.vertex_count;
   const std::uint64_t m = in.tails.size();
@@ -127,12 +134,6 @@ void check_input(const GraphInput& in) {
       throw Error("objective '" + c.name + "' has " + std::to_string(size) + " costs for " +
                   std::to_string(m) + " arcs");
   }
-  auto check_rows = [](const DataColumn& d, std::uint64_t rows, std::string_view per) {
-    const std::uint64_t row_bytes = d.width * format::element_size(d.type);
-    if (row_bytes == 0 || d.bytes.size() != rows * row_bytes)
-      throw Error("data column '" + d.name + "' must hold one row of " + std::to_string(d.width) +
-                  " " + std::string(format::to_string(d.type)) + " per " + std::string(per));
-  };
   for (const auto& d : in.vertex_data) check_rows(d, n, "vertex");
   for (const auto& d : in.arc_data) check_rows(d, m, "arc");
   check_queries(in.queries, n);
@@ -225,6 +226,14 @@ class PassCounter {
   std::uint64_t total_;
   std::uint64_t done_ = 0;
 };
+
+void write_vertex_data(FileWriter& writer, const std::vector<DataColumn>& columns) {
+  for (const auto& d : columns) {
+    writer.begin_section(SectionKind::vertex_data, d.name, d.type, d.width);
+    writer.append(std::span(d.bytes));
+    writer.end_section();
+  }
+}
 
 template <class Out>
 void write_streamed_cost(FileWriter& writer, const StreamedGraph::Costs& costs,
@@ -335,11 +344,7 @@ void write_graph(const GraphInput& in, const std::filesystem::path& path,
       writer.append(std::span(d.bytes).subspan(index * row_bytes, row_bytes));
     writer.end_section();
   }
-  for (const auto& d : in.vertex_data) {
-    writer.begin_section(SectionKind::vertex_data, d.name, d.type, d.width);
-    writer.append(std::span(d.bytes));
-    writer.end_section();
-  }
+  write_vertex_data(writer, in.vertex_data);
   add_query_sections(writer, in.queries);
   writer.commit(n, m);
   report(progress, "write", section_total, section_total);
@@ -351,7 +356,9 @@ void write_graph(const StreamedGraph& in, const std::filesystem::path& path,
   const std::uint64_t m = in.arc_count;
   check_counts(n, m);
   check_unique_names("objective", in.costs);
+  check_unique_names("vertex data", in.vertex_data);
   check_unique_names("query set", in.queries);
+  for (const auto& d : in.vertex_data) check_rows(d, n, "vertex");
   check_queries(in.queries, n);
   const Metadata metadata = stored_metadata(in.metadata, in.costs, in.queries);
   PassCounter counter(progress, m * (4 + 2 * in.costs.size()));
@@ -446,6 +453,7 @@ void write_graph(const StreamedGraph& in, const std::filesystem::path& path,
     }
     writer.end_section();
   }
+  write_vertex_data(writer, in.vertex_data);
   add_query_sections(writer, in.queries);
   writer.commit(n, m);
   counter.finish();
@@ -466,6 +474,7 @@ GraphInput materialize(const StreamedGraph& in) {
     costs.replay([&](std::uint64_t value) { values.push_back(value); });
     out.costs.push_back({costs.name, costs.unit, std::move(values), std::nullopt});
   }
+  out.vertex_data = in.vertex_data;
   out.queries = in.queries;
   out.metadata = in.metadata;
   return out;

@@ -46,7 +46,7 @@ std::string format_exposure(const OctileMap& map, const std::vector<std::uint64_
 void write_text_atomically(const std::filesystem::path& path, std::string_view content);
 
 // The graph alone: vertices are the passable cells in row-major order; vertex data `cell` (x, y).
-GraphInput build_guards_graph(const OctileMap& map, const std::vector<std::uint64_t>& exposure);
+StreamedGraph build_guards_graph(const OctileMap& map, const std::vector<std::uint64_t>& exposure);
 
 struct GuardsOptions {
   std::string map_file;
@@ -58,7 +58,7 @@ struct GuardsOptions {
 };
 
 struct GuardsResult {
-  GraphInput graph;
+  StreamedGraph graph;
   OctileMap map;
   std::vector<std::uint64_t> exposure;
 };

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -58,13 +59,15 @@ void check_scenario(const std::vector<ScenarioEntry>& entries, const std::string
 struct CellObjective {
   std::string name;
   std::string unit;
-  const std::vector<std::uint64_t>* values = nullptr;  // row-major, like OctileMap::passable
+  std::shared_ptr<const std::vector<std::uint64_t>> values;  // row-major, like OctileMap::passable
 };
 
 // The graph of an octile map (spec/families/games.md §2): vertices the passable cells in row-major
 // order (vertex data `cell` (x, y)), 8-connected arcs without corner cutting, objective `length`
 // (10 / 14, unit `0.1 cell`), then the cell objective when given; metadata map.width, map.height.
-GraphInput build_octile_graph(const OctileMap& map, const CellObjective* cell_objective = nullptr);
+// Streamed: the arcs are replayed from the map, never held (memory O(cells) + the reverse CSR).
+StreamedGraph build_octile_graph(const OctileMap& map,
+                                 const std::optional<CellObjective>& cell_objective = {});
 
 // The vertex of each passable cell (row-major numbering), for rows already checked against the map:
 // the query set `scen`, in file order.
@@ -79,6 +82,6 @@ struct MovingaiOptions {
 
 // Reads the inputs (decompressing as needed) and builds the one-objective instance; throws
 // mosb::Error, also for a map without any passable cell.
-GraphInput convert_movingai(const MovingaiOptions& options);
+StreamedGraph convert_movingai(const MovingaiOptions& options);
 
 }  // namespace mosb::converters
