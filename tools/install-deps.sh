@@ -7,8 +7,8 @@ packages=(
   libcli11-dev                              # the mosb command line
   nlohmann-json3-dev                        # JSON: --json output, solver logs, manifests
   libssl-dev                                # SHA-256 (libcrypto) for manifests and stores
-  libboost-dev                              # Boost.PropertyTree: GraphML roadmaps
-  libboost-iostreams-dev zlib1g-dev libbz2-dev liblzma-dev libzstd-dev  # compressed inputs
+  libexpat1-dev                             # streaming XML parser: GraphML roadmaps
+  zlib1g-dev libbz2-dev liblzma-dev libzstd-dev  # compressed inputs
   gzip bzip2 xz-utils zstd                  # compressed test fixtures
   doctest-dev                               # unit tests
   python3 python3-numpy python3-xxhash      # the reference reader and the CLI tests

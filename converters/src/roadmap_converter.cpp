@@ -231,14 +231,14 @@ GraphInput convert_gr_files(const RoadmapOptions& o) {
 }
 
 // Parses a comma-separated configuration of a GraphML node.
-std::vector<double> parse_coords(const std::string& text, const std::string& file,
-                                 const std::string& node) {
+std::vector<double> parse_coords(std::string_view text, const std::string& file,
+                                 std::string_view node) {
   std::vector<double> q;
   std::size_t pos = 0;
   while (true) {
     auto end = text.find(',', pos);
-    if (end == std::string::npos) end = text.size();
-    auto part = std::string_view(text).substr(pos, end - pos);
+    if (end == std::string_view::npos) end = text.size();
+    auto part = text.substr(pos, end - pos);
     while (!part.empty() && (part.front() == ' ' || part.front() == '\t')) part.remove_prefix(1);
     while (!part.empty() && (part.back() == ' ' || part.back() == '\t')) part.remove_suffix(1);
     const auto value = to_real(part);
@@ -283,25 +283,31 @@ ClearanceKeys find_clearance_keys(const GraphmlGraph& g, const std::string& file
 GraphInput convert_graphml_file(const RoadmapOptions& o) {
   GraphInput out;
   auto& m = out.metadata;
-  const auto input = read_text_input(*o.graphml_file);
-  record_input(m, 0, input);
-  const auto& file = input.display_name;
-  const auto g = parse_graphml(input.text, file);
+  std::string file, base_name;
+  GraphmlGraph g;
+  {
+    // Streamed: the text is never held whole; the values the conversion needs are in `g`.
+    InputFile input(*o.graphml_file);
+    file = input.display_name();
+    base_name = input.facts().base_name;
+    g = parse_graphml(input, file);
+    record_input(m, 0, input.facts());
+  }
 
   const auto coords_key = g.node_key("coords");
   if (!coords_key)
     throw Error(file + ": no node key named 'coords' (the configurations the length needs)");
-  const std::size_t n = g.node_ids.size();
+  const std::size_t n = g.node_count();
   std::vector<double> configs;
   std::size_t dof = 0;
   for (std::size_t v = 0; v < n; ++v) {
-    const auto& text = g.node_value(v, *coords_key);
-    if (!text) throw Error(file + ": node " + quoted(g.node_ids[v]) + " has no coords");
-    const auto q = parse_coords(*text, file, g.node_ids[v]);
+    const auto text = g.node_value(v, *coords_key);
+    if (!text) throw Error(file + ": node " + quoted(g.node_id(v)) + " has no coords");
+    const auto q = parse_coords(*text, file, g.node_id(v));
     if (v == 0) dof = q.size();
     if (q.size() != dof)
-      throw Error(file + ": node " + quoted(g.node_ids[v]) + " has " + std::to_string(q.size()) +
-                  " coordinates, node " + quoted(g.node_ids[0]) + " has " + std::to_string(dof));
+      throw Error(file + ": node " + quoted(g.node_id(v)) + " has " + std::to_string(q.size()) +
+                  " coordinates, node " + quoted(g.node_id(0)) + " has " + std::to_string(dof));
     configs.insert(configs.end(), q.begin(), q.end());
   }
 
@@ -311,7 +317,7 @@ GraphInput convert_graphml_file(const RoadmapOptions& o) {
     mode = keys.aggregate || !keys.links.empty() ? ClearanceMode::aggregate : ClearanceMode::none;
   if (o.clearance == ClearanceMode::automatic && mode == ClearanceMode::none)
     m.set("warning.clearance",
-          "no edge key 'clearance' or 'clearance_0'.. in " + input.base_name +
+          "no edge key 'clearance' or 'clearance_0'.. in " + base_name +
               ": no clearance objective is written (--clearance none: no warning)");
   const bool want_aggregate = mode == ClearanceMode::aggregate || mode == ClearanceMode::both;
   const bool want_links = mode == ClearanceMode::per_link || mode == ClearanceMode::both;
@@ -327,7 +333,7 @@ GraphInput convert_graphml_file(const RoadmapOptions& o) {
     throw Error("convert roadmap: --delta must be a positive real");
 
   const auto real_of = [&](std::size_t e, std::size_t key) {
-    const auto& text = g.edge_value(e, key);
+    const auto text = g.edge_value(e, key);
     const auto& name = g.edge_keys[key].name;
     if (!text) throw Error(file + ": " + g.describe_edge(e) + " has no " + quoted(name));
     const auto value = to_real(*text);
@@ -347,6 +353,17 @@ GraphInput convert_graphml_file(const RoadmapOptions& o) {
   const std::size_t links = want_links ? keys.links.size() : 0;
   std::vector<double> length, aggregate, weight;
   std::vector<std::vector<double>> per_link(links);
+  // Sized once: growing nine columns by doubling would need up to twice their final memory.
+  std::size_t arcs = 0;
+  for (const auto& edge : g.edges) arcs += edge.directed || edge.source == edge.target ? 1 : 2;
+  if (arcs <= kMaxCount) {
+    out.tails.reserve(arcs);
+    out.heads.reserve(arcs);
+    length.reserve(arcs);
+    if (want_aggregate) aggregate.reserve(arcs);
+    for (auto& column : per_link) column.reserve(arcs);
+    if (o.weight) weight.reserve(arcs);
+  }
   for (std::size_t e = 0; e < g.edges.size(); ++e) {
     const auto& edge = g.edges[e];
     double squared = 0;
@@ -407,7 +424,7 @@ GraphInput convert_graphml_file(const RoadmapOptions& o) {
   if (dof > 0)
     out.vertex_data.push_back(DataColumn::from("config", static_cast<std::uint32_t>(dof), configs));
   m.set("benchmark",
-        o.name ? *o.name : benchmark_name_from(input.base_name, {".gr", ".xml", ".graphml"}));
+        o.name ? *o.name : benchmark_name_from(base_name, {".gr", ".xml", ".graphml"}));
   m.set("roadmap.dof", std::to_string(dof));
   m.set("roadmap.edgedefault", g.edge_default_directed ? "directed" : "undirected");
   m.set("roadmap.edges", std::to_string(g.edges.size()));

@@ -185,6 +185,12 @@ std::unique_ptr<Codec> make_codec(Compression c) {
 }
 
 constexpr std::size_t kChunkBytes = std::size_t{1} << 20;
+// Plain input is handed out in chunks of about this size; whole pages are released behind them.
+constexpr std::size_t kPlainChunkBytes = std::size_t{8} << 20;
+std::size_t page_bytes() {
+  static const long size = ::sysconf(_SC_PAGESIZE);
+  return size > 0 ? static_cast<std::size_t>(size) : 4096;
+}
 
 }  // namespace
 
@@ -224,9 +230,10 @@ struct InputFile::Stream {
   std::size_t raw_pos = 0;
   bool decoded_all = false;
   std::vector<char> buffer;
-  std::size_t filled = 0;     // bytes of `buffer` holding text
-  std::size_t delivered = 0;  // bytes of `buffer` already returned as a chunk
-  bool plain_delivered = false;
+  std::size_t filled = 0;          // bytes of `buffer` holding text
+  std::size_t delivered = 0;       // bytes of `buffer` already returned as a chunk
+  std::size_t plain_pos = 0;       // plain input: bytes of `raw` already returned as chunks
+  std::size_t plain_released = 0;  // plain mapped input: bytes of `raw` given back to the kernel
 
   ~Stream() {
     if (mapping != nullptr) munmap(mapping, mapped_size);
@@ -322,7 +329,8 @@ std::uint64_t InputFile::size_hint() const {
 
 void InputFile::rewind() {
   auto& s = *stream_;
-  s.plain_delivered = false;
+  s.plain_pos = 0;
+  s.plain_released = 0;
   s.raw_pos = 0;
   s.decoded_all = false;
   s.filled = s.delivered = 0;
@@ -336,9 +344,32 @@ void InputFile::rewind() {
 bool InputFile::next_chunk(std::string_view& chunk) {
   auto& s = *stream_;
   if (!s.codec) {
-    if (s.plain_delivered || s.raw.empty()) return false;
-    s.plain_delivered = true;
-    chunk = s.raw;
+    // A mapped file's pages already read are given back (a chunk is valid until the next call),
+    // so a streaming parser holds about one chunk of the text in memory, not the whole file.
+    if (s.mapping != nullptr) {
+      const std::size_t page = page_bytes();
+      const std::size_t release_end = s.plain_pos / page * page;
+      if (release_end > s.plain_released) {
+        ::madvise(static_cast<char*>(s.mapping) + s.plain_released, release_end - s.plain_released,
+                  MADV_DONTNEED);
+        s.plain_released = release_end;
+      }
+    }
+    if (s.plain_pos == s.raw.size()) return false;
+    // Chunks end after a newline, as the decoded ones do, unless a line is longer than a chunk.
+    std::size_t end = std::min(s.raw.size(), s.plain_pos + kPlainChunkBytes);
+    if (end < s.raw.size()) {
+      const auto window = s.raw.substr(s.plain_pos, end - s.plain_pos);
+      const auto newline = window.rfind('\n');
+      if (newline != std::string_view::npos) {
+        end = s.plain_pos + newline + 1;
+      } else {
+        const auto next = s.raw.find('\n', end);
+        end = next == std::string_view::npos ? s.raw.size() : next + 1;
+      }
+    }
+    chunk = s.raw.substr(s.plain_pos, end - s.plain_pos);
+    s.plain_pos = end;
     return true;
   }
   // The bytes after the last chunk (a line not yet ended) move to the front.

@@ -13,11 +13,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   static const std::string name = "fuzz.xml";
   try {
     const auto g = mosb::converters::parse_graphml(text, name);
-    if (g.node_data.size() != g.node_ids.size()) __builtin_trap();
+    for (std::size_t v = 0; v < g.node_count(); ++v)
+      for (std::size_t k = 0; k < g.node_keys.size(); ++k) (void)g.node_value(v, k);
     for (std::size_t e = 0; e < g.edges.size(); ++e) {
       const auto& edge = g.edges[e];
-      if (edge.source >= g.node_ids.size() || edge.target >= g.node_ids.size()) __builtin_trap();
-      if (edge.data.size() != g.edge_keys.size()) __builtin_trap();
+      if (edge.source >= g.node_count() || edge.target >= g.node_count()) __builtin_trap();
+      for (std::size_t k = 0; k < g.edge_keys.size(); ++k) (void)g.edge_value(e, k);
       (void)g.describe_edge(e);
     }
   } catch (const mosb::Error&) {

@@ -8,7 +8,10 @@
 
 #include "mosb/converters/narrow_column.hpp"
 #include "mosb/converters/objective.hpp"
+#include "mosb/converters/text_input.hpp"
 #include "mosb/error.hpp"
+#include "temp_dir.hpp"
+#include "test_files.hpp"
 
 using namespace mosb;
 using namespace mosb::converters;
@@ -55,4 +58,33 @@ TEST_CASE("narrowest data column: the first candidate holding every value") {
   CHECK(cells.type == format::ElementType::u16);
   CHECK(narrowest_column<u16, u32>("cell", 2, std::vector<u32>{65536, 0}).type ==
         format::ElementType::u32);
+}
+
+TEST_CASE("plain input streams in chunks that end after a newline and rejoin to the file") {
+  testing::TempDir dir;
+  // 20 MiB of numbered lines, then one line longer than a chunk (10 MiB), then no final newline.
+  std::string text;
+  for (std::size_t i = 0; text.size() < (std::size_t{20} << 20); ++i)
+    text += "a " + std::to_string(i) + " " + std::to_string(i * 7919 % 100003) + "\n";
+  text += std::string(std::size_t{10} << 20, 'x') + "\n";
+  text += "last line";
+  testing::write_text(dir / "big.txt", text);
+  InputFile input(dir / "big.txt");
+  std::string joined;
+  std::size_t chunks = 0;
+  std::string_view chunk;
+  bool ends_ok = true;
+  while (input.next_chunk(chunk)) {
+    ++chunks;
+    joined += chunk;
+    if (joined.size() < text.size() && chunk.back() != '\n') ends_ok = false;
+  }
+  CHECK(chunks >= 3);
+  CHECK(ends_ok);
+  CHECK(joined == text);
+  // Released pages come back from the file when the text is read again.
+  input.rewind();
+  std::string again;
+  while (input.next_chunk(chunk)) again += chunk;
+  CHECK(again == text);
 }
