@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <memory>
 #include <set>
 #include <string>
 #include <unordered_map>
@@ -64,72 +65,95 @@ class Candidates {
   std::uint64_t count_ = 0;
 };
 
+// The arcs of a NetMaker graph in tail order, replayable: each pass draws the degree and locality
+// streams again, so no arc list is held; only the cycle successor of each vertex (4 bytes).
+struct NetMakerArcs {
+  NetMakerParameters p;
+  std::vector<std::uint32_t> successor;
+
+  // f(tail, head, kind) per arc: per vertex in id order, its cycle arc, then its locality arcs in
+  // the order they are drawn.
+  template <class F>
+  void for_each(F&& f) const {
+    const std::uint64_t n = p.vertices;
+    const std::uint64_t half = p.locality / 2;
+    auto degree = stream(p.seed, Stream::degrees);
+    auto choice = stream(p.seed, Stream::locality_choice);
+    std::unordered_map<std::uint64_t, std::uint64_t> swapped;  // sparse partial Fisher-Yates
+    for (std::uint64_t u = 0; u < n; ++u) {
+      f(static_cast<std::uint32_t>(u), successor[u], kNetMakerCycleArc);
+      const std::uint64_t wanted = degree.uniform(p.amin + 1, p.amax) - 1;
+      const Candidates candidates(u >= half ? u - half : 0, std::min(n - 1, u + half), u,
+                                  successor[u]);
+      const std::uint64_t taken = std::min(wanted, candidates.count());
+      swapped.clear();
+      auto value = [&](std::uint64_t index) {
+        auto it = swapped.find(index);
+        return it == swapped.end() ? candidates.at(index) : it->second;
+      };
+      for (std::uint64_t i = 0; i < taken; ++i) {
+        const std::uint64_t j = choice.uniform(i, candidates.count() - 1);
+        const std::uint64_t picked = value(j);
+        swapped[j] = value(i);
+        f(static_cast<std::uint32_t>(u), static_cast<std::uint32_t>(picked), kNetMakerLocalityArc);
+      }
+    }
+  }
+};
+
 }  // namespace
 
-GraphInput generate_netmaker(const NetMakerParameters& p) {
+StreamedGraph netmaker_graph(const NetMakerParameters& p) {
   check(p);
   const std::uint64_t n = p.vertices;
-  const std::uint64_t half = p.locality / 2;
+  auto arcs = std::make_shared<NetMakerArcs>();
+  arcs->p = p;
 
   // The Hamiltonian cycle: Fisher-Yates over the identity, then sigma[i] -> sigma[i+1 mod n].
-  std::vector<std::uint32_t> sigma(n);
-  for (std::uint64_t i = 0; i < n; ++i) sigma[i] = static_cast<std::uint32_t>(i);
-  auto perm = stream(p.seed, Stream::permutation);
-  for (std::uint64_t i = n - 1; i >= 1; --i) std::swap(sigma[i], sigma[perm.uniform(0, i)]);
-  std::vector<std::uint32_t> successor(n);
-  for (std::uint64_t i = 0; i < n; ++i) successor[sigma[i]] = sigma[(i + 1) % n];
-  sigma = {};
+  {
+    std::vector<std::uint32_t> sigma(n);
+    for (std::uint64_t i = 0; i < n; ++i) sigma[i] = static_cast<std::uint32_t>(i);
+    auto perm = stream(p.seed, Stream::permutation);
+    for (std::uint64_t i = n - 1; i >= 1; --i) std::swap(sigma[i], sigma[perm.uniform(0, i)]);
+    arcs->successor.resize(n);
+    for (std::uint64_t i = 0; i < n; ++i) arcs->successor[sigma[i]] = sigma[(i + 1) % n];
+  }
 
-  GraphInput g;
+  StreamedGraph g;
   g.vertex_count = n;
-  std::vector<std::uint8_t> kind;
-  auto add_arc = [&](std::uint64_t u, std::uint64_t v, std::uint8_t k) {
-    g.tails.push_back(static_cast<std::uint32_t>(u));
-    g.heads.push_back(static_cast<std::uint32_t>(v));
-    kind.push_back(k);
+  // The arc kinds (1 byte per arc) are kept: the cost streams follow them.
+  auto kind = std::make_shared<std::vector<std::uint8_t>>();
+  arcs->for_each([&](std::uint32_t, std::uint32_t, std::uint8_t k) { kind->push_back(k); });
+  g.arc_count = kind->size();
+  g.replay_arcs = [arcs](const StreamedGraph::ArcSink& sink) {
+    arcs->for_each([&](std::uint32_t tail, std::uint32_t head, std::uint8_t) { sink(tail, head); });
   };
-
-  // Per vertex in id order: its cycle arc, then its locality arcs in the order they are drawn.
-  auto degree = stream(p.seed, Stream::degrees);
-  auto choice = stream(p.seed, Stream::locality_choice);
-  std::unordered_map<std::uint64_t, std::uint64_t> swapped;  // sparse partial Fisher-Yates
-  for (std::uint64_t u = 0; u < n; ++u) {
-    add_arc(u, successor[u], kNetMakerCycleArc);
-    const std::uint64_t wanted = degree.uniform(p.amin + 1, p.amax) - 1;
-    const Candidates candidates(u >= half ? u - half : 0, std::min(n - 1, u + half), u,
-                                successor[u]);
-    const std::uint64_t taken = std::min(wanted, candidates.count());
-    swapped.clear();
-    auto value = [&](std::uint64_t index) {
-      auto it = swapped.find(index);
-      return it == swapped.end() ? candidates.at(index) : it->second;
-    };
-    for (std::uint64_t i = 0; i < taken; ++i) {
-      const std::uint64_t j = choice.uniform(i, candidates.count() - 1);
-      const std::uint64_t picked = value(j);
-      swapped[j] = value(i);
-      add_arc(u, picked, kNetMakerLocalityArc);
-    }
-  }
-
-  const std::size_t m = g.tails.size();
-  std::array<std::vector<std::uint64_t>, 3> costs;
-  for (auto& c : costs) c.resize(m);
-  auto cycle_rng = stream(p.seed, Stream::cycle_costs);
-  auto local_rng = stream(p.seed, Stream::locality_costs);
-  for (std::size_t a = 0; a < m; ++a) {
-    if (kind[a] == kNetMakerCycleArc) {
-      std::array<std::uint64_t, 3> v = {cycle_rng.uniform(1, 333), cycle_rng.uniform(334, 666),
-                                        cycle_rng.uniform(667, 1000)};
-      for (std::uint64_t i = 2; i >= 1; --i) std::swap(v[i], v[cycle_rng.uniform(0, i)]);
-      for (std::size_t j = 0; j < 3; ++j) costs[j][a] = v[j];
-    } else {
-      for (std::size_t j = 0; j < 3; ++j) costs[j][a] = local_rng.uniform(1, 99);
-    }
-  }
+  // Cycle arcs draw one value from each third of [1, 1000] and shuffle them over the objectives;
+  // locality arcs draw each objective from [1, 99]. Objective j replays both streams, keeping v[j].
   for (std::size_t j = 0; j < 3; ++j)
-    g.costs.push_back({"c" + std::to_string(j + 1), "", std::move(costs[j]), std::nullopt});
-  g.arc_data.push_back(DataColumn::from("kind", 1, kind));
+    g.costs.push_back({"c" + std::to_string(j + 1), "",
+                       [seed = p.seed, kind, j](const StreamedGraph::CostSink& sink) {
+                         auto cycle_rng = stream(seed, Stream::cycle_costs);
+                         auto local_rng = stream(seed, Stream::locality_costs);
+                         for (const auto k : *kind) {
+                           if (k == kNetMakerCycleArc) {
+                             std::array<std::uint64_t, 3> v = {cycle_rng.uniform(1, 333),
+                                                               cycle_rng.uniform(334, 666),
+                                                               cycle_rng.uniform(667, 1000)};
+                             for (std::uint64_t i = 2; i >= 1; --i)
+                               std::swap(v[i], v[cycle_rng.uniform(0, i)]);
+                             sink(v[j]);
+                           } else {
+                             std::uint64_t value = 0;
+                             for (std::size_t i = 0; i < 3; ++i) {
+                               const auto drawn = local_rng.uniform(1, 99);
+                               if (i == j) value = drawn;
+                             }
+                             sink(value);
+                           }
+                         }
+                       }});
+  g.arc_data.push_back(DataColumn::from("kind", 1, *kind));
 
   // Distinct pairs: a pair drawn before is drawn again (both endpoints).
   const std::uint64_t band = std::max<std::uint64_t>(1, n * p.query_percent / 100);
@@ -164,6 +188,10 @@ GraphInput generate_netmaker(const NetMakerParameters& p) {
   md.set("view.NetMaker_3.objectives", "c1,c2,c3");
   md.set("view.NetMaker_3.queries", "default");
   return g;
+}
+
+GraphInput generate_netmaker(const NetMakerParameters& p) {
+  return materialize(netmaker_graph(p));
 }
 
 GraphInput convert_netmaker(const std::filesystem::path& gr_file,

@@ -128,7 +128,7 @@ std::vector<SuiteInstance> netmaker_suite(std::uint64_t suite_seed,
         p.seed = suite_instance_seed(suite_seed, ((std::uint64_t{n} << 16) + locality) * 4 + r);
         p.name = "NetMaker-N" + std::to_string(n) + "-I" + std::to_string(locality) + "-" +
                  std::to_string(r);
-        out.push_back({*p.name, [p] { return generate_netmaker(p); }});
+        out.push_back({*p.name, [p] { return netmaker_graph(p); }});
       }
   return out;
 }

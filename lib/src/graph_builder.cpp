@@ -357,8 +357,10 @@ void write_graph(const StreamedGraph& in, const std::filesystem::path& path,
   check_counts(n, m);
   check_unique_names("objective", in.costs);
   check_unique_names("vertex data", in.vertex_data);
+  check_unique_names("arc data", in.arc_data);
   check_unique_names("query set", in.queries);
   for (const auto& d : in.vertex_data) check_rows(d, n, "vertex");
+  for (const auto& d : in.arc_data) check_rows(d, m, "arc");
   check_queries(in.queries, n);
   const Metadata metadata = stored_metadata(in.metadata, in.costs, in.queries);
   PassCounter counter(progress, m * (4 + 2 * in.costs.size()));
@@ -453,6 +455,11 @@ void write_graph(const StreamedGraph& in, const std::filesystem::path& path,
     }
     writer.end_section();
   }
+  for (const auto& d : in.arc_data) {  // already in arc order: the arcs come in tail order
+    writer.begin_section(SectionKind::arc_data, d.name, d.type, d.width);
+    writer.append(std::span(d.bytes));
+    writer.end_section();
+  }
   write_vertex_data(writer, in.vertex_data);
   add_query_sections(writer, in.queries);
   writer.commit(n, m);
@@ -474,6 +481,7 @@ GraphInput materialize(const StreamedGraph& in) {
     costs.replay([&](std::uint64_t value) { values.push_back(value); });
     out.costs.push_back({costs.name, costs.unit, std::move(values), std::nullopt});
   }
+  out.arc_data = in.arc_data;
   out.vertex_data = in.vertex_data;
   out.queries = in.queries;
   out.metadata = in.metadata;

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "file_patch.hpp"
@@ -316,4 +317,20 @@ TEST_CASE("the real NetMaker file converts to 10000 vertices, 59750 arcs, 3 obje
   CHECK(r.metadata().get("benchmark") == "netMaker_3o_10000n_1amin_10amax_20i_1s_scorr_79134");
   CHECK(reaches_all(r, false));
   CHECK(reaches_all(r, true));
+}
+
+TEST_CASE("a streamed NetMaker graph is byte-identical to the one built in memory") {
+  testing::TempDir dir;
+  auto p = paper_parameters(2);
+  for (const auto& [n, locality, amax] :
+       {std::tuple{2000u, 20u, 10u}, std::tuple{300u, 100000u, 40u}, std::tuple{2u, 2u, 2u}}) {
+    p.vertices = n;
+    p.locality = locality;
+    p.amax = amax;
+    p.queries = 1;
+    write_graph(converters::netmaker_graph(p), dir / "streamed.mosb");
+    write_graph(converters::generate_netmaker(p), dir / "built.mosb");
+    CHECK(testing::read_bytes(dir / "streamed.mosb") == testing::read_bytes(dir / "built.mosb"));
+    CHECK_FALSE(verify(GraphReader::open(dir / "streamed.mosb"), VerifyLevel::full).has_value());
+  }
 }

@@ -32,7 +32,7 @@ int run_netmaker(NetMakerArgs a, const CLI::App& app) {
   }
   if (a.output.empty()) throw UsageError("--output FILE is required (or --suite DIR)");
   if (!a.name.empty()) a.params.name = a.name;
-  write_graph(converters::generate_netmaker(a.params), a.output, progress.callback());
+  write_graph(converters::netmaker_graph(a.params), a.output, progress.callback());
   return report_written(a.output, a.json);
 }
 

@@ -70,7 +70,7 @@ void write_graph(const GraphInput& input, const std::filesystem::path& path,
 // An instance whose generator can replay its arcs in ascending tail order (and its integer costs
 // in the same order) as often as asked: written without holding the arc list, the permutation or
 // the costs in memory; only the reverse CSR is built (memory: 8 (n + 1) + 8 m bytes, plus the
-// vertex data). Gives the
+// arc and vertex data). Gives the
 // same bytes as write_graph of materialize(graph).
 struct StreamedGraph {
   using ArcSink = std::function<void(std::uint32_t tail, std::uint32_t head)>;
@@ -84,6 +84,7 @@ struct StreamedGraph {
   std::uint64_t arc_count = 0;
   std::function<void(const ArcSink&)> replay_arcs;  // tails ascending, the same sequence every call
   std::vector<Costs> costs;
+  std::vector<DataColumn> arc_data;     // held in memory: one row per arc, in arc order
   std::vector<DataColumn> vertex_data;  // held in memory: one row per vertex
   std::vector<QuerySet> queries;
   Metadata metadata;

@@ -27,6 +27,12 @@ struct NetMakerParameters {
 inline constexpr std::uint8_t kNetMakerCycleArc = 0;
 inline constexpr std::uint8_t kNetMakerLocalityArc = 1;
 
+// Arcs come out in tail order, so the instance streams into its file (write_graph) without an arc
+// list in memory: only the cycle (4 bytes per vertex), the arc kinds (1 byte per arc) and the
+// writer's reverse CSR are held.
+StreamedGraph netmaker_graph(const NetMakerParameters& p);
+
+// The same instance held in memory.
 GraphInput generate_netmaker(const NetMakerParameters& p);
 
 // An existing NetMaker file: a 0-based DIMACS-like .gr with one cost column per objective (plain
