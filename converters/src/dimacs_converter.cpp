@@ -384,10 +384,11 @@ struct ParsedGr {
   std::exception_ptr error;
 };
 
-ParsedGr parse_gr_file(const std::string& path, unsigned id_base) {
+ParsedGr parse_gr_file(const std::string& path, unsigned id_base, ReadProgress& read) {
   ParsedGr out;
   try {
     InputFile file(path);  // unmapped again as soon as it is parsed
+    file.count_into(&read);
     out.facts = file.facts();
     out.graph = naming_input_on_out_of_memory(file.display_name(), [&] {
       return parse_dimacs_gr(file, file.size_hint(), file.display_name(), id_base, nullptr, false);
@@ -399,14 +400,15 @@ ParsedGr parse_gr_file(const std::string& path, unsigned id_base) {
 }
 
 // Every file parsed, on up to hardware_concurrency threads.
-std::vector<ParsedGr> parse_gr_files(const std::vector<std::string>& paths, unsigned id_base) {
+std::vector<ParsedGr> parse_gr_files(const std::vector<std::string>& paths, unsigned id_base,
+                                     ReadProgress& read) {
   std::vector<ParsedGr> parsed(paths.size());
   const std::size_t threads =
       std::min<std::size_t>(paths.size(), std::max(1u, std::thread::hardware_concurrency()));
   std::atomic<std::size_t> next{0};
   auto work = [&] {
     for (std::size_t i = next++; i < paths.size(); i = next++)
-      parsed[i] = parse_gr_file(paths[i], id_base);
+      parsed[i] = parse_gr_file(paths[i], id_base, read);
   };
   std::vector<std::thread> pool;
   for (std::size_t k = 1; k < threads; ++k) pool.emplace_back(work);
@@ -429,7 +431,10 @@ GraphInput convert_dimacs(const DimacsOptions& options) {
   // first is parsed again against it, sequentially, which gives the message (and the first of
   // several errors) a file-by-file parse gives; the first file's arc lines, which that message
   // cites, are found by scanning it again.
-  auto parsed = parse_gr_files(options.gr_files, options.id_base);
+  auto read_files = options.gr_files;
+  if (options.co_file) read_files.push_back(*options.co_file);
+  ReadProgress read(options.progress, read_files);
+  auto parsed = parse_gr_files(options.gr_files, options.id_base, read);
   DimacsGraph first;
   std::vector<Column> columns;
   for (std::size_t i = 0; i < parsed.size(); ++i) {
@@ -480,6 +485,7 @@ GraphInput convert_dimacs(const DimacsOptions& options) {
   auto& m = out.metadata;
   if (options.co_file) {
     InputFile input(*options.co_file);
+    input.count_into(&read);
     record_input(m, options.gr_files.size(), input.facts());
     const auto xy = naming_input_on_out_of_memory(input.display_name(), [&] {
       return parse_dimacs_co(input, input.display_name(), options.id_base, out.vertex_count);

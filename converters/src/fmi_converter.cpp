@@ -319,6 +319,8 @@ GraphInput convert_fmi(const FmiOptions& options) {
   if (options.cost_count && (*options.cost_count == 0 || *options.cost_count > 64))
     throw Error("convert fmi: --costs must be 1..64");
   std::optional<InputFile> file(std::in_place, options.file);
+  ReadProgress read(options.progress, {options.file});
+  file->count_into(&read);
   const InputFacts input = file->facts();
   if (options.ignore_extra_fields && !options.cost_count)
     throw Error("convert fmi: --ignore-extra-fields needs --costs");

@@ -288,6 +288,8 @@ GraphInput convert_graphml_file(const RoadmapOptions& o) {
   {
     // Streamed: the text is never held whole; the values the conversion needs are in `g`.
     InputFile input(*o.graphml_file);
+    ReadProgress read(o.progress, {*o.graphml_file});
+    input.count_into(&read);
     file = input.display_name();
     base_name = input.facts().base_name;
     g = parse_graphml(input, file);

@@ -342,6 +342,18 @@ void InputFile::rewind() {
 }
 
 bool InputFile::next_chunk(std::string_view& chunk) {
+  const bool more = next_chunk_of_text(chunk);
+  if (progress_) {
+    // Raw bytes consumed: the plain text handed out, or the compressed bytes decoded.
+    const auto& s = *stream_;
+    const std::uint64_t consumed = s.codec ? s.raw_pos : s.plain_pos;
+    if (consumed > counted_) progress_->add(consumed - counted_);
+    counted_ = std::max(counted_, consumed);
+  }
+  return more;
+}
+
+bool InputFile::next_chunk_of_text(std::string_view& chunk) {
   auto& s = *stream_;
   if (!s.codec) {
     // A mapped file's pages already read are given back (a chunk is valid until the next call),
@@ -396,6 +408,22 @@ bool InputFile::next_chunk(std::string_view& chunk) {
       return true;
     }
   }
+}
+
+ReadProgress::ReadProgress(Progress progress, const std::vector<std::string>& files)
+    : progress_(std::move(progress)) {
+  for (const auto& file : files) {
+    std::error_code error;
+    const auto size = std::filesystem::file_size(file, error);
+    if (!error) total_ += size;
+  }
+}
+
+void ReadProgress::add(std::uint64_t raw_bytes) {
+  if (!progress_) return;
+  const std::uint64_t done = done_ += raw_bytes;
+  const std::lock_guard lock(report_);
+  progress_("read", std::min(done, total_), total_);
 }
 
 TextInput read_text_input(const std::filesystem::path& path) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <exception>
 #include <functional>
+#include <mutex>
 #include <thread>
 
 #include "mosb/hex.hpp"
@@ -212,7 +213,27 @@ struct Task {
   std::function<Problem()> run;
 };
 
-std::vector<Problem> run_all(std::vector<Task>& tasks, unsigned threads) {
+// Reports stage "verify" as tasks finish, in units of their cost, from whichever thread finished.
+class TaskProgress {
+ public:
+  TaskProgress(const Progress& progress, std::uint64_t total) : progress_(progress), total_(total) {
+    report(progress_, "verify", 0, total_);
+  }
+  void done(std::uint64_t cost) {
+    if (!progress_) return;
+    const std::lock_guard lock(mutex_);
+    done_ = std::min(total_, done_ + cost);
+    progress_("verify", done_, total_);
+  }
+
+ private:
+  const Progress& progress_;
+  std::uint64_t total_;
+  std::uint64_t done_ = 0;
+  std::mutex mutex_;
+};
+
+std::vector<Problem> run_all(std::vector<Task>& tasks, unsigned threads, TaskProgress& progress) {
   std::vector<Problem> results(tasks.size());
   std::vector<std::exception_ptr> errors(tasks.size());
   std::vector<std::size_t> order(tasks.size());
@@ -228,6 +249,7 @@ std::vector<Problem> run_all(std::vector<Task>& tasks, unsigned threads) {
       } catch (...) {
         errors[i] = std::current_exception();
       }
+      progress.done(tasks[i].cost);
     }
   };
   std::vector<std::thread> helpers;
@@ -250,7 +272,8 @@ constexpr std::uint64_t kParallelFrom = 1 << 20;
 
 }  // namespace
 
-std::optional<std::string> verify(const GraphReader& reader, VerifyLevel level) {
+std::optional<std::string> verify(const GraphReader& reader, VerifyLevel level,
+                                  const Progress& progress) {
   // Opening already performed the header level.
   const bool checksums = level == VerifyLevel::checksums || level == VerifyLevel::full;
   const bool structure = level == VerifyLevel::structure || level == VerifyLevel::full;
@@ -302,7 +325,11 @@ std::optional<std::string> verify(const GraphReader& reader, VerifyLevel level) 
     tasks.push_back({0, [&reader] { return check_metadata(reader); }});
     tasks.push_back({0, [&reader] { return check_padding(reader); }});
   }
-  const auto phase1 = run_all(tasks, threads);
+  // Units: bytes for phase 1's tasks, in-arc entries for the transpose.
+  std::uint64_t total = structure ? m : 0;
+  for (const auto& t : tasks) total += t.cost;
+  TaskProgress tracker(progress, total);
+  const auto phase1 = run_all(tasks, threads, tracker);
   for (std::size_t i = 0; i < csr_last; ++i)
     if (phase1[i]) return phase1[i];
   if (structure) {
@@ -325,7 +352,7 @@ std::optional<std::string> verify(const GraphReader& reader, VerifyLevel level) 
                            [&c, first, last] { return check_transpose(c, first, last); }});
       first = last;
     }
-    if (auto p = first_problem(run_all(transpose, threads))) return p;
+    if (auto p = first_problem(run_all(transpose, threads, tracker))) return p;
   }
   for (std::size_t i = csr_last; i < phase1.size(); ++i)
     if (phase1[i]) return phase1[i];

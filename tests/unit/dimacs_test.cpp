@@ -297,3 +297,29 @@ TEST_CASE("dimacs: real data (shared/data/dimacs-small)") {
   CHECK_THROWS_WITH_AS(converters::convert_dimacs(gr({ny})),
                        (ny + ":5:13: the header declares 733846 arcs, found 92").c_str(), Error);
 }
+
+TEST_CASE("dimacs: reading reports raw bytes over all inputs up to their total") {
+  TempDir dir;
+  std::string text = "p sp 3 60000\n";
+  for (int i = 0; i < 60000; ++i)
+    text += "a " + std::to_string(i % 3 + 1) + " " + std::to_string((i + 1) % 3 + 1) + " " +
+            std::to_string(i % 97) + "\n";
+  write_text(dir / "a.gr", text);
+  write_text(dir / "b.gr", text);
+  DimacsOptions o;
+  o.gr_files = {(dir / "a.gr").string(), (dir / "b.gr").string()};
+  std::uint64_t last_done = 0, last_total = 0;
+  bool monotone = true, one_stage = true;
+  o.progress = [&](std::string_view stage, std::uint64_t done, std::uint64_t total) {
+    one_stage = one_stage && stage == "read";
+    monotone = monotone && done >= last_done;
+    last_done = done;
+    last_total = total;
+  };
+  const auto g = converters::convert_dimacs(o);
+  CHECK(g.tails.size() == 60000);
+  CHECK(one_stage);
+  CHECK(monotone);
+  CHECK(last_total == 2 * text.size());
+  CHECK(last_done == last_total);
+}

@@ -127,3 +127,26 @@ TEST_CASE(
   CHECK_THROWS_WITH_AS(write_graph(bad_head, dir / "h.mosb"),
                        "arc 1 (1 -> 3) has an endpoint not below the vertex count 3", Error);
 }
+
+TEST_CASE("verify reports its progress in one stage, monotone, up to its total") {
+  testing::TempDir dir;
+  // Above 1 MiB, so the checks run on every core and report from several threads.
+  write_graph(converters::grid_graph({300, 300, 3, 1}), dir / "g.mosb");
+  const auto reader = GraphReader::open(dir / "g.mosb");
+  std::uint64_t last_done = 0, last_total = 0, calls = 0;
+  bool monotone = true, one_stage = true;
+  const auto problem = verify(reader, VerifyLevel::full,
+                              [&](std::string_view stage, std::uint64_t done, std::uint64_t total) {
+                                one_stage = one_stage && stage == "verify";
+                                monotone = monotone && done >= last_done && done <= total;
+                                last_done = done;
+                                last_total = total;
+                                ++calls;
+                              });
+  CHECK_FALSE(problem.has_value());
+  CHECK(one_stage);
+  CHECK(monotone);
+  CHECK(calls >= 3);
+  CHECK(last_total > reader.bytes().size() / 2);
+  CHECK(last_done == last_total);
+}

@@ -55,6 +55,7 @@ int run_dimacs(const DimacsArgs& a) {
     extended.avg_outdegree_mode = converters::AvgOutdegreeMode::round_half_up;
   for (const auto& v : a.views) extended.views.push_back(converters::parse_view_spec(v));
   TerminalProgress progress;
+  o.progress = progress.callback();
   // Out of memory anywhere in the conversion names the input (a parser names the file it reads).
   converters::naming_input_on_out_of_memory(a.gr.front(), [&] {
     auto graph = converters::convert_dimacs(o);

@@ -40,6 +40,7 @@ int run_fmi(const FmiArgs& a) {
     o.extract_bfs = converters::FmiBfs{a.bfs_root, a.bfs_count, a.bfs_undirected};
   if (!a.name.empty()) o.name = a.name;
   TerminalProgress progress;
+  o.progress = progress.callback();
   // Out of memory anywhere in the conversion names the input.
   converters::naming_input_on_out_of_memory(
       a.file, [&] { write_graph(converters::convert_fmi(o), a.output, progress.callback()); });

@@ -45,6 +45,7 @@ int run_roadmap(const RoadmapArgs& a) {
     o.objectives.push_back(converters::parse_objective(spec, "convert roadmap"));
   if (!a.name.empty()) o.name = a.name;
   TerminalProgress progress;
+  o.progress = progress.callback();
   const auto input = converters::convert_roadmap(o);
   for (const auto& [key, value] : input.metadata.entries())
     if (key.starts_with("warning."))

@@ -27,21 +27,24 @@ struct Outcome {
 int run_verify(const VerifyArgs& a) {
   const auto verify_level = *parse_verify_level(a.level);
   TerminalProgress display;
+  // One file: its own checks are the progress; several: the files are.
+  const bool one_file = a.files.size() == 1;
   const auto progress = display.callback();
+  const auto per_file = one_file ? Progress{} : progress;
   std::vector<Outcome> outcomes;
-  report(progress, "verify", 0, a.files.size());
+  report(per_file, "verify", 0, a.files.size());
   for (const auto& file : a.files) {
     Outcome outcome{file, std::nullopt, ""};
     try {
       const auto reader = GraphReader::open(file);
-      outcome.problem = verify(reader, verify_level);
+      outcome.problem = verify(reader, verify_level, one_file ? progress : Progress{});
       if (outcome.problem) outcome.problem = file + ": " + *outcome.problem;
       outcome.digest = reader.digest();
     } catch (const Error& e) {
       outcome.problem = e.what();
     }
     outcomes.push_back(std::move(outcome));
-    report(progress, "verify", outcomes.size(), a.files.size());
+    report(per_file, "verify", outcomes.size(), a.files.size());
   }
   int failures = 0;
   for (const auto& o : outcomes) failures += o.problem ? 1 : 0;

@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "mosb/graph_reader.hpp"
+#include "mosb/progress.hpp"
 
 namespace mosb {
 
@@ -15,6 +16,8 @@ namespace mosb {
 std::optional<VerifyLevel> parse_verify_level(std::string_view text);
 
 // The first problem found, as "section 'NAME': [rule] detail"; nullopt when the file passes.
-std::optional<std::string> verify(const GraphReader& reader, VerifyLevel level);
+// `progress` hears stage "verify" as the checks finish (from one thread at a time).
+std::optional<std::string> verify(const GraphReader& reader, VerifyLevel level,
+                                  const Progress& progress = {});
 
 }  // namespace mosb

@@ -61,6 +61,7 @@ struct DimacsOptions {
   std::optional<std::string> name;  // benchmark; default: first file's base name without extensions
   unsigned id_base = 1;
   std::optional<format::ElementType> cost_type;
+  Progress progress;  // stage "read": raw bytes of the .gr and .co files parsed so far
 };
 
 // Reads (decompressing as needed; several .gr files in parallel, on up to as many threads as the

@@ -65,6 +65,7 @@ struct FmiOptions {
   std::vector<Objective> objectives;   // empty: GER_10 names for D = 10, else c1..cd
   std::optional<FmiBfs> extract_bfs;
   std::optional<std::string> name;  // benchmark; default: the file's base name without extensions
+  Progress progress;                // stage "read": raw bytes parsed so far
 };
 
 // The GER_10 objective names in the paper's order.

@@ -38,6 +38,7 @@ struct RoadmapOptions {
   // Both.
   std::vector<Objective> objectives;  // empty: the defaults (c1..cd, or length/clearance...)
   std::optional<std::string> name;
+  Progress progress;  // stage "read" of a GraphML file: raw bytes parsed so far
 };
 
 // The paper's clearance penalty: 0 for d >= delta, (d - delta)^2 / (2 delta) for 0 < d < delta.

@@ -5,16 +5,20 @@
 // whole-text API (the text in one std::string) for parsers that need it.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <initializer_list>
 #include <memory>
+#include <mutex>
 #include <new>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "mosb/converters/text_scan.hpp"
 #include "mosb/metadata.hpp"
+#include "mosb/progress.hpp"
 
 namespace mosb::converters {
 
@@ -31,6 +35,22 @@ struct InputFacts {
   std::uint64_t raw_size = 0;
   std::string raw_xxh3;  // XXH3-64 of the raw (possibly compressed) bytes, 16 lowercase hex
   Compression compression = Compression::none;
+};
+
+// Progress of reading a converter's inputs (stage "read"), in raw bytes over all of them: the
+// files parsed on several threads add to one count, and the reports go out one at a time.
+class ReadProgress {
+ public:
+  ReadProgress() = default;
+  // `files`: the inputs, for their sizes (a file that cannot be sized counts 0).
+  ReadProgress(Progress progress, const std::vector<std::string>& files);
+  void add(std::uint64_t raw_bytes);  // thread-safe
+
+ private:
+  Progress progress_;
+  std::uint64_t total_ = 0;
+  std::atomic<std::uint64_t> done_{0};
+  std::mutex report_;
 };
 
 // The text of an input file in chunks (text::TextSource). Memory: a plain regular file is mapped,
@@ -54,11 +74,17 @@ class InputFile final : public text::TextSource {
   bool next_chunk(std::string_view& chunk) override;
   // Starts the text again from its first byte (an error path that scans a file twice).
   void rewind();
+  // Counts the raw bytes each chunk consumes into `progress` (which must outlive the reading).
+  void count_into(ReadProgress* progress) { progress_ = progress; }
 
  private:
+  bool next_chunk_of_text(std::string_view& chunk);
+
   struct Stream;
   InputFacts facts_;
   std::unique_ptr<Stream> stream_;
+  ReadProgress* progress_ = nullptr;
+  std::uint64_t counted_ = 0;  // raw bytes already added to progress_
 };
 
 // A whole input in memory.
