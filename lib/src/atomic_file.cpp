@@ -66,6 +66,10 @@ extern "C" void remove_temporaries_and_reraise(int signal_number) {
   errno = saved_errno;
 }
 
+// The signals that end a process by default and that a user or a session sends on purpose: Ctrl-C,
+// kill, a closed terminal (SIGHUP, e.g. an ssh session that drops) and Ctrl-\.
+constexpr int kCleanupSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT};
+
 // Blocks the cleanup signals while a temporary is created and registered, so no signal can come
 // between the two (the file would be left) or between an unlink and the slot's release.
 class SignalsBlocked {
@@ -73,8 +77,7 @@ class SignalsBlocked {
   SignalsBlocked() {
     sigset_t set;
     ::sigemptyset(&set);
-    ::sigaddset(&set, SIGINT);
-    ::sigaddset(&set, SIGTERM);
+    for (int signal_number : kCleanupSignals) ::sigaddset(&set, signal_number);
     ::pthread_sigmask(SIG_BLOCK, &set, &saved_);
   }
   ~SignalsBlocked() { ::pthread_sigmask(SIG_SETMASK, &saved_, nullptr); }
@@ -265,15 +268,14 @@ void set_stale_temporary_handler(std::function<void(const std::filesystem::path&
 }
 
 void remove_temporaries_on_signals() {
-  for (int signal_number : {SIGINT, SIGTERM}) {
+  for (int signal_number : kCleanupSignals) {
     struct sigaction current {};
     if (::sigaction(signal_number, nullptr, &current) != 0 || current.sa_handler == SIG_IGN)
       continue;
     struct sigaction action {};
     action.sa_handler = remove_temporaries_and_reraise;
     ::sigemptyset(&action.sa_mask);
-    ::sigaddset(&action.sa_mask, SIGINT);
-    ::sigaddset(&action.sa_mask, SIGTERM);
+    for (int other : kCleanupSignals) ::sigaddset(&action.sa_mask, other);
     ::sigaction(signal_number, &action, nullptr);
   }
 }

@@ -93,6 +93,9 @@ class Signals(Base):
     def test_sigterm_removes_the_temporary(self):
         self.interrupt(signal.SIGTERM)
 
+    def test_sighup_removes_the_temporary(self):
+        self.interrupt(signal.SIGHUP)
+
     def test_a_temporary_left_by_kill_9_is_removed_by_the_next_run(self):
         process = self.start_big_and_wait_for_temporary()
         process.kill()

@@ -10,7 +10,8 @@
 //    file or the complete new one, never a mixture. Until then the target is untouched.
 //  * The temporary is removed by the destructor of an uncommitted AtomicFile, so on every error
 //    path (a write error such as EFBIG or ENOSPC, a failed fsync or rename, an exception of the
-//    caller); and, once remove_temporaries_on_signals() is installed, on SIGINT and SIGTERM.
+//    caller); and, once remove_temporaries_on_signals() is installed, on SIGINT, SIGTERM, SIGHUP
+//    and SIGQUIT.
 //  * Only kill -9 (or a crash, or power loss) can leave a temporary behind. The next AtomicFile
 //    for the same target removes temporaries of that target whose PID is no longer alive (in this
 //    PID namespace; temporaries of live processes are kept) and reports each removal to the
@@ -71,10 +72,10 @@ class AtomicFile {
 // default).
 void set_stale_temporary_handler(std::function<void(const std::filesystem::path&)> handler);
 
-// Installs handlers for SIGINT and SIGTERM that unlink every live temporary and then re-raise the
-// signal with its default action (so the exit status is the usual one). A signal that is ignored
-// when this is called stays ignored. For programs: a library embedding mosb keeps its own
-// handlers unless it calls this.
+// Installs handlers for SIGINT, SIGTERM, SIGHUP and SIGQUIT that unlink every live temporary and
+// then re-raise the signal with its default action (so the exit status is the usual one). A signal
+// that is ignored when this is called stays ignored. For programs: a library embedding mosb keeps
+// its own handlers unless it calls this.
 void remove_temporaries_on_signals();
 
 // Throws mosb::Error when `output` exists and is the same file (device and inode, after following
