@@ -56,10 +56,33 @@ std::string value_text(T value) {
   }
 }
 
+// An allocator that leaves elements uninitialized: for arrays that are written in full before
+// they are read, where zero-filling would cost a pass over memory the kernel has just zeroed.
+template <class T>
+struct NoInitAllocator : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = NoInitAllocator<U>;
+  };
+  NoInitAllocator() = default;
+  template <class U>
+  explicit NoInitAllocator(const NoInitAllocator<U>&) {}
+  template <class U>
+  void construct(U* p) {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+template <class T>
+using WrittenBeforeRead = std::vector<T, NoInitAllocator<T>>;
+
 // Streams `values` permuted by `order` (order[p] = input index of output row p) as type Out.
 template <class Out, class In>
 void write_permuted(FileWriter& writer, const std::vector<In>& values,
-                    const std::vector<std::uint32_t>& order) {
+                    std::span<const std::uint32_t> order) {
   constexpr std::size_t kChunk = 1 << 14;
   Out chunk[kChunk];
   std::size_t filled = 0;
@@ -75,7 +98,7 @@ void write_permuted(FileWriter& writer, const std::vector<In>& values,
 
 template <class In>
 void write_cost(FileWriter& writer, ElementType type, const std::vector<In>& values,
-                const std::vector<std::uint32_t>& order) {
+                std::span<const std::uint32_t> order) {
   format::visit_element_type(type, [&](auto tag) {
     using Out = typename decltype(tag)::type;
     if constexpr (format::is_cost_type_v<Out>)
@@ -295,19 +318,19 @@ void write_graph(const GraphInput& in, const std::filesystem::path& path,
   std::vector<std::uint64_t> offsets(n + 1, 0);
   for (auto t : in.tails) ++offsets[t + 1];
   for (std::uint64_t v = 0; v < n; ++v) offsets[v + 1] += offsets[v];
-  std::vector<std::uint32_t> order(m);  // order[p] = input index of CSR arc p
+  WrittenBeforeRead<std::uint32_t> order(m);  // order[p] = input index of CSR arc p
   {
     std::vector<std::uint64_t> cursor(offsets.begin(), offsets.end() - 1);
     for (std::uint32_t a = 0; a < m; ++a) order[cursor[in.tails[a]]++] = a;
   }
-  std::vector<std::uint32_t> targets(m);
+  WrittenBeforeRead<std::uint32_t> targets(m);
   for (std::size_t p = 0; p < m; ++p) targets[p] = in.heads[order[p]];
 
   // The transpose: scanning forward arcs in id order makes each in-list ascending by arc id.
   std::vector<std::uint64_t> reverse_offsets(n + 1, 0);
   for (auto h : targets) ++reverse_offsets[h + 1];
   for (std::uint64_t v = 0; v < n; ++v) reverse_offsets[v + 1] += reverse_offsets[v];
-  std::vector<std::uint32_t> reverse_sources(m), reverse_arcs(m);
+  WrittenBeforeRead<std::uint32_t> reverse_sources(m), reverse_arcs(m);
   {
     std::vector<std::uint64_t> cursor(reverse_offsets.begin(), reverse_offsets.end() - 1);
     for (std::uint32_t u = 0; u < n; ++u)
@@ -413,7 +436,7 @@ void write_graph(const StreamedGraph& in, const std::filesystem::path& path,
   writer.add_section(SectionKind::reverse_offsets, "reverse_offsets", 1,
                      std::span<const std::uint64_t>(reverse_offsets));
   {
-    std::vector<std::uint32_t> reverse_sources(m), reverse_arcs(m);
+    WrittenBeforeRead<std::uint32_t> reverse_sources(m), reverse_arcs(m);
     auto& cursor = reverse_offsets;  // written already: reused as the next free slot per head
     std::uint32_t arc = 0;
     in.replay_arcs([&](std::uint32_t tail, std::uint32_t head) {
