@@ -8,7 +8,7 @@ std::optional<ElementType> element_type_from(std::uint8_t raw) {
 }
 
 std::optional<SectionKind> section_kind_from(std::uint16_t raw) {
-  if (raw >= 1 && raw <= 10) return static_cast<SectionKind>(raw);
+  if (raw >= 1 && raw <= kLastSectionKind) return static_cast<SectionKind>(raw);
   return std::nullopt;
 }
 
@@ -42,6 +42,8 @@ std::string_view to_string(FileKind k) {
   switch (k) {
     case FileKind::instance:
       return "graph instance";
+    case FileKind::solutions:
+      return "solution file";
   }
   return {};
 }
@@ -68,6 +70,20 @@ std::string_view to_string(SectionKind k) {
       return "arc_data";
     case SectionKind::queries:
       return "queries";
+    case SectionKind::solution_status:
+      return "solution_status";
+    case SectionKind::front_offsets:
+      return "front_offsets";
+    case SectionKind::front_cost:
+      return "front_cost";
+    case SectionKind::solution_statistics:
+      return "solution_statistics";
+    case SectionKind::path_offsets:
+      return "path_offsets";
+    case SectionKind::path_vertices:
+      return "path_vertices";
+    case SectionKind::query_reference:
+      return "query_reference";
   }
   return "?";
 }

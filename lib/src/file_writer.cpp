@@ -99,15 +99,18 @@ void FileWriter::commit(std::uint64_t vertex_count, std::uint64_t arc_count) {
   std::copy(format::kMagic.begin(), format::kMagic.end(), header.magic.begin());
   header.byte_order_mark = format::kByteOrderMark;
   header.version_major = format::kVersionMajor;
-  header.version_minor = format::kVersionMinor;
+  header.version_minor = version_minor_;
   header.header_size = format::kHeaderSize;
-  header.file_kind = static_cast<std::uint32_t>(format::FileKind::instance);
+  header.file_kind = static_cast<std::uint32_t>(file_kind_);
   header.table_offset = position_;
   header.section_count = static_cast<std::uint32_t>(table_.size());
   header.file_size = position_ + table_.size() * sizeof(format::SectionEntry);
+  const auto objective_kind = file_kind_ == format::FileKind::solutions
+                                  ? format::SectionKind::front_cost
+                                  : format::SectionKind::cost;
   header.objective_count =
-      static_cast<std::uint32_t>(std::count_if(table_.begin(), table_.end(), [](const auto& e) {
-        return e.kind == static_cast<std::uint16_t>(format::SectionKind::cost);
+      static_cast<std::uint32_t>(std::count_if(table_.begin(), table_.end(), [&](const auto& e) {
+        return e.kind == static_cast<std::uint16_t>(objective_kind);
       }));
   header.vertex_count = vertex_count;
   header.arc_count = arc_count;

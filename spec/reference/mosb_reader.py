@@ -311,7 +311,10 @@ def open_instance(path):
         if h["header_size"] != HEADER_SIZE:
             raise FormatError("header_size is %d, expected 128" % h["header_size"])
         if h["file_kind"] != 1:
-            raise FormatError("file_kind is %d, expected 1 (graph instance)" % h["file_kind"])
+            # Kind 2 (solution files, SOLUTIONS.md) is a valid 1.1 kind this instance reader
+            # refuses by name, as a caller's mistake rather than damage.
+            raise FormatError("file_kind is %d%s, expected 1 (graph instance)" % (
+                h["file_kind"], " (solution file)" if h["file_kind"] == 2 else ""))
         # 3. file size
         if h["file_size"] != actual_size:
             raise FormatError("file is %s: header says %d bytes, file has %d" % (

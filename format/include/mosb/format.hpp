@@ -1,4 +1,4 @@
-// The on-disk layout of mosb format 1.0: the one source of truth that spec/FORMAT.md describes.
+// The on-disk layout of mosb format 1.1: the one source of truth that spec/FORMAT.md describes.
 // Everything here is plain data with fixed sizes; every multi-byte field is little-endian.
 #pragma once
 
@@ -16,7 +16,9 @@ static_assert(std::endian::native == std::endian::little,
               "mosb maps files zero-copy and therefore needs a little-endian host");
 
 inline constexpr std::uint16_t kVersionMajor = 1;
-inline constexpr std::uint16_t kVersionMinor = 0;
+// The newest minor this code reads. A writer stamps a file with the lowest minor whose readers can
+// read it (spec/FORMAT.md §2): instance files using only 1.0 features still say 1.0.
+inline constexpr std::uint16_t kVersionMinor = 1;
 
 // PNG-style: a high-bit byte catches 7-bit transfers, CR LF catches CRLF->LF conversion,
 // the lone LF catches LF->CRLF conversion, 0x1A stops `type` on DOS.
@@ -29,7 +31,10 @@ inline constexpr std::uint32_t kHeaderSize = 128;
 inline constexpr std::size_t kHeaderChecksumOffset = 120;
 inline constexpr std::size_t kNameSize = 24;
 
-enum class FileKind : std::uint32_t { instance = 1 };
+enum class FileKind : std::uint32_t {
+  instance = 1,
+  solutions = 2,  // since 1.1: reference or solver fronts of one query set (spec/SOLUTIONS.md)
+};
 
 // Required features: a reader refuses a file with a required bit it does not know.
 enum RequiredFeature : std::uint64_t {
@@ -83,7 +88,17 @@ enum class SectionKind : std::uint16_t {
   vertex_data = 8,      // any type x width, n rows
   arc_data = 9,         // any type x width, m rows
   queries = 10,         // u32 x 2, one row per (start, goal) pair
+  // Since 1.1, in solution files (file kind 2, spec/SOLUTIONS.md):
+  solution_status = 11,      // u8 x 1, Q rows: the QueryStatus of each query
+  front_offsets = 12,        // u64 x 1, Q+1 rows: first front vector of each query
+  front_cost = 13,           // unsigned or float x 1, F rows: one view objective, named by it
+  solution_statistics = 14,  // f64 or u64 x 1, Q rows: one statistic, named by it
+  path_offsets = 15,         // u64 x 1, F+1 rows: first path vertex of each front vector
+  path_vertices = 16,        // u32 x 1: the vertices of every path, concatenated
+  // Since 1.1, in instance files (ignorable by a 1.0 reader, so the file stays 1.0):
+  query_reference = 17,  // f64 x 1, one row per query of the set it is named after
 };
+inline constexpr std::uint16_t kLastSectionKind = 17;
 
 enum class ElementType : std::uint8_t {
   u8 = 1,

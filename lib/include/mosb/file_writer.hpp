@@ -3,6 +3,7 @@
 // (mosb::AtomicFile, whose header states the guarantees).
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -43,7 +44,14 @@ class FileWriter {
     end_section();
   }
 
-  // Writes the table and header, then renames the file into place.
+  // The file kind written at commit (default: instance).
+  void set_file_kind(format::FileKind kind) { file_kind_ = kind; }
+  // Raises the header's version_minor to at least `minor` (default 0): a writer calls it for each
+  // feature newer than 1.0 it uses, so the file states the lowest minor that can read it (§2).
+  void require_minor(std::uint16_t minor) { version_minor_ = std::max(version_minor_, minor); }
+
+  // Writes the table and header, then renames the file into place. objective_count counts the
+  // `cost` sections (instance) or the `front_cost` sections (solution file).
   void commit(std::uint64_t vertex_count, std::uint64_t arc_count);
 
  private:
@@ -58,6 +66,8 @@ class FileWriter {
   bool in_section_ = false;
   std::uint64_t section_bytes_ = 0;
   XXH3_state_s* hash_state_ = nullptr;
+  format::FileKind file_kind_ = format::FileKind::instance;
+  std::uint16_t version_minor_ = 0;
 };
 
 }  // namespace mosb

@@ -1,0 +1,218 @@
+// Solution files (file kind 2, spec/SOLUTIONS.md): the fronts a solver (or a reference run) found
+// for the queries of one query set of one instance, bound to that instance by its content digest
+// and to one view (objective list).
+//
+// SolutionReader maps a file and hands out zero-copy, bounds-checked views like GraphReader. What
+// open() checks, in time independent of the file size: the container (FORMAT.md §9 steps 1-7), the
+// section kinds, types and row counts of SOLUTIONS.md §3, the ends of the offset columns, and the
+// binding metadata. verify_payload() checks the payload (checksums, statuses, offsets, values);
+// verify_against() (solution_verify.hpp) the fronts against the instance.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <limits>
+#include <map>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "mosb/container.hpp"
+#include "mosb/error.hpp"
+#include "mosb/format.hpp"
+#include "mosb/metadata.hpp"
+
+namespace mosb {
+
+class GraphReader;
+
+// Stored as u8 in the solution_status section.
+enum class QueryStatus : std::uint8_t {
+  solved = 0,        // the front is the solver's answer (exact when solution.epsilon is 0)
+  timeout = 1,       // no answer within the time limit: empty front, no statistics
+  memory_limit = 2,  // no answer within the memory limit: empty front, no statistics
+  disconnected = 3,  // the goal is unreachable from the start: empty front, statistics allowed
+  not_run = 4,       // the query was not attempted: empty front, no statistics
+};
+inline constexpr std::uint8_t kLastQueryStatus = 4;
+std::string_view to_string(QueryStatus status);  // "solved", "timeout", "memory-limit", ...
+std::optional<QueryStatus> parse_query_status(std::string_view text);
+
+// The optional per-query statistics; each is its own solution_statistics section, named as here.
+enum class Statistic : std::uint8_t { runtime_seconds, expanded, generated, peak_memory_bytes };
+inline constexpr Statistic kStatistics[] = {Statistic::runtime_seconds, Statistic::expanded,
+                                            Statistic::generated, Statistic::peak_memory_bytes};
+std::string_view to_string(Statistic s);  // the section name, e.g. "runtime_seconds"
+// runtime_seconds is f64 (absent: NaN); the counters are u64 (absent: kAbsentCount).
+inline constexpr std::uint64_t kAbsentCount = std::numeric_limits<std::uint64_t>::max();
+
+// Per-query statistics as the writer takes them; nullopt means absent.
+struct QueryStatistics {
+  std::optional<double> runtime_seconds;
+  std::optional<std::uint64_t> expanded;
+  std::optional<std::uint64_t> generated;
+  std::optional<std::uint64_t> peak_memory_bytes;
+};
+
+// Who produced the fronts (metadata `solution.solver.*`, `solution.epsilon`, `solution.machine`).
+struct SolverInfo {
+  std::string name;
+  std::string version;
+  std::map<std::string, std::string> parameters;  // keys from [A-Za-z0-9_.+-]
+  std::string epsilon = "0";                      // decimal text; "0" = exact
+  std::string machine;                            // free-text machine notes
+};
+
+class SolutionReader {
+ public:
+  static SolutionReader open(const std::filesystem::path& path);
+  // Opens, then requires the file to belong to `instance` (check_bound_to).
+  static SolutionReader open(const std::filesystem::path& path, const GraphReader& instance);
+  static SolutionReader from_memory(std::span<const std::byte> bytes, std::string display_name);
+
+  // Throws ErrorCode::invalid_argument "FILE: solutions of instance DIGEST, not of INSTANCE
+  // (DIGEST)" unless the file's instance digest is the instance's; also checks that the view and
+  // query set exist in the instance with the file's objectives and query count.
+  void check_bound_to(const GraphReader& instance) const;
+
+  const std::string& display_name() const { return display_name_; }
+  const format::FileHeader& header() const { return header_; }
+  const std::vector<Section>& sections() const { return sections_; }
+  const Metadata& metadata() const { return metadata_; }
+  std::string digest() const;  // this file's own §8 content digest
+
+  const std::string& instance_digest() const { return instance_digest_; }
+  const std::string& view_name() const { return view_; }
+  const std::string& query_set() const { return query_set_; }
+  SolverInfo solver() const;
+
+  // The view's objectives in order: names and stored types of the front_cost columns.
+  std::size_t objective_count() const { return cost_indices_.size(); }
+  const std::string& objective_name(std::size_t i) const { return objective(i).name; }
+  format::ElementType objective_type(std::size_t i) const { return objective(i).type; }
+  const Section& objective(std::size_t i) const;
+
+  std::uint64_t query_count() const { return query_count_; }
+  std::uint64_t vector_count() const { return vector_count_; }  // F: all fronts together
+  QueryStatus status(std::uint64_t q) const;  // throws on a stored value outside the enum
+  std::span<const std::uint64_t> front_offsets() const;
+  // The rows [first, first + size) of the cost columns that hold query q's front.
+  std::uint64_t front_begin(std::uint64_t q) const;
+  std::uint64_t front_size(std::uint64_t q) const;
+
+  // A whole cost column (F values) in its stored type; asking for another type is an error.
+  template <class T>
+  std::span<const T> column(std::size_t objective_index) const {
+    return values<T>(objective(objective_index));
+  }
+  // Query q's values of one objective in its stored type.
+  template <class T>
+  std::span<const T> front(std::size_t objective_index, std::uint64_t q) const {
+    return column<T>(objective_index).subspan(front_begin(q), front_size(q));
+  }
+  // Calls f(std::span<const T>) with the whole column i in its stored type T (unsigned or float)
+  // and returns what f returns (one type for every T), as GraphReader::visit_cost.
+  template <class F>
+  decltype(auto) visit_column(std::size_t i, F&& f) const;
+  // Value of objective i for front vector `row` (0 <= row < F), converted to double.
+  double value_as_double(std::size_t objective_index, std::uint64_t row) const;
+
+  bool has_statistic(Statistic s) const { return statistic_index(s) != SIZE_MAX; }
+  // nullopt when the file has no such column or the query's entry is absent.
+  std::optional<double> runtime_seconds(std::uint64_t q) const;
+  std::optional<std::uint64_t> count_statistic(Statistic s, std::uint64_t q) const;
+  QueryStatistics statistics(std::uint64_t q) const;
+
+  bool has_paths() const { return path_offsets_index_ != SIZE_MAX; }
+  // The vertex sequence of front vector `row`; empty when the file has no paths.
+  std::span<const std::uint32_t> path(std::uint64_t row) const;
+
+  // Payload checks of SOLUTIONS.md §5 that need no instance: section checksums, statuses in range,
+  // offsets non-decreasing, fronts empty where the status says so, statistics absent where the
+  // status says so, float costs and runtimes finite and >= 0. The first problem, or nullopt.
+  std::optional<std::string> verify_payload() const;
+
+  template <class T>
+  std::span<const T> values(const Section& s) const {
+    check_access(s, format::element_type_of<T>());
+    return {reinterpret_cast<const T*>(s.stored.data()), s.element_count()};
+  }
+
+ private:
+  SolutionReader() = default;
+  void validate();
+  void check_access(const Section& s, format::ElementType wanted) const;
+  std::size_t statistic_index(Statistic s) const;
+  [[noreturn]] void fail(const std::string& what) const;
+  [[noreturn]] void fail(ErrorCode code, const std::string& what) const;
+
+  std::shared_ptr<const void> mapping_;
+  std::span<const std::byte> bytes_;
+  std::string display_name_;
+  format::FileHeader header_{};
+  std::vector<Section> sections_;
+  Metadata metadata_;
+  std::string instance_digest_, view_, query_set_;
+  std::uint64_t query_count_ = 0, vector_count_ = 0;
+  std::size_t status_index_ = SIZE_MAX, front_offsets_index_ = SIZE_MAX;
+  std::size_t path_offsets_index_ = SIZE_MAX, path_vertices_index_ = SIZE_MAX;
+  std::vector<std::size_t> cost_indices_;
+  std::size_t statistic_indices_[4] = {SIZE_MAX, SIZE_MAX, SIZE_MAX, SIZE_MAX};
+};
+
+template <class F>
+decltype(auto) SolutionReader::visit_column(std::size_t i, F&& f) const {
+  const Section& s = objective(i);
+  using Result = std::invoke_result_t<F, std::span<const std::uint8_t>>;
+  return format::visit_element_type(s.type, [&](auto tag) -> Result {
+    using T = typename decltype(tag)::type;
+    if constexpr (format::is_cost_type_v<T>)
+      return std::invoke(std::forward<F>(f), values<T>(s));
+    else
+      fail("section '" + s.name + "' holds " + std::string(format::to_string(s.type)) +
+           " values, not a cost type");
+  });
+}
+
+// Collects fronts query by query and writes a solution file for one view and query set of an
+// instance. Costs arrive as doubles and are stored in the instance's type of each objective; an
+// integer objective refuses a non-integral, negative or (above 2^53) inexact value.
+class SolutionWriter {
+ public:
+  // `query_set` empty: the view's query set (an error when the view names none).
+  SolutionWriter(const GraphReader& instance, std::string_view view_name,
+                 std::string_view query_set = {});
+  ~SolutionWriter();
+  SolutionWriter(const SolutionWriter&) = delete;
+  SolutionWriter& operator=(const SolutionWriter&) = delete;
+
+  void set_solver(SolverInfo info);
+  // The `source.tool` stamp (default "mosb VERSION"); golden files pin it.
+  void set_source_tool(std::string tool);
+  std::size_t objective_count() const;
+  std::uint64_t query_count() const;  // Q: the query set's size
+  const std::vector<std::string>& objective_names() const;
+
+  // Sets query q's result (any order; a query never set is written as not_run). `costs` holds
+  // front_size·d values row-major (vector after vector). `paths`, when given, holds one vertex
+  // sequence per vector. Throws mosb::Error (ErrorCode::invalid_argument) naming the query on a
+  // value the objective's type cannot hold exactly, a front for a status that has none, or
+  // statistics for a timeout, memory-limit or not-run query.
+  void set_query(std::uint64_t q, QueryStatus status, std::span<const double> costs,
+                 const QueryStatistics& statistics = {},
+                 std::span<const std::vector<std::uint32_t>> paths = {});
+
+  // Writes the file atomically (mosb::FileWriter). Paths are written when every non-empty front
+  // came with them; a file mixing fronts with and without paths is refused.
+  void write(const std::filesystem::path& target) const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace mosb

@@ -1,0 +1,628 @@
+#include "mosb/solution_file.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "mosb/file_writer.hpp"
+#include "mosb/graph_reader.hpp"
+#include "mosb/hex.hpp"
+#include "mosb/version.hpp"
+#include "xxh3.hpp"
+
+namespace mosb {
+
+using format::ElementType;
+using format::SectionKind;
+
+namespace {
+
+constexpr std::string_view kStatusNames[] = {"solved", "timeout", "memory-limit", "disconnected",
+                                             "not-run"};
+constexpr std::string_view kStatisticNames[] = {"runtime_seconds", "expanded", "generated",
+                                                "peak_memory_bytes"};
+
+bool is_digest(std::string_view text) {
+  return text.size() == 32 && std::all_of(text.begin(), text.end(), [](char c) {
+           return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
+         });
+}
+
+// A status whose front must be empty (SOLUTIONS.md §4).
+bool has_front(QueryStatus s) {
+  return s == QueryStatus::solved;
+}
+// A status that may carry statistics: a solved query, and a disconnected one (the search ran to
+// completion and proved it).
+bool has_statistics(QueryStatus s) {
+  return s == QueryStatus::solved || s == QueryStatus::disconnected;
+}
+
+}  // namespace
+
+std::string_view to_string(QueryStatus status) {
+  const auto raw = static_cast<std::uint8_t>(status);
+  return raw <= kLastQueryStatus ? kStatusNames[raw] : std::string_view("?");
+}
+
+std::optional<QueryStatus> parse_query_status(std::string_view text) {
+  for (std::uint8_t raw = 0; raw <= kLastQueryStatus; ++raw)
+    if (kStatusNames[raw] == text) return static_cast<QueryStatus>(raw);
+  return std::nullopt;
+}
+
+std::string_view to_string(Statistic s) {
+  return kStatisticNames[static_cast<std::size_t>(s)];
+}
+
+// ---- SolutionReader ----
+
+void SolutionReader::fail(const std::string& what) const {
+  fail(ErrorCode::damaged, what);
+}
+void SolutionReader::fail(ErrorCode code, const std::string& what) const {
+  throw Error(code, display_name_ + ": " + what);
+}
+
+SolutionReader SolutionReader::open(const std::filesystem::path& path) {
+  auto file = map_file(path);
+  SolutionReader reader;
+  reader.mapping_ = std::move(file.owner);
+  reader.bytes_ = file.bytes;
+  reader.display_name_ = path.string();
+  reader.validate();
+  return reader;
+}
+
+SolutionReader SolutionReader::open(const std::filesystem::path& path,
+                                    const GraphReader& instance) {
+  auto reader = open(path);
+  reader.check_bound_to(instance);
+  return reader;
+}
+
+SolutionReader SolutionReader::from_memory(std::span<const std::byte> bytes,
+                                           std::string display_name) {
+  if (reinterpret_cast<std::uintptr_t>(bytes.data()) % alignof(std::uint64_t) != 0)
+    throw Error(display_name + ": internal error: buffer is not 8-byte aligned");
+  SolutionReader reader;
+  reader.bytes_ = bytes;
+  reader.display_name_ = std::move(display_name);
+  reader.validate();
+  return reader;
+}
+
+void SolutionReader::validate() {
+  auto container = parse_container(bytes_, display_name_, format::FileKind::solutions);
+  header_ = container.header;
+  sections_ = std::move(container.sections);
+  if (header_.version_minor < 1)
+    fail("a solution file states format 1." + std::to_string(header_.version_minor) +
+         ", but solution files exist since 1.1");
+
+  std::size_t metadata_index = SIZE_MAX;
+  for (std::size_t i = 0; i < sections_.size(); ++i) {
+    const auto& s = sections_[i];
+    if (!s.kind) continue;  // a later minor's kind: ignored
+    const std::string label = "section '" + s.name + "'";
+    auto expect = [&](bool ok, const std::string& what) {
+      if (!ok) fail(label + ": " + what);
+    };
+    auto single = [&](std::size_t& slot, ElementType type) {
+      expect(slot == SIZE_MAX, "a second " + std::string(format::to_string(*s.kind)) + " section");
+      expect(s.type == type && s.entry.row_width == 1,
+             "must be " + std::string(format::to_string(type)) + " x 1");
+      expect(!s.is_packed(), "is packed; solution files store raw sections");
+      slot = i;
+    };
+    switch (*s.kind) {
+      case SectionKind::metadata:
+        single(metadata_index, ElementType::u8);
+        break;
+      case SectionKind::solution_status:
+        single(status_index_, ElementType::u8);
+        break;
+      case SectionKind::front_offsets:
+        single(front_offsets_index_, ElementType::u64);
+        break;
+      case SectionKind::path_offsets:
+        single(path_offsets_index_, ElementType::u64);
+        break;
+      case SectionKind::path_vertices:
+        single(path_vertices_index_, ElementType::u32);
+        break;
+      case SectionKind::front_cost:
+        expect(format::is_unsigned(s.type) || format::is_float(s.type),
+               "cost type " + std::string(format::to_string(s.type)) + " is not unsigned or float");
+        expect(s.entry.row_width == 1, "cost columns have width 1");
+        expect(!s.is_packed(), "is packed; solution files store raw sections");
+        cost_indices_.push_back(i);
+        break;
+      case SectionKind::solution_statistics: {
+        const auto* found =
+            std::find(std::begin(kStatisticNames), std::end(kStatisticNames), s.name);
+        expect(found != std::end(kStatisticNames), "is not a statistic of SOLUTIONS.md §3");
+        const auto which = static_cast<std::size_t>(found - std::begin(kStatisticNames));
+        single(statistic_indices_[which], which == 0 ? ElementType::f64 : ElementType::u64);
+        break;
+      }
+      default:
+        expect(false, "a " + std::string(format::to_string(*s.kind)) +
+                          " section does not belong in a solution file");
+    }
+  }
+  if (metadata_index == SIZE_MAX) fail("no metadata section");
+  if (status_index_ == SIZE_MAX) fail("no solution_status section");
+  if (front_offsets_index_ == SIZE_MAX) fail("no front_offsets section");
+  if (cost_indices_.empty()) fail("no front_cost section");
+  if (header_.objective_count != cost_indices_.size())
+    fail("header declares " + std::to_string(header_.objective_count) + " objectives, table has " +
+         std::to_string(cost_indices_.size()) + " front_cost sections");
+  if ((path_offsets_index_ == SIZE_MAX) != (path_vertices_index_ == SIZE_MAX))
+    fail("path_offsets and path_vertices come together");
+
+  // Row counts, and the ends of the offsets columns (O(1), like FORMAT.md §9 step 9).
+  query_count_ = sections_[status_index_].entry.row_count;
+  const auto& offsets_section = sections_[front_offsets_index_];
+  if (offsets_section.entry.row_count != query_count_ + 1)
+    fail("section '" + offsets_section.name + "' has " +
+         std::to_string(offsets_section.entry.row_count) + " rows, but the query count + 1 is " +
+         std::to_string(query_count_ + 1));
+  const auto offsets = values<std::uint64_t>(offsets_section);
+  if (offsets.front() != 0)
+    fail("section '" + offsets_section.name + "': first offset " + std::to_string(offsets.front()) +
+         " is not 0");
+  vector_count_ = offsets.back();
+  auto expect_rows = [&](const Section& s, std::uint64_t rows, const char* what) {
+    if (s.entry.row_count != rows)
+      fail("section '" + s.name + "' has " + std::to_string(s.entry.row_count) + " rows, but " +
+           what + " is " + std::to_string(rows));
+  };
+  for (auto i : cost_indices_) expect_rows(sections_[i], vector_count_, "the last front offset");
+  for (auto i : statistic_indices_)
+    if (i != SIZE_MAX) expect_rows(sections_[i], query_count_, "the query count");
+  if (has_paths()) {
+    expect_rows(sections_[path_offsets_index_], vector_count_ + 1, "the last front offset + 1");
+    const auto path_offsets = values<std::uint64_t>(sections_[path_offsets_index_]);
+    if (path_offsets.front() != 0 ||
+        path_offsets.back() != sections_[path_vertices_index_].entry.row_count)
+      fail("section '" + sections_[path_offsets_index_].name +
+           "' does not run from 0 to the path_vertices row count");
+  }
+
+  // The binding keys (SOLUTIONS.md §2): parsed at open, since nothing is usable without them.
+  const auto& meta = sections_[metadata_index];
+  try {
+    metadata_ = Metadata::parse(
+        std::string_view(reinterpret_cast<const char*>(meta.stored.data()), meta.stored.size()));
+  } catch (const Error& e) {
+    fail("section 'metadata': " + std::string(e.what()));
+  }
+  auto required = [&](std::string_view key) {
+    auto value = metadata_.get(key);
+    if (!value || value->empty()) fail("metadata has no '" + std::string(key) + "'");
+    return *value;
+  };
+  instance_digest_ = required("solution.instance_digest");
+  if (!is_digest(instance_digest_))
+    fail("metadata 'solution.instance_digest' is not 32 lowercase hex digits");
+  view_ = required("solution.view");
+  query_set_ = required("solution.query_set");
+}
+
+void SolutionReader::check_bound_to(const GraphReader& instance) const {
+  const auto digest = instance.digest();
+  if (digest != instance_digest_)
+    fail(ErrorCode::invalid_argument, "solutions of the instance with digest " + instance_digest_ +
+                                          ", not of " + instance.display_name() + " (digest " +
+                                          digest + ")");
+  const auto view = instance.find_view(view_);
+  if (!view)
+    fail(ErrorCode::invalid_argument, "view '" + view_ + "' is not in " + instance.display_name());
+  bool same = view->objectives.size() == objective_count();
+  for (std::size_t i = 0; same && i < objective_count(); ++i)
+    same = instance.objective(view->objectives[i]).name == objective_name(i) &&
+           instance.objective(view->objectives[i]).type == objective_type(i);
+  if (!same)
+    fail(ErrorCode::invalid_argument, "front_cost columns differ from the objectives of view '" +
+                                          view_ + "' in " + instance.display_name());
+  const auto* queries = instance.find(SectionKind::queries, query_set_);
+  if (!queries)
+    fail(ErrorCode::invalid_argument,
+         "query set '" + query_set_ + "' is not in " + instance.display_name());
+  if (queries->entry.row_count != query_count_)
+    fail(ErrorCode::invalid_argument,
+         "has " + std::to_string(query_count_) + " queries, query set '" + query_set_ + "' of " +
+             instance.display_name() + " has " + std::to_string(queries->entry.row_count));
+}
+
+std::string SolutionReader::digest() const {
+  return content_digest(sections_);
+}
+
+SolverInfo SolutionReader::solver() const {
+  SolverInfo info;
+  info.name = metadata_.get("solution.solver.name").value_or("");
+  info.version = metadata_.get("solution.solver.version").value_or("");
+  info.epsilon = metadata_.get("solution.epsilon").value_or("0");
+  info.machine = metadata_.get("solution.machine").value_or("");
+  constexpr std::string_view kParam = "solution.solver.param.";
+  for (const auto& [key, value] : metadata_.entries())
+    if (key.starts_with(kParam)) info.parameters[key.substr(kParam.size())] = value;
+  return info;
+}
+
+const Section& SolutionReader::objective(std::size_t i) const {
+  if (i >= cost_indices_.size())
+    fail(ErrorCode::invalid_argument, "objective index " + std::to_string(i) + " out of range (" +
+                                          std::to_string(cost_indices_.size()) + " objectives)");
+  return sections_[cost_indices_[i]];
+}
+
+void SolutionReader::check_access(const Section& s, ElementType wanted) const {
+  if (s.type != wanted)
+    fail(ErrorCode::invalid_argument, "section '" + s.name + "' holds " +
+                                          std::string(format::to_string(s.type)) + " values, not " +
+                                          std::string(format::to_string(wanted)));
+}
+
+std::span<const std::uint64_t> SolutionReader::front_offsets() const {
+  return values<std::uint64_t>(sections_[front_offsets_index_]);
+}
+
+QueryStatus SolutionReader::status(std::uint64_t q) const {
+  if (q >= query_count_)
+    fail(ErrorCode::invalid_argument, "query " + std::to_string(q) + " out of range (" +
+                                          std::to_string(query_count_) + " queries)");
+  const auto raw = values<std::uint8_t>(sections_[status_index_])[q];
+  if (raw > kLastQueryStatus)
+    fail("query " + std::to_string(q) + " has status " + std::to_string(raw) +
+         ", not one of SOLUTIONS.md §4");
+  return static_cast<QueryStatus>(raw);
+}
+
+std::uint64_t SolutionReader::front_begin(std::uint64_t q) const {
+  if (q >= query_count_)
+    fail(ErrorCode::invalid_argument, "query " + std::to_string(q) + " out of range (" +
+                                          std::to_string(query_count_) + " queries)");
+  const auto offsets = front_offsets();
+  if (offsets[q] > offsets[q + 1] || offsets[q + 1] > vector_count_)
+    fail("section 'front_offsets': query " + std::to_string(q) +
+         " has offsets out of order; run mosb solutions verify");
+  return offsets[q];
+}
+
+std::uint64_t SolutionReader::front_size(std::uint64_t q) const {
+  const auto begin = front_begin(q);
+  return front_offsets()[q + 1] - begin;
+}
+
+double SolutionReader::value_as_double(std::size_t i, std::uint64_t row) const {
+  return visit_column(i, [&](auto column) -> double {
+    if (row >= column.size())
+      fail(ErrorCode::invalid_argument, "front vector " + std::to_string(row) + " out of range");
+    return static_cast<double>(column[row]);
+  });
+}
+
+std::size_t SolutionReader::statistic_index(Statistic s) const {
+  return statistic_indices_[static_cast<std::size_t>(s)];
+}
+
+std::optional<double> SolutionReader::runtime_seconds(std::uint64_t q) const {
+  const auto i = statistic_index(Statistic::runtime_seconds);
+  if (i == SIZE_MAX || q >= query_count_) return std::nullopt;
+  const double v = values<double>(sections_[i])[q];
+  if (std::isnan(v)) return std::nullopt;
+  return v;
+}
+
+std::optional<std::uint64_t> SolutionReader::count_statistic(Statistic s, std::uint64_t q) const {
+  const auto i = statistic_index(s);
+  if (i == SIZE_MAX || q >= query_count_ || s == Statistic::runtime_seconds) return std::nullopt;
+  const auto v = values<std::uint64_t>(sections_[i])[q];
+  if (v == kAbsentCount) return std::nullopt;
+  return v;
+}
+
+QueryStatistics SolutionReader::statistics(std::uint64_t q) const {
+  return {runtime_seconds(q), count_statistic(Statistic::expanded, q),
+          count_statistic(Statistic::generated, q),
+          count_statistic(Statistic::peak_memory_bytes, q)};
+}
+
+std::span<const std::uint32_t> SolutionReader::path(std::uint64_t row) const {
+  if (!has_paths()) return {};
+  const auto offsets = values<std::uint64_t>(sections_[path_offsets_index_]);
+  const auto vertices = values<std::uint32_t>(sections_[path_vertices_index_]);
+  if (row >= vector_count_)
+    fail(ErrorCode::invalid_argument, "front vector " + std::to_string(row) + " out of range");
+  if (offsets[row] > offsets[row + 1] || offsets[row + 1] > vertices.size())
+    fail("section 'path_offsets': vector " + std::to_string(row) +
+         " has offsets out of order; run mosb solutions verify");
+  return vertices.subspan(offsets[row], offsets[row + 1] - offsets[row]);
+}
+
+std::optional<std::string> SolutionReader::verify_payload() const {
+  for (const auto& s : sections_) {
+    const std::uint64_t computed = XXH3_64bits(s.stored.data(), s.stored.size());
+    if (computed != s.entry.checksum)
+      return "section '" + s.name + "': [checksum] mismatch (stored " + hex64(s.entry.checksum) +
+             ", computed " + hex64(computed) + ")";
+  }
+  const auto statuses = values<std::uint8_t>(sections_[status_index_]);
+  const auto offsets = front_offsets();
+  for (std::uint64_t q = 0; q < query_count_; ++q) {
+    const std::string label = "query " + std::to_string(q) + ": ";
+    if (statuses[q] > kLastQueryStatus)
+      return label + "[status] value " + std::to_string(statuses[q]) + " is not a status";
+    if (offsets[q] > offsets[q + 1])
+      return label + "[front-offsets] offsets decrease (" + std::to_string(offsets[q]) + " > " +
+             std::to_string(offsets[q + 1]) + ")";
+    const auto status = static_cast<QueryStatus>(statuses[q]);
+    const auto size = offsets[q + 1] - offsets[q];
+    if (status == QueryStatus::solved && size == 0)
+      return label + "[status] solved with an empty front (a query without a path is disconnected)";
+    if (!has_front(status) && size != 0)
+      return label + "[status] " + std::string(to_string(status)) + " with a front of " +
+             std::to_string(size) + " vectors (only solved queries carry a front)";
+    if (!has_statistics(status)) {
+      const auto stats = statistics(q);
+      if (stats.runtime_seconds || stats.expanded || stats.generated || stats.peak_memory_bytes)
+        return label + "[statistics] " + std::string(to_string(status)) +
+               " carries statistics (SOLUTIONS.md §4)";
+    }
+    if (auto runtime = runtime_seconds(q); runtime && !(std::isfinite(*runtime) && *runtime >= 0))
+      return label + "[statistics] runtime_seconds is not finite and >= 0";
+  }
+  for (std::size_t i = 0; i < objective_count(); ++i) {
+    const auto problem = visit_column(i, [&](auto column) -> std::optional<std::string> {
+      using T = typename decltype(column)::value_type;
+      if constexpr (std::is_floating_point_v<T>)
+        for (std::uint64_t row = 0; row < column.size(); ++row)
+          if (!(std::isfinite(column[row]) && column[row] >= 0))
+            return "section '" + objective_name(i) + "': [cost-value] front vector " +
+                   std::to_string(row) + " is not finite and >= 0";
+      return std::nullopt;
+    });
+    if (problem) return problem;
+  }
+  if (has_paths()) {
+    const auto path_offsets = values<std::uint64_t>(sections_[path_offsets_index_]);
+    for (std::uint64_t row = 0; row < vector_count_; ++row)
+      if (path_offsets[row] > path_offsets[row + 1])
+        return "section '" + sections_[path_offsets_index_].name +
+               "': [path-offsets] offsets decrease at front vector " + std::to_string(row);
+    const auto vertices = values<std::uint32_t>(sections_[path_vertices_index_]);
+    for (std::uint64_t i = 0; i < vertices.size(); ++i)
+      if (vertices[i] >= header_.vertex_count)
+        return "section '" + sections_[path_vertices_index_].name + "': [path-vertex] vertex " +
+               std::to_string(vertices[i]) + " is not below the vertex count " +
+               std::to_string(header_.vertex_count);
+  }
+  return std::nullopt;
+}
+
+// ---- SolutionWriter ----
+
+struct SolutionWriter::State {
+  std::string instance_digest, view, query_set;
+  std::uint64_t vertex_count = 0, arc_count = 0, query_count = 0;
+  std::vector<std::string> objective_names;
+  std::vector<ElementType> objective_types;
+  SolverInfo solver;
+  std::string source_tool = std::string("mosb ") + version();
+  struct Result {
+    QueryStatus status = QueryStatus::not_run;
+    std::vector<double> costs;
+    QueryStatistics statistics;
+    std::vector<std::vector<std::uint32_t>> paths;
+  };
+  std::vector<Result> results;
+};
+
+SolutionWriter::SolutionWriter(const GraphReader& instance, std::string_view view_name,
+                               std::string_view query_set)
+    : state_(std::make_unique<State>()) {
+  const auto view = instance.view(view_name);
+  auto& st = *state_;
+  st.instance_digest = instance.digest();
+  st.view = view.name;
+  st.query_set = query_set.empty() ? view.query_set : std::string(query_set);
+  if (st.query_set.empty())
+    throw Error(ErrorCode::invalid_argument, instance.display_name() + ": view '" + view.name +
+                                                 "' names no query set; give one");
+  st.query_count = instance.queries(st.query_set).size();
+  st.vertex_count = instance.vertex_count();
+  st.arc_count = instance.arc_count();
+  for (auto i : view.objectives) {
+    st.objective_names.push_back(instance.objective(i).name);
+    st.objective_types.push_back(instance.objective(i).type);
+  }
+  st.results.resize(st.query_count);
+}
+
+SolutionWriter::~SolutionWriter() = default;
+
+void SolutionWriter::set_solver(SolverInfo info) {
+  for (const auto& [key, value] : info.parameters)
+    if (!Metadata::is_valid_key(key))
+      throw Error(ErrorCode::invalid_argument,
+                  "solver parameter name '" + key + "' is not from [A-Za-z0-9_.+-]");
+  state_->solver = std::move(info);
+}
+
+void SolutionWriter::set_source_tool(std::string tool) {
+  state_->source_tool = std::move(tool);
+}
+
+std::size_t SolutionWriter::objective_count() const {
+  return state_->objective_names.size();
+}
+std::uint64_t SolutionWriter::query_count() const {
+  return state_->query_count;
+}
+const std::vector<std::string>& SolutionWriter::objective_names() const {
+  return state_->objective_names;
+}
+
+void SolutionWriter::set_query(std::uint64_t q, QueryStatus status, std::span<const double> costs,
+                               const QueryStatistics& statistics,
+                               std::span<const std::vector<std::uint32_t>> paths) {
+  auto& st = *state_;
+  const std::string label = "query " + std::to_string(q);
+  auto refuse = [&](const std::string& what) {
+    throw Error(ErrorCode::invalid_argument, label + ": " + what);
+  };
+  if (q >= st.query_count)
+    refuse("is not in query set '" + st.query_set + "' (" + std::to_string(st.query_count) +
+           " queries)");
+  const std::size_t d = st.objective_names.size();
+  if (costs.size() % d != 0)
+    refuse(std::to_string(costs.size()) + " values are not a whole number of " + std::to_string(d) +
+           "-objective vectors");
+  const std::size_t vectors = costs.size() / d;
+  if (status == QueryStatus::solved && vectors == 0) refuse("solved with an empty front");
+  if (!has_front(status) && vectors != 0)
+    refuse(std::string(to_string(status)) + " with a front (only solved queries carry one)");
+  if (!has_statistics(status) && (statistics.runtime_seconds || statistics.expanded ||
+                                  statistics.generated || statistics.peak_memory_bytes))
+    refuse(std::string(to_string(status)) + " carries no statistics");
+  if (statistics.runtime_seconds &&
+      !(std::isfinite(*statistics.runtime_seconds) && *statistics.runtime_seconds >= 0))
+    refuse("runtime is not finite and >= 0");
+  for (auto count : {statistics.expanded, statistics.generated, statistics.peak_memory_bytes})
+    if (count == kAbsentCount) refuse("a statistic equals the reserved value 2^64-1");
+  if (!paths.empty() && paths.size() != vectors)
+    refuse(std::to_string(paths.size()) + " paths for " + std::to_string(vectors) + " vectors");
+  for (const auto& path : paths)
+    for (auto v : path)
+      if (v >= st.vertex_count)
+        refuse("path vertex " + std::to_string(v) + " is not below the vertex count " +
+               std::to_string(st.vertex_count));
+  for (std::size_t k = 0; k < costs.size(); ++k) {
+    const double v = costs[k];
+    const auto type = st.objective_types[k % d];
+    const std::string where =
+        "vector " + std::to_string(k / d) + ", objective '" + st.objective_names[k % d] + "': ";
+    if (!std::isfinite(v) || v < 0) refuse(where + "cost is negative or not finite");
+    if (format::is_float(type)) {
+      if (type == ElementType::f32 && static_cast<double>(static_cast<float>(v)) != v)
+        refuse(where + "cost does not fit the objective's type f32 exactly");
+      continue;
+    }
+    const double max = type == ElementType::u64
+                           ? 9007199254740992.0  // 2^53: above it a double is no exact integer
+                           : std::ldexp(1.0, static_cast<int>(8 * format::element_size(type))) - 1;
+    if (v != std::floor(v) || v > max)
+      refuse(where + "cost does not fit the objective's type " +
+             std::string(format::to_string(type)) + " exactly");
+  }
+  auto& r = st.results[q];
+  r.status = status;
+  r.costs.assign(costs.begin(), costs.end());
+  r.statistics = statistics;
+  r.paths.assign(paths.begin(), paths.end());
+}
+
+void SolutionWriter::write(const std::filesystem::path& target) const {
+  const auto& st = *state_;
+  const std::size_t d = st.objective_names.size();
+  bool any_paths = false, all_paths = true;
+  bool stat_present[4] = {};
+  for (const auto& r : st.results) {
+    if (!r.costs.empty()) {
+      if (r.paths.empty())
+        all_paths = false;
+      else
+        any_paths = true;
+    }
+    stat_present[0] |= r.statistics.runtime_seconds.has_value();
+    stat_present[1] |= r.statistics.expanded.has_value();
+    stat_present[2] |= r.statistics.generated.has_value();
+    stat_present[3] |= r.statistics.peak_memory_bytes.has_value();
+  }
+  if (any_paths && !all_paths)
+    throw Error(ErrorCode::invalid_argument,
+                target.string() + ": some fronts come with paths and some without");
+
+  Metadata meta;
+  meta.set("solution.instance_digest", st.instance_digest);
+  meta.set("solution.view", st.view);
+  meta.set("solution.query_set", st.query_set);
+  meta.set("solution.epsilon", st.solver.epsilon.empty() ? "0" : st.solver.epsilon);
+  if (!st.solver.name.empty()) meta.set("solution.solver.name", st.solver.name);
+  if (!st.solver.version.empty()) meta.set("solution.solver.version", st.solver.version);
+  if (!st.solver.machine.empty()) meta.set("solution.machine", st.solver.machine);
+  for (const auto& [key, value] : st.solver.parameters)
+    meta.set("solution.solver.param." + key, value);
+  meta.set("source.tool", st.source_tool);
+
+  FileWriter out(target);
+  out.set_file_kind(format::FileKind::solutions);
+  out.require_minor(1);
+  const auto text = meta.serialize();
+  out.add_section<std::uint8_t>(
+      SectionKind::metadata, "metadata", 1,
+      std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
+
+  std::vector<std::uint8_t> statuses;
+  std::vector<std::uint64_t> offsets{0};
+  for (const auto& r : st.results) {
+    statuses.push_back(static_cast<std::uint8_t>(r.status));
+    offsets.push_back(offsets.back() + r.costs.size() / d);
+  }
+  out.add_section<std::uint8_t>(SectionKind::solution_status, "solution_status", 1,
+                                std::span<const std::uint8_t>(statuses));
+  out.add_section<std::uint64_t>(SectionKind::front_offsets, "front_offsets", 1,
+                                 std::span<const std::uint64_t>(offsets));
+  for (std::size_t i = 0; i < d; ++i) {
+    format::visit_element_type(st.objective_types[i], [&](auto tag) {
+      using T = typename decltype(tag)::type;
+      std::vector<T> column;
+      column.reserve(offsets.back());
+      for (const auto& r : st.results)
+        for (std::size_t k = i; k < r.costs.size(); k += d)
+          column.push_back(static_cast<T>(r.costs[k]));
+      out.add_section<T>(SectionKind::front_cost, st.objective_names[i], 1,
+                         std::span<const T>(column));
+    });
+  }
+  for (std::size_t s = 0; s < 4; ++s) {
+    if (!stat_present[s]) continue;
+    const auto name = kStatisticNames[s];
+    if (s == 0) {
+      std::vector<double> column;
+      for (const auto& r : st.results)
+        column.push_back(
+            r.statistics.runtime_seconds.value_or(std::numeric_limits<double>::quiet_NaN()));
+      out.add_section<double>(SectionKind::solution_statistics, name, 1,
+                              std::span<const double>(column));
+    } else {
+      std::vector<std::uint64_t> column;
+      for (const auto& r : st.results) {
+        const auto& v = s == 1 ? r.statistics.expanded
+                               : (s == 2 ? r.statistics.generated : r.statistics.peak_memory_bytes);
+        column.push_back(v.value_or(kAbsentCount));
+      }
+      out.add_section<std::uint64_t>(SectionKind::solution_statistics, name, 1,
+                                     std::span<const std::uint64_t>(column));
+    }
+  }
+  if (any_paths) {
+    std::vector<std::uint64_t> path_offsets{0};
+    std::vector<std::uint32_t> vertices;
+    for (const auto& r : st.results)
+      for (const auto& path : r.paths) {
+        vertices.insert(vertices.end(), path.begin(), path.end());
+        path_offsets.push_back(vertices.size());
+      }
+    out.add_section<std::uint64_t>(SectionKind::path_offsets, "path_offsets", 1,
+                                   std::span<const std::uint64_t>(path_offsets));
+    out.add_section<std::uint32_t>(SectionKind::path_vertices, "path_vertices", 1,
+                                   std::span<const std::uint32_t>(vertices));
+  }
+  out.commit(st.vertex_count, st.arc_count);
+}
+
+}  // namespace mosb

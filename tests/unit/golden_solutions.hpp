@@ -1,0 +1,34 @@
+// The solution file behind spec/golden/1.1/solutions/valid/small.sol.mosb: the exact fronts of view
+// Small_2 (distance u16, time f32) of the golden instance, worked out by hand from its 7 arcs.
+// Changing it changes the golden file, deliberately.
+#pragma once
+
+#include <filesystem>
+
+#include "mosb/graph_reader.hpp"
+#include "mosb/solution_file.hpp"
+
+namespace mosb::testing {
+
+inline void write_golden_solutions(const GraphReader& small, const std::filesystem::path& out) {
+  SolutionWriter w(small, "Small_2");
+  SolverInfo solver;
+  solver.name = "hand";
+  solver.version = "1";
+  solver.parameters["order"] = "lexicographic";
+  solver.machine = "pencil and paper";
+  w.set_solver(solver);
+  w.set_source_tool("mosb 0.1.0");
+  // 0 -> 3: 0-2-3 costs (60, 5.25), 0-1-2-3 costs (80, 3.75).
+  const std::vector<std::vector<std::uint32_t>> paths0 = {{0, 2, 3}, {0, 1, 2, 3}};
+  w.set_query(0, QueryStatus::solved, std::vector<double>{60, 5.25, 80, 3.75}, {0.5, 4, 7, 1024},
+              paths0);
+  // 1 -> 0: 1-2-3-0 (120, 7.5) dominates the direct arc (300, 8).
+  const std::vector<std::vector<std::uint32_t>> paths1 = {{1, 2, 3, 0}};
+  w.set_query(1, QueryStatus::solved, std::vector<double>{120, 7.5}, {0.25, 5, 9, {}}, paths1);
+  // 3 -> 3: timed out (no front, no statistics).
+  w.set_query(2, QueryStatus::timeout, {});
+  w.write(out);
+}
+
+}  // namespace mosb::testing

@@ -1,0 +1,66 @@
+// The invalid golden solution files: each is spec/golden/1.1/solutions/valid/small.sol.mosb with
+// one deliberate fault, and the stage ("open" or "payload") whose check must name it.
+#pragma once
+
+#include <limits>
+
+#include "file_patch.hpp"
+
+namespace mosb::testing {
+
+struct SolutionFault {
+  const char* file;
+  const char* stage;
+  const char* expected;
+  void (*apply)(Bytes&);
+};
+
+inline const SolutionFault kSolutionFaults[] = {
+    {"minor-0.sol.mosb", "open", "solution files exist since 1.1",
+     [](Bytes& b) {
+       auto h = header_of(b);
+       h.version_minor = 0;
+       set_header(b, h);
+       reseal_header(b);
+     }},
+    {"offsets-end.sol.mosb", "open", "rows, but the last front offset is",
+     [](Bytes& b) {
+       const auto s = find_entry(b, "front_offsets");
+       poke<std::uint64_t>(b, s, 3, 2);
+       reseal_section(b, s);
+     }},
+    {"cost-checksum.sol.mosb", "payload", "section 'time': [checksum] mismatch",
+     [](Bytes& b) { poke<float>(b, find_entry(b, "time"), 0, 9.5f); }},
+    {"status-range.sol.mosb", "payload", "query 2: [status] value 9 is not a status",
+     [](Bytes& b) {
+       const auto s = find_entry(b, "solution_status");
+       poke<std::uint8_t>(b, s, 2, 9);
+       reseal_section(b, s);
+     }},
+    {"solved-empty.sol.mosb", "payload", "query 2: [status] solved with an empty front",
+     [](Bytes& b) {
+       const auto s = find_entry(b, "solution_status");
+       poke<std::uint8_t>(b, s, 2, 0);
+       reseal_section(b, s);
+     }},
+    {"timeout-statistics.sol.mosb", "payload", "query 2: [statistics] timeout carries statistics",
+     [](Bytes& b) {
+       const auto s = find_entry(b, "runtime_seconds");
+       poke<double>(b, s, 2, 60.0);
+       reseal_section(b, s);
+     }},
+    {"path-vertex.sol.mosb", "payload", "[path-vertex] vertex 7 is not below the vertex count 4",
+     [](Bytes& b) {
+       const auto s = find_entry(b, "path_vertices");
+       poke<std::uint32_t>(b, s, 1, 7);
+       reseal_section(b, s);
+     }},
+    {"negative-time.sol.mosb", "payload", "section 'time': [cost-value] front vector 1",
+     [](Bytes& b) {
+       const auto s = find_entry(b, "time");
+       poke<float>(b, s, 1, -1.0f);
+       reseal_section(b, s);
+     }},
+};
+
+}  // namespace mosb::testing
