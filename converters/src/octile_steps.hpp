@@ -24,8 +24,8 @@ MapInput read_map(const std::string& path, const TerrainRules& terrain, Metadata
                   std::size_t index);
 
 // Reads, parses and checks the scenario against the map (input `index`); appends query set `scen`.
-void add_scenario(StreamedGraph& graph, const std::string& path, const MapInput& map, Metadata& inputs,
-                  std::size_t index);
+void add_scenario(StreamedGraph& graph, const std::string& path, const MapInput& map,
+                  Metadata& inputs, std::size_t index);
 
 // The metadata both converters write: the recorded inputs, benchmark, family, id_base,
 // source.command and the terrain readings.
