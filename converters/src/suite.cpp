@@ -12,21 +12,12 @@
 #include "mosb/converters/netmaker_generator.hpp"
 #include "mosb/error.hpp"
 #include "mosb/graph_reader.hpp"
+#include "mosb/manifest.hpp"
 #include "mosb/random.hpp"
 
 namespace mosb::converters {
 
 namespace {
-
-void write_manifest(const std::filesystem::path& directory,
-                    const std::vector<SuiteEntry>& entries) {
-  std::string text;
-  for (const auto& e : entries)
-    text += e.name + '\t' + e.file + '\t' + std::to_string(e.size) + '\t' + e.digest + '\n';
-  AtomicFile file(directory / "MANIFEST");
-  file.write(text);
-  file.commit();
-}
 
 // A size listed twice would make two workers write the same file.
 std::vector<std::uint32_t> sorted_unique(std::vector<std::uint32_t> values) {
@@ -45,6 +36,8 @@ std::vector<SuiteEntry> run_suite(const std::filesystem::path& directory,
   if (ec) throw Error(directory.string() + ": cannot create the suite directory: " + ec.message());
 
   std::vector<SuiteEntry> entries(instances.size());
+  Manifest manifest;
+  manifest.entries.resize(instances.size());
   std::vector<std::exception_ptr> errors(instances.size());
   std::atomic<std::size_t> next{0};
   std::atomic<bool> failed{false};
@@ -58,8 +51,9 @@ std::vector<SuiteEntry> run_suite(const std::filesystem::path& directory,
         const auto file = instances[i].name + ".mosb";
         std::visit([&](const auto& graph) { write_graph(graph, directory / file); },
                    instances[i].build());
-        const auto reader = GraphReader::open(directory / file);
-        entries[i] = {instances[i].name, file, reader.bytes().size(), reader.digest()};
+        manifest.entries[i] = describe_file(directory / file);
+        const auto& e = manifest.entries[i];
+        entries[i] = {instances[i].name, file, e.size, e.digest};
         std::lock_guard lock(progress_mutex);
         ++done;
         report(options.progress, "suite", done, instances.size());
@@ -83,7 +77,7 @@ std::vector<SuiteEntry> run_suite(const std::filesystem::path& directory,
 
   std::sort(entries.begin(), entries.end(),
             [](const SuiteEntry& a, const SuiteEntry& b) { return a.name < b.name; });
-  write_manifest(directory, entries);
+  write_manifest(directory / kManifestName, manifest);
   return entries;
 }
 

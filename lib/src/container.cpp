@@ -250,19 +250,23 @@ Container parse_container(std::span<const std::byte> bytes, std::string_view dis
   return result;
 }
 
-std::string content_digest(std::span<const Section> sections) {
-  std::vector<format::SectionEntry> normalized;
-  normalized.reserve(sections.size());
-  for (const auto& s : sections) {
-    auto e = s.entry;
+std::string content_digest(std::span<const format::SectionEntry> table) {
+  std::vector<format::SectionEntry> normalized(table.begin(), table.end());
+  for (auto& e : normalized) {
     e.encoding = 0;
     e.offset = 0;
     e.stored_length = 0;
-    normalized.push_back(e);
   }
   const XXH128_hash_t hash =
       XXH3_128bits(normalized.data(), normalized.size() * sizeof(format::SectionEntry));
   return hex64(hash.high64) + hex64(hash.low64);
+}
+
+std::string content_digest(std::span<const Section> sections) {
+  std::vector<format::SectionEntry> table;
+  table.reserve(sections.size());
+  for (const auto& s : sections) table.push_back(s.entry);
+  return content_digest(table);
 }
 
 }  // namespace mosb

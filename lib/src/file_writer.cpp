@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "mosb/error.hpp"
+#include "mosb/container.hpp"
 #include "mosb/metadata.hpp"
 #include "xxh3.hpp"
 
@@ -123,6 +124,12 @@ void FileWriter::commit(std::uint64_t vertex_count, std::uint64_t arc_count) {
   XXH3_64bits_update(hash_state_, table_.data(), table_.size() * sizeof(format::SectionEntry));
   header.header_checksum = XXH3_64bits_digest(hash_state_);
 
+  if (!expected_digest_.empty()) {
+    const auto digest = content_digest(table_);
+    if (digest != expected_digest_)
+      fail("content digest " + digest + ", but " + expected_digest_ +
+           " was expected (--expect-digest); nothing written");
+  }
   file_.write_at(&header, sizeof header, 0);
   file_.commit();
 }

@@ -302,7 +302,7 @@ format::ElementType choose_cost_type(const CostColumn& column) {
 }
 
 void write_graph(const GraphInput& in, const std::filesystem::path& path,
-                 const Progress& progress) {
+                 const Progress& progress, std::string_view expect_digest) {
   check_input(in);
   const std::uint64_t n = in.vertex_count;
   const std::size_t m = in.tails.size();
@@ -342,6 +342,7 @@ void write_graph(const GraphInput& in, const std::filesystem::path& path,
   }
 
   FileWriter writer(path);
+  writer.expect_digest(expect_digest);
   add_metadata_section(writer, metadata);
   writer.add_section(SectionKind::forward_offsets, "forward_offsets", 1,
                      std::span<const std::uint64_t>(offsets));
@@ -374,7 +375,7 @@ void write_graph(const GraphInput& in, const std::filesystem::path& path,
 }
 
 void write_graph(const StreamedGraph& in, const std::filesystem::path& path,
-                 const Progress& progress) {
+                 const Progress& progress, std::string_view expect_digest) {
   const std::uint64_t n = in.vertex_count;
   const std::uint64_t m = in.arc_count;
   check_counts(n, m);
@@ -390,6 +391,7 @@ void write_graph(const StreamedGraph& in, const std::filesystem::path& path,
 
   // Every pass sees the same arcs: the first checks them, the others rely on that.
   FileWriter writer(path);
+  writer.expect_digest(expect_digest);
   add_metadata_section(writer, metadata);
   {
     writer.begin_section(SectionKind::forward_offsets, "forward_offsets", ElementType::u64, 1);

@@ -7,6 +7,7 @@
 The full suites write about 1.3 GB; these tests use the hidden subset options (--sizes, --vertices).
 """
 
+import hashlib
 import json
 import os
 import pty
@@ -69,8 +70,18 @@ class SyntheticTest(unittest.TestCase):
             return f.read()
 
     def manifest(self, directory):
+        """The MANIFEST's entries (spec/MANIFEST.md) as [benchmark, file, size, digest] rows, after
+        checking its header record and each entry's SHA-256 against the file."""
         with open(self.path(directory, "MANIFEST"), encoding="utf-8") as f:
-            return [line.split("\t") for line in f.read().splitlines()]
+            records = [json.loads(line) for line in f.read().splitlines()]
+        self.assertEqual(records[0], {"format": "mosb-manifest", "version": 1})
+        rows = []
+        for record in records[1:]:
+            self.assertEqual(record["sha256"],
+                             hashlib.sha256(self.read(directory, record["file"])).hexdigest())
+            rows.append([record["benchmark"], record["file"], str(record["size"]),
+                         record["digest"]])
+        return rows
 
 
 class GenerateNetMaker(SyntheticTest):

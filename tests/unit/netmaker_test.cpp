@@ -15,6 +15,7 @@
 #include "mosb/converters/suite.hpp"
 #include "mosb/error.hpp"
 #include "mosb/graph_reader.hpp"
+#include "mosb/manifest.hpp"
 #include "mosb/verify.hpp"
 #include "temp_dir.hpp"
 
@@ -267,11 +268,13 @@ TEST_CASE("a suite's files and MANIFEST do not depend on the thread count") {
         testing::read_bytes(dir / "three" / "MANIFEST"));
   CHECK(one[0].name == "NetMaker-N300-I20-1");
   CHECK(one[3].name == "NetMaker-N300-I50-2");
-  std::ifstream manifest(dir / "one" / "MANIFEST");
-  std::string line;
-  std::getline(manifest, line);
-  CHECK(line == one[0].name + "\t" + one[0].file + "\t" + std::to_string(one[0].size) + "\t" +
-                    one[0].digest);
+  const auto manifest = read_manifest(dir / "one" / "MANIFEST");
+  REQUIRE(manifest.entries.size() == 4);
+  CHECK(manifest.entries[0].benchmark == one[0].name);
+  CHECK(manifest.entries[0].file == one[0].file);
+  CHECK(manifest.entries[0].size == one[0].size);
+  CHECK(manifest.entries[0].digest == one[0].digest);
+  CHECK(manifest.entries[0].views == std::vector<std::string>{"NetMaker_3"});
   CHECK(one[0].size == std::filesystem::file_size(dir / "one" / one[0].file));
 }
 

@@ -41,6 +41,21 @@ CLI::Option* add_output_option(CLI::App* subcommand, std::string& output, const 
   return subcommand->add_option("-o,--output", output, what);
 }
 
+CLI::Option* add_expect_digest_option(CLI::App* subcommand, std::string& digest) {
+  return subcommand
+      ->add_option("--expect-digest", digest,
+                   "fail, writing nothing, unless the output's content digest is D")
+      ->option_text("D")
+      ->transform([](std::string value) {
+        for (auto& c : value)
+          if (c >= 'A' && c <= 'F') c = static_cast<char>(c - 'A' + 'a');
+        const bool hex = value.size() == 32 && value.find_first_not_of("0123456789abcdef") ==
+                                                   std::string::npos;
+        if (!hex) throw CLI::ValidationError("a content digest is 32 hex digits");
+        return value;
+      });
+}
+
 int report_written(const std::string& path, bool json) {
   // Header and table only (counts, digest): no payload is read, so the plain open checks suffice.
   const auto reader = GraphReader::open(path);

@@ -52,6 +52,11 @@ CLI::Option* add_seed_option(CLI::App* subcommand, std::uint64_t& seed, const st
 // The `-o,--output` option of a command that writes a file (or, for `export`, a directory).
 CLI::Option* add_output_option(CLI::App* subcommand, std::string& output, const std::string& what);
 
+// `--expect-digest D` of every `convert` and `generate` command: the content digest (32 hex
+// digits, FORMAT.md §8) the written file must have; with another, nothing is written
+// (spec/MANIFEST.md, "Proving a conversion"). Upper-case digits are taken as lower-case.
+CLI::Option* add_expect_digest_option(CLI::App* subcommand, std::string& digest);
+
 // --swamp and --water, the Moving AI terrain options of `convert guards` and `convert movingai`.
 struct TerrainOptions {
   std::string swamp = "passable";
@@ -80,6 +85,8 @@ Command add_convert(CLI::App& app);
 Command add_queries(CLI::App& app);  // queries.cpp: `queries import` and `queries generate`
 Command add_stats(CLI::App& app);
 Command add_export(CLI::App& app);  // export_dimacs.cpp: the `export` group and its children
+Command add_store(CLI::App& app);   // store.cpp: `store init|add|list|verify`
+Command add_suite(CLI::App& app);   // suite_build.cpp: `suite build`
 
 // Children of `generate`.
 Command add_generate_grid(CLI::App& generate);

@@ -22,6 +22,7 @@ struct DimacsArgs {
   unsigned id_base = 1;
   std::string cost_type;
   std::string output;
+  std::string expect_digest;
   std::vector<std::string> derive;
   std::string avg_outdegree_mode = "twice";
   std::string elevation;
@@ -61,7 +62,7 @@ int run_dimacs(const DimacsArgs& a) {
     auto graph = converters::convert_dimacs(o);
     converters::append_derived_columns(graph, extended, o.id_base);
     converters::add_views(graph, extended.views);
-    write_graph(graph, a.output, progress.callback());
+    write_graph(graph, a.output, progress.callback(), a.expect_digest);
   });
   return report_written(a.output, a.json);
 }
@@ -105,6 +106,7 @@ Command add_convert_dimacs(CLI::App& convert) {
   dimacs->add_option("--view", args->views,
                      "NAME=OBJ1,OBJ2,...[@QUERYSET]: a benchmark over some columns (repeatable)");
   add_output_option(dimacs, args->output, "the .mosb file to write")->required();
+  add_expect_digest_option(dimacs, args->expect_digest);
   add_json_flag(dimacs, args->json);
   return {dimacs, [args] { return run_dimacs(*args); }};
 }

@@ -21,6 +21,7 @@ struct GuardsArgs {
   TerrainOptions terrain;
   std::string name;
   std::string output;
+  std::string expect_digest;
   bool json = false;
 };
 
@@ -40,7 +41,7 @@ int run_guards(const GuardsArgs& a) {
   if (!a.write_exposure.empty())
     converters::write_text_atomically(a.write_exposure,
                                       converters::format_exposure(result.map, result.exposure));
-  write_graph(result.graph, a.output, progress.callback());
+  write_graph(result.graph, a.output, progress.callback(), a.expect_digest);
   return report_written(a.output, a.json);
 }
 
@@ -73,6 +74,7 @@ Command add_convert_guards(CLI::App& convert) {
   guards->add_option("--name", args->name,
                      "benchmark name (default: the map's base name without .map)");
   add_output_option(guards, args->output, "the .mosb file to write")->required();
+  add_expect_digest_option(guards, args->expect_digest);
   add_json_flag(guards, args->json);
   return {guards, [args] {
             if (args->exposure.empty() == args->guards.empty())

@@ -17,6 +17,7 @@ struct MovingaiArgs {
   TerrainOptions terrain;
   std::string name;
   std::string output;
+  std::string expect_digest;
   bool json = false;
 };
 
@@ -28,7 +29,7 @@ int run_movingai(const MovingaiArgs& a) {
   o.terrain = a.terrain.rules();
   if (!a.name.empty()) o.name = a.name;
   TerminalProgress progress;
-  write_graph(converters::convert_movingai(o), a.output, progress.callback());
+  write_graph(converters::convert_movingai(o), a.output, progress.callback(), a.expect_digest);
   return report_written(a.output, a.json);
 }
 
@@ -47,6 +48,7 @@ Command add_convert_movingai(CLI::App& convert) {
   movingai->add_option("--name", args->name,
                        "benchmark name (default: the map's base name without .map)");
   add_output_option(movingai, args->output, "the .mosb file to write")->required();
+  add_expect_digest_option(movingai, args->expect_digest);
   add_json_flag(movingai, args->json);
   return {movingai, [args] { return run_movingai(*args); }};
 }

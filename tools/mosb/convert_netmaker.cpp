@@ -16,6 +16,7 @@ struct ConvertNetMakerArgs {
   std::string input;
   std::string name;
   std::string output;
+  std::string expect_digest;
   bool json = false;
 };
 
@@ -31,6 +32,7 @@ Command add_convert_netmaker(CLI::App& convert) {
       ->check(CLI::ExistingFile);
   netmaker->add_option("--name", args->name, "benchmark name (default: the file's base name)");
   add_output_option(netmaker, args->output, "the .mosb file to write")->required();
+  add_expect_digest_option(netmaker, args->expect_digest);
   add_json_flag(netmaker, args->json);
   return {netmaker, [args] {
             check_output_is_not_input(args->output, {args->input});
@@ -38,7 +40,7 @@ Command add_convert_netmaker(CLI::App& convert) {
                 args->name.empty() ? std::nullopt : std::optional<std::string>(args->name);
             TerminalProgress progress;
             write_graph(converters::convert_netmaker(args->input, name), args->output,
-                        progress.callback());
+                        progress.callback(), args->expect_digest);
             return report_written(args->output, args->json);
           }};
 }

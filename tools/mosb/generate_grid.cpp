@@ -13,6 +13,7 @@ namespace {
 struct GridArgs {
   converters::GridParameters params;
   std::string output;
+  std::string expect_digest;
   std::string suite;
   std::vector<std::uint32_t> sizes = converters::paper_grid_sizes();
   unsigned threads = 0;
@@ -28,7 +29,7 @@ int run_grid(const GridArgs& a) {
   }
   if (a.output.empty()) throw UsageError("--output FILE is required (or --suite DIR)");
   // Streamed: memory holds the reverse CSR only, not the arc list (BENCHMARKS.md).
-  write_graph(converters::grid_graph(a.params), a.output, progress.callback());
+  write_graph(converters::grid_graph(a.params), a.output, progress.callback(), a.expect_digest);
   return report_written(a.output, a.json);
 }
 
@@ -53,6 +54,7 @@ Command add_generate_grid(CLI::App& generate) {
                          ->capture_default_str();
   add_seed_option(grid, p.seed, "seed of the specified generator (with --suite: of the suite)");
   auto* out = add_output_option(grid, args->output, "the .mosb file to write");
+  auto* expect = add_expect_digest_option(grid, args->expect_digest);
   auto* directory = grid->add_option(
       "--suite", args->suite,
       "write the paper's 49 Grid graphs (3 objectives) and a MANIFEST into this directory");
@@ -62,7 +64,7 @@ Command add_generate_grid(CLI::App& generate) {
                     ->check(CLI::Range(1u, 60000u))
                     ->group("");
   auto* threads = grid->add_option("--threads", args->threads, "suite worker threads")->group("");
-  for (auto* single_only : {width, height, objectives, out}) directory->excludes(single_only);
+  for (auto* single_only : {width, height, objectives, out, expect}) directory->excludes(single_only);
   sizes->needs(directory);
   threads->needs(directory);
   add_json_flag(grid, args->json);

@@ -14,6 +14,7 @@ struct NetMakerArgs {
   converters::NetMakerParameters params;
   std::string name;
   std::string output;
+  std::string expect_digest;
   std::string suite;
   unsigned threads = 0;
   bool json = false;
@@ -32,7 +33,7 @@ int run_netmaker(NetMakerArgs a, const CLI::App& app) {
   }
   if (a.output.empty()) throw UsageError("--output FILE is required (or --suite DIR)");
   if (!a.name.empty()) a.params.name = a.name;
-  write_graph(converters::netmaker_graph(a.params), a.output, progress.callback());
+  write_graph(converters::netmaker_graph(a.params), a.output, progress.callback(), a.expect_digest);
   return report_written(a.output, a.json);
 }
 
@@ -70,13 +71,14 @@ Command add_generate_netmaker(CLI::App& generate) {
   auto* name =
       netmaker->add_option("--name", args->name, "benchmark name (default NetMaker-N<N>-I<I>)");
   auto* output = add_output_option(netmaker, args->output, "the .mosb file to write");
+  auto* expect = add_expect_digest_option(netmaker, args->expect_digest);
   auto* suite = netmaker->add_option(
       "--suite", args->suite,
       "write the paper's 12 NetMaker graphs and a MANIFEST into this directory");
   netmaker
       ->add_option("--threads", args->threads, "worker threads for --suite (default: all cores)")
       ->group("");
-  for (auto* single_only : {amin, amax, locality, queries, percent, name, output})
+  for (auto* single_only : {amin, amax, locality, queries, percent, name, output, expect})
     suite->excludes(single_only);
   add_json_flag(netmaker, args->json);
   return {netmaker, [args, netmaker] { return run_netmaker(*args, *netmaker); }};

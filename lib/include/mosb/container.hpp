@@ -55,5 +55,7 @@ Container parse_container(std::span<const std::byte> bytes, std::string_view dis
 // The §8 content digest (32 lowercase hex digits) of a section table: independent of layout and
 // encoding, so a packed file and its unpacked form have the same digest.
 std::string content_digest(std::span<const Section> sections);
+// The same over the entries themselves (a writer's table, before any reader exists).
+std::string content_digest(std::span<const format::SectionEntry> table);
 
 }  // namespace mosb

@@ -49,6 +49,9 @@ class FileWriter {
   // Raises the header's version_minor to at least `minor` (default 0): a writer calls it for each
   // feature newer than 1.0 it uses, so the file states the lowest minor that can read it (§2).
   void require_minor(std::uint16_t minor) { version_minor_ = std::max(version_minor_, minor); }
+  // Makes commit() refuse (throwing mosb::Error that shows both digests, writing nothing under the
+  // target's name) a file whose content digest is not `digest`; empty: no expectation.
+  void expect_digest(std::string_view digest) { expected_digest_ = digest; }
 
   // Writes the table and header, then renames the file into place. objective_count counts the
   // `cost` sections (instance) or the `front_cost` sections (solution file).
@@ -68,6 +71,7 @@ class FileWriter {
   XXH3_state_s* hash_state_ = nullptr;
   format::FileKind file_kind_ = format::FileKind::instance;
   std::uint16_t version_minor_ = 0;
+  std::string expected_digest_;
 };
 
 }  // namespace mosb

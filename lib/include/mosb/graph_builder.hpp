@@ -63,9 +63,11 @@ struct GraphInput {
 // naming the column when values do not fit, are negative or are not finite.
 format::ElementType choose_cost_type(const CostColumn& column);
 
-// Validates the input and writes the instance atomically to `path`.
+// Validates the input and writes the instance atomically to `path`. With `expect_digest` (32 hex
+// digits) non-empty, a file whose content digest (FORMAT.md §8) differs is not written: throws
+// mosb::Error showing both digests, and `path` is left as it was.
 void write_graph(const GraphInput& input, const std::filesystem::path& path,
-                 const Progress& progress = {});
+                 const Progress& progress = {}, std::string_view expect_digest = {});
 
 // An instance whose generator can replay its arcs in ascending tail order (and its integer costs
 // in the same order) as often as asked: written without holding the arc list, the permutation or
@@ -91,7 +93,7 @@ struct StreamedGraph {
 };
 
 void write_graph(const StreamedGraph& graph, const std::filesystem::path& path,
-                 const Progress& progress = {});
+                 const Progress& progress = {}, std::string_view expect_digest = {});
 
 // The same instance as a GraphInput (for tests and for callers that edit it before writing).
 GraphInput materialize(const StreamedGraph& graph);

@@ -1,7 +1,6 @@
 // Writes a whole benchmark suite (many independent instances) into one directory, in parallel,
-// followed by a MANIFEST: one line `name<TAB>file<TAB>size<TAB>digest` per instance, sorted by
-// name, written atomically last (spec/GENERATORS.md, Suites). The bytes never depend on the thread
-// count.
+// followed by a MANIFEST (spec/MANIFEST.md, one record per file, sorted by file name), written
+// atomically last (spec/GENERATORS.md, Suites). The bytes never depend on the thread count.
 #pragma once
 
 #include <cstdint>
@@ -35,8 +34,8 @@ struct SuiteOptions {
   Progress progress;
 };
 
-// Creates `directory` if needed, writes every instance and then MANIFEST; returns the MANIFEST
-// lines. On failure throws the error of the lowest-index failing instance (no MANIFEST is written).
+// Creates `directory` if needed, writes every instance and then MANIFEST (replacing any earlier
+// one, of either format); returns one entry per instance, sorted by name. On failure throws the error of the lowest-index failing instance (no MANIFEST is written).
 std::vector<SuiteEntry> run_suite(const std::filesystem::path& directory,
                                   const std::vector<SuiteInstance>& instances,
                                   const SuiteOptions& options);

@@ -1,0 +1,69 @@
+// The one list of files every mosb place that publishes files writes (store, suites): JSON Lines,
+// a header record then one record per file (spec/MANIFEST.md). The older suite MANIFEST (TSV,
+// spec/GENERATORS.md) is still read and is replaced by this format on the next write.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace mosb {
+
+// Raw input `i` of the instance (FORMAT.md §7 `source.input.<i>.*`).
+struct SourceInput {
+  std::string name;
+  std::uint64_t size = 0;
+  std::string xxh3;  // 16 lowercase hex digits
+  bool operator==(const SourceInput&) const = default;
+};
+
+struct ManifestEntry {
+  std::string file;       // base name, no directory
+  std::uint64_t size = 0;  // bytes of the file as stored (packed or not)
+  std::string sha256;     // of the file bytes as stored, 64 hex digits
+  std::string digest;     // FORMAT.md §8 content digest, 32 hex digits
+  std::string format_version;  // "MAJOR.MINOR" of the file header
+  bool packed = false;
+  std::string benchmark;                // metadata `benchmark`; may be empty
+  std::vector<std::string> views;       // names of the §7 views, sorted
+  std::vector<std::string> query_sets;  // names of the queries sections, sorted
+  std::vector<SourceInput> sources;     // in input order
+  bool operator==(const ManifestEntry&) const = default;
+};
+
+struct Manifest {
+  std::vector<ManifestEntry> entries;  // sorted by file name, names unique
+  // True when read from the older TSV MANIFEST: only file, size, digest and benchmark are known
+  // (sha256 and the rest are empty).
+  bool legacy = false;
+
+  const ManifestEntry* find(std::string_view file) const;
+};
+
+inline constexpr std::string_view kManifestFormat = "mosb-manifest";
+inline constexpr int kManifestVersion = 1;
+inline constexpr std::string_view kManifestName = "MANIFEST";
+
+// Parses either format; throws mosb::Error "NAME:LINE: problem" on text that is neither.
+Manifest parse_manifest(std::string_view text, const std::string& display_name);
+// Reads and parses; throws mosb::Error (ErrorCode::io) naming the file when it cannot be read.
+Manifest read_manifest(const std::filesystem::path& path);
+// The JSON Lines text: header record, then the entries sorted by file name, keys sorted, no
+// timestamps: equal manifests give equal bytes. Throws on a duplicate or invalid file name.
+std::string serialize_manifest(const Manifest& manifest);
+// serialize_manifest through mosb::AtomicFile: readers see the old or the new manifest.
+void write_manifest(const std::filesystem::path& path, const Manifest& manifest);
+
+// The entry for one mosb file, read from its bytes: opens it (header level), hashes it, and reads
+// its metadata (for a packed file whose metadata cannot be read without unpacking, the
+// metadata-derived fields stay empty). `file` in the entry is the path's base name.
+ManifestEntry describe_file(const std::filesystem::path& path);
+
+// True when `name` may be a manifest file name: non-empty, not "." or "..", no '/', no NUL,
+// no control characters, not the manifest's own name.
+bool is_valid_manifest_file_name(std::string_view name);
+
+}  // namespace mosb

@@ -1,0 +1,114 @@
+// A store: a directory of mosb files and the MANIFEST that lists them (spec/MANIFEST.md). Files are
+// added atomically (each file, then the manifest, last); checking a store, or files against a
+// published manifest, reports every kind of wrong entry; an instance is found by benchmark or view
+// name. A store on a read-only directory can be listed, checked and opened without any write.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "mosb/graph_reader.hpp"
+#include "mosb/manifest.hpp"
+#include "mosb/progress.hpp"
+
+namespace mosb {
+
+// One problem found with one file. `kind` is one of: missing, extra, wrong-size, wrong-sha256,
+// wrong-digest, unreadable, damaged.
+struct FileProblem {
+  std::string kind;
+  std::string detail;  // one line, names the file
+};
+
+struct FileCheck {
+  std::string file;  // base name (the listed name; for an extra file, its name)
+  std::filesystem::path path;
+  std::vector<FileProblem> problems;  // empty: the file is what the manifest says
+  std::string note;                   // e.g. why a packed file was checked only so far
+  bool ok() const { return problems.empty(); }
+};
+
+struct CheckOptions {
+  unsigned threads = 0;  // 0: std::thread::hardware_concurrency()
+  Progress progress;     // stage "verify": 0 first, then once per checked file, serialized
+};
+
+// Checks each (entry, path) pair: existence, size, SHA-256 (when listed), readability, that it is
+// a mosb file passing verify --level full, and its content digest. Results in input order.
+std::vector<FileCheck> check_files(const std::vector<std::pair<ManifestEntry, std::filesystem::path>>& files,
+                                   const CheckOptions& options);
+
+// The published manifest at `manifest_path` against files: with `paths` empty, every entry in the
+// manifest's directory (a file missing there is reported); otherwise exactly those paths, each
+// matched by base name (a path the manifest does not list is reported as `extra`).
+std::vector<FileCheck> check_against_manifest(const std::filesystem::path& manifest_path,
+                                              const std::vector<std::filesystem::path>& paths,
+                                              const CheckOptions& options);
+
+// One raw input of an instance (§7 `source.input.<i>.*`) compared with the file of that name in a
+// directory. `problem` is empty when it matches.
+struct SourceCheck {
+  SourceInput expected;
+  std::filesystem::path path;
+  std::string problem;  // "", or one line: missing, wrong size, wrong XXH3
+};
+// Throws when the instance records no raw input (nothing to check).
+std::vector<SourceCheck> check_sources(const GraphReader& instance,
+                                       const std::filesystem::path& directory);
+
+// XXH3-64 of a file's bytes as 16 lowercase hex digits, streamed (as `source.input.<i>.xxh3`).
+std::string xxh3_file(const std::filesystem::path& path);
+
+// A store's entry resolved for a benchmark: the reader, the file and the view to use.
+struct StoreInstance {
+  GraphReader reader;  // opened at VerifyLevel::full
+  ManifestEntry entry;
+  std::filesystem::path path;  // the file mapped (for a packed entry: its unpacked cache copy)
+  std::optional<View> view;    // nullopt: the whole file (every objective)
+  std::string query_set;       // the view's query set, or "" when it names none
+};
+
+class Store {
+ public:
+  // Creates `directory` (if needed) and an empty manifest; refuses a directory that has one.
+  static Store init(const std::filesystem::path& directory);
+  // Reads the manifest; throws mosb::Error when `directory` has none. Writes nothing.
+  static Store open(const std::filesystem::path& directory);
+
+  const std::filesystem::path& directory() const { return directory_; }
+  const Manifest& manifest() const { return manifest_; }
+  std::filesystem::path manifest_path() const { return directory_ / kManifestName; }
+
+  struct AddOptions {
+    bool move = false;  // rename (or copy, then remove) the source instead of copying it
+    Progress progress;  // stage "add": once per file
+  };
+  // Copies (or moves) each file in under its base name, each through mosb::AtomicFile, then
+  // rewrites the manifest atomically, last. A file must open as a mosb file and pass verify
+  // --level full (unless packed). A name already listed with other bytes is refused; the same
+  // bytes again are accepted (a retry after an interrupted add). Returns the new entries.
+  std::vector<ManifestEntry> add(const std::vector<std::filesystem::path>& files,
+                                 const AddOptions& options);
+
+  // Every entry (see check_files) plus every file in the directory the manifest does not list
+  // (`extra`; names starting with '.' are the store's own temporaries and cache, not counted).
+  std::vector<FileCheck> verify(const CheckOptions& options) const;
+
+  // Resolves `name`, in this order: "BENCHMARK/VIEW"; a view name served by exactly one entry;
+  // a benchmark name served by exactly one entry (with its only view if it has exactly one,
+  // otherwise the whole file). Throws mosb::Error (ErrorCode::not_found) listing what was
+  // ambiguous or what exists.
+  StoreInstance instance(std::string_view name) const;
+
+ private:
+  Store(std::filesystem::path directory, Manifest manifest)
+      : directory_(std::move(directory)), manifest_(std::move(manifest)) {}
+  std::filesystem::path directory_;
+  Manifest manifest_;
+};
+
+}  // namespace mosb

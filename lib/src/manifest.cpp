@@ -1,0 +1,260 @@
+#include "mosb/manifest.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "mosb/atomic_file.hpp"
+#include "mosb/error.hpp"
+#include "mosb/graph_reader.hpp"
+#include "mosb/metadata.hpp"
+#include "mosb/sha256.hpp"
+
+namespace mosb {
+
+namespace {
+
+using Json = nlohmann::json;
+
+bool is_lower_hex(std::string_view text, std::size_t digits) {
+  return text.size() == digits && std::all_of(text.begin(), text.end(), [](char c) {
+           return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
+         });
+}
+
+Json to_json(const ManifestEntry& e) {
+  Json sources = Json::array();
+  for (const auto& s : e.sources)
+    sources.push_back(Json{{"name", s.name}, {"size", s.size}, {"xxh3", s.xxh3}});
+  return Json{{"file", e.file},
+              {"size", e.size},
+              {"sha256", e.sha256},
+              {"digest", e.digest},
+              {"format_version", e.format_version},
+              {"packed", e.packed},
+              {"benchmark", e.benchmark},
+              {"views", e.views},
+              {"query_sets", e.query_sets},
+              {"sources", sources}};
+}
+
+struct LineError {
+  std::string message;
+};
+
+template <class T>
+T field(const Json& object, const char* key, bool required, T fallback = {}) {
+  const auto it = object.find(key);
+  if (it == object.end()) {
+    if (required) throw LineError{std::string("missing key '") + key + "'"};
+    return fallback;
+  }
+  try {
+    return it->get<T>();
+  } catch (const Json::exception&) {
+    throw LineError{std::string("key '") + key + "' has the wrong type"};
+  }
+}
+
+ManifestEntry entry_from_json(const Json& object) {
+  if (!object.is_object()) throw LineError{"not a JSON object"};
+  ManifestEntry e;
+  e.file = field<std::string>(object, "file", true);
+  if (!is_valid_manifest_file_name(e.file))
+    throw LineError{"invalid file name '" + e.file + "' (a base name, no directory)"};
+  e.size = field<std::uint64_t>(object, "size", true);
+  e.sha256 = field<std::string>(object, "sha256", true);
+  if (!is_lower_hex(e.sha256, 64)) throw LineError{"sha256 is not 64 lowercase hex digits"};
+  e.digest = field<std::string>(object, "digest", true);
+  if (!is_lower_hex(e.digest, 32)) throw LineError{"digest is not 32 lowercase hex digits"};
+  e.format_version = field<std::string>(object, "format_version", false);
+  e.packed = field<bool>(object, "packed", false);
+  e.benchmark = field<std::string>(object, "benchmark", false);
+  e.views = field<std::vector<std::string>>(object, "views", false);
+  e.query_sets = field<std::vector<std::string>>(object, "query_sets", false);
+  const auto sources = object.find("sources");
+  if (sources != object.end()) {
+    if (!sources->is_array()) throw LineError{"key 'sources' has the wrong type"};
+    for (const auto& s : *sources) {
+      if (!s.is_object()) throw LineError{"a 'sources' element is not an object"};
+      e.sources.push_back({field<std::string>(s, "name", true), field<std::uint64_t>(s, "size", true),
+                           field<std::string>(s, "xxh3", true)});
+    }
+  }
+  return e;
+}
+
+std::vector<std::string_view> split_lines(std::string_view text) {
+  std::vector<std::string_view> lines;
+  while (!text.empty()) {
+    const auto end = text.find('\n');
+    lines.push_back(text.substr(0, end));
+    if (end == std::string_view::npos) break;
+    text.remove_prefix(end + 1);
+  }
+  return lines;
+}
+
+// The older suite MANIFEST: `name<TAB>file<TAB>size<TAB>digest` per line (spec/GENERATORS.md).
+Manifest parse_legacy(const std::vector<std::string_view>& lines, const std::string& name) {
+  Manifest manifest;
+  manifest.legacy = true;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    const auto where = name + ":" + std::to_string(i + 1) + ": ";
+    std::vector<std::string> fields;
+    std::string_view rest = lines[i];
+    for (;;) {
+      const auto tab = rest.find('\t');
+      fields.emplace_back(rest.substr(0, tab));
+      if (tab == std::string_view::npos) break;
+      rest.remove_prefix(tab + 1);
+    }
+    if (fields.size() != 4)
+      throw Error(where + "neither a JSON Lines manifest nor a TSV MANIFEST line of 4 fields");
+    ManifestEntry e;
+    e.benchmark = fields[0];
+    e.file = fields[1];
+    if (!is_valid_manifest_file_name(e.file))
+      throw Error(where + "invalid file name '" + e.file + "'");
+    const auto& size = fields[2];
+    if (size.empty() || size.size() > 19 ||
+        !std::all_of(size.begin(), size.end(), [](char c) { return c >= '0' && c <= '9'; }))
+      throw Error(where + "size '" + size + "' is not a number");
+    e.size = std::stoull(size);
+    e.digest = fields[3];
+    if (!is_lower_hex(e.digest, 32)) throw Error(where + "digest is not 32 lowercase hex digits");
+    manifest.entries.push_back(std::move(e));
+  }
+  return manifest;
+}
+
+void sort_and_check_unique(Manifest& manifest, const std::string& name) {
+  std::sort(manifest.entries.begin(), manifest.entries.end(),
+            [](const auto& a, const auto& b) { return a.file < b.file; });
+  for (std::size_t i = 1; i < manifest.entries.size(); ++i)
+    if (manifest.entries[i].file == manifest.entries[i - 1].file)
+      throw Error(name + ": file '" + manifest.entries[i].file + "' listed twice");
+}
+
+}  // namespace
+
+const ManifestEntry* Manifest::find(std::string_view file) const {
+  const auto it = std::lower_bound(entries.begin(), entries.end(), file,
+                                   [](const ManifestEntry& e, std::string_view f) { return e.file < f; });
+  return it != entries.end() && it->file == file ? &*it : nullptr;
+}
+
+bool is_valid_manifest_file_name(std::string_view name) {
+  if (name.empty() || name == "." || name == ".." || name == kManifestName) return false;
+  return std::none_of(name.begin(), name.end(), [](char c) {
+    return c == '/' || static_cast<unsigned char>(c) < 0x20 || c == 0x7F;
+  });
+}
+
+Manifest parse_manifest(std::string_view text, const std::string& display_name) {
+  auto lines = split_lines(text);
+  if (lines.empty()) throw Error(display_name + ": empty manifest (no header record)");
+  if (lines.front().empty() || lines.front().front() != '{') {
+    auto manifest = parse_legacy(lines, display_name);
+    sort_and_check_unique(manifest, display_name);
+    return manifest;
+  }
+  Manifest manifest;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    const auto where = display_name + ":" + std::to_string(i + 1) + ": ";
+    Json record;
+    try {
+      record = Json::parse(lines[i]);
+    } catch (const Json::parse_error& e) {
+      throw Error(where + "not JSON (byte " + std::to_string(e.byte) + ")");
+    }
+    try {
+      if (i == 0) {
+        if (!record.is_object() || field<std::string>(record, "format", true) != kManifestFormat)
+          throw LineError{"the header record does not name format \"mosb-manifest\""};
+        const auto version = field<int>(record, "version", true);
+        if (version != kManifestVersion)
+          throw LineError{"manifest version " + std::to_string(version) + ", this mosb reads " +
+                          std::to_string(kManifestVersion)};
+        continue;
+      }
+      manifest.entries.push_back(entry_from_json(record));
+    } catch (const LineError& e) {
+      throw Error(where + e.message);
+    }
+  }
+  sort_and_check_unique(manifest, display_name);
+  return manifest;
+}
+
+Manifest read_manifest(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(ErrorCode::io, path.string() + ": cannot read the manifest");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw Error(ErrorCode::io, path.string() + ": cannot read the manifest");
+  return parse_manifest(text.str(), path.string());
+}
+
+std::string serialize_manifest(const Manifest& manifest) {
+  auto entries = manifest.entries;
+  Manifest sorted{std::move(entries), false};
+  sort_and_check_unique(sorted, std::string(kManifestName));
+  std::string text =
+      Json{{"format", kManifestFormat}, {"version", kManifestVersion}}.dump() + '\n';
+  for (const auto& e : sorted.entries) {
+    if (!is_valid_manifest_file_name(e.file))
+      throw Error(std::string(kManifestName) + ": invalid file name '" + e.file + "'");
+    // nlohmann::json keeps object keys in a std::map: sorted. Invalid UTF-8 is replaced, never
+    // thrown on, so a manifest can always be written.
+    text += to_json(e).dump(-1, ' ', false, Json::error_handler_t::replace) + '\n';
+  }
+  return text;
+}
+
+void write_manifest(const std::filesystem::path& path, const Manifest& manifest) {
+  const auto text = serialize_manifest(manifest);
+  AtomicFile file(path);
+  file.write(text);
+  file.commit();
+}
+
+ManifestEntry describe_file(const std::filesystem::path& path) {
+  const auto reader = GraphReader::open(path);
+  ManifestEntry e;
+  e.file = path.filename().string();
+  e.size = reader.bytes().size();
+  e.sha256 = sha256_hex(reader.bytes());
+  e.digest = reader.digest();
+  e.format_version = std::to_string(reader.header().version_major) + "." +
+                     std::to_string(reader.header().version_minor);
+  e.packed = reader.header().required_features != 0;
+  for (const auto* s : reader.all(format::SectionKind::queries)) e.query_sets.push_back(s->name);
+  std::sort(e.query_sets.begin(), e.query_sets.end());
+  try {
+    const auto& metadata = reader.metadata();
+    e.benchmark = metadata.get("benchmark").value_or("");
+    for (const auto& view : view_keys(metadata)) e.views.push_back(view.name);
+    for (std::size_t i = 0;; ++i) {
+      const auto key = "source.input." + std::to_string(i);
+      const auto name = metadata.get(key + ".name");
+      if (!name) break;
+      SourceInput input{*name, 0, metadata.get(key + ".xxh3").value_or("")};
+      const auto size = metadata.get(key + ".size").value_or("0");
+      try {
+        input.size = std::stoull(size);
+      } catch (const std::exception&) {
+        throw Error(ErrorCode::damaged, path.string() + ": metadata " + key + ".size '" + size +
+                                            "' is not a number");
+      }
+      e.sources.push_back(std::move(input));
+    }
+  } catch (const Error& error) {
+    if (error.code() != ErrorCode::packed) throw;
+  }
+  return e;
+}
+
+}  // namespace mosb
