@@ -19,6 +19,10 @@ namespace mosb::converters {
 struct SuiteEntry;
 }
 
+namespace mosb {
+struct FileCheck;
+}
+
 namespace mosb::converters {
 struct TerrainRules;
 }
@@ -77,6 +81,11 @@ int report_written(const std::string& path, bool json);
 // "instances": [{"name", "file", "size", "digest"}, ...]}; returns 0.
 int report_suite(const std::string& directory, const std::string& family,
                  const std::vector<converters::SuiteEntry>& entries, bool json);
+
+// The per-file report of a store or manifest check (store.cpp): "OK   FILE" or one "FAIL KIND:
+// DETAIL" line per problem and a count, or with `json` {"ok", "files": [{"file", "ok",
+// "problems": [{"kind", "detail"}], "note"?}]}; returns 0 when every file is ok, else 1.
+int report_checks(const std::vector<FileCheck>& checks, bool json);
 
 Command add_inspect(CLI::App& app);
 Command add_verify(CLI::App& app);

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "mosb/store.hpp"
 #include "json_writer.hpp"
 #include "terminal_progress.hpp"
 
@@ -15,8 +16,52 @@ namespace {
 struct VerifyArgs {
   std::vector<std::string> files;
   std::string level = "full";
+  std::string manifest;
+  std::string sources;
   bool json = false;
 };
+
+// `verify --manifest FILE [PATH...]`: downloaded files against a published manifest.
+int run_verify_manifest(const VerifyArgs& a) {
+  TerminalProgress display;
+  std::vector<std::filesystem::path> paths(a.files.begin(), a.files.end());
+  return report_checks(check_against_manifest(a.manifest, paths, {0, display.callback()}), a.json);
+}
+
+// `verify --sources DIR FILE`: the raw files in DIR against FILE's source.input.* provenance.
+int run_verify_sources(const VerifyArgs& a) {
+  if (a.files.size() != 1) throw UsageError("--sources DIR takes exactly one instance FILE");
+  const auto checks = check_sources(GraphReader::open(a.files.front()), a.sources);
+  std::size_t failures = 0;
+  for (const auto& c : checks) failures += c.problem.empty() ? 0 : 1;
+  if (a.json) {
+    JsonWriter json(std::cout);
+    json.begin_object();
+    json.key("file").value(a.files.front());
+    json.key("ok").value(failures == 0);
+    json.key("sources").begin_array();
+    for (const auto& c : checks) {
+      json.begin_object();
+      json.key("name").value(c.expected.name);
+      json.key("size").value(c.expected.size);
+      json.key("xxh3").value(c.expected.xxh3);
+      json.key("ok").value(c.problem.empty());
+      if (!c.problem.empty()) json.key("problem").value(c.problem);
+      json.end_object();
+    }
+    json.end_array();
+    json.end_object();
+  } else {
+    for (const auto& c : checks) {
+      if (c.problem.empty())
+        std::cout << "OK   " << c.path.string() << " (" << c.expected.size << " bytes, XXH3 "
+                  << c.expected.xxh3 << ")\n";
+      else
+        std::cout << "FAIL " << c.problem << '\n';
+    }
+  }
+  return failures == 0 ? 0 : 1;
+}
 
 struct Outcome {
   std::string file;
@@ -25,6 +70,9 @@ struct Outcome {
 };
 
 int run_verify(const VerifyArgs& a) {
+  if (!a.manifest.empty()) return run_verify_manifest(a);
+  if (!a.sources.empty()) return run_verify_sources(a);
+  if (a.files.empty()) throw UsageError("INSTANCE is required (or --manifest FILE)");
   const auto verify_level = *parse_verify_level(a.level);
   TerminalProgress display;
   // One file: its own checks are the progress; several: the files are.
@@ -82,10 +130,20 @@ int run_verify(const VerifyArgs& a) {
 Command add_verify(CLI::App& app) {
   auto* sub = app.add_subcommand("verify", "Check files: header, checksums, structure, or all");
   auto args = std::make_shared<VerifyArgs>();
-  sub->add_option("INSTANCE", args->files, "the .mosb instances to verify")->required();
-  sub->add_option("--level", args->level, "how much to check")
-      ->check(CLI::IsMember({"header", "checksums", "structure", "full"}))
-      ->capture_default_str();
+  sub->add_option("INSTANCE", args->files,
+                  "the .mosb instances to verify (with --manifest: the files to check, default "
+                  "every listed file beside the manifest)");
+  auto* level = sub->add_option("--level", args->level, "how much to check")
+                    ->check(CLI::IsMember({"header", "checksums", "structure", "full"}))
+                    ->capture_default_str();
+  auto* manifest = sub->add_option(
+      "--manifest", args->manifest,
+      "check files against this published MANIFEST (size, SHA-256, digest, full verification)");
+  auto* sources = sub->add_option(
+      "--sources", args->sources,
+      "check that the raw files in this directory are the instance's recorded inputs");
+  manifest->excludes(sources);
+  level->excludes(manifest)->excludes(sources);
   add_json_flag(sub, args->json);
   return {sub, [args] { return run_verify(*args); }};
 }
