@@ -1,0 +1,336 @@
+#!/usr/bin/python3
+"""End-to-end tests of the store and its MANIFEST (spec/MANIFEST.md): `mosb store`, `mosb verify
+--manifest/--sources`, `--expect-digest`, `mosb suite build`.
+
+    MOSB=build/release/tools/mosb /usr/bin/python3 tests/cli/test_store.py
+"""
+
+import hashlib
+import json
+import os
+import random
+import shutil
+import signal
+import stat
+import subprocess
+import tempfile
+import time
+import unittest
+
+MOSB = os.path.abspath(os.environ.get("MOSB", "mosb"))
+GR = "p sp 4 5\na 1 2 5\na 2 3 7\na 3 1 2\na 3 4 1\na 4 1 9\n"
+
+
+def run(*args):
+    return subprocess.run([MOSB, *args], capture_output=True, text=True)
+
+
+def read(path):
+    with open(path, "rb") as f:
+        return f.read()
+
+
+def grid(path, width, height=4, seed=1):
+    r = run("generate", "grid", "--width", str(width), "--height", str(height), "--seed",
+            str(seed), "-o", path)
+    assert r.returncode == 0, r
+    return path
+
+
+class Base(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="mosb-store-")
+        self.addCleanup(self.cleanup)
+
+    def cleanup(self):
+        for root, dirs, _ in os.walk(self.dir):
+            for d in dirs:
+                os.chmod(os.path.join(root, d), 0o755)
+        os.chmod(self.dir, 0o755)
+        shutil.rmtree(self.dir, True)
+
+    def path(self, *names):
+        return os.path.join(self.dir, *names)
+
+    def ok(self, *args):
+        r = run(*args)
+        self.assertEqual(r.returncode, 0, r)
+        return r
+
+    def records(self, manifest):
+        lines = read(manifest).decode().splitlines()
+        return json.loads(lines[0]), [json.loads(line) for line in lines[1:]]
+
+    def store_with(self, *widths):
+        store = self.path("store")
+        self.ok("store", "init", store)
+        files = [grid(self.path("g%d.mosb" % w), w) for w in widths]
+        self.ok("store", "add", store, *files)
+        return store
+
+    def verify_json(self, *args):
+        r = run(*args, "--json")
+        return r.returncode, json.loads(r.stdout)
+
+    def problems(self, report):
+        return sorted((f["file"], p["kind"]) for f in report["files"] for p in f["problems"])
+
+
+class Manifest(Base):
+    def test_add_writes_sorted_json_lines_with_sha256_and_metadata(self):
+        store = self.store_with(7, 5)
+        header, entries = self.records(os.path.join(store, "MANIFEST"))
+        self.assertEqual(header, {"format": "mosb-manifest", "version": 1})
+        self.assertEqual([e["file"] for e in entries], ["g5.mosb", "g7.mosb"])
+        for e in entries:
+            data = read(os.path.join(store, e["file"]))
+            self.assertEqual(e["sha256"], hashlib.sha256(data).hexdigest())
+            self.assertEqual(e["size"], len(data))
+            self.assertEqual(e["views"], ["Grid_2", "Grid_3"])
+            self.assertEqual(e["benchmark"], "Grid-%dx4" % (5 if e["file"] == "g5.mosb" else 7))
+            self.assertFalse(e["packed"])
+            self.assertEqual(e["format_version"], "1.0")
+            self.assertEqual(list(e), sorted(e), "keys sorted")
+        # Copies, not moves, by default; --move removes the source.
+        self.assertTrue(os.path.exists(self.path("g5.mosb")))
+        grid(self.path("g9.mosb"), 9)
+        self.ok("store", "add", "--move", store, self.path("g9.mosb"))
+        self.assertFalse(os.path.exists(self.path("g9.mosb")))
+        listed = json.loads(self.ok("store", "list", "--json", store).stdout)
+        self.assertEqual([e["file"] for e in listed["entries"]], ["g5.mosb", "g7.mosb", "g9.mosb"])
+
+    def test_verify_reports_every_kind_of_wrong_entry(self):
+        store = self.store_with(3, 4, 5, 6, 7, 8)
+        code, report = self.verify_json("store", "verify", store)
+        self.assertEqual(code, 0, report)
+        self.assertEqual(self.problems(report), [])
+        s = lambda name: os.path.join(store, name)
+        os.remove(s("g3.mosb"))                                   # missing
+        grid(s("extra.mosb"), 2)                                  # extra
+        with open(s("g4.mosb"), "ab") as f:                       # wrong size (and sha256)
+            f.write(b"\0" * 64)
+        header, entries = self.records(s("MANIFEST"))
+        for e in entries:                                         # wrong sha256 / digest listed
+            if e["file"] == "g5.mosb":
+                e["sha256"] = "0" * 64
+            if e["file"] == "g6.mosb":
+                e["digest"] = "0" * 32
+        with open(s("MANIFEST"), "w") as f:
+            f.write("".join(json.dumps(r, sort_keys=True) + "\n" for r in [header] + entries))
+        data = bytearray(read(s("g7.mosb")))                      # damaged payload
+        data[-(len(data) // 3)] ^= 0xFF
+        with open(s("g7.mosb"), "wb") as f:
+            f.write(data)
+        os.chmod(s("g8.mosb"), 0)                                 # unreadable
+        code, report = self.verify_json("store", "verify", store)
+        self.assertEqual(code, 1)
+        found = self.problems(report)
+        self.assertIn(("g3.mosb", "missing"), found)
+        self.assertIn(("extra.mosb", "extra"), found)
+        self.assertIn(("g4.mosb", "wrong-size"), found)
+        self.assertIn(("g4.mosb", "wrong-sha256"), found)
+        self.assertIn(("g5.mosb", "wrong-sha256"), found)
+        self.assertIn(("g6.mosb", "wrong-digest"), found)
+        self.assertIn(("g7.mosb", "wrong-sha256"), found)
+        self.assertTrue({("g7.mosb", "damaged"), ("g7.mosb", "wrong-digest")} & set(found), found)
+        if os.geteuid() != 0:  # root reads a mode-0 file
+            self.assertIn(("g8.mosb", "unreadable"), found)
+        # The text report names each file and ends non-zero.
+        r = run("store", "verify", store)
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("FAIL missing: " + s("g3.mosb"), r.stdout)
+        self.assertIn("FAIL wrong-digest: " + s("g6.mosb"), r.stdout)
+
+    def test_verify_manifest_checks_downloads_without_a_store(self):
+        store = self.store_with(3, 4)
+        download = self.path("download")
+        os.mkdir(download)
+        shutil.copy(os.path.join(store, "g3.mosb"), download)
+        shutil.copy(os.path.join(store, "g4.mosb"), download)
+        manifest = os.path.join(store, "MANIFEST")
+        self.ok("verify", "--manifest", manifest, os.path.join(download, "g3.mosb"),
+                os.path.join(download, "g4.mosb"))
+        with open(os.path.join(download, "g4.mosb"), "r+b") as f:
+            f.seek(200)
+            byte = f.read(1)
+            f.seek(200)
+            f.write(bytes([byte[0] ^ 1]))
+        grid(os.path.join(download, "other.mosb"), 2)
+        r = run("verify", "--json", "--manifest", manifest, os.path.join(download, "g3.mosb"),
+                os.path.join(download, "g4.mosb"), os.path.join(download, "other.mosb"))
+        self.assertEqual(r.returncode, 1)
+        found = self.problems(json.loads(r.stdout))
+        self.assertIn(("g4.mosb", "wrong-sha256"), found)
+        self.assertIn(("other.mosb", "extra"), found)
+        self.assertNotIn("g3.mosb", [f for f, _ in found])
+        # Without paths: the files beside the manifest.
+        self.ok("verify", "--manifest", manifest)
+
+    def test_old_tsv_manifest_is_read_and_converted_on_the_next_write(self):
+        store = self.path("store")
+        os.mkdir(store)
+        g = grid(os.path.join(store, "a.mosb"), 3)
+        digest = json.loads(self.ok("inspect", "--json", g).stdout)["digest"]
+        with open(os.path.join(store, "MANIFEST"), "w") as f:
+            f.write("Grid-3x4\ta.mosb\t%d\t%s\n" % (os.path.getsize(g), digest))
+        listed = json.loads(self.ok("store", "list", "--json", store).stdout)["entries"]
+        self.assertEqual([(e["file"], e["digest"], e["sha256"]) for e in listed],
+                         [("a.mosb", digest, "")])
+        self.ok("store", "verify", store)
+        self.ok("verify", "--manifest", os.path.join(store, "MANIFEST"))
+        with open(os.path.join(store, "MANIFEST"), "w") as f:
+            f.write("Grid-3x4\ta.mosb\t%d\t%s\n" % (os.path.getsize(g), "1" * 32))
+        self.assertEqual(run("store", "verify", store).returncode, 1)
+        with open(os.path.join(store, "MANIFEST"), "w") as f:
+            f.write("Grid-3x4\ta.mosb\t%d\t%s\n" % (os.path.getsize(g), digest))
+        self.ok("store", "add", store, grid(self.path("b.mosb"), 4))
+        header, entries = self.records(os.path.join(store, "MANIFEST"))
+        self.assertEqual(header["format"], "mosb-manifest")
+        self.assertEqual([e["file"] for e in entries], ["a.mosb", "b.mosb"])
+
+    def test_a_malformed_manifest_is_one_line_naming_the_file(self):
+        store = self.path("store")
+        os.mkdir(store)
+        with open(os.path.join(store, "MANIFEST"), "w") as f:
+            f.write('{"format":"mosb-manifest","version":1}\n{"file":"a.mosb"\n')
+        r = run("store", "list", store)
+        self.assertEqual(r.returncode, 1)
+        self.assertRegex(r.stderr, r"^mosb: .*MANIFEST:2: not JSON")
+        self.assertEqual(len(r.stderr.splitlines()), 1)
+
+    def test_add_refuses_a_damaged_file_and_leaves_the_store_as_it_was(self):
+        store = self.store_with(3)
+        before = read(os.path.join(store, "MANIFEST"))
+        bad = bytearray(read(grid(self.path("bad.mosb"), 5)))
+        bad[-(len(bad) // 3)] ^= 0xFF
+        with open(self.path("bad.mosb"), "wb") as f:
+            f.write(bad)
+        r = run("store", "add", store, self.path("bad.mosb"))
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("bad.mosb", r.stderr)
+        self.assertEqual(read(os.path.join(store, "MANIFEST")), before)
+        self.assertEqual(sorted(os.listdir(store)), ["MANIFEST", "g3.mosb"])
+
+    def test_read_only_store_is_listed_and_verified_without_writing(self):
+        store = self.store_with(3, 4)
+        os.chmod(store, 0o555)
+        before = sorted(os.listdir(store))
+        self.ok("store", "list", store)
+        self.ok("store", "verify", store)
+        self.ok("verify", "--manifest", os.path.join(store, "MANIFEST"))
+        self.assertEqual(sorted(os.listdir(store)), before)
+
+
+class KilledAdd(Base):
+    def test_kill_9_during_add_leaves_a_valid_manifest(self):
+        store = self.store_with(3)
+        big = grid(self.path("big.mosb"), 1000, 1000)
+        small = [grid(self.path("s%d.mosb" % i), 4 + i) for i in range(3)]
+        old = read(os.path.join(store, "MANIFEST"))
+        rng = random.Random(5)
+        states = set()
+        for attempt in range(6):
+            p = subprocess.Popen([MOSB, "store", "add", store, big, *small],
+                                 stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+            time.sleep(rng.uniform(0.0, 0.4))
+            p.send_signal(signal.SIGKILL)
+            p.wait()
+            manifest = read(os.path.join(store, "MANIFEST"))
+            header, entries = self.records(os.path.join(store, "MANIFEST"))
+            self.assertEqual(header["format"], "mosb-manifest")
+            names = [e["file"] for e in entries]
+            states.add(tuple(names))
+            self.assertIn(names, [["g3.mosb"], ["big.mosb", "g3.mosb", "s0.mosb", "s1.mosb",
+                                                "s2.mosb"]])
+            # Every listed file checks out; only the files being added can be extra.
+            code, report = self.verify_json("store", "verify", store)
+            for f in report["files"]:
+                for problem in f["problems"]:
+                    self.assertEqual(problem["kind"], "extra", report)
+                    self.assertIn(f["file"], ["big.mosb", "s0.mosb", "s1.mosb", "s2.mosb"])
+            if manifest != old:
+                break
+        # A later add completes (reusing what an interrupted one copied) and leaves no temporary.
+        self.ok("store", "add", store, big, *small)
+        code, report = self.verify_json("store", "verify", store)
+        self.assertEqual(code, 0, report)
+        self.assertEqual([n for n in os.listdir(store) if n.startswith(".")], [])
+
+
+class Sources(Base):
+    def test_verify_sources_names_missing_and_changed_raw_files(self):
+        raw = self.path("raw")
+        os.mkdir(raw)
+        gr = os.path.join(raw, "tiny.gr")
+        with open(gr, "w") as f:
+            f.write(GR)
+        out = self.path("tiny.mosb")
+        self.ok("convert", "dimacs", "--gr", gr, "-o", out)
+        r = self.ok("verify", "--sources", raw, out)
+        self.assertIn("OK   " + gr, r.stdout)
+        with open(gr, "w") as f:
+            f.write(GR.replace("a 1 2 5", "a 1 2 6"))  # same size, other bytes
+        r = run("verify", "--sources", raw, out)
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("FAIL " + gr + ": XXH3", r.stdout)
+        with open(gr, "w") as f:
+            f.write(GR + "c comment\n")
+        r = run("verify", "--sources", raw, out)
+        self.assertIn("FAIL " + gr + ": %d bytes" % (len(GR) + 10), r.stdout)
+        os.remove(gr)
+        r = run("verify", "--sources", raw, out, "--json")
+        self.assertEqual(r.returncode, 1)
+        report = json.loads(r.stdout)
+        self.assertEqual([(s["name"], s["ok"]) for s in report["sources"]], [("tiny.gr", False)])
+        self.assertIn("missing", report["sources"][0]["problem"])
+
+
+class ExpectDigest(Base):
+    def test_right_digest_writes_wrong_digest_writes_nothing(self):
+        gr = self.path("tiny.gr")
+        with open(gr, "w") as f:
+            f.write(GR)
+        first = self.path("first.mosb")
+        self.ok("convert", "dimacs", "--gr", gr, "-o", first)
+        digest = json.loads(self.ok("inspect", "--json", first).stdout)["digest"]
+        second = self.path("second.mosb")
+        self.ok("convert", "dimacs", "--gr", gr, "-o", second, "--expect-digest", digest.upper())
+        self.assertEqual(read(first), read(second))
+        wrong = "0" * 32
+        before = sorted(os.listdir(self.dir))
+        r = run("convert", "dimacs", "--gr", gr, "-o", self.path("third.mosb"),
+                "--expect-digest", wrong)
+        self.assertEqual(r.returncode, 1)
+        self.assertIn(digest, r.stderr)
+        self.assertIn(wrong, r.stderr)
+        self.assertEqual(len(r.stderr.splitlines()), 1)
+        self.assertEqual(sorted(os.listdir(self.dir)), before, "nothing written, no temporary")
+        # An existing output is left as it was.
+        r = run("convert", "dimacs", "--gr", gr, "-o", first, "--expect-digest", wrong)
+        self.assertEqual(r.returncode, 1)
+        self.assertEqual(read(first), read(second))
+        # Generators take it too; a malformed digest is a usage error.
+        g = grid(self.path("g.mosb"), 3)
+        gd = json.loads(self.ok("inspect", "--json", g).stdout)["digest"]
+        self.ok("generate", "grid", "--width", "3", "--height", "4", "-o", self.path("g2.mosb"),
+                "--expect-digest", gd)
+        self.assertEqual(run("generate", "netmaker", "--vertices", "100", "-o", self.path("n.mosb"),
+                             "--expect-digest", wrong).returncode, 1)
+        self.assertFalse(os.path.exists(self.path("n.mosb")))
+        self.assertEqual(run("generate", "grid", "-o", self.path("x.mosb"), "--expect-digest",
+                             "xyz").returncode, 2)
+
+
+class SuiteBuild(Base):
+    def test_two_builds_give_the_same_manifest_bytes(self):
+        # The full suite takes minutes; the same code path over a subset is what `suite build`
+        # runs (converters::run_suite), so the determinism check here uses the subset generators.
+        for name, threads in (("a", "1"), ("b", "2")):
+            self.ok("generate", "grid", "--suite", self.path(name), "--sizes", "20,30", "--threads",
+                    threads)
+        self.assertEqual(read(self.path("a", "MANIFEST")), read(self.path("b", "MANIFEST")))
+        self.ok("store", "verify", self.path("a"))
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,131 @@
+#include <doctest/doctest.h>
+
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "file_patch.hpp"
+#include "mosb/converters/grid_generator.hpp"
+#include "mosb/converters/netmaker_generator.hpp"
+#include "mosb/error.hpp"
+#include "mosb/graph_builder.hpp"
+#include "mosb/manifest.hpp"
+#include "mosb/sha256.hpp"
+#include "mosb/store.hpp"
+#include "temp_dir.hpp"
+
+using namespace mosb;
+
+namespace {
+
+std::span<const std::byte> bytes_of(std::string_view text) {
+  return std::as_bytes(std::span<const char>(text.data(), text.size()));
+}
+
+}  // namespace
+
+TEST_CASE("sha256 gives the FIPS 180-2 test vectors") {
+  CHECK(sha256_hex(bytes_of("abc")) ==
+        "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+  CHECK(sha256_hex(bytes_of("")) ==
+        "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
+  testing::TempDir dir;
+  // More than one 1 MiB read: the streamed hash equals the one-shot hash.
+  std::string big(3 * (1 << 20) + 17, 'x');
+  for (std::size_t i = 0; i < big.size(); ++i) big[i] = static_cast<char>(i * 31);
+  testing::Bytes bytes(big.size());
+  std::memcpy(bytes.data(), big.data(), big.size());
+  testing::write_bytes(dir / "big", bytes);
+  CHECK(sha256_file(dir / "big") == sha256_hex(bytes_of(big)));
+  CHECK_THROWS_AS(sha256_file(dir / "absent"), Error);
+}
+
+TEST_CASE("a manifest serializes deterministically and parses back to the same entries") {
+  Manifest m;
+  ManifestEntry b{"b.mosb", 10, std::string(64, 'a'), std::string(32, 'b'), "1.0", true,
+                  "B", {"V_2"}, {"default"}, {{"b.gr", 5, std::string(16, 'c')}}};
+  ManifestEntry a = b;
+  a.file = "a.mosb";
+  a.packed = false;
+  a.sources.clear();
+  m.entries = {b, a};
+  const auto text = serialize_manifest(m);
+  CHECK(text.starts_with("{\"format\":\"mosb-manifest\",\"version\":1}\n"));
+  CHECK(text.find("a.mosb") < text.find("b.mosb"));
+  const auto back = parse_manifest(text, "M");
+  REQUIRE(back.entries.size() == 2);
+  CHECK(back.entries[0] == a);
+  CHECK(back.entries[1] == b);
+  CHECK_FALSE(back.legacy);
+  CHECK(serialize_manifest(back) == text);
+  m.entries.push_back(a);
+  CHECK_THROWS_WITH_AS(serialize_manifest(m), doctest::Contains("listed twice"), Error);
+  a.file = "../x";
+  CHECK_THROWS_AS(serialize_manifest(Manifest{{a}, false}), Error);
+}
+
+TEST_CASE("the older TSV MANIFEST is read and bad manifests name the line") {
+  const auto legacy = parse_manifest(
+      "G-2\tg2.mosb\t20\t" + std::string(32, '1') + "\nG-1\tg1.mosb\t10\t" +
+          std::string(32, '2') + "\n",
+      "M");
+  CHECK(legacy.legacy);
+  REQUIRE(legacy.entries.size() == 2);
+  CHECK(legacy.entries[0].file == "g1.mosb");
+  CHECK(legacy.entries[0].benchmark == "G-1");
+  CHECK(legacy.entries[0].size == 10);
+  CHECK(legacy.entries[0].sha256.empty());
+  CHECK(legacy.find("g2.mosb") != nullptr);
+  CHECK(legacy.find("g3.mosb") == nullptr);
+  CHECK_THROWS_WITH_AS(parse_manifest("G\tg.mosb\tten\t" + std::string(32, '1') + "\n", "M"),
+                       "M:1: size 'ten' is not a number", Error);
+  CHECK_THROWS_WITH_AS(parse_manifest("{\"format\":\"other\",\"version\":1}\n", "M"),
+                       doctest::Contains("M:1:"), Error);
+  CHECK_THROWS_WITH_AS(parse_manifest("{\"format\":\"mosb-manifest\",\"version\":2}\n", "M"),
+                       "M:1: manifest version 2, this mosb reads 1", Error);
+  CHECK_THROWS_WITH_AS(
+      parse_manifest("{\"format\":\"mosb-manifest\",\"version\":1}\n{\"file\":\"a\",\"size\":1,"
+                     "\"sha256\":\"zz\",\"digest\":\"" +
+                         std::string(32, '0') + "\"}\n",
+                     "M"),
+      "M:2: sha256 is not 64 lowercase hex digits", Error);
+}
+
+TEST_CASE("Store::instance resolves views and benchmarks and refuses ambiguous names") {
+  testing::TempDir dir;
+  write_graph(converters::grid_graph({4, 3, 3, 1}), dir / "g1.mosb");
+  write_graph(converters::grid_graph({5, 3, 3, 1}), dir / "g2.mosb");
+  converters::NetMakerParameters p;
+  p.vertices = 100;
+  p.name = "NM";
+  write_graph(converters::generate_netmaker(p), dir / "nm.mosb");
+  auto store = Store::init(dir / "store");
+  CHECK_THROWS_AS(Store::init(dir / "store"), Error);
+  store.add({dir / "g1.mosb", dir / "g2.mosb", dir / "nm.mosb"}, {});
+  const auto reopened = Store::open(dir / "store");
+  CHECK(reopened.manifest().entries.size() == 3);
+
+  const auto nm = reopened.instance("NetMaker_3");  // a view served by one file
+  CHECK(nm.entry.file == "nm.mosb");
+  REQUIRE(nm.view);
+  CHECK(nm.view->objectives.size() == 3);
+  CHECK(nm.query_set == "default");
+  CHECK(nm.reader.verified_level() == VerifyLevel::full);
+  CHECK(reopened.instance("NM").entry.file == "nm.mosb");  // benchmark with one view
+
+  const auto g = reopened.instance("Grid-5x3/Grid_2");
+  CHECK(g.entry.file == "g2.mosb");
+  CHECK(g.view->objectives.size() == 2);
+  const auto whole = reopened.instance("Grid-4x3");  // two views: the whole file
+  CHECK(whole.entry.file == "g1.mosb");
+  CHECK_FALSE(whole.view);
+  CHECK_THROWS_WITH_AS(reopened.instance("Grid_2"), doctest::Contains("ambiguous"), Error);
+  CHECK_THROWS_WITH_AS(reopened.instance("nothing"), doctest::Contains("no entry"), Error);
+
+  // A file changed after it was listed is not handed out.
+  auto bytes = testing::read_bytes(dir / "store" / "g1.mosb");
+  bytes[bytes.size() / 2] ^= std::byte{1};
+  testing::write_bytes(dir / "store" / "g1.mosb", bytes);
+  CHECK_THROWS_AS(reopened.instance("Grid-4x3/Grid_3"), Error);
+}
