@@ -221,6 +221,24 @@ void write_manifest(const std::filesystem::path& path, const Manifest& manifest)
   file.commit();
 }
 
+std::vector<SourceInput> source_inputs(const Metadata& metadata, const std::string& display_name) {
+  std::vector<SourceInput> inputs;
+  for (std::size_t i = 0;; ++i) {
+    const auto key = "source.input." + std::to_string(i);
+    const auto name = metadata.get(key + ".name");
+    if (!name) break;
+    SourceInput input{*name, 0, metadata.get(key + ".xxh3").value_or("")};
+    const auto size = metadata.get(key + ".size").value_or("");
+    if (size.empty() || size.size() > 19 ||
+        size.find_first_not_of("0123456789") != std::string::npos)
+      throw Error(ErrorCode::damaged,
+                  display_name + ": metadata " + key + ".size '" + size + "' is not a number");
+    input.size = std::stoull(size);
+    inputs.push_back(std::move(input));
+  }
+  return inputs;
+}
+
 ManifestEntry describe_file(const std::filesystem::path& path) {
   const auto reader = GraphReader::open(path);
   ManifestEntry e;
@@ -237,20 +255,7 @@ ManifestEntry describe_file(const std::filesystem::path& path) {
     const auto& metadata = reader.metadata();
     e.benchmark = metadata.get("benchmark").value_or("");
     for (const auto& view : view_keys(metadata)) e.views.push_back(view.name);
-    for (std::size_t i = 0;; ++i) {
-      const auto key = "source.input." + std::to_string(i);
-      const auto name = metadata.get(key + ".name");
-      if (!name) break;
-      SourceInput input{*name, 0, metadata.get(key + ".xxh3").value_or("")};
-      const auto size = metadata.get(key + ".size").value_or("0");
-      try {
-        input.size = std::stoull(size);
-      } catch (const std::exception&) {
-        throw Error(ErrorCode::damaged, path.string() + ": metadata " + key + ".size '" + size +
-                                            "' is not a number");
-      }
-      e.sources.push_back(std::move(input));
-    }
+    e.sources = source_inputs(metadata, path.string());
   } catch (const Error& error) {
     if (error.code() != ErrorCode::packed) throw;
   }

@@ -174,11 +174,11 @@ std::string xxh3_file(const fs::path& path) {
 }
 
 std::vector<SourceCheck> check_sources(const GraphReader& instance, const fs::path& directory) {
-  const auto entry = describe_file(fs::path(instance.display_name()));
-  if (entry.sources.empty())
+  const auto inputs = source_inputs(instance.metadata(), instance.display_name());
+  if (inputs.empty())
     throw Error(instance.display_name() + ": records no raw input (no source.input.* metadata)");
   std::vector<SourceCheck> checks;
-  for (const auto& input : entry.sources) {
+  for (const auto& input : inputs) {
     SourceCheck c{input, directory / input.name, {}};
     const auto where = c.path.string() + ": ";
     std::error_code ec;

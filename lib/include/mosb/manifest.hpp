@@ -62,6 +62,11 @@ void write_manifest(const std::filesystem::path& path, const Manifest& manifest)
 // metadata-derived fields stay empty). `file` in the entry is the path's base name.
 ManifestEntry describe_file(const std::filesystem::path& path);
 
+class Metadata;
+// The §7 `source.input.<i>.*` records of an instance, in input order (i = 0, 1, ... until a name
+// is absent); throws mosb::Error naming `display_name` on a size that is not a number.
+std::vector<SourceInput> source_inputs(const Metadata& metadata, const std::string& display_name);
+
 // True when `name` may be a manifest file name: non-empty, not "." or "..", no '/', no NUL,
 // no control characters, not the manifest's own name.
 bool is_valid_manifest_file_name(std::string_view name);
