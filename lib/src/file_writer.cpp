@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "mosb/error.hpp"
 #include "mosb/container.hpp"
+#include "mosb/error.hpp"
 #include "mosb/metadata.hpp"
 #include "xxh3.hpp"
 

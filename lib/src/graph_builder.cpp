@@ -301,8 +301,8 @@ format::ElementType choose_cost_type(const CostColumn& column) {
       column.values);
 }
 
-void write_graph(const GraphInput& in, const std::filesystem::path& path,
-                 const Progress& progress, std::string_view expect_digest) {
+void write_graph(const GraphInput& in, const std::filesystem::path& path, const Progress& progress,
+                 std::string_view expect_digest) {
   check_input(in);
   const std::uint64_t n = in.vertex_count;
   const std::size_t m = in.tails.size();

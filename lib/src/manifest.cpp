@@ -79,7 +79,8 @@ ManifestEntry entry_from_json(const Json& object) {
     if (!sources->is_array()) throw LineError{"key 'sources' has the wrong type"};
     for (const auto& s : *sources) {
       if (!s.is_object()) throw LineError{"a 'sources' element is not an object"};
-      e.sources.push_back({field<std::string>(s, "name", true), field<std::uint64_t>(s, "size", true),
+      e.sources.push_back({field<std::string>(s, "name", true),
+                           field<std::uint64_t>(s, "size", true),
                            field<std::string>(s, "xxh3", true)});
     }
   }
@@ -141,8 +142,9 @@ void sort_and_check_unique(Manifest& manifest, const std::string& name) {
 }  // namespace
 
 const ManifestEntry* Manifest::find(std::string_view file) const {
-  const auto it = std::lower_bound(entries.begin(), entries.end(), file,
-                                   [](const ManifestEntry& e, std::string_view f) { return e.file < f; });
+  const auto it =
+      std::lower_bound(entries.begin(), entries.end(), file,
+                       [](const ManifestEntry& e, std::string_view f) { return e.file < f; });
   return it != entries.end() && it->file == file ? &*it : nullptr;
 }
 
@@ -202,8 +204,7 @@ std::string serialize_manifest(const Manifest& manifest) {
   auto entries = manifest.entries;
   Manifest sorted{std::move(entries), false};
   sort_and_check_unique(sorted, std::string(kManifestName));
-  std::string text =
-      Json{{"format", kManifestFormat}, {"version", kManifestVersion}}.dump() + '\n';
+  std::string text = Json{{"format", kManifestFormat}, {"version", kManifestVersion}}.dump() + '\n';
   for (const auto& e : sorted.entries) {
     if (!is_valid_manifest_file_name(e.file))
       throw Error(std::string(kManifestName) + ": invalid file name '" + e.file + "'");

@@ -59,8 +59,7 @@ std::string sha256_hex(std::span<const std::byte> bytes) {
 std::string sha256_file(const std::filesystem::path& path) {
   // O_NONBLOCK: a FIFO must not block the open; read() of a directory fails with EISDIR.
   const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-  if (fd < 0)
-    throw Error(ErrorCode::io, path.string() + ": cannot open: " + std::strerror(errno));
+  if (fd < 0) throw Error(ErrorCode::io, path.string() + ": cannot open: " + std::strerror(errno));
   struct Closer {
     int fd;
     ~Closer() { ::close(fd); }

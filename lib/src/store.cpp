@@ -70,8 +70,8 @@ FileCheck check_one(const ManifestEntry& e, const fs::path& path) {
   }
   const auto size = fs::file_size(path, ec);
   if (!ec && size != e.size)
-    problem("wrong-size", std::to_string(size) + " bytes, the manifest says " +
-                              std::to_string(e.size));
+    problem("wrong-size",
+            std::to_string(size) + " bytes, the manifest says " + std::to_string(e.size));
   std::string sha;
   try {
     sha = sha256_file(path);
@@ -151,9 +151,11 @@ std::vector<FileCheck> check_against_manifest(const fs::path& manifest_path,
       if (const auto* e = manifest.find(name))
         files.emplace_back(*e, path);
       else
-        unlisted.push_back({name, path,
-                            {{"extra", path.string() + ": not listed in " + manifest_path.string()}},
-                            {}});
+        unlisted.push_back(
+            {name,
+             path,
+             {{"extra", path.string() + ": not listed in " + manifest_path.string()}},
+             {}});
     }
   }
   auto checks = check_files(files, options);
@@ -183,8 +185,8 @@ std::vector<SourceCheck> check_sources(const GraphReader& instance, const fs::pa
     const auto where = c.path.string() + ": ";
     std::error_code ec;
     if (!is_valid_manifest_file_name(input.name)) {
-      c.problem = instance.display_name() + ": raw input name '" + input.name +
-                  "' is not a base name";
+      c.problem =
+          instance.display_name() + ": raw input name '" + input.name + "' is not a base name";
     } else if (!fs::exists(c.path, ec)) {
       c.problem = where + "missing";
     } else {
@@ -220,8 +222,9 @@ Store Store::open(const fs::path& directory) {
   const auto path = directory / kManifestName;
   std::error_code ec;
   if (!fs::exists(path, ec))
-    throw Error(ErrorCode::not_found,
-                directory.string() + ": not a store (no MANIFEST; create one with mosb store init)");
+    throw Error(
+        ErrorCode::not_found,
+        directory.string() + ": not a store (no MANIFEST; create one with mosb store init)");
   return Store(directory, read_manifest(path));
 }
 
@@ -301,7 +304,8 @@ std::vector<FileCheck> Store::verify(const CheckOptions& options) const {
   if (ec) throw Error(ErrorCode::io, directory_.string() + ": cannot list: " + ec.message());
   std::sort(extra.begin(), extra.end());
   for (const auto& name : extra)
-    checks.push_back({name, directory_ / name,
+    checks.push_back({name,
+                      directory_ / name,
                       {{"extra", (directory_ / name).string() + ": not listed in the manifest"}},
                       {}});
   return checks;
@@ -333,8 +337,9 @@ StoreInstance Store::instance(std::string_view name) const {
   const auto label = directory_.string() + ": '" + std::string(name) + "'";
   if (candidates.empty())
     throw Error(ErrorCode::not_found,
-                label + ": no entry serves this benchmark or view (give BENCHMARK, VIEW or "
-                        "BENCHMARK/VIEW; mosb store list shows them)");
+                label +
+                    ": no entry serves this benchmark or view (give BENCHMARK, VIEW or "
+                    "BENCHMARK/VIEW; mosb store list shows them)");
   if (candidates.size() > 1) {
     std::string files;
     for (const auto& f : candidates) files += (files.empty() ? "" : ", ") + f;
@@ -347,9 +352,9 @@ StoreInstance Store::instance(std::string_view name) const {
                 path.string() + ": packed; this build cannot unpack it into the cache");
   StoreInstance out{GraphReader::open(path, VerifyLevel::full), *found, path, std::nullopt, ""};
   if (out.reader.digest() != found->digest)
-    throw Error(ErrorCode::damaged, out.path.string() + ": content digest " +
-                                        out.reader.digest() + ", the manifest says " +
-                                        found->digest + "; run mosb store verify");
+    throw Error(ErrorCode::damaged, out.path.string() + ": content digest " + out.reader.digest() +
+                                        ", the manifest says " + found->digest +
+                                        "; run mosb store verify");
   if (!view.empty()) {
     out.view = out.reader.view(view);
     out.query_set = out.view->query_set;

@@ -1,3 +1,5 @@
+#include "mosb/store.hpp"
+
 #include <doctest/doctest.h>
 
 #include <cstring>
@@ -12,7 +14,6 @@
 #include "mosb/graph_builder.hpp"
 #include "mosb/manifest.hpp"
 #include "mosb/sha256.hpp"
-#include "mosb/store.hpp"
 #include "temp_dir.hpp"
 
 using namespace mosb;
@@ -43,8 +44,16 @@ TEST_CASE("sha256 gives the FIPS 180-2 test vectors") {
 
 TEST_CASE("a manifest serializes deterministically and parses back to the same entries") {
   Manifest m;
-  ManifestEntry b{"b.mosb", 10, std::string(64, 'a'), std::string(32, 'b'), "1.0", true,
-                  "B", {"V_2"}, {"default"}, {{"b.gr", 5, std::string(16, 'c')}}};
+  ManifestEntry b{"b.mosb",
+                  10,
+                  std::string(64, 'a'),
+                  std::string(32, 'b'),
+                  "1.0",
+                  true,
+                  "B",
+                  {"V_2"},
+                  {"default"},
+                  {{"b.gr", 5, std::string(16, 'c')}}};
   ManifestEntry a = b;
   a.file = "a.mosb";
   a.packed = false;
@@ -66,10 +75,9 @@ TEST_CASE("a manifest serializes deterministically and parses back to the same e
 }
 
 TEST_CASE("the older TSV MANIFEST is read and bad manifests name the line") {
-  const auto legacy = parse_manifest(
-      "G-2\tg2.mosb\t20\t" + std::string(32, '1') + "\nG-1\tg1.mosb\t10\t" +
-          std::string(32, '2') + "\n",
-      "M");
+  const auto legacy = parse_manifest("G-2\tg2.mosb\t20\t" + std::string(32, '1') +
+                                         "\nG-1\tg1.mosb\t10\t" + std::string(32, '2') + "\n",
+                                     "M");
   CHECK(legacy.legacy);
   REQUIRE(legacy.entries.size() == 2);
   CHECK(legacy.entries[0].file == "g1.mosb");

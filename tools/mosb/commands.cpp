@@ -49,8 +49,8 @@ CLI::Option* add_expect_digest_option(CLI::App* subcommand, std::string& digest)
       ->transform([](std::string value) {
         for (auto& c : value)
           if (c >= 'A' && c <= 'F') c = static_cast<char>(c - 'A' + 'a');
-        const bool hex = value.size() == 32 && value.find_first_not_of("0123456789abcdef") ==
-                                                   std::string::npos;
+        const bool hex =
+            value.size() == 32 && value.find_first_not_of("0123456789abcdef") == std::string::npos;
         if (!hex) throw CLI::ValidationError("a content digest is 32 hex digits");
         return value;
       });

@@ -43,8 +43,9 @@ int run_fmi(const FmiArgs& a) {
   TerminalProgress progress;
   o.progress = progress.callback();
   // Out of memory anywhere in the conversion names the input.
-  converters::naming_input_on_out_of_memory(
-      a.file, [&] { write_graph(converters::convert_fmi(o), a.output, progress.callback(), a.expect_digest); });
+  converters::naming_input_on_out_of_memory(a.file, [&] {
+    write_graph(converters::convert_fmi(o), a.output, progress.callback(), a.expect_digest);
+  });
   return report_written(a.output, a.json);
 }
 

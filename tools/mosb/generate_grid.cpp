@@ -64,7 +64,8 @@ Command add_generate_grid(CLI::App& generate) {
                     ->check(CLI::Range(1u, 60000u))
                     ->group("");
   auto* threads = grid->add_option("--threads", args->threads, "suite worker threads")->group("");
-  for (auto* single_only : {width, height, objectives, out, expect}) directory->excludes(single_only);
+  for (auto* single_only : {width, height, objectives, out, expect})
+    directory->excludes(single_only);
   sizes->needs(directory);
   threads->needs(directory);
   add_json_flag(grid, args->json);

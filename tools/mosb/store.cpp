@@ -95,8 +95,8 @@ int run_list(const StoreArgs& a) {
   for (const auto& e : store.manifest().entries)
     std::cout << e.file << "  " << e.size << " bytes  " << (e.packed ? "packed  " : "")
               << "benchmark " << (e.benchmark.empty() ? "-" : e.benchmark) << "  views "
-              << joined(e.views) << "  queries " << joined(e.query_sets) << "  digest "
-              << e.digest << '\n';
+              << joined(e.views) << "  queries " << joined(e.query_sets) << "  digest " << e.digest
+              << '\n';
   std::cout << store.manifest().entries.size() << " entries"
             << (store.manifest().legacy ? " (older TSV MANIFEST: no SHA-256 listed)" : "") << '\n';
   return 0;
@@ -149,7 +149,8 @@ int report_checks(const std::vector<FileCheck>& checks, bool json) {
 }
 
 Command add_store(CLI::App& app) {
-  auto* store = app.add_subcommand("store", "A directory of instances and the MANIFEST listing them");
+  auto* store =
+      app.add_subcommand("store", "A directory of instances and the MANIFEST listing them");
   auto args = std::make_shared<StoreArgs>();
   auto directory = [&](CLI::App* sub) {
     sub->add_option("DIR", args->directory, "the store directory")->required();
@@ -168,13 +169,12 @@ Command add_store(CLI::App& app) {
   auto* verify = store->add_subcommand(
       "verify", "Check every entry (size, SHA-256, digest, verify --level full) and extra files");
   directory(verify);
-  verify->add_option("--threads", args->threads, "worker threads (default: all cores)")
-      ->group("");
+  verify->add_option("--threads", args->threads, "worker threads (default: all cores)")->group("");
   add_json_flag(verify, args->json);
   return group(store, {{init, [args] { return run_init(*args); }},
-                      {add, [args] { return run_add(*args); }},
-                      {list, [args] { return run_list(*args); }},
-                      {verify, [args] { return run_store_verify(*args); }}});
+                       {add, [args] { return run_add(*args); }},
+                       {list, [args] { return run_list(*args); }},
+                       {verify, [args] { return run_store_verify(*args); }}});
 }
 
 }  // namespace mosb::cli

@@ -1,4 +1,5 @@
-// `mosb suite build DIR`: every benchmark of the paper that can be generated here, and its MANIFEST.
+// `mosb suite build DIR`: every benchmark of the paper that can be generated here, and its
+// MANIFEST.
 #include <CLI/CLI.hpp>
 #include <memory>
 
@@ -25,7 +26,8 @@ int run_suite_build(const SuiteBuildArgs& a) {
        converters::netmaker_suite(kSuiteSeed, converters::paper_netmaker_vertex_counts()))
     instances.push_back(std::move(instance));
   TerminalProgress progress;
-  const auto entries = converters::run_suite(a.directory, instances, {a.threads, progress.callback()});
+  const auto entries =
+      converters::run_suite(a.directory, instances, {a.threads, progress.callback()});
   return report_suite(a.directory, "suite", entries, a.json);
 }
 

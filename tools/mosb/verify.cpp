@@ -5,8 +5,8 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "mosb/store.hpp"
 #include "json_writer.hpp"
+#include "mosb/store.hpp"
 #include "terminal_progress.hpp"
 
 namespace mosb::cli {

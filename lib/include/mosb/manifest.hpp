@@ -21,10 +21,10 @@ struct SourceInput {
 };
 
 struct ManifestEntry {
-  std::string file;       // base name, no directory
-  std::uint64_t size = 0;  // bytes of the file as stored (packed or not)
-  std::string sha256;     // of the file bytes as stored, 64 hex digits
-  std::string digest;     // FORMAT.md §8 content digest, 32 hex digits
+  std::string file;            // base name, no directory
+  std::uint64_t size = 0;      // bytes of the file as stored (packed or not)
+  std::string sha256;          // of the file bytes as stored, 64 hex digits
+  std::string digest;          // FORMAT.md §8 content digest, 32 hex digits
   std::string format_version;  // "MAJOR.MINOR" of the file header
   bool packed = false;
   std::string benchmark;                // metadata `benchmark`; may be empty

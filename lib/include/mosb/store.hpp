@@ -39,8 +39,9 @@ struct CheckOptions {
 
 // Checks each (entry, path) pair: existence, size, SHA-256 (when listed), readability, that it is
 // a mosb file passing verify --level full, and its content digest. Results in input order.
-std::vector<FileCheck> check_files(const std::vector<std::pair<ManifestEntry, std::filesystem::path>>& files,
-                                   const CheckOptions& options);
+std::vector<FileCheck> check_files(
+    const std::vector<std::pair<ManifestEntry, std::filesystem::path>>& files,
+    const CheckOptions& options);
 
 // The published manifest at `manifest_path` against files: with `paths` empty, every entry in the
 // manifest's directory (a file missing there is reported); otherwise exactly those paths, each

@@ -35,7 +35,8 @@ struct SuiteOptions {
 };
 
 // Creates `directory` if needed, writes every instance and then MANIFEST (replacing any earlier
-// one, of either format); returns one entry per instance, sorted by name. On failure throws the error of the lowest-index failing instance (no MANIFEST is written).
+// one, of either format); returns one entry per instance, sorted by name. On failure throws the
+// error of the lowest-index failing instance (no MANIFEST is written).
 std::vector<SuiteEntry> run_suite(const std::filesystem::path& directory,
                                   const std::vector<SuiteInstance>& instances,
                                   const SuiteOptions& options);
