@@ -36,7 +36,7 @@ class Sha256 {
       throw Error("SHA-256: libcrypto digest failed");
     static constexpr char kDigits[] = "0123456789abcdef";
     std::string out;
-    out.reserve(2 * length);
+    out.reserve(std::size_t{2} * length);
     for (unsigned int i = 0; i < length; ++i) {
       out += kDigits[digest[i] >> 4];
       out += kDigits[digest[i] & 0xF];

@@ -215,7 +215,7 @@ Store Store::init(const fs::path& directory) {
   if (fs::exists(path, ec))
     throw Error(path.string() + ": already exists; this directory is a store (or a suite)");
   write_manifest(path, {});
-  return Store(directory, {});
+  return {directory, {}};
 }
 
 Store Store::open(const fs::path& directory) {
@@ -225,7 +225,7 @@ Store Store::open(const fs::path& directory) {
     throw Error(
         ErrorCode::not_found,
         directory.string() + ": not a store (no MANIFEST; create one with mosb store init)");
-  return Store(directory, read_manifest(path));
+  return {directory, read_manifest(path)};
 }
 
 std::vector<ManifestEntry> Store::add(const std::vector<fs::path>& files,
@@ -251,11 +251,15 @@ std::vector<ManifestEntry> Store::add(const std::vector<fs::path>& files,
   for (std::size_t i = 0; i < files.size(); ++i) {
     const auto target = directory_ / added[i].file;
     std::error_code ec;
-    if (fs::exists(target, ec) && fs::equivalent(target, files[i], ec)) {
-      // Already in place (a file adopted where it lies).
-    } else if (options.move && (fs::rename(files[i], target, ec), !ec)) {
-      // Renamed within one file system: atomic by itself.
-    } else {
+    // A file already in place is adopted where it lies; a rename within one file system is atomic
+    // by itself; anything else is copied through a temporary.
+    const bool in_place = fs::exists(target, ec) && fs::equivalent(target, files[i], ec);
+    bool renamed = false;
+    if (!in_place && options.move) {
+      fs::rename(files[i], target, ec);
+      renamed = !ec;
+    }
+    if (!in_place && !renamed) {
       AtomicFile out(target);
       copy_into(files[i], out);
       out.commit();
