@@ -1,0 +1,95 @@
+// Evaluation of a solver's front against a reference Pareto front (spec/EVALUATION.md): the paper's
+// ε-dominance coverage at given ε, the achieved ε, the worst reference vector, and solver vectors
+// the reference strictly dominates. Integer costs are compared exactly (128-bit cross products);
+// floating-point costs in double arithmetic.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace mosb {
+
+// A non-negative rational num/den; den == 0 stands for +infinity (num is then 1).
+struct Ratio {
+  std::uint64_t num = 0, den = 1;
+
+  bool is_infinite() const { return den == 0; }
+  double to_double() const;
+  // Decimal with at most `digits` fractional digits, rounded up (so the printed value, given back
+  // as an ε, still covers); "inf" for infinity. Exact when the expansion ends earlier.
+  std::string to_decimal(int digits = 9) const;
+  friend bool operator==(const Ratio& a, const Ratio& b);
+  friend bool operator<(const Ratio& a, const Ratio& b);
+};
+
+// "0.05", "1", ".5", "0" → exact reduced ratio. Throws mosb::Error for anything else (a sign, an
+// exponent, more than 18 digits on either side of the point).
+Ratio parse_epsilon(std::string_view text);
+
+// n vectors of `dimension` values, row-major: vector k is values[k*dimension, (k+1)*dimension).
+template <class T>
+struct FrontView {
+  std::span<const T> values;
+  std::size_t dimension = 0;
+
+  std::size_t size() const { return dimension == 0 ? 0 : values.size() / dimension; }
+  const T* operator[](std::size_t k) const { return values.data() + k * dimension; }
+};
+
+struct EvalOptions {
+  // The paper's definition read literally: p ε-dominates q only if, besides p ≤ (1+ε)q for all i,
+  // p_j < (1+ε)q_j for some j. Off by default (see spec/EVALUATION.md for why).
+  bool strict_dominance = false;
+};
+
+struct EpsilonCoverage {
+  Ratio epsilon;
+  bool covered = false;
+  // Reference vectors no solution vector ε-dominates. At ε = 0, `covered` means the same
+  // multiset; uncovered then counts reference vectors without an equal solution vector.
+  std::uint64_t uncovered = 0;
+};
+
+struct FrontEvaluation {
+  std::size_t solution_size = 0, reference_size = 0;
+  std::vector<EpsilonCoverage> coverage;  // one per requested ε, in the order given
+  // The smallest uniform ε at which the solution covers the reference (componentwise reading);
+  // infinite when none does (an empty solution, or q_i = 0 that no vector meets with p_i = 0).
+  // For integer costs `achieved` is exact; for double costs its num/den is unset and only
+  // `achieved_value` is meaningful.
+  Ratio achieved;
+  double achieved_value = 0;
+  // A reference vector that needs exactly the achieved ε (the worst one); nullopt when the
+  // achieved ε is 0.
+  std::optional<std::size_t> worst_reference;
+  // Indices of solution vectors that some reference vector strictly dominates (a solver bug, when
+  // the reference is exact), increasing. Assumes the reference is mutually non-dominated.
+  std::vector<std::size_t> dominated_by_reference;
+  bool same_multiset = false;
+};
+
+// Both fronts must have the same dimension ≥ 1 (throws mosb::Error otherwise); values must be
+// non-negative (double: finite and ≥ 0), which the caller checks.
+// Time: O((|S| + |R|) log(|S| + |R|)) per coverage test for d ≤ 3, O(|S|·|R|·d) worst case for
+// d ≥ 4; the achieved ε takes O(log) coverage tests plus a refinement (spec/EVALUATION.md).
+FrontEvaluation evaluate_front(FrontView<std::uint64_t> solution,
+                               FrontView<std::uint64_t> reference, std::span<const Ratio> epsilons,
+                               const EvalOptions& options = {});
+FrontEvaluation evaluate_front(FrontView<double> solution, FrontView<double> reference,
+                               std::span<const Ratio> epsilons, const EvalOptions& options = {});
+
+// The coverage test alone: indices (increasing) of reference vectors that no solution vector
+// ε-dominates. ε = 0 here is plain weak dominance, p ≤ q.
+std::vector<std::size_t> uncovered_reference(FrontView<std::uint64_t> solution,
+                                             FrontView<std::uint64_t> reference, Ratio epsilon,
+                                             const EvalOptions& options = {});
+std::vector<std::size_t> uncovered_reference(FrontView<double> solution,
+                                             FrontView<double> reference, Ratio epsilon,
+                                             const EvalOptions& options = {});
+
+}  // namespace mosb

@@ -1,0 +1,543 @@
+#include "mosb/eval.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "mosb/error.hpp"
+
+namespace mosb {
+
+namespace {
+
+__extension__ typedef unsigned __int128 u128;  // GCC/Clang; -Wpedantic needs the marker
+
+Ratio reduced(std::uint64_t num, std::uint64_t den) {
+  const std::uint64_t g = std::gcd(num, den);
+  return g == 0 ? Ratio{0, 1} : Ratio{num / g, den / g};
+}
+
+constexpr Ratio kInfinity{1, 0};
+
+// Per cost type: ε's representation and the one comparison everything else is built on,
+// sign(p - (1+ε)·q).
+template <class T>
+struct Arith;
+
+template <>
+struct Arith<std::uint64_t> {
+  using Eps = Ratio;
+  static Eps make(Ratio r) { return r; }
+  static Eps zero() { return {0, 1}; }
+  static int cmp(std::uint64_t p, std::uint64_t q, const Ratio& e) {
+    if (e.is_infinite()) return q > 0 ? -1 : (p > 0 ? 1 : 0);
+    if (p <= q) {
+      if (p < q) return -1;
+      return e.num == 0 || q == 0 ? 0 : -1;
+    }
+    if (q == 0) return 1;
+    // p > q: compare den·(p-q) with num·q; each product is below 2^128.
+    const u128 lhs = static_cast<u128>(e.den) * (p - q);
+    const u128 rhs = static_cast<u128>(e.num) * q;
+    return lhs < rhs ? -1 : (lhs == rhs ? 0 : 1);
+  }
+  // The smallest ε with p ≤ (1+ε)·q.
+  static Eps need(std::uint64_t p, std::uint64_t q) {
+    if (p <= q) return zero();
+    if (q == 0) return kInfinity;
+    return reduced(p - q, q);
+  }
+  static bool less(const Eps& a, const Eps& b) { return a < b; }
+  static Eps from_double(double x) {
+    if (x <= 0) return zero();
+    int exponent = 0;
+    const double fraction = std::frexp(x, &exponent);  // x = fraction·2^exponent
+    auto num = static_cast<std::uint64_t>(std::ldexp(fraction, 53));
+    int shift = exponent - 53;
+    if (shift >= 0) return {num << shift, 1};  // callers pass x < 2^41, so shift < 0 in fact
+    while (shift < -62) {
+      num >>= 1;
+      ++shift;
+    }
+    return reduced(num, std::uint64_t{1} << -shift);
+  }
+  static double value(const Eps& e) { return e.to_double(); }
+};
+
+template <>
+struct Arith<double> {
+  using Eps = double;
+  static Eps make(Ratio r) { return r.to_double(); }
+  static Eps zero() { return 0.0; }
+  static int cmp(double p, double q, double e) {
+    if (std::isinf(e)) return q > 0 ? -1 : (p > 0 ? 1 : 0);
+    const double t = (1.0 + e) * q;
+    return p < t ? -1 : (p == t ? 0 : 1);
+  }
+  static Eps need(double p, double q) {
+    if (p <= q) return 0.0;
+    if (q == 0) return std::numeric_limits<double>::infinity();
+    double e = p / q - 1.0;
+    // Rounding may leave (1+e)·q just below p; step up until the comparison agrees.
+    while (cmp(p, q, e) > 0) e = std::nextafter(e, std::numeric_limits<double>::infinity());
+    return e;
+  }
+  static bool less(Eps a, Eps b) { return a < b; }
+  static Eps from_double(double x) { return x; }
+  static double value(Eps e) { return e; }
+};
+
+template <class T>
+bool lex_less(const T* a, const T* b, std::size_t d) {
+  return std::lexicographical_compare(a, a + d, b, b + d);
+}
+
+template <class T>
+std::vector<std::size_t> lex_order(FrontView<T> front) {
+  std::vector<std::size_t> order(front.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return lex_less(front[a], front[b], front.dimension);
+  });
+  return order;
+}
+
+// "Is some inserted point ≤ (1+ε)·t in coordinates 1..d-1?" Coordinate 0 is the caller's sweep.
+// d = 2: the running minimum of coordinate 1. d = 3: a Fenwick tree over the rank of coordinate 1
+// holding prefix minima of coordinate 2. d ≥ 4: a scan of the inserted points.
+template <class T>
+class DominanceIndex {
+  using A = Arith<T>;
+  using Eps = typename A::Eps;
+
+ public:
+  explicit DominanceIndex(FrontView<T> universe) : d_(universe.dimension) {
+    if (d_ == 3) {
+      second_.reserve(universe.size());
+      for (std::size_t k = 0; k < universe.size(); ++k) second_.push_back(universe[k][1]);
+      std::sort(second_.begin(), second_.end());
+      second_.erase(std::unique(second_.begin(), second_.end()), second_.end());
+      tree_.assign(second_.size(), kMax);
+    }
+  }
+
+  void reset() {
+    any_ = false;
+    min_second_ = kMax;
+    std::fill(tree_.begin(), tree_.end(), kMax);
+    inserted_.clear();
+  }
+
+  void insert(const T* p) {
+    any_ = true;
+    if (d_ == 2) {
+      min_second_ = std::min(min_second_, p[1]);
+    } else if (d_ == 3) {
+      auto i = static_cast<std::size_t>(std::lower_bound(second_.begin(), second_.end(), p[1]) -
+                                        second_.begin());
+      for (++i; i <= tree_.size(); i += i & (~i + 1)) tree_[i - 1] = std::min(tree_[i - 1], p[2]);
+    } else if (d_ >= 4) {
+      inserted_.push_back(p);
+    }
+  }
+
+  bool covers(const T* t, const Eps& e) const {
+    if (!any_) return false;
+    if (d_ == 1) return true;
+    if (d_ == 2) return A::cmp(min_second_, t[1], e) <= 0;
+    if (d_ == 3) {
+      std::size_t k = static_cast<std::size_t>(
+          std::partition_point(second_.begin(), second_.end(),
+                               [&](T v) { return A::cmp(v, t[1], e) <= 0; }) -
+          second_.begin());
+      T best = kMax;
+      for (; k > 0; k -= k & (~k + 1)) best = std::min(best, tree_[k - 1]);
+      return best != kMax && A::cmp(best, t[2], e) <= 0;
+    }
+    return std::any_of(inserted_.begin(), inserted_.end(), [&](const T* p) {
+      for (std::size_t i = 1; i < d_; ++i)
+        if (A::cmp(p[i], t[i], e) > 0) return false;
+      return true;
+    });
+  }
+
+ private:
+  static constexpr T kMax = std::numeric_limits<T>::max();
+  std::size_t d_;
+  bool any_ = false;
+  T min_second_ = kMax;
+  std::vector<T> second_, tree_;
+  std::vector<const T*> inserted_;
+};
+
+// The offline coverage test: points and targets sorted once by coordinate 0 (scaling by 1+ε keeps
+// that order), then each test is one merge sweep.
+template <class T>
+class Sweeper {
+  using A = Arith<T>;
+  using Eps = typename A::Eps;
+
+ public:
+  Sweeper(FrontView<T> points, FrontView<T> targets)
+      : points_(points), targets_(targets), index_(points) {
+    point_order_ = by_first(points);
+    target_order_ = by_first(targets);
+  }
+
+  // Targets t with no point p ≤ (1+ε)·t, increasing.
+  std::vector<std::size_t> uncovered(const Eps& e) {
+    index_.reset();
+    std::vector<std::size_t> out;
+    std::size_t j = 0;
+    for (std::size_t q : target_order_) {
+      const T* t = targets_[q];
+      while (j < point_order_.size() && A::cmp(points_[point_order_[j]][0], t[0], e) <= 0)
+        index_.insert(points_[point_order_[j++]]);
+      if (!index_.covers(t, e)) out.push_back(q);
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+  }
+
+ private:
+  static std::vector<std::size_t> by_first(FrontView<T> front) {
+    std::vector<std::size_t> order(front.size());
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t b) { return front[a][0] < front[b][0]; });
+    return order;
+  }
+
+  FrontView<T> points_, targets_;
+  DominanceIndex<T> index_;
+  std::vector<std::size_t> point_order_, target_order_;
+};
+
+// The minimal subset of a front: duplicates and vectors another one dominates removed, in
+// lexicographic order. One online sweep in lexicographic order: every vector that dominates p
+// comes before p.
+template <class T>
+std::vector<T> minimal_subset(FrontView<T> front) {
+  const std::size_t d = front.dimension;
+  DominanceIndex<T> index(front);
+  std::vector<T> kept;
+  const T* previous = nullptr;
+  for (std::size_t k : lex_order(front)) {
+    const T* p = front[k];
+    if (previous != nullptr && std::equal(p, p + d, previous)) continue;
+    previous = p;
+    if (index.covers(p, Arith<T>::zero())) continue;
+    index.insert(p);
+    kept.insert(kept.end(), p, p + d);
+  }
+  return kept;
+}
+
+// Coverage under either reading. The strict one: weakly covered, and (1+ε)·q itself is not a
+// vector of the minimal solution subset (if it is, the only vectors ≤ (1+ε)·q equal it).
+template <class T>
+class CoverageTest {
+  using A = Arith<T>;
+  using Eps = typename A::Eps;
+
+ public:
+  CoverageTest(FrontView<T> solution, FrontView<T> reference, bool strict)
+      : reference_(reference),
+        strict_(strict),
+        minimal_(strict ? minimal_subset(solution) : std::vector<T>{}),
+        sweeper_(strict ? FrontView<T>{minimal_, solution.dimension} : solution, reference) {}
+
+  std::vector<std::size_t> uncovered(const Eps& e) {
+    auto out = sweeper_.uncovered(e);
+    if (!strict_) return out;
+    const std::size_t d = reference_.dimension;
+    const FrontView<T> minimal{minimal_, d};
+    std::vector<std::size_t> strict_out;
+    std::size_t next = 0;
+    for (std::size_t q = 0; q < reference_.size(); ++q) {
+      if (next < out.size() && out[next] == q) {
+        strict_out.push_back(q);
+        ++next;
+        continue;
+      }
+      // Binary search for (1+ε)·q among the lexicographically sorted minimal vectors.
+      const T* t = reference_[q];
+      std::size_t lo = 0, hi = minimal.size();
+      bool found = false;
+      while (lo < hi) {
+        const std::size_t mid = lo + (hi - lo) / 2;
+        int sign = 0;
+        for (std::size_t i = 0; i < d && sign == 0; ++i) sign = A::cmp(minimal[mid][i], t[i], e);
+        if (sign == 0) {
+          found = true;
+          break;
+        }
+        if (sign < 0)
+          lo = mid + 1;
+        else
+          hi = mid;
+      }
+      if (found) strict_out.push_back(q);
+    }
+    return strict_out;
+  }
+
+ private:
+  FrontView<T> reference_;
+  bool strict_;
+  std::vector<T> minimal_;
+  Sweeper<T> sweeper_;
+};
+
+template <class T>
+void check_fronts(FrontView<T> solution, FrontView<T> reference) {
+  if (solution.dimension != reference.dimension || reference.dimension == 0)
+    throw Error(ErrorCode::invalid_argument,
+                "evaluate_front: the solution has " + std::to_string(solution.dimension) +
+                    " objectives, the reference " + std::to_string(reference.dimension));
+  if (solution.values.size() % solution.dimension != 0 ||
+      reference.values.size() % reference.dimension != 0)
+    throw Error(ErrorCode::invalid_argument,
+                "evaluate_front: a front's value count is not a multiple of its dimension");
+}
+
+// The ε the worst reference vector needs: min over p of max over i of need(p_i, q_i).
+template <class T>
+typename Arith<T>::Eps need_of(FrontView<T> solution, const T* q) {
+  using A = Arith<T>;
+  typename A::Eps best = A::make(kInfinity);
+  for (std::size_t k = 0; k < solution.size(); ++k) {
+    const T* p = solution[k];
+    typename A::Eps worst = A::zero();
+    for (std::size_t i = 0; i < solution.dimension; ++i) {
+      const auto e = A::need(p[i], q[i]);
+      if (A::less(worst, e)) worst = e;
+      if (!A::less(worst, best)) break;
+    }
+    if (A::less(worst, best)) best = worst;
+  }
+  return best;
+}
+
+template <class T>
+std::vector<std::size_t> uncovered_impl(FrontView<T> solution, FrontView<T> reference,
+                                        Ratio epsilon, const EvalOptions& options) {
+  check_fronts(solution, reference);
+  CoverageTest<T> test(solution, reference, options.strict_dominance);
+  return test.uncovered(Arith<T>::make(epsilon));
+}
+
+template <class T>
+FrontEvaluation evaluate_impl(FrontView<T> solution, FrontView<T> reference,
+                              std::span<const Ratio> epsilons, const EvalOptions& options) {
+  using A = Arith<T>;
+  using Eps = typename A::Eps;
+  check_fronts(solution, reference);
+  const std::size_t d = reference.dimension;
+  FrontEvaluation result;
+  result.solution_size = solution.size();
+  result.reference_size = reference.size();
+
+  // Exact matches (ε = 0 is the same multiset): merge the two lexicographic orders.
+  const auto solution_lex = lex_order(solution);
+  const auto reference_lex = lex_order(reference);
+  std::uint64_t matched = 0;
+  for (std::size_t a = 0, b = 0; a < solution_lex.size() && b < reference_lex.size();) {
+    const T* p = solution[solution_lex[a]];
+    const T* q = reference[reference_lex[b]];
+    if (lex_less(p, q, d)) {
+      ++a;
+    } else if (lex_less(q, p, d)) {
+      ++b;
+    } else {
+      ++matched, ++a, ++b;
+    }
+  }
+  result.same_multiset = matched == reference.size() && matched == solution.size();
+
+  // Solution vectors the reference strictly dominates: weakly dominated, and not equal to a
+  // reference vector (if equal to q, nothing else in a non-dominated reference is ≤ it).
+  {
+    Sweeper<T> reverse(reference, solution);
+    const auto not_dominated = reverse.uncovered(A::zero());
+    std::size_t next = 0;
+    for (std::size_t k = 0; k < solution.size(); ++k) {
+      if (next < not_dominated.size() && not_dominated[next] == k) {
+        ++next;
+        continue;
+      }
+      const T* p = solution[k];
+      const auto it = std::lower_bound(
+          reference_lex.begin(), reference_lex.end(), p,
+          [&](std::size_t r, const T* probe) { return lex_less(reference[r], probe, d); });
+      if (it != reference_lex.end() && std::equal(p, p + d, reference[*it])) continue;
+      result.dominated_by_reference.push_back(k);
+    }
+  }
+
+  CoverageTest<T> test(solution, reference, options.strict_dominance);
+  for (const Ratio& epsilon : epsilons) {
+    EpsilonCoverage c;
+    c.epsilon = epsilon;
+    if (epsilon.num == 0) {
+      c.covered = result.same_multiset;
+      c.uncovered = reference.size() - matched;
+    } else {
+      c.uncovered = test.uncovered(A::make(epsilon)).size();
+      c.covered = c.uncovered == 0;
+    }
+    result.coverage.push_back(c);
+  }
+
+  // The achieved ε always uses the componentwise reading (under the strict one the smallest ε
+  // need not exist: it is an infimum). A coverage test is monotone in ε: bracket ε* by doubling
+  // and bisection, then refine exactly: take a reference vector still uncovered at the lower
+  // bracket, compute the ε it needs by a scan of the solution, and test that ε; either it covers
+  // (then it is ε*) or the lower bracket rises strictly to a candidate ratio.
+  CoverageTest<T> weak(solution, reference, false);
+  Eps achieved = A::zero();
+  auto open = weak.uncovered(A::zero());
+  if (!open.empty()) {
+    constexpr double kCeiling = 1099511627776.0;  // 2^40
+    double lo = 0, hi = 1;
+    while (hi < kCeiling) {
+      auto u = weak.uncovered(A::from_double(hi));
+      if (u.empty()) break;
+      lo = hi;
+      open = std::move(u);
+      hi *= 2;
+    }
+    if (hi < kCeiling) {
+      for (int step = 0; step < 40; ++step) {
+        const double mid = lo + (hi - lo) / 2;
+        if (!(lo < mid && mid < hi)) break;
+        auto u = weak.uncovered(A::from_double(mid));
+        if (u.empty()) {
+          hi = mid;
+        } else {
+          lo = mid;
+          open = std::move(u);
+        }
+      }
+    }
+    for (;;) {
+      const std::size_t q = open.front();
+      const Eps need = need_of(solution, reference[q]);
+      result.worst_reference = q;
+      if (!A::less(need, A::make(kInfinity))) {
+        achieved = need;
+        break;
+      }
+      auto u = weak.uncovered(need);
+      if (u.empty()) {
+        achieved = need;
+        break;
+      }
+      open = std::move(u);
+    }
+  }
+  if constexpr (std::is_same_v<T, std::uint64_t>) {
+    result.achieved = achieved;
+    result.achieved_value = achieved.to_double();
+  } else {
+    result.achieved_value = achieved;
+    result.achieved = std::isinf(achieved) ? kInfinity : Ratio{0, 1};
+  }
+  return result;
+}
+
+}  // namespace
+
+double Ratio::to_double() const {
+  if (is_infinite()) return std::numeric_limits<double>::infinity();
+  return static_cast<double>(static_cast<long double>(num) / static_cast<long double>(den));
+}
+
+std::string Ratio::to_decimal(int digits) const {
+  if (is_infinite()) return "inf";
+  std::string out = std::to_string(num / den);
+  std::uint64_t rest = num % den;
+  if (rest == 0) return out;
+  std::string fraction;
+  for (int k = 0; k < digits && rest != 0; ++k) {
+    const u128 scaled = static_cast<u128>(rest) * 10;
+    fraction.push_back(static_cast<char>('0' + static_cast<int>(scaled / den)));
+    rest = static_cast<std::uint64_t>(scaled % den);
+  }
+  if (rest != 0) {
+    // Round up at the last digit, carrying into the integer part if needed.
+    int k = static_cast<int>(fraction.size()) - 1;
+    while (k >= 0 && fraction[static_cast<std::size_t>(k)] == '9') {
+      fraction[static_cast<std::size_t>(k)] = '0';
+      --k;
+    }
+    if (k >= 0) {
+      ++fraction[static_cast<std::size_t>(k)];
+    } else {
+      out = std::to_string(num / den + 1);
+    }
+    while (!fraction.empty() && fraction.back() == '0') fraction.pop_back();
+  }
+  return fraction.empty() ? out : out + "." + fraction;
+}
+
+bool operator==(const Ratio& a, const Ratio& b) {
+  if (a.is_infinite() || b.is_infinite()) return a.is_infinite() == b.is_infinite();
+  return static_cast<u128>(a.num) * b.den == static_cast<u128>(b.num) * a.den;
+}
+
+bool operator<(const Ratio& a, const Ratio& b) {
+  if (a.is_infinite()) return false;
+  if (b.is_infinite()) return true;
+  return static_cast<u128>(a.num) * b.den < static_cast<u128>(b.num) * a.den;
+}
+
+Ratio parse_epsilon(std::string_view text) {
+  const auto bad = [&](const char* why) {
+    return Error(ErrorCode::invalid_argument,
+                 "invalid epsilon '" + std::string(text) + "': " + why);
+  };
+  const std::size_t point = text.find('.');
+  const std::string_view whole = text.substr(0, point);
+  const std::string_view fraction =
+      point == std::string_view::npos ? std::string_view{} : text.substr(point + 1);
+  if (whole.empty() && fraction.empty()) throw bad("expected a decimal number such as 0.05");
+  for (std::string_view part : {whole, fraction})
+    for (char c : part)
+      if (c < '0' || c > '9') throw bad("expected a non-negative decimal number such as 0.05");
+  if (whole.size() > 18 || fraction.size() > 18) throw bad("more than 18 digits");
+  std::uint64_t num = 0, den = 1;
+  for (char c : whole) num = num * 10 + static_cast<std::uint64_t>(c - '0');
+  for (char c : fraction) {
+    num = num * 10 + static_cast<std::uint64_t>(c - '0');
+    den *= 10;
+  }
+  if (whole.size() + fraction.size() > 18) throw bad("more than 18 digits");
+  return reduced(num, den);
+}
+
+FrontEvaluation evaluate_front(FrontView<std::uint64_t> solution,
+                               FrontView<std::uint64_t> reference, std::span<const Ratio> epsilons,
+                               const EvalOptions& options) {
+  return evaluate_impl(solution, reference, epsilons, options);
+}
+
+FrontEvaluation evaluate_front(FrontView<double> solution, FrontView<double> reference,
+                               std::span<const Ratio> epsilons, const EvalOptions& options) {
+  return evaluate_impl(solution, reference, epsilons, options);
+}
+
+std::vector<std::size_t> uncovered_reference(FrontView<std::uint64_t> solution,
+                                             FrontView<std::uint64_t> reference, Ratio epsilon,
+                                             const EvalOptions& options) {
+  return uncovered_impl(solution, reference, epsilon, options);
+}
+
+std::vector<std::size_t> uncovered_reference(FrontView<double> solution,
+                                             FrontView<double> reference, Ratio epsilon,
+                                             const EvalOptions& options) {
+  return uncovered_impl(solution, reference, epsilon, options);
+}
+
+}  // namespace mosb
