@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "mosb/error.hpp"
+#include "mosb/random.hpp"
 
 namespace mosb {
 
@@ -46,22 +47,9 @@ struct Arith<std::uint64_t> {
   static Eps need(std::uint64_t p, std::uint64_t q) {
     if (p <= q) return zero();
     if (q == 0) return kInfinity;
-    return reduced(p - q, q);
+    return {p - q, q};  // reduced once at the end: comparisons cross-multiply
   }
   static bool less(const Eps& a, const Eps& b) { return a < b; }
-  static Eps from_double(double x) {
-    if (x <= 0) return zero();
-    int exponent = 0;
-    const double fraction = std::frexp(x, &exponent);  // x = fraction·2^exponent
-    auto num = static_cast<std::uint64_t>(std::ldexp(fraction, 53));
-    int shift = exponent - 53;
-    if (shift >= 0) return {num << shift, 1};  // callers pass x < 2^41, so shift < 0 in fact
-    while (shift < -62) {
-      num >>= 1;
-      ++shift;
-    }
-    return reduced(num, std::uint64_t{1} << -shift);
-  }
   static double value(const Eps& e) { return e.to_double(); }
 };
 
@@ -84,7 +72,6 @@ struct Arith<double> {
     return e;
   }
   static bool less(Eps a, Eps b) { return a < b; }
-  static Eps from_double(double x) { return x; }
   static double value(Eps e) { return e; }
 };
 
@@ -376,7 +363,13 @@ FrontEvaluation evaluate_impl(FrontView<T> solution, FrontView<T> reference,
     }
   }
 
-  CoverageTest<T> test(solution, reference, options.strict_dominance);
+  // The coverage tests at the requested ε. The componentwise ones also bracket the achieved ε:
+  // the largest requested ε that leaves something uncovered, and what it leaves.
+  CoverageTest<T> weak(solution, reference, false);
+  std::optional<CoverageTest<T>> strict;
+  if (options.strict_dominance) strict.emplace(solution, reference, true);
+  Eps floor = A::zero();
+  std::optional<std::vector<std::size_t>> open;
   for (const Ratio& epsilon : epsilons) {
     EpsilonCoverage c;
     c.epsilon = epsilon;
@@ -384,61 +377,54 @@ FrontEvaluation evaluate_impl(FrontView<T> solution, FrontView<T> reference,
       c.covered = result.same_multiset;
       c.uncovered = reference.size() - matched;
     } else {
-      c.uncovered = test.uncovered(A::make(epsilon)).size();
+      const Eps e = A::make(epsilon);
+      auto u = weak.uncovered(e);
+      c.uncovered = strict ? strict->uncovered(e).size() : u.size();
       c.covered = c.uncovered == 0;
+      if (!u.empty() && (!open || A::less(floor, e))) {
+        floor = e;
+        open = std::move(u);
+      }
     }
     result.coverage.push_back(c);
   }
 
   // The achieved ε always uses the componentwise reading (under the strict one the smallest ε
-  // need not exist: it is an infimum). A coverage test is monotone in ε: bracket ε* by doubling
-  // and bisection, then refine exactly: take a reference vector still uncovered at the lower
-  // bracket, compute the ε it needs by a scan of the solution, and test that ε; either it covers
-  // (then it is ε*) or the lower bracket rises strictly to a candidate ratio.
-  CoverageTest<T> weak(solution, reference, false);
+  // need not exist: it is an infimum). It is the largest ε a reference vector needs, and the
+  // coverage test at ε returns exactly the vectors that need more than ε. A scan of the solution
+  // gives one vector's need in O(|S|·d), far cheaper than a coverage test. So: while many vectors
+  // are open, take the largest need of a sample of them and test it (what stays open needs more:
+  // about 1/(sample+1) of them); once few are open, the largest of their needs is the answer.
+  constexpr std::size_t kSample = 64, kScanAll = 256;
+  if (!open) open = weak.uncovered(A::zero());
   Eps achieved = A::zero();
-  auto open = weak.uncovered(A::zero());
-  if (!open.empty()) {
-    constexpr double kCeiling = 1099511627776.0;  // 2^40
-    double lo = 0, hi = 1;
-    while (hi < kCeiling) {
-      auto u = weak.uncovered(A::from_double(hi));
-      if (u.empty()) break;
-      lo = hi;
-      open = std::move(u);
-      hi *= 2;
+  SplitMix64 pick(0x5eed);  // a fixed seed: the same result and time on every run
+  while (!open->empty()) {
+    std::vector<std::size_t> candidates;
+    if (open->size() <= kScanAll) {
+      candidates = *open;
+    } else {
+      for (std::size_t k = 0; k < kSample; ++k)
+        candidates.push_back((*open)[pick.uniform(0, open->size() - 1)]);
     }
-    if (hi < kCeiling) {
-      for (int step = 0; step < 40; ++step) {
-        const double mid = lo + (hi - lo) / 2;
-        if (!(lo < mid && mid < hi)) break;
-        auto u = weak.uncovered(A::from_double(mid));
-        if (u.empty()) {
-          hi = mid;
-        } else {
-          lo = mid;
-          open = std::move(u);
-        }
-      }
-    }
-    for (;;) {
-      const std::size_t q = open.front();
+    Eps largest = A::zero();
+    std::size_t worst = candidates.front();
+    for (std::size_t q : candidates) {
       const Eps need = need_of(solution, reference[q]);
-      result.worst_reference = q;
-      if (!A::less(need, A::make(kInfinity))) {
-        achieved = need;
-        break;
-      }
-      auto u = weak.uncovered(need);
-      if (u.empty()) {
-        achieved = need;
-        break;
-      }
-      open = std::move(u);
+      if (A::less(largest, need) || q == candidates.front()) largest = need, worst = q;
     }
+    result.worst_reference = worst;
+    achieved = largest;
+    // The last test cannot trigger while the coverage test and need_of agree; it keeps the loop
+    // finite if they ever did not.
+    if (open->size() <= kScanAll || !A::less(largest, A::make(kInfinity)) ||
+        !A::less(floor, largest))
+      break;
+    open = weak.uncovered(largest);
+    floor = largest;
   }
   if constexpr (std::is_same_v<T, std::uint64_t>) {
-    result.achieved = achieved;
+    result.achieved = achieved.is_infinite() ? kInfinity : reduced(achieved.num, achieved.den);
     result.achieved_value = achieved.to_double();
   } else {
     result.achieved_value = achieved;

@@ -16,7 +16,9 @@ namespace {
 
 using Front = std::vector<std::uint64_t>;
 
-FrontView<std::uint64_t> view(const Front& f, std::size_t d) { return {f, d}; }
+FrontView<std::uint64_t> view(const Front& f, std::size_t d) {
+  return {f, d};
+}
 
 // The per-coordinate ε that p needs to cover q, as a ratio, computed without the library's
 // comparison: (p-q)/q, 0 when p ≤ q, infinite when q = 0 < p.
@@ -145,8 +147,8 @@ TEST_CASE("double costs agree with brute force on random fronts") {
           double worst = 0;
           for (std::size_t i = 0; i < d; ++i) {
             const double p = s[a * d + i], q = r[b * d + i];
-            const double e = p <= q ? 0 : (q == 0 ? std::numeric_limits<double>::infinity()
-                                                  : p / q - 1);
+            const double e =
+                p <= q ? 0 : (q == 0 ? std::numeric_limits<double>::infinity() : p / q - 1);
             worst = std::max(worst, e);
           }
           best = std::min(best, worst);
