@@ -96,6 +96,7 @@ Command add_stats(CLI::App& app);
 Command add_export(CLI::App& app);  // export_dimacs.cpp: the `export` group and its children
 Command add_store(CLI::App& app);   // store.cpp: `store init|add|list|verify`
 Command add_suite(CLI::App& app);   // suite_build.cpp: `suite build`
+Command add_plot(CLI::App& app);    // plot.cpp: `plot correlation`, `plot map`
 
 // Children of `generate`.
 Command add_generate_grid(CLI::App& generate);

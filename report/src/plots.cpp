@@ -1,0 +1,311 @@
+#include "mosb/report/plots.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "mosb/report/svg.hpp"
+
+namespace mosb::plots {
+
+namespace {
+
+constexpr double kWidth = 720, kHeight = 480;
+constexpr double kLeft = 90, kRight = 170, kTop = 50, kBottom = 70;  // plot-area margins
+
+std::string tick_label(double v) {
+  char buffer[32];
+  const double a = std::fabs(v);
+  if (a != 0 && (a >= 1e6 || a < 1e-3))
+    std::snprintf(buffer, sizeof buffer, "%.3g", v);
+  else
+    std::snprintf(buffer, sizeof buffer, "%.6g", v);
+  return buffer;
+}
+
+// A linear or log10 axis from data range [lo, hi] onto pixels [p0, p1].
+struct Axis {
+  double lo = 0, hi = 1, p0 = 0, p1 = 1;
+  bool log = false;
+  double map(double v) const {
+    const double a = log ? std::log10(std::max(v, lo)) : v;
+    const double l = log ? std::log10(lo) : lo, h = log ? std::log10(hi) : hi;
+    return p0 + (a - l) / (h - l) * (p1 - p0);
+  }
+  std::vector<double> ticks() const {
+    if (!log) return nice_ticks(lo, hi);
+    std::vector<double> t;
+    for (double v = std::pow(10, std::floor(std::log10(lo))); v <= hi * 1.0001; v *= 10)
+      if (v >= lo * 0.9999) t.push_back(v);
+    return t;
+  }
+};
+
+// Pads [lo, hi] outward to tick steps so points do not sit on the frame.
+void widen(double& lo, double& hi) {
+  if (!(hi > lo)) {
+    const double pad = lo == 0 ? 1 : std::fabs(lo) * 0.1;
+    lo -= pad;
+    hi += pad;
+  }
+  const auto t = nice_ticks(lo, hi);
+  if (t.size() >= 2) {
+    const double step = t[1] - t[0];
+    lo = std::floor(lo / step) * step;
+    hi = std::ceil(hi / step) * step;
+  }
+}
+
+void frame(Svg& svg, const Axis& x, const Axis& y, const std::string& title,
+           const std::string& x_label, const std::string& y_label) {
+  svg.text(kWidth / 2 - (kRight - kLeft) / 2, 28, title, "middle", 16);
+  for (double t : x.ticks()) {
+    const double px = x.map(t);
+    svg.line(px, y.p1, px, y.p0, "#e4e4e4");
+    svg.line(px, y.p0, px, y.p0 + 5, "#000");
+    svg.text(px, y.p0 + 20, tick_label(t), "middle", 11);
+  }
+  for (double t : y.ticks()) {
+    const double py = y.map(t);
+    svg.line(x.p0, py, x.p1, py, "#e4e4e4");
+    svg.line(x.p0 - 5, py, x.p0, py, "#000");
+    svg.text(x.p0 - 8, py + 4, tick_label(t), "end", 11);
+  }
+  svg.rect(x.p0, y.p1, x.p1 - x.p0, y.p0 - y.p1, "none", "#000");
+  svg.text((x.p0 + x.p1) / 2, kHeight - 22, x_label, "middle", 13);
+  svg.text(24, (y.p0 + y.p1) / 2, y_label, "middle", 13, -90);
+}
+
+// Legend entries at the right of the plot area: (kind, colour, label); kind 'c' dot, 'r' box.
+struct LegendEntry {
+  char kind;
+  std::string colour, label;
+};
+void legend(Svg& svg, const std::vector<LegendEntry>& entries) {
+  double y = kTop + 10;
+  const double x = kWidth - kRight + 18;
+  for (const auto& e : entries) {
+    if (e.kind == 'c')
+      svg.circle(x + 6, y - 4, 4, e.colour);
+    else
+      svg.rect(x, y - 10, 12, 12, e.colour, "#555", 1, 0.5);
+    svg.text(x + 18, y, e.label, "start", 12);
+    y += 20;
+  }
+}
+
+// Diverging blue-white-red for ρ in [−1, 1].
+std::string diverging(double rho) {
+  rho = std::clamp(rho, -1.0, 1.0);
+  const double a = std::fabs(rho);
+  int r, g, b;
+  if (rho >= 0) {  // white → #b2182b
+    r = static_cast<int>(255 + (178 - 255) * a);
+    g = static_cast<int>(255 + (24 - 255) * a);
+    b = static_cast<int>(255 + (43 - 255) * a);
+  } else {  // white → #2166ac
+    r = static_cast<int>(255 + (33 - 255) * a);
+    g = static_cast<int>(255 + (102 - 255) * a);
+    b = static_cast<int>(255 + (172 - 255) * a);
+  }
+  char buffer[8];
+  std::snprintf(buffer, sizeof buffer, "#%02x%02x%02x", r, g, b);
+  return buffer;
+}
+
+// White → #e6550d for t in [0, 1].
+std::string sequential(double t) {
+  t = std::clamp(t, 0.0, 1.0);
+  char buffer[8];
+  std::snprintf(buffer, sizeof buffer, "#%02x%02x%02x", static_cast<int>(255 + (230 - 255) * t),
+                static_cast<int>(255 + (85 - 255) * t), static_cast<int>(255 + (13 - 255) * t));
+  return buffer;
+}
+
+}  // namespace
+
+std::vector<double> nice_ticks(double lo, double hi, int target) {
+  if (!(hi > lo) || !std::isfinite(lo) || !std::isfinite(hi)) return {lo};
+  const double raw = (hi - lo) / std::max(target, 1);
+  const double power = std::pow(10, std::floor(std::log10(raw)));
+  double step = power;
+  for (double m : {1.0, 2.0, 5.0, 10.0})
+    if (m * power >= raw) {
+      step = m * power;
+      break;
+    }
+  std::vector<double> ticks;
+  for (double v = std::ceil(lo / step - 1e-9) * step; v <= hi + step * 1e-9; v += step)
+    ticks.push_back(std::fabs(v) < step * 1e-9 ? 0 : v);
+  return ticks;
+}
+
+std::string plot_front(const FrontPlot& plot) {
+  const double e = plot.epsilon.value_or(0);
+  double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo, y_lo = x_lo, y_hi = -x_lo;
+  auto extend = [&](const Point2& p) {
+    x_lo = std::min(x_lo, p.x), x_hi = std::max(x_hi, p.x);
+    y_lo = std::min(y_lo, p.y), y_hi = std::max(y_hi, p.y);
+  };
+  for (const auto& p : plot.reference) extend({p.x * (1 + e), p.y * (1 + e)}), extend(p);
+  for (const auto& p : plot.solution) extend(p);
+  if (!std::isfinite(x_lo)) x_lo = 0, x_hi = 1, y_lo = 0, y_hi = 1;
+  widen(x_lo, x_hi);
+  widen(y_lo, y_hi);
+  Svg svg(kWidth, kHeight);
+  const Axis x{x_lo, x_hi, kLeft, kWidth - kRight};
+  const Axis y{y_lo, y_hi, kHeight - kBottom, kTop};
+  frame(svg, x, y, plot.title, plot.x_label, plot.y_label);
+  if (e > 0)
+    for (const auto& q : plot.reference)
+      svg.rect(x.map(q.x), y.map(q.y * (1 + e)), x.map(q.x * (1 + e)) - x.map(q.x),
+               y.map(q.y) - y.map(q.y * (1 + e)), "#9ecae1", "#6baed6", 0.5, 0.35);
+  for (const auto& q : plot.reference) svg.circle(x.map(q.x), y.map(q.y), 4, "#08519c");
+  for (const auto& p : plot.solution) svg.circle(x.map(p.x), y.map(p.y), 2.5, "#e6550d");
+  std::vector<LegendEntry> entries = {
+      {'c', "#08519c", "reference (" + std::to_string(plot.reference.size()) + ")"},
+      {'c', "#e6550d", "solver (" + std::to_string(plot.solution.size()) + ")"}};
+  if (e > 0) entries.push_back({'r', "#9ecae1", "ε-box, ε = " + tick_label(e)});
+  legend(svg, entries);
+  return svg.str();
+}
+
+std::string plot_cardinality(const CardinalityPlot& plot) {
+  std::vector<std::uint64_t> sizes = plot.sizes;
+  std::sort(sizes.begin(), sizes.end());
+  const double smallest =
+      sizes.empty() ? 1 : static_cast<double>(std::max<std::uint64_t>(sizes.front(), 1));
+  const double largest =
+      sizes.empty() ? 1 : static_cast<double>(std::max<std::uint64_t>(sizes.back(), 1));
+  const bool log = largest / smallest > 100;
+  double y_lo = log ? std::pow(10, std::floor(std::log10(smallest))) : 0;
+  double y_hi = log ? std::pow(10, std::ceil(std::log10(largest))) : largest;
+  if (!log) widen(y_lo, y_hi);
+  double x_lo = 0, x_hi = static_cast<double>(std::max<std::size_t>(sizes.size(), 1));
+  widen(x_lo, x_hi);
+  Svg svg(kWidth, kHeight);
+  const Axis x{x_lo, x_hi, kLeft, kWidth - kRight};
+  const Axis y{y_lo, y_hi, kHeight - kBottom, kTop, log};
+  frame(svg, x, y, plot.title, "query rank (sorted by front size)",
+        log ? "front size (log scale)" : "front size");
+  std::string points;
+  for (std::size_t k = 0; k < sizes.size(); ++k) {
+    const double px = x.map(static_cast<double>(k + 1));
+    const double py = y.map(static_cast<double>(std::max<std::uint64_t>(sizes[k], log ? 1 : 0)));
+    points += Svg::number(px) + "," + Svg::number(py) + " ";
+  }
+  if (!points.empty()) points.pop_back();
+  svg.polyline(points, "#08519c");
+  for (std::size_t k = 0; k < sizes.size(); ++k)
+    svg.circle(x.map(static_cast<double>(k + 1)),
+               y.map(static_cast<double>(std::max<std::uint64_t>(sizes[k], log ? 1 : 0))), 2.5,
+               "#08519c");
+  legend(svg, {{'c', "#08519c", std::to_string(sizes.size()) + " queries"}});
+  return svg.str();
+}
+
+std::string plot_correlation(const CorrelationPlot& plot) {
+  const std::size_t n = plot.names.size();
+  const double cell = n == 0 ? 60 : std::min(80.0, 320.0 / static_cast<double>(n));
+  const double x0 = 150, y0 = 70;
+  const double width = x0 + cell * static_cast<double>(n) + 150;
+  const double height = y0 + cell * static_cast<double>(n) + 110;
+  Svg svg(width, height);
+  svg.text(width / 2, 30, plot.title, "middle", 16);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double c = static_cast<double>(i);
+    svg.text(x0 - 8, y0 + cell * c + cell / 2 + 4, plot.names[i], "end", 12);
+    svg.text(x0 + cell * c + cell / 2, y0 + cell * static_cast<double>(n) + 18, plot.names[i],
+             "middle", 12);
+    for (std::size_t j = 0; j < n; ++j) {
+      const auto rho =
+          i < plot.rho.size() && j < plot.rho[i].size() ? plot.rho[i][j] : std::nullopt;
+      const double px = x0 + cell * static_cast<double>(j), py = y0 + cell * c;
+      svg.rect(px, py, cell, cell, rho ? diverging(*rho) : "#d9d9d9", "#fff", 1);
+      char buffer[16];
+      if (rho)
+        std::snprintf(buffer, sizeof buffer, "%.2f", *rho);
+      else
+        std::snprintf(buffer, sizeof buffer, "n/a");
+      svg.text(px + cell / 2, py + cell / 2 + 4, buffer, "middle", std::min(12.0, cell / 3.5), 0,
+               rho && std::fabs(*rho) > 0.6 ? "#fff" : "#000");
+    }
+  }
+  // Colour scale: ρ from −1 (bottom) to +1 (top).
+  const double bar_x = x0 + cell * static_cast<double>(n) + 40, bar_h = 160;
+  for (int k = 0; k < 40; ++k) {
+    const double rho = 1 - 2 * (k + 0.5) / 40;
+    svg.rect(bar_x, y0 + bar_h * k / 40, 16, bar_h / 40 + 0.5, diverging(rho));
+  }
+  svg.rect(bar_x, y0, 16, bar_h, "none", "#000");
+  for (double t : {1.0, 0.5, 0.0, -0.5, -1.0})
+    svg.text(bar_x + 22, y0 + bar_h * (1 - t) / 2 + 4, tick_label(t), "start", 11);
+  svg.text(bar_x + 8, y0 - 10, "Pearson ρ", "middle", 12);
+  return svg.str();
+}
+
+std::string plot_map(const MapPlot& plot) {
+  const double w = plot.width, h = plot.height;
+  const double cell = std::max(1.0, std::min(600 / std::max(w, 1.0), 600 / std::max(h, 1.0)));
+  const double x0 = 40, y0 = 50;
+  const double width = x0 + cell * w + 190, height = y0 + cell * h + 40;
+  Svg svg(width, height);
+  svg.set_crisp_edges();
+  svg.text(x0 + cell * w / 2, 30, plot.title, "middle", 16);
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (double v : plot.exposure)
+    if (!std::isnan(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+  svg.rect(x0, y0, cell * w, cell * h, "#ffffff", "#000", 1);
+  for (std::uint32_t yy = 0; yy < plot.height; ++yy) {
+    // Runs of equal colour along a row: one rectangle each keeps large maps small.
+    std::uint32_t start = 0;
+    std::string run_colour;
+    auto colour_of = [&](std::uint32_t xx) -> std::string {
+      const std::size_t k = static_cast<std::size_t>(yy) * plot.width + xx;
+      if (k >= plot.passable.size() || !plot.passable[k]) return "#252525";
+      if (plot.exposure.empty()) return "#ffffff";
+      const double v = plot.exposure[k];
+      if (std::isnan(v)) return "#d9d9d9";
+      return sequential(hi > lo ? (v - lo) / (hi - lo) : 0);
+    };
+    for (std::uint32_t xx = 0; xx <= plot.width; ++xx) {
+      const std::string c = xx < plot.width ? colour_of(xx) : "";
+      if (xx == 0) {
+        run_colour = c;
+        continue;
+      }
+      if (c != run_colour) {
+        if (run_colour != "#ffffff")
+          svg.rect(x0 + cell * start, y0 + cell * yy, cell * (xx - start), cell, run_colour);
+        start = xx;
+        run_colour = c;
+      }
+    }
+  }
+  const char* colours[] = {"#1f77b4", "#2ca02c", "#9467bd", "#17becf", "#d62728", "#8c564b"};
+  std::vector<LegendEntry> entries = {{'r', "#252525", "blocked cell"}};
+  if (!plot.exposure.empty() && hi >= lo) {
+    entries.push_back({'r', sequential(0), "exposure " + tick_label(lo)});
+    entries.push_back({'r', sequential(1), "exposure " + tick_label(hi)});
+  }
+  for (std::size_t k = 0; k < plot.paths.size(); ++k) {
+    std::string points;
+    for (const auto& p : plot.paths[k])
+      points +=
+          Svg::number(x0 + cell * (p.x + 0.5)) + "," + Svg::number(y0 + cell * (p.y + 0.5)) + " ";
+    if (!points.empty()) points.pop_back();
+    svg.polyline(points, colours[k % 6], std::max(1.5, cell / 3));
+    if (k < 8) entries.push_back({'r', colours[k % 6], "path " + std::to_string(k + 1)});
+  }
+  // The legend sits right of the map.
+  double ly = y0 + 10;
+  for (const auto& e : entries) {
+    svg.rect(x0 + cell * w + 20, ly - 10, 12, 12, e.colour, "#555");
+    svg.text(x0 + cell * w + 38, ly, e.label, "start", 12);
+    ly += 20;
+  }
+  return svg.str();
+}
+
+}  // namespace mosb::plots
