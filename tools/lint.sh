@@ -10,7 +10,7 @@ mapfile -t sources < <(git ls-files '*.c' '*.cpp' '*.h' '*.hpp')
 echo "clang-format: ${#sources[@]} files"
 clang-format --dry-run --Werror "${sources[@]}"
 
-mapfile -t units < <(git ls-files 'format/*.cpp' 'lib/*.cpp' 'converters/*.cpp' 'tools/*.cpp' 'capi/*.cpp')
+mapfile -t units < <(git ls-files 'format/*.cpp' 'lib/*.cpp' 'converters/*.cpp' 'tools/*.cpp' 'capi/*.cpp' 'report/*.cpp')
 echo "clang-tidy: ${#units[@]} translation units"
 # The compile database is GCC's: clang must not stop at GCC-only warning flags.
 printf '%s\n' "${units[@]}" |

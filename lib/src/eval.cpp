@@ -12,7 +12,8 @@ namespace mosb {
 
 namespace {
 
-__extension__ typedef unsigned __int128 u128;  // GCC/Clang; -Wpedantic needs the marker
+// GCC/Clang; -Wpedantic needs the marker, which an alias declaration cannot carry.
+__extension__ typedef unsigned __int128 u128;  // NOLINT(modernize-use-using)
 
 Ratio reduced(std::uint64_t num, std::uint64_t den) {
   const std::uint64_t g = std::gcd(num, den);
@@ -134,7 +135,7 @@ class DominanceIndex {
     if (d_ == 1) return true;
     if (d_ == 2) return A::cmp(min_second_, t[1], e) <= 0;
     if (d_ == 3) {
-      std::size_t k = static_cast<std::size_t>(
+      auto k = static_cast<std::size_t>(
           std::partition_point(second_.begin(), second_.end(),
                                [&](T v) { return A::cmp(v, t[1], e) <= 0; }) -
           second_.begin());

@@ -36,8 +36,12 @@ struct Axis {
   std::vector<double> ticks() const {
     if (!log) return nice_ticks(lo, hi);
     std::vector<double> t;
-    for (double v = std::pow(10, std::floor(std::log10(lo))); v <= hi * 1.0001; v *= 10)
-      if (v >= lo * 0.9999) t.push_back(v);
+    const auto first = static_cast<int>(std::floor(std::log10(lo)));
+    const auto last = static_cast<int>(std::ceil(std::log10(hi)));
+    for (int k = first; k <= last; ++k) {
+      const double v = std::pow(10, k);
+      if (v >= lo * 0.9999 && v <= hi * 1.0001) t.push_back(v);
+    }
     return t;
   }
 };
@@ -136,8 +140,12 @@ std::vector<double> nice_ticks(double lo, double hi, int target) {
       break;
     }
   std::vector<double> ticks;
-  for (double v = std::ceil(lo / step - 1e-9) * step; v <= hi + step * 1e-9; v += step)
+  const double first = std::ceil(lo / step - 1e-9);
+  for (int k = 0;; ++k) {
+    const double v = (first + k) * step;
+    if (v > hi + step * 1e-9) break;
     ticks.push_back(std::fabs(v) < step * 1e-9 ? 0 : v);
+  }
   return ticks;
 }
 
@@ -214,7 +222,7 @@ std::string plot_correlation(const CorrelationPlot& plot) {
   Svg svg(width, height);
   svg.text(width / 2, 30, plot.title, "middle", 16);
   for (std::size_t i = 0; i < n; ++i) {
-    const double c = static_cast<double>(i);
+    const auto c = static_cast<double>(i);
     svg.text(x0 - 8, y0 + cell * c + cell / 2 + 4, plot.names[i], "end", 12);
     svg.text(x0 + cell * c + cell / 2, y0 + cell * static_cast<double>(n) + 18, plot.names[i],
              "middle", 12);

@@ -74,19 +74,17 @@ void Svg::text(double x, double y, std::string_view content, std::string_view an
 }
 
 void Svg::polyline(std::string_view points, std::string_view stroke, double stroke_width) {
-  body_ += "<polyline points=\"" + escape(points) + "\" fill=\"none\" stroke=\"" + escape(stroke) +
-           "\" stroke-width=\"" + number(stroke_width) + "\"/>\n";
+  body_ += R"(<polyline points=")" + escape(points) + R"(" fill="none" stroke=")" + escape(stroke) +
+           R"(" stroke-width=")" + number(stroke_width) + "\"/>\n";
 }
 
 std::string Svg::str() const {
-  return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-         "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" +
-         number(width_) + "\" height=\"" + number(height_) + "\" viewBox=\"0 0 " + number(width_) +
-         " " + number(height_) + "\" font-family=\"DejaVu Sans, Arial, sans-serif\"" +
-         (crisp_ ? std::string(" shape-rendering=\"crispEdges\"") : std::string()) +
-         ">\n<rect width=\"100%\" "
-         "height=\"100%\" fill=\"#fff\"/>\n" +
-         body_ + "</svg>\n";
+  return std::string(R"(<?xml version="1.0" encoding="UTF-8"?>)") + "\n" +
+         R"(<svg xmlns="http://www.w3.org/2000/svg" width=")" + number(width_) + "\" height=\"" +
+         number(height_) + "\" viewBox=\"0 0 " + number(width_) + " " + number(height_) +
+         R"(" font-family="DejaVu Sans, Arial, sans-serif")" +
+         (crisp_ ? std::string(R"( shape-rendering="crispEdges")") : std::string()) + ">\n" +
+         R"(<rect width="100%" height="100%" fill="#fff"/>)" + "\n" + body_ + "</svg>\n";
 }
 
 }  // namespace mosb::plots
