@@ -1,0 +1,21 @@
+// Checks of a solution file against its instance (spec/SOLUTIONS.md §5): the binding, then the
+// payload, then every front mutually non-dominated and duplicate-free, then every stored path.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "mosb/graph_reader.hpp"
+#include "mosb/solution_file.hpp"
+
+namespace mosb {
+
+// The first problem, as one line naming the query (and both vectors, or the path step), or
+// nullopt. `instance` must be opened with VerifyLevel::full (paths walk its CSR). Cost: the
+// payload, plus O(k log k + k·w) per front of k vectors where w is the number of vectors not
+// lexicographically after a vector (O(k log k) for d = 2, O(k^2) worst case for d > 2), plus the
+// path lengths times the out-degrees along them.
+std::optional<std::string> verify_solutions(const SolutionReader& solutions,
+                                            const GraphReader& instance);
+
+}  // namespace mosb

@@ -1,0 +1,125 @@
+#include "mosb/solution_verify.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <numeric>
+
+namespace mosb {
+
+namespace {
+
+std::string vector_text(const std::vector<double>& v) {
+  std::string text = "(";
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    char buffer[32];
+    const auto end = std::to_chars(buffer, buffer + sizeof buffer, v[i]).ptr;
+    text += (i ? ", " : "") + std::string(buffer, end);
+  }
+  return text + ")";
+}
+
+// a weakly dominates b: no worse in every objective (equal vectors included).
+bool weakly_dominates(const std::vector<double>& a, const std::vector<double>& b) {
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i] > b[i]) return false;
+  return true;
+}
+
+}  // namespace
+
+std::optional<std::string> verify_solutions(const SolutionReader& s, const GraphReader& g) {
+  try {
+    s.check_bound_to(g);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  if (auto problem = s.verify_payload()) return problem;
+  g.require_verified(VerifyLevel::full, "solutions verify");
+  const std::size_t d = s.objective_count();
+  const auto queries = g.queries(s.query_set());
+  const auto view = g.view(s.view_name());
+  const auto offsets = g.forward_offsets();
+  const auto targets = g.forward_targets();
+  for (std::uint64_t q = 0; q < s.query_count(); ++q) {
+    const std::string label = "query " + std::to_string(q) + ": ";
+    const auto begin = s.front_begin(q), size = s.front_size(q);
+    // Values as doubles: exact for every integer cost (the writer refuses integers above 2^53)
+    // and for f32/f64 costs.
+    std::vector<std::vector<double>> front(size, std::vector<double>(d));
+    for (std::size_t i = 0; i < d; ++i)
+      for (std::uint64_t k = 0; k < size; ++k) front[k][i] = s.value_as_double(i, begin + k);
+    // Sorted lexicographically, a vector can only be weakly dominated by one before it.
+    std::vector<std::size_t> order(size);
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t b) { return front[a] < front[b]; });
+    double best_second = INFINITY;  // d = 2: the smallest second value so far
+    for (std::size_t j = 0; j < order.size(); ++j) {
+      const auto& v = front[order[j]];
+      auto report = [&](std::size_t by) {
+        const auto& w = front[by];
+        return label + (w == v ? "[duplicate] vector " + vector_text(v) + " appears twice"
+                               : "[dominated] vector " + vector_text(v) + " is dominated by " +
+                                     vector_text(w));
+      };
+      if (d == 2) {
+        if (j > 0 && v[1] >= best_second) {
+          for (std::size_t k = 0; k < j; ++k)
+            if (weakly_dominates(front[order[k]], v)) return report(order[k]);
+        }
+        best_second = std::min(best_second, v[1]);
+        continue;
+      }
+      for (std::size_t k = 0; k < j; ++k)
+        if (weakly_dominates(front[order[k]], v)) return report(order[k]);
+    }
+    if (!s.has_paths()) continue;
+    for (std::uint64_t k = 0; k < size; ++k) {
+      const auto path = s.path(begin + k);
+      const std::string where = label + "path of vector " + vector_text(front[k]) + ": ";
+      if (path.empty()) return where + "[path] is empty";
+      if (path.front() != queries[q].start || path.back() != queries[q].goal)
+        return where + "[path] runs from " + std::to_string(path.front()) + " to " +
+               std::to_string(path.back()) + ", the query from " +
+               std::to_string(queries[q].start) + " to " + std::to_string(queries[q].goal);
+      // Partial sums reachable by some choice among parallel arcs (SOLUTIONS.md §5).
+      std::vector<std::vector<double>> sums{std::vector<double>(d, 0.0)};
+      for (std::size_t step = 0; step + 1 < path.size(); ++step) {
+        std::vector<std::vector<double>> next;
+        for (auto arc = offsets[path[step]]; arc < offsets[path[step] + 1]; ++arc) {
+          if (targets[arc] != path[step + 1]) continue;
+          for (const auto& sum : sums) {
+            auto extended = sum;
+            for (std::size_t i = 0; i < d; ++i)
+              extended[i] += g.cost_as<double>(view.objectives[i])[arc];
+            next.push_back(std::move(extended));
+          }
+        }
+        if (next.empty())
+          return where + "[path] no arc from " + std::to_string(path[step]) + " to " +
+                 std::to_string(path[step + 1]);
+        std::sort(next.begin(), next.end());
+        next.erase(std::unique(next.begin(), next.end()), next.end());
+        sums = std::move(next);
+      }
+      const bool matches = std::any_of(sums.begin(), sums.end(), [&](const auto& sum) {
+        for (std::size_t i = 0; i < d; ++i) {
+          const auto tolerance = format::is_float(s.objective_type(i))
+                                     ? 1e-9 * static_cast<double>(path.size()) *
+                                           std::max(1.0, std::abs(front[k][i]))
+                                     : 0.0;
+          if (std::abs(sum[i] - front[k][i]) > tolerance) return false;
+        }
+        return true;
+      });
+      if (!matches)
+        return where + "[path-cost] the arcs sum to " + vector_text(sums.front()) +
+               (sums.size() > 1 ? " (or another parallel-arc choice)" : "") +
+               ", not to the stored vector";
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace mosb
