@@ -1,116 +1,82 @@
-// A minimal streaming JSON writer for `--json` output (Boost 1.74 has no Boost.JSON).
+// The `--json` output of the CLI: a builder-style writer (begin/key/value/end) over nlohmann::json,
+// so that every JSON byte mosb prints comes from one well-kept library. Each top-level value is
+// printed compactly, with object keys in insertion order, followed by a newline when it closes.
 #pragma once
 
-#include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <ostream>
+#include <string>
 #include <string_view>
 #include <vector>
-
-#include "mosb/utf8.hpp"
 
 namespace mosb::cli {
 
 class JsonWriter {
  public:
+  using Json = nlohmann::ordered_json;
+
   explicit JsonWriter(std::ostream& out) : out_(out) {}
 
-  JsonWriter& begin_object() { return open('{'); }
-  JsonWriter& end_object() { return close('}'); }
-  JsonWriter& begin_array() { return open('['); }
-  JsonWriter& end_array() { return close(']'); }
+  JsonWriter& begin_object() { return open(Json::object()); }
+  JsonWriter& end_object() { return close(); }
+  JsonWriter& begin_array() { return open(Json::array()); }
+  JsonWriter& end_array() { return close(); }
   JsonWriter& key(std::string_view k) {
-    separate();
-    write_string(k);
-    out_ << ':';
-    after_key_ = true;
+    key_ = std::string(k);
     return *this;
   }
-  JsonWriter& value(std::string_view v) {
-    return scalar([&] { write_string(v); });
-  }
+  JsonWriter& value(std::string_view v) { return scalar(Json(std::string(v))); }
   JsonWriter& value(const char* v) { return value(std::string_view(v)); }
-  JsonWriter& value(std::uint64_t v) {
-    return scalar([&] { out_ << v; });
-  }
-  JsonWriter& value(bool v) {
-    return scalar([&] { out_ << (v ? "true" : "false"); });
-  }
-  // Shortest text that reads back as the same double; JSON has no NaN or infinity: null.
-  JsonWriter& value(double v) {
-    return scalar([&] {
-      if (!std::isfinite(v)) {
-        out_ << "null";
-        return;
-      }
-      char buffer[32];
-      const auto end = std::to_chars(buffer, buffer + sizeof buffer, v).ptr;
-      out_.write(buffer, end - buffer);
-    });
-  }
-  JsonWriter& null() {
-    return scalar([&] { out_ << "null"; });
-  }
+  JsonWriter& value(std::uint64_t v) { return scalar(Json(v)); }
+  JsonWriter& value(bool v) { return scalar(Json(v)); }
+  // JSON has no NaN or infinity: null.
+  JsonWriter& value(double v) { return scalar(std::isfinite(v) ? Json(v) : Json(nullptr)); }
+  JsonWriter& null() { return scalar(Json(nullptr)); }
 
  private:
-  template <class F>
-  JsonWriter& scalar(F write) {
-    separate();
-    write();
+  // Places v inside the innermost open container (under the pending key of an object) and returns
+  // where it now lives; a value outside any container is printed at once.
+  Json* place(Json v) {
+    if (open_.empty()) {
+      root_ = std::move(v);
+      return &root_;
+    }
+    Json& parent = *open_.back();
+    if (parent.is_array()) {
+      parent.push_back(std::move(v));
+      return &parent.back();
+    }
+    Json& slot = parent[key_];
+    slot = std::move(v);
+    return &slot;
+  }
+  JsonWriter& scalar(Json v) {
+    place(std::move(v));
+    if (open_.empty()) print();
     return *this;
   }
-  JsonWriter& open(char c) {
-    separate();
-    out_ << c;
-    first_.push_back(true);
+  JsonWriter& open(Json container) {
+    // Only the innermost open container grows, so pointers to the enclosing ones stay valid.
+    open_.push_back(place(std::move(container)));
     return *this;
   }
-  JsonWriter& close(char c) {
-    out_ << c;
-    first_.pop_back();
-    if (first_.empty()) out_ << '\n';
+  JsonWriter& close() {
+    open_.pop_back();
+    if (open_.empty()) print();
     return *this;
   }
-  void separate() {
-    if (after_key_) {
-      after_key_ = false;
-      return;
-    }
-    if (!first_.empty()) {
-      if (!first_.back()) out_ << ',';
-      first_.back() = false;
-    }
-  }
-  void write_string(std::string_view s) {
-    out_ << '"';
-    for (std::size_t i = 0; i < s.size(); ++i) {
-      const auto c = static_cast<unsigned char>(s[i]);
-      if (c >= 0x80) {  // JSON must be UTF-8: a stray byte (say, in a file name) becomes U+FFFD
-        const auto length = utf8_sequence_length(s, i);
-        if (length == 0)
-          out_ << "\\ufffd";
-        else
-          out_ << s.substr(i, length);
-        i += length == 0 ? 0 : length - 1;
-      } else if (c == '"' || c == '\\')
-        out_ << '\\' << c;
-      else if (c == '\n')
-        out_ << "\\n";
-      else if (c == '\t')
-        out_ << "\\t";
-      else if (c < 0x20) {
-        static constexpr char kHex[] = "0123456789abcdef";
-        out_ << "\\u00" << kHex[c >> 4] << kHex[c & 15];
-      } else
-        out_ << c;
-    }
-    out_ << '"';
+  void print() {
+    // Invalid UTF-8 (say, in a file name) becomes U+FFFD instead of failing the report.
+    out_ << root_.dump(-1, ' ', false, Json::error_handler_t::replace) << '\n';
+    root_ = Json();
   }
 
   std::ostream& out_;
-  std::vector<bool> first_;
-  bool after_key_ = false;
+  Json root_;
+  std::vector<Json*> open_;
+  std::string key_;
 };
 
 }  // namespace mosb::cli
