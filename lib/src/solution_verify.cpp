@@ -105,10 +105,10 @@ std::optional<std::string> verify_solutions(const SolutionReader& s, const Graph
       }
       const bool matches = std::any_of(sums.begin(), sums.end(), [&](const auto& sum) {
         for (std::size_t i = 0; i < d; ++i) {
-          const auto tolerance = format::is_float(s.objective_type(i))
-                                     ? 1e-9 * static_cast<double>(path.size()) *
-                                           std::max(1.0, std::abs(front[k][i]))
-                                     : 0.0;
+          const auto tolerance =
+              format::is_float(s.objective_type(i))
+                  ? 1e-9 * static_cast<double>(path.size()) * std::max(1.0, std::abs(front[k][i]))
+                  : 0.0;
           if (std::abs(sum[i] - front[k][i]) > tolerance) return false;
         }
         return true;

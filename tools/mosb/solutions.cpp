@@ -1,5 +1,6 @@
-// `mosb solutions inspect | verify`: solution files (spec/SOLUTIONS.md). The CLI parses options,
-// calls SolutionReader / verify_solutions and prints.
+// `mosb solutions import | inspect | verify`: solution files (spec/SOLUTIONS.md). The CLI parses
+// options, calls the importers (converters/solution_import.hpp), SolutionWriter, SolutionReader or
+// verify_solutions, and prints.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <iostream>
@@ -7,12 +8,72 @@
 
 #include "commands.hpp"
 #include "json_writer.hpp"
+#include "mosb/converters/solution_import.hpp"
+#include "mosb/converters/text_input.hpp"
+#include "mosb/graph_reader.hpp"
 #include "mosb/solution_file.hpp"
 #include "mosb/solution_verify.hpp"
 
 namespace mosb::cli {
 
 namespace {
+
+struct ImportArgs {
+  std::string instance, view, query_set, output;
+  std::string directory, table, json_log;  // exactly one
+  std::string match = "position";
+  unsigned id_base = 0;
+  std::vector<std::size_t> columns;
+  std::string solver, solver_version, epsilon = "0";
+  bool json = false;
+};
+
+int run_import(const ImportArgs& a) {
+  const int inputs = !a.directory.empty() + !a.table.empty() + !a.json_log.empty();
+  if (inputs != 1)
+    throw Error(ErrorCode::invalid_argument, "give exactly one of --dir, --table, --json-log");
+  const auto instance = GraphReader::open(a.instance);
+  SolutionWriter writer(instance, a.view, a.query_set);
+  const auto set = a.query_set.empty() ? instance.view(a.view).query_set : a.query_set;
+  converters::SolutionImportOptions options;
+  options.objective_count = writer.objective_count();
+  options.columns = a.columns;
+  options.id_base = a.id_base;
+  options.vertex_count = instance.vertex_count();
+  options.queries = instance.queries(set);
+  options.match = a.match == "endpoints" ? converters::RecordMatch::endpoints
+                                         : converters::RecordMatch::position;
+  std::vector<converters::ImportedResult> results;
+  if (!a.directory.empty()) {
+    results = converters::import_front_directory(a.directory, options);
+  } else if (!a.table.empty()) {
+    const auto input = converters::read_text_input(a.table);
+    results =
+        converters::parse_solution_table(input.text, a.table, writer.objective_names(), options);
+  } else {
+    const auto input = converters::read_text_input(a.json_log);
+    results = converters::parse_solver_json_log(input.text, a.json_log, options);
+  }
+  writer.set_solver({a.solver, a.solver_version, {}, a.epsilon, {}});
+  for (const auto& r : results) writer.set_query(r.query, r.status, r.costs, r.statistics);
+  writer.write(a.output);
+  const auto written = SolutionReader::open(a.output);
+  if (a.json) {
+    JsonWriter json(std::cout);
+    json.begin_object();
+    json.key("file").value(a.output);
+    json.key("queries").value(written.query_count());
+    json.key("imported").value(static_cast<std::uint64_t>(results.size()));
+    json.key("vectors").value(written.vector_count());
+    json.key("digest").value(written.digest());
+    json.end_object();
+  } else {
+    std::cout << "wrote " << a.output << ": " << results.size() << " of " << written.query_count()
+              << " queries imported, " << written.vector_count() << " vectors, digest "
+              << written.digest() << "\n";
+  }
+  return 0;
+}
 
 struct InspectArgs {
   std::string file;
@@ -75,8 +136,9 @@ int run_inspect(const InspectArgs& a) {
   for (std::size_t i = 0; i < r.objective_count(); ++i)
     std::cout << ' ' << r.objective_name(i) << " (" << format::to_string(r.objective_type(i))
               << ')';
-  std::cout << "\nsolver " << (solver.name.empty() ? "-" : solver.name) << ' ' << solver.version
-            << ", epsilon " << solver.epsilon << "\n";
+  std::cout << "\nsolver " << (solver.name.empty() ? "-" : solver.name)
+            << (solver.version.empty() ? "" : " " + solver.version) << ", epsilon "
+            << solver.epsilon << "\n";
   std::cout << r.query_count() << " queries:";
   for (std::uint8_t s = 0; s <= kLastQueryStatus; ++s)
     std::cout << ' ' << counts[s] << ' ' << to_string(static_cast<QueryStatus>(s))
@@ -133,6 +195,34 @@ int run_verify(const VerifyArgs& a) {
 
 Command add_solutions(CLI::App& app) {
   auto* group_app = app.add_subcommand("solutions", "Solution files: reference or solver fronts");
+  auto import_args = std::make_shared<ImportArgs>();
+  auto* import = group_app->add_subcommand(
+      "import", "Write a solution file from solver output: per-query files, a table or a JSON log");
+  import->add_option("--instance", import_args->instance, "the instance (.mosb)")->required();
+  import->add_option("--view", import_args->view, "the view whose objectives the costs are")
+      ->required();
+  import->add_option("--queries", import_args->query_set, "query set (default: the view's)");
+  import->add_option("--dir", import_args->directory,
+                     "a directory of per-query front files (query id in the name)");
+  import->add_option("--table", import_args->table,
+                     "a CSV/TSV table: a 'query' column and one column per objective");
+  import->add_option("--json-log", import_args->json_log,
+                     "a PPA*/BOA*-style JSON log (source, target, finish_info.solutions)");
+  import
+      ->add_option("--match", import_args->match,
+                   "JSON records to queries by 'position' (default) or 'endpoints'")
+      ->check(CLI::IsMember({"position", "endpoints"}));
+  add_id_base_option(import, import_args->id_base, "0");
+  import
+      ->add_option("--columns", import_args->columns,
+                   "0-based positions of the view's values in each input vector (or table "
+                   "row), in the view's order")
+      ->delimiter(',');
+  import->add_option("--solver", import_args->solver, "the solver's name");
+  import->add_option("--solver-version", import_args->solver_version, "the solver's version");
+  import->add_option("--epsilon", import_args->epsilon, "the epsilon the solver used (0: exact)");
+  add_output_option(import, import_args->output, "the solution file")->required();
+  add_json_flag(import, import_args->json);
   auto inspect_args = std::make_shared<InspectArgs>();
   auto* inspect = group_app->add_subcommand(
       "inspect", "Summarise a solution file: binding, solver, statuses, front sizes");
@@ -146,7 +236,8 @@ Command add_solutions(CLI::App& app) {
   verify->add_option("SOLUTIONS", verify_args->file, "a solution file")->required();
   verify->add_option("--instance", verify_args->instance, "the instance the file belongs to");
   add_json_flag(verify, verify_args->json);
-  return group(group_app, {{inspect, [inspect_args] { return run_inspect(*inspect_args); }},
+  return group(group_app, {{import, [import_args] { return run_import(*import_args); }},
+                           {inspect, [inspect_args] { return run_inspect(*inspect_args); }},
                            {verify, [verify_args] { return run_verify(*verify_args); }}});
 }
 

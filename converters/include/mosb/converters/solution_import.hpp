@@ -1,0 +1,68 @@
+// Solver output in the forms in circulation, turned into per-query results for SolutionWriter
+// (spec/SOLUTIONS.md §7): a directory of per-query front files, a CSV/TSV table, and the JSON logs
+// of PPA*/BOA*-style solvers. Every input error is one line naming the file, with LINE:COLUMN for
+// text and the JSON pointer of the offending value for JSON.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "mosb/query.hpp"
+#include "mosb/solution_file.hpp"
+
+namespace mosb::converters {
+
+enum class RecordMatch {
+  position,   // the k-th record (or file/row query id k) is query k of the set
+  endpoints,  // a record names its start and goal; it is the query of the set with them
+};
+
+struct SolutionImportOptions {
+  std::size_t objective_count = 0;  // d: the view's objectives
+  // 0-based positions, within each input vector, of the values to keep, in the view's order;
+  // empty: every vector must hold exactly d values.
+  std::vector<std::size_t> columns;
+  unsigned id_base = 0;            // base of query and vertex ids in the input: 0 or 1
+  std::uint64_t vertex_count = 0;  // n: endpoints must lie in [id_base, n - 1 + id_base]
+  std::span<const Query> queries;  // the query set the results belong to
+  RecordMatch match = RecordMatch::position;
+};
+
+// One query's result as the writer takes it.
+struct ImportedResult {
+  std::uint64_t query = 0;  // 0-based index in the query set
+  QueryStatus status = QueryStatus::solved;
+  std::vector<double> costs;  // front_size·d values, vector after vector
+  QueryStatistics statistics;
+};
+
+// One front as text: one vector per line, values separated by blanks, commas or semicolons,
+// optionally inside [ ]; blank lines and '#' comment lines skipped. An empty front is a
+// `disconnected` query. Throws mosb::Error "FILE:LINE:COLUMN: message".
+ImportedResult parse_front_text(std::string_view text, const std::string& display_name,
+                                std::uint64_t query, const SolutionImportOptions& options);
+
+// Every regular file of `directory`: the last run of digits of its name before the first '.' is
+// the query id (id_base applies), e.g. `17.txt` or `query-17.front`. Sorted by query.
+std::vector<ImportedResult> import_front_directory(const std::filesystem::path& directory,
+                                                   const SolutionImportOptions& options);
+
+// A table with a header line, tab- or comma-separated (tab when the header has one): a `query`
+// column (the query id) and the cost columns, named after the view's objectives (`names`) unless
+// options.columns picks them by position; one row per vector, rows of a query in any order.
+std::vector<ImportedResult> parse_solution_table(std::string_view text,
+                                                 const std::string& display_name,
+                                                 std::span<const std::string> names,
+                                                 const SolutionImportOptions& options);
+
+// A JSON array of records {"source", "target", "finish_info": {"solutions": [{"cost_until_now":
+// [..]}, ..]}, "total_runtime(ms)"}. A record without solutions is a `disconnected` query.
+std::vector<ImportedResult> parse_solver_json_log(std::string_view text,
+                                                  const std::string& display_name,
+                                                  const SolutionImportOptions& options);
+
+}  // namespace mosb::converters

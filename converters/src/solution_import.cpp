@@ -1,0 +1,382 @@
+#include "mosb/converters/solution_import.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "mosb/converters/text_input.hpp"
+#include "mosb/converters/text_scan.hpp"
+#include "mosb/error.hpp"
+
+namespace mosb::converters {
+
+namespace {
+
+using text::fail;
+using text::quoted;
+
+bool is_value_separator(char c) {
+  return c == ' ' || c == '\t' || c == ',' || c == ';';
+}
+
+// Why `token` is no cost, or empty when it is one (stored in `value`).
+std::string cost_problem(std::string_view token, double& value) {
+  const auto parsed = text::to_real(token);
+  if (!parsed) {
+    std::string lower(token);
+    std::transform(lower.begin(), lower.end(), lower.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (lower.find("inf") != std::string::npos || lower.find("nan") != std::string::npos)
+      return "non-finite cost " + quoted(token);
+    return "expected a cost, found " + quoted(token);
+  }
+  if (!std::isfinite(*parsed)) return "non-finite cost " + quoted(token);
+  if (*parsed < 0) return "negative cost " + quoted(token);
+  value = *parsed;
+  return {};
+}
+
+// Why a vector of `count` values cannot give the view's d values, or empty.
+std::string width_problem(std::size_t count, const SolutionImportOptions& o) {
+  if (o.columns.empty()) {
+    if (count == o.objective_count) return {};
+    return text::plural(count, "value") + ", the view has " +
+           text::plural(o.objective_count, "objective") + " (--columns picks values)";
+  }
+  for (auto c : o.columns)
+    if (c >= count)
+      return text::plural(count, "value") + ", --columns needs value " + std::to_string(c);
+  return {};
+}
+
+// Appends the view's values of `row` to `costs` (width already checked).
+void append_picked(const std::vector<double>& row, const SolutionImportOptions& o,
+                   std::vector<double>& costs) {
+  if (o.columns.empty()) {
+    costs.insert(costs.end(), row.begin(), row.end());
+    return;
+  }
+  for (auto c : o.columns) costs.push_back(row[c]);
+}
+
+std::string queries_text(std::size_t count) {
+  return std::to_string(count) + (count == 1 ? " query" : " queries");
+}
+
+// A query id as written in the input, 0-based in the set, or why not.
+std::string query_problem(std::string_view token, const SolutionImportOptions& o,
+                          std::uint64_t& query) {
+  const auto id = text::to_u64(token);
+  const auto count = o.queries.size();
+  if (!id) return "expected a query id, found " + quoted(token);
+  if (*id < o.id_base || *id - o.id_base >= count)
+    return "query id " + std::string(token) + " outside " + std::to_string(o.id_base) + ".." +
+           std::to_string(count - 1 + o.id_base) + " (the set has " + queries_text(count) + ")";
+  query = *id - o.id_base;
+  return {};
+}
+
+void check_options(const SolutionImportOptions& o) {
+  if (o.objective_count == 0) throw Error(ErrorCode::invalid_argument, "no objectives");
+  if (o.id_base > 1) throw Error(ErrorCode::invalid_argument, "--id-base must be 0 or 1");
+  if (!o.columns.empty() && o.columns.size() != o.objective_count)
+    throw Error(ErrorCode::invalid_argument,
+                "--columns picks " + text::plural(o.columns.size(), "value") + ", the view has " +
+                    text::plural(o.objective_count, "objective"));
+}
+
+// Sorts by query and refuses two results for one query.
+std::vector<ImportedResult> by_query(std::vector<ImportedResult> results,
+                                     std::vector<std::string> where) {
+  std::vector<std::size_t> order(results.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](auto a, auto b) { return results[a].query < results[b].query; });
+  std::vector<ImportedResult> sorted;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    if (k > 0 && results[order[k]].query == results[order[k - 1]].query)
+      throw Error(ErrorCode::invalid_argument, where[order[k]] + ": a second result for query " +
+                                                   std::to_string(results[order[k]].query) +
+                                                   " (the first: " + where[order[k - 1]] + ")");
+    sorted.push_back(std::move(results[order[k]]));
+  }
+  return sorted;
+}
+
+}  // namespace
+
+ImportedResult parse_front_text(std::string_view text, const std::string& name, std::uint64_t query,
+                                const SolutionImportOptions& o) {
+  check_options(o);
+  ImportedResult result;
+  result.query = query;
+  text::LineScanner lines(text);
+  std::string_view line;
+  std::vector<double> row;
+  while (lines.next(line)) {
+    std::size_t begin = 0, end = line.size();
+    while (begin < end && (line[begin] == ' ' || line[begin] == '\t')) ++begin;
+    if (begin == end || line[begin] == '#') continue;
+    if (line[begin] == '[') {
+      if (line[end - 1] != ']') fail(name, lines.number(), end + 1, "'[' without a closing ']'");
+      ++begin;
+      --end;
+    }
+    row.clear();
+    std::size_t i = begin;
+    while (true) {
+      while (i < end && is_value_separator(line[i])) ++i;
+      if (i >= end) break;
+      const std::size_t start = i;
+      while (i < end && !is_value_separator(line[i])) ++i;
+      double value = 0;
+      const auto problem = cost_problem(line.substr(start, i - start), value);
+      if (!problem.empty()) fail(name, lines.number(), start + 1, problem);
+      row.push_back(value);
+    }
+    if (const auto problem = width_problem(row.size(), o); !problem.empty())
+      fail(name, lines.number(), begin + 1, problem);
+    append_picked(row, o, result.costs);
+  }
+  if (result.costs.empty()) result.status = QueryStatus::disconnected;
+  return result;
+}
+
+std::vector<ImportedResult> import_front_directory(const std::filesystem::path& directory,
+                                                   const SolutionImportOptions& o) {
+  check_options(o);
+  std::error_code error;
+  std::filesystem::directory_iterator it(directory, error);
+  if (error)
+    throw Error(ErrorCode::io,
+                directory.string() + ": cannot list the directory: " + error.message());
+  std::vector<std::filesystem::path> files;
+  for (const auto& entry : it)
+    if (entry.is_regular_file()) files.push_back(entry.path());
+  std::sort(files.begin(), files.end());  // messages in a stable order
+  std::vector<ImportedResult> results;
+  std::vector<std::string> where;
+  for (const auto& file : files) {
+    const std::string stem = file.filename().string().substr(0, file.filename().string().find('.'));
+    std::size_t last = stem.size();
+    while (last > 0 && (stem[last - 1] < '0' || stem[last - 1] > '9')) --last;
+    std::size_t first = last;
+    while (first > 0 && stem[first - 1] >= '0' && stem[first - 1] <= '9') --first;
+    if (first == last)
+      throw Error(ErrorCode::invalid_argument,
+                  file.string() + ": no query id in the file name (e.g. 17.txt)");
+    std::uint64_t query = 0;
+    if (const auto problem =
+            query_problem(std::string_view(stem).substr(first, last - first), o, query);
+        !problem.empty())
+      throw Error(ErrorCode::invalid_argument, file.string() + ": " + problem);
+    const auto input = read_text_input(file);
+    results.push_back(parse_front_text(input.text, file.string(), query, o));
+    where.push_back(file.string());
+  }
+  return by_query(std::move(results), std::move(where));
+}
+
+std::vector<ImportedResult> parse_solution_table(std::string_view text, const std::string& name,
+                                                 std::span<const std::string> names,
+                                                 const SolutionImportOptions& o) {
+  check_options(o);
+  text::LineScanner lines(text);
+  std::string_view line;
+  // Fields of a line with their 1-based columns.
+  char separator = ',';
+  auto split = [&](std::string_view l) {
+    std::vector<text::Token> fields;
+    std::size_t start = 0;
+    while (true) {
+      auto stop = l.find(separator, start);
+      if (stop == std::string_view::npos) stop = l.size();
+      auto field = l.substr(start, stop - start);
+      std::size_t lead = 0;
+      while (lead < field.size() && (field[lead] == ' ' || field[lead] == '\t')) ++lead;
+      field.remove_prefix(lead);
+      while (!field.empty() && (field.back() == ' ' || field.back() == '\t'))
+        field.remove_suffix(1);
+      fields.push_back({field, start + lead + 1});
+      if (stop == l.size()) break;
+      start = stop + 1;
+    }
+    return fields;
+  };
+  bool have_header = false;
+  while (lines.next(line))
+    if (!line.empty()) {
+      have_header = true;
+      break;
+    }
+  if (!have_header) throw Error(ErrorCode::invalid_argument, name + ": no header line");
+  if (line.find('\t') != std::string_view::npos) separator = '\t';
+  const auto header = split(line);
+  const std::uint64_t header_line = lines.number();
+  std::size_t query_column = SIZE_MAX;
+  for (std::size_t k = 0; k < header.size(); ++k)
+    if (header[k].text == "query") query_column = k;
+  if (query_column == SIZE_MAX) fail(name, header_line, 1, "no 'query' column in the header");
+  std::vector<std::size_t> cost_columns;
+  if (!o.columns.empty()) {
+    for (auto c : o.columns) {
+      if (c >= header.size())
+        fail(name, header_line, 1,
+             text::plural(header.size(), "column") + ", --columns needs column " +
+                 std::to_string(c));
+      cost_columns.push_back(c);
+    }
+  } else {
+    for (std::size_t i = 0; i < o.objective_count; ++i) {
+      const std::string wanted = i < names.size() ? names[i] : std::string();
+      auto found = std::find_if(header.begin(), header.end(),
+                                [&](const text::Token& t) { return t.text == wanted; });
+      if (found == header.end())
+        fail(name, header_line, 1,
+             "no column " + quoted(wanted) +
+                 " (an objective of the view; --columns picks "
+                 "columns by position)");
+      cost_columns.push_back(static_cast<std::size_t>(found - header.begin()));
+    }
+  }
+  std::map<std::uint64_t, ImportedResult> results;
+  while (lines.next(line)) {
+    if (line.empty()) continue;
+    const auto fields = split(line);
+    if (fields.size() != header.size())
+      fail(name, lines.number(), line.size() + 1,
+           text::plural(fields.size(), "field") + ", the header has " +
+               std::to_string(header.size()));
+    std::uint64_t query = 0;
+    const auto& qf = fields[query_column];
+    if (const auto problem = query_problem(qf.text, o, query); !problem.empty())
+      fail(name, lines.number(), qf.column, problem);
+    auto& result = results[query];
+    result.query = query;
+    for (auto c : cost_columns) {
+      double value = 0;
+      if (const auto problem = cost_problem(fields[c].text, value); !problem.empty())
+        fail(name, lines.number(), fields[c].column, problem);
+      result.costs.push_back(value);
+    }
+  }
+  std::vector<ImportedResult> sorted;
+  for (auto& [query, result] : results) sorted.push_back(std::move(result));
+  return sorted;
+}
+
+std::vector<ImportedResult> parse_solver_json_log(std::string_view text, const std::string& name,
+                                                  const SolutionImportOptions& o) {
+  check_options(o);
+  using Json = nlohmann::json;
+  Json log;
+  try {
+    log = Json::parse(text.begin(), text.end());
+  } catch (const Json::parse_error& e) {
+    // Byte offset (1-based, at the offending character) to line and column.
+    const std::size_t at = std::min<std::size_t>(e.byte == 0 ? 0 : e.byte - 1, text.size());
+    const auto before = text.substr(0, at);
+    const std::uint64_t line = 1 + std::count(before.begin(), before.end(), '\n');
+    const auto line_start = before.rfind('\n');
+    const std::uint64_t column =
+        at - (line_start == std::string_view::npos ? 0 : line_start + 1) + 1;
+    std::string what = e.what();
+    // nlohmann's message: "[json.exception.parse_error.101] parse error at ...: REASON"
+    if (const auto reason = what.rfind(": "); reason != std::string::npos)
+      what = what.substr(reason + 2);
+    fail(name, line, column, "invalid JSON: " + what);
+  }
+  auto at = [&](const std::string& pointer, const std::string& message) -> Error {
+    return Error(ErrorCode::invalid_argument, name + ": " + pointer + ": " + message);
+  };
+  if (!log.is_array()) throw at("/", "expected an array of records");
+  const auto count = o.queries.size();
+  std::multimap<std::pair<std::uint64_t, std::uint64_t>, std::uint64_t> by_endpoints;
+  if (o.match == RecordMatch::endpoints)
+    for (std::uint64_t q = 0; q < count; ++q)
+      by_endpoints.emplace(
+          std::pair<std::uint64_t, std::uint64_t>(o.queries[q].start, o.queries[q].goal), q);
+  std::vector<ImportedResult> results;
+  std::vector<std::string> where;
+  for (std::size_t r = 0; r < log.size(); ++r) {
+    const std::string record_at = "/" + std::to_string(r);
+    const Json& record = log[r];
+    if (!record.is_object()) throw at(record_at, "expected an object");
+    auto endpoint = [&](const char* key) -> std::uint64_t {
+      const auto field = record.find(key);
+      if (field == record.end()) throw at(record_at, std::string("no '") + key + "'");
+      if (!field->is_number_unsigned())
+        throw at(record_at + "/" + key, "expected a vertex id, found " + field->dump());
+      const auto id = field->get<std::uint64_t>();
+      if (id < o.id_base || id - o.id_base >= o.vertex_count)
+        throw at(record_at + "/" + key, "vertex id " + std::to_string(id) + " outside " +
+                                            std::to_string(o.id_base) + ".." +
+                                            std::to_string(o.vertex_count - 1 + o.id_base));
+      return id - o.id_base;
+    };
+    const auto source = endpoint("source"), target = endpoint("target");
+    ImportedResult result;
+    if (o.match == RecordMatch::position) {
+      if (r >= count)
+        throw at(record_at,
+                 "record " + std::to_string(r) + ", but the set has " + queries_text(count));
+      if (o.queries[r].start != source || o.queries[r].goal != target)
+        throw at(record_at, "source " + std::to_string(source + o.id_base) + " and target " +
+                                std::to_string(target + o.id_base) + ", but query " +
+                                std::to_string(r) + " runs from " +
+                                std::to_string(o.queries[r].start + o.id_base) + " to " +
+                                std::to_string(o.queries[r].goal + o.id_base));
+      result.query = r;
+    } else {
+      // Repeated endpoints in the set take the records in order.
+      auto [first, last] = by_endpoints.equal_range({source, target});
+      if (first == last)
+        throw at(record_at, "source " + std::to_string(source + o.id_base) + " and target " +
+                                std::to_string(target + o.id_base) +
+                                " are no query of the set (or every such query has a record)");
+      result.query = first->second;
+      by_endpoints.erase(first);
+    }
+    const auto info = record.find("finish_info");
+    if (info == record.end() || !info->is_object()) throw at(record_at, "no 'finish_info' object");
+    const auto solutions = info->find("solutions");
+    if (solutions == info->end() || !solutions->is_array())
+      throw at(record_at + "/finish_info", "no 'solutions' array");
+    std::vector<double> row;
+    for (std::size_t k = 0; k < solutions->size(); ++k) {
+      const std::string solution_at = record_at + "/finish_info/solutions/" + std::to_string(k);
+      const Json& solution = (*solutions)[k];
+      const auto cost = solution.is_object() ? solution.find("cost_until_now") : solution.end();
+      if (!solution.is_object() || cost == solution.end() || !cost->is_array())
+        throw at(solution_at, "no 'cost_until_now' array");
+      row.clear();
+      for (std::size_t i = 0; i < cost->size(); ++i) {
+        const Json& value = (*cost)[i];
+        const std::string value_at = solution_at + "/cost_until_now/" + std::to_string(i);
+        if (!value.is_number()) throw at(value_at, "expected a cost, found " + value.dump());
+        const double v = value.get<double>();
+        if (!std::isfinite(v)) throw at(value_at, "non-finite cost " + value.dump());
+        if (v < 0) throw at(value_at, "negative cost " + value.dump());
+        row.push_back(v);
+      }
+      if (const auto problem = width_problem(row.size(), o); !problem.empty())
+        throw at(solution_at + "/cost_until_now", problem);
+      append_picked(row, o, result.costs);
+    }
+    if (result.costs.empty()) result.status = QueryStatus::disconnected;
+    if (const auto runtime = record.find("total_runtime(ms)"); runtime != record.end()) {
+      const std::string runtime_at = record_at + "/total_runtime(ms)";
+      if (!runtime->is_number())
+        throw at(runtime_at, "expected milliseconds, found " + runtime->dump());
+      const double ms = runtime->get<double>();
+      if (!std::isfinite(ms) || ms < 0) throw at(runtime_at, "invalid runtime " + runtime->dump());
+      result.statistics.runtime_seconds = ms / 1000.0;
+    }
+    results.push_back(std::move(result));
+    where.push_back(name + ": " + record_at);
+  }
+  return by_query(std::move(results), std::move(where));
+}
+
+}  // namespace mosb::converters

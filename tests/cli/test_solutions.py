@@ -1,0 +1,272 @@
+#!/usr/bin/python3
+"""End-to-end tests of `mosb solutions import | inspect | verify` (spec/SOLUTIONS.md).
+
+    MOSB=build/release/tools/mosb /usr/bin/python3 tests/cli/test_solutions.py
+
+Instances come from `mosb generate grid`; solution files from `mosb solutions import` of text,
+table and JSON inputs written here.
+"""
+
+import json
+import os
+import subprocess
+import tempfile
+import unittest
+
+MOSB = os.path.abspath(os.environ.get("MOSB", "mosb"))
+QUERIES = [(0, 8), (1, 5), (8, 0), (1, 5)]  # a repeated pair: endpoint matching takes them in order
+
+
+def run(*args, check=True):
+    result = subprocess.run([MOSB, *args], capture_output=True, text=True)
+    if check and result.returncode != 0:
+        raise AssertionError("mosb %s failed: %s" % (" ".join(args), result.stderr))
+    return result
+
+
+class SolutionsTest(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = self.tmp.name
+        self.grid = self.path("grid.mosb")
+        run("generate", "grid", "--width", "3", "--height", "3", "--objectives", "2", "-o",
+            self.path("bare.mosb"))
+        self.write("queries.txt", "".join("%d %d\n" % q for q in QUERIES))
+        run("queries", "import", self.path("bare.mosb"), self.path("queries.txt"), "--set", "s",
+            "-o", self.grid)
+        self.other = self.path("other.mosb")
+        run("generate", "grid", "--width", "3", "--height", "3", "--objectives", "2", "--seed", "7",
+            "-o", self.path("bare7.mosb"))
+        run("queries", "import", self.path("bare7.mosb"), self.path("queries.txt"), "--set", "s",
+            "-o", self.other)
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def path(self, name):
+        return os.path.join(self.dir, name)
+
+    def write(self, name, text):
+        path = self.path(name)
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        with open(path, "w") as f:
+            f.write(text)
+        return path
+
+    def digest(self, instance):
+        return json.loads(run("inspect", instance, "--json").stdout)["digest"]
+
+    def import_(self, *args, check=True, output="out.sol"):
+        return run("solutions", "import", "--instance", self.grid, "--view", "Grid_2", "--queries",
+                   "s", *args, "-o", self.path(output), check=check)
+
+    def inspect(self, name="out.sol"):
+        return json.loads(run("solutions", "inspect", "--json", self.path(name)).stdout)
+
+    def assert_refused(self, args, message, output="bad.sol"):
+        result = self.import_(*args, check=False, output=output)
+        self.assertEqual(result.returncode, 1, result.stderr)
+        self.assertEqual(result.stderr.strip(), "mosb: " + message)
+        self.assertFalse(os.path.exists(self.path(output)), "a refused import wrote its output")
+
+    # --- per-query directory --------------------------------------------------------------------
+
+    def front_dir(self, files):
+        d = self.path("fronts")
+        for name, text in files.items():
+            self.write(os.path.join("fronts", name), text)
+        return d
+
+    def test_directory_import_and_inspect(self):
+        d = self.front_dir({"0.txt": "# a comment\n1 9\n[2, 7]\n\n3;5\r\n", "q1.front": "4,4\n",
+                            "query-2.txt": ""})
+        self.import_("--dir", d, "--solver", "brute", "--solver-version", "1")
+        info = self.inspect()
+        self.assertEqual(info["instance_digest"], self.digest(self.grid))
+        self.assertEqual((info["view"], info["query_set"]), ("Grid_2", "s"))
+        self.assertEqual([o["name"] for o in info["objectives"]], ["c1", "c2"])
+        self.assertEqual((info["solver"], info["solver_version"], info["epsilon"]), ("brute", "1", "0"))
+        self.assertEqual((info["queries"], info["vectors"]), (4, 4))
+        self.assertEqual(info["statuses"], {"solved": 2, "timeout": 0, "memory-limit": 0,
+                                            "disconnected": 1, "not-run": 1})
+        # Front sizes 3 and 1: the median of an even count is the lower middle one.
+        self.assertEqual(info["front_size"], {"min": 1, "median": 1, "max": 3})
+        self.assertFalse(info["paths"])
+        text = run("solutions", "inspect", self.path("out.sol")).stdout
+        self.assertIn("4 queries: 2 solved, 0 timeout, 0 memory-limit, 1 disconnected, 1 not-run", text)
+        self.assertIn("front size: min 1, median 1, max 3 (4 vectors)", text)
+        ok = run("solutions", "verify", self.path("out.sol"), "--instance", self.grid)
+        self.assertIn("OK", ok.stdout)
+        self.assertTrue(json.loads(run("solutions", "verify", self.path("out.sol"), "--json").stdout)["ok"])
+
+    def test_import_is_deterministic(self):
+        d = self.front_dir({"0.txt": "1 9\n2 7\n", "1.txt": "4 4\n"})
+        self.import_("--dir", d, output="a.sol")
+        self.import_("--dir", d, output="b.sol")
+        with open(self.path("a.sol"), "rb") as a, open(self.path("b.sol"), "rb") as b:
+            self.assertEqual(a.read(), b.read())
+
+    def test_columns_pick_values(self):
+        d = self.front_dir({"0.txt": "99 1 9\n99 2 7\n"})
+        self.assert_refused(["--dir", d],
+                            "%s/0.txt:1:1: 3 values, the view has 2 objectives (--columns picks values)" % d)
+        self.import_("--dir", d, "--columns", "1,2")
+        self.assertEqual(self.inspect()["vectors"], 2)
+        # Picked the wrong way round, (9, 1) and (7, 2) are still a front; (99, 1), (99, 2) is not.
+        self.import_("--dir", d, "--columns", "0,1", output="wrong.sol")
+        bad = run("solutions", "verify", self.path("wrong.sol"), "--instance", self.grid, check=False)
+        self.assertEqual(bad.returncode, 1)
+        self.assertIn("query 0: [dominated] vector (99, 2) is dominated by (99, 1)", bad.stderr)
+
+    def test_directory_errors_are_located(self):
+        d = self.front_dir({"0.txt": "1 9\n2 -7\n"})
+        self.assert_refused(["--dir", d], "%s/0.txt:2:3: negative cost '-7'" % d)
+        self.write("fronts/0.txt", "1 9\n  2 inf\n")
+        self.assert_refused(["--dir", d], "%s/0.txt:2:5: non-finite cost 'inf'" % d)
+        self.write("fronts/0.txt", "1 x9\n")
+        self.assert_refused(["--dir", d], "%s/0.txt:1:3: expected a cost, found 'x9'" % d)
+        self.write("fronts/0.txt", "1 9 3\n")
+        self.assert_refused(["--dir", d],
+                            "%s/0.txt:1:1: 3 values, the view has 2 objectives (--columns picks values)" % d)
+        self.write("fronts/0.txt", "[1, 9\n")
+        self.assert_refused(["--dir", d], "%s/0.txt:1:6: '[' without a closing ']'" % d)
+        os.remove(self.path("fronts/0.txt"))
+        self.write("fronts/7.txt", "1 9\n")
+        self.assert_refused(["--dir", d],
+                            "%s/7.txt: query id 7 outside 0..3 (the set has 4 queries)" % d)
+        os.remove(self.path("fronts/7.txt"))
+        self.write("fronts/4.txt", "1 9\n")
+        self.import_("--dir", d, "--id-base", "1")  # 1-based ids: 4 is the last query
+        self.write("fronts/q04.txt", "1 9\n")
+        self.assert_refused(["--dir", d, "--id-base", "1"],
+                            "%s/q04.txt: a second result for query 3 (the first: %s/4.txt)" % (d, d))
+
+    # --- CSV/TSV table --------------------------------------------------------------------------
+
+    def test_table_import(self):
+        t = self.write("t.csv", "query,c2,c1\n0,9,1\n1, 4 ,4\n0,7,2\n")
+        self.import_("--table", t)
+        info = self.inspect()
+        self.assertEqual((info["vectors"], info["statuses"]["solved"]), (3, 2))
+        run("solutions", "verify", self.path("out.sol"), "--instance", self.grid)
+        # Columns by name: c1 is the third column, so query 0 holds (1, 9) and (2, 7).
+        t = self.write("t.tsv", "query\tc2\tc1\n0\t9\t1\n0\t9\t2\n")
+        self.import_("--table", t)
+        bad = run("solutions", "verify", self.path("out.sol"), "--instance", self.grid, check=False)
+        self.assertIn("query 0: [dominated] vector (2, 9) is dominated by (1, 9)", bad.stderr)
+        t = self.write("p.csv", "query,a,b\n0,9,1\n")
+        self.import_("--table", t, "--columns", "2,1")
+        self.assertEqual(self.inspect()["vectors"], 1)
+
+    def test_table_errors_are_located(self):
+        t = self.write("t.csv", "q,c1,c2\n")
+        self.assert_refused(["--table", t], "%s:1:1: no 'query' column in the header" % t)
+        t = self.write("t.csv", "query,c1,x\n")
+        self.assert_refused(["--table", t], "%s:1:1: no column 'c2' (an objective of the view; "
+                            "--columns picks columns by position)" % t)
+        t = self.write("t.csv", "query,c1,c2\n0,1,2\n0,1\n")
+        self.assert_refused(["--table", t], "%s:3:4: 2 fields, the header has 3" % t)
+        t = self.write("t.csv", "query,c1,c2\n9,1,2\n")
+        self.assert_refused(["--table", t], "%s:2:1: query id 9 outside 0..3 (the set has 4 queries)" % t)
+        t = self.write("t.csv", "query,c1,c2\n0,1,nan\n")
+        self.assert_refused(["--table", t], "%s:2:5: non-finite cost 'nan'" % t)
+        t = self.write("t.csv", "query,c1,c2\n0,-1,2\n")
+        self.assert_refused(["--table", t], "%s:2:3: negative cost '-1'" % t)
+        # A cost the view's u8 objective cannot hold: refused by the writer, nothing written.
+        t = self.write("t.csv", "query,c1,c2\n0,1.5,2\n")
+        result = self.import_("--table", t, check=False, output="bad.sol")
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("query 0", result.stderr)
+        self.assertFalse(os.path.exists(self.path("bad.sol")))
+
+    # --- JSON logs ------------------------------------------------------------------------------
+
+    def log(self, records):
+        return self.write("log.json", json.dumps(records, indent=1))
+
+    @staticmethod
+    def record(source, target, costs, ms=12.5):
+        return {"source": source, "target": target, "total_runtime(ms)": ms,
+                "finish_info": {"solutions": [{"cost_until_now": c} for c in costs]}}
+
+    def test_json_log_by_position_and_endpoints(self):
+        records = [self.record(s, t, [[1, 9], [2, 7]] if k == 0 else [[4, 4]])
+                   for k, (s, t) in enumerate(QUERIES)]
+        self.import_("--json-log", self.log(records))
+        info = self.inspect()
+        self.assertEqual((info["vectors"], info["statuses"]["solved"]), (5, 4))
+        run("solutions", "verify", self.path("out.sol"), "--instance", self.grid)
+        # 1-based endpoints, in another order, matched by endpoints; the repeated pair (1, 5)
+        # takes queries 1 and 3 in record order; a record without solutions is disconnected.
+        shuffled = [self.record(9, 1, []), self.record(2, 6, [[4, 4]]), self.record(2, 6, [[5, 5]])]
+        self.import_("--json-log", self.log(shuffled), "--match", "endpoints", "--id-base", "1")
+        info = self.inspect()
+        self.assertEqual(info["statuses"], {"solved": 2, "timeout": 0, "memory-limit": 0,
+                                            "disconnected": 1, "not-run": 1})
+        # By position, the same records do not fit query 0.
+        self.assert_refused(["--json-log", self.path("log.json"), "--id-base", "1"],
+                            "%s: /0: source 9 and target 1, but query 0 runs from 1 to 9"
+                            % self.path("log.json"))
+
+    def test_json_log_errors(self):
+        name = self.path("log.json")
+        self.write("log.json", '[{"source": 0,\n  "target": 8,, }]')
+        self.assert_refused(["--json-log", name], "%s:2:15: invalid JSON: syntax error while parsing "
+                            "object key - unexpected ','; expected string literal" % name)
+        self.log([self.record(0, 99, [[1, 2]])])
+        self.assert_refused(["--json-log", name], "%s: /0/target: vertex id 99 outside 0..10" % name)
+        self.log([self.record(0, 5, [[1, 2]])])
+        self.assert_refused(["--json-log", name, "--match", "endpoints"],
+                            "%s: /0: source 0 and target 5 are no query of the set (or every such "
+                            "query has a record)" % name)
+        self.log([self.record(0, 8, [[1, 2], [1, -2]])])
+        self.assert_refused(["--json-log", name],
+                            "%s: /0/finish_info/solutions/1/cost_until_now/1: negative cost -2" % name)
+        self.log([self.record(0, 8, [[1, 2, 3]])])
+        self.assert_refused(["--json-log", name],
+                            "%s: /0/finish_info/solutions/0/cost_until_now: 3 values, the view has 2 "
+                            "objectives (--columns picks values)" % name)
+        self.log([self.record(0, 8, [[1, "2"]])])
+        self.assert_refused(["--json-log", name],
+                            '%s: /0/finish_info/solutions/0/cost_until_now/1: expected a cost, found "2"'
+                            % name)
+        self.log([self.record(s, t, [[1, 1]]) for s, t in QUERIES + [(0, 8)]])
+        self.assert_refused(["--json-log", name], "%s: /4: record 4, but the set has 4 queries" % name)
+        self.log({"source": 0})
+        self.assert_refused(["--json-log", name], "%s: /: expected an array of records" % name)
+
+    # --- verify ---------------------------------------------------------------------------------
+
+    def test_verify_names_dominated_and_duplicate_vectors(self):
+        d = self.front_dir({"0.txt": "1 9\n2 7\n", "1.txt": "4 4\n5 3\n4 4\n"})
+        self.import_("--dir", d)
+        bad = run("solutions", "verify", self.path("out.sol"), "--instance", self.grid, check=False)
+        self.assertEqual(bad.returncode, 1)
+        self.assertEqual(bad.stderr.strip(), "mosb: %s: query 1: [duplicate] vector (4, 4) appears twice"
+                         % self.path("out.sol"))
+        self.write("fronts/1.txt", "4 4\n3 9\n3 8\n")
+        self.import_("--dir", d)
+        bad = run("solutions", "verify", self.path("out.sol"), "--instance", self.grid, check=False)
+        self.assertEqual(bad.returncode, 1)
+        self.assertEqual(bad.stderr.strip(),
+                         "mosb: %s: query 1: [dominated] vector (3, 9) is dominated by (3, 8)"
+                         % self.path("out.sol"))
+        # Without the instance only the payload is checked: the same file passes.
+        self.assertEqual(run("solutions", "verify", self.path("out.sol")).returncode, 0)
+
+    def test_verify_against_another_instance_names_both_digests(self):
+        d = self.front_dir({"0.txt": "1 9\n"})
+        self.import_("--dir", d)
+        bad = run("solutions", "verify", self.path("out.sol"), "--instance", self.other, check=False)
+        self.assertEqual(bad.returncode, 1)
+        self.assertIn(self.digest(self.grid), bad.stderr)
+        self.assertIn(self.digest(self.other), bad.stderr)
+        self.assertNotEqual(self.digest(self.grid), self.digest(self.other))
+        report = json.loads(run("solutions", "verify", self.path("out.sol"), "--instance", self.other,
+                                "--json", check=False).stdout)
+        self.assertFalse(report["ok"])
+        self.assertIn(self.digest(self.other), report["problem"])
+
+
+if __name__ == "__main__":
+    unittest.main()

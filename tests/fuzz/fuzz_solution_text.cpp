@@ -1,0 +1,31 @@
+// libFuzzer target: arbitrary bytes as one per-query front file (parse_front_text), with and
+// without --columns. Any outcome but a clean mosb::Error or a front of whole, finite, non-negative
+// d-vectors is a bug.
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "mosb/converters/solution_import.hpp"
+#include "mosb/error.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string_view text(reinterpret_cast<const char*>(data), size);
+  static const std::string name = "fuzz.front";
+  static const mosb::Query queries[] = {{0, 1}, {1, 0}};
+  for (bool pick : {false, true}) {
+    mosb::converters::SolutionImportOptions options;
+    options.objective_count = 2;
+    options.vertex_count = 2;
+    options.queries = queries;
+    if (pick) options.columns = {2, 0};
+    try {
+      const auto result = mosb::converters::parse_front_text(text, name, 1, options);
+      if (result.query != 1 || result.costs.size() % 2 != 0) __builtin_trap();
+      for (double v : result.costs)
+        if (!std::isfinite(v) || v < 0) __builtin_trap();
+    } catch (const mosb::Error&) {
+    }
+  }
+  return 0;
+}
