@@ -235,6 +235,39 @@ class SolutionsTest(unittest.TestCase):
         self.log({"source": 0})
         self.assert_refused(["--json-log", name], "%s: /: expected an array of records" % name)
 
+    # --- export -------------------------------------------------------------------------------
+
+    def read(self, name):
+        with open(self.path(name), "rb") as f:
+            return f.read()
+
+    def test_export_round_trips(self):
+        d = self.front_dir({"0.txt": "1 9\n[2, 7]\n", "2.txt": "", "3.txt": "4;4\n"})
+        self.import_("--dir", d, output="a.sol")
+        out = run("solutions", "export", self.path("a.sol"), "--dir", self.path("exported"))
+        self.assertIn("wrote 3 front files", out.stdout)
+        with open(self.path("exported/0.txt")) as f:
+            self.assertEqual(f.read(), "1 9\n2 7\n")
+        with open(self.path("exported/2.txt")) as f:
+            self.assertEqual(f.read(), "")  # disconnected
+        self.assertFalse(os.path.exists(self.path("exported/1.txt")))  # not-run
+        self.import_("--dir", self.path("exported"), output="b.sol")
+        self.assertEqual(self.read("a.sol"), self.read("b.sol"))
+        records = [self.record(s + 1, t + 1, [[1, 9], [2, 7]] if k == 0 else [[4, 4]], ms=12.5)
+                   for k, (s, t) in enumerate(QUERIES)]
+        self.import_("--json-log", self.log(records), "--id-base", "1", output="c.sol")
+        run("solutions", "export", self.path("c.sol"), "--instance", self.grid, "--json-log",
+            self.path("exported.json"), "--id-base", "1")
+        with open(self.path("exported.json")) as f:
+            self.assertEqual(json.load(f), records)
+        self.import_("--json-log", self.path("exported.json"), "--id-base", "1", output="d.sol")
+        self.assertEqual(self.read("c.sol"), self.read("d.sol"))
+        bad = run("solutions", "export", self.path("c.sol"), "--instance", self.other, "--json-log",
+                  self.path("x.json"), check=False)
+        self.assertEqual(bad.returncode, 1)
+        self.assertIn(self.digest(self.other), bad.stderr)
+        self.assertFalse(os.path.exists(self.path("x.json")))
+
     # --- verify ---------------------------------------------------------------------------------
 
     def test_verify_names_dominated_and_duplicate_vectors(self):

@@ -8,6 +8,7 @@
 
 #include "commands.hpp"
 #include "json_writer.hpp"
+#include "mosb/converters/solution_export.hpp"
 #include "mosb/converters/solution_import.hpp"
 #include "mosb/converters/text_input.hpp"
 #include "mosb/graph_reader.hpp"
@@ -72,6 +73,28 @@ int run_import(const ImportArgs& a) {
               << " queries imported, " << written.vector_count() << " vectors, digest "
               << written.digest() << "\n";
   }
+  return 0;
+}
+
+struct ExportArgs {
+  std::string file, instance, directory, json_log;
+  unsigned id_base = 0;
+};
+
+int run_export(const ExportArgs& a) {
+  if (a.directory.empty() == a.json_log.empty())
+    throw Error(ErrorCode::invalid_argument, "give exactly one of --dir, --json-log");
+  const auto r = SolutionReader::open(a.file);
+  if (!a.directory.empty()) {
+    const auto files = converters::export_front_directory(r, a.directory, a.id_base);
+    std::cout << "wrote " << files << " front files to " << a.directory << "\n";
+    return 0;
+  }
+  if (a.instance.empty())
+    throw Error(ErrorCode::invalid_argument, "--json-log needs --instance (for the endpoints)");
+  const auto records =
+      converters::export_json_log(r, GraphReader::open(a.instance), a.json_log, a.id_base);
+  std::cout << "wrote " << a.json_log << ": " << records << " records\n";
   return 0;
 }
 
@@ -223,6 +246,16 @@ Command add_solutions(CLI::App& app) {
   import->add_option("--epsilon", import_args->epsilon, "the epsilon the solver used (0: exact)");
   add_output_option(import, import_args->output, "the solution file")->required();
   add_json_flag(import, import_args->json);
+  auto export_args = std::make_shared<ExportArgs>();
+  auto* export_ = group_app->add_subcommand(
+      "export", "Write a solution file's fronts as per-query text files or a JSON log");
+  export_->add_option("SOLUTIONS", export_args->file, "a solution file")->required();
+  export_->add_option("--dir", export_args->directory, "write <query id>.txt files here");
+  export_->add_option("--json-log", export_args->json_log,
+                      "write a PPA*/BOA*-style JSON log to this file");
+  export_->add_option("--instance", export_args->instance,
+                      "the file's instance (for the endpoints of --json-log)");
+  add_id_base_option(export_, export_args->id_base, "0");
   auto inspect_args = std::make_shared<InspectArgs>();
   auto* inspect = group_app->add_subcommand(
       "inspect", "Summarise a solution file: binding, solver, statuses, front sizes");
@@ -237,6 +270,7 @@ Command add_solutions(CLI::App& app) {
   verify->add_option("--instance", verify_args->instance, "the instance the file belongs to");
   add_json_flag(verify, verify_args->json);
   return group(group_app, {{import, [import_args] { return run_import(*import_args); }},
+                           {export_, [export_args] { return run_export(*export_args); }},
                            {inspect, [inspect_args] { return run_inspect(*inspect_args); }},
                            {verify, [verify_args] { return run_verify(*verify_args); }}});
 }

@@ -1,0 +1,27 @@
+// Writes a solution file back out in the forms `mosb solutions import` reads (spec/SOLUTIONS.md
+// §7): per-query front files or a PPA*/BOA*-style JSON log.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+
+#include "mosb/graph_reader.hpp"
+#include "mosb/solution_file.hpp"
+
+namespace mosb::converters {
+
+// One file `<query id>.txt` (ids from `id_base`) per solved or disconnected query in `out_dir`
+// (created when missing): one vector per line, values blank-separated, integers as integers and
+// floats in the shortest text that reads back to the stored value. Returns the number of files.
+// The payload is verified first (SolutionReader::verify_payload). Throws mosb::Error.
+std::uint64_t export_front_directory(const SolutionReader& solutions,
+                                     const std::filesystem::path& out_dir, unsigned id_base);
+
+// `instance` (the file's, check_bound_to) gives the endpoints. A JSON array with one record per
+// solved or disconnected query, in query order: source and target (from `id_base`),
+// finish_info.solutions[].cost_until_now, and total_runtime(ms) when the file has the query's
+// runtime. Written atomically. Returns the number of records.
+std::uint64_t export_json_log(const SolutionReader& solutions, const GraphReader& instance,
+                              const std::filesystem::path& output, unsigned id_base);
+
+}  // namespace mosb::converters

@@ -1,0 +1,91 @@
+#include "mosb/converters/solution_export.hpp"
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "mosb/atomic_file.hpp"
+#include "mosb/converters/dimacs_export.hpp"
+#include "mosb/error.hpp"
+#include "mosb/graph_reader.hpp"
+#include "mosb/solution_file.hpp"
+
+namespace mosb::converters {
+
+namespace {
+
+bool has_front_or_answer(QueryStatus status) {
+  return status == QueryStatus::solved || status == QueryStatus::disconnected;
+}
+
+// Integer objectives hold values below 2^53 (SolutionWriter refuses larger), exact as doubles.
+std::string value_text(const SolutionReader& r, std::size_t i, std::uint64_t row) {
+  const double v = r.value_as_double(i, row);
+  if (format::is_float(r.objective_type(i))) return format_real_cost(v);
+  return std::to_string(static_cast<std::uint64_t>(v));
+}
+
+}  // namespace
+
+std::uint64_t export_front_directory(const SolutionReader& r, const std::filesystem::path& out_dir,
+                                     unsigned id_base) {
+  if (auto problem = r.verify_payload()) throw Error(r.display_name() + ": " + *problem);
+  std::error_code error;
+  std::filesystem::create_directories(out_dir, error);
+  if (error)
+    throw Error(ErrorCode::io,
+                out_dir.string() + ": cannot create the directory: " + error.message());
+  std::uint64_t files = 0;
+  for (std::uint64_t q = 0; q < r.query_count(); ++q) {
+    if (!has_front_or_answer(r.status(q))) continue;
+    std::string text;
+    const auto begin = r.front_begin(q);
+    for (std::uint64_t k = 0; k < r.front_size(q); ++k) {
+      for (std::size_t i = 0; i < r.objective_count(); ++i)
+        text += (i ? " " : "") + value_text(r, i, begin + k);
+      text += '\n';
+    }
+    AtomicFile file(out_dir / (std::to_string(q + id_base) + ".txt"));
+    file.write(text);
+    file.commit();
+    ++files;
+  }
+  return files;
+}
+
+std::uint64_t export_json_log(const SolutionReader& r, const GraphReader& instance,
+                              const std::filesystem::path& output, unsigned id_base) {
+  r.check_bound_to(instance);
+  if (auto problem = r.verify_payload()) throw Error(r.display_name() + ": " + *problem);
+  const auto queries = instance.queries(r.query_set());
+  using Json = nlohmann::ordered_json;
+  Json log = Json::array();
+  for (std::uint64_t q = 0; q < r.query_count(); ++q) {
+    if (!has_front_or_answer(r.status(q))) continue;
+    Json record = Json::object();
+    record["source"] = std::uint64_t{queries[q].start} + id_base;
+    record["target"] = std::uint64_t{queries[q].goal} + id_base;
+    if (const auto seconds = r.runtime_seconds(q)) record["total_runtime(ms)"] = *seconds * 1000.0;
+    Json front = Json::array();
+    const auto begin = r.front_begin(q);
+    for (std::uint64_t k = 0; k < r.front_size(q); ++k) {
+      Json cost = Json::array();
+      for (std::size_t i = 0; i < r.objective_count(); ++i) {
+        const double v = r.value_as_double(i, begin + k);
+        if (format::is_float(r.objective_type(i)))
+          cost.push_back(v);
+        else
+          cost.push_back(static_cast<std::uint64_t>(v));
+      }
+      front.push_back(Json{{"cost_until_now", std::move(cost)}});
+    }
+    record["finish_info"] = Json{{"solutions", std::move(front)}};
+    log.push_back(std::move(record));
+  }
+  AtomicFile file(output);
+  file.write(log.dump(1) + "\n");
+  file.commit();
+  return log.size();
+}
+
+}  // namespace mosb::converters
