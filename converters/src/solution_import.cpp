@@ -262,6 +262,7 @@ std::vector<ImportedResult> parse_solution_table(std::string_view text, const st
     }
   }
   std::vector<ImportedResult> sorted;
+  sorted.reserve(results.size());
   for (auto& [query, result] : results) sorted.push_back(std::move(result));
   return sorted;
 }
@@ -288,7 +289,7 @@ std::vector<ImportedResult> parse_solver_json_log(std::string_view text, const s
     fail(name, line, column, "invalid JSON: " + what);
   }
   auto at = [&](const std::string& pointer, const std::string& message) -> Error {
-    return Error(ErrorCode::invalid_argument, name + ": " + pointer + ": " + message);
+    return {ErrorCode::invalid_argument, name + ": " + pointer + ": " + message};
   };
   if (!log.is_array()) throw at("/", "expected an array of records");
   const auto count = o.queries.size();
