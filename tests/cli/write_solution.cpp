@@ -1,0 +1,49 @@
+// Test helper for tests/cli/test_eval.py: writes a solution file with mosb::SolutionWriter.
+// Usage: mosb_test_write_solution INSTANCE VIEW OUT [SOLVER_EPSILON] < SPEC, one query a line:
+// "Q STATUS [a,b,... a,b,...]" (vectors of the view's objectives, space-separated).
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "mosb/graph_reader.hpp"
+#include "mosb/solution_file.hpp"
+
+int main(int argc, char** argv) {
+  if (argc != 4 && argc != 5) {
+    std::cerr << "usage: mosb_test_write_solution INSTANCE VIEW OUT < SPEC\n";
+    return 2;
+  }
+  try {
+    const auto instance = mosb::GraphReader::open(argv[1]);
+    mosb::SolutionWriter writer(instance, argv[2]);
+    if (argc == 5) {
+      mosb::SolverInfo solver;
+      solver.name = "test";
+      solver.epsilon = argv[4];
+      writer.set_solver(solver);
+    }
+    std::string line;
+    while (std::getline(std::cin, line)) {
+      std::istringstream in(line);
+      std::uint64_t q = 0;
+      std::string status_text, vector_text;
+      if (!(in >> q >> status_text)) continue;
+      const auto status = mosb::parse_query_status(status_text);
+      if (!status) throw mosb::Error("unknown status " + status_text);
+      std::vector<double> costs;
+      while (in >> vector_text) {
+        std::istringstream values(vector_text);
+        std::string value;
+        while (std::getline(values, value, ',')) costs.push_back(std::stod(value));
+      }
+      writer.set_query(q, *status, costs);
+    }
+    writer.write(argv[3]);
+  } catch (const std::exception& e) {
+    std::cerr << e.what() << '\n';
+    return 1;
+  }
+  return 0;
+}
