@@ -33,11 +33,11 @@ install(FILES ${PROJECT_BINARY_DIR}/mosbConfig.cmake ${PROJECT_BINARY_DIR}/mosbC
 # pkg-config: a static library's own dependencies must appear in plain `--libs` (most users do not
 # pass --static); a shared one hides them.
 if(BUILD_SHARED_LIBS)
-  set(MOSB_PC_REQUIRES "Requires.private: libxxhash libcrypto")
+  set(MOSB_PC_REQUIRES "Requires.private: libxxhash libcrypto libzstd")
   set(MOSB_PC_C_LIBS "")
   set(MOSB_PC_C_LIBS_PRIVATE "Libs.private: -lmosb -lstdc++ -lm")
 else()
-  set(MOSB_PC_REQUIRES "Requires: libxxhash libcrypto")
+  set(MOSB_PC_REQUIRES "Requires: libxxhash libcrypto libzstd")
   set(MOSB_PC_C_LIBS " -lmosb -lstdc++ -lm")
   set(MOSB_PC_C_LIBS_PRIVATE "")
 endif()

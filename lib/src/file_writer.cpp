@@ -91,6 +91,20 @@ void FileWriter::end_section() {
   in_section_ = false;
 }
 
+void FileWriter::add_encoded_section(const format::SectionEntry& entry,
+                                     std::span<const std::byte> stored) {
+  if (in_section_) fail("internal error: section '" + std::string(format::name_of(entry)) +
+                        "' added inside another");
+  static constexpr std::byte zeros[format::kAlignment] = {};
+  write_at_end(zeros, format::align_up(position_) - position_);
+  auto& added = table_.emplace_back(entry);
+  added.offset = position_;
+  added.stored_length = stored.size();
+  if (entry.encoding == static_cast<std::uint8_t>(format::Encoding::zstd))
+    required_features_ |= format::kFeatureZstdSections;
+  write_at_end(stored.data(), stored.size());
+}
+
 void FileWriter::commit(std::uint64_t vertex_count, std::uint64_t arc_count) {
   if (in_section_) fail("internal error: commit inside a section");
   static constexpr std::byte zeros[format::kAlignment] = {};
@@ -103,6 +117,7 @@ void FileWriter::commit(std::uint64_t vertex_count, std::uint64_t arc_count) {
   header.version_minor = version_minor_;
   header.header_size = format::kHeaderSize;
   header.file_kind = static_cast<std::uint32_t>(file_kind_);
+  header.required_features = required_features_;
   header.table_offset = position_;
   header.section_count = static_cast<std::uint32_t>(table_.size());
   header.file_size = position_ + table_.size() * sizeof(format::SectionEntry);

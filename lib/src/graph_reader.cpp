@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "mosb/pack.hpp"
 #include "mosb/verify.hpp"
 
 namespace mosb {
@@ -43,6 +44,25 @@ GraphReader GraphReader::open(const std::filesystem::path& path) {
   reader.bytes_ = file.bytes;
   reader.display_name_ = path.string();
   reader.validate();
+  return reader;
+}
+
+GraphReader GraphReader::load(const std::filesystem::path& path) {
+  auto file = map_file(path);
+  GraphReader reader;
+  reader.display_name_ = path.string();
+  format::FileHeader header{};
+  std::memcpy(&header, file.bytes.data(), sizeof header);
+  if (is_packed(header)) file = unpack_bytes(file.bytes, reader.display_name_);
+  reader.mapping_ = std::move(file.owner);
+  reader.bytes_ = file.bytes;
+  reader.validate();
+  return reader;
+}
+
+GraphReader GraphReader::load(const std::filesystem::path& path, VerifyLevel level) {
+  auto reader = load(path);
+  reader.verify_at_open(level);
   return reader;
 }
 

@@ -84,7 +84,7 @@ int run_verify(const VerifyArgs& a) {
   for (const auto& file : a.files) {
     Outcome outcome{file, std::nullopt, ""};
     try {
-      const auto reader = GraphReader::open(file);
+      const auto reader = GraphReader::load(file);  // a packed file is decoded first
       outcome.problem = verify(reader, verify_level, one_file ? progress : Progress{});
       if (outcome.problem) outcome.problem = file + ": " + *outcome.problem;
       outcome.digest = reader.digest();

@@ -53,6 +53,11 @@ class FileWriter {
   // target's name) a file whose content digest is not `digest`; empty: no expectation.
   void expect_digest(std::string_view digest) { expected_digest_ = digest; }
 
+  // Adds a section whose bytes are already stored as they go on disk (say, one zstd frame): `entry`
+  // gives the name, kind, type, width, row count, encoding and the checksum of the decoded
+  // elements; the offset and stored length are set here. A zstd entry sets the zstd-sections bit.
+  void add_encoded_section(const format::SectionEntry& entry, std::span<const std::byte> stored);
+
   // Writes the table and header, then renames the file into place. objective_count counts the
   // `cost` sections (instance) or the `front_cost` sections (solution file).
   void commit(std::uint64_t vertex_count, std::uint64_t arc_count);
@@ -68,6 +73,7 @@ class FileWriter {
   std::vector<format::SectionEntry> table_;
   bool in_section_ = false;
   std::uint64_t section_bytes_ = 0;
+  std::uint64_t required_features_ = 0;
   XXH3_state_s* hash_state_ = nullptr;
   format::FileKind file_kind_ = format::FileKind::instance;
   std::uint16_t version_minor_ = 0;

@@ -1,0 +1,253 @@
+#include "mosb/pack.hpp"
+
+#include <zstd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "mosb/atomic_file.hpp"
+#include "mosb/error.hpp"
+#include "mosb/file_writer.hpp"
+#include "mosb/hex.hpp"
+#include "xxh3.hpp"
+
+namespace mosb {
+
+namespace {
+
+// The most a zstd frame can expand: a block decodes to at most 128 KiB and takes at least 4 bytes
+// (a 3-byte block header and one RLE byte). A table that declares more for a frame is refused
+// before anything is allocated (the decompression-bomb bound of FORMAT.md §6).
+constexpr std::uint64_t kMaxZstdRatio = (std::uint64_t{128} << 10) / 4;
+
+bool is_zstd(const Section& s) {
+  return s.entry.encoding == static_cast<std::uint8_t>(format::Encoding::zstd);
+}
+
+// A 64-byte aligned, zero-filled buffer owned by a shared_ptr (the owner of a MappedFile).
+MappedFile allocate_image(std::uint64_t size, std::string_view name) {
+  const std::uint64_t rounded = format::align_up(std::max<std::uint64_t>(size, 1));
+  void* memory = rounded > SIZE_MAX ? nullptr : std::aligned_alloc(format::kAlignment, rounded);
+  if (!memory)
+    throw Error(ErrorCode::io, std::string(name) + ": out of memory unpacking " +
+                                   std::to_string(size) + " bytes");
+  std::memset(memory, 0, rounded);
+  MappedFile image;
+  image.owner = std::shared_ptr<const void>(memory, [](const void* p) {
+    std::free(const_cast<void*>(p));
+  });
+  image.bytes = {static_cast<const std::byte*>(memory), static_cast<std::size_t>(size)};
+  return image;
+}
+
+// Decodes the zstd frame of `s` into `out` (exactly s.decoded_length bytes) or throws.
+void decode_frame(const Section& s, std::byte* out, ZSTD_DCtx* context, std::string_view name) {
+  auto fail = [&](const std::string& what) {
+    throw Error(ErrorCode::damaged, std::string(name) + ": section '" + s.name + "': " + what);
+  };
+  const auto declared = ZSTD_getFrameContentSize(s.stored.data(), s.stored.size());
+  if (declared == ZSTD_CONTENTSIZE_ERROR) fail("stored bytes are not a zstd frame");
+  if (declared == ZSTD_CONTENTSIZE_UNKNOWN) fail("zstd frame does not declare its content size");
+  if (declared != s.decoded_length)
+    fail("zstd frame declares " + std::to_string(declared) + " bytes, the table " +
+         std::to_string(s.decoded_length));
+  const std::size_t frame = ZSTD_findFrameCompressedSize(s.stored.data(), s.stored.size());
+  if (ZSTD_isError(frame))
+    fail("zstd frame is truncated or damaged (" + std::string(ZSTD_getErrorName(frame)) + ")");
+  if (frame != s.stored.size())
+    fail(std::to_string(s.stored.size() - frame) + " bytes follow the zstd frame");
+  const std::size_t decoded =
+      ZSTD_decompressDCtx(context, out, s.decoded_length, s.stored.data(), s.stored.size());
+  if (ZSTD_isError(decoded))
+    fail("zstd frame does not decode (" + std::string(ZSTD_getErrorName(decoded)) + ")");
+  if (decoded != s.decoded_length)
+    fail("zstd frame decodes to " + std::to_string(decoded) + " bytes, the table declares " +
+         std::to_string(s.decoded_length));
+}
+
+std::vector<format::SectionEntry> table_of(const std::vector<Section>& sections) {
+  std::vector<format::SectionEntry> table;
+  table.reserve(sections.size());
+  for (const auto& s : sections) table.push_back(s.entry);
+  return table;
+}
+
+// Runs job(i) for i in [0, count) on up to `threads` threads; rethrows the first failure (by i).
+template <class Job>
+void run_parallel(std::size_t count, unsigned threads, Job job) {
+  std::vector<std::exception_ptr> failures(count);
+  std::atomic<std::size_t> next{0};
+  auto worker = [&] {
+    for (std::size_t i; (i = next.fetch_add(1)) < count;) {
+      try {
+        job(i);
+      } catch (...) {
+        failures[i] = std::current_exception();
+      }
+    }
+  };
+  const unsigned extra = std::min<std::size_t>(std::max(threads, 1U), count) - (count > 0 ? 1 : 0);
+  std::vector<std::thread> pool;
+  pool.reserve(extra);
+  for (unsigned t = 0; t < extra; ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
+  for (auto& f : failures)
+    if (f) std::rethrow_exception(f);
+}
+
+AtomicFile::Existing existing_for(const std::filesystem::path& in,
+                                  const std::filesystem::path& out) {
+  std::error_code error;
+  return std::filesystem::equivalent(in, out, error) ? AtomicFile::Existing::rewrite_in_place
+                                                     : AtomicFile::Existing::replace;
+}
+
+}  // namespace
+
+bool is_packed(const format::FileHeader& header) {
+  return (header.required_features & format::kFeatureZstdSections) != 0;
+}
+
+MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view display_name) {
+  const auto container = parse_container(bytes, display_name, format::FileKind::instance);
+  auto sections = container.sections;
+  // The canonical layout, and the bomb bound, before any allocation.
+  std::uint64_t position = format::kHeaderSize;
+  for (auto& s : sections) {
+    if (is_zstd(s) && s.decoded_length / kMaxZstdRatio > s.entry.stored_length)
+      throw Error(ErrorCode::damaged,
+                  std::string(display_name) + ": section '" + s.name + "': declares " +
+                      std::to_string(s.decoded_length) + " decoded bytes, more than its " +
+                      std::to_string(s.entry.stored_length) + "-byte zstd frame can hold");
+    position = format::align_up(position);
+    s.entry.offset = position;
+    if (__builtin_add_overflow(position, s.decoded_length, &position))
+      throw Error(ErrorCode::damaged, std::string(display_name) + ": decoded size overflows");
+  }
+  auto header = container.header;
+  header.table_offset = format::align_up(position);
+  header.file_size = header.table_offset + sections.size() * sizeof(format::SectionEntry);
+  header.required_features &= ~format::kFeatureZstdSections;
+
+  auto image = allocate_image(header.file_size, display_name);
+  auto* out = const_cast<std::byte*>(image.bytes.data());
+  ZSTD_DCtx* context = ZSTD_createDCtx();
+  if (!context) throw Error(ErrorCode::io, std::string(display_name) + ": out of memory");
+  try {
+    for (auto& s : sections) {
+      std::byte* target = out + s.entry.offset;
+      if (is_zstd(s))
+        decode_frame(s, target, context, display_name);
+      else if (!s.stored.empty())
+        std::memcpy(target, s.stored.data(), s.stored.size());
+      const std::uint64_t computed = XXH3_64bits(target, s.decoded_length);
+      if (computed != s.entry.checksum)
+        throw Error(ErrorCode::damaged, std::string(display_name) + ": section '" + s.name +
+                                            "': checksum mismatch (stored " +
+                                            hex64(s.entry.checksum) + ", computed " +
+                                            hex64(computed) + ")");
+      s.entry.encoding = static_cast<std::uint8_t>(format::Encoding::raw);
+      s.entry.stored_length = s.decoded_length;
+    }
+  } catch (...) {
+    ZSTD_freeDCtx(context);
+    throw;
+  }
+  ZSTD_freeDCtx(context);
+
+  const auto table = table_of(sections);
+  std::memcpy(out + header.table_offset, table.data(), table.size() * sizeof table[0]);
+  XXH3_state_t* state = XXH3_createState();
+  XXH3_64bits_reset(state);
+  XXH3_64bits_update(state, &header, format::kHeaderChecksumOffset);
+  XXH3_64bits_update(state, table.data(), table.size() * sizeof table[0]);
+  header.header_checksum = XXH3_64bits_digest(state);
+  XXH3_freeState(state);
+  std::memcpy(out, &header, sizeof header);
+  return image;
+}
+
+void unpack_file(const std::filesystem::path& in, const std::filesystem::path& out) {
+  const auto file = map_file(in);
+  const auto image = unpack_bytes(file.bytes, in.string());
+  AtomicFile writer(out, existing_for(in, out));
+  writer.write(image.bytes.data(), image.bytes.size());
+  writer.commit();
+}
+
+void pack_file(const std::filesystem::path& in, const std::filesystem::path& out,
+               const PackOptions& options) {
+  const std::string name = in.string();
+  if (options.level < 1 || options.level > ZSTD_maxCLevel())
+    throw Error(ErrorCode::invalid_argument, name + ": zstd level " +
+                                                 std::to_string(options.level) + " is not in 1.." +
+                                                 std::to_string(ZSTD_maxCLevel()));
+  const auto file = map_file(in);
+  const auto image = unpack_bytes(file.bytes, name);
+  const auto input = parse_container(file.bytes, name, format::FileKind::instance);
+  if (!is_packed(input.header) &&
+      (image.bytes.size() != file.bytes.size() ||
+       std::memcmp(image.bytes.data(), file.bytes.data(), file.bytes.size()) != 0))
+    throw Error(ErrorCode::invalid_argument,
+                name + ": not in the canonical layout of the mosb writer (section order, 64-byte "
+                       "alignment, zero padding), so unpacking could not restore its exact bytes; "
+                       "rewrite it with a mosb command first");
+  const auto container = parse_container(image.bytes, name, format::FileKind::instance);
+  const auto& reserved = container.header.reserved;
+  if (container.header.optional_features != 0 ||
+      std::any_of(reserved.begin(), reserved.end(), [](std::uint8_t b) { return b != 0; }))
+    throw Error(ErrorCode::invalid_argument,
+                name + ": has optional feature bits or reserved header bytes the mosb writer does "
+                       "not write, so unpacking could not restore its exact bytes");
+  const auto& sections = container.sections;
+
+  // Each non-empty section as one frame, kept only when it is smaller than the elements. The
+  // metadata stays raw: a few hundred bytes that keep a packed file self-describing (inspect reads
+  // the benchmark name and views without decoding anything).
+  std::vector<std::vector<std::byte>> frames(sections.size());
+  run_parallel(sections.size(), options.threads, [&](std::size_t i) {
+    const auto& s = sections[i];
+    if (s.stored.empty() || s.kind == format::SectionKind::metadata) return;
+    std::vector<std::byte> frame(ZSTD_compressBound(s.stored.size()));
+    ZSTD_CCtx* context = ZSTD_createCCtx();
+    std::size_t size = context ? ZSTD_compressCCtx(context, frame.data(), frame.size(),
+                                                   s.stored.data(), s.stored.size(), options.level)
+                               : 0;
+    ZSTD_freeCCtx(context);
+    if (!context || ZSTD_isError(size))
+      throw Error(name + ": section '" + s.name + "': zstd compression failed");
+    if (size >= s.stored.size()) return;
+    frame.resize(size);
+    // Verified before it is written: the frame decodes to the very bytes.
+    std::vector<std::byte> check(s.stored.size());
+    ZSTD_DCtx* dcontext = ZSTD_createDCtx();
+    const std::size_t decoded = dcontext ? ZSTD_decompressDCtx(dcontext, check.data(), check.size(),
+                                                               frame.data(), frame.size())
+                                         : 0;
+    ZSTD_freeDCtx(dcontext);
+    if (decoded != check.size() || std::memcmp(check.data(), s.stored.data(), check.size()) != 0)
+      throw Error(name + ": section '" + s.name + "': zstd frame does not decode to its bytes");
+    frames[i] = std::move(frame);
+  });
+
+  FileWriter writer(out, existing_for(in, out));
+  for (std::size_t i = 0; i < sections.size(); ++i) {
+    auto entry = sections[i].entry;
+    if (!frames[i].empty()) {
+      entry.encoding = static_cast<std::uint8_t>(format::Encoding::zstd);
+      writer.add_encoded_section(entry, frames[i]);
+    } else {
+      writer.add_encoded_section(entry, sections[i].stored);
+    }
+  }
+  writer.commit(container.header.vertex_count, container.header.arc_count);
+}
+
+}  // namespace mosb
