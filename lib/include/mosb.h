@@ -79,6 +79,10 @@ const char* mosb_last_error(void);
 mosb_status mosb_open(const char* path, mosb_graph** graph);
 /* mosb_open, then mosb_verify at `level`: a file that fails is closed again and not returned. */
 mosb_status mosb_open_verified(const char* path, mosb_verify_level level, mosb_graph** graph);
+/* Like mosb_open, but a packed file (`mosb pack`) is decoded into memory the handle owns, every
+ * section's checksum checked, instead of being refused with MOSB_ERROR_PACKED; an unpacked file
+ * is mapped as by mosb_open. */
+mosb_status mosb_load(const char* path, mosb_graph** graph);
 /* Unmaps and frees; NULL is allowed. Every pointer obtained from the handle dies with it. */
 void mosb_close(mosb_graph* graph);
 /* Checks the file at `level`; MOSB_ERROR_DAMAGED names the first problem. */

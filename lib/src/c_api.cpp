@@ -155,6 +155,14 @@ mosb_status mosb_open(const char* path, mosb_graph** graph) {
   });
 }
 
+mosb_status mosb_load(const char* path, mosb_graph** graph) {
+  return guarded([&] {
+    require(path, "the path");
+    require(graph, "the output handle");
+    *graph = new mosb_graph(mosb::GraphReader::load(path));
+  });
+}
+
 mosb_status mosb_open_verified(const char* path, mosb_verify_level level, mosb_graph** graph) {
   return guarded([&] {
     require(path, "the path");

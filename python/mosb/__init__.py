@@ -23,7 +23,7 @@ from . import _mosb
 from ._mosb import Error
 
 __version__ = _mosb.__version__
-__all__ = ["Error", "Instance", "View", "VERIFY_LEVELS", "open"]
+__all__ = ["Error", "Instance", "View", "VERIFY_LEVELS", "load", "open"]
 
 VERIFY_LEVELS = ("header", "checksums", "structure", "full")
 
@@ -36,6 +36,15 @@ def open(path, verify=None):  # noqa: A001 (the package's entry point, like io.o
     """Maps and checks the instance at `path` (FORMAT.md §9); `verify` is an optional level of
     VERIFY_LEVELS run right after opening. Raises mosb.Error naming the file."""
     instance = Instance(_mosb.Reader.open(os.fspath(path)))
+    if verify is not None:
+        instance.verify(verify)
+    return instance
+
+
+def load(path, verify=None):
+    """Like open(), but a packed file (`mosb pack`) is decoded into memory the instance owns (every
+    section's checksum checked) instead of being refused; an unpacked file is mapped as by open()."""
+    instance = Instance(_mosb.Reader.load(os.fspath(path)))
     if verify is not None:
         instance.verify(verify)
     return instance

@@ -126,6 +126,12 @@ PYBIND11_MODULE(_mosb, m) {
             return std::make_shared<mosb::GraphReader>(mosb::GraphReader::open(path));
           },
           py::arg("path"), py::call_guard<py::gil_scoped_release>())
+      .def_static(
+          "load",
+          [](const std::string& path) {
+            return std::make_shared<mosb::GraphReader>(mosb::GraphReader::load(path));
+          },
+          py::arg("path"), py::call_guard<py::gil_scoped_release>())
       .def_property_readonly("display_name", &mosb::GraphReader::display_name)
       .def_property_readonly("vertex_count", &mosb::GraphReader::vertex_count)
       .def_property_readonly("arc_count", &mosb::GraphReader::arc_count)

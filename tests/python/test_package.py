@@ -203,6 +203,20 @@ class ValuesTest(Temp):
         with self.assertRaisesRegex(ValueError, "header, checksums, structure, full"):
             g.verify("everything")
 
+    def test_load_decodes_a_packed_file(self):
+        plain = self.generate_grid()
+        packed = os.path.join(self.dir, "packed.mosb")
+        done = run(MOSB, "pack", plain, "-o", packed)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        with self.assertRaises(mosb.Error) as caught:
+            mosb.open(packed, verify="full")
+        self.assertIn("zstd-packed", str(caught.exception))
+        original, loaded = mosb.open(plain), mosb.load(packed, verify="full")
+        self.assertEqual(loaded.digest, original.digest)
+        self.assertTrue((loaded.forward_targets == original.forward_targets).all())
+        for o in original.objectives:
+            self.assertTrue((loaded.cost(o) == original.cost(o)).all())
+
 
 class ZeroCopyTest(Temp):
     def test_two_accessors_share_the_mapping(self):
