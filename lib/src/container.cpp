@@ -9,6 +9,7 @@
 #include <bit>
 #include <cerrno>
 #include <cstring>
+#include <iterator>
 #include <unordered_set>
 
 #include "mosb/error.hpp"
@@ -22,6 +23,11 @@ namespace {
 std::string version_text(std::uint16_t major, std::uint16_t minor) {
   return std::to_string(major) + "." + std::to_string(minor);
 }
+
+// §6: encoding k (k >= 1) comes with required bit k - 1.
+constexpr const char* kEncodingNames[] = {"raw", "zstd", "shuffle-zstd", "delta-zstd"};
+constexpr const char* kFeatureNames[] = {"zstd-sections", "shuffle-sections", "delta-sections"};
+static_assert(std::size(kEncodingNames) == format::kLastEncoding + 1);
 
 bool mul_overflows(std::uint64_t a, std::uint64_t b, std::uint64_t& out) {
   return __builtin_mul_overflow(a, b, &out);
@@ -176,7 +182,7 @@ Container parse_container(std::span<const std::byte> bytes, std::string_view dis
   // 7. Entries.
   sections.clear();
   sections.reserve(header.section_count);
-  bool any_packed = false;
+  std::uint64_t used_features = 0;
   for (std::uint32_t i = 0; i < header.section_count; ++i) {
     Section s{};
     std::memcpy(&s.entry, table + i * sizeof(format::SectionEntry), sizeof s.entry);
@@ -201,11 +207,16 @@ Container parse_container(std::span<const std::byte> bytes, std::string_view dis
       if (e.stored_length != s.decoded_length)
         fail(label + ": stored length " + std::to_string(e.stored_length) + " differs from " +
              std::to_string(s.decoded_length) + " bytes of elements");
-    } else if (e.encoding == static_cast<std::uint8_t>(format::Encoding::zstd)) {
-      if (!(header.required_features & format::kFeatureZstdSections))
-        fail(label + ": zstd-encoded but the header lacks the zstd-sections feature");
+    } else if (e.encoding <= format::kLastEncoding) {
+      const auto encoding = static_cast<format::Encoding>(e.encoding);
+      const std::uint64_t bit = format::feature_of(encoding);
+      if (!(header.required_features & bit))
+        fail(label + ": " + kEncodingNames[e.encoding] + "-encoded but the header lacks the " +
+             kFeatureNames[std::countr_zero(bit)] + " feature");
       if (e.stored_length == 0) fail(label + ": zstd-encoded with stored length 0");
-      any_packed = true;
+      if (encoding == format::Encoding::delta_zstd && format::is_float(s.type))
+        fail(label + ": delta encoding of a float column");
+      used_features |= bit;
     } else {
       fail(label + ": unknown encoding " + std::to_string(e.encoding));
     }
@@ -218,8 +229,11 @@ Container parse_container(std::span<const std::byte> bytes, std::string_view dis
     s.stored = bytes.subspan(e.offset, e.stored_length);
     sections.push_back(std::move(s));
   }
-  if ((header.required_features & format::kFeatureZstdSections) && !any_packed)
-    fail("header declares zstd-sections but no section is zstd-encoded");
+  if (std::uint64_t unused = header.required_features & ~used_features) {
+    const int bit = std::countr_zero(unused);
+    fail("header declares " + std::string(kFeatureNames[bit]) + " but no section is " +
+         kEncodingNames[bit + 1] + "-encoded");
+  }
   {
     std::vector<const Section*> by_offset;
     for (const auto& s : sections)

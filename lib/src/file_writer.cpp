@@ -100,8 +100,7 @@ void FileWriter::add_encoded_section(const format::SectionEntry& entry,
   auto& added = table_.emplace_back(entry);
   added.offset = position_;
   added.stored_length = stored.size();
-  if (entry.encoding == static_cast<std::uint8_t>(format::Encoding::zstd))
-    required_features_ |= format::kFeatureZstdSections;
+  required_features_ |= format::feature_of(static_cast<format::Encoding>(entry.encoding));
   write_at_end(stored.data(), stored.size());
 }
 
@@ -114,7 +113,8 @@ void FileWriter::commit(std::uint64_t vertex_count, std::uint64_t arc_count) {
   std::copy(format::kMagic.begin(), format::kMagic.end(), header.magic.begin());
   header.byte_order_mark = format::kByteOrderMark;
   header.version_major = format::kVersionMajor;
-  header.version_minor = version_minor_;
+  header.version_minor =
+      std::max(version_minor_, format::minimum_version_minor(required_features_));
   header.header_size = format::kHeaderSize;
   header.file_kind = static_cast<std::uint32_t>(file_kind_);
   header.required_features = required_features_;

@@ -7,8 +7,10 @@
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <memory>
 #include <string>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
 #include "mosb/atomic_file.hpp"
@@ -26,8 +28,84 @@ namespace {
 // before anything is allocated (the decompression-bomb bound of FORMAT.md §6).
 constexpr std::uint64_t kMaxZstdRatio = (std::uint64_t{128} << 10) / 4;
 
-bool is_zstd(const Section& s) {
-  return s.entry.encoding == static_cast<std::uint8_t>(format::Encoding::zstd);
+using format::Encoding;
+
+bool is_encoded(const Section& s) {
+  return s.entry.encoding != static_cast<std::uint8_t>(Encoding::raw);
+}
+
+// §6 byte shuffle: byte k of element i goes to k * count + i (grouping bytes of one significance,
+// which are alike in a column of small or slowly changing values), and back.
+template <std::size_t W>
+void shuffle_bytes(const std::byte* in, std::byte* out, std::size_t count) {
+  for (std::size_t i = 0; i < count; ++i)
+    for (std::size_t k = 0; k < W; ++k) out[k * count + i] = in[i * W + k];
+}
+template <std::size_t W>
+void unshuffle_bytes(const std::byte* in, std::byte* out, std::size_t count) {
+  for (std::size_t i = 0; i < count; ++i)
+    for (std::size_t k = 0; k < W; ++k) out[i * W + k] = in[k * count + i];
+}
+
+// Calls f(std::integral_constant<std::size_t, W>) for element size w in {1, 2, 4, 8}.
+template <class F>
+void with_width(std::size_t w, F&& f) {
+  switch (w) {
+    case 1:
+      return f(std::integral_constant<std::size_t, 1>{});
+    case 2:
+      return f(std::integral_constant<std::size_t, 2>{});
+    case 4:
+      return f(std::integral_constant<std::size_t, 4>{});
+    default:
+      return f(std::integral_constant<std::size_t, 8>{});
+  }
+}
+
+template <std::size_t W>
+using Unsigned = std::conditional_t<
+    W == 1, std::uint8_t,
+    std::conditional_t<W == 2, std::uint16_t,
+                       std::conditional_t<W == 4, std::uint32_t, std::uint64_t>>>;
+
+// The wrapping differences x[i] - x[i-1] (x[-1] = 0) of a column of W-byte integers, in place,
+// and their running sum.
+template <std::size_t W>
+void delta_in_place(std::byte* bytes, std::size_t count) {
+  using T = Unsigned<W>;
+  T previous = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    T x;
+    std::memcpy(&x, bytes + i * W, W);
+    const T d = static_cast<T>(x - previous);
+    previous = x;
+    std::memcpy(bytes + i * W, &d, W);
+  }
+}
+template <std::size_t W>
+void undelta_in_place(std::byte* bytes, std::size_t count) {
+  using T = Unsigned<W>;
+  T sum = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    T d;
+    std::memcpy(&d, bytes + i * W, W);
+    sum = static_cast<T>(sum + d);
+    std::memcpy(bytes + i * W, &sum, W);
+  }
+}
+
+// The content of the zstd frame of `s` under `encoding` (§6).
+std::vector<std::byte> frame_content(const Section& s, Encoding encoding) {
+  std::vector<std::byte> content(s.stored.begin(), s.stored.end());
+  if (encoding == Encoding::zstd) return content;
+  const std::size_t w = format::element_size(s.type), count = s.element_count();
+  with_width(w, [&](auto width) {
+    if (encoding == Encoding::delta_zstd) delta_in_place<width()>(content.data(), count);
+    std::vector<std::byte> shuffled(content.size());
+    shuffle_bytes<width()>(content.data(), shuffled.data(), count);
+    content.swap(shuffled);
+  });
+  return content;
 }
 
 // A 64-byte aligned, zero-filled buffer owned by a shared_ptr (the owner of a MappedFile).
@@ -47,7 +125,8 @@ MappedFile allocate_image(std::uint64_t size, std::string_view name) {
 }
 
 // Decodes the zstd frame of `s` into `out` (exactly s.decoded_length bytes) or throws.
-void decode_frame(const Section& s, std::byte* out, ZSTD_DCtx* context, std::string_view name) {
+void decode_frame(const Section& s, std::byte* out, ZSTD_DCtx* context, std::string_view name,
+                  std::vector<std::byte>& scratch) {
   auto fail = [&](const std::string& what) {
     throw Error(ErrorCode::damaged, std::string(name) + ": section '" + s.name + "': " + what);
   };
@@ -62,13 +141,25 @@ void decode_frame(const Section& s, std::byte* out, ZSTD_DCtx* context, std::str
     fail("zstd frame is truncated or damaged (" + std::string(ZSTD_getErrorName(frame)) + ")");
   if (frame != s.stored.size())
     fail(std::to_string(s.stored.size() - frame) + " bytes follow the zstd frame");
+  const auto encoding = static_cast<Encoding>(s.entry.encoding);
+  std::byte* content = out;
+  if (encoding != Encoding::zstd) {
+    scratch.resize(s.decoded_length);
+    content = scratch.data();
+  }
   const std::size_t decoded =
-      ZSTD_decompressDCtx(context, out, s.decoded_length, s.stored.data(), s.stored.size());
+      ZSTD_decompressDCtx(context, content, s.decoded_length, s.stored.data(), s.stored.size());
   if (ZSTD_isError(decoded))
     fail("zstd frame does not decode (" + std::string(ZSTD_getErrorName(decoded)) + ")");
   if (decoded != s.decoded_length)
     fail("zstd frame decodes to " + std::to_string(decoded) + " bytes, the table declares " +
          std::to_string(s.decoded_length));
+  if (encoding == Encoding::zstd) return;
+  const std::size_t count = s.element_count();
+  with_width(format::element_size(s.type), [&](auto width) {
+    unshuffle_bytes<width()>(content, out, count);
+    if (encoding == Encoding::delta_zstd) undelta_in_place<width()>(out, count);
+  });
 }
 
 std::vector<format::SectionEntry> table_of(const std::vector<Section>& sections) {
@@ -112,7 +203,9 @@ AtomicFile::Existing existing_for(const std::filesystem::path& in,
 }  // namespace
 
 bool is_packed(const format::FileHeader& header) {
-  return (header.required_features & format::kFeatureZstdSections) != 0;
+  return (header.required_features & (format::kFeatureZstdSections |
+                                      format::kFeatureShuffleSections |
+                                      format::kFeatureDeltaSections)) != 0;
 }
 
 MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view display_name) {
@@ -121,7 +214,7 @@ MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view displ
   // The canonical layout, and the bomb bound, before any allocation.
   std::uint64_t position = format::kHeaderSize;
   for (auto& s : sections) {
-    if (is_zstd(s) && s.decoded_length / kMaxZstdRatio > s.entry.stored_length)
+    if (is_encoded(s) && s.decoded_length / kMaxZstdRatio > s.entry.stored_length)
       throw Error(ErrorCode::damaged,
                   std::string(display_name) + ": section '" + s.name + "': declares " +
                       std::to_string(s.decoded_length) + " decoded bytes, more than its " +
@@ -134,17 +227,22 @@ MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view displ
   auto header = container.header;
   header.table_offset = format::align_up(position);
   header.file_size = header.table_offset + sections.size() * sizeof(format::SectionEntry);
-  header.required_features &= ~format::kFeatureZstdSections;
+  header.required_features &=
+      ~(format::kFeatureZstdSections | format::kFeatureShuffleSections |
+        format::kFeatureDeltaSections);
+  header.version_minor = std::min(header.version_minor,
+                                  format::minimum_version_minor(header.required_features));
 
   auto image = allocate_image(header.file_size, display_name);
   auto* out = const_cast<std::byte*>(image.bytes.data());
   ZSTD_DCtx* context = ZSTD_createDCtx();
   if (!context) throw Error(ErrorCode::io, std::string(display_name) + ": out of memory");
+  std::vector<std::byte> scratch;
   try {
     for (auto& s : sections) {
       std::byte* target = out + s.entry.offset;
-      if (is_zstd(s))
-        decode_frame(s, target, context, display_name);
+      if (is_encoded(s))
+        decode_frame(s, target, context, display_name, scratch);
       else if (!s.stored.empty())
         std::memcpy(target, s.stored.data(), s.stored.size());
       const std::uint64_t computed = XXH3_64bits(target, s.decoded_length);
@@ -208,40 +306,52 @@ void pack_file(const std::filesystem::path& in, const std::filesystem::path& out
                        "not write, so unpacking could not restore its exact bytes");
   const auto& sections = container.sections;
 
-  // Each non-empty section as one frame, kept only when it is smaller than the elements. The
-  // metadata stays raw: a few hundred bytes that keep a packed file self-describing (inspect reads
-  // the benchmark name and views without decoding anything).
+  // Each non-empty section as one frame under the encoding that gives the fewest bytes (ties: the
+  // lower encoding), kept only when it is smaller than the elements. The metadata stays raw: a
+  // few hundred bytes that keep a packed file self-describing (inspect reads the benchmark name
+  // and views without decoding anything).
   std::vector<std::vector<std::byte>> frames(sections.size());
+  std::vector<Encoding> encodings(sections.size(), Encoding::raw);
   run_parallel(sections.size(), options.threads, [&](std::size_t i) {
     const auto& s = sections[i];
     if (s.stored.empty() || s.kind == format::SectionKind::metadata) return;
-    std::vector<std::byte> frame(ZSTD_compressBound(s.stored.size()));
-    ZSTD_CCtx* context = ZSTD_createCCtx();
-    std::size_t size = context ? ZSTD_compressCCtx(context, frame.data(), frame.size(),
-                                                   s.stored.data(), s.stored.size(), options.level)
-                               : 0;
-    ZSTD_freeCCtx(context);
-    if (!context || ZSTD_isError(size))
-      throw Error(name + ": section '" + s.name + "': zstd compression failed");
-    if (size >= s.stored.size()) return;
-    frame.resize(size);
+    std::vector<Encoding> candidates = {Encoding::zstd};
+    if (format::element_size(s.type) > 1) candidates.push_back(Encoding::shuffle_zstd);
+    if (!format::is_float(s.type)) candidates.push_back(Encoding::delta_zstd);
+    std::unique_ptr<ZSTD_CCtx, std::size_t (*)(ZSTD_CCtx*)> context(ZSTD_createCCtx(),
+                                                                    ZSTD_freeCCtx);
+    if (!context) throw Error(ErrorCode::io, name + ": out of memory");
+    for (const auto encoding : candidates) {
+      const auto content = frame_content(s, encoding);
+      std::vector<std::byte> frame(ZSTD_compressBound(content.size()));
+      const std::size_t size = ZSTD_compressCCtx(context.get(), frame.data(), frame.size(),
+                                                 content.data(), content.size(), options.level);
+      if (ZSTD_isError(size))
+        throw Error(name + ": section '" + s.name + "': zstd compression failed");
+      if (size >= s.stored.size() || (!frames[i].empty() && size >= frames[i].size())) continue;
+      frame.resize(size);
+      frames[i] = std::move(frame);
+      encodings[i] = encoding;
+    }
+    if (frames[i].empty()) return;
     // Verified before it is written: the frame decodes to the very bytes.
-    std::vector<std::byte> check(s.stored.size());
-    ZSTD_DCtx* dcontext = ZSTD_createDCtx();
-    const std::size_t decoded = dcontext ? ZSTD_decompressDCtx(dcontext, check.data(), check.size(),
-                                                               frame.data(), frame.size())
-                                         : 0;
-    ZSTD_freeDCtx(dcontext);
-    if (decoded != check.size() || std::memcmp(check.data(), s.stored.data(), check.size()) != 0)
+    Section encoded = s;
+    encoded.entry.encoding = static_cast<std::uint8_t>(encodings[i]);
+    encoded.stored = frames[i];
+    std::vector<std::byte> check(s.stored.size()), scratch;
+    std::unique_ptr<ZSTD_DCtx, std::size_t (*)(ZSTD_DCtx*)> dcontext(ZSTD_createDCtx(),
+                                                                     ZSTD_freeDCtx);
+    if (!dcontext) throw Error(ErrorCode::io, name + ": out of memory");
+    decode_frame(encoded, check.data(), dcontext.get(), name, scratch);
+    if (std::memcmp(check.data(), s.stored.data(), check.size()) != 0)
       throw Error(name + ": section '" + s.name + "': zstd frame does not decode to its bytes");
-    frames[i] = std::move(frame);
   });
 
   FileWriter writer(out, existing_for(in, out));
   for (std::size_t i = 0; i < sections.size(); ++i) {
     auto entry = sections[i].entry;
     if (!frames[i].empty()) {
-      entry.encoding = static_cast<std::uint8_t>(format::Encoding::zstd);
+      entry.encoding = static_cast<std::uint8_t>(encodings[i]);
       writer.add_encoded_section(entry, frames[i]);
     } else {
       writer.add_encoded_section(entry, sections[i].stored);

@@ -25,7 +25,6 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 GOLDEN_VALID = sorted(glob.glob(os.path.join(HERE, "..", "..", "spec", "golden", "*", "valid",
                                              "*.mosb")))
 GR = "p sp 4 5\na 1 2 5\na 2 3 7\na 3 1 2\na 3 4 9\na 4 1 1\n"
-ZSTD = 1  # §3 encoding code
 
 
 def run(*args):
@@ -83,8 +82,8 @@ class PackTest(unittest.TestCase):
         self.ok("unpack", packed, "-o", unpacked)
         self.assertEqual(read(unpacked), original, source)
         data = read(packed)
-        if header(data)["required_features"] & 1:
-            self.assertTrue(any(e["encoding"] == ZSTD for e in entries(data)))
+        if header(data)["required_features"]:
+            self.assertTrue(any(e["encoding"] != 0 for e in entries(data)))
         # Same content digest, read from the tables alone; verify decodes and checks.
         digests = {json.loads(self.ok("inspect", "--json", f).stdout)["digest"]
                    for f in (source, packed)}

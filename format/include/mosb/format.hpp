@@ -38,9 +38,18 @@ enum class FileKind : std::uint32_t {
 
 // Required features: a reader refuses a file with a required bit it does not know.
 enum RequiredFeature : std::uint64_t {
-  kFeatureZstdSections = 1ULL << 0,  // some section has encoding zstd (a packed file)
+  kFeatureZstdSections = 1ULL << 0,     // some section has encoding zstd (a packed file)
+  kFeatureShuffleSections = 1ULL << 1,  // some section has encoding shuffle_zstd (1.1)
+  kFeatureDeltaSections = 1ULL << 2,    // some section has encoding delta_zstd (1.1)
 };
-inline constexpr std::uint64_t kKnownRequiredFeatures = kFeatureZstdSections;
+inline constexpr std::uint64_t kKnownRequiredFeatures =
+    kFeatureZstdSections | kFeatureShuffleSections | kFeatureDeltaSections;
+
+// §2: a file's version_minor is the lowest minor whose readers can read it, so a file using only
+// 1.0 features stays a 1.0 file, byte for byte.
+constexpr std::uint16_t minimum_version_minor(std::uint64_t required_features) {
+  return (required_features & (kFeatureShuffleSections | kFeatureDeltaSections)) ? 1 : 0;
+}
 // No optional features are defined in 1.0; readers ignore unknown optional bits.
 
 struct FileHeader {
@@ -113,10 +122,31 @@ enum class ElementType : std::uint8_t {
   f64 = 10,
 };
 
+// §6. Every encoding but raw stores one zstd frame that declares its content size, the decoded
+// length of the section; a reader must know the encoding's required feature bit.
 enum class Encoding : std::uint8_t {
-  raw = 0,   // the stored bytes are the elements
-  zstd = 1,  // the stored bytes are one zstd frame that decompresses to the elements
+  raw = 0,           // the stored bytes are the elements
+  zstd = 1,          // the frame's content is the elements
+  shuffle_zstd = 2,  // the content is the elements' bytes grouped by significance (byte shuffle)
+  delta_zstd = 3,    // the content is the byte shuffle of the wrapping differences x[i] - x[i-1]
+                     // (x[-1] = 0) of an integer column
 };
+inline constexpr std::uint8_t kLastEncoding = 3;
+
+// The required feature bit of a non-raw encoding.
+constexpr std::uint64_t feature_of(Encoding e) {
+  switch (e) {
+    case Encoding::raw:
+      return 0;
+    case Encoding::zstd:
+      return kFeatureZstdSections;
+    case Encoding::shuffle_zstd:
+      return kFeatureShuffleSections;
+    case Encoding::delta_zstd:
+      return kFeatureDeltaSections;
+  }
+  return 0;
+}
 
 struct SectionEntry {
   std::array<char, kNameSize> name;  // UTF-8, NUL-padded, 1..24 bytes, no NUL inside

@@ -55,7 +55,8 @@ class FileWriter {
 
   // Adds a section whose bytes are already stored as they go on disk (say, one zstd frame): `entry`
   // gives the name, kind, type, width, row count, encoding and the checksum of the decoded
-  // elements; the offset and stored length are set here. A zstd entry sets the zstd-sections bit.
+  // elements; the offset and stored length are set here. The encoding's required
+  // feature bit is set, and the version the file needs.
   void add_encoded_section(const format::SectionEntry& entry, std::span<const std::byte> stored);
 
   // Writes the table and header, then renames the file into place. objective_count counts the

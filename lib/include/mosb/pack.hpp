@@ -24,7 +24,7 @@ struct PackOptions {
   unsigned threads = 1;  // sections compressed at once; does not change the output bytes
 };
 
-// True when the header declares zstd-encoded sections (required feature bit 0).
+// True when the header declares sections in a zstd encoding (required feature bits 0-2).
 bool is_packed(const format::FileHeader& header);
 
 // Writes the packed form of the instance `in` (packed or not) to `out`, atomically (mosb::AtomicFile:
