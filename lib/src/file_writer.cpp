@@ -93,8 +93,9 @@ void FileWriter::end_section() {
 
 void FileWriter::add_encoded_section(const format::SectionEntry& entry,
                                      std::span<const std::byte> stored) {
-  if (in_section_) fail("internal error: section '" + std::string(format::name_of(entry)) +
-                        "' added inside another");
+  if (in_section_)
+    fail("internal error: section '" + std::string(format::name_of(entry)) +
+         "' added inside another");
   static constexpr std::byte zeros[format::kAlignment] = {};
   write_at_end(zeros, format::align_up(position_) - position_);
   auto& added = table_.emplace_back(entry);

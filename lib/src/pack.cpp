@@ -113,13 +113,12 @@ MappedFile allocate_image(std::uint64_t size, std::string_view name) {
   const std::uint64_t rounded = format::align_up(std::max<std::uint64_t>(size, 1));
   void* memory = rounded > SIZE_MAX ? nullptr : std::aligned_alloc(format::kAlignment, rounded);
   if (!memory)
-    throw Error(ErrorCode::io, std::string(name) + ": out of memory unpacking " +
-                                   std::to_string(size) + " bytes");
+    throw Error(ErrorCode::io,
+                std::string(name) + ": out of memory unpacking " + std::to_string(size) + " bytes");
   std::memset(memory, 0, rounded);
   MappedFile image;
-  image.owner = std::shared_ptr<const void>(memory, [](const void* p) {
-    std::free(const_cast<void*>(p));
-  });
+  image.owner =
+      std::shared_ptr<const void>(memory, [](const void* p) { std::free(const_cast<void*>(p)); });
   image.bytes = {static_cast<const std::byte*>(memory), static_cast<std::size_t>(size)};
   return image;
 }
@@ -203,9 +202,9 @@ AtomicFile::Existing existing_for(const std::filesystem::path& in,
 }  // namespace
 
 bool is_packed(const format::FileHeader& header) {
-  return (header.required_features & (format::kFeatureZstdSections |
-                                      format::kFeatureShuffleSections |
-                                      format::kFeatureDeltaSections)) != 0;
+  return (header.required_features &
+          (format::kFeatureZstdSections | format::kFeatureShuffleSections |
+           format::kFeatureDeltaSections)) != 0;
 }
 
 MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view display_name) {
@@ -227,11 +226,10 @@ MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view displ
   auto header = container.header;
   header.table_offset = format::align_up(position);
   header.file_size = header.table_offset + sections.size() * sizeof(format::SectionEntry);
-  header.required_features &=
-      ~(format::kFeatureZstdSections | format::kFeatureShuffleSections |
-        format::kFeatureDeltaSections);
-  header.version_minor = std::min(header.version_minor,
-                                  format::minimum_version_minor(header.required_features));
+  header.required_features &= ~(format::kFeatureZstdSections | format::kFeatureShuffleSections |
+                                format::kFeatureDeltaSections);
+  header.version_minor =
+      std::min(header.version_minor, format::minimum_version_minor(header.required_features));
 
   auto image = allocate_image(header.file_size, display_name);
   auto* out = const_cast<std::byte*>(image.bytes.data());
@@ -294,16 +292,18 @@ void pack_file(const std::filesystem::path& in, const std::filesystem::path& out
       (image.bytes.size() != file.bytes.size() ||
        std::memcmp(image.bytes.data(), file.bytes.data(), file.bytes.size()) != 0))
     throw Error(ErrorCode::invalid_argument,
-                name + ": not in the canonical layout of the mosb writer (section order, 64-byte "
-                       "alignment, zero padding), so unpacking could not restore its exact bytes; "
-                       "rewrite it with a mosb command first");
+                name +
+                    ": not in the canonical layout of the mosb writer (section order, 64-byte "
+                    "alignment, zero padding), so unpacking could not restore its exact bytes; "
+                    "rewrite it with a mosb command first");
   const auto container = parse_container(image.bytes, name, format::FileKind::instance);
   const auto& reserved = container.header.reserved;
   if (container.header.optional_features != 0 ||
       std::any_of(reserved.begin(), reserved.end(), [](std::uint8_t b) { return b != 0; }))
     throw Error(ErrorCode::invalid_argument,
-                name + ": has optional feature bits or reserved header bytes the mosb writer does "
-                       "not write, so unpacking could not restore its exact bytes");
+                name +
+                    ": has optional feature bits or reserved header bytes the mosb writer does "
+                    "not write, so unpacking could not restore its exact bytes");
   const auto& sections = container.sections;
 
   // Each non-empty section as one frame under the encoding that gives the fewest bytes (ties: the

@@ -44,10 +44,10 @@ int run(int argc, char** argv) {
       "I/O error); 2 usage error (unknown or missing option, bad option value, no subcommand).");
   app.require_subcommand(1);
   const std::vector<mosb::cli::Command> commands = {
-      mosb::cli::add_inspect(app), mosb::cli::add_verify(app),  mosb::cli::add_generate(app),
-      mosb::cli::add_convert(app), mosb::cli::add_queries(app), mosb::cli::add_stats(app),
-      mosb::cli::add_export(app),  mosb::cli::add_store(app),   mosb::cli::add_suite(app),
-      mosb::cli::add_plot(app),    mosb::cli::add_pack(app),    mosb::cli::add_unpack(app),
+      mosb::cli::add_inspect(app),   mosb::cli::add_verify(app),  mosb::cli::add_generate(app),
+      mosb::cli::add_convert(app),   mosb::cli::add_queries(app), mosb::cli::add_stats(app),
+      mosb::cli::add_export(app),    mosb::cli::add_store(app),   mosb::cli::add_suite(app),
+      mosb::cli::add_plot(app),      mosb::cli::add_pack(app),    mosb::cli::add_unpack(app),
       mosb::cli::add_solutions(app),
       mosb::cli::add_eval(app),
   };

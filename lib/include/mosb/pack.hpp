@@ -1,6 +1,7 @@
 // The packed form of a mosb file (spec/FORMAT.md §6 "Packed files"): every non-empty section but
-// the metadata whose bytes shrink is stored as one zstd frame in the same container; the section table stays
-// uncompressed, so the header, the table and the §8 content digest read the same as unpacked.
+// the metadata whose bytes shrink is stored as one zstd frame in the same container; the section
+// table stays uncompressed, so the header, the table and the §8 content digest read the same as
+// unpacked.
 //
 // Unpacking restores the layout of mosb::FileWriter, the canonical one (sections in table order,
 // each at the next 64-byte boundary, zero padding, the table last), which is recomputed from the
@@ -27,10 +28,10 @@ struct PackOptions {
 // True when the header declares sections in a zstd encoding (required feature bits 0-2).
 bool is_packed(const format::FileHeader& header);
 
-// Writes the packed form of the instance `in` (packed or not) to `out`, atomically (mosb::AtomicFile:
-// `out` shows the old file or the complete new one). Every frame is decoded again and compared
-// before the file is committed. `out` may be `in` itself (an in-place rewrite); the CLI allows
-// that only with --in-place. Throws mosb::Error naming the file.
+// Writes the packed form of the instance `in` (packed or not) to `out`, atomically
+// (mosb::AtomicFile: `out` shows the old file or the complete new one). Every frame is decoded
+// again and compared before the file is committed. `out` may be `in` itself (an in-place rewrite);
+// the CLI allows that only with --in-place. Throws mosb::Error naming the file.
 void pack_file(const std::filesystem::path& in, const std::filesystem::path& out,
                const PackOptions& options);
 
