@@ -1,8 +1,8 @@
 """Builds mosb._mosb from the repository's own reader sources (../lib, ../format).
 
 Compiling the library sources into the extension, rather than linking an installed libmosb, needs
-nothing but this checkout, a C++20 compiler, pybind11, libxxhash, libzstd, libcrypto (OpenSSL, for the
-store's SHA-256) and the nlohmann-json headers: no prior `cmake --install`,
+nothing but this checkout, a C++20 compiler, pybind11, libxxhash, libzstd, libcrypto (OpenSSL, for
+the store's SHA-256) and the nlohmann-json headers: no prior `cmake --install`,
 no library search path at run time, and no chance of binding a different version of the reader
 than the one in this tree. The sources are the same files the CLI is built from, so validation and
 error messages are identical.
