@@ -93,14 +93,14 @@ Command add_generate(CLI::App& app);
 Command add_convert(CLI::App& app);
 Command add_queries(CLI::App& app);  // queries.cpp: `queries import` and `queries generate`
 Command add_stats(CLI::App& app);
-Command add_export(CLI::App& app);  // export_dimacs.cpp: the `export` group and its children
-Command add_store(CLI::App& app);   // store.cpp: `store init|add|list|verify`
-Command add_suite(CLI::App& app);   // suite_build.cpp: `suite build`
-Command add_plot(CLI::App& app);    // plot.cpp: `plot correlation`, `plot map`
+Command add_export(CLI::App& app);     // export_dimacs.cpp: the `export` group and its children
+Command add_store(CLI::App& app);      // store.cpp: `store init|add|list|verify`
+Command add_suite(CLI::App& app);      // suite_build.cpp: `suite build`
+Command add_plot(CLI::App& app);       // plot.cpp: `plot correlation`, `plot map`
 Command add_solutions(CLI::App& app);  // solutions.cpp: `solutions import|export|inspect|verify`
 Command add_eval(CLI::App& app);       // eval.cpp: `eval`
-Command add_pack(CLI::App& app);    // pack.cpp: `pack`
-Command add_unpack(CLI::App& app);  // pack.cpp: `unpack`
+Command add_pack(CLI::App& app);       // pack.cpp: `pack`
+Command add_unpack(CLI::App& app);     // pack.cpp: `unpack`
 
 // Children of `generate`.
 Command add_generate_grid(CLI::App& generate);
