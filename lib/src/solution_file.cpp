@@ -376,7 +376,7 @@ std::optional<std::string> SolutionReader::verify_payload() const {
       return label + "[statistics] runtime_seconds is not finite and >= 0";
   }
   for (std::size_t i = 0; i < objective_count(); ++i) {
-    const auto problem = visit_column(i, [&](auto column) -> std::optional<std::string> {
+    auto problem = visit_column(i, [&](auto column) -> std::optional<std::string> {
       using T = typename decltype(column)::value_type;
       if constexpr (std::is_floating_point_v<T>)
         for (std::uint64_t row = 0; row < column.size(); ++row)
@@ -394,10 +394,10 @@ std::optional<std::string> SolutionReader::verify_payload() const {
         return "section '" + sections_[path_offsets_index_].name +
                "': [path-offsets] offsets decrease at front vector " + std::to_string(row);
     const auto vertices = values<std::uint32_t>(sections_[path_vertices_index_]);
-    for (std::uint64_t i = 0; i < vertices.size(); ++i)
-      if (vertices[i] >= header_.vertex_count)
+    for (const std::uint32_t vertex : vertices)
+      if (vertex >= header_.vertex_count)
         return "section '" + sections_[path_vertices_index_].name + "': [path-vertex] vertex " +
-               std::to_string(vertices[i]) + " is not below the vertex count " +
+               std::to_string(vertex) + " is not below the vertex count " +
                std::to_string(header_.vertex_count);
   }
   return std::nullopt;

@@ -154,6 +154,7 @@ void print_json(const SolutionEvaluation& result, const std::vector<std::string>
 int run_eval(const EvalArgs& args) {
   const auto eps = parse_epsilons(args.epsilons);
   std::vector<std::string> eps_text;
+  eps_text.reserve(eps.size());
   for (const auto& e : eps) eps_text.push_back(e.to_decimal());
   const auto reference = SolutionReader::open(args.reference);
   const auto solutions = SolutionReader::open(args.solutions);
