@@ -335,7 +335,8 @@ StoreInstance Store::instance(std::string_view name) const {
     } else {
       for (const auto& e : manifest_.entries)
         if (e.benchmark == name) candidates.push_back(e.file), found = &e;
-      if (candidates.size() == 1 && found->views.size() == 1) view = found->views.front();
+      if (found != nullptr && candidates.size() == 1 && found->views.size() == 1)
+        view = found->views.front();
     }
   }
   const auto label = directory_.string() + ": '" + std::string(name) + "'";
