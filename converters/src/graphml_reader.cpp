@@ -56,7 +56,8 @@ class GraphmlBuilder {
     const std::size_t depth = stack_.size() + 1;
     if (depth > kMaxDepth)
       return fail("elements nested deeper than " + std::to_string(kMaxDepth) + " levels");
-    const std::string_view parent = stack_.empty() ? std::string_view() : stack_.back();
+    // A copy: the push below may reallocate the stack and move the parent's name.
+    const std::string parent = stack_.empty() ? std::string() : stack_.back();
     stack_.emplace_back(tag);
     if (depth == 1) {
       in_root_ = tag == "graphml";
