@@ -279,11 +279,15 @@ InputFile::InputFile(const std::filesystem::path& path) : stream_(std::make_uniq
   facts_.display_name = path.string();
   facts_.base_name = path.filename().string();
   auto& s = *stream_;
-  const int fd = ::open(facts_.display_name.c_str(), O_RDONLY | O_CLOEXEC);
+  // O_NONBLOCK: opening a FIFO that no process writes to would wait forever. The flag is cleared
+  // at once, so a pipe with a writer is read to its end as before.
+  const int fd = ::open(facts_.display_name.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
   if (fd < 0) throw Error(facts_.display_name + ": cannot open: " + std::strerror(errno));
+  if (const int flags = ::fcntl(fd, F_GETFL); flags >= 0) ::fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
   struct stat st {};
+  const bool have_stat = ::fstat(fd, &st) == 0;
   bool mapped = false;
-  if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode)) {
+  if (have_stat && S_ISREG(st.st_mode)) {
     if (st.st_size == 0) {
       mapped = true;
     } else {
@@ -315,6 +319,9 @@ InputFile::InputFile(const std::filesystem::path& path) : stream_(std::make_uniq
     s.raw = s.owned;
   }
   ::close(fd);
+  if (have_stat && S_ISFIFO(st.st_mode) && s.raw.empty())
+    throw Error(facts_.display_name +
+                ": is a FIFO with no writer, or an empty one: nothing to read");
   facts_.raw_size = s.raw.size();
   facts_.raw_xxh3 = hex64(XXH3_64bits(s.raw.data(), s.raw.size()));
   facts_.compression = detect_compression(s.raw);

@@ -7,20 +7,6 @@
 namespace mosb {
 namespace {
 
-void check_same_binding(const SolutionReader& ref, const SolutionReader& sol) {
-  const auto mismatch = [&](const std::string& what, const std::string& a, const std::string& b) {
-    throw Error(ErrorCode::invalid_argument, "reference " + ref.display_name() + " has " + what +
-                                                 " " + a + ", solutions " + sol.display_name() +
-                                                 " have " + b);
-  };
-  if (ref.instance_digest() != sol.instance_digest())
-    mismatch("instance digest", ref.instance_digest(), sol.instance_digest());
-  if (ref.view_name() != sol.view_name()) mismatch("view", ref.view_name(), sol.view_name());
-  if (ref.query_set() != sol.query_set()) mismatch("query set", ref.query_set(), sol.query_set());
-  if (ref.query_count() != sol.query_count())
-    mismatch("query count", std::to_string(ref.query_count()), std::to_string(sol.query_count()));
-}
-
 bool all_integer(const SolutionReader& r) {
   for (std::size_t i = 0; i < r.objective_count(); ++i) {
     const bool integral = r.visit_column(
@@ -45,6 +31,20 @@ std::vector<T> gather(const SolutionReader& r, std::uint64_t q) {
 }
 
 }  // namespace
+
+void check_same_binding(const SolutionReader& ref, const SolutionReader& sol) {
+  const auto mismatch = [&](const std::string& what, const std::string& a, const std::string& b) {
+    throw Error(ErrorCode::invalid_argument, "reference " + ref.display_name() + " has " + what +
+                                                 " " + a + ", solutions " + sol.display_name() +
+                                                 " have " + b);
+  };
+  if (ref.instance_digest() != sol.instance_digest())
+    mismatch("instance digest", ref.instance_digest(), sol.instance_digest());
+  if (ref.view_name() != sol.view_name()) mismatch("view", ref.view_name(), sol.view_name());
+  if (ref.query_set() != sol.query_set()) mismatch("query set", ref.query_set(), sol.query_set());
+  if (ref.query_count() != sol.query_count())
+    mismatch("query count", std::to_string(ref.query_count()), std::to_string(sol.query_count()));
+}
 
 SolutionEvaluation evaluate_solutions(const SolutionReader& reference,
                                       const SolutionReader& solution,

@@ -81,6 +81,13 @@ SolutionReader SolutionReader::open(const std::filesystem::path& path,
   return reader;
 }
 
+SolutionReader SolutionReader::open_verified(const std::filesystem::path& path) {
+  auto reader = open(path);
+  if (auto problem = reader.verify_payload())
+    reader.fail("file is damaged: " + *problem + "; run mosb verify");
+  return reader;
+}
+
 SolutionReader SolutionReader::from_memory(std::span<const std::byte> bytes,
                                            std::string display_name) {
   if (reinterpret_cast<std::uintptr_t>(bytes.data()) % alignof(std::uint64_t) != 0)

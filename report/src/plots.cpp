@@ -171,9 +171,11 @@ std::string plot_front(const FrontPlot& plot) {
                y.map(q.y) - y.map(q.y * (1 + e)), "#9ecae1", "#6baed6", 0.5, 0.35);
   for (const auto& q : plot.reference) svg.circle(x.map(q.x), y.map(q.y), 4, "#08519c");
   for (const auto& p : plot.solution) svg.circle(x.map(p.x), y.map(p.y), 2.5, "#e6550d");
-  std::vector<LegendEntry> entries = {
-      {'c', "#08519c", "reference (" + std::to_string(plot.reference.size()) + ")"},
-      {'c', "#e6550d", "solver (" + std::to_string(plot.solution.size()) + ")"}};
+  std::vector<LegendEntry> entries;
+  if (!plot.reference.empty())
+    entries.push_back(
+        {'c', "#08519c", "reference (" + std::to_string(plot.reference.size()) + ")"});
+  entries.push_back({'c', "#e6550d", "solver (" + std::to_string(plot.solution.size()) + ")"});
   if (e > 0) entries.push_back({'r', "#9ecae1", "ε-box, ε = " + tick_label(e)});
   legend(svg, entries);
   return svg.str();

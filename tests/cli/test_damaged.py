@@ -125,6 +125,138 @@ class NotARegularFile(CliTest):
         self.assertIn("is a directory, not a regular file", r.err, r)
 
 
+class SolutionCommandsBadInput(CliTest):
+    """Every input of `solutions import|export|inspect|verify`, `eval` and `plot *` given as a
+    damaged (one flipped bit in a section payload), truncated, directory or FIFO file: one line
+    naming the file, exit 1 (2 when the option parser refuses it), nothing on stdout, no output
+    file, and no blocking on a FIFO."""
+
+    def setUp(self):
+        super().setUp()
+        self.instance = self.generate("g.mosb")
+        os.mkdir(self.path("fronts"))
+        with open(self.path("fronts/0.txt"), "w") as f:
+            f.write("10 20\n20 10\n")
+        self.solutions = self.path("good.sol")
+        r = self.mosb("solutions", "import", "--instance", self.instance, "--view", "Grid_2",
+                      "--dir", self.path("fronts"), "-o", self.solutions)
+        self.assertEqual(r.code, 0, r)
+
+    def bad_copy(self, original, name, kind):
+        """`name` in the test directory as a `kind` version of `original`."""
+        path = self.path(name)
+        if kind == "directory":
+            os.mkdir(path)
+            return path
+        if kind == "FIFO":
+            os.mkfifo(path)
+            return path
+        with open(original, "rb") as f:
+            data = bytearray(f.read())
+        if kind == "truncated":
+            del data[len(data) // 2:]
+        else:
+            section = "c1"  # a cost column: in the instance and in the solution file
+            e = entry(data, section)
+            data[e["offset"] + 1 if e["stored_length"] > 1 else e["offset"]] ^= 0x04
+        return self.write(name, data)
+
+    def assert_refused(self, name, kind, args):
+        before = files_under(self.dir)
+        try:
+            completed = subprocess.run([MOSB, *args], cwd=self.dir, capture_output=True,
+                                       text=True, timeout=20)
+        except subprocess.TimeoutExpired:
+            self.fail("%s on a %s blocked" % (" ".join(args), kind))
+        self.assertIn(completed.returncode, (1, 2), completed)
+        if completed.returncode == 2:  # only the option parser's existing-file check
+            self.assertEqual(kind, "directory", completed)
+        err = completed.stderr.splitlines()
+        self.assertEqual(len(err), 1, completed)
+        self.assertIn(name, err[0], completed)
+        if kind == "damaged" and args[:2] != ["solutions", "verify"]:
+            self.assertIn("file is damaged", err[0], completed)
+            self.assertIn("run mosb verify", err[0], completed)
+        self.assertEqual(completed.stdout, "", completed)
+        self.assertEqual(files_under(self.dir), before, "an output or temporary file was left")
+        self.assertFalse(os.path.exists(self.path("out")), completed)
+
+    def check(self, kind):
+        bad_sol = self.bad_copy(self.solutions, "bad.sol", kind)
+        bad_graph = self.bad_copy(self.instance, "bad.mosb", kind)
+        good, g = self.solutions, self.instance
+        commands = [
+            (bad_sol, ["solutions", "inspect", bad_sol]),
+            (bad_sol, ["solutions", "inspect", "--json", bad_sol]),
+            (bad_sol, ["solutions", "verify", bad_sol]),
+            (bad_sol, ["solutions", "verify", bad_sol, "--instance", g]),
+            (bad_graph, ["solutions", "verify", good, "--instance", bad_graph]),
+            (bad_sol, ["solutions", "export", bad_sol, "--dir", "out"]),
+            (bad_sol, ["solutions", "export", bad_sol, "--json-log", "out", "--instance", g]),
+            (bad_graph, ["solutions", "export", good, "--json-log", "out", "--instance",
+                         bad_graph]),
+            (bad_graph, ["solutions", "import", "--instance", bad_graph, "--view", "Grid_2",
+                         "--dir", "fronts", "-o", "out"]),
+            (bad_sol, ["eval", "--reference", bad_sol, "--solutions", good]),
+            (bad_sol, ["eval", "--reference", good, "--solutions", bad_sol]),
+            (bad_sol, ["plot", "front", "--solutions", bad_sol, "--query", "0", "-o", "out"]),
+            (bad_sol, ["plot", "front", "--solutions", good, "--reference", bad_sol, "--query",
+                       "0", "-o", "out"]),
+            (bad_sol, ["plot", "cardinality", "--solutions", bad_sol, "-o", "out"]),
+            (bad_graph, ["plot", "correlation", bad_graph, "-o", "out"]),
+            (bad_graph, ["plot", "map", bad_graph, "-o", "out"]),
+        ]
+        for path, args in commands:
+            with self.subTest(kind=kind, command=" ".join(args)):
+                self.assert_refused(os.path.basename(path), kind, args)
+
+    def test_damaged(self):
+        self.check("damaged")
+
+    def test_truncated(self):
+        self.check("truncated")
+
+    def test_directory(self):
+        self.check("directory")
+
+    def test_fifo(self):
+        self.check("FIFO")
+
+    def text_inputs(self, kind, text):
+        """The text inputs of `solutions import`: a table, a JSON log, a front directory."""
+        bad = self.path("bad.txt")
+        if kind == "truncated":
+            with open(bad, "w") as f:
+                f.write(text)
+        else:
+            self.bad_copy(None, "bad.txt", kind)
+        for option in ("--table", "--json-log", "--dir"):
+            if kind != "FIFO" and option == "--dir":
+                continue  # a directory is what --dir reads
+            args = ["solutions", "import", "--instance", self.instance, "--view", "Grid_2",
+                    option, bad, "-o", "out"]
+            with self.subTest(kind=kind, option=option):
+                self.assert_refused("bad.txt", kind, args)
+
+    def test_import_text_inputs(self):
+        self.text_inputs("directory", "")
+        os.rmdir(self.path("bad.txt"))
+        self.text_inputs("FIFO", "")
+
+    def test_import_truncated_json_log(self):
+        self.text_inputs("truncated", '[{"source": 0, "target": 19, "finish_info": {"solut')
+
+    def test_good_files_still_work(self):
+        for args in (["solutions", "inspect", self.solutions],
+                     ["solutions", "verify", self.solutions],
+                     ["eval", "--reference", self.solutions, "--solutions", self.solutions],
+                     ["plot", "cardinality", "--solutions", self.solutions, "-o", "c.svg"],
+                     ["plot", "front", "--solutions", self.solutions, "--query", "0", "-o",
+                      "f.svg"]):
+            r = self.mosb(*args)
+            self.assertEqual(r.code, 0, r)
+
+
 class HostileMetadata(CliTest):
     FAKE = "x\x1b[2J\x1b[1;1H\rOK   g.mosb (full, digest 0)\nOK   all fine\u009b31m\u202e"
 

@@ -156,8 +156,8 @@ int run_eval(const EvalArgs& args) {
   std::vector<std::string> eps_text;
   eps_text.reserve(eps.size());
   for (const auto& e : eps) eps_text.push_back(e.to_decimal());
-  const auto reference = SolutionReader::open(args.reference);
-  const auto solutions = SolutionReader::open(args.solutions);
+  const auto reference = SolutionReader::open_verified(args.reference);
+  const auto solutions = SolutionReader::open_verified(args.solutions);
   EvalOptions options;
   options.strict_dominance = args.strict;
   const auto result = evaluate_solutions(reference, solutions, eps, options);

@@ -1,15 +1,20 @@
 // `mosb plot`: SVG figures (spec/EVALUATION.md §5). The figures are drawn by mosb_report; this
 // file only reads the inputs and writes the document.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <sstream>
 
 #include "commands.hpp"
 #include "mosb/atomic_file.hpp"
 #include "mosb/converters/guards_converter.hpp"
+#include "mosb/eval.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/report/plots.hpp"
+#include "mosb/solution_eval.hpp"
+#include "mosb/solution_file.hpp"
 #include "mosb/stats.hpp"
 
 namespace mosb::cli {
@@ -109,6 +114,124 @@ int run_map(const PlotArgs& args, const std::string& exposure_objective) {
   return 0;
 }
 
+struct FrontArgs {
+  std::string solutions, reference, objectives, epsilon, output, title;
+  std::uint64_t query = 0;
+};
+
+// The two objectives to draw: names of the file's objectives or 0-based positions in its view,
+// comma-separated; the first two when none are given.
+std::pair<std::size_t, std::size_t> chosen_objectives(const SolutionReader& r,
+                                                      const std::string& list) {
+  if (r.objective_count() < 2)
+    throw Error(ErrorCode::invalid_argument,
+                r.display_name() + ": a front plot needs two objectives, the view has " +
+                    std::to_string(r.objective_count()));
+  if (list.empty()) return {0, 1};
+  std::vector<std::size_t> picked;
+  std::stringstream in(list);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    std::optional<std::size_t> index;
+    for (std::size_t i = 0; i < r.objective_count(); ++i)
+      if (r.objective_name(i) == item) index = i;
+    if (!index && !item.empty() && item.size() < 10 &&
+        std::all_of(item.begin(), item.end(), [](char c) { return c >= '0' && c <= '9'; }) &&
+        std::stoul(item) < r.objective_count())
+      index = std::stoul(item);
+    if (!index) {
+      std::string names;
+      for (std::size_t i = 0; i < r.objective_count(); ++i)
+        names += (i ? ", " : "") + r.objective_name(i);
+      throw UsageError("--objectives: '" + item + "' is not an objective of " + r.display_name() +
+                       " (" + names + ", or 0.." + std::to_string(r.objective_count() - 1) + ")");
+    }
+    picked.push_back(*index);
+  }
+  if (picked.size() != 2 || picked[0] == picked[1])
+    throw UsageError("--objectives: give two different objectives, not '" + list + "'");
+  return {picked[0], picked[1]};
+}
+
+std::vector<plots::Point2> front_points(const SolutionReader& r, std::uint64_t q,
+                                        std::pair<std::size_t, std::size_t> axes) {
+  if (q >= r.query_count())
+    throw UsageError("--query " + std::to_string(q) + ": " + r.display_name() + " has " +
+                     std::to_string(r.query_count()) + " queries");
+  if (r.status(q) != QueryStatus::solved)
+    throw Error(ErrorCode::invalid_argument, r.display_name() + ": query " + std::to_string(q) +
+                                                 " is " + std::string(to_string(r.status(q))) +
+                                                 ", not solved: no front to draw");
+  std::vector<plots::Point2> points(r.front_size(q));
+  const std::uint64_t begin = r.front_begin(q);
+  for (std::size_t k = 0; k < points.size(); ++k)
+    points[k] = {r.value_as_double(axes.first, begin + k),
+                 r.value_as_double(axes.second, begin + k)};
+  return points;
+}
+
+int run_front(const FrontArgs& args) {
+  std::optional<Ratio> epsilon;
+  if (!args.epsilon.empty()) {
+    if (args.reference.empty())
+      throw UsageError("--eps draws the reference's ε-boxes: give --reference");
+    try {
+      epsilon = parse_epsilon(args.epsilon);
+    } catch (const Error& e) {
+      throw UsageError("--eps: '" + args.epsilon + "': " + e.what());
+    }
+  }
+  const auto solutions = SolutionReader::open_verified(args.solutions);
+  std::optional<SolutionReader> reference;
+  if (!args.reference.empty()) {
+    reference.emplace(SolutionReader::open_verified(args.reference));
+    check_same_binding(*reference, solutions);
+  }
+  const auto axes = chosen_objectives(solutions, args.objectives);
+  plots::FrontPlot plot;
+  plot.solution = front_points(solutions, args.query, axes);
+  if (reference) plot.reference = front_points(*reference, args.query, axes);
+  if (epsilon) plot.epsilon = epsilon->to_double();
+  plot.x_label = solutions.objective_name(axes.first);
+  plot.y_label = solutions.objective_name(axes.second);
+  const auto solver = solutions.solver().name;
+  plot.title = !args.title.empty()
+                   ? args.title
+                   : "query " + std::to_string(args.query) + " of " + solutions.query_set() + ": " +
+                         (solver.empty() ? "solver" : solver) + (reference ? " vs reference" : "");
+  std::vector<std::filesystem::path> inputs = {args.solutions};
+  if (reference) inputs.push_back(args.reference);
+  check_output_is_not_input(args.output, inputs);
+  converters::write_text_atomically(args.output, plots::plot_front(plot));
+  return 0;
+}
+
+struct CardinalityArgs {
+  std::string solutions, output, title;
+};
+
+int run_cardinality(const CardinalityArgs& args) {
+  const auto r = SolutionReader::open_verified(args.solutions);
+  plots::CardinalityPlot plot;
+  std::uint64_t unsolved = 0;
+  for (std::uint64_t q = 0; q < r.query_count(); ++q) {
+    if (r.status(q) == QueryStatus::solved)
+      plot.sizes.push_back(r.front_size(q));
+    else
+      ++unsolved;
+  }
+  const auto solver = r.solver().name;
+  plot.title = !args.title.empty() ? args.title
+                                   : (solver.empty() ? std::string("fronts") : solver) + " on " +
+                                         r.query_set() + ": front size per query";
+  if (unsolved > 0)
+    plot.title += " (" + std::to_string(unsolved) + " unsolved quer" +
+                  (unsolved == 1 ? "y" : "ies") + " left out)";
+  check_output_is_not_input(args.output, {args.solutions});
+  converters::write_text_atomically(args.output, plots::plot_cardinality(plot));
+  return 0;
+}
+
 }  // namespace
 
 Command add_plot(CLI::App& app) {
@@ -125,9 +248,35 @@ Command add_plot(CLI::App& app) {
   add_common(map, *map_args);
   map->add_option("--exposure-objective", *exposure, "the objective shaded per cell")
       ->capture_default_str();
+  auto front_args = std::make_shared<FrontArgs>();
+  auto* front = plot->add_subcommand(
+      "front", "one query's front from a solution file on two objectives, against a reference");
+  front->add_option("--solutions", front_args->solutions, "the solver's solution file")
+      ->required()
+      ->check(CLI::ExistingFile);
+  front->add_option("--reference", front_args->reference, "a reference solution file to overlay")
+      ->check(CLI::ExistingFile);
+  front->add_option("--query", front_args->query, "the query (0-based position in the set)")
+      ->required();
+  front->add_option("--objectives", front_args->objectives,
+                    "the two objectives drawn, names or 0-based positions (default: the first "
+                    "two)");
+  front->add_option("--eps", front_args->epsilon, "draw each reference vector's ε-box");
+  add_output_option(front, front_args->output, "the SVG file to write")->required();
+  front->add_option("--title", front_args->title, "the figure's title");
+  auto cardinality_args = std::make_shared<CardinalityArgs>();
+  auto* cardinality = plot->add_subcommand(
+      "cardinality", "front size per solved query of a solution file, sorted (query hardness)");
+  cardinality->add_option("--solutions", cardinality_args->solutions, "a solution file")
+      ->required()
+      ->check(CLI::ExistingFile);
+  add_output_option(cardinality, cardinality_args->output, "the SVG file to write")->required();
+  cardinality->add_option("--title", cardinality_args->title, "the figure's title");
   return group(plot,
                {{correlation, [correlation_args] { return run_correlation(*correlation_args); }},
-                {map, [map_args, exposure] { return run_map(*map_args, *exposure); }}});
+                {map, [map_args, exposure] { return run_map(*map_args, *exposure); }},
+                {front, [front_args] { return run_front(*front_args); }},
+                {cardinality, [cardinality_args] { return run_cardinality(*cardinality_args); }}});
 }
 
 }  // namespace mosb::cli

@@ -33,7 +33,7 @@ int run_import(const ImportArgs& a) {
   const int inputs = !a.directory.empty() + !a.table.empty() + !a.json_log.empty();
   if (inputs != 1)
     throw Error(ErrorCode::invalid_argument, "give exactly one of --dir, --table, --json-log");
-  const auto instance = GraphReader::open(a.instance);
+  const auto instance = GraphReader::open(a.instance, VerifyLevel::checksums);
   SolutionWriter writer(instance, a.view, a.query_set);
   const auto set = a.query_set.empty() ? instance.view(a.view).query_set : a.query_set;
   converters::SolutionImportOptions options;
@@ -84,7 +84,7 @@ struct ExportArgs {
 int run_export(const ExportArgs& a) {
   if (a.directory.empty() == a.json_log.empty())
     throw Error(ErrorCode::invalid_argument, "give exactly one of --dir, --json-log");
-  const auto r = SolutionReader::open(a.file);
+  const auto r = SolutionReader::open_verified(a.file);
   if (!a.directory.empty()) {
     const auto files = converters::export_front_directory(r, a.directory, a.id_base);
     std::cout << "wrote " << files << " front files to " << a.directory << "\n";
@@ -92,8 +92,8 @@ int run_export(const ExportArgs& a) {
   }
   if (a.instance.empty())
     throw Error(ErrorCode::invalid_argument, "--json-log needs --instance (for the endpoints)");
-  const auto records =
-      converters::export_json_log(r, GraphReader::open(a.instance), a.json_log, a.id_base);
+  const auto records = converters::export_json_log(
+      r, GraphReader::open(a.instance, VerifyLevel::checksums), a.json_log, a.id_base);
   std::cout << "wrote " << a.json_log << ": " << records << " records\n";
   return 0;
 }
@@ -104,7 +104,7 @@ struct InspectArgs {
 };
 
 int run_inspect(const InspectArgs& a) {
-  const auto r = SolutionReader::open(a.file);
+  const auto r = SolutionReader::open_verified(a.file);
   std::uint64_t counts[kLastQueryStatus + 1] = {};
   std::vector<std::uint64_t> sizes;
   for (std::uint64_t q = 0; q < r.query_count(); ++q) {

@@ -34,6 +34,10 @@ struct SolutionEvaluation {
   bool solver_claims_exact = true;
 };
 
+// Throws mosb::Error (ErrorCode::invalid_argument) naming both files and both values unless they
+// share instance digest, view, query set and query count.
+void check_same_binding(const SolutionReader& reference, const SolutionReader& solution);
+
 // Throws mosb::Error naming both files unless they share instance digest, view, query set,
 // query count and objectives. Integer objectives are compared exactly, a view with any
 // floating-point objective in double arithmetic.

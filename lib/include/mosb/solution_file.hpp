@@ -72,6 +72,10 @@ class SolutionReader {
   static SolutionReader open(const std::filesystem::path& path);
   // Opens, then requires the file to belong to `instance` (check_bound_to).
   static SolutionReader open(const std::filesystem::path& path, const GraphReader& instance);
+  // Opens, then checks the payload (verify_payload()): what every command that reads the fronts
+  // uses, so one flipped byte is an ErrorCode::damaged error "FILE: file is damaged: PROBLEM; run
+  // mosb verify", never a number or a figure made of corrupt data.
+  static SolutionReader open_verified(const std::filesystem::path& path);
   static SolutionReader from_memory(std::span<const std::byte> bytes, std::string display_name);
 
   // Throws ErrorCode::invalid_argument "FILE: solutions of instance DIGEST, not of INSTANCE
