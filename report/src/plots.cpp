@@ -28,13 +28,18 @@ std::string tick_label(double v) {
 struct Axis {
   double lo = 0, hi = 1, p0 = 0, p1 = 1;
   bool log = false;
+  bool whole = false;  // counts and ranks: no tick between two integers
   double map(double v) const {
     const double a = log ? std::log10(std::max(v, lo)) : v;
     const double l = log ? std::log10(lo) : lo, h = log ? std::log10(hi) : hi;
     return p0 + (a - l) / (h - l) * (p1 - p0);
   }
   std::vector<double> ticks() const {
-    if (!log) return nice_ticks(lo, hi);
+    if (!log) {
+      auto t = nice_ticks(lo, hi);
+      if (whole) std::erase_if(t, [](double v) { return v != std::floor(v); });
+      return t;
+    }
     std::vector<double> t;
     const auto first = static_cast<int>(std::floor(std::log10(lo)));
     const auto last = static_cast<int>(std::ceil(std::log10(hi)));
@@ -195,8 +200,8 @@ std::string plot_cardinality(const CardinalityPlot& plot) {
   double x_lo = 0, x_hi = static_cast<double>(std::max<std::size_t>(sizes.size(), 1));
   widen(x_lo, x_hi);
   Svg svg(kWidth, kHeight);
-  const Axis x{x_lo, x_hi, kLeft, kWidth - kRight};
-  const Axis y{y_lo, y_hi, kHeight - kBottom, kTop, log};
+  const Axis x{x_lo, x_hi, kLeft, kWidth - kRight, false, true};
+  const Axis y{y_lo, y_hi, kHeight - kBottom, kTop, log, true};
   frame(svg, x, y, plot.title, "query rank (sorted by front size)",
         log ? "front size (log scale)" : "front size");
   std::string points;

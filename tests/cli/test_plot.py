@@ -7,7 +7,9 @@ Each figure is rendered by a real browser (Debian's chromium, headless); the scr
 PNG of the requested size with a substantial share of non-white pixels. Skipped without chromium.
 """
 
+import json
 import os
+import re
 import shutil
 import struct
 import subprocess
@@ -142,6 +144,124 @@ class PlotTest(unittest.TestCase):
         self.assertIn("g.mosb: not a grid instance", r.stderr)
         self.assertEqual(r.stderr.count("\n"), 1)
         self.assertFalse(os.path.exists(self.path("m.svg")))
+
+
+class SolutionPlotTest(PlotTest):
+    """`plot front` and `plot cardinality` on solution files imported from per-query front files
+    of a generated 3-objective grid with a 3-query set (query 2 is left unsolved)."""
+
+    def setUp(self):
+        super().setUp()
+        run("generate", "grid", "--width", "5", "--height", "4", "--objectives", "3", "-o",
+            self.path("bare.mosb"))
+        self.write("q.txt", "0 19\n1 18\n2 17\n")
+        self.grid = self.path("g.mosb")
+        run("queries", "import", self.path("bare.mosb"), self.path("q.txt"), "--set", "s", "-o",
+            self.grid)
+        self.reference = self.import_("ref.sol", {"0.txt": "10 40 5\n20 20 7\n40 10 9\n",
+                                                  "1.txt": "30 30 30\n"}, "--solver", "exact")
+        self.solutions = self.import_("sol.sol", {"0.txt": "10 40 5\n21 21 8\n40 10 9\n"},
+                                      "--solver", "approx", "--epsilon", "0.1")
+
+    def write(self, name, text):
+        path = self.path(name)
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(text)
+        return path
+
+    def import_(self, name, fronts, *extra, instance=None):
+        for file, text in fronts.items():
+            self.write(os.path.join(name + ".d", file), text)
+        path = self.path(name)
+        run("solutions", "import", "--instance", instance or self.grid, "--view", "Grid_3",
+            "--queries", "s", "--dir", self.path(name + ".d"), *extra, "-o", path)
+        return path
+
+    def texts(self, svg):
+        return re.findall(r"<text[^>]*>([^<]*)</text>", read(svg))
+
+    def assert_refused(self, args, code, *expected):
+        svg = self.path("bad.svg")
+        r = run(*args, "-o", svg, check=False)
+        self.assertEqual(r.returncode, code, r.stderr)
+        self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+        for text in expected:
+            self.assertIn(text, r.stderr)
+        self.assertFalse(os.path.exists(svg))
+
+    def test_front_against_reference_with_epsilon_boxes(self):
+        svg = self.path("front.svg")
+        args = ["plot", "front", "--solutions", self.solutions, "--reference", self.reference,
+                "--query", "0", "--eps", "0.05"]
+        run(*args, "-o", svg)
+        texts = self.texts(svg)
+        self.assertEqual(texts[0], "query 0 of s: approx vs reference")
+        for label in ("c1", "c2", "reference (3)", "solver (3)", "ε-box, ε = 0.05"):
+            self.assertIn(label, texts)
+        text = read(svg)
+        self.assertEqual(text.count('fill="#9ecae1"'), 3 + 1)  # a box per reference vector, legend
+        run(*args, "-o", self.path("again.svg"))
+        self.assertEqual(read(self.path("again.svg")), text)
+        self.assertGreater(self.screenshot(svg, 720, 480), 0.01)
+
+    def test_front_of_a_chosen_pair_without_reference(self):
+        svg = self.path("front.svg")
+        run("plot", "front", "--solutions", self.solutions, "--query", "0", "--objectives",
+            "c3,1", "-o", svg)
+        texts = self.texts(svg)
+        self.assertIn("c3", texts)  # x axis
+        self.assertIn("c2", texts)  # y axis, by position
+        self.assertNotIn("c1", texts)
+        self.assertIn("solver (3)", texts)
+        self.assertFalse(any(t.startswith("reference") for t in texts), texts)
+        # The c3 values 5, 8, 9 set the x range: no tick beyond 10.
+        self.assertIn("9", texts)
+        self.assertNotIn("40", texts[:texts.index("c3")][:7])
+
+    def test_front_errors(self):
+        front = ["plot", "front", "--solutions", self.solutions]
+        self.assert_refused(front + ["--query", "3"], 2, "--query 3", "sol.sol has 3 queries")
+        self.assert_refused(front + ["--query", "1"], 1,
+                            "sol.sol: query 1 is not-run, not solved")
+        self.assert_refused(front + ["--query", "0", "--objectives", "c1,cost"], 2,
+                            "'cost' is not an objective of", "c1, c2, c3")
+        self.assert_refused(front + ["--query", "0", "--objectives", "c1"], 2,
+                            "give two different objectives")
+        self.assert_refused(front + ["--query", "0", "--eps", "0.1"], 2, "give --reference")
+        self.assert_refused(front + ["--query", "0", "--reference", self.reference, "--eps",
+                                     "-1"], 2, "--eps: '-1'")
+        # A reference of another instance: both files and both digests.
+        run("generate", "grid", "--width", "5", "--height", "4", "--objectives", "3", "--seed",
+            "9", "-o", self.path("bare9.mosb"))
+        other = self.path("g9.mosb")
+        run("queries", "import", self.path("bare9.mosb"), self.path("q.txt"), "--set", "s", "-o",
+            other)
+        foreign = self.import_("foreign.sol", {"0.txt": "1 2 3\n"}, instance=other)
+
+        def digest(path):
+            return json.loads(run("solutions", "inspect", "--json", path).stdout)[
+                "instance_digest"]
+
+        self.assert_refused(front + ["--reference", foreign, "--query", "0"], 1,
+                            "foreign.sol", "sol.sol", digest(foreign), digest(self.solutions))
+
+    def test_cardinality_leaves_unsolved_queries_out(self):
+        svg = self.path("card.svg")
+        run("plot", "cardinality", "--solutions", self.reference, "-o", svg)
+        texts = self.texts(svg)
+        self.assertEqual(texts[0], "exact on s: front size per query (1 unsolved query left out)")
+        self.assertIn("2 queries", texts)
+        self.assertIn("front size", texts)
+        # Sorted: rank 1 has size 1, rank 2 size 3; whole-number ticks only.
+        self.assertNotIn("0.5", texts)
+        (points,) = re.findall(r'<polyline points="([^"]*)"', read(svg))
+        ys = [float(p.split(",")[1]) for p in points.split()]
+        self.assertEqual(len(ys), 2)
+        self.assertGreater(ys[0], ys[1])  # SVG y grows downwards: the second front is larger
+        run("plot", "cardinality", "--solutions", self.solutions, "-o", svg, "--title", "t")
+        self.assertEqual(self.texts(svg)[0], "t (2 unsolved queries left out)")
+        self.assertGreater(self.screenshot(svg, 720, 480), 0.01)
 
 
 if __name__ == "__main__":
