@@ -32,10 +32,10 @@ class EvalTest(unittest.TestCase):
     def tearDown(self):
         self.tmp.cleanup()
 
-    def write(self, name, spec, view="Small_2", solver_epsilon=None):
+    def write(self, name, spec, view="Small_2", solver_epsilon=None, instance=SMALL):
         path = os.path.join(self.tmp.name, name + ".sol.mosb")
         extra = [] if solver_epsilon is None else [solver_epsilon]
-        subprocess.run([WRITE_SOLUTION, SMALL, view, path, *extra], input=spec, text=True,
+        subprocess.run([WRITE_SOLUTION, instance, view, path, *extra], input=spec, text=True,
                        check=True)
         return path
 
@@ -127,6 +127,36 @@ class EvalTest(unittest.TestCase):
         self.assertEqual(len(result.stderr.strip().splitlines()), 1, result.stderr)
         self.assertIn("ref.sol.mosb", result.stderr)
         self.assertIn("other.sol.mosb", result.stderr)
+
+    def test_integer_view_is_compared_exactly(self):
+        # A generated grid's costs are u8. Query 0: (8,30,100) covers (7,30,100) from ε = 1/7 on,
+        # (20,11,50) covers (20,10,50) from 1/10: the achieved ε is exactly 1/7. The 18-digit ε
+        # just below 1/7 must not cover (in double arithmetic 1 + ε rounds to 8/7 and would).
+        grid = os.path.join(self.tmp.name, "grid.mosb")
+        subprocess.run([MOSB, "generate", "grid", "--width", "3", "--height", "3", "--objectives",
+                        "3", "-o", grid], check=True, capture_output=True)
+        self.reference = self.write("grid-ref", "0 solved 7,30,100 20,10,50\n", view="Grid_3",
+                                    instance=grid)
+        sol = self.write("grid-sol", "0 solved 8,30,100 20,11,50\n", view="Grid_3",
+                         solver_epsilon="0.15", instance=grid)
+        below, above = ".142857142857142857", ".142857142857142858"  # 18 digits at most
+        rc, report = self.eval_json(sol, "--eps", "0.1,%s,%s" % (below, above))
+        self.assertEqual(rc, 1, report)
+        (q0,) = report["queries"]
+        self.assertEqual([c["covered"] for c in q0["coverage"]], [False, False, True])
+        self.assertEqual([c["uncovered"] for c in q0["coverage"]], [1, 1, 0])
+        self.assertEqual([c["epsilon"] for c in q0["coverage"]],
+                         ["0.1", "0" + below, "0" + above])
+        self.assertEqual(q0["achieved_epsilon"], "0.142857143")  # 1/7 rounded up at digit 9
+        self.assertAlmostEqual(q0["achieved_epsilon_value"], 1 / 7, places=15)
+        self.assertEqual(q0["worst_reference"], [7, 30, 100])
+        self.assertEqual(q0["dominated_by_reference"], [0, 1])  # listed; ε = 0.15 allows them
+        rc, report = self.eval_json(sol, "--eps", above)
+        self.assertEqual(rc, 0, report)
+        text = self.eval(sol, "--eps", "0.1").stdout
+        self.assertIn("query 0: solved, |S| 2, |R| 2, |S|/|R| 1, achieved ε 0.142857143, "
+                      "ε=0.1 NOT covered (1 uncovered), worst reference vector (7, 30, 100) FAIL",
+                      text)
 
     def test_bad_epsilon_is_a_usage_error(self):
         result = self.eval(self.reference, "--eps", "0.1,-1")

@@ -155,7 +155,9 @@ int run_eval(const EvalArgs& args) {
   const auto eps = parse_epsilons(args.epsilons);
   std::vector<std::string> eps_text;
   eps_text.reserve(eps.size());
-  for (const auto& e : eps) eps_text.push_back(e.to_decimal());
+  // 18 digits: a requested ε has at most 18 (parse_epsilon), so its label is exactly what was
+  // asked, never two ε rounded to the same 9-digit text.
+  for (const auto& e : eps) eps_text.push_back(e.to_decimal(18));
   const auto reference = SolutionReader::open_verified(args.reference);
   const auto solutions = SolutionReader::open_verified(args.solutions);
   EvalOptions options;
