@@ -19,6 +19,7 @@ import zlib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 MOSB = os.path.abspath(os.environ.get("MOSB", "mosb"))
+WRITE_SOLUTION = os.environ.get("WRITE_SOLUTION", "mosb_test_write_solution")
 CHROMIUM = shutil.which("chromium")
 ARENA = os.path.join(HERE, "..", "..", "..", "shared", "data", "movingai", "arena2.map")
 
@@ -76,7 +77,9 @@ def read_png(path):
     return width, height, channels, rows
 
 
-class PlotTest(unittest.TestCase):
+class PlotCase(unittest.TestCase):
+    """A temporary directory and the chromium screenshot check."""
+
     def setUp(self):
         self.tmp = tempfile.TemporaryDirectory()
         self.dir = self.tmp.name
@@ -106,6 +109,7 @@ class PlotTest(unittest.TestCase):
                     coloured += 1
         return coloured / (w * h)
 
+class PlotTest(PlotCase):
     def test_correlation_heat_map_renders(self):
         g = self.path("g.mosb")
         run("generate", "grid", "--width", "20", "--height", "20", "--objectives", "3", "-o", g)
@@ -146,7 +150,7 @@ class PlotTest(unittest.TestCase):
         self.assertFalse(os.path.exists(self.path("m.svg")))
 
 
-class SolutionPlotTest(PlotTest):
+class SolutionPlotTest(PlotCase):
     """`plot front` and `plot cardinality` on solution files imported from per-query front files
     of a generated 3-objective grid with a 3-query set (query 2 is left unsolved)."""
 
@@ -262,6 +266,76 @@ class SolutionPlotTest(PlotTest):
         run("plot", "cardinality", "--solutions", self.solutions, "-o", svg, "--title", "t")
         self.assertEqual(self.texts(svg)[0], "t (2 unsolved queries left out)")
         self.assertGreater(self.screenshot(svg, 720, 480), 0.01)
+
+
+class MapPathsTest(PlotCase):
+    """`plot map --solutions S --query K`: a hand-written 4x3 Moving AI map with one blocked cell;
+    the solution file (SolutionWriter, through the test helper) gives two paths of query 0."""
+
+    # Passable cells in row-major order are the vertices: row 0 is 0-3, row 1 (x=1 blocked) 4-6,
+    # row 2 is 7-10.
+    MAP = "type octile\nheight 3\nwidth 4\nmap\n....\n.@..\n....\n"
+
+    def setUp(self):
+        super().setUp()
+        if not os.path.exists(WRITE_SOLUTION):
+            self.skipTest("WRITE_SOLUTION (mosb_test_write_solution) is not built")
+        for name, text in (("tiny.map", self.MAP), ("guards.txt", "3 0 1\n"), ("q.txt", "0 10\n")):
+            with open(self.path(name), "w") as f:
+                f.write(text)
+        run("convert", "guards", "--map", self.path("tiny.map"), "--guards",
+            self.path("guards.txt"), "-o", self.path("bare.mosb"))
+        self.map = self.path("tiny.mosb")
+        run("queries", "import", self.path("bare.mosb"), self.path("q.txt"), "--set", "s", "-o",
+            self.map)
+
+    def solutions(self, name, spec):
+        path = self.path(name)
+        subprocess.run([WRITE_SOLUTION, self.map, "GUARDS_2", path, "0", "s"], input=spec,
+                       text=True, check=True)
+        return path
+
+    def test_paths_drawn_on_the_map(self):
+        # (0,0) (1,0) (2,0) (3,1) (3,2), and (0,0) (0,1) (0,2) (1,2) (2,2) (3,2).
+        sol = self.solutions("paths.sol", "0 solved 44,2@0/1/2/6/10 50,1@0/4/7/8/9/10\n")
+        svg = self.path("map.svg")
+        run("plot", "map", self.map, "--solutions", sol, "--query", "0", "-o", svg)
+        text = read(svg)
+        polylines = re.findall(r'<polyline points="([^"]*)"', text)
+        self.assertEqual(len(polylines), 2, text)
+        cells = [[tuple(float(c) for c in p.split(",")) for p in line.split()]
+                 for line in polylines]
+        self.assertEqual([len(c) for c in cells], [5, 6])
+        # Same cell size both ways; the first path's third step is a diagonal.
+        (x0, y0), (x1, y1) = cells[0][0], cells[0][1]
+        step = x1 - x0
+        self.assertGreater(step, 0)
+        self.assertEqual(y1, y0)
+        self.assertEqual(cells[0][3], (x0 + 3 * step, y0 + step))
+        self.assertEqual(cells[1][-1], (x0 + 3 * step, y0 + 2 * step))
+        self.assertIn(">path 1<", text)
+        self.assertIn(">path 2<", text)
+        self.assertGreater(self.screenshot(svg, 900, 560), 0.05)
+
+    def test_map_paths_errors(self):
+        without = self.solutions("nopaths.sol", "0 solved 44,2\n")
+        svg = self.path("m.svg")
+        for args, code, message in (
+                (["--solutions", without, "--query", "0"], 1,
+                 "nopaths.sol: the solver gave no paths"),
+                (["--solutions", without], 2, "--solutions and --query go together"),
+                (["--query", "0"], 2, "--solutions and --query go together")):
+            r = run("plot", "map", self.map, *args, "-o", svg, check=False)
+            self.assertEqual(r.returncode, code, r.stderr)
+            self.assertIn(message, r.stderr)
+            self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+            self.assertFalse(os.path.exists(svg))
+        timeout = self.solutions("timeout.sol", "0 timeout\n")
+        # A file with no front has no paths either: the status is what the user needs to know.
+        r = run("plot", "map", self.map, "--solutions", timeout, "--query", "0", "-o", svg,
+                check=False)
+        self.assertEqual(r.returncode, 1, r.stderr)
+        self.assertFalse(os.path.exists(svg))
 
 
 if __name__ == "__main__":

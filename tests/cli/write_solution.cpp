@@ -1,6 +1,8 @@
-// Test helper for tests/cli/test_eval.py: writes a solution file with mosb::SolutionWriter.
-// Usage: mosb_test_write_solution INSTANCE VIEW OUT [SOLVER_EPSILON] < SPEC, one query a line:
-// "Q STATUS [a,b,... a,b,...]" (vectors of the view's objectives, space-separated).
+// Test helper for tests/cli/test_eval.py and test_plot.py: writes a solution file with
+// mosb::SolutionWriter. Usage: mosb_test_write_solution INSTANCE VIEW OUT [SOLVER_EPSILON
+// [QUERY_SET]] < SPEC, one query a line: "Q STATUS [a,b,... a,b,...]" (vectors of the view's
+// objectives, space-separated); a vector may carry its path as "a,b,...@v0/v1/...".
+#include <cstdint>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -11,14 +13,14 @@
 #include "mosb/solution_file.hpp"
 
 int main(int argc, char** argv) {
-  if (argc != 4 && argc != 5) {
+  if (argc < 4 || argc > 6) {
     std::cerr << "usage: mosb_test_write_solution INSTANCE VIEW OUT < SPEC\n";
     return 2;
   }
   try {
     const auto instance = mosb::GraphReader::open(argv[1]);
-    mosb::SolutionWriter writer(instance, argv[2]);
-    if (argc == 5) {
+    mosb::SolutionWriter writer(instance, argv[2], argc == 6 ? argv[5] : "");
+    if (argc >= 5) {
       mosb::SolverInfo solver;
       solver.name = "test";
       solver.epsilon = argv[4];
@@ -33,12 +35,19 @@ int main(int argc, char** argv) {
       const auto status = mosb::parse_query_status(status_text);
       if (!status) throw mosb::Error("unknown status " + status_text);
       std::vector<double> costs;
+      std::vector<std::vector<std::uint32_t>> paths;
       while (in >> vector_text) {
-        std::istringstream values(vector_text);
+        const auto at = vector_text.find('@');
+        std::istringstream values(vector_text.substr(0, at));
         std::string value;
         while (std::getline(values, value, ',')) costs.push_back(std::stod(value));
+        if (at == std::string::npos) continue;
+        std::istringstream vertices(vector_text.substr(at + 1));
+        auto& path = paths.emplace_back();
+        while (std::getline(vertices, value, '/'))
+          path.push_back(static_cast<std::uint32_t>(std::stoul(value)));
       }
-      writer.set_query(q, *status, costs);
+      writer.set_query(q, *status, costs, {}, paths);
     }
     writer.write(argv[3]);
   } catch (const std::exception& e) {

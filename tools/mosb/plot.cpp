@@ -60,9 +60,27 @@ int run_correlation(const PlotArgs& args) {
   return 0;
 }
 
+// Throws unless query q exists in r and is solved (the error gives its status).
+void require_solved(const SolutionReader& r, std::uint64_t q) {
+  if (q >= r.query_count())
+    throw UsageError("--query " + std::to_string(q) + ": " + r.display_name() + " has " +
+                     std::to_string(r.query_count()) + " queries");
+  if (r.status(q) != QueryStatus::solved)
+    throw Error(ErrorCode::invalid_argument, r.display_name() + ": query " + std::to_string(q) +
+                                                 " is " + std::string(to_string(r.status(q))) +
+                                                 ", not solved: no front to draw");
+}
+
+struct MapPaths {
+  std::string solutions;
+  std::optional<std::uint64_t> query;
+};
+
 // The grid of a games instance: metadata map.width/map.height, vertex data `cell` (x, y), and the
 // exposure of a cell as the cost of an orthogonal move into it (spec/families/games.md §2).
-int run_map(const PlotArgs& args, const std::string& exposure_objective) {
+int run_map(const PlotArgs& args, const std::string& exposure_objective, const MapPaths& paths) {
+  if (paths.solutions.empty() != !paths.query)
+    throw UsageError("--solutions and --query go together: the paths of one query's front");
   const auto reader = GraphReader::open(args.instance, VerifyLevel::full);
   const auto& meta = reader.metadata();
   const auto width_text = meta.get("map.width"), height_text = meta.get("map.height");
@@ -110,7 +128,30 @@ int run_map(const PlotArgs& args, const std::string& exposure_objective) {
         plot.exposure[std::size_t{y[v]} * plot.width + x[v]] = cost[a];
       }
   }
-  write_svg(args, plots::plot_map(plot));
+  if (!paths.solutions.empty()) {
+    const auto solutions = SolutionReader::open_verified(paths.solutions);
+    solutions.check_bound_to(reader);
+    if (!solutions.has_paths())
+      throw Error(ErrorCode::invalid_argument,
+                  paths.solutions + ": the solver gave no paths (vertex sequences) to draw");
+    require_solved(solutions, *paths.query);
+    const std::uint64_t begin = solutions.front_begin(*paths.query);
+    for (std::uint64_t row = begin; row < begin + solutions.front_size(*paths.query); ++row) {
+      auto& cells_of_path = plot.paths.emplace_back();
+      for (const std::uint32_t v : solutions.path(row)) {
+        if (v >= x.size())
+          throw Error(ErrorCode::invalid_argument,
+                      paths.solutions + ": query " + std::to_string(*paths.query) +
+                          ": path vertex " + std::to_string(v) + " is not a vertex of " +
+                          reader.display_name() + "; run mosb solutions verify --instance");
+        cells_of_path.push_back({static_cast<double>(x[v]), static_cast<double>(y[v])});
+      }
+    }
+  }
+  std::vector<std::filesystem::path> inputs = {args.instance};
+  if (!paths.solutions.empty()) inputs.push_back(paths.solutions);
+  check_output_is_not_input(args.output, inputs);
+  converters::write_text_atomically(args.output, plots::plot_map(plot));
   return 0;
 }
 
@@ -155,13 +196,7 @@ std::pair<std::size_t, std::size_t> chosen_objectives(const SolutionReader& r,
 
 std::vector<plots::Point2> front_points(const SolutionReader& r, std::uint64_t q,
                                         std::pair<std::size_t, std::size_t> axes) {
-  if (q >= r.query_count())
-    throw UsageError("--query " + std::to_string(q) + ": " + r.display_name() + " has " +
-                     std::to_string(r.query_count()) + " queries");
-  if (r.status(q) != QueryStatus::solved)
-    throw Error(ErrorCode::invalid_argument, r.display_name() + ": query " + std::to_string(q) +
-                                                 " is " + std::string(to_string(r.status(q))) +
-                                                 ", not solved: no front to draw");
+  require_solved(r, q);
   std::vector<plots::Point2> points(r.front_size(q));
   const std::uint64_t begin = r.front_begin(q);
   for (std::size_t k = 0; k < points.size(); ++k)
@@ -248,6 +283,11 @@ Command add_plot(CLI::App& app) {
   add_common(map, *map_args);
   map->add_option("--exposure-objective", *exposure, "the objective shaded per cell")
       ->capture_default_str();
+  auto map_paths = std::make_shared<MapPaths>();
+  map->add_option("--solutions", map_paths->solutions,
+                  "a solution file with paths: draw one query's paths (with --query)")
+      ->check(CLI::ExistingFile);
+  map->add_option("--query", map_paths->query, "the query whose front's paths are drawn");
   auto front_args = std::make_shared<FrontArgs>();
   auto* front = plot->add_subcommand(
       "front", "one query's front from a solution file on two objectives, against a reference");
@@ -272,11 +312,12 @@ Command add_plot(CLI::App& app) {
       ->check(CLI::ExistingFile);
   add_output_option(cardinality, cardinality_args->output, "the SVG file to write")->required();
   cardinality->add_option("--title", cardinality_args->title, "the figure's title");
-  return group(plot,
-               {{correlation, [correlation_args] { return run_correlation(*correlation_args); }},
-                {map, [map_args, exposure] { return run_map(*map_args, *exposure); }},
-                {front, [front_args] { return run_front(*front_args); }},
-                {cardinality, [cardinality_args] { return run_cardinality(*cardinality_args); }}});
+  return group(
+      plot,
+      {{correlation, [correlation_args] { return run_correlation(*correlation_args); }},
+       {map, [map_args, exposure, map_paths] { return run_map(*map_args, *exposure, *map_paths); }},
+       {front, [front_args] { return run_front(*front_args); }},
+       {cardinality, [cardinality_args] { return run_cardinality(*cardinality_args); }}});
 }
 
 }  // namespace mosb::cli
