@@ -205,6 +205,7 @@ class SolutionCommandsBadInput(CliTest):
             (bad_sol, ["plot", "cardinality", "--solutions", bad_sol, "-o", "out"]),
             (bad_graph, ["plot", "correlation", bad_graph, "-o", "out"]),
             (bad_graph, ["plot", "map", bad_graph, "-o", "out"]),
+            (bad_sol, ["plot", "map", g, "--solutions", bad_sol, "--query", "0", "-o", "out"]),
         ]
         for path, args in commands:
             with self.subTest(kind=kind, command=" ".join(args)):

@@ -82,6 +82,9 @@ int run_map(const PlotArgs& args, const std::string& exposure_objective, const M
   if (paths.solutions.empty() != !paths.query)
     throw UsageError("--solutions and --query go together: the paths of one query's front");
   const auto reader = GraphReader::open(args.instance, VerifyLevel::full);
+  // Every input is opened (and verified) before any of it is used.
+  std::optional<SolutionReader> solutions;
+  if (!paths.solutions.empty()) solutions.emplace(SolutionReader::open_verified(paths.solutions));
   const auto& meta = reader.metadata();
   const auto width_text = meta.get("map.width"), height_text = meta.get("map.height");
   const auto* cells = reader.find(format::SectionKind::vertex_data, "cell");
@@ -128,17 +131,16 @@ int run_map(const PlotArgs& args, const std::string& exposure_objective, const M
         plot.exposure[std::size_t{y[v]} * plot.width + x[v]] = cost[a];
       }
   }
-  if (!paths.solutions.empty()) {
-    const auto solutions = SolutionReader::open_verified(paths.solutions);
-    solutions.check_bound_to(reader);
-    if (!solutions.has_paths())
+  if (solutions) {
+    solutions->check_bound_to(reader);
+    if (!solutions->has_paths())
       throw Error(ErrorCode::invalid_argument,
                   paths.solutions + ": the solver gave no paths (vertex sequences) to draw");
-    require_solved(solutions, *paths.query);
-    const std::uint64_t begin = solutions.front_begin(*paths.query);
-    for (std::uint64_t row = begin; row < begin + solutions.front_size(*paths.query); ++row) {
+    require_solved(*solutions, *paths.query);
+    const std::uint64_t begin = solutions->front_begin(*paths.query);
+    for (std::uint64_t row = begin; row < begin + solutions->front_size(*paths.query); ++row) {
       auto& cells_of_path = plot.paths.emplace_back();
-      for (const std::uint32_t v : solutions.path(row)) {
+      for (const std::uint32_t v : solutions->path(row)) {
         if (v >= x.size())
           throw Error(ErrorCode::invalid_argument,
                       paths.solutions + ": query " + std::to_string(*paths.query) +
