@@ -151,7 +151,7 @@ int run_map(const PlotArgs& args, const std::string& exposure_objective, const M
     }
   }
   std::vector<std::filesystem::path> inputs = {args.instance};
-  if (!paths.solutions.empty()) inputs.push_back(paths.solutions);
+  if (!paths.solutions.empty()) inputs.emplace_back(paths.solutions);
   check_output_is_not_input(args.output, inputs);
   converters::write_text_atomically(args.output, plots::plot_map(plot));
   return 0;
@@ -237,7 +237,7 @@ int run_front(const FrontArgs& args) {
                    : "query " + std::to_string(args.query) + " of " + solutions.query_set() + ": " +
                          (solver.empty() ? "solver" : solver) + (reference ? " vs reference" : "");
   std::vector<std::filesystem::path> inputs = {args.solutions};
-  if (reference) inputs.push_back(args.reference);
+  if (reference) inputs.emplace_back(args.reference);
   check_output_is_not_input(args.output, inputs);
   converters::write_text_atomically(args.output, plots::plot_front(plot));
   return 0;
