@@ -247,6 +247,15 @@ class SolutionCommandsBadInput(CliTest):
     def test_import_truncated_json_log(self):
         self.text_inputs("truncated", '[{"source": 0, "target": 19, "finish_info": {"solut')
 
+    def test_import_from_a_pipe_with_a_writer(self):
+        # Not blocking on a FIFO without a writer must not refuse a pipe that has one.
+        completed = subprocess.run(
+            [MOSB, "solutions", "import", "--instance", self.instance, "--view", "Grid_2",
+             "--table", "/dev/stdin", "-o", "piped.sol"], cwd=self.dir,
+            input="query,c1,c2\n0,10,20\n", capture_output=True, text=True, timeout=20)
+        self.assertEqual(completed.returncode, 0, completed)
+        self.assertIn("1 of 1 queries imported, 1 vectors", completed.stdout)
+
     def test_good_files_still_work(self):
         for args in (["solutions", "inspect", self.solutions],
                      ["solutions", "verify", self.solutions],
