@@ -83,6 +83,14 @@ mosb_status mosb_open_verified(const char* path, mosb_verify_level level, mosb_g
  * section's checksum checked, instead of being refused with MOSB_ERROR_PACKED; an unpacked file
  * is mapped as by mosb_open. */
 mosb_status mosb_load(const char* path, mosb_graph** graph);
+/* Opens the instance that the store in `directory` (its MANIFEST, spec/MANIFEST.md) resolves `name`
+ * to: "BENCHMARK/VIEW", a view name, or a benchmark name, as mosb::Store::instance does. The file
+ * is verified in full and must have the content digest the manifest lists. A packed entry is
+ * unpacked into the store's cache (DIRECTORY/.cache) on first use, or into memory the handle owns
+ * when the store cannot be written. *graph receives the handle; *view, unless `view` is NULL, the
+ * resolved view's name ("" when the whole file serves), valid until mosb_close. */
+mosb_status mosb_store_instance(const char* directory, const char* name, mosb_graph** graph,
+                                const char** view);
 /* Unmaps and frees; NULL is allowed. Every pointer obtained from the handle dies with it. */
 void mosb_close(mosb_graph* graph);
 /* Checks the file at `level`; MOSB_ERROR_DAMAGED names the first problem. */

@@ -1,6 +1,7 @@
 // The C ABI of mosb.h over GraphReader: every entry point catches, records the message per thread
 // and returns a status; outputs are written only on success.
 #include <cstring>
+#include <memory>
 #include <mutex>
 #include <new>
 #include <string>
@@ -9,6 +10,7 @@
 
 #include "mosb.h"
 #include "mosb/graph_reader.hpp"
+#include "mosb/store.hpp"
 #include "mosb/verify.hpp"
 #include "mosb/version.hpp"
 
@@ -23,6 +25,7 @@ struct mosb_graph {
   std::once_flag described;
   std::vector<std::string> units;
   std::vector<mosb::View> views;
+  std::string store_view;  // mosb_store_instance's resolved view
 };
 
 namespace {
@@ -160,6 +163,20 @@ mosb_status mosb_load(const char* path, mosb_graph** graph) {
     require(path, "the path");
     require(graph, "the output handle");
     *graph = new mosb_graph(mosb::GraphReader::load(path));
+  });
+}
+
+mosb_status mosb_store_instance(const char* directory, const char* name, mosb_graph** graph,
+                                const char** view) {
+  return guarded([&] {
+    require(directory, "the store directory");
+    require(name, "the name");
+    require(graph, "the output handle");
+    auto resolved = mosb::Store::open(directory).instance(name);
+    auto opened = std::make_unique<mosb_graph>(std::move(resolved.reader));
+    if (resolved.view) opened->store_view = resolved.view->name;
+    if (view) *view = opened->store_view.c_str();
+    *graph = opened.release();
   });
 }
 

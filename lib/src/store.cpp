@@ -14,6 +14,7 @@
 #include "mosb/atomic_file.hpp"
 #include "mosb/error.hpp"
 #include "mosb/hex.hpp"
+#include "mosb/pack.hpp"
 #include "mosb/sha256.hpp"
 #include "mosb/verify.hpp"
 #include "xxh3.hpp"
@@ -54,7 +55,7 @@ struct InputFd {
 };
 
 FileCheck check_one(const ManifestEntry& e, const fs::path& path) {
-  FileCheck c{e.file, path, {}, {}};
+  FileCheck c{e.file, path, {}};
   auto problem = [&](std::string kind, std::string detail) {
     c.problems.push_back({std::move(kind), path.string() + ": " + std::move(detail)});
   };
@@ -86,11 +87,10 @@ FileCheck check_one(const ManifestEntry& e, const fs::path& path) {
     const auto digest = reader.digest();
     if (digest != e.digest)
       problem("wrong-digest", "content digest " + digest + ", the manifest says " + e.digest);
-    if (reader.header().required_features != 0) {
-      c.note = "packed: checked as stored (size, SHA-256, header, digest), not unpacked";
-    } else if (const auto found = verify(reader, VerifyLevel::full)) {
-      problem("damaged", *found);
-    }
+    // A packed file is checked as it will be used: unpacked (every frame decoded and checked
+    // against its section checksum), then verified in full.
+    const auto checked = is_packed(reader.header()) ? GraphReader::load(path) : reader;
+    if (const auto found = verify(checked, VerifyLevel::full)) problem("damaged", *found);
   } catch (const Error& error) {
     c.problems.push_back({error.code() == ErrorCode::io ? "unreadable" : "damaged", error.what()});
   }
@@ -107,6 +107,31 @@ void copy_into(const fs::path& source, AtomicFile& out) {
   in.read_all(source, [&](const char* data, std::size_t size) { out.write(data, size); });
 }
 
+// The reader of a packed entry: its unpacked copy in DIR/.cache, made first when absent or not
+// the entry's content (a damaged or an earlier version's copy), or, when the store cannot be
+// written, the packed file unpacked into memory.
+std::pair<GraphReader, fs::path> open_packed(const fs::path& directory, const ManifestEntry& e) {
+  const auto packed = directory / e.file;
+  const auto cache = directory / kCacheDirectory;
+  const auto copy = cache / e.file;
+  std::error_code ec;
+  if (fs::exists(copy, ec)) {
+    try {
+      auto reader = GraphReader::open(copy, VerifyLevel::full);
+      if (reader.digest() == e.digest) return {std::move(reader), copy};
+    } catch (const Error&) {
+      // Made again below from the packed file, which is checked as it is unpacked.
+    }
+  }
+  if (::access((fs::is_directory(cache, ec) ? cache : directory).c_str(), W_OK) != 0)
+    return {GraphReader::load(packed, VerifyLevel::full), packed};
+  fs::create_directory(cache, ec);
+  if (ec)
+    throw Error(ErrorCode::io, cache.string() + ": cannot create the cache: " + ec.message());
+  unpack_file(packed, copy);
+  return {GraphReader::open(copy, VerifyLevel::full), copy};
+}
+
 }  // namespace
 
 std::vector<FileCheck> check_files(const std::vector<std::pair<ManifestEntry, fs::path>>& files,
@@ -121,7 +146,7 @@ std::vector<FileCheck> check_files(const std::vector<std::pair<ManifestEntry, fs
       try {
         checks[i] = check_one(files[i].first, files[i].second);
       } catch (const std::exception& error) {  // bad_alloc, filesystem_error: a report, not a crash
-        checks[i] = {files[i].first.file, files[i].second, {{"unreadable", error.what()}}, {}};
+        checks[i] = {files[i].first.file, files[i].second, {{"unreadable", error.what()}}};
       }
       std::lock_guard lock(progress_mutex);
       report(options.progress, "verify", ++done, files.size());
@@ -154,8 +179,7 @@ std::vector<FileCheck> check_against_manifest(const fs::path& manifest_path,
         unlisted.push_back(
             {name,
              path,
-             {{"extra", path.string() + ": not listed in " + manifest_path.string()}},
-             {}});
+             {{"extra", path.string() + ": not listed in " + manifest_path.string()}}});
     }
   }
   auto checks = check_files(files, options);
@@ -230,38 +254,65 @@ Store Store::open(const fs::path& directory) {
 
 std::vector<ManifestEntry> Store::add(const std::vector<fs::path>& files,
                                       const AddOptions& options) {
-  // Everything is checked before anything is written.
+  // Everything is checked before anything the manifest lists is written.
   std::vector<ManifestEntry> added;
+  std::vector<fs::path> stored_from = files;  // where each file's stored bytes come from
+  std::vector<bool> staged(files.size(), false);
   std::set<std::string> names;
-  for (const auto& source : files) {
-    auto entry = describe_file(source);
-    if (!entry.packed) {
-      const auto reader = GraphReader::open(source);
-      if (const auto problem = mosb::verify(reader, VerifyLevel::full))
-        throw Error(ErrorCode::damaged, source.string() + ": file is damaged: " + *problem);
+  const auto staging = directory_ / kStagingDirectory;
+  // Packed copies not placed (an add that fails) are removed; the staging directory too when empty.
+  struct StagingCleanup {
+    const std::vector<fs::path>& paths;
+    const std::vector<bool>& staged;
+    fs::path directory;
+    ~StagingCleanup() {
+      std::error_code ec;
+      for (std::size_t i = 0; i < paths.size(); ++i)
+        if (staged[i]) fs::remove(paths[i], ec);
+      fs::remove(directory, ec);  // fails, harmlessly, while a concurrent add still uses it
     }
+  } cleanup{stored_from, staged, staging};
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    const auto& source = files[i];
+    auto entry = describe_file(source);
+    // A packed file is decoded (every frame checked) and verified like any other.
+    const auto reader = entry.packed ? GraphReader::load(source) : GraphReader::open(source);
+    if (const auto problem = mosb::verify(reader, VerifyLevel::full))
+      throw Error(ErrorCode::damaged, source.string() + ": file is damaged: " + *problem);
     if (!names.insert(entry.file).second)
       throw Error(source.string() + ": a second file named '" + entry.file + "' in one add");
+    if (options.pack && !entry.packed) {
+      report(options.progress, "pack", i, files.size());
+      std::error_code ec;
+      fs::create_directory(staging, ec);
+      if (ec)
+        throw Error(ErrorCode::io, staging.string() + ": cannot create: " + ec.message());
+      stored_from[i] = staging / entry.file;
+      pack_file(source, stored_from[i], *options.pack);
+      staged[i] = true;
+      entry = describe_file(stored_from[i]);
+    }
     if (const auto* listed = manifest_.find(entry.file);
         listed && (listed->sha256.empty() || listed->sha256 != entry.sha256))
       throw Error(source.string() + ": the store already lists a different '" + entry.file + "'");
     added.push_back(std::move(entry));
   }
+  if (options.pack) report(options.progress, "pack", files.size(), files.size());
   report(options.progress, "add", 0, files.size());
   for (std::size_t i = 0; i < files.size(); ++i) {
     const auto target = directory_ / added[i].file;
     std::error_code ec;
     // A file already in place is adopted where it lies; a rename within one file system is atomic
     // by itself; anything else is copied through a temporary.
-    const bool in_place = fs::exists(target, ec) && fs::equivalent(target, files[i], ec);
+    const bool in_place = !staged[i] && fs::exists(target, ec) && fs::equivalent(target, files[i], ec);
     bool renamed = false;
-    if (!in_place && options.move) {
-      fs::rename(files[i], target, ec);
+    if (!in_place && (options.move || staged[i])) {
+      fs::rename(stored_from[i], target, ec);
       renamed = !ec;
     }
     if (!in_place && !renamed) {
       AtomicFile out(target);
-      copy_into(files[i], out);
+      copy_into(stored_from[i], out);
       out.commit();
     }
     report(options.progress, "add", i + 1, files.size());
@@ -310,8 +361,7 @@ std::vector<FileCheck> Store::verify(const CheckOptions& options) const {
   for (const auto& name : extra)
     checks.push_back({name,
                       directory_ / name,
-                      {{"extra", (directory_ / name).string() + ": not listed in the manifest"}},
-                      {}});
+                      {{"extra", (directory_ / name).string() + ": not listed in the manifest"}}});
   return checks;
 }
 
@@ -351,11 +401,11 @@ StoreInstance Store::instance(std::string_view name) const {
     throw Error(ErrorCode::not_found,
                 label + " is ambiguous: served by " + files + " (use BENCHMARK/VIEW)");
   }
-  const auto path = directory_ / found->file;
-  if (found->packed)
-    throw Error(ErrorCode::packed,
-                path.string() + ": packed; this build cannot unpack it into the cache");
-  StoreInstance out{GraphReader::open(path, VerifyLevel::full), *found, path, std::nullopt, ""};
+  auto [reader, path] = found->packed ? open_packed(directory_, *found)
+                                      : std::pair{GraphReader::open(directory_ / found->file,
+                                                                    VerifyLevel::full),
+                                                  directory_ / found->file};
+  StoreInstance out{std::move(reader), *found, std::move(path), std::nullopt, ""};
   if (out.reader.digest() != found->digest)
     throw Error(ErrorCode::damaged, out.path.string() + ": content digest " + out.reader.digest() +
                                         ", the manifest says " + found->digest +

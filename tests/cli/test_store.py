@@ -221,6 +221,119 @@ class Manifest(Base):
         self.assertEqual(sorted(os.listdir(store)), before)
 
 
+def read_only_bind(directory):
+    """A command prefix that runs its command with `directory` bind-mounted read-only in a private
+    mount namespace (root ignores permission bits, so a read-only file system is the only way to
+    show a root-run test what a read-only store is); None when this machine does not allow it."""
+    if os.geteuid() != 0:
+        return None
+    probe = subprocess.run(["unshare", "-m", "sh", "-c", 'mount --bind "$0" "$0" && mount -o '
+                            'remount,bind,ro "$0" "$0" && ! touch "$0/.probe" 2>/dev/null',
+                            directory], capture_output=True)
+    if probe.returncode != 0:
+        return None
+    return ["unshare", "-m", "sh", "-c", 'mount --bind "$0" "$0" && mount -o remount,bind,ro "$0" '
+            '"$0" && shift && exec "$@"', directory, "--"]
+
+
+class Packed(Base):
+    def packed_store(self):
+        store = self.path("store")
+        self.ok("store", "init", store)
+        original = grid(self.path("g5.mosb"), 5)
+        self.ok("store", "add", "--pack", store, original)
+        return store, original
+
+    def test_add_pack_stores_the_packed_form_and_unpack_restores_the_original(self):
+        store, original = self.packed_store()
+        _, entries = self.records(os.path.join(store, "MANIFEST"))
+        self.assertEqual([(e["file"], e["packed"]) for e in entries], [("g5.mosb", True)])
+        stored = os.path.join(store, "g5.mosb")
+        self.assertEqual(entries[0]["sha256"], hashlib.sha256(read(stored)).hexdigest())
+        self.assertLess(len(read(stored)), len(read(original)))
+        self.ok("unpack", stored, "-o", self.path("back.mosb"))
+        self.assertEqual(read(self.path("back.mosb")), read(original))
+        self.assertEqual(sorted(os.listdir(store)), ["MANIFEST", "g5.mosb"])  # no staging left
+        self.ok("store", "verify", store)
+
+    def test_add_pack_of_a_name_listed_with_other_content_changes_nothing(self):
+        store = self.store_with(3)
+        before = read(os.path.join(store, "MANIFEST")), read(os.path.join(store, "g3.mosb"))
+        os.makedirs(self.path("other"))
+        r = run("store", "add", "--pack", store, grid(self.path("other", "g3.mosb"), 3, seed=2))
+        self.assertEqual(r.returncode, 1, r)
+        self.assertIn("already lists a different 'g3.mosb'", r.stderr)
+        self.assertEqual((read(os.path.join(store, "MANIFEST")),
+                          read(os.path.join(store, "g3.mosb"))), before)
+        self.assertEqual(sorted(os.listdir(store)), ["MANIFEST", "g3.mosb"])
+
+    def damaged_packed_copy(self):
+        """A packed file with one byte of a zstd frame changed (the header and table intact)."""
+        self.ok("pack", grid(self.path("g9.mosb"), 9, height=9), "-o", self.path("p.mosb"))
+        data = bytearray(read(self.path("p.mosb")))
+        data[len(data) // 2] ^= 0x55
+        with open(self.path("bad.mosb"), "wb") as f:
+            f.write(data)
+        self.ok("inspect", self.path("bad.mosb"))  # still opens: only decoding finds the damage
+        return self.path("bad.mosb")
+
+    def test_add_decodes_and_verifies_a_packed_file(self):
+        store = self.store_with(3)
+        r = run("store", "add", store, self.damaged_packed_copy())
+        self.assertEqual(r.returncode, 1, r)
+        self.assertIn("bad.mosb", r.stderr)
+        self.assertEqual(len(r.stderr.splitlines()), 1, r.stderr)
+        self.assertEqual(sorted(os.listdir(store)), ["MANIFEST", "g3.mosb"])
+
+    def test_verify_decodes_packed_entries(self):
+        # The damaged file is listed with its own size and SHA-256: only decoding can find it.
+        store, _ = self.packed_store()
+        bad = self.damaged_packed_copy()
+        shutil.copy(bad, os.path.join(store, "g5.mosb"))
+        manifest = os.path.join(store, "MANIFEST")
+        header, entries = self.records(manifest)
+        entries[0].update(size=os.path.getsize(bad), sha256=hashlib.sha256(read(bad)).hexdigest(),
+                          digest=json.loads(run("inspect", "--json", bad).stdout)["digest"])
+        with open(manifest, "w") as f:
+            f.write("".join(json.dumps(x, separators=(",", ":")) + "\n" for x in [header] + entries))
+        code, report = self.verify_json("store", "verify", store)
+        self.assertEqual(code, 1, report)
+        self.assertEqual(self.problems(report), [("g5.mosb", "damaged")])
+
+    def test_instance_unpacks_into_the_cache_once_and_remakes_a_bad_copy(self):
+        store, original = self.packed_store()
+        first = json.loads(self.ok("store", "instance", "--json", store, "Grid_3").stdout)
+        cached = os.path.join(store, ".cache", "g5.mosb")
+        self.assertEqual(os.path.realpath(first["path"]), os.path.realpath(cached))
+        self.assertEqual((first["view"], first["query_set"]), ("Grid_3", "default"))
+        self.assertEqual(read(cached), read(original))
+        inode = os.stat(cached).st_ino
+        self.ok("store", "instance", store, "Grid-5x4/Grid_2")
+        self.assertEqual(os.stat(cached).st_ino, inode)  # mapped, not made again
+        data = bytearray(read(cached))
+        data[len(data) // 2] ^= 0x55
+        with open(cached, "wb") as f:
+            f.write(data)
+        self.ok("store", "instance", store, "Grid_3")
+        self.assertEqual(read(cached), read(original))
+        self.ok("store", "verify", store)  # the cache is the store's own, not an extra file
+
+    def test_instance_of_a_read_only_store_unpacks_in_memory(self):
+        store, _ = self.packed_store()
+        before = sorted(os.listdir(store))
+        prefix = read_only_bind(store)
+        if prefix is None and os.geteuid() == 0:
+            self.skipTest("running as root and no private read-only mount is allowed here")
+        if prefix is None:
+            os.chmod(store, 0o555)
+            prefix = []
+        r = subprocess.run(prefix + [MOSB, "store", "instance", "--json", store, "Grid_3"],
+                           capture_output=True, text=True)
+        self.assertEqual(r.returncode, 0, r)
+        self.assertEqual(json.loads(r.stdout)["path"], os.path.join(store, "g5.mosb"))
+        self.assertEqual(sorted(os.listdir(store)), before)
+
+
 class KilledAdd(Base):
     def test_kill_9_during_add_leaves_a_valid_manifest(self):
         store = self.store_with(3)

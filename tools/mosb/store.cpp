@@ -2,6 +2,8 @@
 #include "mosb/store.hpp"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <thread>
 #include <iostream>
 #include <memory>
 
@@ -16,7 +18,10 @@ namespace {
 struct StoreArgs {
   std::string directory;
   std::vector<std::string> files;
+  std::string name;
   bool move = false;
+  bool pack = false;
+  int level = PackOptions{}.level;
   unsigned threads = 0;
   bool json = false;
 };
@@ -64,7 +69,9 @@ int run_add(const StoreArgs& a) {
   auto store = Store::open(a.directory);
   TerminalProgress progress;
   std::vector<std::filesystem::path> files(a.files.begin(), a.files.end());
-  const auto added = store.add(files, {a.move, progress.callback()});
+  Store::AddOptions options{a.move, std::nullopt, progress.callback()};
+  if (a.pack) options.pack = PackOptions{a.level, std::max(1U, std::thread::hardware_concurrency())};
+  const auto added = store.add(files, options);
   if (a.json) {
     JsonWriter json(std::cout);
     json.begin_object();
@@ -75,7 +82,8 @@ int run_add(const StoreArgs& a) {
     json.end_object();
   } else {
     for (const auto& e : added)
-      std::cout << (a.move ? "moved " : "added ") << e.file << " (digest " << e.digest << ")\n";
+      std::cout << (a.move ? "moved " : "added ") << e.file << (e.packed ? " packed" : "")
+                << " (digest " << e.digest << ")\n";
   }
   return 0;
 }
@@ -109,6 +117,32 @@ int run_store_verify(const StoreArgs& a) {
   return report_checks(checks, a.json);
 }
 
+// Resolves a name as solvers do (Store::instance) and says which file, view and query set serve
+// it; for a packed entry the unpacked copy is made in the store's cache.
+int run_instance(const StoreArgs& a) {
+  const auto store = Store::open(a.directory);
+  const auto found = store.instance(a.name);
+  const std::string view = found.view ? found.view->name : "";
+  if (a.json) {
+    JsonWriter json(std::cout);
+    json.begin_object();
+    json.key("name").value(a.name);
+    json.key("path").value(found.path.string());
+    json.key("file").value(found.entry.file);
+    json.key("benchmark").value(found.entry.benchmark);
+    json.key("view").value(view);
+    json.key("query_set").value(found.query_set);
+    json.key("digest").value(found.reader.digest());
+    json.end_object();
+  } else {
+    std::cout << found.path.string() << '\n'
+              << "view " << (view.empty() ? "- (every objective)" : view) << "  queries "
+              << (found.query_set.empty() ? "-" : found.query_set) << "  digest "
+              << found.reader.digest() << '\n';
+  }
+  return 0;
+}
+
 }  // namespace
 
 int report_checks(const std::vector<FileCheck>& checks, bool json) {
@@ -131,7 +165,6 @@ int report_checks(const std::vector<FileCheck>& checks, bool json) {
         out.end_object();
       }
       out.end_array();
-      if (!c.note.empty()) out.key("note").value(c.note);
       out.end_object();
     }
     out.end_array();
@@ -139,7 +172,7 @@ int report_checks(const std::vector<FileCheck>& checks, bool json) {
   } else {
     for (const auto& c : checks) {
       if (c.ok())
-        std::cout << "OK   " << c.file << (c.note.empty() ? "" : " (" + c.note + ")") << '\n';
+        std::cout << "OK   " << c.file << '\n';
       for (const auto& p : c.problems) std::cout << "FAIL " << p.kind << ": " << p.detail << '\n';
     }
     std::cout << checks.size() << (checks.size() == 1 ? " file, " : " files, ") << failures
@@ -162,6 +195,11 @@ Command add_store(CLI::App& app) {
   directory(add);
   add->add_option("FILE", args->files, "the .mosb files to add")->required();
   add->add_flag("--move", args->move, "move the files instead of copying them");
+  add->add_flag("--pack", args->pack, "store each unpacked file packed (as mosb pack does)");
+  add->add_option("--level", args->level, "zstd level for --pack (fixed, so the bytes are reproducible)")
+      ->check(CLI::Range(1, 22))
+      ->capture_default_str()
+      ->needs(add->get_option("--pack"));
   add_json_flag(add, args->json);
   auto* list = store->add_subcommand("list", "Print the store's entries");
   directory(list);
@@ -171,7 +209,15 @@ Command add_store(CLI::App& app) {
   directory(verify);
   verify->add_option("--threads", args->threads, "worker threads (default: all cores)")->group("");
   add_json_flag(verify, args->json);
+  auto* instance = store->add_subcommand(
+      "instance",
+      "Resolve BENCHMARK, VIEW or BENCHMARK/VIEW to the file a solver maps (a packed entry is "
+      "unpacked into DIR/.cache first), verified in full");
+  directory(instance);
+  instance->add_option("NAME", args->name, "a benchmark, a view, or BENCHMARK/VIEW")->required();
+  add_json_flag(instance, args->json);
   return group(store, {{init, [args] { return run_init(*args); }},
+                       {instance, [args] { return run_instance(*args); }},
                        {add, [args] { return run_add(*args); }},
                        {list, [args] { return run_list(*args); }},
                        {verify, [args] { return run_store_verify(*args); }}});

@@ -13,6 +13,7 @@
 
 #include "mosb/graph_reader.hpp"
 #include "mosb/manifest.hpp"
+#include "mosb/pack.hpp"
 #include "mosb/progress.hpp"
 
 namespace mosb {
@@ -28,7 +29,6 @@ struct FileCheck {
   std::string file;  // base name (the listed name; for an extra file, its name)
   std::filesystem::path path;
   std::vector<FileProblem> problems;  // empty: the file is what the manifest says
-  std::string note;                   // e.g. why a packed file was checked only so far
   bool ok() const { return problems.empty(); }
 };
 
@@ -38,7 +38,8 @@ struct CheckOptions {
 };
 
 // Checks each (entry, path) pair: existence, size, SHA-256 (when listed), readability, that it is
-// a mosb file passing verify --level full, and its content digest. Results in input order.
+// a mosb file passing verify --level full (a packed file is unpacked in memory first, so every
+// frame is decoded and checked), and its content digest. Results in input order.
 std::vector<FileCheck> check_files(
     const std::vector<std::pair<ManifestEntry, std::filesystem::path>>& files,
     const CheckOptions& options);
@@ -64,11 +65,18 @@ std::vector<SourceCheck> check_sources(const GraphReader& instance,
 // XXH3-64 of a file's bytes as 16 lowercase hex digits, streamed (as `source.input.<i>.xxh3`).
 std::string xxh3_file(const std::filesystem::path& path);
 
+// A store's own directories (names starting with '.', which store verification skips).
+inline constexpr std::string_view kCacheDirectory = ".cache";  // unpacked copies of packed entries
+inline constexpr std::string_view kStagingDirectory = ".staging";  // packed by add, not yet placed
+
 // A store's entry resolved for a benchmark: the reader, the file and the view to use.
 struct StoreInstance {
   GraphReader reader;  // opened at VerifyLevel::full
   ManifestEntry entry;
-  std::filesystem::path path;  // the file mapped (for a packed entry: its unpacked cache copy)
+  // The file mapped: the entry itself; for a packed entry its unpacked copy in the store's cache,
+  // or, when the cache cannot be written (a read-only store), the packed file (then unpacked into
+  // memory owned by `reader`).
+  std::filesystem::path path;
   std::optional<View> view;    // nullopt: the whole file (every objective)
   std::string query_set;       // the view's query set, or "" when it names none
 };
@@ -86,11 +94,14 @@ class Store {
 
   struct AddOptions {
     bool move = false;  // rename (or copy, then remove) the source instead of copying it
-    Progress progress;  // stage "add": once per file
+    // Pack each unpacked file on the way in (a packed one is stored as it is). The packed form is
+    // written to DIR/.staging first, so a name conflict is found before anything is replaced.
+    std::optional<PackOptions> pack;
+    Progress progress;  // stage "pack" (when packing) and stage "add": once per file
   };
-  // Copies (or moves) each file in under its base name, each through mosb::AtomicFile, then
-  // rewrites the manifest atomically, last. A file must open as a mosb file and pass verify
-  // --level full (unless packed). A name already listed with other bytes is refused; the same
+  // Copies (or moves, or packs) each file in under its base name, each through mosb::AtomicFile,
+  // then rewrites the manifest atomically, last. A file must open as a mosb file and pass verify
+  // --level full (a packed one once decoded). A name already listed with other bytes is refused; the same
   // bytes again are accepted (a retry after an interrupted add). Returns the new entries.
   std::vector<ManifestEntry> add(const std::vector<std::filesystem::path>& files,
                                  const AddOptions& options);
@@ -102,7 +113,9 @@ class Store {
   // Resolves `name`, in this order: "BENCHMARK/VIEW"; a view name served by exactly one entry;
   // a benchmark name served by exactly one entry (with its only view if it has exactly one,
   // otherwise the whole file). Throws mosb::Error (ErrorCode::not_found) listing what was
-  // ambiguous or what exists.
+  // ambiguous or what exists. A packed entry is unpacked into DIR/.cache/FILE on first use
+  // (atomically; the copy is verified in full and against the manifest's digest at every use, and
+  // made again when it does not match).
   StoreInstance instance(std::string_view name) const;
 
  private:
