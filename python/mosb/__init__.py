@@ -23,7 +23,7 @@ from . import _mosb
 from ._mosb import Error
 
 __version__ = _mosb.__version__
-__all__ = ["Error", "Instance", "View", "VERIFY_LEVELS", "load", "open"]
+__all__ = ["Error", "Instance", "Store", "StoreInstance", "View", "VERIFY_LEVELS", "load", "open"]
 
 VERIFY_LEVELS = ("header", "checksums", "structure", "full")
 
@@ -48,6 +48,31 @@ def load(path, verify=None):
     if verify is not None:
         instance.verify(verify)
     return instance
+
+
+# What a store resolves a name to: the instance (verified in full), its view (None: every
+# objective), the query set to run (None when the view names none), the path mapped (for a packed
+# entry its unpacked copy in the store's cache) and the entry's file name in the MANIFEST.
+StoreInstance = collections.namedtuple("StoreInstance", "instance view query_set path file")
+
+
+class Store:
+    """A store (`mosb store init|add`): a directory of instances and the MANIFEST listing them."""
+
+    def __init__(self, directory):
+        self.directory = os.fspath(directory)
+        self.files = tuple(_mosb.store_files(self.directory))  # mosb.Error when not a store
+
+    def __repr__(self):
+        return "<mosb.Store %r: %d files>" % (self.directory, len(self.files))
+
+    def instance(self, name):
+        """Resolves "BENCHMARK/VIEW", a view name or a benchmark name as mosb::Store::instance
+        does; a packed entry is unpacked into the store's cache on first use."""
+        reader, view, query_set, path, file = _mosb.store_instance(self.directory, name)
+        instance = Instance(reader)
+        return StoreInstance(instance, instance.view(view) if view else None, query_set or None,
+                             path, file)
 
 
 def _require(module, package, purpose):

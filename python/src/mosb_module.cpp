@@ -13,6 +13,7 @@
 
 #include "mosb/error.hpp"
 #include "mosb/graph_reader.hpp"
+#include "mosb/store.hpp"
 #include "mosb/verify.hpp"
 #include "mosb/version.hpp"
 
@@ -207,4 +208,28 @@ PYBIND11_MODULE(_mosb, m) {
       .def("mapping_range", [](const mosb::GraphReader& r) {
         return py::make_tuple(reinterpret_cast<std::uintptr_t>(r.bytes().data()), r.bytes().size());
       });
+
+  // (reader, view name or "", query set or "", path mapped, manifest file name) of
+  // mosb::Store::instance.
+  m.def(
+      "store_instance",
+      [](const std::string& directory, const std::string& name) {
+        auto found = [&] {
+          py::gil_scoped_release release;
+          return mosb::Store::open(directory).instance(name);
+        }();
+        return py::make_tuple(std::make_shared<mosb::GraphReader>(std::move(found.reader)),
+                              found.view ? found.view->name : std::string(), found.query_set,
+                              found.path.string(), found.entry.file);
+      },
+      py::arg("directory"), py::arg("name"));
+  m.def(
+      "store_files",
+      [](const std::string& directory) {
+        std::vector<std::string> files;
+        for (const auto& e : mosb::Store::open(directory).manifest().entries)
+          files.push_back(e.file);
+        return files;
+      },
+      py::arg("directory"));
 }

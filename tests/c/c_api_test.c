@@ -1,5 +1,6 @@
 /* The C ABI (mosb.h) from C99, over the golden files of spec/golden/1.0 (see
- * tests/unit/golden_input.hpp for the values). Usage: mosb_c_api_test GOLDEN_DIR VERSION */
+ * tests/unit/golden_input.hpp for the values). Usage: mosb_c_api_test GOLDEN_DIR VERSION [STORE]
+ * where STORE, when given, is a store holding valid/small.mosb packed (tests/c/CMakeLists.txt). */
 #include <pthread.h>
 #define _POSIX_C_SOURCE 200809L /* pthreads under -std=c99 */
 #include <stdio.h>
@@ -199,10 +200,32 @@ static void check_failures(const char* dir) {
   mosb_close(NULL);
 }
 
+/* A packed store entry resolved by view name: the same graph as the golden file. */
+static void check_store(const char* store) {
+  mosb_graph* g = NULL;
+  const char* view = NULL;
+  if (mosb_store_instance(store, "Small_2", &g, &view) != MOSB_OK) {
+    fprintf(stderr, "mosb_store_instance: %s\n", mosb_last_error());
+    ++failures;
+    return;
+  }
+  CHECK(view != NULL && strcmp(view, "Small_2") == 0);
+  check_graph(g);
+  mosb_close(g);
+  view = NULL;
+  CHECK(mosb_store_instance(store, "golden-small/Small_5", &g, NULL) == MOSB_OK);
+  mosb_close(g);
+  g = NULL;
+  CHECK(mosb_store_instance(store, "no-such-benchmark", &g, &view) == MOSB_ERROR_NOT_FOUND);
+  CHECK(g == NULL && view == NULL);
+  CHECK(contains(mosb_last_error(), "no-such-benchmark"));
+  CHECK(mosb_store_instance(store, NULL, &g, &view) == MOSB_ERROR_INVALID_ARGUMENT);
+}
+
 int main(int argc, char** argv) {
   mosb_graph* g = NULL;
-  if (argc != 3) {
-    fprintf(stderr, "usage: %s GOLDEN_DIR VERSION\n", argv[0]);
+  if (argc != 3 && argc != 4) {
+    fprintf(stderr, "usage: %s GOLDEN_DIR VERSION [STORE]\n", argv[0]);
     return 2;
   }
   CHECK(strcmp(mosb_version(), argv[2]) == 0);
@@ -215,6 +238,7 @@ int main(int argc, char** argv) {
   mosb_close(g);
   check_threads(argv[1]);
   check_failures(argv[1]);
+  if (argc == 4) check_store(argv[3]);
   if (failures)
     fprintf(stderr, "%d checks failed\n", failures);
   else

@@ -444,6 +444,19 @@ class SuiteBuild(Base):
         self.assertEqual(read(self.path("a", "MANIFEST")), read(self.path("b", "MANIFEST")))
         self.ok("store", "verify", self.path("a"))
 
+    def test_a_packed_suite_is_a_store_of_packed_files(self):
+        self.ok("generate", "grid", "--suite", self.path("p"), "--sizes", "20,30", "--pack")
+        _, entries = self.records(self.path("p", "MANIFEST"))
+        self.assertEqual(len(entries), 4)
+        self.assertTrue(all(e["packed"] for e in entries))
+        self.ok("store", "verify", self.path("p"))
+        found = json.loads(self.ok("store", "instance", "--json", self.path("p"),
+                                   "Grid-20x30/Grid_2").stdout)
+        self.ok("generate", "grid", "--suite", self.path("u"), "--sizes", "20,30")
+        self.assertEqual(read(found["path"]), read(self.path("u", "Grid-20x30.mosb")))
+        r = run("generate", "grid", "--width", "5", "--pack", "-o", self.path("x.mosb"))
+        self.assertEqual(r.returncode, 2, r)  # --pack is a suite option
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -217,6 +217,27 @@ class ValuesTest(Temp):
         for o in original.objectives:
             self.assertTrue((loaded.cost(o) == original.cost(o)).all())
 
+    def test_store_resolves_a_packed_entry_through_its_cache(self):
+        plain = self.generate_grid()
+        store = os.path.join(self.dir, "store")
+        for args in (("store", "init", store), ("store", "add", "--pack", store, plain)):
+            done = run(MOSB, *args)
+            self.assertEqual(done.returncode, 0, done.stderr)
+        s = mosb.Store(store)
+        self.assertEqual(s.files, (os.path.basename(plain),))
+        found = s.instance("Grid_2")
+        self.assertEqual(found.view.name, "Grid_2")
+        self.assertEqual(len(found.view.objectives), 2)
+        self.assertEqual(found.path, os.path.join(store, ".cache", os.path.basename(plain)))
+        original = mosb.open(plain)
+        self.assertEqual(found.instance.digest, original.digest)
+        self.assertTrue((found.instance.forward_targets == original.forward_targets).all())
+        with self.assertRaises(mosb.Error) as caught:
+            s.instance("Grid_9")
+        self.assertEqual(caught.exception.code, "not_found")
+        with self.assertRaises(mosb.Error):
+            mosb.Store(self.dir)  # no MANIFEST
+
 
 class ZeroCopyTest(Temp):
     def test_two_accessors_share_the_mapping(self):

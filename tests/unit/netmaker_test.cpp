@@ -16,6 +16,7 @@
 #include "mosb/error.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/manifest.hpp"
+#include "mosb/pack.hpp"
 #include "mosb/verify.hpp"
 #include "temp_dir.hpp"
 
@@ -247,7 +248,7 @@ TEST_CASE("a suite's files and MANIFEST do not depend on the thread count") {
   testing::TempDir dir;
   const auto instances = converters::netmaker_suite(7, {300});
   REQUIRE(instances.size() == 4);
-  const auto one = converters::run_suite(dir / "one", instances, {1, {}});
+  const auto one = converters::run_suite(dir / "one", instances, {1, {}, {}});
   std::size_t progress_calls = 0;
   const auto three = converters::run_suite(
       dir / "three", instances,
@@ -255,7 +256,8 @@ TEST_CASE("a suite's files and MANIFEST do not depend on the thread count") {
          CHECK(stage == "suite");
          CHECK(done == progress_calls++);
          CHECK(total == 4);
-       }});
+       },
+       {}});
   CHECK(progress_calls == 5);
   REQUIRE(one.size() == 4);
   for (std::size_t i = 0; i < 4; ++i) {
@@ -282,7 +284,7 @@ TEST_CASE(
     "a suite subset reproduces the full suite's instance and a failing instance stops the suite") {
   testing::TempDir dir;
   const auto entries =
-      converters::run_suite(dir / "s", converters::grid_suite(1, {30, 20, 30}), {2, {}});
+      converters::run_suite(dir / "s", converters::grid_suite(1, {30, 20, 30}), {2, {}, {}});
   REQUIRE(entries.size() == 4);  // 20x20, 20x30, 30x20, 30x30: the repeated size counts once
   CHECK(entries[1].name == "Grid-20x30");
   const auto seed = converters::suite_instance_seed(1, (std::uint64_t{20} << 20) + 30);
@@ -295,8 +297,27 @@ TEST_CASE(
          return converters::generate_grid({5, 5, 3, 1});
        }},
       {"bad", []() -> GraphInput { throw Error("bad instance"); }}};
-  CHECK_THROWS_WITH_AS(converters::run_suite(dir / "b", broken, {2, {}}), "bad instance", Error);
+  CHECK_THROWS_WITH_AS(converters::run_suite(dir / "b", broken, {2, {}, {}}), "bad instance", Error);
   CHECK_FALSE(std::filesystem::exists(dir / "b" / "MANIFEST"));
+}
+
+TEST_CASE("a packed suite lists packed files that unpack to the unpacked suite's bytes") {
+  testing::TempDir dir;
+  const auto instances = converters::grid_suite(1, {12, 15});
+  const auto plain = converters::run_suite(dir / "plain", instances, {2, {}, {}});
+  const auto packed = converters::run_suite(dir / "packed", instances, {2, {}, PackOptions{3, 1}});
+  const auto manifest = read_manifest(dir / "packed" / "MANIFEST");
+  REQUIRE(packed.size() == plain.size());
+  REQUIRE(manifest.entries.size() == plain.size());
+  for (std::size_t i = 0; i < plain.size(); ++i) {
+    CHECK(packed[i].digest == plain[i].digest);
+    CHECK(manifest.entries[i].packed);
+    CHECK(manifest.entries[i].size == std::filesystem::file_size(dir / "packed" / packed[i].file));
+    CHECK(packed[i].size < plain[i].size);
+    unpack_file(dir / "packed" / packed[i].file, dir / "back.mosb");
+    CHECK(testing::read_bytes(dir / "back.mosb") ==
+          testing::read_bytes(dir / "plain" / plain[i].file));
+  }
 }
 
 TEST_CASE("the real NetMaker file converts to 10000 vertices, 59750 arcs, 3 objectives") {

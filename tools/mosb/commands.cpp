@@ -76,6 +76,16 @@ int report_written(const std::string& path, bool json) {
   return 0;
 }
 
+std::optional<PackOptions> suite_pack(bool pack) {
+  return pack ? std::optional<PackOptions>(PackOptions{}) : std::nullopt;
+}
+
+CLI::Option* add_suite_pack_flag(CLI::App* sub, bool& pack) {
+  return sub->add_flag("--pack", pack,
+                       "pack each suite file at zstd level " + std::to_string(PackOptions{}.level) +
+                           " (as mosb pack does); the MANIFEST lists the packed files");
+}
+
 int report_suite(const std::string& directory, const std::string& family,
                  const std::vector<converters::SuiteEntry>& entries, bool json) {
   if (!json) {

@@ -5,10 +5,12 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "mosb/error.hpp"
+#include "mosb/pack.hpp"
 
 namespace CLI {
 class App;
@@ -82,9 +84,14 @@ int report_written(const std::string& path, bool json);
 int report_suite(const std::string& directory, const std::string& family,
                  const std::vector<converters::SuiteEntry>& entries, bool json);
 
+// A suite's files packed at the default level (a published suite has one fixed level), or not.
+std::optional<PackOptions> suite_pack(bool pack);
+// `--pack` for `generate ... --suite`.
+CLI::Option* add_suite_pack_flag(CLI::App* sub, bool& pack);
+
 // The per-file report of a store or manifest check (store.cpp): "OK   FILE" or one "FAIL KIND:
 // DETAIL" line per problem and a count, or with `json` {"ok", "files": [{"file", "ok",
-// "problems": [{"kind", "detail"}], "note"?}]}; returns 0 when every file is ok, else 1.
+// "problems": [{"kind", "detail"}]}]}; returns 0 when every file is ok, else 1.
 int report_checks(const std::vector<FileCheck>& checks, bool json);
 
 Command add_inspect(CLI::App& app);

@@ -17,6 +17,7 @@ struct GridArgs {
   std::string suite;
   std::vector<std::uint32_t> sizes = converters::paper_grid_sizes();
   unsigned threads = 0;
+  bool pack = false;
   bool json = false;
 };
 
@@ -24,7 +25,8 @@ int run_grid(const GridArgs& a) {
   TerminalProgress progress;
   if (!a.suite.empty()) {
     const auto entries = converters::run_suite(
-        a.suite, converters::grid_suite(a.params.seed, a.sizes), {a.threads, progress.callback()});
+        a.suite, converters::grid_suite(a.params.seed, a.sizes),
+        {a.threads, progress.callback(), suite_pack(a.pack)});
     return report_suite(a.suite, "Grid", entries, a.json);
   }
   if (a.output.empty()) throw UsageError("--output FILE is required (or --suite DIR)");
@@ -68,6 +70,7 @@ Command add_generate_grid(CLI::App& generate) {
     directory->excludes(single_only);
   sizes->needs(directory);
   threads->needs(directory);
+  add_suite_pack_flag(grid, args->pack)->needs(directory);
   add_json_flag(grid, args->json);
   return {grid, [args] { return run_grid(*args); }};
 }

@@ -17,6 +17,7 @@ struct NetMakerArgs {
   std::string expect_digest;
   std::string suite;
   unsigned threads = 0;
+  bool pack = false;
   bool json = false;
 };
 
@@ -28,7 +29,7 @@ int run_netmaker(NetMakerArgs a, const CLI::App& app) {
                                                 : converters::paper_netmaker_vertex_counts();
     const auto entries =
         converters::run_suite(a.suite, converters::netmaker_suite(a.params.seed, counts),
-                              {a.threads, progress.callback()});
+                              {a.threads, progress.callback(), suite_pack(a.pack)});
     return report_suite(a.suite, "NetMaker", entries, a.json);
   }
   if (a.output.empty()) throw UsageError("--output FILE is required (or --suite DIR)");
@@ -80,6 +81,7 @@ Command add_generate_netmaker(CLI::App& generate) {
       ->group("");
   for (auto* single_only : {amin, amax, locality, queries, percent, name, output, expect})
     suite->excludes(single_only);
+  add_suite_pack_flag(netmaker, args->pack)->needs(suite);
   add_json_flag(netmaker, args->json);
   return {netmaker, [args, netmaker] { return run_netmaker(*args, *netmaker); }};
 }

@@ -6,11 +6,13 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
 
 #include "mosb/graph_builder.hpp"
+#include "mosb/pack.hpp"
 #include "mosb/progress.hpp"
 
 namespace mosb::converters {
@@ -32,6 +34,9 @@ struct SuiteOptions {
   unsigned threads = 0;  // 0: std::thread::hardware_concurrency()
   // Stage "suite": called with 0 first, then once per finished instance, serialized.
   Progress progress;
+  // Pack each file right after writing it (mosb::pack_file, in place); the MANIFEST then lists
+  // the packed files. PackOptions::threads is ignored: instances are packed in parallel instead.
+  std::optional<PackOptions> pack;
 };
 
 // Creates `directory` if needed, writes every instance and then MANIFEST (replacing any earlier
