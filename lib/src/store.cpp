@@ -126,8 +126,7 @@ std::pair<GraphReader, fs::path> open_packed(const fs::path& directory, const Ma
   if (::access((fs::is_directory(cache, ec) ? cache : directory).c_str(), W_OK) != 0)
     return {GraphReader::load(packed, VerifyLevel::full), packed};
   fs::create_directory(cache, ec);
-  if (ec)
-    throw Error(ErrorCode::io, cache.string() + ": cannot create the cache: " + ec.message());
+  if (ec) throw Error(ErrorCode::io, cache.string() + ": cannot create the cache: " + ec.message());
   unpack_file(packed, copy);
   return {GraphReader::open(copy, VerifyLevel::full), copy};
 }
@@ -177,9 +176,7 @@ std::vector<FileCheck> check_against_manifest(const fs::path& manifest_path,
         files.emplace_back(*e, path);
       else
         unlisted.push_back(
-            {name,
-             path,
-             {{"extra", path.string() + ": not listed in " + manifest_path.string()}}});
+            {name, path, {{"extra", path.string() + ": not listed in " + manifest_path.string()}}});
     }
   }
   auto checks = check_files(files, options);
@@ -285,8 +282,7 @@ std::vector<ManifestEntry> Store::add(const std::vector<fs::path>& files,
       report(options.progress, "pack", i, files.size());
       std::error_code ec;
       fs::create_directory(staging, ec);
-      if (ec)
-        throw Error(ErrorCode::io, staging.string() + ": cannot create: " + ec.message());
+      if (ec) throw Error(ErrorCode::io, staging.string() + ": cannot create: " + ec.message());
       stored_from[i] = staging / entry.file;
       pack_file(source, stored_from[i], *options.pack);
       staged[i] = true;
@@ -304,7 +300,8 @@ std::vector<ManifestEntry> Store::add(const std::vector<fs::path>& files,
     std::error_code ec;
     // A file already in place is adopted where it lies; a rename within one file system is atomic
     // by itself; anything else is copied through a temporary.
-    const bool in_place = !staged[i] && fs::exists(target, ec) && fs::equivalent(target, files[i], ec);
+    const bool in_place =
+        !staged[i] && fs::exists(target, ec) && fs::equivalent(target, files[i], ec);
     bool renamed = false;
     if (!in_place && (options.move || staged[i])) {
       fs::rename(stored_from[i], target, ec);
@@ -401,10 +398,10 @@ StoreInstance Store::instance(std::string_view name) const {
     throw Error(ErrorCode::not_found,
                 label + " is ambiguous: served by " + files + " (use BENCHMARK/VIEW)");
   }
-  auto [reader, path] = found->packed ? open_packed(directory_, *found)
-                                      : std::pair{GraphReader::open(directory_ / found->file,
-                                                                    VerifyLevel::full),
-                                                  directory_ / found->file};
+  auto [reader, path] =
+      found->packed ? open_packed(directory_, *found)
+                    : std::pair{GraphReader::open(directory_ / found->file, VerifyLevel::full),
+                                directory_ / found->file};
   StoreInstance out{std::move(reader), *found, std::move(path), std::nullopt, ""};
   if (out.reader.digest() != found->digest)
     throw Error(ErrorCode::damaged, out.path.string() + ": content digest " + out.reader.digest() +

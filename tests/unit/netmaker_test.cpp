@@ -250,14 +250,15 @@ TEST_CASE("a suite's files and MANIFEST do not depend on the thread count") {
   REQUIRE(instances.size() == 4);
   const auto one = converters::run_suite(dir / "one", instances, {1, {}, {}});
   std::size_t progress_calls = 0;
-  const auto three = converters::run_suite(
-      dir / "three", instances,
-      {3, [&](std::string_view stage, std::uint64_t done, std::uint64_t total) {
-         CHECK(stage == "suite");
-         CHECK(done == progress_calls++);
-         CHECK(total == 4);
-       },
-       {}});
+  const auto three =
+      converters::run_suite(dir / "three", instances,
+                            {3,
+                             [&](std::string_view stage, std::uint64_t done, std::uint64_t total) {
+                               CHECK(stage == "suite");
+                               CHECK(done == progress_calls++);
+                               CHECK(total == 4);
+                             },
+                             {}});
   CHECK(progress_calls == 5);
   REQUIRE(one.size() == 4);
   for (std::size_t i = 0; i < 4; ++i) {
@@ -297,7 +298,8 @@ TEST_CASE(
          return converters::generate_grid({5, 5, 3, 1});
        }},
       {"bad", []() -> GraphInput { throw Error("bad instance"); }}};
-  CHECK_THROWS_WITH_AS(converters::run_suite(dir / "b", broken, {2, {}, {}}), "bad instance", Error);
+  CHECK_THROWS_WITH_AS(converters::run_suite(dir / "b", broken, {2, {}, {}}), "bad instance",
+                       Error);
   CHECK_FALSE(std::filesystem::exists(dir / "b" / "MANIFEST"));
 }
 

@@ -24,9 +24,9 @@ struct GridArgs {
 int run_grid(const GridArgs& a) {
   TerminalProgress progress;
   if (!a.suite.empty()) {
-    const auto entries = converters::run_suite(
-        a.suite, converters::grid_suite(a.params.seed, a.sizes),
-        {a.threads, progress.callback(), suite_pack(a.pack)});
+    const auto entries =
+        converters::run_suite(a.suite, converters::grid_suite(a.params.seed, a.sizes),
+                              {a.threads, progress.callback(), suite_pack(a.pack)});
     return report_suite(a.suite, "Grid", entries, a.json);
   }
   if (a.output.empty()) throw UsageError("--output FILE is required (or --suite DIR)");

@@ -3,9 +3,9 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <thread>
 #include <iostream>
 #include <memory>
+#include <thread>
 
 #include "commands.hpp"
 #include "json_writer.hpp"
@@ -70,7 +70,8 @@ int run_add(const StoreArgs& a) {
   TerminalProgress progress;
   std::vector<std::filesystem::path> files(a.files.begin(), a.files.end());
   Store::AddOptions options{a.move, std::nullopt, progress.callback()};
-  if (a.pack) options.pack = PackOptions{a.level, std::max(1U, std::thread::hardware_concurrency())};
+  if (a.pack)
+    options.pack = PackOptions{a.level, std::max(1U, std::thread::hardware_concurrency())};
   const auto added = store.add(files, options);
   if (a.json) {
     JsonWriter json(std::cout);
@@ -171,8 +172,7 @@ int report_checks(const std::vector<FileCheck>& checks, bool json) {
     out.end_object();
   } else {
     for (const auto& c : checks) {
-      if (c.ok())
-        std::cout << "OK   " << c.file << '\n';
+      if (c.ok()) std::cout << "OK   " << c.file << '\n';
       for (const auto& p : c.problems) std::cout << "FAIL " << p.kind << ": " << p.detail << '\n';
     }
     std::cout << checks.size() << (checks.size() == 1 ? " file, " : " files, ") << failures
@@ -196,7 +196,8 @@ Command add_store(CLI::App& app) {
   add->add_option("FILE", args->files, "the .mosb files to add")->required();
   add->add_flag("--move", args->move, "move the files instead of copying them");
   add->add_flag("--pack", args->pack, "store each unpacked file packed (as mosb pack does)");
-  add->add_option("--level", args->level, "zstd level for --pack (fixed, so the bytes are reproducible)")
+  add->add_option("--level", args->level,
+                  "zstd level for --pack (fixed, so the bytes are reproducible)")
       ->check(CLI::Range(1, 22))
       ->capture_default_str()
       ->needs(add->get_option("--pack"));

@@ -27,9 +27,8 @@ int run_suite_build(const SuiteBuildArgs& a) {
        converters::netmaker_suite(kSuiteSeed, converters::paper_netmaker_vertex_counts()))
     instances.push_back(std::move(instance));
   TerminalProgress progress;
-  const auto entries =
-      converters::run_suite(a.directory, instances,
-                            {a.threads, progress.callback(), suite_pack(!a.no_pack)});
+  const auto entries = converters::run_suite(
+      a.directory, instances, {a.threads, progress.callback(), suite_pack(!a.no_pack)});
   return report_suite(a.directory, "suite", entries, a.json);
 }
 
@@ -38,8 +37,7 @@ int run_suite_build(const SuiteBuildArgs& a) {
 Command add_suite(CLI::App& app) {
   auto* suite = app.add_subcommand("suite", "The paper's published benchmark suite");
   auto* build = suite->add_subcommand(
-      "build",
-      "Write the 49 Grid and 12 NetMaker instances, packed, and their MANIFEST into DIR");
+      "build", "Write the 49 Grid and 12 NetMaker instances, packed, and their MANIFEST into DIR");
   auto args = std::make_shared<SuiteBuildArgs>();
   build->add_option("DIR", args->directory, "the suite directory (created if needed)")->required();
   build->add_option("--threads", args->threads, "worker threads (default: all cores)")->group("");

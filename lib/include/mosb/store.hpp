@@ -77,8 +77,8 @@ struct StoreInstance {
   // or, when the cache cannot be written (a read-only store), the packed file (then unpacked into
   // memory owned by `reader`).
   std::filesystem::path path;
-  std::optional<View> view;    // nullopt: the whole file (every objective)
-  std::string query_set;       // the view's query set, or "" when it names none
+  std::optional<View> view;  // nullopt: the whole file (every objective)
+  std::string query_set;     // the view's query set, or "" when it names none
 };
 
 class Store {
@@ -101,8 +101,8 @@ class Store {
   };
   // Copies (or moves, or packs) each file in under its base name, each through mosb::AtomicFile,
   // then rewrites the manifest atomically, last. A file must open as a mosb file and pass verify
-  // --level full (a packed one once decoded). A name already listed with other bytes is refused; the same
-  // bytes again are accepted (a retry after an interrupted add). Returns the new entries.
+  // --level full (a packed one once decoded). A name already listed with other bytes is refused;
+  // the same bytes again are accepted (a retry after an interrupted add). Returns the new entries.
   std::vector<ManifestEntry> add(const std::vector<std::filesystem::path>& files,
                                  const AddOptions& options);
 
