@@ -226,9 +226,9 @@ PYBIND11_MODULE(_mosb, m) {
   m.def(
       "store_files",
       [](const std::string& directory) {
+        const auto store = mosb::Store::open(directory);
         std::vector<std::string> files;
-        for (const auto& e : mosb::Store::open(directory).manifest().entries)
-          files.push_back(e.file);
+        for (const auto& e : store.manifest().entries) files.push_back(e.file);
         return files;
       },
       py::arg("directory"));

@@ -5,11 +5,14 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <set>
+#include <string>
 
 #include "golden_input.hpp"
 #include "mosb/graph_builder.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/verify.hpp"
+#include "packed_faults.hpp"
 #include "temp_dir.hpp"
 
 using namespace mosb;
@@ -71,4 +74,63 @@ TEST_CASE("pack_file refuses a bad level and leaves no output") {
   CHECK_THROWS_WITH_AS(pack_file(dir / "plain.mosb", dir / "out.mosb", PackOptions{0, 1}),
                        doctest::Contains("zstd level 0"), Error);
   CHECK_FALSE(std::filesystem::exists(dir / "out.mosb"));
+}
+
+namespace {
+const std::filesystem::path kPackedGolden =
+    std::filesystem::path(MOSB_SOURCE_DIR) / "spec" / "golden" / "1.1" / "packed";
+}
+
+TEST_CASE("the packed golden files unpack to verified instances and pack back to the same bytes") {
+  testing::TempDir dir;
+  std::set<format::Encoding> encodings;
+  for (const char* name : {"small.packed.mosb", "grid.packed.mosb"}) {
+    CAPTURE(name);
+    const auto golden = kPackedGolden / "valid" / name;
+    const auto packed = GraphReader::open(golden);  // header, table and metadata, not the frames
+    for (const auto& s : packed.sections())
+      encodings.insert(static_cast<format::Encoding>(s.entry.encoding));
+    const auto loaded = GraphReader::load(golden, VerifyLevel::full);
+    CHECK(loaded.digest() == packed.digest());
+    unpack_file(golden, dir / "plain.mosb");
+    pack_file(dir / "plain.mosb", dir / "again.mosb", {});
+    CHECK_MESSAGE(bytes_of(dir / "again.mosb") == bytes_of(golden),
+                  "mosb pack no longer reproduces the golden packed file: a change of the "
+                  "packer or of libzstd's output; packed suites would change their bytes");
+  }
+  CHECK(encodings.count(format::Encoding::zstd) == 1);
+  CHECK(encodings.count(format::Encoding::shuffle_zstd) == 1);
+  CHECK(encodings.count(format::Encoding::delta_zstd) == 1);
+  const auto small = GraphReader::load(kPackedGolden / "valid" / "small.packed.mosb");
+  unpack_file(kPackedGolden / "valid" / "small.packed.mosb", dir / "small.mosb");
+  CHECK(bytes_of(dir / "small.mosb") ==
+        bytes_of(std::filesystem::path(MOSB_SOURCE_DIR) / "spec/golden/1.0/valid/small.mosb"));
+  CHECK(small.digest() == GraphReader::open(dir / "small.mosb").digest());
+}
+
+TEST_CASE("every invalid packed golden file is refused where EXPECTED.tsv says") {
+  std::ifstream tsv(kPackedGolden / "invalid" / "EXPECTED.tsv");
+  REQUIRE(tsv);
+  std::size_t files = 0;
+  testing::TempDir dir;
+  for (std::string line; std::getline(tsv, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    const auto tab = line.find('\t');
+    REQUIRE(tab != std::string::npos);
+    const auto file = kPackedGolden / "invalid" / line.substr(0, tab);
+    const auto expected = line.substr(tab + 1);
+    CAPTURE(file);
+    ++files;
+    std::string message;
+    try {
+      (void)GraphReader::load(file, VerifyLevel::full);
+    } catch (const Error& error) {
+      message = error.what();
+    }
+    CHECK_MESSAGE(message.find(expected) != std::string::npos, message);
+    CHECK_MESSAGE(message.find(file.string()) == 0, message);
+    CHECK_THROWS_AS(unpack_file(file, dir / "out.mosb"), Error);
+    CHECK_FALSE(std::filesystem::exists(dir / "out.mosb"));
+  }
+  CHECK(files == std::size(testing::kPackedFaults));
 }
