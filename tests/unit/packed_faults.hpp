@@ -21,46 +21,43 @@ inline std::size_t encoded_section(const Bytes& b, format::Encoding encoding) {
   throw std::runtime_error("the packed golden file has no section in that encoding");
 }
 
+// Changes the table entry of the first section in `encoding`, then reseals the header checksum.
+template <class Change>
+void patch_entry(Bytes& b, format::Encoding encoding, Change change) {
+  const auto i = encoded_section(b, encoding);
+  auto e = entry_of(b, i);
+  change(e);
+  set_entry(b, i, e);
+  reseal_header(b);
+}
+
+using format::Encoding;
+using format::SectionEntry;
+
 inline const PackedFault kPackedFaults[] = {
+    // The table declares one row more than the frame holds.
     {"declared-length.mosb", "zstd frame declares",
-     [](Bytes& b) {  // the table declares one row more than the frame holds
-       const auto i = encoded_section(b, format::Encoding::delta_zstd);
-       auto e = entry_of(b, i);
-       e.row_count += 1;
-       set_entry(b, i, e);
-       reseal_header(b);
+     [](Bytes& b) {
+       patch_entry(b, Encoding::delta_zstd, [](SectionEntry& e) { e.row_count += 1; });
      }},
+    // A decoded length no frame of this size can produce.
     {"bomb.mosb", "zstd frame can hold",
-     [](Bytes& b) {  // a decoded length no frame of this size can produce
-       const auto i = encoded_section(b, format::Encoding::shuffle_zstd);
-       auto e = entry_of(b, i);
-       e.row_count = std::uint64_t{1} << 40;
-       set_entry(b, i, e);
-       reseal_header(b);
+     [](Bytes& b) {
+       patch_entry(b, Encoding::shuffle_zstd,
+                   [](SectionEntry& e) { e.row_count = std::uint64_t{1} << 40; });
      }},
     {"truncated-frame.mosb", "truncated or damaged",
      [](Bytes& b) {
-       const auto i = encoded_section(b, format::Encoding::delta_zstd);
-       auto e = entry_of(b, i);
-       e.stored_length -= 5;
-       set_entry(b, i, e);
-       reseal_header(b);
+       patch_entry(b, Encoding::delta_zstd, [](SectionEntry& e) { e.stored_length -= 5; });
      }},
+    // The frame decodes, but not to the elements the checksum covers.
     {"section-checksum.mosb", "mismatch",
-     [](Bytes& b) {  // the frame decodes, but not to the elements the checksum covers
-       const auto i = encoded_section(b, format::Encoding::shuffle_zstd);
-       auto e = entry_of(b, i);
-       e.checksum ^= 1;
-       set_entry(b, i, e);
-       reseal_header(b);
+     [](Bytes& b) {
+       patch_entry(b, Encoding::shuffle_zstd, [](SectionEntry& e) { e.checksum ^= 1; });
      }},
     {"unknown-encoding.mosb", "encoding 4",
      [](Bytes& b) {
-       const auto i = encoded_section(b, format::Encoding::delta_zstd);
-       auto e = entry_of(b, i);
-       e.encoding = 4;
-       set_entry(b, i, e);
-       reseal_header(b);
+       patch_entry(b, Encoding::delta_zstd, [](SectionEntry& e) { e.encoding = 4; });
      }},
 };
 
