@@ -178,6 +178,62 @@ std::vector<ImportedResult> import_front_directory(const std::filesystem::path& 
   return by_query(std::move(results), std::move(where));
 }
 
+void apply_example_run_log(std::string_view text, const std::string& name,
+                           const SolutionImportOptions& o, std::vector<ImportedResult>& results) {
+  check_options(o);
+  text::LineScanner lines(text);
+  std::string_view line;
+  std::vector<text::Token> fields;
+  std::size_t next = 0;  // results[next] is the query the next line must describe
+  std::uint64_t query = 0;
+  for (; lines.next(line); ++query) {
+    text::tokenize(line, fields);
+    if (fields.size() != 5)
+      fail(name, lines.number(), 1,
+           "expected 'start goal front_size seconds expansions', found " +
+               text::plural(fields.size(), "field"));
+    if (query >= o.queries.size())
+      fail(name, lines.number(), 1,
+           "a line for query " + std::to_string(query) + ", the set has " +
+               queries_text(o.queries.size()));
+    const auto& q = o.queries[query];
+    const std::uint64_t endpoints[2] = {q.start, q.goal};
+    for (int i = 0; i < 2; ++i) {
+      const auto id = text::to_u64(fields[i].text);
+      if (!id || *id != endpoints[i])
+        fail(name, lines.number(), fields[i].column,
+             "query " + std::to_string(query) + " goes from " + std::to_string(q.start) + " to " +
+                 std::to_string(q.goal) + ", the line says " + quoted(fields[0].text) + " " +
+                 quoted(fields[1].text));
+    }
+    if (next >= results.size() || results[next].query != query)
+      fail(name, lines.number(), 1,
+           "query " + std::to_string(query) + " has a line here but no front file (" +
+               std::to_string(query + o.id_base) + ".txt)");
+    auto& result = results[next++];
+    const auto size = text::to_u64(fields[2].text);
+    const auto vectors = result.costs.size() / o.objective_count;
+    if (!size || *size != vectors)
+      fail(name, lines.number(), fields[2].column,
+           "front size " + quoted(fields[2].text) + ", but query " + std::to_string(query) +
+               "'s front file holds " + text::plural(vectors, "vector"));
+    const auto seconds = text::to_real(fields[3].text);
+    if (!seconds || !std::isfinite(*seconds) || *seconds < 0)
+      fail(name, lines.number(), fields[3].column,
+           "expected seconds (finite, >= 0), found " + quoted(fields[3].text));
+    const auto expansions = text::to_u64(fields[4].text);
+    if (!expansions)
+      fail(name, lines.number(), fields[4].column,
+           "expected an expansion count, found " + quoted(fields[4].text));
+    result.statistics.runtime_seconds = *seconds;
+    result.statistics.expanded = *expansions;
+  }
+  if (next < results.size())
+    throw Error(ErrorCode::invalid_argument,
+                name + ": no line for query " + std::to_string(results[next].query) +
+                    ", which has a front file (" + text::plural(query, "line") + " read)");
+}
+
 std::vector<ImportedResult> parse_solution_table(std::string_view text, const std::string& name,
                                                  std::span<const std::string> names,
                                                  const SolutionImportOptions& o) {

@@ -9,6 +9,7 @@ of the solvers. The real-data parts skip with a message when shared/data is abse
 """
 
 import itertools
+import json
 import os
 import random
 import subprocess
@@ -174,6 +175,79 @@ class RandomGraphs(Base):
             for i in range(6):
                 with open(os.path.join(a, "%d.txt" % i), "rb") as fa, open(os.path.join(b, "%d.txt" % i), "rb") as fb:
                     self.assertEqual(fa.read(), fb.read())
+
+
+class ImportedAsSolutionFiles(Base):
+    """An example solver's fronts and its per-query lines become a solution file (solutions import
+    --dir --example-log) that verifies against the instance and evaluates against itself."""
+
+    def run_namoa(self, inst):
+        fronts = self.path("fronts")
+        r = run(solver("namoa"), inst, "--view", "Grid_3", "--queries", "q", "--fronts", fronts)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        return fronts, self.write("namoa.log", r.stdout), r.stdout.splitlines()
+
+    def test_fronts_and_statistics_are_imported(self):
+        inst = self.path("g.mosb")
+        self.mosb("generate", "grid", "--width", "9", "--height", "8", "--seed", "5", "-o", inst)
+        self.mosb("queries", "generate", inst, "--in-place", "--set", "q", "--count", "4",
+                  "--seed", "2")
+        fronts, log, lines = self.run_namoa(inst)
+        out = self.path("namoa.sol.mosb")
+        self.mosb("solutions", "import", "--instance", inst, "--view", "Grid_3", "--queries", "q",
+                  "--dir", fronts, "--example-log", log, "--solver", "namoa", "-o", out)
+        self.mosb("solutions", "verify", "--instance", inst, out)
+        summary = json.loads(self.mosb("solutions", "inspect", "--json", out).stdout)
+        rows = [line.split() for line in lines]
+        self.assertEqual(summary["statuses"]["solved"], 4)
+        self.assertEqual(summary["vectors"], sum(int(r[2]) for r in rows))
+        stats = summary["statistics"]
+        self.assertEqual(stats["expanded"]["queries"], 4)
+        self.assertEqual(stats["expanded"]["total"], sum(int(r[4]) for r in rows))
+        self.assertAlmostEqual(stats["runtime_seconds"]["max"], max(float(r[3]) for r in rows))
+        self.mosb("eval", "--reference", out, "--solutions", out, "--eps", "0")
+        # Without the log: the same fronts, no statistics.
+        plain = self.path("plain.sol.mosb")
+        self.mosb("solutions", "import", "--instance", inst, "--view", "Grid_3", "--queries", "q",
+                  "--dir", fronts, "-o", plain)
+        self.assertEqual(json.loads(self.mosb("solutions", "inspect", "--json", plain).stdout)
+                         ["statistics"], {})
+
+    def test_a_log_that_disagrees_with_the_fronts_is_refused_at_its_line(self):
+        inst = self.path("g.mosb")
+        self.mosb("generate", "grid", "--width", "7", "--height", "6", "--seed", "1", "-o", inst)
+        self.mosb("queries", "generate", inst, "--in-place", "--set", "q", "--count", "3",
+                  "--seed", "4")
+        fronts, log, lines = self.run_namoa(inst)
+        rows = [line.split() for line in lines]
+
+        def refused(text, fragment):
+            bad = self.write("bad.log", text)
+            out = self.path("bad.sol.mosb")
+            r = run(MOSB, "solutions", "import", "--instance", inst, "--view", "Grid_3",
+                    "--queries", "q", "--dir", fronts, "--example-log", bad, "-o", out)
+            self.assertEqual(r.returncode, 1, (text, r.stderr))
+            self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
+            self.assertIn(fragment, r.stderr)
+            self.assertFalse(os.path.exists(out))
+
+        def joined(changed):
+            return "".join(" ".join(r) + "\n" for r in changed)
+
+        swapped = [list(r) for r in rows]
+        swapped[1][0], swapped[1][1] = rows[1][1], rows[1][0]
+        if rows[1][0] != rows[1][1]:
+            refused(joined(swapped), "bad.log:2:1: query 1 goes from")
+        wrong_size = [list(r) for r in rows]
+        wrong_size[2][2] = str(int(rows[2][2]) + 1)
+        col = len(rows[2][0]) + len(rows[2][1]) + 3
+        refused(joined(wrong_size), "bad.log:3:%d: front size" % col)
+        refused(joined(rows[:2]), "no line for query 2")
+        refused(joined(rows) + joined(rows[:1]), "bad.log:4:1: a line for query 3")
+        refused(joined(rows).replace(rows[0][3], "-1", 1), "bad.log:1:")
+        r = run(MOSB, "solutions", "import", "--instance", inst, "--view", "Grid_3", "--queries",
+                "q", "--table", log, "--example-log", log, "-o", self.path("x.sol.mosb"))
+        self.assertEqual(r.returncode, 2, r.stderr)  # --example-log goes with --dir
 
 
 class Errors(Base):

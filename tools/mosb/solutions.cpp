@@ -22,6 +22,7 @@ namespace {
 struct ImportArgs {
   std::string instance, view, query_set, output;
   std::string directory, table, json_log;  // exactly one
+  std::string example_log;                 // with directory: the example solvers' stdout
   std::string match = "position";
   unsigned id_base = 0;
   std::vector<std::size_t> columns;
@@ -47,6 +48,10 @@ int run_import(const ImportArgs& a) {
   std::vector<converters::ImportedResult> results;
   if (!a.directory.empty()) {
     results = converters::import_front_directory(a.directory, options);
+    if (!a.example_log.empty()) {
+      const auto input = converters::read_text_input(a.example_log);
+      converters::apply_example_run_log(input.text, a.example_log, options, results);
+    }
   } else if (!a.table.empty()) {
     const auto input = converters::read_text_input(a.table);
     results =
@@ -116,6 +121,30 @@ int run_inspect(const InspectArgs& a) {
   // The median of an even count is the lower middle one: a front cardinality, never a fraction.
   const auto median = sizes.empty() ? 0 : sizes[(sizes.size() - 1) / 2];
   const auto solver = r.solver();
+  // Each statistic the file has, over the queries that carry it: count, total and maximum.
+  struct StatisticSummary {
+    Statistic statistic;
+    std::uint64_t queries = 0;
+    double total = 0, max = 0;
+  };
+  std::vector<StatisticSummary> statistics;
+  for (const auto statistic : kStatistics) {
+    if (!r.has_statistic(statistic)) continue;
+    StatisticSummary summary{statistic};
+    for (std::uint64_t q = 0; q < r.query_count(); ++q) {
+      std::optional<double> value;
+      if (statistic == Statistic::runtime_seconds) {
+        value = r.runtime_seconds(q);
+      } else if (const auto count = r.count_statistic(statistic, q)) {
+        value = static_cast<double>(*count);
+      }
+      if (!value) continue;
+      ++summary.queries;
+      summary.total += *value;
+      summary.max = std::max(summary.max, *value);
+    }
+    statistics.push_back(summary);
+  }
   if (a.json) {
     JsonWriter json(std::cout);
     json.begin_object();
@@ -150,6 +179,15 @@ int run_inspect(const InspectArgs& a) {
     }
     json.end_object();
     json.key("paths").value(r.has_paths());
+    json.key("statistics").begin_object();
+    for (const auto& t : statistics) {
+      json.key(to_string(t.statistic)).begin_object();
+      json.key("queries").value(t.queries);
+      json.key("total").value(t.total);
+      json.key("max").value(t.max);
+      json.end_object();
+    }
+    json.end_object();
     json.end_object();
     return 0;
   }
@@ -172,6 +210,9 @@ int run_inspect(const InspectArgs& a) {
     std::cout << "front size: min " << sizes.front() << ", median " << median << ", max "
               << sizes.back() << " (" << r.vector_count() << " vectors)\n";
   std::cout << "paths: " << (r.has_paths() ? "yes" : "no") << "\n";
+  for (const auto& t : statistics)
+    std::cout << to_string(t.statistic) << ": " << t.queries << " queries, total " << t.total
+              << ", max " << t.max << "\n";
   return 0;
 }
 
@@ -227,6 +268,11 @@ Command add_solutions(CLI::App& app) {
   import->add_option("--queries", import_args->query_set, "query set (default: the view's)");
   import->add_option("--dir", import_args->directory,
                      "a directory of per-query front files (query id in the name)");
+  import
+      ->add_option("--example-log", import_args->example_log,
+                   "with --dir: the per-query lines an example solver printed (start goal "
+                   "front_size seconds expansions), kept as runtime and expanded")
+      ->needs(import->get_option("--dir"));
   import->add_option("--table", import_args->table,
                      "a CSV/TSV table: a 'query' column and one column per objective");
   import->add_option("--json-log", import_args->json_log,

@@ -65,4 +65,15 @@ std::vector<ImportedResult> parse_solver_json_log(std::string_view text,
                                                   const std::string& display_name,
                                                   const SolutionImportOptions& options);
 
+// The per-query lines the example solvers print on standard output (examples/README.md): `start
+// goal front_size seconds expansions`, one line per query in query order, query k's front in
+// `<k>.txt` of their --fronts directory. Adds runtime_seconds and expanded to the results of
+// import_front_directory (`results`, sorted by query) after checking each line: its endpoints are
+// query k's (0-based vertex ids, as the examples print them), its front size is the number of
+// vectors imported for query k, and query k has a front file; a front file without a line is
+// refused too. Throws mosb::Error "FILE:LINE:COLUMN: message".
+void apply_example_run_log(std::string_view text, const std::string& display_name,
+                           const SolutionImportOptions& options,
+                           std::vector<ImportedResult>& results);
+
 }  // namespace mosb::converters
