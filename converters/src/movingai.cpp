@@ -305,10 +305,12 @@ QuerySet scenario_queries(const std::vector<ScenarioEntry>& entries, const Octil
   std::uint32_t n = 0;
   for (std::size_t c = 0; c < id.size(); ++c)
     if (map.passable[c]) id[c] = n++;
-  QuerySet scen{"scen", {}};
-  for (const auto& e : entries)
+  QuerySet scen{"scen", {}, QueryReference{"length", "movingai-optimal", {}}};
+  for (const auto& e : entries) {
     scen.pairs.push_back({id[std::size_t{e.start_y} * map.width + e.start_x],
                           id[std::size_t{e.goal_y} * map.width + e.goal_x]});
+    scen.reference->values.push_back(e.optimal);
+  }
   return scen;
 }
 

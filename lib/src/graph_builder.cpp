@@ -196,6 +196,7 @@ Metadata stored_metadata(const Metadata& input, const std::vector<Cost>& costs,
   // An input may name the program that made it (a converter of another tool, a pinned test).
   if (!metadata.get("source.tool")) metadata.set("source.tool", std::string("mosb ") + kVersion);
   if (auto problem = find_view_problem(metadata, cost_names, query_names)) throw Error(*problem);
+  for (const auto& q : queries) add_reference_metadata(metadata, q, cost_names, "");
   return metadata;
 }
 
@@ -206,11 +207,7 @@ void add_metadata_section(FileWriter& writer, const Metadata& metadata) {
 }
 
 void add_query_sections(FileWriter& writer, const std::vector<QuerySet>& queries) {
-  for (const auto& q : queries) {
-    writer.begin_section(SectionKind::queries, q.name, ElementType::u32, 2);
-    writer.append(std::as_bytes(std::span(q.pairs)));
-    writer.end_section();
-  }
+  for (const auto& q : queries) write_query_set(writer, q);
 }
 
 // Appends values one at a time through a fixed buffer.
@@ -511,6 +508,34 @@ GraphInput materialize(const StreamedGraph& in) {
   out.queries = in.queries;
   out.metadata = in.metadata;
   return out;
+}
+
+void write_query_set(FileWriter& writer, const QuerySet& set) {
+  writer.begin_section(SectionKind::queries, set.name, ElementType::u32, 2);
+  writer.append(std::as_bytes(std::span(set.pairs)));
+  writer.end_section();
+  if (set.reference)
+    writer.add_section(SectionKind::query_reference, set.name, 1,
+                       std::span<const double>(set.reference->values));
+}
+
+void add_reference_metadata(Metadata& metadata, const QuerySet& set,
+                            const std::vector<std::string>& objectives, const std::string& what) {
+  if (!set.reference) return;
+  const auto& r = *set.reference;
+  const std::string label = what + "query set '" + set.name + "': reference";
+  if (r.values.size() != set.pairs.size())
+    throw Error(label + " has " + std::to_string(r.values.size()) + " values for " +
+                std::to_string(set.pairs.size()) + " queries");
+  if (std::find(objectives.begin(), objectives.end(), r.objective) == objectives.end())
+    throw Error(label + " names objective '" + r.objective + "', which is no cost section");
+  for (std::size_t i = 0; i < r.values.size(); ++i)
+    if (!std::isfinite(r.values[i]) || r.values[i] < 0)
+      throw Error(label + ", query " + std::to_string(i) + ": " + std::to_string(r.values[i]) +
+                  " is not a finite number >= 0");
+  const std::string key = "queries." + set.name + ".reference.";
+  metadata.set(key + "objective", r.objective);
+  metadata.set(key + "source", r.source);
 }
 
 }  // namespace mosb

@@ -157,6 +157,10 @@ void GraphReader::validate() {
       case SectionKind::queries:
         expect(s.type == ElementType::u32 && s.entry.row_width == 2, "queries must be u32 x 2");
         break;
+      case SectionKind::query_reference:
+        expect(s.type == ElementType::f64 && s.entry.row_width == 1,
+               "query references must be f64 x 1");
+        break;
       default:
         for (const auto& shape : kStructural)
           if (shape.kind == k) {
@@ -175,6 +179,17 @@ void GraphReader::validate() {
   for (const auto& shape : kStructural)
     if (structural_[static_cast<std::size_t>(shape.kind)] == SIZE_MAX)
       fail("no " + std::string(format::to_string(shape.kind)) + " section");
+  // A reference belongs to the query set of its name, one value per query (names are unique within
+  // a kind, so at most one of each).
+  for (const auto& s : sections_) {
+    if (s.kind != SectionKind::query_reference) continue;
+    const Section* set = find(SectionKind::queries, s.name);
+    if (!set) fail("section '" + s.name + "': a query reference naming no query set");
+    if (s.entry.row_count != set->entry.row_count)
+      fail("section '" + s.name + "': the query reference has " +
+           std::to_string(s.entry.row_count) + " rows, but the query set has " +
+           std::to_string(set->entry.row_count));
+  }
   if (header_.objective_count != cost_indices_.size())
     fail("header declares " + std::to_string(header_.objective_count) + " objectives, table has " +
          std::to_string(cost_indices_.size()) + " cost sections");
@@ -290,6 +305,14 @@ std::span<const Query> GraphReader::queries(std::string_view name) const {
   if (!s) fail(ErrorCode::not_found, "no query set named '" + std::string(name) + "'");
   auto raw = values<std::uint32_t>(*s);
   return {reinterpret_cast<const Query*>(raw.data()), raw.size() / 2};
+}
+
+std::optional<std::span<const double>> GraphReader::query_reference(std::string_view name) const {
+  if (!find(SectionKind::queries, name))
+    fail(ErrorCode::not_found, "no query set named '" + std::string(name) + "'");
+  const Section* s = find(SectionKind::query_reference, name);
+  if (!s) return std::nullopt;
+  return values<double>(*s);
 }
 
 const Metadata& GraphReader::metadata() const {

@@ -30,22 +30,18 @@ void check_query_sets(const GraphReader& source, const std::vector<QuerySet>& qu
   }
 }
 
+// A `queries` section replaced by a new set, or the `query_reference` section of such a set (the
+// new set writes its own reference, or none, right after its pairs).
 const QuerySet* replacement_for(const Section& s, const std::vector<QuerySet>& query_sets) {
-  if (s.kind != SectionKind::queries) return nullptr;
+  if (s.kind != SectionKind::queries && s.kind != SectionKind::query_reference) return nullptr;
   for (const auto& set : query_sets)
     if (set.name == s.name) return &set;
   return nullptr;
 }
 
-void write_query_set(FileWriter& writer, const QuerySet& set) {
-  writer.begin_section(SectionKind::queries, set.name, format::ElementType::u32, 2);
-  writer.append(std::as_bytes(std::span(set.pairs)));
-  writer.end_section();
-}
-
 }  // namespace
 
-void rewrite_instance(const GraphReader& source, const Metadata& metadata,
+void rewrite_instance(const GraphReader& source, const Metadata& metadata_in,
                       const std::vector<QuerySet>& query_sets,
                       const std::filesystem::path& output) {
   const std::string& file = source.display_name();
@@ -60,8 +56,11 @@ void rewrite_instance(const GraphReader& source, const Metadata& metadata,
   for (const auto* s : source.all(SectionKind::queries)) query_names.push_back(s->name);
   for (const auto& set : query_sets)
     if (!source.find(SectionKind::queries, set.name)) query_names.push_back(set.name);
-  if (auto problem = find_view_problem(metadata, objective_names, query_names))
+  if (auto problem = find_view_problem(metadata_in, objective_names, query_names))
     throw Error(file + ": " + *problem);
+  Metadata metadata = metadata_in;
+  for (const auto& set : query_sets)
+    add_reference_metadata(metadata, set, objective_names, file + ": ");
 
   // Copying re-hashes the bytes: a section damaged on disk would come out with a fresh, matching
   // checksum and the damage would be laundered, so each copied section is checked first.
@@ -85,7 +84,7 @@ void rewrite_instance(const GraphReader& source, const Metadata& metadata,
           SectionKind::metadata, s.name, 1,
           std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
     } else if (const auto* set = replacement_for(s, query_sets)) {
-      write_query_set(writer, *set);
+      if (s.kind == SectionKind::queries) write_query_set(writer, *set);
     } else {
       writer.begin_section(static_cast<SectionKind>(s.entry.kind), s.name, s.type,
                            s.entry.row_width);

@@ -145,18 +145,35 @@ Problem check_transpose(const Csr& c, std::uint64_t first, std::uint64_t last) {
   return std::nullopt;
 }
 
+// Float costs (rules cost-*, "arc 3 costs ...") and query references (reference-*, "query 3 has
+// ...") are finite and >= 0.
 template <class T>
-Problem check_float_costs(const Section& s, std::span<const T> costs) {
+Problem check_float_values(const Section& s, std::span<const T> values, std::string_view rule,
+                           std::string_view row, std::string_view verb) {
   bool all_good = true;
-  for (const T cost : costs) all_good &= std::isfinite(cost) & (cost >= 0);
+  for (const T value : values) all_good &= std::isfinite(value) & (value >= 0);
   if (all_good) return std::nullopt;
-  for (std::size_t a = 0; a < costs.size(); ++a) {
-    if (!std::isfinite(costs[a]))
-      return in_section(s, "cost-finite",
-                        "arc " + std::to_string(a) + " costs " + std::to_string(costs[a]));
-    if (costs[a] < 0)
-      return in_section(s, "cost-nonnegative",
-                        "arc " + std::to_string(a) + " costs " + std::to_string(costs[a]));
+  for (std::size_t a = 0; a < values.size(); ++a) {
+    const bool finite = std::isfinite(values[a]);
+    if (!finite || values[a] < 0)
+      return in_section(s, std::string(rule) + (finite ? "-nonnegative" : "-finite"),
+                        std::string(row) + " " + std::to_string(a) + " " + std::string(verb) + " " +
+                            std::to_string(values[a]));
+  }
+  return std::nullopt;
+}
+
+// Every query set carrying a reference names, in `queries.<set>.reference.objective`, the cost
+// section its values refer to (spec/SOLUTIONS.md §6).
+std::optional<std::string> find_reference_problem(const GraphReader& reader,
+                                                  const Metadata& metadata) {
+  for (const auto* s : reader.all(SectionKind::query_reference)) {
+    const std::string key = "queries." + s->name + ".reference.objective";
+    const auto objective = metadata.get(key);
+    if (!objective)
+      return "query set '" + s->name + "' carries a reference, but " + key + " is missing";
+    if (!reader.find(SectionKind::cost, *objective))
+      return key + " names objective '" + *objective + "', which is no cost section";
   }
   return std::nullopt;
 }
@@ -179,6 +196,8 @@ Problem check_metadata(const GraphReader& reader) {
     return in_section(metadata_section, "metadata-views", *problem);
   if (auto problem = find_value_problem(*metadata))
     return in_section(metadata_section, "metadata-values", *problem);
+  if (auto problem = find_reference_problem(reader, *metadata))
+    return in_section(metadata_section, "metadata-reference", *problem);
   return std::nullopt;
 }
 
@@ -311,16 +330,25 @@ std::optional<std::string> verify(const GraphReader& reader, VerifyLevel level,
     for (const auto* s : reader.all(SectionKind::cost)) {
       if (s->type == ElementType::f32)
         tasks.push_back({s->stored.size(),
-                         [&reader, s] { return check_float_costs(*s, reader.values<float>(*s)); }});
+                         [&reader, s] {
+                           return check_float_values(*s, reader.values<float>(*s), "cost", "arc",
+                                                     "costs");
+                         }});
       else if (s->type == ElementType::f64)
         tasks.push_back({s->stored.size(), [&reader, s] {
-                           return check_float_costs(*s, reader.values<double>(*s));
+                           return check_float_values(*s, reader.values<double>(*s), "cost", "arc",
+                                                     "costs");
                          }});
     }
     for (const auto* s : reader.all(SectionKind::queries))
       tasks.push_back({s->stored.size(), [&reader, s, n] {
                          return check_ids(*s, reader.values<std::uint32_t>(*s), n, "query-range",
                                           "endpoint");
+                       }});
+    for (const auto* s : reader.all(SectionKind::query_reference))
+      tasks.push_back({s->stored.size(), [&reader, s] {
+                         return check_float_values(*s, reader.values<double>(*s), "reference",
+                                                   "query", "has");
                        }});
     tasks.push_back({0, [&reader] { return check_metadata(reader); }});
     tasks.push_back({0, [&reader] { return check_padding(reader); }});

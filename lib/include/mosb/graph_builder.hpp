@@ -43,10 +43,31 @@ struct DataColumn {
   }
 };
 
+// A published optimum per query of one objective (section kind 17, spec/SOLUTIONS.md §6), in the
+// source's own unit; the writer adds the metadata `queries.<set>.reference.objective` and
+// `.source`.
+struct QueryReference {
+  std::string objective;  // the cost section the values refer to
+  std::string source;     // e.g. `movingai-optimal`
+  std::vector<double> values;  // one per query, finite and >= 0
+};
+
 struct QuerySet {
   std::string name;
   std::vector<Query> pairs;
+  std::optional<QueryReference> reference = std::nullopt;
 };
+
+class FileWriter;
+
+// Writes a set's `queries` section and, when it has a reference, its `query_reference` section of
+// the same name right after: the one place both write_graph and rewrite_instance write a set.
+void write_query_set(FileWriter& writer, const QuerySet& set);
+
+// Checks a set's reference against its pairs and the objectives (`what` prefixes the message) and
+// records its metadata keys in `metadata`; throws mosb::Error.
+void add_reference_metadata(Metadata& metadata, const QuerySet& set,
+                            const std::vector<std::string>& objectives, const std::string& what);
 
 struct GraphInput {
   std::uint64_t vertex_count = 0;

@@ -131,6 +131,10 @@ class GraphReader {
   const Section* find(format::SectionKind kind, std::string_view name) const;
   std::vector<const Section*> all(format::SectionKind kind) const;
   std::span<const Query> queries(std::string_view name) const;
+  // The published per-query optimum of query set `name` (section kind 17, spec/SOLUTIONS.md §6),
+  // one value per query; nullopt when the set carries none. Its shape (f64 x 1, one row per
+  // query) is checked at open, its values (finite, >= 0) by verify at level structure.
+  std::optional<std::span<const double>> query_reference(std::string_view name) const;
 
   // Parsed on first use: malformed metadata is an error of that call, not of open().
   const Metadata& metadata() const;

@@ -70,7 +70,8 @@ StreamedGraph build_octile_graph(const OctileMap& map,
                                  const std::optional<CellObjective>& cell_objective = {});
 
 // The vertex of each passable cell (row-major numbering), for rows already checked against the map:
-// the query set `scen`, in file order.
+// the query set `scen`, in file order, with each row's `optimal` as its reference for objective
+// `length` (source `movingai-optimal`, spec/SOLUTIONS.md §6).
 QuerySet scenario_queries(const std::vector<ScenarioEntry>& entries, const OctileMap& map);
 
 struct MovingaiOptions {
