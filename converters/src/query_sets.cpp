@@ -1,7 +1,9 @@
 #include "mosb/converters/query_sets.hpp"
 
+#include "mosb/converters/movingai.hpp"
 #include "mosb/converters/query_import.hpp"
 #include "mosb/converters/text_input.hpp"
+#include "mosb/converters/text_scan.hpp"
 #include "mosb/error.hpp"
 #include "mosb/random.hpp"
 
@@ -15,7 +17,9 @@ namespace {
 Metadata without_query_keys(const Metadata& metadata, const std::string& name) {
   static const char* const kSuffixes[] = {"source",     "input.name", "input.size",
                                           "input.xxh3", "id_base",    "match",
-                                          "seed",       "count",      "allow_same"};
+                                          "seed",       "count",      "allow_same",
+                                          "format",     "reference.objective",
+                                          "reference.source"};
   Metadata out;
   for (const auto& [key, value] : metadata.entries()) {
     bool ours = false;
@@ -40,11 +44,74 @@ unsigned instance_id_base(const GraphReader& reader) {
               "' is not 0 or 1; pass --id-base");
 }
 
+// The octile map an instance was built from, as far as a scenario check needs it: its size and
+// which cells are vertices. Refuses an instance whose vertices are not the passable cells in
+// row-major order (the numbering of build_octile_graph that scenario_queries relies on).
+OctileMap instance_map(const GraphReader& reader) {
+  const std::string& file = reader.display_name();
+  auto dimension = [&](const char* key) -> std::uint32_t {
+    const auto value = reader.metadata().get(key);
+    const auto parsed = value ? text::to_u64(*value, 0xFFFFFFFFULL) : std::nullopt;
+    if (!parsed || *parsed == 0)
+      throw Error(file + ": metadata " + key +
+                  " is missing or not a positive integer: --scen needs an instance converted from "
+                  "a Moving AI map (convert movingai or convert guards)");
+    return static_cast<std::uint32_t>(*parsed);
+  };
+  OctileMap map;
+  map.width = dimension("map.width");
+  map.height = dimension("map.height");
+  const Section* cell = reader.find(format::SectionKind::vertex_data, "cell");
+  if (!cell || cell->entry.row_width != 2 ||
+      (cell->type != format::ElementType::u16 && cell->type != format::ElementType::u32))
+    throw Error(file + ": no vertex data 'cell' (u16 or u32 x 2): --scen needs an instance "
+                       "converted from a Moving AI map");
+  std::vector<std::uint32_t> cells;
+  if (cell->type == format::ElementType::u16) {
+    const auto v = reader.values<std::uint16_t>(*cell);
+    cells.assign(v.begin(), v.end());
+  } else {
+    const auto v = reader.values<std::uint32_t>(*cell);
+    cells.assign(v.begin(), v.end());
+  }
+  map.passable.assign(std::size_t{map.width} * map.height, 0);
+  std::uint64_t previous = 0;
+  for (std::size_t v = 0; v < cells.size() / 2; ++v) {
+    const std::uint32_t x = cells[2 * v], y = cells[2 * v + 1];
+    const std::uint64_t index = std::uint64_t{y} * map.width + x;
+    if (x >= map.width || y >= map.height || (v > 0 && index <= previous))
+      throw Error(file + ": vertex " + std::to_string(v) + " has cell (" + std::to_string(x) +
+                  ", " + std::to_string(y) +
+                  "): the vertices are not the cells of the map in row-major order");
+    map.passable[index] = 1;
+    previous = index;
+  }
+  return map;
+}
+
 }  // namespace
 
 QuerySetEdit import_query_set(const GraphReader& reader, const std::string& set,
                               const QueryImportOptions& options, bool replace) {
   check_new_set(reader, set, replace);
+  if (options.scenario) {
+    if (options.id_base || options.match)
+      throw Error("a scenario (--scen) gives cells, not ids: --id-base and --match do not apply");
+    const auto map = instance_map(reader);
+    const auto input = read_text_input(options.file);
+    const auto entries = parse_scenario(input.text, input.display_name);
+    if (entries.empty()) throw Error(input.display_name + ": no queries");
+    check_scenario(entries, input.display_name, map, reader.display_name());
+    QuerySetEdit edit{without_query_keys(reader.metadata(), set), scenario_queries(entries, map)};
+    edit.set.name = set;
+    const std::string key = "queries." + set + ".";
+    edit.metadata.set(key + "source", "import");
+    edit.metadata.set(key + "format", "movingai-scen");
+    edit.metadata.set(key + "input.name", input.base_name);
+    edit.metadata.set(key + "input.size", std::to_string(input.raw_size));
+    edit.metadata.set(key + "input.xxh3", input.raw_xxh3);
+    return edit;
+  }
   const unsigned id_base = options.id_base ? *options.id_base : instance_id_base(reader);
   InputFile file(options.file);
   const auto& input = file.facts();

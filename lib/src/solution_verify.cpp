@@ -9,13 +9,15 @@ namespace mosb {
 
 namespace {
 
+std::string number_text(double value) {
+  char buffer[32];
+  const auto end = std::to_chars(buffer, buffer + sizeof buffer, value).ptr;
+  return {buffer, end};
+}
+
 std::string vector_text(const std::vector<double>& v) {
   std::string text = "(";
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    char buffer[32];
-    const auto end = std::to_chars(buffer, buffer + sizeof buffer, v[i]).ptr;
-    text += (i ? ", " : "") + std::string(buffer, end);
-  }
+  for (std::size_t i = 0; i < v.size(); ++i) text += (i ? ", " : "") + number_text(v[i]);
   return text + ")";
 }
 
@@ -24,6 +26,19 @@ bool weakly_dominates(const std::vector<double>& a, const std::vector<double>& b
   for (std::size_t i = 0; i < a.size(); ++i)
     if (a[i] > b[i]) return false;
   return true;
+}
+
+// spec/SOLUTIONS.md §6: a Moving AI optimum L* (octile, diagonal sqrt 2) brackets the smallest
+// games `length` c* (10 straight, 14 diagonal) of an exact front. nullopt when the bracket holds.
+std::optional<std::string> movingai_bracket_problem(double c_star, double l_star) {
+  const double tau = 1e-6 * std::max(1.0, l_star);
+  const double low = c_star / 10, high = std::sqrt(2.0) / 1.4 * c_star / 10;
+  if (low <= l_star + tau && l_star <= high + tau) return std::nullopt;
+  return "[reference] the smallest length c* = " + number_text(c_star) +
+         " does not match Moving AI's optimum L* = " + number_text(l_star) + ": " +
+         (low > l_star + tau ? "c*/10 = " + number_text(low) + " > L* + tau"
+                             : "L* > (sqrt 2/1.4) c*/10 + tau = " + number_text(high + tau)) +
+         " (spec/SOLUTIONS.md section 6)";
 }
 
 }  // namespace
@@ -41,6 +56,15 @@ std::optional<std::string> verify_solutions(const SolutionReader& s, const Graph
   const auto view = g.view(s.view_name());
   const auto offsets = g.forward_offsets();
   const auto targets = g.forward_targets();
+  // Moving AI's published optima, when the set carries them and the view holds their objective.
+  const auto reference = g.query_reference(s.query_set());
+  std::optional<std::size_t> reference_objective;
+  if (reference && g.metadata().get("queries." + s.query_set() + ".reference.source") ==
+                       "movingai-optimal") {
+    const auto name = g.metadata().get("queries." + s.query_set() + ".reference.objective");
+    for (std::size_t i = 0; i < d; ++i)
+      if (name == s.objective_name(i)) reference_objective = i;
+  }
   for (std::uint64_t q = 0; q < s.query_count(); ++q) {
     const std::string label = "query " + std::to_string(q) + ": ";
     const auto begin = s.front_begin(q), size = s.front_size(q);
@@ -75,6 +99,11 @@ std::optional<std::string> verify_solutions(const SolutionReader& s, const Graph
         if (weakly_dominates(front[order[k]], v)) return report(order[k]);
     }
     if (!s.has_paths()) continue;
+    if (reference_objective && size > 0 && s.status(q) == QueryStatus::solved) {
+      double c_star = INFINITY;
+      for (const auto& v : front) c_star = std::min(c_star, v[*reference_objective]);
+      if (auto problem = movingai_bracket_problem(c_star, (*reference)[q])) return label + *problem;
+    }
     for (std::uint64_t k = 0; k < size; ++k) {
       const auto path = s.path(begin + k);
       const std::string where = label + "path of vector " + vector_text(front[k]) + ": ";

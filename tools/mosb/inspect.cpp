@@ -65,9 +65,15 @@ void print_text(const GraphReader& r) {
               << shown(metadata.get("objective." + s.name + ".unit")) << "'\n";
   }
   std::cout << "query sets\n";
-  for (const auto* s : r.all(format::SectionKind::queries))
-    std::cout << "  " << std::left << std::setw(24) << s->name << s->entry.row_count
-              << " queries\n";
+  for (const auto* s : r.all(format::SectionKind::queries)) {
+    std::cout << "  " << std::left << std::setw(24) << s->name << s->entry.row_count << " queries";
+    if (r.find(format::SectionKind::query_reference, s->name)) {
+      const std::string key = "queries." + s->name + ".reference.";
+      std::cout << ", references for '" << shown(metadata.get(key + "objective")) << "' ("
+                << shown(metadata.get(key + "source")) << ")";
+    }
+    std::cout << '\n';
+  }
   std::cout << "sections\n"
             << "  " << std::left << std::setw(16) << "kind" << std::setw(25) << "name"
             << std::setw(5) << "type" << std::right << std::setw(6) << "width" << std::setw(12)
@@ -115,6 +121,16 @@ void print_json(const GraphReader& r) {
     json.begin_object();
     json.key("name").value(s->name);
     json.key("queries").value(s->entry.row_count);
+    json.key("reference");
+    if (r.find(format::SectionKind::query_reference, s->name)) {
+      const std::string key = "queries." + s->name + ".reference.";
+      json.begin_object();
+      json.key("objective").value(metadata.get(key + "objective").value_or(""));
+      json.key("source").value(metadata.get(key + "source").value_or(""));
+      json.end_object();
+    } else {
+      json.null();
+    }
     json.end_object();
   }
   json.end_array();

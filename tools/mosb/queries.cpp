@@ -70,6 +70,7 @@ struct ImportArgs {
   unsigned id_base = 0;
   CLI::Option* id_base_option = nullptr;
   std::string match;
+  bool scenario = false;
 };
 
 struct GenerateArgs {
@@ -89,6 +90,9 @@ Command add_queries_import(CLI::App& queries) {
       add_id_base_option(import, a->id_base, "the instance's metadata id_base, else 0");
   import->add_option("--match", a->match,
                      "keep only 'graph s t' lines whose graph field contains TEXT");
+  import->add_flag("--scen", a->scenario,
+                   "QUERIES is a Moving AI scenario of the instance's map; its optimal lengths "
+                   "are kept as references");
   return {import, [a] {
             check_output_is_not_input(destination(a->target), {a->file});  // checks before any work
             const auto reader =
@@ -97,6 +101,7 @@ Command add_queries_import(CLI::App& queries) {
             options.file = a->file;
             if (a->id_base_option->count() > 0) options.id_base = a->id_base;
             if (!a->match.empty()) options.match = a->match;
+            options.scenario = a->scenario;
             return write_and_report(
                 reader,
                 converters::import_query_set(reader, a->target.set, options, a->target.replace),

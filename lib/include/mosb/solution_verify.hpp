@@ -14,7 +14,9 @@ namespace mosb {
 // nullopt. `instance` must be opened with VerifyLevel::full (paths walk its CSR). Cost: the
 // payload, plus O(k log k + k·w) per front of k vectors where w is the number of vectors not
 // lexicographically after a vector (O(k log k) for d = 2, O(k^2) worst case for d > 2), plus the
-// path lengths times the out-degrees along them.
+// path lengths times the out-degrees along them. A query set carrying Moving AI optima (section
+// kind 17, source `movingai-optimal`) also has each solved front's smallest reference objective
+// checked against its optimum by spec/SOLUTIONS.md §6's bracket ("[reference]").
 std::optional<std::string> verify_solutions(const SolutionReader& solutions,
                                             const GraphReader& instance);
 

@@ -25,6 +25,11 @@ struct QueryImportOptions {
   std::optional<unsigned>
       id_base;  // of the ids in `file`; default: the instance's metadata id_base
   std::optional<std::string> match;  // keep only `graph s t` lines whose graph field contains it
+  // `file` is a Moving AI scenario (spec/families/games.md §4) of the map the instance was built
+  // from (vertex data `cell`, metadata map.width and map.height): its rows become the set, with
+  // each `optimal` as the set's reference for `length` (spec/SOLUTIONS.md §6). Excludes id_base and
+  // match.
+  bool scenario = false;
 };
 
 struct QueryDrawOptions {
