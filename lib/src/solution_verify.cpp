@@ -28,8 +28,8 @@ bool weakly_dominates(const std::vector<double>& a, const std::vector<double>& b
   return true;
 }
 
-// spec/SOLUTIONS.md §6: a Moving AI optimum L* (octile, diagonal sqrt 2) brackets the smallest
-// games `length` c* (10 straight, 14 diagonal) of an exact front. nullopt when the bracket holds.
+}  // namespace
+
 std::optional<std::string> movingai_bracket_problem(double c_star, double l_star) {
   const double tau = 1e-6 * std::max(1.0, l_star);
   const double low = c_star / 10, high = std::sqrt(2.0) / 1.4 * c_star / 10;
@@ -40,8 +40,6 @@ std::optional<std::string> movingai_bracket_problem(double c_star, double l_star
                              : "L* > (sqrt 2/1.4) c*/10 + tau = " + number_text(high + tau)) +
          " (spec/SOLUTIONS.md section 6)";
 }
-
-}  // namespace
 
 std::optional<std::string> verify_solutions(const SolutionReader& s, const GraphReader& g) {
   try {
@@ -98,12 +96,12 @@ std::optional<std::string> verify_solutions(const SolutionReader& s, const Graph
       for (std::size_t k = 0; k < j; ++k)
         if (weakly_dominates(front[order[k]], v)) return report(order[k]);
     }
-    if (!s.has_paths()) continue;
     if (reference_objective && size > 0 && s.status(q) == QueryStatus::solved) {
       double c_star = INFINITY;
       for (const auto& v : front) c_star = std::min(c_star, v[*reference_objective]);
       if (auto problem = movingai_bracket_problem(c_star, (*reference)[q])) return label + *problem;
     }
+    if (!s.has_paths()) continue;
     for (std::uint64_t k = 0; k < size; ++k) {
       const auto path = s.path(begin + k);
       const std::string where = label + "path of vector " + vector_text(front[k]) + ": ";
