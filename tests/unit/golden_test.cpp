@@ -7,6 +7,7 @@
 
 #include "file_patch.hpp"
 #include "golden_input.hpp"
+#include "golden_references.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/verify.hpp"
 #include "temp_dir.hpp"
@@ -16,7 +17,40 @@ using namespace mosb;
 namespace {
 const std::filesystem::path kGolden =
     std::filesystem::path(MOSB_SOURCE_DIR) / "spec" / "golden" / "1.0";
+const std::filesystem::path kGoldenReferences =
+    std::filesystem::path(MOSB_SOURCE_DIR) / "spec" / "golden" / "1.1" / "references";
+
+// Every file listed in DIR/invalid/EXPECTED.tsv fails at its level with its message; returns the
+// number of files.
+int check_invalid_files(const std::filesystem::path& golden) {
+  std::ifstream list(golden / "invalid" / "EXPECTED.tsv");
+  REQUIRE(list.good());
+  std::string line;
+  int cases = 0;
+  while (std::getline(list, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream fields(line);
+    std::string file, level, expected;
+    std::getline(fields, file, '\t');
+    std::getline(fields, level, '\t');
+    std::getline(fields, expected);
+    CAPTURE(file);
+    ++cases;
+    const auto path = golden / "invalid" / file;
+    if (level == "open") {
+      CHECK_THROWS_WITH_AS(GraphReader::open(path), doctest::Contains(expected.c_str()), Error);
+      continue;
+    }
+    auto r = GraphReader::open(path);
+    const auto at = *parse_verify_level(level);
+    const auto problem = verify(r, at);
+    REQUIRE(problem.has_value());
+    CHECK(problem->find(expected) != std::string::npos);
+    if (at == VerifyLevel::structure) CHECK_FALSE(verify(r, VerifyLevel::checksums).has_value());
+  }
+  return cases;
 }
+}  // namespace
 
 TEST_CASE("the writer reproduces the golden file byte for byte") {
   testing::TempDir dir;
@@ -45,30 +79,21 @@ TEST_CASE("the golden file reads back with every value intact") {
 }
 
 TEST_CASE("every golden invalid file fails where EXPECTED.tsv says") {
-  std::ifstream list(kGolden / "invalid" / "EXPECTED.tsv");
-  REQUIRE(list.good());
-  std::string line;
-  int cases = 0;
-  while (std::getline(list, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream fields(line);
-    std::string file, level, expected;
-    std::getline(fields, file, '\t');
-    std::getline(fields, level, '\t');
-    std::getline(fields, expected);
-    CAPTURE(file);
-    ++cases;
-    const auto path = kGolden / "invalid" / file;
-    if (level == "open") {
-      CHECK_THROWS_WITH_AS(GraphReader::open(path), doctest::Contains(expected.c_str()), Error);
-      continue;
-    }
-    auto r = GraphReader::open(path);
-    const auto at = *parse_verify_level(level);
-    const auto problem = verify(r, at);
-    REQUIRE(problem.has_value());
-    CHECK(problem->find(expected) != std::string::npos);
-    if (at == VerifyLevel::structure) CHECK_FALSE(verify(r, VerifyLevel::checksums).has_value());
-  }
-  CHECK(cases >= 10);
+  CHECK(check_invalid_files(kGolden) >= 10);
+}
+
+TEST_CASE("golden query references: reproduced byte for byte, read back, faults caught") {
+  testing::TempDir dir;
+  write_graph(testing::golden_references_input(), dir / "references.mosb");
+  const auto golden = testing::read_bytes(kGoldenReferences / "valid" / "references.mosb");
+  REQUIRE_MESSAGE(!golden.empty(), "spec/golden/1.1/references/valid/references.mosb is missing");
+  CHECK_MESSAGE(testing::read_bytes(dir / "references.mosb") == golden,
+                "the writer no longer reproduces the golden references file: regenerate it with "
+                "mosb_make_golden_references only with a version change in spec/FORMAT.md");
+  const auto r = GraphReader::open(kGoldenReferences / "valid" / "references.mosb");
+  CHECK_FALSE(verify(r, VerifyLevel::full).has_value());
+  CHECK(r.header().version_minor == 0);
+  REQUIRE(r.query_reference("default").has_value());
+  CHECK((*r.query_reference("default"))[0] == 2.5);
+  CHECK(check_invalid_files(kGoldenReferences) == 6);
 }
