@@ -15,10 +15,17 @@ namespace {
 // replaced set never keeps keys of its predecessor. Listed exactly, not by prefix, because set
 // names may contain '.' (set "a" must not clear the keys of set "a.b").
 Metadata without_query_keys(const Metadata& metadata, const std::string& name) {
-  static const char* const kSuffixes[] = {"source",     "input.name", "input.size",
-                                          "input.xxh3", "id_base",    "match",
-                                          "seed",       "count",      "allow_same",
-                                          "format",     "reference.objective",
+  static const char* const kSuffixes[] = {"source",
+                                          "input.name",
+                                          "input.size",
+                                          "input.xxh3",
+                                          "id_base",
+                                          "match",
+                                          "seed",
+                                          "count",
+                                          "allow_same",
+                                          "format",
+                                          "reference.objective",
                                           "reference.source"};
   Metadata out;
   for (const auto& [key, value] : metadata.entries()) {
@@ -64,8 +71,9 @@ OctileMap instance_map(const GraphReader& reader) {
   const Section* cell = reader.find(format::SectionKind::vertex_data, "cell");
   if (!cell || cell->entry.row_width != 2 ||
       (cell->type != format::ElementType::u16 && cell->type != format::ElementType::u32))
-    throw Error(file + ": no vertex data 'cell' (u16 or u32 x 2): --scen needs an instance "
-                       "converted from a Moving AI map");
+    throw Error(file +
+                ": no vertex data 'cell' (u16 or u32 x 2): --scen needs an instance "
+                "converted from a Moving AI map");
   std::vector<std::uint32_t> cells;
   if (cell->type == format::ElementType::u16) {
     const auto v = reader.values<std::uint16_t>(*cell);

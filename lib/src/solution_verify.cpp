@@ -57,8 +57,8 @@ std::optional<std::string> verify_solutions(const SolutionReader& s, const Graph
   // Moving AI's published optima, when the set carries them and the view holds their objective.
   const auto reference = g.query_reference(s.query_set());
   std::optional<std::size_t> reference_objective;
-  if (reference && g.metadata().get("queries." + s.query_set() + ".reference.source") ==
-                       "movingai-optimal") {
+  if (reference &&
+      g.metadata().get("queries." + s.query_set() + ".reference.source") == "movingai-optimal") {
     const auto name = g.metadata().get("queries." + s.query_set() + ".reference.objective");
     for (std::size_t i = 0; i < d; ++i)
       if (name == s.objective_name(i)) reference_objective = i;

@@ -329,8 +329,7 @@ std::optional<std::string> verify(const GraphReader& reader, VerifyLevel level,
   if (structure) {
     for (const auto* s : reader.all(SectionKind::cost)) {
       if (s->type == ElementType::f32)
-        tasks.push_back({s->stored.size(),
-                         [&reader, s] {
+        tasks.push_back({s->stored.size(), [&reader, s] {
                            return check_float_values(*s, reader.values<float>(*s), "cost", "arc",
                                                      "costs");
                          }});

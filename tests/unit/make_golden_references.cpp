@@ -47,8 +47,9 @@ void write_faulty(const GraphReader& valid, const Fault& fault, const std::files
       Metadata m = valid.metadata();
       if (fault.metadata) fault.metadata(m);
       const std::string text = m.serialize();
-      writer.add_section(SectionKind::metadata, s.name, 1,
-                         std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
+      writer.add_section(
+          SectionKind::metadata, s.name, 1,
+          std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
     } else if (s.kind == SectionKind::query_reference) {
       Reference r{s.name, s.type, s.entry.row_width, {s.stored.begin(), s.stored.end()}};
       if (fault.reference) fault.reference(r);
@@ -65,34 +66,47 @@ void write_faulty(const GraphReader& valid, const Fault& fault, const std::files
 }
 
 const Fault kFaults[] = {
-    {"reference-rows.mosb", "open",
+    {"reference-rows.mosb",
+     "open",
      "section 'default': the query reference has 2 rows, but the query set has 3",
-     [](Reference& r) { r.bytes = bytes_of(std::vector<double>{1, 2}); }, {}},
-    {"reference-type.mosb", "open", "section 'default': query references must be f64 x 1",
+     [](Reference& r) {
+       r.bytes = bytes_of(std::vector<double>{1, 2});
+     },
+     {}},
+    {"reference-type.mosb",
+     "open",
+     "section 'default': query references must be f64 x 1",
      [](Reference& r) {
        r.type = ElementType::f32;
        r.bytes = bytes_of(std::vector<float>{1, 2, 3});
      },
      {}},
-    {"reference-width.mosb", "open", "section 'default': query references must be f64 x 1",
+    {"reference-width.mosb",
+     "open",
+     "section 'default': query references must be f64 x 1",
      [](Reference& r) {
        r.width = 3;
        r.bytes = bytes_of(std::vector<double>{1, 2, 3});
      },
      {}},
-    {"reference-orphan.mosb", "open",
-     "section 'nosuch': a query reference naming no query set",
+    {"reference-orphan.mosb", "open", "section 'nosuch': a query reference naming no query set",
      [](Reference& r) { r.name = "nosuch"; },
      [](Metadata& m) {
        m.set("queries.nosuch.reference.objective", "distance");
        m.set("queries.nosuch.reference.source", "golden");
      }},
-    {"reference-objective.mosb", "structure",
-     "[metadata-reference] queries.default.reference.objective names objective 'nosuch'", {},
+    {"reference-objective.mosb",
+     "structure",
+     "[metadata-reference] queries.default.reference.objective names objective 'nosuch'",
+     {},
      [](Metadata& m) { m.set("queries.default.reference.objective", "nosuch"); }},
-    {"reference-negative.mosb", "structure",
+    {"reference-negative.mosb",
+     "structure",
      "section 'default': [reference-nonnegative] query 1 has -1",
-     [](Reference& r) { r.bytes = bytes_of(std::vector<double>{2.5, -1, 1e-3}); }, {}},
+     [](Reference& r) {
+       r.bytes = bytes_of(std::vector<double>{2.5, -1, 1e-3});
+     },
+     {}},
 };
 
 }  // namespace

@@ -47,8 +47,8 @@ struct DataColumn {
 // source's own unit; the writer adds the metadata `queries.<set>.reference.objective` and
 // `.source`.
 struct QueryReference {
-  std::string objective;  // the cost section the values refer to
-  std::string source;     // e.g. `movingai-optimal`
+  std::string objective;       // the cost section the values refer to
+  std::string source;          // e.g. `movingai-optimal`
   std::vector<double> values;  // one per query, finite and >= 0
 };
 
