@@ -121,15 +121,12 @@ void print_json(const GraphReader& r) {
     json.begin_object();
     json.key("name").value(s->name);
     json.key("queries").value(s->entry.row_count);
-    json.key("reference");
-    if (r.find(format::SectionKind::query_reference, s->name)) {
+    if (r.find(format::SectionKind::query_reference, s->name)) {  // only sets that carry one
       const std::string key = "queries." + s->name + ".reference.";
-      json.begin_object();
+      json.key("reference").begin_object();
       json.key("objective").value(metadata.get(key + "objective").value_or(""));
       json.key("source").value(metadata.get(key + "source").value_or(""));
       json.end_object();
-    } else {
-      json.null();
     }
     json.end_object();
   }
