@@ -184,17 +184,15 @@ TEST_CASE("movingai: published optima bracket the true length optimum (shared/da
       const auto problem = movingai_bracket_problem(static_cast<double>(c_star), (*ref)[q]);
       CHECK_MESSAGE(!problem.has_value(), *problem);
     }
-    // Over all 2,699 rows of both maps exactly one fails, and not because the graphs differ: the
-    // files print `optimal` with 6 significant digits (up to 5e-6 relative rounding), not the 8
-    // decimals §6's tau = 1e-6 max(1, L*) was sized for, and this row's optimal path is all
-    // diagonal, where the upper bound is tight: 2 sqrt 2 = 2.8284271 printed as 2.82843. Kept as
-    // the spec states it (a known false report of `solutions verify`, SOLUTIONS.md §6); this check
-    // changes when tau does.
+    // The tight row that sized tau (SOLUTIONS.md §6): an all-diagonal optimal path, where the
+    // upper bound is exact, with 2 sqrt 2 = 2.8284271 printed as 2.82843 (6 significant digits).
+    // It passes; a value one unit off in that last printed digit does not.
     if (std::string(name) == "arena2.map") {
       CHECK(shortest(r, length, queries[1].start, queries[1].goal) == 28);
       CHECK((*ref)[1] == 2.82843);
-      CHECK(movingai_bracket_problem(28, (*ref)[1]).has_value());
+      CHECK_FALSE(movingai_bracket_problem(28, (*ref)[1]).has_value());
       CHECK_FALSE(movingai_bracket_problem(28, 2 * std::sqrt(2.0)).has_value());
+      CHECK(movingai_bracket_problem(28, 2.82853).has_value());
     }
   }
 }
