@@ -220,4 +220,14 @@ void add_views(GraphInput& graph, const std::vector<ViewSpec>& views) {
   }
 }
 
+GraphInput convert_dimacs_extended(const DimacsOptions& options, const ExtendedOptions& extended) {
+  const std::string first = options.gr_files.empty() ? std::string() : options.gr_files.front();
+  return naming_input_on_out_of_memory(first, [&] {
+    auto graph = convert_dimacs(options);
+    append_derived_columns(graph, extended, options.id_base);
+    add_views(graph, extended.views);
+    return graph;
+  });
+}
+
 }  // namespace mosb::converters

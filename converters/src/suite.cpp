@@ -51,6 +51,7 @@ std::vector<SuiteEntry> run_suite(const std::filesystem::path& directory,
         const auto file = instances[i].name + ".mosb";
         std::visit([&](const auto& graph) { write_graph(graph, directory / file); },
                    instances[i].build());
+        if (instances[i].finish) instances[i].finish(directory / file);
         if (options.pack) pack_file(directory / file, directory / file, {options.pack->level, 1});
         manifest.entries[i] = describe_file(directory / file);
         const auto& e = manifest.entries[i];

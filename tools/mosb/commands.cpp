@@ -87,7 +87,8 @@ CLI::Option* add_suite_pack_flag(CLI::App* sub, bool& pack) {
 }
 
 int report_suite(const std::string& directory, const std::string& family,
-                 const std::vector<converters::SuiteEntry>& entries, bool json) {
+                 const std::vector<converters::SuiteEntry>& entries, bool json,
+                 const std::function<void(JsonWriter&)>& more) {
   if (!json) {
     std::cout << "wrote " << entries.size() << ' ' << family << " instances and MANIFEST to "
               << directory << '\n';
@@ -106,6 +107,7 @@ int report_suite(const std::string& directory, const std::string& family,
     out.end_object();
   }
   out.end_array();
+  if (more) more(out);
   out.end_object();
   return 0;
 }

@@ -79,10 +79,13 @@ Command group(CLI::App* parent, std::vector<Command> children);
 // `json` {"file", "vertices", "arcs", "objectives", "digest"}; returns 0.
 int report_written(const std::string& path, bool json);
 
+class JsonWriter;
+
 // Prints "wrote N FAMILY instances and MANIFEST to DIR", or with `json` {"directory",
-// "instances": [{"name", "file", "size", "digest"}, ...]}; returns 0.
+// "instances": [{"name", "file", "size", "digest"}, ...]} and whatever keys `more` adds; returns 0.
 int report_suite(const std::string& directory, const std::string& family,
-                 const std::vector<converters::SuiteEntry>& entries, bool json);
+                 const std::vector<converters::SuiteEntry>& entries, bool json,
+                 const std::function<void(JsonWriter&)>& more = {});
 
 // A suite's files packed at the default level (a published suite has one fixed level), or not.
 std::optional<PackOptions> suite_pack(bool pack);

@@ -59,10 +59,8 @@ int run_dimacs(const DimacsArgs& a) {
   o.progress = progress.callback();
   // Out of memory anywhere in the conversion names the input (a parser names the file it reads).
   converters::naming_input_on_out_of_memory(a.gr.front(), [&] {
-    auto graph = converters::convert_dimacs(o);
-    converters::append_derived_columns(graph, extended, o.id_base);
-    converters::add_views(graph, extended.views);
-    write_graph(graph, a.output, progress.callback(), a.expect_digest);
+    write_graph(converters::convert_dimacs_extended(o, extended), a.output, progress.callback(),
+                a.expect_digest);
   });
   return report_written(a.output, a.json);
 }

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "mosb/converters/dimacs_converter.hpp"
 #include "mosb/converters/text_scan.hpp"
 #include "mosb/graph_builder.hpp"
 
@@ -57,5 +58,9 @@ void append_derived_columns(GraphInput& graph, const ExtendedOptions& options, u
 // Writes view.NAME.objectives, and view.NAME.queries only when `graph` has that query set (a
 // later `mosb queries import` adds it); refuses objectives that are not columns of `graph`.
 void add_views(GraphInput& graph, const std::vector<ViewSpec>& views);
+
+// `mosb convert dimacs` as a whole: convert_dimacs, then the derived columns, then the views; out of
+// memory names the first .gr file. The one code path of the command and of the suite's recipes.
+GraphInput convert_dimacs_extended(const DimacsOptions& options, const ExtendedOptions& extended);
 
 }  // namespace mosb::converters

@@ -21,6 +21,9 @@ struct SuiteInstance {
   std::string name;  // the file is name + ".mosb"
   // Called on a worker thread; must not share mutable state.
   std::function<std::variant<GraphInput, StreamedGraph>()> build;
+  // Optional, on the same thread: rewrites the written file before it is packed (a raw recipe's
+  // query set, added exactly as `mosb queries import --in-place` adds it).
+  std::function<void(const std::filesystem::path&)> finish = {};
 };
 
 struct SuiteEntry {
