@@ -53,7 +53,8 @@ int run_suite_build(const SuiteBuildArgs& a) {
   if (!a.json)
     for (const auto& s : raw)
       std::cout << s.name << ": "
-                << (s.missing.empty() ? std::string("built") : "skipped: missing " + joined(s.missing))
+                << (s.missing.empty() ? std::string("built")
+                                      : "skipped: missing " + joined(s.missing))
                 << '\n';
   return report_suite(a.directory, "suite", entries, a.json, [&](JsonWriter& out) {
     if (a.raw.empty()) return;
@@ -75,10 +76,10 @@ int run_suite_build(const SuiteBuildArgs& a) {
 
 Command add_suite(CLI::App& app) {
   auto* suite = app.add_subcommand("suite", "The paper's published benchmark suite");
-  auto* build = suite->add_subcommand(
-      "build",
-      "Write the 49 Grid and 12 NetMaker instances, and with --raw every raw-source benchmark whose "
-      "inputs RAWDIR holds, packed, and their MANIFEST into DIR");
+  auto* build = suite->add_subcommand("build",
+                                      "Write the 49 Grid and 12 NetMaker instances, and with --raw "
+                                      "every raw-source benchmark whose "
+                                      "inputs RAWDIR holds, packed, and their MANIFEST into DIR");
   build->footer(
       "Raw-source benchmarks (--raw RAWDIR; inputs by their download names, .gz or plain; "
       "spec/MANIFEST.md, \"Raw-source benchmarks\"):\n"

@@ -59,8 +59,8 @@ void append_derived_columns(GraphInput& graph, const ExtendedOptions& options, u
 // later `mosb queries import` adds it); refuses objectives that are not columns of `graph`.
 void add_views(GraphInput& graph, const std::vector<ViewSpec>& views);
 
-// `mosb convert dimacs` as a whole: convert_dimacs, then the derived columns, then the views; out of
-// memory names the first .gr file. The one code path of the command and of the suite's recipes.
+// `mosb convert dimacs` as a whole: convert_dimacs, then the derived columns, then the views; out
+// of memory names the first .gr file. The one code path of the command and of the suite's recipes.
 GraphInput convert_dimacs_extended(const DimacsOptions& options, const ExtendedOptions& extended);
 
 }  // namespace mosb::converters
