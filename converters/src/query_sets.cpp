@@ -97,6 +97,22 @@ OctileMap instance_map(const GraphReader& reader) {
   return map;
 }
 
+// A view whose converter meant it for this set (`source.param.view.NAME = OBJ,...@SET`, written
+// when the set did not exist yet, spec/families/road.md §2) now gets its `view.NAME.queries` key.
+void link_views_to(QuerySetEdit& edit) {
+  static const std::string kPrefix = "source.param.view.";
+  Metadata& m = edit.metadata;
+  std::vector<std::string> views;
+  for (const auto& [key, value] : m.entries()) {
+    const auto at = value.rfind('@');
+    if (key.starts_with(kPrefix) && at != std::string::npos &&
+        value.substr(at + 1) == edit.set.name)
+      views.push_back(key.substr(kPrefix.size()));
+  }
+  for (const auto& view : views)
+    if (!m.get("view." + view + ".queries")) m.set("view." + view + ".queries", edit.set.name);
+}
+
 }  // namespace
 
 QuerySetEdit import_query_set(const GraphReader& reader, const std::string& set,
@@ -118,6 +134,7 @@ QuerySetEdit import_query_set(const GraphReader& reader, const std::string& set,
     edit.metadata.set(key + "input.name", input.base_name);
     edit.metadata.set(key + "input.size", std::to_string(input.raw_size));
     edit.metadata.set(key + "input.xxh3", input.raw_xxh3);
+    link_views_to(edit);
     return edit;
   }
   const unsigned id_base = options.id_base ? *options.id_base : instance_id_base(reader);
@@ -136,6 +153,7 @@ QuerySetEdit import_query_set(const GraphReader& reader, const std::string& set,
   edit.metadata.set(key + "input.xxh3", input.raw_xxh3);
   edit.metadata.set(key + "id_base", std::to_string(id_base));
   if (options.match) edit.metadata.set(key + "match", *options.match);
+  link_views_to(edit);
   return edit;
 }
 
@@ -167,6 +185,7 @@ QuerySetEdit draw_query_set(const GraphReader& reader, const std::string& set,
   edit.metadata.set(key + "seed", std::to_string(options.seed));
   edit.metadata.set(key + "count", std::to_string(options.count));
   edit.metadata.set(key + "allow_same", options.allow_same ? "1" : "0");
+  link_views_to(edit);
   return edit;
 }
 

@@ -198,6 +198,23 @@ class RawSuite(unittest.TestCase):
         self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
         self.assertEqual(read(self.path("out", "MANIFEST")), before)
 
+    def test_queries_complete_the_views_meant_for_them(self):
+        # convert dimacs keeps a view's intended set in source.param.view.NAME while the set is
+        # missing (road.md §2); importing or generating that set adds view.NAME.queries.
+        self.write("g.gr", FLA_D)
+        for command in (("import", self.write("q.txt", "1 2\n3 4\n")),
+                        ("generate", "--count", "3")):
+            with self.subTest(command=command[0]):
+                out = self.path(command[0] + ".mosb")
+                self.ok("convert", "dimacs", "--gr", self.r("g.gr"), "--view", "A=c1",
+                        "--view", "B=c1@other", "-o", out)
+                self.ok("queries", *command[:1], out, "--set", "default", "--in-place",
+                        *command[1:])
+                meta = json.loads(self.ok("inspect", "--json", out).stdout)["metadata"]
+                self.assertEqual(meta.get("view.A.queries"), "default")
+                self.assertNotIn("view.B.queries", meta)
+                self.ok("verify", out)
+
     def test_usage(self):
         r = run("suite", "build", self.path("out"), "--no-generated")
         self.assertEqual(r.returncode, 2, r)
@@ -258,6 +275,7 @@ class RawSuite(unittest.TestCase):
             self.ok("verify", "--sources", self.raw, self.path("out", name))
         r = self.ok("store", "instance", self.path("out"), "DIMACS-Extended-NY_4", "--json")
         self.assertEqual(json.loads(r.stdout)["file"], "DIMACS-NY.mosb")
+        self.assertEqual(json.loads(r.stdout)["query_set"], "default")
 
         # Without the elevation file: DIMACS-NY_2 alone, still built.
         os.remove(self.r("NY.elev"))
