@@ -283,4 +283,42 @@ std::string content_digest(std::span<const Section> sections) {
   return content_digest(table);
 }
 
+std::string ContainerReader::digest() const {
+  return content_digest(sections_);
+}
+
+void ContainerReader::attach(MappedFile file, std::string display_name, format::FileKind kind) {
+  mapping_ = std::move(file.owner);
+  attach_borrowed(file.bytes, std::move(display_name), kind);
+}
+
+void ContainerReader::attach_borrowed(std::span<const std::byte> bytes, std::string display_name,
+                                      format::FileKind kind) {
+  if (reinterpret_cast<std::uintptr_t>(bytes.data()) % alignof(std::uint64_t) != 0)
+    throw Error(display_name + ": internal error: buffer is not 8-byte aligned");
+  bytes_ = bytes;
+  display_name_ = std::move(display_name);
+  auto container = parse_container(bytes_, display_name_, kind);
+  header_ = container.header;
+  sections_ = std::move(container.sections);
+}
+
+void ContainerReader::check_access(const Section& s, format::ElementType wanted) const {
+  if (s.is_packed())
+    fail(ErrorCode::packed, "section '" + s.name +
+                                "' is zstd-packed and cannot be mapped zero-copy; unpack the "
+                                "file first");
+  if (s.type != wanted)
+    fail(ErrorCode::invalid_argument, "section '" + s.name + "' holds " +
+                                          std::string(format::to_string(s.type)) + " values, not " +
+                                          std::string(format::to_string(wanted)));
+}
+
+void ContainerReader::fail(const std::string& what) const {
+  fail(ErrorCode::damaged, what);
+}
+void ContainerReader::fail(ErrorCode code, const std::string& what) const {
+  throw Error(code, display_name_ + ": " + what);
+}
+
 }  // namespace mosb

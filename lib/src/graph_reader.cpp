@@ -30,32 +30,20 @@ constexpr Shape kStructural[] = {
 
 }  // namespace
 
-void GraphReader::fail(const std::string& what) const {
-  fail(ErrorCode::damaged, what);
-}
-void GraphReader::fail(ErrorCode code, const std::string& what) const {
-  throw Error(code, display_name_ + ": " + what);
-}
-
 GraphReader GraphReader::open(const std::filesystem::path& path) {
-  auto file = map_file(path);
   GraphReader reader;
-  reader.mapping_ = std::move(file.owner);
-  reader.bytes_ = file.bytes;
-  reader.display_name_ = path.string();
+  reader.attach(map_file(path), path.string(), format::FileKind::instance);
   reader.validate();
   return reader;
 }
 
 GraphReader GraphReader::load(const std::filesystem::path& path) {
   auto file = map_file(path);
-  GraphReader reader;
-  reader.display_name_ = path.string();
   format::FileHeader header{};
   std::memcpy(&header, file.bytes.data(), sizeof header);
-  if (is_packed(header)) file = unpack_bytes(file.bytes, reader.display_name_);
-  reader.mapping_ = std::move(file.owner);
-  reader.bytes_ = file.bytes;
+  if (is_packed(header)) file = unpack_bytes(file.bytes, path.string());
+  GraphReader reader;
+  reader.attach(std::move(file), path.string(), format::FileKind::instance);
   reader.validate();
   return reader;
 }
@@ -99,22 +87,14 @@ void GraphReader::require_verified(VerifyLevel level, std::string_view user) con
 }
 
 GraphReader GraphReader::from_memory(std::span<const std::byte> bytes, std::string display_name) {
-  // Typed views need the file's 64-byte offsets to land on 8-byte boundaries in memory.
-  if (reinterpret_cast<std::uintptr_t>(bytes.data()) % alignof(std::uint64_t) != 0)
-    throw Error(display_name + ": internal error: buffer is not 8-byte aligned");
   GraphReader reader;
-  reader.bytes_ = bytes;
-  reader.display_name_ = std::move(display_name);
+  reader.attach_borrowed(bytes, std::move(display_name), format::FileKind::instance);
   reader.validate();
   return reader;
 }
 
+// After attach: steps 1-7, the container, are done.
 void GraphReader::validate() {
-  // 1-7. The container, whatever its kind.
-  auto container = parse_container(bytes_, display_name_, format::FileKind::instance);
-  header_ = container.header;
-  sections_ = std::move(container.sections);
-
   // 8. Kinds and counts (names are unique within a kind: checked with the container).
   const std::uint64_t n = header_.vertex_count, m = header_.arc_count;
   if (n >= 0xFFFFFFFFULL || m >= 0xFFFFFFFFULL)
@@ -208,17 +188,6 @@ void GraphReader::validate() {
 
 const Section& GraphReader::required(SectionKind kind) const {
   return sections_[structural_[static_cast<std::size_t>(kind)]];
-}
-
-void GraphReader::check_access(const Section& s, ElementType wanted) const {
-  if (s.is_packed())
-    fail(ErrorCode::packed, "section '" + s.name +
-                                "' is zstd-packed and cannot be mapped zero-copy; unpack the "
-                                "file first");
-  if (s.type != wanted)
-    fail(ErrorCode::invalid_argument, "section '" + s.name + "' holds " +
-                                          std::string(format::to_string(s.type)) + " values, not " +
-                                          std::string(format::to_string(wanted)));
 }
 
 std::span<const std::byte> GraphReader::raw_bytes(const Section& s) const {
@@ -331,10 +300,6 @@ const Metadata& GraphReader::metadata() const {
     }
   });
   return *metadata_->value;
-}
-
-std::string GraphReader::digest() const {
-  return content_digest(sections_);
 }
 
 }  // namespace mosb

@@ -57,19 +57,9 @@ std::string_view to_string(Statistic s) {
 
 // ---- SolutionReader ----
 
-void SolutionReader::fail(const std::string& what) const {
-  fail(ErrorCode::damaged, what);
-}
-void SolutionReader::fail(ErrorCode code, const std::string& what) const {
-  throw Error(code, display_name_ + ": " + what);
-}
-
 SolutionReader SolutionReader::open(const std::filesystem::path& path) {
-  auto file = map_file(path);
   SolutionReader reader;
-  reader.mapping_ = std::move(file.owner);
-  reader.bytes_ = file.bytes;
-  reader.display_name_ = path.string();
+  reader.attach(map_file(path), path.string(), format::FileKind::solutions);
   reader.validate();
   return reader;
 }
@@ -90,19 +80,14 @@ SolutionReader SolutionReader::open_verified(const std::filesystem::path& path) 
 
 SolutionReader SolutionReader::from_memory(std::span<const std::byte> bytes,
                                            std::string display_name) {
-  if (reinterpret_cast<std::uintptr_t>(bytes.data()) % alignof(std::uint64_t) != 0)
-    throw Error(display_name + ": internal error: buffer is not 8-byte aligned");
   SolutionReader reader;
-  reader.bytes_ = bytes;
-  reader.display_name_ = std::move(display_name);
+  reader.attach_borrowed(bytes, std::move(display_name), format::FileKind::solutions);
   reader.validate();
   return reader;
 }
 
+// After attach: the container's checks are done.
 void SolutionReader::validate() {
-  auto container = parse_container(bytes_, display_name_, format::FileKind::solutions);
-  header_ = container.header;
-  sections_ = std::move(container.sections);
   if (header_.version_minor < 1)
     fail("a solution file states format 1." + std::to_string(header_.version_minor) +
          ", but solution files exist since 1.1");
@@ -243,10 +228,6 @@ void SolutionReader::check_bound_to(const GraphReader& instance) const {
              instance.display_name() + " has " + std::to_string(queries->entry.row_count));
 }
 
-std::string SolutionReader::digest() const {
-  return content_digest(sections_);
-}
-
 SolverInfo SolutionReader::solver() const {
   SolverInfo info;
   info.name = metadata_.get("solution.solver.name").value_or("");
@@ -264,13 +245,6 @@ const Section& SolutionReader::objective(std::size_t i) const {
     fail(ErrorCode::invalid_argument, "objective index " + std::to_string(i) + " out of range (" +
                                           std::to_string(cost_indices_.size()) + " objectives)");
   return sections_[cost_indices_[i]];
-}
-
-void SolutionReader::check_access(const Section& s, ElementType wanted) const {
-  if (s.type != wanted)
-    fail(ErrorCode::invalid_argument, "section '" + s.name + "' holds " +
-                                          std::string(format::to_string(s.type)) + " values, not " +
-                                          std::string(format::to_string(wanted)));
 }
 
 std::span<const std::uint64_t> SolutionReader::front_offsets() const {

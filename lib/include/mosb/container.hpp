@@ -4,14 +4,17 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <filesystem>
 #include <memory>
 #include <optional>
 #include <span>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
+#include "mosb/error.hpp"
 #include "mosb/format.hpp"
 
 namespace mosb {
@@ -51,6 +54,60 @@ struct Container {
 // "DISPLAY_NAME: problem" (ErrorCode::not_mosb, version or damaged). O(section_count).
 Container parse_container(std::span<const std::byte> bytes, std::string_view display_name,
                           format::FileKind kind);
+
+// What a reader of any file kind holds and offers: the bytes it reads (a mapping, memory it owns,
+// or memory the caller keeps alive), the name its messages carry, the header and the table, and
+// checked zero-copy access to a section's elements. GraphReader and SolutionReader add the checks
+// and accessors of their kind.
+class ContainerReader {
+ public:
+  const std::string& display_name() const { return display_name_; }
+  const format::FileHeader& header() const { return header_; }
+  std::span<const std::byte> bytes() const { return bytes_; }
+  const std::vector<Section>& sections() const { return sections_; }
+  std::string digest() const;  // §8 content digest, 32 hex digits
+
+  // Zero-copy view of a section's elements, checked for type and encoding.
+  template <class T>
+  std::span<const T> values(const Section& s) const {
+    check_access(s, format::element_type_of<T>());
+    return {reinterpret_cast<const T*>(s.stored.data()), s.element_count()};
+  }
+
+ protected:
+  ContainerReader() = default;
+  // Holds `file` (the mapping or owned memory it came with) and parses its container as `kind`
+  // (§9 steps 1-7); throws "DISPLAY_NAME: problem".
+  void attach(MappedFile file, std::string display_name, format::FileKind kind);
+  // The same over bytes the caller keeps alive, which must be 8-byte aligned (typed views of the
+  // file's 64-byte offsets must land on aligned addresses).
+  void attach_borrowed(std::span<const std::byte> bytes, std::string display_name,
+                       format::FileKind kind);
+  // Refuses a packed section (ErrorCode::packed) and another element type (invalid_argument).
+  void check_access(const Section& s, format::ElementType wanted) const;
+  [[noreturn]] void fail(const std::string& what) const;  // ErrorCode::damaged
+  [[noreturn]] void fail(ErrorCode code, const std::string& what) const;
+  // Calls f(std::span<const T>) with the elements of a section of a cost type T (unsigned or
+  // float) and returns what f returns, one type for every T; other element types are refused.
+  template <class F>
+  decltype(auto) visit_cost_values(const Section& s, F&& f) const {
+    using Result = std::invoke_result_t<F, std::span<const std::uint8_t>>;
+    return format::visit_element_type(s.type, [&](auto tag) -> Result {
+      using T = typename decltype(tag)::type;
+      if constexpr (format::is_cost_type_v<T>)
+        return std::invoke(std::forward<F>(f), values<T>(s));
+      else
+        fail("section '" + s.name + "' holds " + std::string(format::to_string(s.type)) +
+             " values, not a cost type");
+    });
+  }
+
+  std::shared_ptr<const void> mapping_;
+  std::span<const std::byte> bytes_;
+  std::string display_name_;
+  format::FileHeader header_{};
+  std::vector<Section> sections_;
+};
 
 // The §8 content digest (32 lowercase hex digits) of a section table: independent of layout and
 // encoding, so a packed file and its unpacked form have the same digest.

@@ -66,7 +66,7 @@ struct View {
 template <class T>
 class CostAs;
 
-class GraphReader {
+class GraphReader : public ContainerReader {
  public:
   static GraphReader open(const std::filesystem::path& path);
   // Opens, then runs verify(reader, level); throws "FILE: file is damaged: ...; run mosb verify".
@@ -87,13 +87,8 @@ class GraphReader {
   // walkers that must not run on unverified bytes. `user` names the caller in the message.
   void require_verified(VerifyLevel level, std::string_view user) const;
 
-  const std::string& display_name() const { return display_name_; }
-  const format::FileHeader& header() const { return header_; }
-  std::span<const std::byte> bytes() const { return bytes_; }
   std::uint64_t vertex_count() const { return header_.vertex_count; }
   std::uint64_t arc_count() const { return header_.arc_count; }
-  const std::vector<Section>& sections() const { return sections_; }
-  std::string digest() const;  // §8 content digest, 32 hex digits
 
   std::span<const std::uint64_t> forward_offsets() const;
   std::span<const std::uint32_t> forward_targets() const;
@@ -145,28 +140,14 @@ class GraphReader {
   std::optional<View> find_view(std::string_view name) const;
   View view(std::string_view name) const;
 
-  // Zero-copy view of a section's elements, checked for type and encoding.
-  template <class T>
-  std::span<const T> values(const Section& s) const {
-    check_access(s, format::element_type_of<T>());
-    return {reinterpret_cast<const T*>(s.stored.data()), s.element_count()};
-  }
   std::span<const std::byte> raw_bytes(const Section& s) const;  // refuses packed sections
 
  private:
   GraphReader() = default;
   void validate();
   void verify_at_open(VerifyLevel level);
-  void check_access(const Section& s, format::ElementType wanted) const;
-  [[noreturn]] void fail(const std::string& what) const;  // ErrorCode::damaged
-  [[noreturn]] void fail(ErrorCode code, const std::string& what) const;
   const Section& required(format::SectionKind kind) const;
 
-  std::shared_ptr<const void> mapping_;
-  std::span<const std::byte> bytes_;
-  std::string display_name_;
-  format::FileHeader header_{};
-  std::vector<Section> sections_;
   std::vector<std::size_t> cost_indices_;
   std::size_t structural_[7] = {};  // section index per structural kind 1..6
   struct MetadataCache {
@@ -180,16 +161,7 @@ class GraphReader {
 
 template <class F>
 decltype(auto) GraphReader::visit_cost(std::size_t i, F&& f) const {
-  const Section& s = objective(i);
-  using Result = std::invoke_result_t<F, std::span<const std::uint8_t>>;
-  return format::visit_element_type(s.type, [&](auto tag) -> Result {
-    using T = typename decltype(tag)::type;
-    if constexpr (format::is_cost_type_v<T>)
-      return std::invoke(std::forward<F>(f), values<T>(s));
-    else
-      fail("section '" + s.name + "' holds " + std::string(format::to_string(s.type)) +
-           " values, not a cost type");
-  });
+  return visit_cost_values(objective(i), std::forward<F>(f));
 }
 
 // A cost column read as T by value, whatever its stored type (see GraphReader::cost_as).

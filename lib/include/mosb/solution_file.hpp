@@ -67,7 +67,7 @@ struct SolverInfo {
   std::string machine;                            // free-text machine notes
 };
 
-class SolutionReader {
+class SolutionReader : public ContainerReader {
  public:
   static SolutionReader open(const std::filesystem::path& path);
   // Opens, then requires the file to belong to `instance` (check_bound_to).
@@ -83,11 +83,7 @@ class SolutionReader {
   // query set exist in the instance with the file's objectives and query count.
   void check_bound_to(const GraphReader& instance) const;
 
-  const std::string& display_name() const { return display_name_; }
-  const format::FileHeader& header() const { return header_; }
-  const std::vector<Section>& sections() const { return sections_; }
   const Metadata& metadata() const { return metadata_; }
-  std::string digest() const;  // this file's own §8 content digest
 
   const std::string& instance_digest() const { return instance_digest_; }
   const std::string& view_name() const { return view_; }
@@ -140,25 +136,12 @@ class SolutionReader {
   // status says so, float costs and runtimes finite and >= 0. The first problem, or nullopt.
   std::optional<std::string> verify_payload() const;
 
-  template <class T>
-  std::span<const T> values(const Section& s) const {
-    check_access(s, format::element_type_of<T>());
-    return {reinterpret_cast<const T*>(s.stored.data()), s.element_count()};
-  }
 
  private:
   SolutionReader() = default;
   void validate();
-  void check_access(const Section& s, format::ElementType wanted) const;
   std::size_t statistic_index(Statistic s) const;
-  [[noreturn]] void fail(const std::string& what) const;
-  [[noreturn]] void fail(ErrorCode code, const std::string& what) const;
 
-  std::shared_ptr<const void> mapping_;
-  std::span<const std::byte> bytes_;
-  std::string display_name_;
-  format::FileHeader header_{};
-  std::vector<Section> sections_;
   Metadata metadata_;
   std::string instance_digest_, view_, query_set_;
   std::uint64_t query_count_ = 0, vector_count_ = 0;
@@ -170,16 +153,7 @@ class SolutionReader {
 
 template <class F>
 decltype(auto) SolutionReader::visit_column(std::size_t i, F&& f) const {
-  const Section& s = objective(i);
-  using Result = std::invoke_result_t<F, std::span<const std::uint8_t>>;
-  return format::visit_element_type(s.type, [&](auto tag) -> Result {
-    using T = typename decltype(tag)::type;
-    if constexpr (format::is_cost_type_v<T>)
-      return std::invoke(std::forward<F>(f), values<T>(s));
-    else
-      fail("section '" + s.name + "' holds " + std::string(format::to_string(s.type)) +
-           " values, not a cost type");
-  });
+  return visit_cost_values(objective(i), std::forward<F>(f));
 }
 
 // Collects fronts query by query and writes a solution file for one view and query set of an
