@@ -136,7 +136,6 @@ class SolutionReader : public ContainerReader {
   // status says so, float costs and runtimes finite and >= 0. The first problem, or nullopt.
   std::optional<std::string> verify_payload() const;
 
-
  private:
   SolutionReader() = default;
   void validate();
