@@ -11,6 +11,7 @@
 #include "mosb/graph_reader.hpp"
 #include "mosb/verify.hpp"
 #include "temp_dir.hpp"
+#include "test_files.hpp"
 
 using namespace mosb;
 
@@ -23,17 +24,10 @@ const std::filesystem::path kGoldenReferences =
 // Every file listed in DIR/invalid/EXPECTED.tsv fails at its level with its message; returns the
 // number of files.
 int check_invalid_files(const std::filesystem::path& golden) {
-  std::ifstream list(golden / "invalid" / "EXPECTED.tsv");
-  REQUIRE(list.good());
-  std::string line;
   int cases = 0;
-  while (std::getline(list, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream fields(line);
-    std::string file, level, expected;
-    std::getline(fields, file, '\t');
-    std::getline(fields, level, '\t');
-    std::getline(fields, expected);
+  for (const auto& row : testing::expected_rows(golden / "invalid" / "EXPECTED.tsv")) {
+    REQUIRE(row.size() == 3);
+    const auto &file = row[0], &level = row[1], &expected = row[2];
     CAPTURE(file);
     ++cases;
     const auto path = golden / "invalid" / file;

@@ -14,6 +14,7 @@
 #include "mosb/verify.hpp"
 #include "packed_faults.hpp"
 #include "temp_dir.hpp"
+#include "test_files.hpp"
 
 using namespace mosb;
 
@@ -109,16 +110,12 @@ TEST_CASE("the packed golden files unpack to verified instances and pack back to
 }
 
 TEST_CASE("every invalid packed golden file is refused where EXPECTED.tsv says") {
-  std::ifstream tsv(kPackedGolden / "invalid" / "EXPECTED.tsv");
-  REQUIRE(tsv);
   std::size_t files = 0;
   testing::TempDir dir;
-  for (std::string line; std::getline(tsv, line);) {
-    if (line.empty() || line[0] == '#') continue;
-    const auto tab = line.find('\t');
-    REQUIRE(tab != std::string::npos);
-    const auto file = kPackedGolden / "invalid" / line.substr(0, tab);
-    const auto expected = line.substr(tab + 1);
+  for (const auto& row : testing::expected_rows(kPackedGolden / "invalid" / "EXPECTED.tsv")) {
+    REQUIRE(row.size() == 2);
+    const auto file = kPackedGolden / "invalid" / row[0];
+    const auto& expected = row[1];
     CAPTURE(file);
     ++files;
     std::string message;

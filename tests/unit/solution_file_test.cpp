@@ -14,6 +14,7 @@
 #include "mosb/graph_builder.hpp"
 #include "solution_faults.hpp"
 #include "temp_dir.hpp"
+#include "test_files.hpp"
 
 using namespace mosb;
 
@@ -146,17 +147,10 @@ TEST_CASE("queries never set are written as not-run, and the file binds to the v
 }
 
 TEST_CASE("every golden invalid solution file fails where EXPECTED.tsv says") {
-  std::ifstream list(kSolutions / "invalid" / "EXPECTED.tsv");
-  REQUIRE(list.good());
-  std::string line;
   int cases = 0;
-  while (std::getline(list, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream fields(line);
-    std::string file, stage, expected;
-    std::getline(fields, file, '\t');
-    std::getline(fields, stage, '\t');
-    std::getline(fields, expected);
+  for (const auto& row : testing::expected_rows(kSolutions / "invalid" / "EXPECTED.tsv")) {
+    REQUIRE(row.size() == 3);
+    const auto &file = row[0], &stage = row[1], &expected = row[2];
     CAPTURE(file);
     ++cases;
     const auto path = kSolutions / "invalid" / file;
