@@ -328,21 +328,36 @@ std::vector<ImportedResult> parse_solver_json_log(std::string_view text, const s
   check_options(o);
   using Json = nlohmann::json;
   Json log;
-  try {
-    log = Json::parse(text.begin(), text.end());
-  } catch (const Json::parse_error& e) {
-    // Byte offset (1-based, at the offending character) to line and column.
-    const std::size_t at = std::min<std::size_t>(e.byte == 0 ? 0 : e.byte - 1, text.size());
+  // A 0-based byte offset of the text as FILE:LINE:COLUMN.
+  auto fail_at = [&](std::size_t at, const std::string& message) {
+    at = std::min(at, text.size());
     const auto before = text.substr(0, at);
     const std::uint64_t line = 1 + std::count(before.begin(), before.end(), '\n');
     const auto line_start = before.rfind('\n');
     const std::uint64_t column =
         at - (line_start == std::string_view::npos ? 0 : line_start + 1) + 1;
+    fail(name, line, column, message);
+  };
+  try {
+    log = Json::parse(text.begin(), text.end());
+  } catch (const Json::parse_error& e) {
     std::string what = e.what();
     // nlohmann's message: "[json.exception.parse_error.101] parse error at ...: REASON"
     if (const auto reason = what.rfind(": "); reason != std::string::npos)
       what = what.substr(reason + 2);
-    fail(name, line, column, "invalid JSON: " + what);
+    // e.byte is 1-based, at the offending character.
+    fail_at(e.byte == 0 ? 0 : e.byte - 1, "invalid JSON: " + what);
+  } catch (const Json::out_of_range& e) {
+    // A number too large for any JSON number type: "... number overflow parsing 'DIGITS'". The
+    // error carries no position, so the number's first occurrence locates it.
+    std::string what = e.what();
+    if (const auto tag = what.find("] "); tag != std::string::npos) what = what.substr(tag + 2);
+    const auto quote = what.find('\'');
+    const auto number = quote == std::string::npos
+                            ? std::string()
+                            : what.substr(quote + 1, what.rfind('\'') - quote - 1);
+    const auto found = number.empty() ? std::string_view::npos : text.find(number);
+    fail_at(found == std::string_view::npos ? 0 : found, "invalid JSON: " + what);
   }
   auto at = [&](const std::string& pointer, const std::string& message) -> Error {
     return {ErrorCode::invalid_argument, name + ": " + pointer + ": " + message};

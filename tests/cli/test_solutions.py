@@ -234,6 +234,11 @@ class SolutionsTest(unittest.TestCase):
         self.assert_refused(["--json-log", name], "%s: /4: record 4, but the set has 4 queries" % name)
         self.log({"source": 0})
         self.assert_refused(["--json-log", name], "%s: /: expected an array of records" % name)
+        # A number no JSON number type holds (found by the fuzzer: it escaped as an uncaught
+        # exception, std::terminate).
+        self.write("log.json", '[{"source": 0,\n  "target": 1e999}]')
+        self.assert_refused(["--json-log", name],
+                            "%s:2:13: invalid JSON: number overflow parsing '1e999'" % name)
 
     # --- export -------------------------------------------------------------------------------
 
