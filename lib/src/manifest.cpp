@@ -171,6 +171,11 @@ Manifest parse_manifest(std::string_view text, const std::string& display_name) 
       record = Json::parse(lines[i]);
     } catch (const Json::parse_error& e) {
       throw Error(where + "not JSON (byte " + std::to_string(e.byte) + ")");
+    } catch (const Json::exception& e) {
+      // Valid syntax nlohmann cannot hold, e.g. a number beyond every JSON number type.
+      std::string what = e.what();
+      if (const auto tag = what.find("] "); tag != std::string::npos) what = what.substr(tag + 2);
+      throw Error(where + "not JSON: " + what);
     }
     try {
       if (i == 0) {

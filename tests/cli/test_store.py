@@ -197,6 +197,13 @@ class Manifest(Base):
         self.assertEqual(r.returncode, 1)
         self.assertRegex(r.stderr, r"^mosb: .*MANIFEST:2: not JSON")
         self.assertEqual(len(r.stderr.splitlines()), 1)
+        # A number beyond every JSON number type (it escaped as an "internal error" naming no file).
+        with open(os.path.join(store, "MANIFEST"), "w") as f:
+            f.write('{"format":"mosb-manifest","version":1,"x":1e999}\n')
+        r = run("store", "list", store)
+        self.assertEqual(r.returncode, 1)
+        self.assertEqual(r.stderr, "mosb: %s:1: not JSON: number overflow parsing '1e999'\n"
+                         % os.path.join(store, "MANIFEST"))
 
     def test_add_refuses_a_damaged_file_and_leaves_the_store_as_it_was(self):
         store = self.store_with(3)
