@@ -5,6 +5,8 @@
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
+#include <type_traits>
+#include <utility>
 
 #include "mosb/atomic_file.hpp"
 #include "mosb/error.hpp"
@@ -51,10 +53,21 @@ T field(const Json& object, const char* key, bool required, T fallback = {}) {
     if (required) throw LineError{std::string("missing key '") + key + "'"};
     return fallback;
   }
-  try {
-    return it->get<T>();
-  } catch (const Json::exception&) {
-    throw LineError{std::string("key '") + key + "' has the wrong type"};
+  if constexpr (std::is_integral_v<T> && !std::is_same_v<T, bool>) {
+    // nlohmann converts any number to T, a float out of T's range with undefined behaviour: take
+    // only integers that T holds.
+    if (it->is_number_unsigned()) {
+      if (const auto v = it->get<std::uint64_t>(); std::in_range<T>(v)) return static_cast<T>(v);
+    } else if (it->is_number_integer()) {
+      if (const auto v = it->get<std::int64_t>(); std::in_range<T>(v)) return static_cast<T>(v);
+    }
+    throw LineError{std::string("key '") + key + "' is not an integer in range"};
+  } else {
+    try {
+      return it->get<T>();
+    } catch (const Json::exception&) {
+      throw LineError{std::string("key '") + key + "' has the wrong type"};
+    }
   }
 }
 

@@ -204,6 +204,15 @@ class Manifest(Base):
         self.assertEqual(r.returncode, 1)
         self.assertEqual(r.stderr, "mosb: %s:1: not JSON: number overflow parsing '1e999'\n"
                          % os.path.join(store, "MANIFEST"))
+        # Numbers that are no integer of the field's range (a float out of range was converted
+        # with undefined behaviour, found by the fuzzer under UBSan).
+        for value in ("1e30", "4294967296", "1.5"):
+            with open(os.path.join(store, "MANIFEST"), "w") as f:
+                f.write('{"format":"mosb-manifest","version":%s}\n' % value)
+            r = run("store", "list", store)
+            self.assertEqual(r.returncode, 1, value)
+            self.assertEqual(r.stderr, "mosb: %s:1: key 'version' is not an integer in range\n"
+                             % os.path.join(store, "MANIFEST"), value)
 
     def test_add_refuses_a_damaged_file_and_leaves_the_store_as_it_was(self):
         store = self.store_with(3)
