@@ -181,6 +181,15 @@ class ImportedAsSolutionFiles(Base):
     """An example solver's fronts and its per-query lines become a solution file (solutions import
     --dir --example-log) that verifies against the instance and evaluates against itself."""
 
+    def grid_with_queries(self, width, height, seed, count, query_seed):
+        """A generated grid with a query set `q` of `count` queries."""
+        inst = self.path("g.mosb")
+        self.mosb("generate", "grid", "--width", str(width), "--height", str(height), "--seed",
+                  str(seed), "-o", inst)
+        self.mosb("queries", "generate", inst, "--in-place", "--set", "q", "--count", str(count),
+                  "--seed", str(query_seed))
+        return inst
+
     def run_namoa(self, inst):
         fronts = self.path("fronts")
         r = run(solver("namoa"), inst, "--view", "Grid_3", "--queries", "q", "--fronts", fronts)
@@ -188,10 +197,7 @@ class ImportedAsSolutionFiles(Base):
         return fronts, self.write("namoa.log", r.stdout), r.stdout.splitlines()
 
     def test_fronts_and_statistics_are_imported(self):
-        inst = self.path("g.mosb")
-        self.mosb("generate", "grid", "--width", "9", "--height", "8", "--seed", "5", "-o", inst)
-        self.mosb("queries", "generate", inst, "--in-place", "--set", "q", "--count", "4",
-                  "--seed", "2")
+        inst = self.grid_with_queries(9, 8, 5, 4, 2)
         fronts, log, lines = self.run_namoa(inst)
         out = self.path("namoa.sol.mosb")
         self.mosb("solutions", "import", "--instance", inst, "--view", "Grid_3", "--queries", "q",
@@ -214,10 +220,7 @@ class ImportedAsSolutionFiles(Base):
                          ["statistics"], {})
 
     def test_a_log_that_disagrees_with_the_fronts_is_refused_at_its_line(self):
-        inst = self.path("g.mosb")
-        self.mosb("generate", "grid", "--width", "7", "--height", "6", "--seed", "1", "-o", inst)
-        self.mosb("queries", "generate", inst, "--in-place", "--set", "q", "--count", "3",
-                  "--seed", "4")
+        inst = self.grid_with_queries(7, 6, 1, 3, 4)
         fronts, log, lines = self.run_namoa(inst)
         rows = [line.split() for line in lines]
 
