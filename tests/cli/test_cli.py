@@ -14,234 +14,76 @@ import json
 import math
 import os
 import re
-import shutil
 import struct
 import subprocess
-import tempfile
 import unittest
 
 import xxhash
 
-MOSB = os.environ.get("MOSB", "")
-if MOSB:
-    MOSB = os.path.abspath(MOSB)  # the tests run it from their temporary directories
-
-# §2: the 128-byte header; §3: the 64-byte section table entry.
-HEADER = struct.Struct("<8sIHHIIQQQQIIQQ40sQ")
-HEADER_FIELDS = ("magic", "byte_order_mark", "version_major", "version_minor", "header_size",
-                 "file_kind", "required_features", "optional_features", "file_size",
-                 "table_offset", "section_count", "objective_count", "vertex_count", "arc_count",
-                 "reserved", "header_checksum")
-ENTRY = struct.Struct("<24sHBBIQQQQ")
-ENTRY_FIELDS = ("name", "kind", "element_type", "encoding", "row_width", "row_count", "offset",
-                "stored_length", "checksum")
-assert HEADER.size == 128 and ENTRY.size == 64
-MAGIC = b"\x89MOS\r\n\x1a\n"
-CHECKSUM_OFFSET = 120
-F32 = 9  # §5 element type code
+from mosbtest import (CHECKSUM_OFFSET, ENTRY, MAGIC, MOSB, CliTest, entries, entry, header,  # noqa: F401
+                      patch_values, payload, relocate_as_f32, reseal, set_entry, set_header,
+                      setUpModule, values, write_payload)
 
 GRID = ["generate", "grid", "--width", "5", "--height", "4", "--objectives", "3", "--seed", "7"]
 N = 5 * 4 + 2
 M = 2 * ((5 - 1) * 4 + (4 - 1) * 5) + 2 * 4
 
 
-# ---------------------------------------------------------------------------------------------
-# Byte-level helpers (operate on a bytearray holding a whole file)
-
-def header(data):
-    return dict(zip(HEADER_FIELDS, HEADER.unpack_from(data, 0)))
-
-
-def set_header(data, **fields):
-    h = header(data)
-    h.update(fields)
-    HEADER.pack_into(data, 0, *(h[f] for f in HEADER_FIELDS))
-
-
-def entries(data):
-    """The section table as a list of dicts; 'pos' is the entry's file offset."""
-    h = header(data)
-    result = []
-    for i in range(h["section_count"]):
-        pos = h["table_offset"] + i * ENTRY.size
-        e = dict(zip(ENTRY_FIELDS, ENTRY.unpack_from(data, pos)))
-        e["name"] = e["name"].rstrip(b"\0").decode("ascii")
-        e["pos"] = pos
-        result.append(e)
-    return result
-
-
-def entry(data, name):
-    (e,) = [e for e in entries(data) if e["name"] == name]
-    return e
-
-
-def set_entry(data, name, **fields):
-    e = entry(data, name)
-    e.update(fields)
-    values = [e[f] for f in ENTRY_FIELDS]
-    values[0] = e["name"].encode("ascii")
-    ENTRY.pack_into(data, e["pos"], *values)
-
-
-def payload(data, name):
-    e = entry(data, name)
-    return data[e["offset"]:e["offset"] + e["stored_length"]]
-
-
-def reseal(data):
-    """Recompute the header checksum: XXH3-64 of header bytes [0, 120) + the section table."""
-    h = header(data)
-    table = data[h["table_offset"]:h["table_offset"] + ENTRY.size * h["section_count"]]
-    struct.pack_into("<Q", data, CHECKSUM_OFFSET,
-                     xxhash.xxh3_64_intdigest(bytes(data[:CHECKSUM_OFFSET]) + bytes(table)))
-
-
-def write_payload(data, name, new_payload):
-    """Replace a section's payload in place (same length), fix its checksum and the header's."""
-    e = entry(data, name)
-    assert len(new_payload) == e["stored_length"]
-    data[e["offset"]:e["offset"] + len(new_payload)] = new_payload
-    set_entry(data, name, checksum=xxhash.xxh3_64_intdigest(bytes(new_payload)))
-    reseal(data)
-
-
-def patch_values(data, name, fmt, index, value):
-    """Set element `index` (struct format `fmt`, e.g. '<I') of a section, checksums recomputed."""
-    body = bytearray(payload(data, name))
-    struct.pack_into(fmt, body, index * struct.calcsize(fmt), value)
-    write_payload(data, name, body)
-
-
-def values(data, name, fmt):
-    body = payload(data, name)
-    return list(struct.unpack("<%d%s" % (len(body) // struct.calcsize(fmt), fmt), body))
-
-
-def relocate_as_f32(data, name, costs):
-    """Turn cost section `name` into an f32 column holding `costs`.
-
-    The f32 payload does not fit in the u8 section's place, so it is appended where the table was
-    and the table moves after it (a reader relies only on the table's offsets, §1). The old payload
-    is zeroed, since bytes belonging to no section are zero. Both checksums are recomputed.
-    """
-    h = header(data)
-    old = entry(data, name)
-    body = struct.pack("<%df" % len(costs), *costs)
-    assert old["row_count"] == len(costs)
-    table = bytes(data[h["table_offset"]:])
-    data[old["offset"]:old["offset"] + old["stored_length"]] = bytes(old["stored_length"])
-    new_offset = h["table_offset"]
-    padded = body + bytes(-len(body) % 64)
-    del data[new_offset:]
-    data += padded + table
-    set_header(data, table_offset=new_offset + len(padded), file_size=len(data))
-    set_entry(data, name, element_type=F32, offset=new_offset, stored_length=len(body),
-              checksum=xxhash.xxh3_64_intdigest(body))
-    reseal(data)
-
-
-# ---------------------------------------------------------------------------------------------
-
-def setUpModule():
-    if not MOSB:
-        raise RuntimeError("set the environment variable MOSB to the path of the mosb binary")
-    if not (os.path.isfile(MOSB) and os.access(MOSB, os.X_OK)):
-        raise RuntimeError("MOSB=%r is not an executable file" % MOSB)
-
-
-class Result:
-    def __init__(self, completed):
-        self.code = completed.returncode
-        self.out = completed.stdout
-        self.err = completed.stderr
-        self.out_lines = completed.stdout.splitlines()
-        self.err_lines = completed.stderr.splitlines()
-
-    def __repr__(self):
-        return "exit %s\n--- stdout\n%s--- stderr\n%s" % (self.code, self.out, self.err)
-
-
-class CliTest(unittest.TestCase):
-    def setUp(self):
-        self.dir = tempfile.mkdtemp(prefix="mosb-cli-")
-
-    def tearDown(self):
-        leftovers = [os.path.join(root, f) for root, dirs, files in os.walk(self.dir)
-                     for f in files + dirs if ".tmp-" in f]
-        shutil.rmtree(self.dir)
-        self.assertEqual(leftovers, [], "temporary files left behind")
-
-    def path(self, name):
-        return os.path.join(self.dir, name)
-
-    def mosb(self, *args):
-        completed = subprocess.run([MOSB, *args], cwd=self.dir, capture_output=True, text=True,
-                                   errors="replace", timeout=60)
-        r = Result(completed)
-        # Never a crash: no signal, no sanitizer report.
-        self.assertGreaterEqual(r.code, 0, "killed by a signal: %r" % r)
-        for stream in (r.out, r.err):
-            self.assertNotIn("Sanitizer", stream, r)
-            self.assertNotIn("runtime error", stream, r)
-        return r
+class GridTest(CliTest):
+    """The 5x4 grid with three objectives, and `mosb verify` as the judge."""
 
     def generate(self, name="g.mosb", *extra):
         path = self.path(name)
         r = self.mosb(*GRID, *extra, "-o", path)
-        self.assertEqual(r.code, 0, r)
+        self.assertEqual(r.returncode, 0, r)
         return path
 
     def grid_bytes(self):
         with open(self.generate(), "rb") as f:
             return bytearray(f.read())
 
-    def write(self, name, data):
-        path = self.path(name)
-        with open(path, "wb") as f:
-            f.write(data)
-        return path
-
     def assert_ok(self, path, level):
         r = self.mosb("verify", path, "--level", level)
-        self.assertEqual(r.code, 0, r)
-        self.assertEqual(len(r.out_lines), 1, r)
-        self.assertTrue(r.out_lines[0].startswith("OK"), r)
-        self.assertIn(path, r.out_lines[0])
+        self.assertEqual(r.returncode, 0, r)
+        out = r.stdout.splitlines()
+        self.assertEqual(len(out), 1, r)
+        self.assertTrue(out[0].startswith("OK"), r)
+        self.assertIn(path, out[0])
         return r
 
     def assert_fail(self, path, level, *expected):
         """verify exits exactly 1 with one line 'FAIL <path>: ...' containing every `expected`."""
         r = self.mosb("verify", path, "--level", level)
-        self.assertEqual(r.code, 1, r)
-        self.assertEqual(len(r.out_lines), 1, r)
-        line = r.out_lines[0]
+        self.assertEqual(r.returncode, 1, r)
+        out = r.stdout.splitlines()
+        self.assertEqual(len(out), 1, r)
+        line = out[0]
         self.assertTrue(line.startswith("FAIL " + path + ": "), r)
         for text in expected:
             self.assertIn(text, line)
-        self.assertEqual(r.err, "", r)
+        self.assertEqual(r.stderr, "", r)
         return line
 
 
 # ---------------------------------------------------------------------------------------------
 
-class GenerateInspectVerify(CliTest):
+class GenerateInspectVerify(GridTest):
     def test_generate_inspect_verify(self):
         path = self.path("g.mosb")
         r = self.mosb(*GRID, "-o", path)
-        self.assertEqual(r.code, 0, r)
-        self.assertIn("%d vertices, %d arcs, 3 objectives" % (N, M), r.out)
+        self.assertEqual(r.returncode, 0, r)
+        self.assertIn("%d vertices, %d arcs, 3 objectives" % (N, M), r.stdout)
 
         text = self.mosb("inspect", path)
-        self.assertEqual(text.code, 0, text)
-        self.assertRegex(text.out, r"(?m)^vertices +%d$" % N)
-        self.assertRegex(text.out, r"(?m)^arcs +%d$" % M)
-        self.assertRegex(text.out, r"(?m)^objectives +3$")
-        self.assertRegex(text.out, r"(?m)^format +1\.0$")
+        self.assertEqual(text.returncode, 0, text)
+        self.assertRegex(text.stdout, r"(?m)^vertices +%d$" % N)
+        self.assertRegex(text.stdout, r"(?m)^arcs +%d$" % M)
+        self.assertRegex(text.stdout, r"(?m)^objectives +3$")
+        self.assertRegex(text.stdout, r"(?m)^format +1\.0$")
 
         r = self.mosb("inspect", path, "--json")
-        self.assertEqual(r.code, 0, r)
-        info = json.loads(r.out)
+        self.assertEqual(r.returncode, 0, r)
+        info = json.loads(r.stdout)
         self.assertEqual(info["vertices"], N)
         self.assertEqual(info["arcs"], M)
         self.assertEqual(info["format"], "1.0")
@@ -255,7 +97,7 @@ class GenerateInspectVerify(CliTest):
         self.assertEqual(meta["view.Grid_3.queries"], "default")
         self.assertEqual(meta["source.param.seed"], "7")
         self.assertEqual(meta["benchmark"], "Grid-5x4")
-        self.assertRegex(text.out, r"(?m)^digest +%s$" % info["digest"])
+        self.assertRegex(text.stdout, r"(?m)^digest +%s$" % info["digest"])
 
         # The JSON section list agrees with the table as read per spec §3.
         with open(path, "rb") as f:
@@ -269,12 +111,12 @@ class GenerateInspectVerify(CliTest):
         for level in ("header", "checksums", "structure", "full"):
             with self.subTest(level=level):
                 r = self.assert_ok(path, level)
-                self.assertIn("(%s, digest %s)" % (level, info["digest"]), r.out_lines[0])
+                self.assertIn("(%s, digest %s)" % (level, info["digest"]), r.stdout.splitlines()[0])
         # Default level is full.
         r = self.mosb("verify", path)
-        self.assertEqual(r.code, 0, r)
-        self.assertTrue(r.out_lines[0].startswith("OK"), r)
-        self.assertIn("(full,", r.out)
+        self.assertEqual(r.returncode, 0, r)
+        self.assertTrue(r.stdout.splitlines()[0].startswith("OK"), r)
+        self.assertIn("(full,", r.stdout)
 
     def test_layout_and_checksums_match_spec(self):
         data = bytes(self.grid_bytes())
@@ -307,17 +149,17 @@ class GenerateInspectVerify(CliTest):
             base = i * 64
             normalized[base + 27] = 0
             normalized[base + 40:base + 56] = bytes(16)
-        info = json.loads(self.mosb("inspect", "--json", self.path("g.mosb")).out)
+        info = json.loads(self.mosb("inspect", "--json", self.path("g.mosb")).stdout)
         self.assertEqual(info["digest"], xxhash.xxh3_128_hexdigest(bytes(normalized)))
 
 
-class Determinism(CliTest):
+class Determinism(GridTest):
     def test_same_seed_same_bytes_other_seed_other_bytes(self):
         a = self.generate("a.mosb")
         b = self.generate("b.mosb")
         c = self.path("c.mosb")
         r = self.mosb(*GRID[:-1], "8", "-o", c)
-        self.assertEqual(r.code, 0, r)
+        self.assertEqual(r.returncode, 0, r)
         with open(a, "rb") as fa, open(b, "rb") as fb, open(c, "rb") as fc:
             da, db, dc = fa.read(), fb.read(), fc.read()
         self.assertEqual(da, db)
@@ -328,7 +170,7 @@ class Determinism(CliTest):
         self.assertNotEqual(payload(da, "c1"), payload(dc, "c1"))
 
 
-class ChecksumLevel(CliTest):
+class ChecksumLevel(GridTest):
     def test_flipped_byte_in_each_section(self):
         good = self.grid_bytes()
         table = [e for e in entries(good) if e["stored_length"] > 0]
@@ -357,14 +199,13 @@ class ChecksumLevel(CliTest):
         self.assert_fail(path, "checksums", "section 'metadata': [checksum] mismatch")
         self.assert_fail(path, "structure", "section 'metadata': [metadata]", "invalid key")
         r = self.mosb("inspect", path)
-        self.assertEqual(r.code, 1, r)
-        self.assertEqual(r.out, "")
-        self.assertEqual(len(r.err_lines), 1, r)
-        self.assertTrue(r.err_lines[0].startswith(
+        line = self.assert_one_line_error(r)
+        self.assertEqual(r.stdout, "")
+        self.assertTrue(line.startswith(
             "mosb: %s: file is damaged: section 'metadata': [checksum] mismatch" % path), r)
 
 
-class StructureLevel(CliTest):
+class StructureLevel(GridTest):
     def check_structure_error(self, data, section, rule, *details):
         path = self.write("bad.mosb", data)
         line = self.assert_fail(path, "structure", "section '%s': [%s]" % (section, rule), *details)
@@ -476,7 +317,7 @@ class StructureLevel(CliTest):
         # The relocation itself yields a valid file, so the two tests below test only the value.
         path = self.write("f32.mosb", self.f32_grid(None))
         self.assert_ok(path, "full")
-        info = json.loads(self.mosb("inspect", "--json", path).out)
+        info = json.loads(self.mosb("inspect", "--json", path).stdout)
         self.assertEqual([o["type"] for o in info["objectives"]], ["u8", "f32", "u8"])
 
     def test_float_cost_nan(self):
@@ -489,19 +330,16 @@ class StructureLevel(CliTest):
         self.check_structure_error(self.f32_grid(-1.0), "c2", "cost-nonnegative", "arc 11")
 
 
-class OpenErrors(CliTest):
+class OpenErrors(GridTest):
     """Failures at open: exit 1, one line naming the file, from both verify and inspect."""
 
     def check_open_error(self, path, *expected):
         for level in ("header", "full"):
             self.assert_fail(path, level, *expected)
         r = self.mosb("inspect", path)
-        self.assertEqual(r.code, 1, r)
-        self.assertEqual(r.out, "", r)
-        self.assertEqual(len(r.err_lines), 1, r)
-        self.assertTrue(r.err_lines[0].startswith("mosb: " + path + ": "), r)
-        for text in expected:
-            self.assertIn(text, r.err_lines[0])
+        line = self.assert_one_line_error(r, *expected)
+        self.assertEqual(r.stdout, "", r)
+        self.assertTrue(line.startswith("mosb: " + path + ": "), r)
 
     def corrupt(self, change, *expected):
         data = self.grid_bytes()
@@ -662,7 +500,7 @@ class OpenErrors(CliTest):
         self.check_open_error(self.path("missing.mosb"), "cannot open", "No such file")
 
 
-class SectionsFoundByKind(CliTest):
+class SectionsFoundByKind(GridTest):
     def test_renamed_structural_sections(self):
         # §4: sections are found by kind; a reader must not require the writer's names.
         data = self.grid_bytes()
@@ -672,7 +510,7 @@ class SectionsFoundByKind(CliTest):
         reseal(data)
         path = self.write("renamed.mosb", data)
         self.assert_ok(path, "full")
-        info = json.loads(self.mosb("inspect", "--json", path).out)
+        info = json.loads(self.mosb("inspect", "--json", path).stdout)
         self.assertEqual(info["metadata"]["benchmark"], "Grid-5x4")
         self.assertEqual([s["kind"] for s in info["sections"] if s["name"] == "ra"],
                          ["reverse_arcs"])
@@ -688,19 +526,19 @@ class SectionsFoundByKind(CliTest):
         # inspect verifies in full before printing (its loop counts walk the CSR): the broken view
         # makes it refuse the file, naming the problem.
         r = self.mosb("inspect", "--json", path)
-        self.assertEqual(r.code, 1, r)
-        self.assertEqual(r.out, "", r)
-        self.assertIn("file is damaged: section 'metadata': [metadata-views]", r.err)
+        self.assertEqual(r.returncode, 1, r)
+        self.assertEqual(r.stdout, "", r)
+        self.assertIn("file is damaged: section 'metadata': [metadata-views]", r.stderr)
 
 
-class PackedSections(CliTest):
+class PackedSections(GridTest):
     """Encoding 1 (zstd) with required bit 0: the open accepts it; verify decodes it first (at
     every level), and the payload is not really zstd here, which is what is being checked.
     """
 
     def packed(self, name):
         data = self.grid_bytes()
-        info = json.loads(self.mosb("inspect", "--json", self.path("g.mosb")).out)
+        info = json.loads(self.mosb("inspect", "--json", self.path("g.mosb")).stdout)
         self.plain_digest = info["digest"]
         set_entry(data, name, encoding=1)
         set_header(data, required_features=1)
@@ -711,7 +549,7 @@ class PackedSections(CliTest):
         path = self.packed("c1")
         for level in ("header", "checksums", "structure"):
             self.assert_fail(path, level, "section 'c1': stored bytes are not a zstd frame")
-        info = json.loads(self.mosb("inspect", "--json", path).out)
+        info = json.loads(self.mosb("inspect", "--json", path).stdout)
         self.assertEqual(info["digest"], self.plain_digest)  # encoding and layout ignored (§8)
         self.assertEqual([s["name"] for s in info["sections"] if s["packed"]], ["c1"])
 
@@ -719,9 +557,7 @@ class PackedSections(CliTest):
         path = self.packed("metadata")
         self.assert_fail(path, "header", "section 'metadata': stored bytes are not a zstd frame")
         r = self.mosb("inspect", path)
-        self.assertEqual(r.code, 1, r)
-        self.assertEqual(len(r.err_lines), 1, r)
-        self.assertIn("section 'metadata' is zstd-packed", r.err_lines[0])
+        self.assert_one_line_error(r, "section 'metadata' is zstd-packed")
 
     def test_zstd_section_without_feature_bit(self):
         data = self.grid_bytes()
@@ -745,7 +581,7 @@ class PackedSections(CliTest):
                          "unknown encoding 4")
 
 
-class SpecConformance(CliTest):
+class SpecConformance(GridTest):
     """Cases once found to depart from spec/FORMAT.md, kept as regression tests."""
 
     def test_metadata_must_be_utf8(self):
@@ -779,39 +615,38 @@ class SpecConformance(CliTest):
         self.assert_fail(self.write("empty-frame.mosb", data), "header", "section 'c1'")
 
 
-class SeveralFiles(CliTest):
+class SeveralFiles(GridTest):
     def test_good_then_bad(self):
         good = self.generate()
         data = self.grid_bytes()
         data[0] ^= 0xFF
         bad = self.write("bad.mosb", data)
         r = self.mosb("verify", good, bad)
-        self.assertEqual(r.code, 1, r)
-        self.assertEqual(len(r.out_lines), 2, r)
-        self.assertTrue(r.out_lines[0].startswith("OK   " + good), r)
-        self.assertTrue(r.out_lines[1].startswith("FAIL " + bad + ": "), r)
+        self.assertEqual(r.returncode, 1, r)
+        self.assertEqual(len(r.stdout.splitlines()), 2, r)
+        self.assertTrue(r.stdout.splitlines()[0].startswith("OK   " + good), r)
+        self.assertTrue(r.stdout.splitlines()[1].startswith("FAIL " + bad + ": "), r)
         # A failure does not stop the run: the order is kept the other way round too.
         r = self.mosb("verify", bad, good)
-        self.assertEqual(r.code, 1, r)
-        self.assertEqual([line[:4] for line in r.out_lines], ["FAIL", "OK  "], r)
+        self.assertEqual(r.returncode, 1, r)
+        self.assertEqual([line[:4] for line in r.stdout.splitlines()], ["FAIL", "OK  "], r)
 
     def test_all_good(self):
         a, b = self.generate("a.mosb"), self.generate("b.mosb")
         r = self.mosb("verify", "--level", "checksums", a, b)
-        self.assertEqual(r.code, 0, r)
-        self.assertEqual([line[:2] for line in r.out_lines], ["OK", "OK"], r)
+        self.assertEqual(r.returncode, 0, r)
+        self.assertEqual([line[:2] for line in r.stdout.splitlines()], ["OK", "OK"], r)
 
 
-class UsageErrors(CliTest):
+class UsageErrors(GridTest):
     """Every usage error: exit 2, nothing on stdout, exactly one line on stderr starting 'mosb:'."""
 
     def check_usage_error(self, *args):
         before = sorted(os.listdir(self.dir))
         r = self.mosb(*args)
-        self.assertEqual(r.code, 2, r)
-        self.assertEqual(r.out, "", r)
-        self.assertEqual(len(r.err_lines), 1, r)
-        self.assertTrue(r.err_lines[0].startswith("mosb: "), r)
+        line = self.assert_one_line_error(r, code=2)
+        self.assertEqual(r.stdout, "", r)
+        self.assertTrue(line.startswith("mosb: "), r)
         self.assertEqual(sorted(os.listdir(self.dir)), before, "a usage error wrote files")
         return r
 
@@ -820,29 +655,29 @@ class UsageErrors(CliTest):
 
     def test_no_subcommand_of_a_group(self):
         r = self.check_usage_error("convert")
-        self.assertIn("convert", r.err)
+        self.assertIn("convert", r.stderr)
 
     def test_unknown_subcommand(self):
         self.check_usage_error("frobnicate", "x.mosb")
 
     def test_unknown_option(self):
         r = self.check_usage_error("inspect", "--frobnicate", "x.mosb")
-        self.assertIn("--frobnicate", r.err)
+        self.assertIn("--frobnicate", r.stderr)
 
     def test_missing_required_option(self):
         r = self.check_usage_error("convert", "dimacs", "-o", "x.mosb")
-        self.assertIn("--gr", r.err)
-        self.assertIn("convert dimacs", r.err)
+        self.assertIn("--gr", r.stderr)
+        self.assertIn("convert dimacs", r.stderr)
 
     def test_missing_output(self):
         # Found after parsing (--output or --suite): still a usage error.
         r = self.check_usage_error(*GRID)
-        self.assertIn("--output", r.err)
+        self.assertIn("--output", r.stderr)
 
     def test_bad_level(self):
         path = self.generate()
         r = self.check_usage_error("verify", path, "--level", "bogus")
-        self.assertIn("bogus", r.err)
+        self.assertIn("bogus", r.stderr)
 
     def test_bad_number(self):
         self.check_usage_error("generate", "grid", "--width", "many", "-o", "w.mosb")
@@ -859,28 +694,26 @@ class UsageErrors(CliTest):
     def test_queries_need_a_destination(self):
         path = self.generate()
         r = self.check_usage_error("queries", "generate", path, "--set", "r")
-        self.assertIn("--in-place", r.err)
+        self.assertIn("--in-place", r.stderr)
 
     def test_runtime_error_is_exit_1(self):
         r = self.mosb("inspect", self.write("junk.mosb", b"not a mosb file"))
-        self.assertEqual(r.code, 1, r)
-        self.assertEqual(len(r.err_lines), 1, r)
-        self.assertTrue(r.err_lines[0].startswith("mosb: "), r)
+        self.assertTrue(self.assert_one_line_error(r).startswith("mosb: "), r)
 
 
-class VersionAndHelp(CliTest):
+class VersionAndHelp(GridTest):
     def test_version(self):
         with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "CMakeLists.txt")) as f:
             version = re.search(r"project\(mosb VERSION ([0-9.]+)", f.read()).group(1)
         for flag in ("--version", "-V"):
             r = self.mosb(flag)
-            self.assertEqual(r.code, 0, r)
-            self.assertEqual(r.out_lines, ["mosb " + version], r)
+            self.assertEqual(r.returncode, 0, r)
+            self.assertEqual(r.stdout.splitlines(), ["mosb " + version], r)
 
     def test_help_documents_exit_codes(self):
         r = self.mosb("--help")
-        self.assertEqual(r.code, 0, r)
-        text = " ".join(r.out.split())
+        self.assertEqual(r.returncode, 0, r)
+        text = " ".join(r.stdout.split())
         self.assertIn("Exit status: 0 success; 1 failure while running", text)
         self.assertIn("2 usage error", text)
 
@@ -888,20 +721,20 @@ class VersionAndHelp(CliTest):
         for command in (["inspect"], ["verify"], ["stats"], ["export", "dimacs"], ["queries", "import"],
                         ["queries", "generate"]):
             r = self.mosb(*command, "--help")
-            self.assertEqual(r.code, 0, r)
-            positionals = r.out.split("Positionals:")[1].split("Options:")[0]
+            self.assertEqual(r.returncode, 0, r)
+            positionals = r.stdout.split("Positionals:")[1].split("Options:")[0]
             self.assertEqual(positionals.split()[0], "INSTANCE", command)
             for other in ("\n  FILE ", "\n  instance ", "\n  file "):
                 self.assertNotIn(other, positionals, command)
 
 
-class JsonReports(CliTest):
+class JsonReports(GridTest):
     """--json on every reporting command: one JSON object on stdout."""
 
     def json_of(self, *args, code=0):
         r = self.mosb(*args, "--json")
-        self.assertEqual(r.code, code, r)
-        return json.loads(r.out)
+        self.assertEqual(r.returncode, code, r)
+        return json.loads(r.stdout)
 
     def test_generate_and_convert(self):
         out = self.path("j.mosb")
@@ -944,15 +777,12 @@ class JsonReports(CliTest):
         self.assertEqual(report["instances"][0]["size"], os.path.getsize(self.path("s/Grid-3x3.mosb")))
 
 
-class AtomicOutput(CliTest):
+class AtomicOutput(GridTest):
     def test_missing_directory(self):
         target = self.path("no-such-dir/out.mosb")
         r = self.mosb(*GRID, "-o", target)
-        self.assertEqual(r.code, 1, r)
-        self.assertEqual(r.out, "", r)
-        self.assertEqual(len(r.err_lines), 1, r)
-        self.assertIn(target, r.err_lines[0])
-        self.assertIn("no-such-dir", r.err_lines[0])
+        self.assert_one_line_error(r, target, "no-such-dir")
+        self.assertEqual(r.stdout, "", r)
         self.assertEqual(os.listdir(self.dir), [])
 
     def test_target_is_a_directory(self):
@@ -960,9 +790,7 @@ class AtomicOutput(CliTest):
         target = self.path("occupied")
         os.makedirs(os.path.join(target, "inside"))
         r = self.mosb(*GRID, "-o", target)
-        self.assertEqual(r.code, 1, r)
-        self.assertEqual(len(r.err_lines), 1, r)
-        self.assertIn(target, r.err_lines[0])
+        self.assert_one_line_error(r, target)
         self.assertEqual(sorted(os.listdir(self.dir)), ["occupied"])
         self.assertEqual(os.listdir(target), ["inside"])
 
@@ -974,7 +802,7 @@ class AtomicOutput(CliTest):
 
     def test_relative_output_in_working_directory(self):
         r = self.mosb(*GRID, "-o", "rel.mosb")
-        self.assertEqual(r.code, 0, r)
+        self.assertEqual(r.returncode, 0, r)
         self.assertEqual(os.listdir(self.dir), ["rel.mosb"])
 
 

@@ -12,22 +12,14 @@ at once instead of blocking. Metadata values are escaped in `inspect`'s text out
 
 import json
 import os
-import subprocess
-import sys
 import unittest
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from test_cli import (MOSB, CliTest, entries, entry, header, reseal, set_entry,  # noqa: E402
-                      set_header, setUpModule)  # noqa: F401  (setUpModule checks MOSB)
-
-import xxhash  # noqa: E402
+from mosbtest import (entries, entry, files_under, move_payload_to_end, setUpModule,  # noqa: F401
+                      write_payload)
+from test_cli import GridTest
 
 
-def files_under(directory):
-    return sorted(os.path.join(root, f) for root, dirs, files in os.walk(directory) for f in files)
-
-
-class DamagedPayload(CliTest):
+class DamagedPayload(GridTest):
     def damaged_copy(self, section, index):
         """A copy of the grid file with one bit flipped at byte `index` of `section`'s payload."""
         data = self.grid_bytes()
@@ -43,12 +35,12 @@ class DamagedPayload(CliTest):
         with open(self.path(name), "rb") as f:
             original = f.read()
         r = self.mosb(*args)
-        self.assertEqual(r.code, 1, r)
-        self.assertEqual(len(r.err_lines), 1, r)
-        self.assertIn(name, r.err_lines[0], r)
-        self.assertIn("damaged", r.err_lines[0], r)
-        self.assertIn("run mosb verify", r.err_lines[0], r)
-        self.assertEqual(r.out, "", r)  # no numbers from corrupt data
+        self.assertEqual(r.returncode, 1, r)
+        self.assertEqual(len(r.stderr.splitlines()), 1, r)
+        self.assertIn(name, r.stderr.splitlines()[0], r)
+        self.assertIn("damaged", r.stderr.splitlines()[0], r)
+        self.assertIn("run mosb verify", r.stderr.splitlines()[0], r)
+        self.assertEqual(r.stdout, "", r)  # no numbers from corrupt data
         self.assertEqual(files_under(self.dir), before, "an output or temporary file was left")
         with open(self.path(name), "rb") as f:
             self.assertEqual(f.read(), original, "the damaged input was rewritten")
@@ -72,8 +64,8 @@ class DamagedPayload(CliTest):
         self.assertFalse(os.path.exists(self.path("out")))
         # verify names the same problem.
         r = self.mosb("verify", name)
-        self.assertEqual(r.code, 1, r)
-        self.assertIn("[checksum] mismatch", r.out, r)
+        self.assertEqual(r.returncode, 1, r)
+        self.assertIn("[checksum] mismatch", r.stdout, r)
 
     def test_flipped_byte_in_forward_offsets(self):
         self.check_every_command("forward_offsets", 8 * 3)  # low byte of offsets[3]
@@ -89,19 +81,15 @@ class DamagedPayload(CliTest):
         for args in (["inspect", path], ["stats", path], ["export", "dimacs", path, "-o", "out"],
                      ["queries", "generate", path, "--set", "fresh", "--in-place"]):
             r = self.mosb(*args)
-            self.assertEqual(r.code, 0, r)
+            self.assertEqual(r.returncode, 0, r)
 
 
-class NotARegularFile(CliTest):
+class NotARegularFile(GridTest):
     def check_refused_quickly(self, path, kind):
         for args in (["verify", path], ["inspect", path], ["stats", path],
                      ["export", "dimacs", path, "-o", "out"]):
             with self.subTest(kind=kind, command=args[0]):
-                try:
-                    completed = subprocess.run([MOSB, *args], cwd=self.dir, capture_output=True,
-                                               text=True, timeout=20)
-                except subprocess.TimeoutExpired:
-                    self.fail("%s on a %s blocked" % (" ".join(args), kind))
+                completed = self.mosb(*args, timeout=20)
                 self.assertNotEqual(completed.returncode, 0, completed)
                 self.assertGreater(completed.returncode, 0, completed)
                 # The first line names the file (a usage error from the option parser may add a
@@ -115,17 +103,17 @@ class NotARegularFile(CliTest):
         os.mkfifo(fifo)
         self.check_refused_quickly(fifo, "FIFO")
         r = self.mosb("verify", fifo)
-        self.assertIn("is a FIFO, not a regular file", r.out, r)
+        self.assertIn("is a FIFO, not a regular file", r.stdout, r)
 
     def test_directory(self):
         directory = self.path("d.mosb")
         os.mkdir(directory)
         self.check_refused_quickly(directory, "directory")
         r = self.mosb("inspect", directory)
-        self.assertIn("is a directory, not a regular file", r.err, r)
+        self.assertIn("is a directory, not a regular file", r.stderr, r)
 
 
-class SolutionCommandsBadInput(CliTest):
+class SolutionCommandsBadInput(GridTest):
     """Every input of `solutions import|export|inspect|verify`, `eval` and `plot *` given as a
     damaged (one flipped bit in a section payload), truncated, directory or FIFO file: one line
     naming the file, exit 1 (2 when the option parser refuses it), nothing on stdout, no output
@@ -140,7 +128,7 @@ class SolutionCommandsBadInput(CliTest):
         self.solutions = self.path("good.sol")
         r = self.mosb("solutions", "import", "--instance", self.instance, "--view", "Grid_2",
                       "--dir", self.path("fronts"), "-o", self.solutions)
-        self.assertEqual(r.code, 0, r)
+        self.assertEqual(r.returncode, 0, r)
 
     def bad_copy(self, original, name, kind):
         """`name` in the test directory as a `kind` version of `original`."""
@@ -163,11 +151,7 @@ class SolutionCommandsBadInput(CliTest):
 
     def assert_refused(self, name, kind, args):
         before = files_under(self.dir)
-        try:
-            completed = subprocess.run([MOSB, *args], cwd=self.dir, capture_output=True,
-                                       text=True, timeout=20)
-        except subprocess.TimeoutExpired:
-            self.fail("%s on a %s blocked" % (" ".join(args), kind))
+        completed = self.mosb(*args, timeout=20)
         self.assertIn(completed.returncode, (1, 2), completed)
         if completed.returncode == 2:  # only the option parser's existing-file check
             self.assertEqual(kind, "directory", completed)
@@ -249,10 +233,9 @@ class SolutionCommandsBadInput(CliTest):
 
     def test_import_from_a_pipe_with_a_writer(self):
         # Not blocking on a FIFO without a writer must not refuse a pipe that has one.
-        completed = subprocess.run(
-            [MOSB, "solutions", "import", "--instance", self.instance, "--view", "Grid_2",
-             "--table", "/dev/stdin", "-o", "piped.sol"], cwd=self.dir,
-            input="query,c1,c2\n0,10,20\n", capture_output=True, text=True, timeout=20)
+        completed = self.mosb("solutions", "import", "--instance", self.instance, "--view",
+                              "Grid_2", "--table", "/dev/stdin", "-o", "piped.sol",
+                              input="query,c1,c2\n0,10,20\n", timeout=20)
         self.assertEqual(completed.returncode, 0, completed)
         self.assertIn("1 of 1 queries imported, 1 vectors", completed.stdout)
 
@@ -264,10 +247,10 @@ class SolutionCommandsBadInput(CliTest):
                      ["plot", "front", "--solutions", self.solutions, "--query", "0", "-o",
                       "f.svg"]):
             r = self.mosb(*args)
-            self.assertEqual(r.code, 0, r)
+            self.assertEqual(r.returncode, 0, r)
 
 
-class HostileMetadata(CliTest):
+class HostileMetadata(GridTest):
     FAKE = "x\x1b[2J\x1b[1;1H\rOK   g.mosb (full, digest 0)\nOK   all fine\u009b31m\u202e"
 
     def with_benchmark(self, value):
@@ -279,34 +262,24 @@ class HostileMetadata(CliTest):
         lines = [("benchmark=" + escaped) if line.startswith("benchmark=") else line
                  for line in text.split("\n")[:-1]]
         body = ("\n".join(lines) + "\n").encode()
-        h = header(data)
-        table = bytes(data[h["table_offset"]:])
-        data[meta["offset"]:meta["offset"] + meta["stored_length"]] = bytes(meta["stored_length"])
-        new_offset = h["table_offset"]
-        padded = body + bytes(-len(body) % 64)
-        del data[new_offset:]
-        data += padded + table
-        set_header(data, table_offset=new_offset + len(padded), file_size=len(data))
-        set_entry(data, "metadata", offset=new_offset, stored_length=len(body), row_count=len(body),
-                  checksum=xxhash.xxh3_64_intdigest(body))
-        reseal(data)
+        move_payload_to_end(data, "metadata", body, row_count=len(body))
         return self.write("hostile.mosb", data)
 
     def test_inspect_escapes_control_characters(self):
         path = self.with_benchmark(self.FAKE)
-        self.assertEqual(self.mosb("verify", path).code, 0)
+        self.assertEqual(self.mosb("verify", path).returncode, 0)
         r = self.mosb("inspect", path)
-        self.assertEqual(r.code, 0, r)
+        self.assertEqual(r.returncode, 0, r)
         for bad in ("\x1b", "\r", "\u009b", "\u202e"):
-            self.assertNotIn(bad, r.out)
-        self.assertFalse(any(line.startswith("OK") for line in r.out_lines), r.out)
-        (line,) = [line for line in r.out_lines if line.startswith("benchmark ")]
+            self.assertNotIn(bad, r.stdout)
+        self.assertFalse(any(line.startswith("OK") for line in r.stdout.splitlines()), r.stdout)
+        (line,) = [line for line in r.stdout.splitlines() if line.startswith("benchmark ")]
         self.assertIn("x\\x1b[2J\\x1b[1;1H\\rOK   g.mosb (full, digest 0)\\nOK   all fine"
                       "\\u{009b}31m\\u{202e}", line)
         r = self.mosb("inspect", "--json", path)
-        self.assertEqual(r.code, 0, r)
-        self.assertNotIn("\x1b", r.out)
-        self.assertEqual(json.loads(r.out)["metadata"]["benchmark"], self.FAKE)
+        self.assertEqual(r.returncode, 0, r)
+        self.assertNotIn("\x1b", r.stdout)
+        self.assertEqual(json.loads(r.stdout)["metadata"]["benchmark"], self.FAKE)
 
     def test_verify_refuses_id_base_outside_its_value_set(self):
         data = self.grid_bytes()
@@ -316,14 +289,12 @@ class HostileMetadata(CliTest):
         self.assertGreaterEqual(at, 0, text)
         body = bytearray(text)
         body[at + len("id_base=")] = ord("7")
-        data[meta["offset"]:meta["offset"] + len(body)] = body
-        set_entry(data, "metadata", checksum=xxhash.xxh3_64_intdigest(bytes(body)))
-        reseal(data)
+        write_payload(data, "metadata", body)
         path = self.write("id7.mosb", data)
         r = self.mosb("verify", "--level", "structure", path)
-        self.assertEqual(r.code, 1, r)
-        self.assertIn("[metadata-values] metadata key 'id_base' is '7', not one of 0, 1", r.out)
-        self.assertEqual(self.mosb("verify", "--level", "checksums", path).code, 0)
+        self.assertEqual(r.returncode, 1, r)
+        self.assertIn("[metadata-values] metadata key 'id_base' is '7', not one of 0, 1", r.stdout)
+        self.assertEqual(self.mosb("verify", "--level", "checksums", path).returncode, 0)
 
 
 if __name__ == "__main__":
