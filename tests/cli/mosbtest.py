@@ -89,7 +89,7 @@ class CliTest(unittest.TestCase):
         """Writes text (as is, no newline translation) or bytes to `name` in self.dir."""
         path = self.path(name)
         if isinstance(data, str):
-            with open(path, "w", newline="") as f:
+            with open(path, "w", encoding="utf-8", newline="") as f:
                 f.write(data)
         else:
             with open(path, "wb") as f:

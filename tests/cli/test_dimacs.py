@@ -8,16 +8,13 @@ The real files of /work/shared/data/dimacs-small are used when present (skipped 
 
 import json
 import os
-import struct
-import subprocess
-import tempfile
 import unittest
 
-MOSB = os.path.abspath(os.environ["MOSB"]) if os.environ.get("MOSB") else ""
-DATA = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)),
-                                     "..", "..", "..", "shared", "data", "dimacs-small"))
-HEADER = struct.Struct("<8sIHHIIQQQQIIQQ40sQ")  # spec/FORMAT.md §2
-ENTRY = struct.Struct("<24sHBBIQQQQ")           # §3
+from mosbtest import DATA as SHARED_DATA
+from mosbtest import METADATA_KIND, CliTest, entries, read, setUpModule  # noqa: F401
+from mosbtest import metadata as metadata_of_bytes
+
+DATA = os.path.join(SHARED_DATA, "dimacs-small")
 
 GRAPH = "c hand-made\np sp 4 7\na 1 2 3\na 2 3 4\na 1 3 9\na 3 4 1\na 4 1 2\na 1 2 5\na 2 2 7\n"
 ELEVATION = "c metres\np aux sp elev 4\nv 1 100\nv 2 -20\nv 3 50\nv 4 50\n"
@@ -25,84 +22,27 @@ ELEVATION = "c metres\np aux sp elev 4\nv 1 100\nv 2 -20\nv 3 50\nv 4 50\n"
 
 def sections(path):
     """(kind, name) -> checksum for every section but the metadata, from the raw table."""
-    with open(path, "rb") as f:
-        data = f.read()
-    h = HEADER.unpack_from(data, 0)
-    table_offset, count = h[9], h[10]
-    out = {}
-    for i in range(count):
-        name, kind, _, _, _, _, _, _, checksum = ENTRY.unpack_from(data, table_offset + i * ENTRY.size)
-        if kind != 1:
-            out[(kind, name.rstrip(b"\0").decode())] = checksum
-    return out
+    return {(e["kind"], e["name"]): e["checksum"] for e in entries(read(path))
+            if e["kind"] != METADATA_KIND}
 
 
 def metadata(path):
-    with open(path, "rb") as f:
-        data = f.read()
-    h = HEADER.unpack_from(data, 0)
-    for i in range(h[10]):
-        _, kind, _, _, _, rows, offset, _, _ = ENTRY.unpack_from(data, h[9] + i * ENTRY.size)
-        if kind == 1:
-            text = data[offset:offset + rows].decode()
-            return dict(line.split("=", 1) for line in text.splitlines())
-    return {}
+    return metadata_of_bytes(read(path))
 
 
-class Result:
-    def __init__(self, completed):
-        self.code, self.out, self.err = completed.returncode, completed.stdout, completed.stderr
-
-    def __repr__(self):
-        return "exit %d\nstdout: %s\nstderr: %s" % (self.code, self.out, self.err)
-
-
-def setUpModule():
-    if not (MOSB and os.path.isfile(MOSB)):
-        raise RuntimeError("set the environment variable MOSB to the path of the mosb binary")
-
-
-class DimacsCase(unittest.TestCase):
-    def setUp(self):
-        self._tmp = tempfile.TemporaryDirectory(prefix="mosb-dimacs-")
-        self.dir = self._tmp.name
-
-    def tearDown(self):
-        self._tmp.cleanup()
-
-    def path(self, name):
-        return os.path.join(self.dir, name)
-
-    def write(self, name, text):
-        with open(self.path(name), "w") as f:
-            f.write(text)
-        return self.path(name)
-
+class DimacsCase(CliTest):
     def read(self, name):
-        with open(self.path(name)) as f:
-            return f.read()
-
-    def mosb(self, *args):
-        r = Result(subprocess.run([MOSB, *args], cwd=self.dir, capture_output=True, text=True,
-                                  errors="replace", timeout=60))
-        self.assertGreaterEqual(r.code, 0, "killed by a signal: %r" % r)
-        for stream in (r.out, r.err):
-            self.assertNotIn("Sanitizer", stream, r)
-            self.assertNotIn("runtime error", stream, r)
-        return r
+        return read(self.path(name), "r")
 
     def ok(self, *args):
-        r = self.mosb(*args)
-        self.assertEqual(r.code, 0, r)
-        self.assertEqual(r.err, "", r)
+        r = super().ok(*args)
+        self.assertEqual(r.stderr, "", r)
         return r
 
     def fails(self, message, *args):
         r = self.mosb(*args)
-        self.assertEqual(r.code, 1, r)
-        self.assertEqual(r.out, "", r)
-        self.assertEqual(r.err.count("\n"), 1, r)  # one line
-        self.assertIn(message, r.err, r)
+        self.assert_one_line_error(r, message)
+        self.assertEqual(r.stdout, "", r)
         return r
 
 
@@ -115,7 +55,7 @@ class RealData(DimacsCase):
     def test_ex1_three_objective_files(self):
         gr = [os.path.join(DATA, "ex1-c%d.gr" % i) for i in (1, 2, 3)]
         r = self.ok("convert", "dimacs", "--gr", gr[0], "--gr", gr[1], "--gr", gr[2], "-o", "ex1.mosb")
-        self.assertIn("5 vertices, 14 arcs, 3 objectives", r.out)
+        self.assertIn("5 vertices, 14 arcs, 3 objectives", r.stdout)
         self.ok("verify", "ex1.mosb", "--level", "full")
 
     def test_ex1_extended_and_round_trip(self):
@@ -123,11 +63,11 @@ class RealData(DimacsCase):
         args = ["--gr", gr[0], "--gr", gr[1], "--objective", "distance", "--objective", "time",
                 "--derive", "hop,avg-outdegree", "--view", "ex1_3=distance,time,hop", "--name", "ex1"]
         r = self.ok("convert", "dimacs", *args, "-o", "a.mosb")
-        self.assertIn("5 vertices, 14 arcs, 4 objectives", r.out)
+        self.assertIn("5 vertices, 14 arcs, 4 objectives", r.stdout)
         r = self.ok("export", "dimacs", "a.mosb", "-o", "out")
         self.assertEqual(sorted(os.listdir(self.path("out"))),
                          ["ex1-avg_outdegree.gr", "ex1-distance.gr", "ex1-hop.gr", "ex1-time.gr"])
-        self.assertEqual(r.out.count("wrote "), 4)
+        self.assertEqual(r.stdout.count("wrote "), 4)
         back = ["--gr", "out/ex1-distance.gr", "--gr", "out/ex1-time.gr", "--gr", "out/ex1-avg_outdegree.gr",
                 "--gr", "out/ex1-hop.gr", "--objective", "distance", "--objective", "time",
                 "--objective", "avg_outdegree", "--objective", "hop"]
@@ -145,9 +85,9 @@ class ParallelArcsAndLoops(DimacsCase):
         # GRAPH lists 1->2 twice (one parallel copy) and 2->2 (one self-loop).
         self.write("g.gr", GRAPH)
         self.ok("convert", "dimacs", "--gr", "g.gr", "-o", "g.mosb")
-        report = json.loads(self.ok("inspect", "--json", "g.mosb").out)
+        report = json.loads(self.ok("inspect", "--json", "g.mosb").stdout)
         self.assertEqual((report["arcs"], report["self_loops"], report["parallel_arcs"]), (7, 1, 1))
-        text = self.ok("inspect", "g.mosb").out
+        text = self.ok("inspect", "g.mosb").stdout
         self.assertIn("self-loops  1", text)
         self.assertIn("parallel    1", text)
 
@@ -160,7 +100,7 @@ class Extended(DimacsCase):
 
     def test_columns_in_fixed_order_whatever_the_option_order(self):
         r = self.convert("--derive", "hop", "--derive", "avg-outdegree", "--elevation", "g.elev")
-        self.assertEqual(r.code, 0, r)
+        self.assertEqual(r.returncode, 0, r)
         names = [name for (kind, name) in sections(self.path("g.mosb")) if kind == 7]
         self.assertEqual(sorted(names), ["avg_outdegree", "c1", "elevation", "hop"])
         self.ok("export", "dimacs", "g.mosb", "-o", "x")
@@ -174,14 +114,14 @@ class Extended(DimacsCase):
 
     def test_round_half_up(self):
         r = self.convert("--derive", "avg-outdegree", "--avg-outdegree-mode", "round-half-up")
-        self.assertEqual(r.code, 0, r)
+        self.assertEqual(r.returncode, 0, r)
         self.ok("export", "dimacs", "g.mosb", "-o", "x")
         values = [line.split()[3] for line in self.read("x/g-avg_outdegree.gr").splitlines() if line[0] == "a"]
         self.assertEqual(values, ["3", "2", "3", "2", "2", "1", "2"])
 
     def test_views_and_view_export(self):
         r = self.convert("--derive", "hop", "--view", "two=hop,c1", "--view", "one=c1@ny100")
-        self.assertEqual(r.code, 0, r)
+        self.assertEqual(r.returncode, 0, r)
         m = metadata(self.path("g.mosb"))
         self.assertEqual(m["view.two.objectives"], "hop,c1")
         self.assertEqual(m["view.one.objectives"], "c1")
@@ -199,7 +139,7 @@ class Extended(DimacsCase):
         self.fails("convert dimacs: --view 'v': expected NAME=OBJ1,OBJ2,...[@QUERYSET]",
                    *self.convert_args("--view", "v"))
         r = self.mosb(*self.convert_args("--derive", "elevation"))
-        self.assertNotEqual(r.code, 0, r)
+        self.assertNotEqual(r.returncode, 0, r)
         self.ok("convert", "dimacs", "--gr", "g.gr", "-o", "g.mosb")
         self.fails("no view 'nope'", "export", "dimacs", "g.mosb", "-o", "o", "--view", "nope")
         self.fails("g.gr", "export", "dimacs", "g.gr", "-o", "o")
@@ -212,7 +152,7 @@ class Extended(DimacsCase):
         for out in ("1.mosb", "2.mosb"):
             self.write("g.elev", ELEVATION)
             r = self.convert("--elevation", "g.elev", "--derive", "hop", output=out)
-            self.assertEqual(r.code, 0, r)
+            self.assertEqual(r.returncode, 0, r)
         with open(self.path("1.mosb"), "rb") as a, open(self.path("2.mosb"), "rb") as b:
             self.assertEqual(a.read(), b.read())
 

@@ -16,9 +16,9 @@ import subprocess
 import tempfile
 import unittest
 
+from mosbtest import run, setUpModule  # noqa: F401
 from test_dimacs import sections
 
-MOSB = os.path.abspath(os.environ["MOSB"]) if os.environ.get("MOSB") else ""
 N, M = 264346, 733846
 
 
@@ -61,8 +61,6 @@ def crlf_with_comments(text):
 class DimacsAtScale(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
-        if not (MOSB and os.path.isfile(MOSB)):
-            raise RuntimeError("set the environment variable MOSB to the path of the mosb binary")
         cls.dir = tempfile.mkdtemp(prefix="mosb-ny-scale-")
         cls.gr_d, cls.gr_t, cls.co = ny_like_text(11)
         for name, text in (("d.gr", cls.gr_d), ("t.gr", cls.gr_t), ("ny.co", cls.co),
@@ -78,7 +76,7 @@ class DimacsAtScale(unittest.TestCase):
 
     @classmethod
     def run_mosb(cls, *args):
-        return subprocess.run([MOSB, *args], cwd=cls.dir, capture_output=True, text=True, timeout=600)
+        return run(*args, cwd=cls.dir, timeout=600)
 
     @classmethod
     def convert(cls, output, d, t, *extra):

@@ -6,52 +6,27 @@
 
 import os
 import re
-import shutil
 import struct
-import subprocess
-import tempfile
 import unittest
 
-MOSB = os.environ.get("MOSB", "")
-if MOSB:
-    MOSB = os.path.abspath(MOSB)
+from mosbtest import (DATA, METADATA_KIND, QUERIES_KIND, CliTest, entries, metadata,  # noqa: F401
+                      read, setUpModule)
 
-HEADER = struct.Struct("<8sIHHIIQQQQIIQQ40sQ")
-ENTRY = struct.Struct("<24sHBBIQQQQ")
-QUERIES_KIND = 10
-METADATA_KIND = 1
 GRID = ["generate", "grid", "--width", "5", "--height", "4", "--objectives", "2", "--seed", "7"]
 N = 5 * 4 + 2
-DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "shared", "data")
 WROTE = re.compile(r"^wrote (.+): query set (\S+), (\d+) queries, digest [0-9a-f]{32}$")
-
-
-def read_file(path):
-    with open(path, "rb") as f:
-        return f.read()
 
 
 def sections(data):
     """[(name, kind, checksum, payload bytes)] in table order."""
-    fields = HEADER.unpack_from(data, 0)
-    table_offset, count = fields[9], fields[10]
-    result = []
-    for i in range(count):
-        name, kind, _type, _enc, _width, _rows, offset, length, checksum = ENTRY.unpack_from(
-            data, table_offset + 64 * i)
-        result.append((name.rstrip(b"\0").decode(), kind, checksum, data[offset:offset + length]))
-    return result
+    return [(e["name"], e["kind"], e["checksum"], data[e["offset"]:e["offset"] + e["stored_length"]])
+            for e in entries(data)]
 
 
 def query_pairs(data, name):
     (payload,) = [p for n, k, _c, p in sections(data) if k == QUERIES_KIND and n == name]
     values = struct.unpack("<%dI" % (len(payload) // 4), payload)
     return list(zip(values[0::2], values[1::2]))
-
-
-def metadata(data):
-    (payload,) = [p for _n, k, _c, p in sections(data) if k == METADATA_KIND]
-    return dict(line.split("=", 1) for line in payload.decode().splitlines())
 
 
 MASK = (1 << 64) - 1
@@ -94,52 +69,13 @@ def expected_generated(seed, count, n, allow_same):
     return pairs
 
 
-def setUpModule():
-    if not (MOSB and os.path.isfile(MOSB) and os.access(MOSB, os.X_OK)):
-        raise RuntimeError("set MOSB to the path of the mosb binary (now %r)" % MOSB)
-
-
-class QueriesTest(unittest.TestCase):
-    def setUp(self):
-        self.dir = tempfile.mkdtemp(prefix="mosb-queries-")
-
-    def tearDown(self):
-        leftovers = [f for f in os.listdir(self.dir) if ".tmp-" in f]
-        shutil.rmtree(self.dir)
-        self.assertEqual(leftovers, [], "temporary files left behind")
-
-    def path(self, name):
-        return os.path.join(self.dir, name)
-
-    def mosb(self, *args):
-        c = subprocess.run([MOSB, *args], cwd=self.dir, capture_output=True, text=True,
-                           errors="replace", timeout=60)
-        self.assertGreaterEqual(c.returncode, 0, "killed by a signal: %s" % c.stderr)
-        for stream in (c.stdout, c.stderr):
-            self.assertNotIn("Sanitizer", stream)
-            self.assertNotIn("runtime error", stream)
-        return c
-
-    def ok(self, *args):
-        c = self.mosb(*args)
-        self.assertEqual(c.returncode, 0, c.stderr)
-        return c
-
+class QueriesTest(CliTest):
     def fails(self, *args):
-        c = self.mosb(*args)
-        self.assertEqual(c.returncode, 1, c)
-        self.assertEqual(len(c.stderr.splitlines()), 1, c.stderr)
-        return c.stderr.strip()
+        return self.assert_one_line_error(self.mosb(*args)).strip()
 
     def grid(self, name="g.mosb"):
         path = self.path(name)
         self.ok(*GRID, "-o", path)
-        return path
-
-    def text(self, name, content):
-        path = self.path(name)
-        with open(path, "wb") as f:
-            f.write(content.encode())
         return path
 
     def verify_full(self, path):
@@ -161,11 +97,11 @@ class QueriesTest(unittest.TestCase):
 
     def test_import_into_grid(self):
         g = self.grid()
-        before = read_file(g)
-        q = self.text("pairs.txt", "# two pairs\r\n1 2\r\n3 ,4\r\n\r\nc end\r\n5;21")
+        before = read(g)
+        q = self.write("pairs.txt", "# two pairs\r\n1 2\r\n3 ,4\r\n\r\nc end\r\n5;21")
         c = self.ok("queries", "import", g, q, "--in-place", "--set", "mine")
         self.assert_wrote(c, g, "mine", 3)
-        after = read_file(g)
+        after = read(g)
         self.assertEqual(query_pairs(after, "mine"), [(1, 2), (3, 4), (5, 21)])
         self.assertEqual([n for n, *_ in sections(after)], [n for n, *_ in sections(before)] + ["mine"])
         self.assert_others_unchanged(before, after, "mine")
@@ -180,41 +116,41 @@ class QueriesTest(unittest.TestCase):
 
     def test_id_base_and_out_of_range(self):
         g = self.grid()
-        q = self.text("q.txt", "1 2\n1 22\n")
-        before = read_file(g)
+        q = self.write("q.txt", "1 2\n1 22\n")
+        before = read(g)
         err = self.fails("queries", "import", g, q, "--in-place", "--set", "x")
         self.assertEqual(err, "mosb: %s:2:3: vertex id '22' outside 0..21" % q)
-        self.assertEqual(read_file(g), before)  # untouched
+        self.assertEqual(read(g), before)  # untouched
         self.ok("queries", "import", g, q, "--in-place", "--set", "x", "--id-base", "1")
-        self.assertEqual(query_pairs(read_file(g), "x"), [(0, 1), (0, 21)])
-        self.assertEqual(metadata(read_file(g))["queries.x.id_base"], "1")
+        self.assertEqual(query_pairs(read(g), "x"), [(0, 1), (0, 21)])
+        self.assertEqual(metadata(read(g))["queries.x.id_base"], "1")
         self.verify_full(g)
 
     def test_replace_keeps_position(self):
         g = self.grid()
-        q = self.text("q.txt", "0 1\n")
+        q = self.write("q.txt", "0 1\n")
         err = self.fails("queries", "import", g, q, "--in-place", "--set", "default")
         self.assertIn("query set 'default' exists", err)
         self.assertIn("--replace", err)
-        before = read_file(g)
+        before = read(g)
         self.ok("queries", "import", g, q, "--in-place", "--set", "default", "--replace")
-        after = read_file(g)
+        after = read(g)
         self.assertEqual([n for n, *_ in sections(after)], [n for n, *_ in sections(before)])
         self.assertEqual(query_pairs(after, "default"), [(0, 1)])
         self.assert_others_unchanged(before, after, "default")
         # Replacing an imported set by a generated one drops the import's keys.
         self.ok("queries", "generate", g, "--in-place", "--set", "default", "--seed", "1", "--replace")
-        meta = metadata(read_file(g))
+        meta = metadata(read(g))
         self.assertEqual(meta["queries.default.source"], "generate")
         self.assertNotIn("queries.default.input.name", meta)
         self.verify_full(g)
 
     def test_generate(self):
         g = self.grid()
-        before = read_file(g)
+        before = read(g)
         c = self.ok("queries", "generate", g, "--in-place", "--set", "rand", "--count", "200", "--seed", "9")
         self.assert_wrote(c, g, "rand", 200)
-        after = read_file(g)
+        after = read(g)
         pairs = query_pairs(after, "rand")
         self.assertEqual(pairs, expected_generated(9, 200, N, False))
         self.assertTrue(all(s != t for s, t in pairs))
@@ -226,7 +162,7 @@ class QueriesTest(unittest.TestCase):
         self.verify_full(g)
         self.ok("queries", "generate", g, "--in-place", "--set", "same", "--count", "300", "--seed", "9",
                 "--allow-same")
-        same = query_pairs(read_file(g), "same")
+        same = query_pairs(read(g), "same")
         self.assertEqual(same, expected_generated(9, 300, N, True))
         self.assertTrue(any(s == t for s, t in same))  # 300 draws over 22 vertices: some s = t
 
@@ -234,20 +170,20 @@ class QueriesTest(unittest.TestCase):
         a, b = self.grid("a.mosb"), self.grid("b.mosb")
         for path in (a, b):
             self.ok("queries", "generate", path, "--in-place", "--set", "r", "--count", "50", "--seed", "4")
-        self.assertEqual(read_file(a), read_file(b))
+        self.assertEqual(read(a), read(b))
         self.ok("queries", "generate", b, "--in-place", "--set", "r", "--count", "50", "--seed", "5",
                 "--replace")
-        self.assertNotEqual(read_file(a), read_file(b))
+        self.assertNotEqual(read(a), read(b))
 
     def test_graph_lines_and_match(self):
         g = self.grid()
-        q = self.text("x.inst", "/c/one_1.gr 1 2\n/c/two_2.gr 3 4\n/c/one_1.gr 5 6\n")
+        q = self.write("x.inst", "/c/one_1.gr 1 2\n/c/two_2.gr 3 4\n/c/one_1.gr 5 6\n")
         err = self.fails("queries", "import", g, q, "--in-place", "--set", "t")
         self.assertIn("%s:2:1: the file names more than one graph" % q, err)
         self.assertIn("--match", err)
         self.ok("queries", "import", g, q, "--in-place", "--set", "t", "--match", "one_1")
-        self.assertEqual(query_pairs(read_file(g), "t"), [(1, 2), (5, 6)])
-        self.assertEqual(metadata(read_file(g))["queries.t.match"], "one_1")
+        self.assertEqual(query_pairs(read(g), "t"), [(1, 2), (5, 6)])
+        self.assertEqual(metadata(read(g))["queries.t.match"], "one_1")
         self.verify_full(g)
 
     def test_real_inst_file(self):
@@ -259,7 +195,7 @@ class QueriesTest(unittest.TestCase):
         self.ok("generate", "grid", "--width", "100", "--height", "100", "--objectives", "1", "-o", g)
         c = self.ok("queries", "import", g, inst, "--in-place", "--set", "nm", "--match", "_79134.gr")
         self.assert_wrote(c, g, "nm", 40)
-        self.assertEqual(query_pairs(read_file(g), "nm")[0], (8326, 5528))
+        self.assertEqual(query_pairs(read(g), "nm")[0], (8326, 5528))
 
 
 if __name__ == "__main__":
