@@ -10,13 +10,12 @@ import os
 import resource
 import shutil
 import subprocess
-import tempfile
 import unittest
+
+from mosbtest import CliTest, setUpModule  # noqa: F401
 
 # AddressSanitizer reserves terabytes of shadow address space and adds to the peak RSS.
 UNDER_ASAN = "address-space and memory limits do not apply under AddressSanitizer"
-
-MOSB = os.path.abspath(os.environ["MOSB"]) if os.environ.get("MOSB") else ""
 
 
 def physical_gib():
@@ -30,23 +29,9 @@ def graph_text(arcs):
     return "\n".join(lines) + "\n"
 
 
-class InputTest(unittest.TestCase):
-    def setUp(self):
-        self.dir = tempfile.mkdtemp(prefix="mosb-input-")
-
-    def tearDown(self):
-        shutil.rmtree(self.dir)
-
-    def path(self, name):
-        return os.path.join(self.dir, name)
-
-    def write(self, name, data):
-        with open(self.path(name), "wb") as f:
-            f.write(data.encode() if isinstance(data, str) else data)
-        return self.path(name)
-
+class InputTest(CliTest):
     def convert(self, *gr, limit_bytes=None):
-        args = [MOSB, "convert", "dimacs"]
+        args = ["convert", "dimacs"]
         for g in gr:
             args += ["--gr", g]
         args += ["-o", self.path("out.mosb")]
@@ -54,11 +39,10 @@ class InputTest(unittest.TestCase):
         if limit_bytes:
             def preexec():
                 resource.setrlimit(resource.RLIMIT_AS, (limit_bytes, limit_bytes))
-        return subprocess.run(args, capture_output=True, text=True, preexec_fn=preexec)
+        return self.mosb(*args, preexec_fn=preexec)
 
     def assert_error(self, r, message):
-        self.assertEqual(r.returncode, 1, r.stderr)
-        self.assertEqual(r.stderr, "mosb: " + message + "\n")
+        super().assert_error(r, message)
         self.assertFalse(os.path.exists(self.path("out.mosb")))
 
     def test_declared_vertex_count_beyond_physical_memory(self):
@@ -135,6 +119,4 @@ class InputTest(unittest.TestCase):
 
 
 if __name__ == "__main__":
-    if not MOSB:
-        raise SystemExit("set MOSB to the mosb executable")
     unittest.main()

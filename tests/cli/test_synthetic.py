@@ -12,13 +12,11 @@ import json
 import os
 import pty
 import re
-import shutil
 import subprocess
-import tempfile
 import unittest
 
-MOSB = os.path.abspath(os.environ["MOSB"]) if os.environ.get("MOSB") else ""
-DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "shared", "data")
+from mosbtest import DATA, MOSB, CliTest, read, setUpModule  # noqa: F401
+
 NETMAKER_FILE = os.path.join(DATA, "netmaker", "netMaker_3o_10000n_1amin_10amax_20i_1s_scorr_79134.gr")
 
 MASK = (1 << 64) - 1
@@ -36,38 +34,12 @@ def instance_seed(suite_seed, key):
     return mix((suite_seed + GOLDEN * key) & MASK)
 
 
-class SyntheticTest(unittest.TestCase):
-    def setUp(self):
-        if not MOSB:
-            self.skipTest("set MOSB to the mosb binary")
-        self.dir = tempfile.mkdtemp(prefix="mosb-synthetic-")
-
-    def tearDown(self):
-        shutil.rmtree(self.dir)
-
-    def path(self, *names):
-        return os.path.join(self.dir, *names)
-
-    def mosb(self, *args, stderr=subprocess.PIPE):
-        r = subprocess.run([MOSB, *args], cwd=self.dir, stdout=subprocess.PIPE, stderr=stderr,
-                           text=True, errors="replace", timeout=120)
-        self.assertGreaterEqual(r.returncode, 0, "killed by a signal: %r" % r)
-        for stream in (r.stdout, r.stderr or ""):
-            self.assertNotIn("Sanitizer", stream)
-            self.assertNotIn("runtime error", stream)
-        return r
-
-    def ok(self, *args):
-        r = self.mosb(*args)
-        self.assertEqual(r.returncode, 0, r)
-        return r
-
+class SyntheticTest(CliTest):
     def inspect(self, path):
         return json.loads(self.ok("inspect", "--json", path).stdout)
 
     def read(self, *names):
-        with open(self.path(*names), "rb") as f:
-            return f.read()
+        return read(self.path(*names))
 
     def manifest(self, directory):
         """The MANIFEST's entries (spec/MANIFEST.md) as [benchmark, file, size, digest] rows, after
