@@ -9,15 +9,15 @@ rewrites, and outputs that are an input.
 import os
 import re
 import resource
-import shutil
 import signal
 import stat
 import subprocess
-import tempfile
 import time
 import unittest
 
-MOSB = os.path.abspath(os.environ.get("MOSB", "mosb"))
+import mosbtest
+from mosbtest import MOSB, CliTest, read, setUpModule  # noqa: F401
+
 SMALL = ["generate", "grid", "--width", "5", "--height", "4", "--objectives", "2", "--seed", "7"]
 BIG = ["generate", "grid", "--width", "2000", "--height", "2000", "--seed", "1"]
 TEMPORARY = re.compile(r"^\.(.+)\.tmp-(\d+)-[A-Za-z0-9]{6}$")
@@ -32,31 +32,14 @@ def run(*args, umask=None, fsize=None, xfsz=signal.SIG_DFL, cwd=None):
             os.umask(umask)
         if fsize is not None:
             resource.setrlimit(resource.RLIMIT_FSIZE, (fsize, fsize))
-    return subprocess.run([MOSB, *args], capture_output=True, text=True, preexec_fn=setup, cwd=cwd)
+    return mosbtest.run(*args, preexec_fn=setup, cwd=cwd)
 
 
 def mode(path):
     return stat.S_IMODE(os.stat(path).st_mode)
 
 
-def read(path):
-    with open(path, "rb") as f:
-        return f.read()
-
-
-class Base(unittest.TestCase):
-    def setUp(self):
-        self.dir = tempfile.mkdtemp(prefix="mosb-atomic-")
-        self.addCleanup(shutil.rmtree, self.dir, True)
-
-    def path(self, name):
-        return os.path.join(self.dir, name)
-
-    def write(self, name, text):
-        with open(self.path(name), "w") as f:
-            f.write(text)
-        return self.path(name)
-
+class Base(CliTest):
     def temporaries(self, directory=None):
         return sorted(n for n in os.listdir(directory or self.dir) if ".tmp" in n)
 
@@ -80,6 +63,8 @@ class Base(unittest.TestCase):
 
 
 class Signals(Base):
+    leaves_temporaries = True  # a run killed with SIGKILL cannot remove its own
+
     def interrupt(self, signal_number):
         process = self.start_big_and_wait_for_temporary()
         process.send_signal(signal_number)
