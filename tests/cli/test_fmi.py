@@ -7,11 +7,9 @@
 import gzip
 import json
 import os
-import subprocess
-import tempfile
 import unittest
 
-MOSB = os.path.abspath(os.environ.get("MOSB", "mosb"))
+from mosbtest import CliTest, run, setUpModule  # noqa: F401
 
 # A one-way street 3 -> 5; ten costs per edge: c1 is 1 + 10 * (file position), the rest 0..9.
 NODES = "".join(f"{v} {10 + v} 48.0{v} 9.0{v} {v + 1}\n" for v in range(8))
@@ -20,24 +18,7 @@ TEN = "# ten costs\n\n8\n11\n" + NODES + "".join(
     f"{s} {t} {1 + 10 * k} " + " ".join(str(j) for j in range(1, 10)) + "\n" for k, (s, t) in enumerate(ARCS))
 
 
-def run(*args, cwd=None):
-    return subprocess.run([MOSB, *args], capture_output=True, text=True, cwd=cwd)
-
-
-class ConvertFmi(unittest.TestCase):
-    def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        self.dir = self.tmp.name
-        self.addCleanup(self.tmp.cleanup)
-
-    def path(self, name):
-        return os.path.join(self.dir, name)
-
-    def write(self, name, text):
-        with open(self.path(name), "w", newline="") as f:
-            f.write(text)
-        return self.path(name)
-
+class ConvertFmi(CliTest):
     def inspect(self, mosb_file):
         r = run("inspect", mosb_file, "--json")
         self.assertEqual(r.returncode, 0, r.stderr)

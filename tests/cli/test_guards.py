@@ -8,25 +8,16 @@ per-cell loops. The real maps come from shared/data/movingai (skipped visibly wh
 """
 
 import os
-import subprocess
-import sys
-import tempfile
 import unittest
 
 import numpy as np
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "..", "spec", "reference"))
-import mosb_reader  # noqa: E402
+import mosbtest
+from mosbtest import CliTest, mosb_reader, run, setUpModule  # noqa: F401
 
-MOSB = os.path.abspath(os.environ.get("MOSB", "mosb"))
-DATA = os.path.join(HERE, "..", "..", "..", "shared", "data", "movingai")
+DATA = os.path.join(mosbtest.DATA, "movingai")
 
 SMALL_MAP = "type octile\nheight 3\nwidth 4\nmap\n....\n.@..\n....\n"
-
-
-def run(*args, cwd=None):
-    return subprocess.run([MOSB, *args], capture_output=True, text=True, cwd=cwd)
 
 
 def read_map(path, swamp=True, water=False):
@@ -65,22 +56,7 @@ def expected_arcs(passable, exposure):
     return [np.concatenate(c) for c in zip(*out)]
 
 
-class GuardsCli(unittest.TestCase):
-    def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        self.dir = self.tmp.name
-
-    def tearDown(self):
-        self.tmp.cleanup()
-
-    def path(self, name):
-        return os.path.join(self.dir, name)
-
-    def write(self, name, text):
-        with open(self.path(name), "w", newline="") as f:
-            f.write(text)
-        return self.path(name)
-
+class GuardsCli(CliTest):
     def check_instance(self, out, passable, exposure_file):
         inst = mosb_reader.open_instance(out)
         exposure = np.loadtxt(exposure_file, dtype=np.int64, ndmin=2)

@@ -9,37 +9,17 @@ come from shared/data/movingai (skipped visibly when absent).
 """
 
 import os
-import sys
-import tempfile
 import unittest
 
 import numpy as np
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-sys.path.insert(0, os.path.join(HERE, "..", "..", "spec", "reference"))
-import mosb_reader  # noqa: E402
-from test_guards import DATA, expected_arcs, read_map, run  # noqa: E402
+from mosbtest import CliTest, mosb_reader, run, setUpModule  # noqa: F401
+from test_guards import DATA, expected_arcs, read_map
 
 HAND_MADE = "type octile\nheight 4\nwidth 5\nmap\n..@.S\n.@...\n...W.\nT.G..\n"
 
 
-class MovingaiCli(unittest.TestCase):
-    def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        self.dir = self.tmp.name
-
-    def tearDown(self):
-        self.tmp.cleanup()
-
-    def path(self, name):
-        return os.path.join(self.dir, name)
-
-    def write(self, name, text):
-        with open(self.path(name), "w", newline="") as f:
-            f.write(text)
-        return self.path(name)
-
+class MovingaiCli(CliTest):
     def check_instance(self, out, passable):
         """The instance is the octile graph of `passable`: cells, arcs and lengths."""
         inst = mosb_reader.open_instance(out)

@@ -13,15 +13,10 @@ visibly when absent).
 import hashlib
 import json
 import os
-import sys
-import tempfile
 import unittest
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-sys.path.insert(0, os.path.join(HERE, "..", "..", "spec", "reference"))
-import mosb_reader  # noqa: E402
-from test_guards import DATA, run  # noqa: E402
+from mosbtest import CliTest, mosb_reader, run, setUpModule  # noqa: F401
+from test_guards import DATA
 
 QUERY_REFERENCE = 17
 MAP = "type octile\nheight 3\nwidth 3\nmap\n...\n...\n.@.\n"
@@ -33,33 +28,14 @@ ROWS = [(0, 0, 2, 2, "2.82842712"), (0, 0, 2, 0, "2"), (0, 0, 2, 1, "2.41421356"
 SCEN = "version 1\n" + "".join("0\tm.map\t3\t3\t%d\t%d\t%d\t%d\t%s\n" % r for r in ROWS)
 
 
-class ReferencesCli(unittest.TestCase):
+class ReferencesCli(CliTest):
     def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        self.dir = self.tmp.name
+        super().setUp()
         self.map = self.write("m.map", MAP)
         self.scen = self.write("m.scen", SCEN)
 
-    def tearDown(self):
-        self.tmp.cleanup()
-
-    def path(self, name):
-        return os.path.join(self.dir, name)
-
-    def write(self, name, text):
-        with open(self.path(name), "w", newline="") as f:
-            f.write(text)
-        return self.path(name)
-
-    def mosb(self, *args):
-        r = run(*args)
-        self.assertEqual(r.returncode, 0, r.stderr)
-        return r
-
     def refused(self, args, message):
-        r = run(*args)
-        self.assertEqual(r.returncode, 1, r.stderr)
-        self.assertEqual(r.stderr.strip(), "mosb: " + message)
+        self.assert_error(self.mosb(*args), message)
 
     def reference(self, instance, name="scen"):
         inst = mosb_reader.open_instance(instance)
@@ -67,7 +43,7 @@ class ReferencesCli(unittest.TestCase):
 
     def test_convert_movingai_keeps_optimal_unchanged(self):
         out = self.path("a.mosb")
-        self.mosb("convert", "movingai", "--map", self.map, "--scen", self.scen, "-o", out)
+        self.ok("convert", "movingai", "--map", self.map, "--scen", self.scen, "-o", out)
         values, inst = self.reference(out)
         self.assertEqual(values, [float(r[4]) for r in ROWS])
         self.assertEqual(inst.metadata["queries.scen.reference.objective"], "length")
@@ -75,16 +51,16 @@ class ReferencesCli(unittest.TestCase):
         with open(out, "rb") as f:
             data = f.read()
         self.assertEqual(int.from_bytes(data[14:16], "little"), 0)  # still version 1.0
-        self.mosb("verify", "--level", "full", out)
-        text = self.mosb("inspect", out).stdout
+        self.ok("verify", "--level", "full", out)
+        text = self.ok("inspect", out).stdout
         self.assertIn("scen                    4 queries, references for 'length' (movingai-optimal)",
                       text)
-        sets = json.loads(self.mosb("inspect", "--json", out).stdout)["query_sets"]
+        sets = json.loads(self.ok("inspect", "--json", out).stdout)["query_sets"]
         self.assertEqual(sets, [{"name": "scen", "queries": 4, "reference":
                                  {"objective": "length", "source": "movingai-optimal"}}])
         # Rerun: byte-identical.
         again = self.path("b.mosb")
-        self.mosb("convert", "movingai", "--map", self.map, "--scen", self.scen, "-o", again)
+        self.ok("convert", "movingai", "--map", self.map, "--scen", self.scen, "-o", again)
         with open(again, "rb") as f:
             self.assertEqual(hashlib.sha256(f.read()).digest(), hashlib.sha256(data).digest())
 
@@ -100,31 +76,31 @@ class ReferencesCli(unittest.TestCase):
 
     def test_queries_import_scen_matches_convert(self):
         bare, full = self.path("bare.mosb"), self.path("full.mosb")
-        self.mosb("convert", "movingai", "--map", self.map, "-o", bare)
-        self.mosb("convert", "movingai", "--map", self.map, "--scen", self.scen, "-o", full)
+        self.ok("convert", "movingai", "--map", self.map, "-o", bare)
+        self.ok("convert", "movingai", "--map", self.map, "--scen", self.scen, "-o", full)
         out = self.path("imported.mosb")
-        self.mosb("queries", "import", bare, self.scen, "--scen", "--set", "scen", "-o", out)
+        self.ok("queries", "import", bare, self.scen, "--scen", "--set", "scen", "-o", out)
         sections = lambda f: {(s["kind"], s["name"]): s["checksum"]  # noqa: E731
-                              for s in json.loads(self.mosb("inspect", "--json", f).stdout)["sections"]
+                              for s in json.loads(self.ok("inspect", "--json", f).stdout)["sections"]
                               if s["kind"] in ("queries", "query_reference")}
         self.assertEqual(sections(out), sections(full))
         self.assertEqual(len(sections(out)), 2)
         meta = mosb_reader.open_instance(out).metadata
         self.assertEqual(meta["queries.scen.format"], "movingai-scen")
         self.assertEqual(meta["queries.scen.reference.source"], "movingai-optimal")
-        self.mosb("verify", "--level", "full", out)
+        self.ok("verify", "--level", "full", out)
         # Replaced by plain pairs: the reference and its keys go.
         pairs = self.write("p.txt", "0 1\n")
-        self.mosb("queries", "import", out, pairs, "--set", "scen", "--replace", "--in-place")
+        self.ok("queries", "import", out, pairs, "--set", "scen", "--replace", "--in-place")
         inst = mosb_reader.open_instance(out)
         self.assertEqual([s for s in inst.sections if s.kind == QUERY_REFERENCE], [])
         self.assertNotIn("queries.scen.reference.objective", inst.metadata)
         self.assertNotIn("queries.scen.format", inst.metadata)
-        self.mosb("verify", "--level", "full", out)
+        self.ok("verify", "--level", "full", out)
 
     def test_queries_import_scen_errors(self):
         bare = self.path("bare.mosb")
-        self.mosb("convert", "movingai", "--map", self.map, "-o", bare)
+        self.ok("convert", "movingai", "--map", self.map, "-o", bare)
         blocked = self.write("b.scen", "version 1\n0\tm.map\t3\t3\t1\t2\t0\t0\t1\n")
         self.refused(("queries", "import", bare, blocked, "--scen", "--set", "s", "-o",
                       self.path("x.mosb")),
@@ -133,7 +109,7 @@ class ReferencesCli(unittest.TestCase):
                       "-o", self.path("x.mosb")),
                      "a scenario (--scen) gives cells, not ids: --id-base and --match do not apply")
         grid = self.path("grid.mosb")
-        self.mosb("generate", "grid", "--width", "3", "--height", "3", "-o", grid)
+        self.ok("generate", "grid", "--width", "3", "--height", "3", "-o", grid)
         r = run("queries", "import", grid, self.scen, "--scen", "--set", "s", "-o",
                 self.path("x.mosb"))
         self.assertEqual(r.returncode, 1)
@@ -143,14 +119,14 @@ class ReferencesCli(unittest.TestCase):
     def solutions(self, instance, table):
         t = self.write("front.csv", "query,length,exposure\n" + table)
         sol = self.path("f.sol")
-        self.mosb("solutions", "import", "--instance", instance, "--view", "GUARDS_2", "--queries",
+        self.ok("solutions", "import", "--instance", instance, "--view", "GUARDS_2", "--queries",
                   "scen", "--table", t, "-o", sol)
         return run("solutions", "verify", sol, "--instance", instance), sol
 
     def test_solutions_verify_applies_the_bracket(self):
         exposure = self.write("e.txt", "0 1 2\n1 1 1\n0 0 5\n")
         inst = self.path("g.mosb")
-        self.mosb("convert", "guards", "--map", self.map, "--exposure", exposure, "--scen", self.scen,
+        self.ok("convert", "guards", "--map", self.map, "--exposure", exposure, "--scen", self.scen,
                   "-o", inst)
         self.assertEqual(self.reference(inst)[0], [float(r[4]) for r in ROWS])
         ok, _ = self.solutions(inst, "0,28,6\n0,30,1\n1,20,3\n2,24,2\n3,40,9\n")
@@ -178,14 +154,14 @@ class ReferencesCli(unittest.TestCase):
             with self.subTest(map=name):
                 m, s = os.path.join(DATA, name), os.path.join(DATA, name + ".scen")
                 out = self.path(name + ".mosb")
-                self.mosb("convert", "movingai", "--map", m, "--scen", s, "-o", out)
+                self.ok("convert", "movingai", "--map", m, "--scen", s, "-o", out)
                 values, _ = self.reference(out)
                 with open(s) as f:
                     optimal = [float(line.split("\t")[8]) for line in f.read().splitlines()[1:]
                                if line.strip()]
                 self.assertEqual(len(values), rows)
                 self.assertEqual(values, optimal)
-                self.mosb("verify", "--level", "full", out)
+                self.ok("verify", "--level", "full", out)
 
 
 if __name__ == "__main__":
