@@ -12,26 +12,15 @@ import itertools
 import json
 import os
 import random
-import subprocess
-import sys
-import tempfile
 import unittest
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "..", "spec", "reference"))
-import mosb_reader  # noqa: E402
+from mosbtest import DATA, CliTest, mosb_reader, run, setUpModule  # noqa: F401
 
-MOSB = os.path.abspath(os.environ.get("MOSB", "mosb"))
 EXAMPLES = os.path.abspath(os.environ.get("EXAMPLES", "examples"))
-DATA = os.path.join(HERE, "..", "..", "..", "shared", "data")
 
 
-def solver(name):
-    return os.path.join(EXAMPLES, name)
-
-
-def run(program, *args):
-    return subprocess.run([program, *args], capture_output=True, text=True, timeout=600)
+def run_solver(name, *args):
+    return run(*args, program=os.path.join(EXAMPLES, name), timeout=600)
 
 
 def random_gr(rng, n, d):
@@ -78,30 +67,11 @@ def read_fronts(directory, count):
     return fronts
 
 
-class Base(unittest.TestCase):
-    def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-
-    def tearDown(self):
-        self.tmp.cleanup()
-
-    def path(self, name):
-        return os.path.join(self.tmp.name, name)
-
-    def write(self, name, text):
-        with open(self.path(name), "w") as f:
-            f.write(text)
-        return self.path(name)
-
-    def mosb(self, *args):
-        r = run(MOSB, *args)
-        self.assertEqual(r.returncode, 0, r.stderr)
-        return r
-
+class Base(CliTest):
     def solve(self, name, instance, *args, fronts=None):
         """Runs a solver; returns (output rows, fronts) and checks the output line format."""
-        fronts_dir = self.path("fronts-%s-%d" % (name, len(os.listdir(self.tmp.name))))
-        r = run(solver(name), instance, *args, "--fronts", fronts_dir)
+        fronts_dir = self.path("fronts-%s-%d" % (name, len(os.listdir(self.dir))))
+        r = run_solver(name, instance, *args, "--fronts", fronts_dir)
         self.assertEqual(r.returncode, 0, r.stderr)
         rows = [line.split() for line in r.stdout.splitlines()]
         for row in rows:
@@ -123,7 +93,7 @@ class RandomGraphs(Base):
         gr = self.write("g%d.gr" % seed, text)
         inst = self.path("g%d.mosb" % seed)
         views = ["--view", "P13=c1,c3"] if d == 3 else []
-        self.mosb("convert", "dimacs", "--gr", gr, *views, "-o", inst)
+        self.ok("convert", "dimacs", "--gr", gr, *views, "-o", inst)
         pairs = [(s, t) for s in range(n) for t in range(n)]
         query_args = [x for s, t in pairs for x in ("--query", str(s), str(t))]
         expected = [exact_front(rows, n, s, t, range(d)) for s, t in pairs]
@@ -160,8 +130,8 @@ class RandomGraphs(Base):
         rng = random.Random(7)
         rows, text = random_gr(rng, 7, 2)
         inst = self.path("q.mosb")
-        self.mosb("convert", "dimacs", "--gr", self.write("q.gr", text), "-o", inst)
-        self.mosb("queries", "generate", inst, "--in-place", "--set", "some", "--count", "6", "--seed", "3")
+        self.ok("convert", "dimacs", "--gr", self.write("q.gr", text), "-o", inst)
+        self.ok("queries", "generate", inst, "--in-place", "--set", "some", "--count", "6", "--seed", "3")
         stored = [tuple(int(x) for x in q) for q in mosb_reader.open_instance(inst).queries()["some"]]
         self.assertEqual(len(stored), 6)
         for name in ("boa_star", "namoa"):
@@ -171,7 +141,7 @@ class RandomGraphs(Base):
             # Same input, same front files, byte for byte.
             a, b = self.path("a-" + name), self.path("b-" + name)
             for d in (a, b):
-                self.assertEqual(run(solver(name), inst, "--fronts", d).returncode, 0)
+                self.assertEqual(run_solver(name, inst, "--fronts", d).returncode, 0)
             for i in range(6):
                 with open(os.path.join(a, "%d.txt" % i), "rb") as fa, open(os.path.join(b, "%d.txt" % i), "rb") as fb:
                     self.assertEqual(fa.read(), fb.read())
@@ -184,15 +154,15 @@ class ImportedAsSolutionFiles(Base):
     def grid_with_queries(self, width, height, seed, count, query_seed):
         """A generated grid with a query set `q` of `count` queries."""
         inst = self.path("g.mosb")
-        self.mosb("generate", "grid", "--width", str(width), "--height", str(height), "--seed",
+        self.ok("generate", "grid", "--width", str(width), "--height", str(height), "--seed",
                   str(seed), "-o", inst)
-        self.mosb("queries", "generate", inst, "--in-place", "--set", "q", "--count", str(count),
+        self.ok("queries", "generate", inst, "--in-place", "--set", "q", "--count", str(count),
                   "--seed", str(query_seed))
         return inst
 
     def run_namoa(self, inst):
         fronts = self.path("fronts")
-        r = run(solver("namoa"), inst, "--view", "Grid_3", "--queries", "q", "--fronts", fronts)
+        r = run_solver("namoa", inst, "--view", "Grid_3", "--queries", "q", "--fronts", fronts)
         self.assertEqual(r.returncode, 0, r.stderr)
         return fronts, self.write("namoa.log", r.stdout), r.stdout.splitlines()
 
@@ -200,10 +170,10 @@ class ImportedAsSolutionFiles(Base):
         inst = self.grid_with_queries(9, 8, 5, 4, 2)
         fronts, log, lines = self.run_namoa(inst)
         out = self.path("namoa.sol.mosb")
-        self.mosb("solutions", "import", "--instance", inst, "--view", "Grid_3", "--queries", "q",
+        self.ok("solutions", "import", "--instance", inst, "--view", "Grid_3", "--queries", "q",
                   "--dir", fronts, "--example-log", log, "--solver", "namoa", "-o", out)
-        self.mosb("solutions", "verify", "--instance", inst, out)
-        summary = json.loads(self.mosb("solutions", "inspect", "--json", out).stdout)
+        self.ok("solutions", "verify", "--instance", inst, out)
+        summary = json.loads(self.ok("solutions", "inspect", "--json", out).stdout)
         rows = [line.split() for line in lines]
         self.assertEqual(summary["statuses"]["solved"], 4)
         self.assertEqual(summary["vectors"], sum(int(r[2]) for r in rows))
@@ -211,12 +181,12 @@ class ImportedAsSolutionFiles(Base):
         self.assertEqual(stats["expanded"]["queries"], 4)
         self.assertEqual(stats["expanded"]["total"], sum(int(r[4]) for r in rows))
         self.assertAlmostEqual(stats["runtime_seconds"]["max"], max(float(r[3]) for r in rows))
-        self.mosb("eval", "--reference", out, "--solutions", out, "--eps", "0")
+        self.ok("eval", "--reference", out, "--solutions", out, "--eps", "0")
         # Without the log: the same fronts, no statistics.
         plain = self.path("plain.sol.mosb")
-        self.mosb("solutions", "import", "--instance", inst, "--view", "Grid_3", "--queries", "q",
+        self.ok("solutions", "import", "--instance", inst, "--view", "Grid_3", "--queries", "q",
                   "--dir", fronts, "-o", plain)
-        self.assertEqual(json.loads(self.mosb("solutions", "inspect", "--json", plain).stdout)
+        self.assertEqual(json.loads(self.ok("solutions", "inspect", "--json", plain).stdout)
                          ["statistics"], {})
 
     def test_a_log_that_disagrees_with_the_fronts_is_refused_at_its_line(self):
@@ -227,11 +197,9 @@ class ImportedAsSolutionFiles(Base):
         def refused(text, fragment):
             bad = self.write("bad.log", text)
             out = self.path("bad.sol.mosb")
-            r = run(MOSB, "solutions", "import", "--instance", inst, "--view", "Grid_3",
-                    "--queries", "q", "--dir", fronts, "--example-log", bad, "-o", out)
-            self.assertEqual(r.returncode, 1, (text, r.stderr))
-            self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
-            self.assertIn(fragment, r.stderr)
+            r = self.mosb("solutions", "import", "--instance", inst, "--view", "Grid_3",
+                          "--queries", "q", "--dir", fronts, "--example-log", bad, "-o", out)
+            self.assert_one_line_error(r, fragment)
             self.assertFalse(os.path.exists(out))
 
         def joined(changed):
@@ -248,8 +216,8 @@ class ImportedAsSolutionFiles(Base):
         refused(joined(rows[:2]), "no line for query 2")
         refused(joined(rows) + joined(rows[:1]), "bad.log:4:1: a line for query 3")
         refused(joined(rows).replace(rows[0][3], "-1", 1), "bad.log:1:")
-        r = run(MOSB, "solutions", "import", "--instance", inst, "--view", "Grid_3", "--queries",
-                "q", "--table", log, "--example-log", log, "-o", self.path("x.sol.mosb"))
+        r = self.mosb("solutions", "import", "--instance", inst, "--view", "Grid_3", "--queries",
+                      "q", "--table", log, "--example-log", log, "-o", self.path("x.sol.mosb"))
         self.assertEqual(r.returncode, 2, r.stderr)  # --example-log goes with --dir
 
 
@@ -257,7 +225,7 @@ class Errors(Base):
     def test_bad_input_and_usage(self):
         rows, text = random_gr(random.Random(1), 5, 3)
         inst = self.path("e.mosb")
-        self.mosb("convert", "dimacs", "--gr", self.write("e.gr", text), "-o", inst)
+        self.ok("convert", "dimacs", "--gr", self.write("e.gr", text), "-o", inst)
         garbage = self.write("garbage.mosb", "not a mosb file at all\n" * 10)
         for name in ("boa_star", "namoa"):
             for args, code, needle in (
@@ -273,12 +241,12 @@ class Errors(Base):
                     ([inst, "--query", "0", "x"], 2, "'x'"),
                     ([inst, "--queries", "a", "--query", "0", "1"], 2, "exclude")):
                 with self.subTest(solver=name, args=args):
-                    r = run(solver(name), *args)
+                    r = run_solver(name, *args)
                     self.assertEqual(r.returncode, code, r.stderr)
                     self.assertIn(needle, r.stderr.splitlines()[0])
                     self.assertEqual(r.stdout, "")
         # boa_star needs exactly two objectives; this file has three.
-        r = run(solver("boa_star"), inst, "--query", "0", "1")
+        r = run_solver("boa_star", inst, "--query", "0", "1")
         self.assertEqual(r.returncode, 2)
         self.assertIn("--objectives", r.stderr)
 
@@ -296,8 +264,8 @@ class RealData(Base):
         if not os.path.isfile(gr):
             self.skipTest("%s is absent: NetMaker agreement test skipped" % gr)
         inst = self.path("nm.mosb")
-        self.mosb("convert", "netmaker", gr, "-o", inst)
-        self.mosb("queries", "import", inst, os.path.join(DATA, "netmaker", "netMaker_4d.inst"), "--in-place",
+        self.ok("convert", "netmaker", gr, "-o", inst)
+        self.ok("queries", "import", inst, os.path.join(DATA, "netmaker", "netMaker_4d.inst"), "--in-place",
                   "--set", "nm", "--match", "_79134.gr")
         # Every published query, on the first two objectives of the file's only view (NetMaker_3).
         rows = self.agree(inst, ["--objectives", "c1,c2", "--queries", "nm"])
@@ -317,7 +285,7 @@ class RealData(Base):
         for y, radius in ((h // 4, " 25"), (h // 2, ""), (3 * h // 4, " 25")):
             guards.append("%d %d%s" % (grid[y].index("."), y, radius))
         inst = self.path("arena2.mosb")
-        self.mosb("convert", "guards", "--map", m, "--guards", self.write("guards.txt", "\n".join(guards) + "\n"),
+        self.ok("convert", "guards", "--map", m, "--guards", self.write("guards.txt", "\n".join(guards) + "\n"),
                   "--scen", m + ".scen", "-o", inst)
         queries = [tuple(int(x) for x in q) for q in mosb_reader.open_instance(inst).queries()["scen"]]
         self.assertEqual(len(queries), 929)

@@ -11,21 +11,15 @@ import json
 import os
 import re
 import shlex
-import subprocess
-import tempfile
 import unittest
 import xml.etree.ElementTree as ET
 
-MOSB = os.path.abspath(os.environ.get("MOSB", "mosb"))
-DATA = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "shared", "data"))
+from mosbtest import DATA, CliTest, header, read, run, setUpModule  # noqa: F401
+
 POINT_ROBOT = os.path.join(DATA, "roadmap-point-robot", "exp_4_obs")
 GRAPHML = os.path.join(DATA, "roadmap-graphml", "roadmap.xml")
 README = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "README.md")
 NS = "{http://graphml.graphdrawing.org/xmlns}"
-
-
-def run(*args, cwd=None):
-    return subprocess.run([MOSB, *args], capture_output=True, text=True, cwd=cwd)
 
 
 def inspect(path):
@@ -36,27 +30,11 @@ def inspect(path):
 
 def header_counts(path):
     """n, m and d from the file header (spec/FORMAT.md §2), independent of `inspect`."""
-    import struct
-    with open(path, "rb") as f:
-        header = f.read(128)
-    objective_count, vertex_count, arc_count = struct.unpack_from("<IQQ", header, 60)
-    return vertex_count, arc_count, objective_count
+    h = header(read(path))
+    return h["vertex_count"], h["arc_count"], h["objective_count"]
 
 
-class HandMade(unittest.TestCase):
-    def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        self.dir = self.tmp.name
-
-    def tearDown(self):
-        self.tmp.cleanup()
-
-    def write(self, name, text):
-        path = os.path.join(self.dir, name)
-        with open(path, "w") as f:
-            f.write(text)
-        return path
-
+class HandMade(CliTest):
     def graphml(self, bc_link0="0.5"):
         # a=(0,0), b=(3,4), c=(3,0); undirected a-b (length 5) and b-c (length 4), 2 links.
         return self.write("r.graphml", f"""<?xml version="1.0"?>
@@ -76,7 +54,7 @@ class HandMade(unittest.TestCase):
 
     def test_graphml_modes(self):
         src = self.graphml()
-        out = os.path.join(self.dir, "both.mosb")
+        out = self.path("both.mosb")
         result = run("convert", "roadmap", "--graphml", src, "--clearance", "both", "-o", out)
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertEqual(header_counts(out), (3, 4, 4))
@@ -86,7 +64,7 @@ class HandMade(unittest.TestCase):
         verify = run("verify", out, "--level", "full")
         self.assertEqual(verify.returncode, 0, verify.stdout + verify.stderr)
         for mode, d in (("aggregate", 2), ("per-link", 3), ("none", 1)):
-            path = os.path.join(self.dir, mode + ".mosb")
+            path = self.path(mode + ".mosb")
             result = run("convert", "roadmap", "--graphml", src, "--clearance", mode, "-o", path)
             self.assertEqual(result.returncode, 0, result.stderr)
             self.assertEqual(header_counts(path), (3, 4, d))
@@ -94,29 +72,29 @@ class HandMade(unittest.TestCase):
     def test_collision_refused(self):
         src = self.graphml("-0.01")
         result = run("convert", "roadmap", "--graphml", src, "--clearance", "per-link", "-o",
-                     os.path.join(self.dir, "x.mosb"))
+                     self.path("x.mosb"))
         self.assertEqual(result.returncode, 1)
         self.assertIn("edge 'e1' ('b' -> 'c'): clearance_0 = -0.01 <= 0: a collision", result.stderr)
         self.assertEqual(len(result.stderr.strip().splitlines()), 1)
-        self.assertFalse(os.path.exists(os.path.join(self.dir, "x.mosb")))
+        self.assertFalse(os.path.exists(self.path("x.mosb")))
 
     def test_deterministic_from_any_directory(self):
         src = self.graphml()
-        os.mkdir(os.path.join(self.dir, "sub"))
-        a, b = os.path.join(self.dir, "a.mosb"), os.path.join(self.dir, "sub", "b.mosb")
+        os.mkdir(self.path("sub"))
+        a, b = self.path("a.mosb"), self.path("sub", "b.mosb")
         self.assertEqual(run("convert", "roadmap", "--graphml", src, "-o", a).returncode, 0)
         self.assertEqual(run("convert", "roadmap", "--graphml", "../r.graphml", "-o", "b.mosb",
-                             cwd=os.path.join(self.dir, "sub")).returncode, 0)
+                             cwd=self.path("sub")).returncode, 0)
         with open(a, "rb") as fa, open(b, "rb") as fb:
             self.assertEqual(fa.read(), fb.read())
 
     def test_gr_vertices_from_ids(self):
         gr = self.write("c1.gr", "p sp 2 2\na 0 1 0.5\na 1 2 1.25\n")
-        result = run("convert", "roadmap", "--gr", gr, "-o", os.path.join(self.dir, "x.mosb"))
+        result = run("convert", "roadmap", "--gr", gr, "-o", self.path("x.mosb"))
         self.assertEqual(result.returncode, 1)
         self.assertIn("c1.gr:3:5: the largest vertex id, 2, is outside the 2 vertices declared on line 1", result.stderr)
         self.assertIn("--vertices-from-ids", result.stderr)
-        out = os.path.join(self.dir, "y.mosb")
+        out = self.path("y.mosb")
         result = run("convert", "roadmap", "--gr", gr, "--vertices-from-ids", "--objective", "len:m", "-o", out)
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertIn("warning: vertex_count: declared 2, ids reach 2", result.stderr)
@@ -127,7 +105,7 @@ class HandMade(unittest.TestCase):
         # One id of 4e9 in a 24-byte file would size the graph to 4e9 vertices (it died of
         # std::bad_alloc): refused at the id, before anything that large is allocated.
         gr = self.write("huge.gr", "p sp 2 1\na 0 4000000000 1.5\n")
-        out = os.path.join(self.dir, "x.mosb")
+        out = self.path("x.mosb")
         result = run("convert", "roadmap", "--gr", gr, "--vertices-from-ids", "-o", out)
         self.assertEqual(result.returncode, 1, result.stderr)
         self.assertEqual(result.stderr.count("\n"), 1, result.stderr)
@@ -149,7 +127,7 @@ class HandMade(unittest.TestCase):
     def test_gr_objective_names_and_units(self):
         a = self.write("a.gr", "p sp 3 2\na 0 1 0.5\na 1 2 1.25\n")
         b = self.write("b.gr", "p sp 3 2\na 0 1 2\na 1 2 3\n")
-        out = os.path.join(self.dir, "n.mosb")
+        out = self.path("n.mosb")
         result = run("convert", "roadmap", "--gr", a, "--gr", b, "--objective", "length:m", "--objective", "risk",
                      "-o", out)
         self.assertEqual(result.returncode, 0, result.stderr)
@@ -175,7 +153,7 @@ class HandMade(unittest.TestCase):
   </graph>
 </graphml>
 """)
-        out = os.path.join(self.dir, "p.mosb")
+        out = self.path("p.mosb")
         result = run("convert", "roadmap", "--graphml", src, "-o", out)
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertIn("mosb: warning: clearance: no edge key 'clearance' or 'clearance_0'.. in plain.graphml",
@@ -190,20 +168,14 @@ class HandMade(unittest.TestCase):
 
 
 @unittest.skipUnless(os.path.isdir(POINT_ROBOT) and os.path.isfile(GRAPHML), f"shared data absent: {DATA}")
-class RealFixtures(unittest.TestCase):
-    def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-
-    def tearDown(self):
-        self.tmp.cleanup()
-
+class RealFixtures(CliTest):
     def test_point_robot(self):
         files = [os.path.join(POINT_ROBOT, f"file_{i}.gr") for i in range(6)]
         args = []
         for f in files:
             args += ["--gr", f]
         args += ["--vertices", os.path.join(POINT_ROBOT, "vertex_positions.txt")]
-        out = os.path.join(self.tmp.name, "p.mosb")
+        out = self.path("p.mosb")
         refused = run("convert", "roadmap", *args, "-o", out)
         self.assertEqual(refused.returncode, 1)
         self.assertEqual(refused.stderr.strip(), "mosb: " + files[0] + ":146501:8: the largest vertex id, 5002, is "
@@ -236,13 +208,13 @@ class RealFixtures(unittest.TestCase):
             directed = edge.get("directed", "true" if directed_default else "false") == "true"
             expected_arcs += 1 if directed or edge.get("source") == edge.get("target") else 2
         nodes = len(graph.findall(NS + "node"))
-        out = os.path.join(self.tmp.name, "g.mosb")
+        out = self.path("g.mosb")
         result = run("convert", "roadmap", "--graphml", GRAPHML, "--weight", "-o", out)
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertEqual(header_counts(out), (nodes, expected_arcs, 2))
         self.assertEqual((nodes, expected_arcs), (170, 698))
         # The sample has no clearance keys: the default writes length alone and says so.
-        out = os.path.join(self.tmp.name, "plain.mosb")
+        out = self.path("plain.mosb")
         result = run("convert", "roadmap", "--graphml", GRAPHML, "-o", out)
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertIn("mosb: warning: clearance: no edge key", result.stderr)
@@ -253,7 +225,7 @@ class RealFixtures(unittest.TestCase):
         with open(README) as f:
             commands = re.findall(r"`(mosb convert roadmap --graphml [^`]*)`", f.read())
         self.assertEqual(len(commands), 1, commands)
-        out = os.path.join(self.tmp.name, "readme.mosb")
+        out = self.path("readme.mosb")
         args = [GRAPHML if a == "roadmap.xml" else out if a == "F" else a for a in shlex.split(commands[0])[1:]]
         self.assertIn(GRAPHML, args)
         result = run(*args)
