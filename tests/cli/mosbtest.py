@@ -44,8 +44,19 @@ def run(*args, program=None, check=False, **options):
     options.setdefault("stderr", subprocess.PIPE)
     result = subprocess.run([program or MOSB, *args], text=True, errors="replace", **options)
     if check and result.returncode != 0:
-        raise AssertionError("mosb %s failed: %s" % (" ".join(args), result.stderr))
+        raise AssertionError("%s %s failed: %s" % (os.path.basename(program or MOSB), " ".join(args),
+                                                   result.stderr))
     return result
+
+
+# The test helper tests/cli/write_solution.cpp: solution files written by SolutionWriter.
+WRITE_SOLUTION = os.environ.get("WRITE_SOLUTION", "mosb_test_write_solution")
+
+
+def write_solution(path, instance, view, spec, *extra):
+    """Solution file `path` for `instance`'s `view`, from the helper's text `spec` on stdin."""
+    run(instance, view, path, *extra, program=WRITE_SOLUTION, input=spec, check=True)
+    return path
 
 
 def read(path, mode="rb"):
@@ -86,8 +97,10 @@ class CliTest(unittest.TestCase):
         return os.path.join(self.dir, *names)
 
     def write(self, name, data):
-        """Writes text (as is, no newline translation) or bytes to `name` in self.dir."""
+        """Writes text (as is, no newline translation) or bytes to `name` in self.dir, making
+        its directory if needed."""
         path = self.path(name)
+        os.makedirs(os.path.dirname(path), exist_ok=True)
         if isinstance(data, str):
             with open(path, "w", encoding="utf-8", newline="") as f:
                 f.write(data)

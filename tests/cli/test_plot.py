@@ -7,38 +7,30 @@ Each figure is rendered by a real browser (Debian's chromium, headless); the scr
 PNG of the requested size with a substantial share of non-white pixels. Skipped without chromium.
 """
 
+import functools
 import json
 import os
 import re
 import shutil
 import struct
 import subprocess
-import tempfile
 import unittest
 import zlib
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-MOSB = os.path.abspath(os.environ.get("MOSB", "mosb"))
-WRITE_SOLUTION = os.environ.get("WRITE_SOLUTION", "mosb_test_write_solution")
+import mosbtest
+from mosbtest import DATA, WRITE_SOLUTION, CliTest, read, setUpModule, write_solution  # noqa: F401
+
 CHROMIUM = shutil.which("chromium")
-ARENA = os.path.join(HERE, "..", "..", "..", "shared", "data", "movingai", "arena2.map")
+ARENA = os.path.join(DATA, "movingai", "arena2.map")
 
 
-def run(*args, check=True):
-    result = subprocess.run([MOSB, *args], capture_output=True, text=True)
-    if check and result.returncode != 0:
-        raise AssertionError("mosb %s failed: %s" % (" ".join(args), result.stderr))
-    return result
-
-
-def read(path, mode="r"):
-    with open(path, mode, **({} if "b" in mode else {"encoding": "utf-8"})) as f:
-        return f.read()
+# Every run here must succeed unless it says check=False.
+run = functools.partial(mosbtest.run, check=True)
 
 
 def read_png(path):
     """(width, height, rows of RGB(A) bytes) of an 8-bit RGB or RGBA non-interlaced PNG."""
-    data = read(path, "rb")
+    data = read(path)
     assert data[:8] == b"\x89PNG\r\n\x1a\n", "not a PNG"
     pos, idat, header = 8, b"", None
     while pos < len(data):
@@ -77,18 +69,8 @@ def read_png(path):
     return width, height, channels, rows
 
 
-class PlotCase(unittest.TestCase):
-    """A temporary directory and the chromium screenshot check."""
-
-    def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        self.dir = self.tmp.name
-
-    def tearDown(self):
-        self.tmp.cleanup()
-
-    def path(self, name):
-        return os.path.join(self.dir, name)
+class PlotCase(CliTest):
+    """The chromium screenshot check."""
 
     def screenshot(self, svg, width, height):
         """Renders svg in headless chromium; returns the share of non-white pixels."""
@@ -115,11 +97,11 @@ class PlotTest(PlotCase):
         run("generate", "grid", "--width", "20", "--height", "20", "--objectives", "3", "-o", g)
         svg = self.path("corr.svg")
         run("plot", "correlation", g, "-o", svg, "--title", "grid <3>")
-        text = read(svg)
+        text = read(svg, "r")
         self.assertIn("grid &lt;3&gt;", text)
         self.assertEqual(text.count(">1.00<"), 3)  # the diagonal
         run("plot", "correlation", g, "-o", self.path("again.svg"), "--title", "grid <3>")
-        self.assertEqual(read(self.path("again.svg")), text)
+        self.assertEqual(read(self.path("again.svg"), "r"), text)
         self.assertGreater(self.screenshot(svg, 640, 480), 0.05)
 
     def test_map_renders_blocked_cells_and_exposure(self):
@@ -132,7 +114,7 @@ class PlotTest(PlotCase):
         run("convert", "guards", "--map", ARENA, "--guards", guards, "-o", g)
         svg = self.path("map.svg")
         run("plot", "map", g, "-o", svg)
-        text = read(svg)
+        text = read(svg, "r")
         self.assertIn("blocked cell", text)
         self.assertIn("#252525", text)    # blocked cells drawn
         self.assertIn("exposure 1", text)  # the legend's highest exposure
@@ -167,13 +149,6 @@ class SolutionPlotTest(PlotCase):
         self.solutions = self.import_("sol.sol", {"0.txt": "10 40 5\n21 21 8\n40 10 9\n"},
                                       "--solver", "approx", "--epsilon", "0.1")
 
-    def write(self, name, text):
-        path = self.path(name)
-        os.makedirs(os.path.dirname(path), exist_ok=True)
-        with open(path, "w", encoding="utf-8") as f:
-            f.write(text)
-        return path
-
     def import_(self, name, fronts, *extra, instance=None):
         for file, text in fronts.items():
             self.write(os.path.join(name + ".d", file), text)
@@ -183,7 +158,7 @@ class SolutionPlotTest(PlotCase):
         return path
 
     def texts(self, svg):
-        return re.findall(r"<text[^>]*>([^<]*)</text>", read(svg))
+        return re.findall(r"<text[^>]*>([^<]*)</text>", read(svg, "r"))
 
     def assert_refused(self, args, code, *expected):
         svg = self.path("bad.svg")
@@ -203,10 +178,10 @@ class SolutionPlotTest(PlotCase):
         self.assertEqual(texts[0], "query 0 of s: approx vs reference")
         for label in ("c1", "c2", "reference (3)", "solver (3)", "ε-box, ε = 0.05"):
             self.assertIn(label, texts)
-        text = read(svg)
+        text = read(svg, "r")
         self.assertEqual(text.count('fill="#9ecae1"'), 3 + 1)  # a box per reference vector, legend
         run(*args, "-o", self.path("again.svg"))
-        self.assertEqual(read(self.path("again.svg")), text)
+        self.assertEqual(read(self.path("again.svg"), "r"), text)
         self.assertGreater(self.screenshot(svg, 720, 480), 0.01)
 
     def test_front_of_a_chosen_pair_without_reference(self):
@@ -259,7 +234,7 @@ class SolutionPlotTest(PlotCase):
         self.assertIn("front size", texts)
         # Sorted: rank 1 has size 1, rank 2 size 3; whole-number ticks only.
         self.assertNotIn("0.5", texts)
-        (points,) = re.findall(r'<polyline points="([^"]*)"', read(svg))
+        (points,) = re.findall(r'<polyline points="([^"]*)"', read(svg, "r"))
         ys = [float(p.split(",")[1]) for p in points.split()]
         self.assertEqual(len(ys), 2)
         self.assertGreater(ys[0], ys[1])  # SVG y grows downwards: the second front is larger
@@ -281,8 +256,7 @@ class MapPathsTest(PlotCase):
         if not os.path.exists(WRITE_SOLUTION):
             self.skipTest("WRITE_SOLUTION (mosb_test_write_solution) is not built")
         for name, text in (("tiny.map", self.MAP), ("guards.txt", "3 0 1\n"), ("q.txt", "0 10\n")):
-            with open(self.path(name), "w") as f:
-                f.write(text)
+            self.write(name, text)
         run("convert", "guards", "--map", self.path("tiny.map"), "--guards",
             self.path("guards.txt"), "-o", self.path("bare.mosb"))
         self.map = self.path("tiny.mosb")
@@ -290,17 +264,14 @@ class MapPathsTest(PlotCase):
             self.map)
 
     def solutions(self, name, spec):
-        path = self.path(name)
-        subprocess.run([WRITE_SOLUTION, self.map, "GUARDS_2", path, "0", "s"], input=spec,
-                       text=True, check=True)
-        return path
+        return write_solution(self.path(name), self.map, "GUARDS_2", spec, "0", "s")
 
     def test_paths_drawn_on_the_map(self):
         # (0,0) (1,0) (2,0) (3,1) (3,2), and (0,0) (0,1) (0,2) (1,2) (2,2) (3,2).
         sol = self.solutions("paths.sol", "0 solved 44,2@0/1/2/6/10 50,1@0/4/7/8/9/10\n")
         svg = self.path("map.svg")
         run("plot", "map", self.map, "--solutions", sol, "--query", "0", "-o", svg)
-        text = read(svg)
+        text = read(svg, "r")
         polylines = re.findall(r'<polyline points="([^"]*)"', text)
         self.assertEqual(len(polylines), 2, text)
         cells = [[tuple(float(c) for c in p.split(",")) for p in line.split()]

@@ -7,27 +7,24 @@ Instances come from `mosb generate grid`; solution files from `mosb solutions im
 table and JSON inputs written here.
 """
 
+import functools
 import json
 import os
-import subprocess
-import tempfile
 import unittest
 
-MOSB = os.path.abspath(os.environ.get("MOSB", "mosb"))
+import mosbtest
+from mosbtest import CliTest, setUpModule  # noqa: F401
+
 QUERIES = [(0, 8), (1, 5), (8, 0), (1, 5)]  # a repeated pair: endpoint matching takes them in order
 
 
-def run(*args, check=True):
-    result = subprocess.run([MOSB, *args], capture_output=True, text=True)
-    if check and result.returncode != 0:
-        raise AssertionError("mosb %s failed: %s" % (" ".join(args), result.stderr))
-    return result
+# Every run here must succeed unless it says check=False.
+run = functools.partial(mosbtest.run, check=True)
 
 
-class SolutionsTest(unittest.TestCase):
+class SolutionsTest(CliTest):
     def setUp(self):
-        self.tmp = tempfile.TemporaryDirectory()
-        self.dir = self.tmp.name
+        super().setUp()
         self.grid = self.path("grid.mosb")
         run("generate", "grid", "--width", "3", "--height", "3", "--objectives", "2", "-o",
             self.path("bare.mosb"))
@@ -40,19 +37,6 @@ class SolutionsTest(unittest.TestCase):
         run("queries", "import", self.path("bare7.mosb"), self.path("queries.txt"), "--set", "s",
             "-o", self.other)
 
-    def tearDown(self):
-        self.tmp.cleanup()
-
-    def path(self, name):
-        return os.path.join(self.dir, name)
-
-    def write(self, name, text):
-        path = self.path(name)
-        os.makedirs(os.path.dirname(path), exist_ok=True)
-        with open(path, "w") as f:
-            f.write(text)
-        return path
-
     def digest(self, instance):
         return json.loads(run("inspect", instance, "--json").stdout)["digest"]
 
@@ -64,9 +48,7 @@ class SolutionsTest(unittest.TestCase):
         return json.loads(run("solutions", "inspect", "--json", self.path(name)).stdout)
 
     def assert_refused(self, args, message, output="bad.sol"):
-        result = self.import_(*args, check=False, output=output)
-        self.assertEqual(result.returncode, 1, result.stderr)
-        self.assertEqual(result.stderr.strip(), "mosb: " + message)
+        self.assert_error(self.import_(*args, check=False, output=output), message)
         self.assertFalse(os.path.exists(self.path(output)), "a refused import wrote its output")
 
     # --- per-query directory --------------------------------------------------------------------

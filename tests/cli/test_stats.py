@@ -7,30 +7,22 @@ Every statistic is checked against an independent computation here: numpy over t
 the reference reader (spec/reference/mosb_reader.py), or over the raw NetMaker text file.
 """
 
+import functools
 import json
 import math
 import os
-import subprocess
-import sys
 import tempfile
 import unittest
 
 import numpy as np
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "..", "spec", "reference"))
-import mosb_reader  # noqa: E402
+import mosbtest
+from mosbtest import DATA, CliTest, mosb_reader, setUpModule  # noqa: F401
 
-MOSB = os.path.abspath(os.environ.get("MOSB", "mosb"))
-NETMAKER = os.path.join(HERE, "..", "..", "..", "shared", "data", "netmaker",
-                        "netMaker_3o_10000n_1amin_10amax_20i_1s_scorr_79134.gr")
+NETMAKER = os.path.join(DATA, "netmaker", "netMaker_3o_10000n_1amin_10amax_20i_1s_scorr_79134.gr")
 
-
-def run(*args, check=True):
-    result = subprocess.run([MOSB, *args], capture_output=True, text=True)
-    if check and result.returncode != 0:
-        raise AssertionError("mosb %s failed: %s" % (" ".join(args), result.stderr))
-    return result
+# Every run here must succeed unless it says check=False.
+run = functools.partial(mosbtest.run, check=True)
 
 
 def stats_json(*args):
@@ -106,11 +98,11 @@ def kosaraju(n, tails, heads):
     return len(sizes), max(sizes, default=0)
 
 
-class StatsTest(unittest.TestCase):
+class StatsTest(CliTest):
     maxDiff = None
 
     @classmethod
-    def setUpClass(cls):
+    def setUpClass(cls):  # one grid for every test
         cls.tmp = tempfile.TemporaryDirectory()
         cls.grid = os.path.join(cls.tmp.name, "grid.mosb")
         run("generate", "grid", "--width", "7", "--height", "5", "--objectives", "3", "--seed", "3",
@@ -181,7 +173,7 @@ class StatsTest(unittest.TestCase):
         cases = [
             (["stats", self.grid, "--by-kind"], "no arc data section 'kind'"),
             (["stats", self.grid, "--view", "Grid_9"], "no view 'Grid_9' (views: Grid_2, Grid_3)"),
-            (["stats", os.path.join(self.tmp.name, "missing.mosb")], "missing.mosb"),
+            (["stats", self.path("missing.mosb")], "missing.mosb"),
         ]
         for args, message in cases:
             result = run(*args, check=False)
@@ -194,7 +186,7 @@ class StatsTest(unittest.TestCase):
     def test_independent_uniform_grid_is_uncorrelated(self):
         # m ≈ 1.43M arcs; under independence sd(ρ) ≈ 1/√m ≈ 0.00084, so 0.01 is ≈ 12 sd: a failure
         # means real dependence (a generator or statistics bug), not bad luck.
-        path = os.path.join(self.tmp.name, "grid600.mosb")
+        path = self.path("grid600.mosb")
         run("generate", "grid", "--width", "600", "--height", "600", "--objectives", "3", "-o", path)
         s = stats_json(path)
         self.assertEqual(len(s["correlations"]), 3)
@@ -205,7 +197,7 @@ class StatsTest(unittest.TestCase):
 
     @unittest.skipUnless(os.path.exists(NETMAKER), "NetMaker data absent: " + NETMAKER)
     def test_netmaker_instance(self):
-        path = os.path.join(self.tmp.name, "netmaker.mosb")
+        path = self.path("netmaker.mosb")
         run("convert", "dimacs", "--gr", NETMAKER, "--id-base", "0", "-o", path)
         s = stats_json(path)
         rows = []
