@@ -9,52 +9,19 @@ packed files read by inspect and verify, and hostile packed files refused in one
 import glob
 import json
 import os
-import shutil
 import subprocess
-import sys
-import tempfile
 import unittest
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from test_cli import entries, entry, header, reseal, set_entry, set_header  # noqa: E402
-from test_fmi import TEN  # noqa: E402
-from test_movingai import HAND_MADE  # noqa: E402
+from mosbtest import (GOLDEN, CliTest, entries, entry, header, read, reseal,  # noqa: F401
+                      set_entry, set_header, setUpModule)
+from test_fmi import TEN
+from test_movingai import HAND_MADE
 
-MOSB = os.path.abspath(os.environ.get("MOSB", "mosb"))
-HERE = os.path.dirname(os.path.abspath(__file__))
-GOLDEN_VALID = sorted(glob.glob(os.path.join(HERE, "..", "..", "spec", "golden", "*", "valid",
-                                             "*.mosb")))
+GOLDEN_VALID = sorted(glob.glob(os.path.join(GOLDEN, "*", "valid", "*.mosb")))
 GR = "p sp 4 5\na 1 2 5\na 2 3 7\na 3 1 2\na 3 4 9\na 4 1 1\n"
 
 
-def run(*args):
-    return subprocess.run([MOSB, *args], capture_output=True, text=True)
-
-
-def read(path):
-    with open(path, "rb") as f:
-        return f.read()
-
-
-class PackTest(unittest.TestCase):
-    def setUp(self):
-        self.dir = tempfile.mkdtemp(prefix="mosb-pack-")
-        self.addCleanup(shutil.rmtree, self.dir, True)
-
-    def path(self, name):
-        return os.path.join(self.dir, name)
-
-    def ok(self, *args):
-        r = run(*args)
-        self.assertEqual(r.returncode, 0, r.stderr)
-        return r
-
-    def write(self, name, data):
-        mode = "wb" if isinstance(data, (bytes, bytearray)) else "w"
-        with open(self.path(name), mode) as f:
-            f.write(data)
-        return self.path(name)
-
+class PackTest(CliTest):
     def converter_outputs(self):
         """One instance from each generator and converter, from the inputs the CLI tests use."""
         out = {}
@@ -117,7 +84,7 @@ class PackTest(unittest.TestCase):
         self.assertEqual(read(source), original)
         for args in (["pack", source], ["pack", source, "-o", source],
                      ["pack", source, source, "-o", self.path("x.mosb")]):
-            r = run(*args)
+            r = self.mosb(*args)
             self.assertNotEqual(r.returncode, 0, args)
             self.assertEqual(len(r.stderr.splitlines()), 1, r.stderr)
         self.assertEqual(read(source), original)
@@ -125,7 +92,7 @@ class PackTest(unittest.TestCase):
     def test_zero_copy_reader_refuses_packed_file(self):
         source = self.converter_outputs()["grid"]
         self.ok("pack", source, "-o", self.path("p.mosb"))
-        r = run("stats", self.path("p.mosb"))
+        r = self.mosb("stats", self.path("p.mosb"))
         self.assertNotEqual(r.returncode, 0)
         self.assertIn("packed", r.stderr)
 
@@ -135,7 +102,7 @@ class PackTest(unittest.TestCase):
         set_header(data, optional_features=1)
         reseal(data)
         odd = self.write("odd.mosb", data)
-        r = run("pack", odd, "-o", self.path("p.mosb"))
+        r = self.mosb("pack", odd, "-o", self.path("p.mosb"))
         self.assertEqual(r.returncode, 1)
         self.assertIn("could not restore its exact bytes", r.stderr)
         self.assertFalse(os.path.exists(self.path("p.mosb")))
@@ -151,7 +118,7 @@ class PackTest(unittest.TestCase):
         bad = self.write("bad.mosb", data)
         for args in (["unpack", bad, "-o", self.path("out.mosb")], ["verify", bad],
                      ["pack", bad, "-o", self.path("out.mosb")]):
-            r = run(*args)
+            r = self.mosb(*args)
             self.assertEqual(r.returncode, 1, (args, r.stdout, r.stderr))
             text = r.stderr + r.stdout
             self.assertEqual(len(text.strip().splitlines()), 1, text)

@@ -15,12 +15,9 @@ import gzip
 import json
 import os
 import shutil
-import subprocess
-import tempfile
 import unittest
 
-MOSB = os.path.abspath(os.environ.get("MOSB", "mosb"))
-DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "shared", "data")
+from mosbtest import DATA, CliTest, read, run, setUpModule  # noqa: F401
 
 # FMI multi-cost layout (spec/families/ger.md): 4 nodes, 5 edges of 10 costs.
 FMI = """# Id : 0
@@ -64,44 +61,27 @@ def panda_graphml():
             "  </graph>\n</graphml>\n")
 
 
-def run(*args):
-    return subprocess.run([MOSB, *args], capture_output=True, text=True)
-
-
-def read(path):
-    with open(path, "rb") as f:
-        return f.read()
-
-
-class RawSuite(unittest.TestCase):
+class RawSuite(CliTest):
     def setUp(self):
-        self.dir = tempfile.mkdtemp(prefix="mosb-raw-")
-        self.addCleanup(shutil.rmtree, self.dir, True)
+        super().setUp()
         self.raw = self.path("raw")
         os.mkdir(self.raw)
 
-    def path(self, *names):
-        return os.path.join(self.dir, *names)
-
-    def write(self, name, text, compress=False):
+    def write_raw(self, name, text, compress=False):
+        """`name` in the raw directory, gzip-compressed with `compress`."""
         path = os.path.join(self.raw, name)
         data = text.encode()
         with open(path, "wb") as f:
             f.write(gzip.compress(data, mtime=0) if compress else data)
         return path
 
-    def ok(self, *args):
-        r = run(*args)
-        self.assertEqual(r.returncode, 0, r)
-        return r
-
     def hand_made(self):
-        self.write("GER_10.txt", FMI)
-        self.write("USA-road-d.FLA.gr.gz", FLA_D, compress=True)
-        self.write("USA-road-t.FLA.gr", FLA_T)  # plain twin of the .gz download name
-        self.write("USA-road-d.FLA.co.gz", FLA_CO, compress=True)
-        self.write("Panda-RRG_2.graphml", panda_graphml())
-        self.write("Panda-RRG_8.graphml", panda_graphml())
+        self.write_raw("GER_10.txt", FMI)
+        self.write_raw("USA-road-d.FLA.gr.gz", FLA_D, compress=True)
+        self.write_raw("USA-road-t.FLA.gr", FLA_T)  # plain twin of the .gz download name
+        self.write_raw("USA-road-d.FLA.co.gz", FLA_CO, compress=True)
+        self.write_raw("Panda-RRG_2.graphml", panda_graphml())
+        self.write_raw("Panda-RRG_8.graphml", panda_graphml())
 
     def build(self, out, *extra):
         return run("suite", "build", self.path(out), "--raw", self.raw, "--no-generated", *extra)
@@ -177,7 +157,7 @@ class RawSuite(unittest.TestCase):
         self.assertEqual(read(self.path("packed", "MANIFEST")), first)
 
     def test_json_report(self):
-        self.write("GER_10.txt", FMI)
+        self.write_raw("GER_10.txt", FMI)
         r = self.build("out", "--json")
         self.assertEqual(r.returncode, 0, r)
         report = json.loads(r.stdout)
@@ -191,7 +171,7 @@ class RawSuite(unittest.TestCase):
         self.hand_made()
         self.assertEqual(self.build("out").returncode, 0)
         before = read(self.path("out", "MANIFEST"))
-        self.write("GER_10.txt", FMI.replace("2 3 3 4 5", "2 3 x 4 5"))
+        self.write_raw("GER_10.txt", FMI.replace("2 3 3 4 5", "2 3 x 4 5"))
         r = self.build("out")
         self.assertEqual(r.returncode, 1, r)
         self.assertRegex(r.stderr, r"^mosb: \S*GER_10\.txt:12:5: ")
@@ -201,8 +181,8 @@ class RawSuite(unittest.TestCase):
     def test_queries_complete_the_views_meant_for_them(self):
         # convert dimacs keeps a view's intended set in source.param.view.NAME while the set is
         # missing (road.md §2); importing or generating that set adds view.NAME.queries.
-        self.write("g.gr", FLA_D)
-        for command in (("import", self.write("q.txt", "1 2\n3 4\n")),
+        self.write_raw("g.gr", FLA_D)
+        for command in (("import", self.write_raw("q.txt", "1 2\n3 4\n")),
                         ("generate", "--count", "3")):
             with self.subTest(command=command[0]):
                 out = self.path(command[0] + ".mosb")
@@ -233,16 +213,16 @@ class RawSuite(unittest.TestCase):
         # The head of the real NY distance file, its arc count made to match its 92 arcs; the same
         # arcs stand for the time file (as the .gz download name).
         text = read(head).decode().replace("p sp 264346 733846", "p sp 264346 92")
-        self.write("USA-road-d.NY.gr", text)
-        self.write("USA-road-t.NY.gr.gz", text, compress=True)
+        self.write_raw("USA-road-d.NY.gr", text)
+        self.write_raw("USA-road-t.NY.gr.gz", text, compress=True)
         n = 264346
-        self.write("USA-road-d.NY.co.gz", f"p aux sp co {n}\n" + "".join(
+        self.write_raw("USA-road-d.NY.co.gz", f"p aux sp co {n}\n" + "".join(
             f"v {i} {-73000000 - i} {40000000 + i % 977}\n" for i in range(1, n + 1)), True)
-        self.write("NY.elev", f"p aux sp elev {n}\n" + "".join(
+        self.write_raw("NY.elev", f"p aux sp elev {n}\n" + "".join(
             f"v {i} {i * 7919 % 1000}\n" for i in range(1, n + 1)))
         shutil.copy(queries, self.raw)
         shutil.copy(grid_map, self.raw)
-        self.write("random512-20-1.guards", "10 10 5\n100 200\n")
+        self.write_raw("random512-20-1.guards", "10 10 5\n100 200\n")
         r = self.build("out", "--no-pack")
         self.assertEqual(r.returncode, 0, r)
         self.assertIn("DIMACS-NY: built", r.stdout.splitlines())

@@ -13,21 +13,12 @@ import shutil
 import signal
 import stat
 import subprocess
-import tempfile
 import time
 import unittest
 
-MOSB = os.path.abspath(os.environ.get("MOSB", "mosb"))
+from mosbtest import MOSB, CliTest, read, run, setUpModule  # noqa: F401
+
 GR = "p sp 4 5\na 1 2 5\na 2 3 7\na 3 1 2\na 3 4 1\na 4 1 9\n"
-
-
-def run(*args):
-    return subprocess.run([MOSB, *args], capture_output=True, text=True)
-
-
-def read(path):
-    with open(path, "rb") as f:
-        return f.read()
 
 
 def grid(path, width, height=4, seed=1):
@@ -37,26 +28,7 @@ def grid(path, width, height=4, seed=1):
     return path
 
 
-class Base(unittest.TestCase):
-    def setUp(self):
-        self.dir = tempfile.mkdtemp(prefix="mosb-store-")
-        self.addCleanup(self.cleanup)
-
-    def cleanup(self):
-        for root, dirs, _ in os.walk(self.dir):
-            for d in dirs:
-                os.chmod(os.path.join(root, d), 0o755)
-        os.chmod(self.dir, 0o755)
-        shutil.rmtree(self.dir, True)
-
-    def path(self, *names):
-        return os.path.join(self.dir, *names)
-
-    def ok(self, *args):
-        r = run(*args)
-        self.assertEqual(r.returncode, 0, r)
-        return r
-
+class Base(CliTest):
     def records(self, manifest):
         lines = read(manifest).decode().splitlines()
         return json.loads(lines[0]), [json.loads(line) for line in lines[1:]]
