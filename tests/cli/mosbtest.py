@@ -76,7 +76,7 @@ class CliTest(unittest.TestCase):
     leaves_temporaries = False
 
     def setUp(self):
-        self.dir = tempfile.mkdtemp(prefix="mosb-%s-" % self.__class__.__module__)
+        self.dir = tempfile.mkdtemp(prefix="mosb-%s-" % type(self).__name__)
         self.addCleanup(self._remove_directory)
 
     def tearDown(self):

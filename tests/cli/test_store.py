@@ -16,7 +16,7 @@ import subprocess
 import time
 import unittest
 
-from mosbtest import MOSB, CliTest, read, run, setUpModule  # noqa: F401
+from mosbtest import MOSB, CliTest, entry, read, run, setUpModule  # noqa: F401
 
 GR = "p sp 4 5\na 1 2 5\na 2 3 7\na 3 1 2\na 3 4 1\na 4 1 9\n"
 
@@ -356,6 +356,127 @@ class KilledAdd(Base):
         code, report = self.verify_json("store", "verify", store)
         self.assertEqual(code, 0, report)
         self.assertEqual([n for n in os.listdir(store) if n.startswith(".")], [])
+
+
+class DamagedEntries(Base):
+    """`store instance` on an entry file damaged after it was added, plain and packed, text and
+    --json: exit 1 and one line 'mosb: <entry file>: ...', nothing on stdout, no cache copy made
+    from it, never a hang. A damaged copy in the cache is made again from the packed entry."""
+
+    ENTRIES = (("g5.mosb", "Grid-5x4/Grid_3", False), ("g7.mosb", "Grid-7x4/Grid_3", True))
+
+    def mixed_store(self):
+        """A plain g5.mosb and a packed g7.mosb; made anew on each call."""
+        store = self.path("store")
+        shutil.rmtree(store, True)
+        self.ok("store", "init", store)
+        self.ok("store", "add", store, grid(self.path("g5.mosb"), 5))
+        self.ok("store", "add", "--pack", store, grid(self.path("g7.mosb"), 7))
+        return store
+
+    def instance(self, store, name, *options):
+        return self.mosb("store", "instance", *options, store, name, timeout=20)
+
+    def check_refused(self, damage):
+        """damage(path, packed) spoils one entry file of a fresh store; every query refuses it."""
+        for file, name, packed in self.ENTRIES:
+            for options in ([], ["--json"]):
+                with self.subTest(file=file, packed=packed, options=options):
+                    store = self.mixed_store()
+                    target = os.path.join(store, file)
+                    damage(target, packed)
+                    r = self.instance(store, name, *options)
+                    line = self.assert_one_line_error(r, target)
+                    self.assertTrue(line.startswith("mosb: " + target + ": "), r)
+                    self.assertEqual(r.stdout, "", r)
+                    self.assertFalse(os.path.lexists(os.path.join(store, ".cache", file)),
+                                     "a cache copy was made from a damaged entry")
+
+    def test_truncated_entry(self):
+        def truncate(path, packed):
+            data = read(path)
+            with open(path, "wb") as f:
+                f.write(data[:len(data) // 2])
+        self.check_refused(truncate)
+
+    def test_entry_replaced_by_a_directory(self):
+        def directory(path, packed):
+            os.remove(path)
+            os.mkdir(path)
+        self.check_refused(directory)
+
+    def test_entry_replaced_by_a_fifo(self):
+        def fifo(path, packed):
+            os.remove(path)
+            os.mkfifo(path)
+        self.check_refused(fifo)
+
+    def test_flipped_byte_in_forward_offsets(self):
+        def flip(path, packed):
+            data = bytearray(read(path))
+            e = entry(data, "forward_offsets")
+            # In the packed entry the payload is a zstd frame (spec/FORMAT.md §6).
+            self.assertEqual(e["encoding"] != 0, packed, e)
+            data[e["offset"] + e["stored_length"] // 2] ^= 0x04
+            with open(path, "wb") as f:
+                f.write(data)
+        self.check_refused(flip)
+
+    def check_cache_remade(self, damage):
+        """damage(path) spoils the cache copy of the packed entry; instance makes it again."""
+        for options in ([], ["--json"]):
+            with self.subTest(options=options):
+                store = self.mixed_store()
+                self.assertEqual(self.instance(store, "Grid-7x4/Grid_3").returncode, 0)
+                cached = os.path.join(store, ".cache", "g7.mosb")
+                self.ok("unpack", os.path.join(store, "g7.mosb"), "-o", self.path("g7-back.mosb"))
+                self.assertEqual(read(cached), read(self.path("g7-back.mosb")))
+                damage(cached)
+                r = self.instance(store, "Grid-7x4/Grid_3", *options)
+                self.assertEqual(r.returncode, 0, r)
+                self.assertEqual(r.stderr, "", r)
+                if options:
+                    self.assertEqual(json.loads(r.stdout)["path"], cached)
+                else:
+                    self.assertEqual(r.stdout.splitlines()[0], cached, r)
+                self.assertEqual(read(cached), read(self.path("g7-back.mosb")))
+                self.ok("store", "verify", store)
+
+    def test_truncated_cache_copy_is_made_again(self):
+        def truncate(path):
+            data = read(path)
+            with open(path, "wb") as f:
+                f.write(data[:len(data) // 2])
+        self.check_cache_remade(truncate)
+
+    def test_empty_cache_copy_is_made_again(self):
+        self.check_cache_remade(lambda path: open(path, "wb").close())
+
+    def test_cache_copy_with_a_flipped_byte_in_forward_offsets_is_made_again(self):
+        def flip(path):
+            data = bytearray(read(path))
+            e = entry(data, "forward_offsets")
+            data[e["offset"] + e["stored_length"] // 2] ^= 0x04
+            with open(path, "wb") as f:
+                f.write(data)
+        self.check_cache_remade(flip)
+
+    def test_cache_copy_replaced_by_a_fifo_is_made_again(self):
+        def fifo(path):
+            os.remove(path)
+            os.mkfifo(path)
+        self.check_cache_remade(fifo)
+
+    # Fails today: the copy is made again beside the directory and the rename over it fails, exit 1
+    # with 'mosb: STORE/.cache/g7.mosb: cannot rename the finished file into place: Is a
+    # directory' (lib/src/store.cpp open_packed). Left for the owner of the store to decide:
+    # remove what is in the way, or read the packed entry into memory as for a read-only store.
+    @unittest.expectedFailure
+    def test_cache_copy_replaced_by_a_directory_is_made_again(self):
+        def directory(path):
+            os.remove(path)
+            os.mkdir(path)
+        self.check_cache_remade(directory)
 
 
 class Sources(Base):
