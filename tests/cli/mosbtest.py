@@ -93,6 +93,13 @@ class CliTest(unittest.TestCase):
         os.chmod(self.dir, 0o755)
         shutil.rmtree(self.dir, True)
 
+    def skip_unless_present(self, *paths):
+        """Skips the test, saying what is missing, unless every path exists: the real data files
+        of ../shared are not part of the repository."""
+        missing = [p for p in paths if not os.path.exists(p)]
+        if missing:
+            self.skipTest("absent (shared data not available): %s" % ", ".join(missing))
+
     def path(self, *names):
         return os.path.join(self.dir, *names)
 

@@ -49,8 +49,7 @@ class DimacsCase(CliTest):
 class RealData(DimacsCase):
     def setUp(self):
         super().setUp()
-        if not os.path.isdir(DATA):
-            self.skipTest("no shared data at %s" % DATA)
+        self.skip_unless_present(DATA)
 
     def test_ex1_three_objective_files(self):
         gr = [os.path.join(DATA, "ex1-c%d.gr" % i) for i in (1, 2, 3)]

@@ -261,8 +261,7 @@ class RealData(Base):
 
     def test_netmaker(self):
         gr = os.path.join(DATA, "netmaker", "netMaker_3o_10000n_1amin_10amax_20i_1s_scorr_79134.gr")
-        if not os.path.isfile(gr):
-            self.skipTest("%s is absent: NetMaker agreement test skipped" % gr)
+        self.skip_unless_present(gr)
         inst = self.path("nm.mosb")
         self.ok("convert", "netmaker", gr, "-o", inst)
         self.ok("queries", "import", inst, os.path.join(DATA, "netmaker", "netMaker_4d.inst"), "--in-place",
@@ -275,8 +274,7 @@ class RealData(Base):
 
     def test_arena2_guards(self):
         m = os.path.join(DATA, "movingai", "arena2.map")
-        if not os.path.isfile(m):
-            self.skipTest("%s is absent: Moving AI agreement test skipped" % m)
+        self.skip_unless_present(m)
         with open(m) as f:
             lines = f.read().split("\n")
         h = int(lines[1].split()[1])

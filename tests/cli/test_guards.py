@@ -143,8 +143,7 @@ class GuardsCli(CliTest):
         self.assertNotEqual(r.returncode, 0)
 
     def test_real_maps(self):
-        if not os.path.exists(os.path.join(DATA, "arena2.map")):
-            self.skipTest("shared/data/movingai is absent: real-map test skipped")
+        self.skip_unless_present(os.path.join(DATA, "arena2.map"))
         # arena2.map.scen has 932 lines: `version 1`, 929 rows and 2 trailing blank lines (so 929
         # queries, not the 931 of its line count minus the header); random512-20-1: 1 + 1770 lines.
         for name, rows, line_count in (("arena2.map", 929, 932), ("random512-20-1.map", 1770, 1771)):

@@ -105,8 +105,7 @@ class PlotTest(PlotCase):
         self.assertGreater(self.screenshot(svg, 640, 480), 0.05)
 
     def test_map_renders_blocked_cells_and_exposure(self):
-        if not os.path.exists(ARENA):
-            self.skipTest("../shared/data/movingai/arena2.map is absent")
+        self.skip_unless_present(ARENA)
         guards = self.path("guards.txt")
         with open(guards, "w") as f:
             f.write("120 100 25\n")  # a passable cell of arena2

@@ -33,6 +33,7 @@ MASK = (1 << 64) - 1
 
 
 def mix(z):
+    """SplitMix64's finalizer (spec/GENERATORS.md, Random source)."""
     z = ((z ^ (z >> 30)) * 0xBF58476D1CE4E5B9) & MASK
     z = ((z ^ (z >> 27)) * 0x94D049BB133111EB) & MASK
     return z ^ (z >> 31)
@@ -188,8 +189,7 @@ class QueriesTest(CliTest):
 
     def test_real_inst_file(self):
         inst = os.path.join(DATA, "netmaker", "netMaker_4d.inst")
-        if not os.path.isfile(inst):
-            self.skipTest("%s is absent" % inst)
+        self.skip_unless_present(inst)
         # A 100x100 grid has 10002 vertices: every netMaker id (< 10000) is in range.
         g = self.path("big.mosb")
         self.ok("generate", "grid", "--width", "100", "--height", "100", "--objectives", "1", "-o", g)

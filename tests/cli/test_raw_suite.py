@@ -208,8 +208,7 @@ class RawSuite(CliTest):
         head = os.path.join(DATA, "dimacs-small", "USA-road-d.NY.head.gr")
         queries = os.path.join(DATA, "dimacs-queries", "USA-road-NY-queries")
         grid_map = os.path.join(DATA, "movingai", "random512-20-1.map")
-        if not all(map(os.path.exists, (head, queries, grid_map))):
-            self.skipTest("shared/data is absent: real-file raw suite test skipped")
+        self.skip_unless_present(head, queries, grid_map)
         # The head of the real NY distance file, its arc count made to match its 92 arcs; the same
         # arcs stand for the time file (as the .gz download name).
         text = read(head).decode().replace("p sp 264346 733846", "p sp 264346 92")

@@ -148,8 +148,7 @@ class ReferencesCli(CliTest):
         self.assertEqual(ok.returncode, 0, ok.stderr)
 
     def test_real_maps(self):
-        if not os.path.exists(os.path.join(DATA, "arena2.map")):
-            self.skipTest("shared/data/movingai is absent: real-map test skipped")
+        self.skip_unless_present(os.path.join(DATA, "arena2.map"))
         for name, rows in (("arena2.map", 929), ("random512-20-1.map", 1770)):
             with self.subTest(map=name):
                 m, s = os.path.join(DATA, name), os.path.join(DATA, name + ".scen")

@@ -16,18 +16,11 @@ import subprocess
 import unittest
 
 from mosbtest import DATA, MOSB, CliTest, read, setUpModule  # noqa: F401
+from test_queries import MASK, mix  # SplitMix64 as spec/GENERATORS.md writes it
 
 NETMAKER_FILE = os.path.join(DATA, "netmaker", "netMaker_3o_10000n_1amin_10amax_20i_1s_scorr_79134.gr")
 
-MASK = (1 << 64) - 1
 GOLDEN = 0x9E3779B97F4A7C15
-
-
-def mix(z):
-    """SplitMix64's finalizer (spec/GENERATORS.md, Random source)."""
-    z = ((z ^ (z >> 30)) * 0xBF58476D1CE4E5B9) & MASK
-    z = ((z ^ (z >> 27)) * 0x94D049BB133111EB) & MASK
-    return z ^ (z >> 31)
 
 
 def instance_seed(suite_seed, key):
@@ -192,8 +185,7 @@ class Suites(SyntheticTest):
 
 class ConvertNetMaker(SyntheticTest):
     def test_published_file(self):
-        if not os.path.exists(NETMAKER_FILE):
-            self.skipTest("%s is absent" % NETMAKER_FILE)
+        self.skip_unless_present(NETMAKER_FILE)
         r = self.ok("convert", "netmaker", NETMAKER_FILE, "-o", self.path("n.mosb"))
         self.assertIn("10000 vertices, 59750 arcs, 3 objectives", r.stdout)
         md = self.inspect(self.path("n.mosb"))["metadata"]
