@@ -252,7 +252,8 @@ def move_payload_to_end(data, name, body, **fields):
     """Give section `name` the payload `body`, which need not fit in its old place: it is appended
     where the table was and the table moves after it (a reader relies only on the table's offsets,
     §1). The old payload is zeroed, since bytes belonging to no section are zero. `fields` are
-    further entry fields to set; both checksums are recomputed."""
+    further entry fields to set; the section checksum is recomputed unless `fields` give one, the
+    header checksum always."""
     h = header(data)
     old = entry(data, name)
     table = bytes(data[h["table_offset"]:])
@@ -262,8 +263,10 @@ def move_payload_to_end(data, name, body, **fields):
     del data[new_offset:]
     data += padded + table
     set_header(data, table_offset=new_offset + len(padded), file_size=len(data))
-    set_entry(data, name, offset=new_offset, stored_length=len(body),
-              checksum=xxhash.xxh3_64_intdigest(body), **fields)
+    changed = dict(offset=new_offset, stored_length=len(body),
+                   checksum=xxhash.xxh3_64_intdigest(body))
+    changed.update(fields)
+    set_entry(data, name, **changed)
     reseal(data)
 
 

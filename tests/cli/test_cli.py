@@ -280,21 +280,22 @@ class StructureLevel(GridTest):
         self.check_structure_error(data, "default", "query-range",
                                    "endpoint 1 is vertex %d" % N)
 
-    def test_metadata_view_names_missing_objective(self):
+    def check_metadata_line_replaced(self, old, new, rule, *details):
         data = self.grid_bytes()
         body = bytes(payload(data, "metadata"))
-        old = b"view.Grid_3.objectives=c1,c2,c3\n"
         self.assertEqual(body.count(old), 1)
-        write_payload(data, "metadata", body.replace(old, b"view.Grid_3.objectives=c1,c2,c9\n"))
-        self.check_structure_error(data, "metadata", "metadata-views", "'c9'")
+        write_payload(data, "metadata", body.replace(old, new))
+        self.check_structure_error(data, "metadata", rule, *details)
+
+    def test_metadata_view_names_missing_objective(self):
+        self.check_metadata_line_replaced(b"view.Grid_3.objectives=c1,c2,c3\n",
+                                          b"view.Grid_3.objectives=c1,c2,c9\n", "metadata-views",
+                                          "'c9'")
 
     def test_metadata_view_names_missing_query_set(self):
-        data = self.grid_bytes()
-        body = bytes(payload(data, "metadata"))
-        old = b"view.Grid_2.queries=default\n"
-        self.assertEqual(body.count(old), 1)
-        write_payload(data, "metadata", body.replace(old, b"view.Grid_2.queries=defaulx\n"))
-        self.check_structure_error(data, "metadata", "metadata-views", "'defaulx'")
+        self.check_metadata_line_replaced(b"view.Grid_2.queries=default\n",
+                                          b"view.Grid_2.queries=defaulx\n", "metadata-views",
+                                          "'defaulx'")
 
     def test_metadata_keys_unsorted(self):
         data = self.grid_bytes()

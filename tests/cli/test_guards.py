@@ -56,6 +56,51 @@ def expected_arcs(passable, exposure):
     return [np.concatenate(c) for c in zip(*out)]
 
 
+def sorted_rows(a):
+    return a[np.lexsort(a.T[::-1])]
+
+
+def arc_rows(inst, cells, cost_names):
+    """The instance's arcs as sorted rows (tail x, tail y, head x, head y, costs `cost_names`...),
+    read with the reference reader; `cells` holds the (x, y) of every vertex."""
+    offsets = np.asarray(inst.array(inst.of_kind(mosb_reader.FORWARD_OFFSETS)[0]), dtype=np.int64)
+    targets = np.asarray(inst.array(inst.of_kind(mosb_reader.FORWARD_TARGETS)[0]), dtype=np.int64)
+    tails = np.repeat(np.arange(inst.n), np.diff(offsets))
+    costs = dict(inst.costs())
+    return sorted_rows(np.stack([cells[tails, 0], cells[tails, 1], cells[targets, 0],
+                                 cells[targets, 1],
+                                 *(np.asarray(costs[c], dtype=np.int64) for c in cost_names)],
+                                axis=1))
+
+
+# The real maps of ../shared/data/movingai: name, rows of its scenario file, lines of that file.
+# arena2.map.scen has 932 lines: `version 1`, 929 rows and 2 trailing blank lines (so 929 queries,
+# not the 931 of its line count minus the header); random512-20-1: 1 + 1770 lines.
+REAL_MAPS = (("arena2.map", 929, 932), ("random512-20-1.map", 1770, 1771))
+
+
+def real_maps(test):
+    """(name, scenario rows, scenario lines, map path, scenario path) of every real map; skips
+    `test` when they are absent."""
+    test.skip_unless_present(*(os.path.join(DATA, name) for name, _, _ in REAL_MAPS))
+    return [(name, rows, lines, os.path.join(DATA, name), os.path.join(DATA, name + ".scen"))
+            for name, rows, lines in REAL_MAPS]
+
+
+def scenario_endpoints(scen):
+    """(start x, start y, goal x, goal y) of every row of Moving AI scenario file `scen`."""
+    with open(scen) as f:
+        lines = [line for line in f.read().split("\n")[1:] if line.strip()]
+    return np.array([[int(v) for v in line.split("\t")[4:8]] for line in lines])
+
+
+def query_cells(inst, name="scen"):
+    """(start x, start y, goal x, goal y) of every query of set `name`, from the cell section."""
+    q = np.asarray(inst.queries()[name], dtype=np.int64)
+    cells = np.asarray(inst.array(inst.section("cell", mosb_reader.VERTEX_DATA)), dtype=np.int64)
+    return np.concatenate([cells[q[:, 0]], cells[q[:, 1]]], axis=1)
+
+
 class GuardsCli(CliTest):
     def check_instance(self, out, passable, exposure_file):
         inst = mosb_reader.open_instance(out)
@@ -68,16 +113,9 @@ class GuardsCli(CliTest):
         w = passable.shape[1]
         # Row-major numbering: the cells in vertex order are the passable cells in row-major order.
         self.assertTrue(np.array_equal(cells[:, 1] * w + cells[:, 0], np.flatnonzero(passable.ravel())))
-        offsets = np.asarray(inst.array(inst.of_kind(mosb_reader.FORWARD_OFFSETS)[0]), dtype=np.int64)
-        targets = np.asarray(inst.array(inst.of_kind(mosb_reader.FORWARD_TARGETS)[0]), dtype=np.int64)
-        tails = np.repeat(np.arange(inst.n), np.diff(offsets))
-        got = np.stack([cells[tails, 0], cells[tails, 1], cells[targets, 0], cells[targets, 1]], axis=1)
-        costs = dict(inst.costs())
-        got = np.concatenate([got, np.asarray(costs["length"], dtype=np.int64)[:, None],
-                              np.asarray(costs["exposure"], dtype=np.int64)[:, None]], axis=1)
         want = np.stack([tx, ty, hx, hy, length, cost], axis=1)
-        sort = lambda a: a[np.lexsort(a.T[::-1])]  # noqa: E731
-        self.assertTrue(np.array_equal(sort(got), sort(want)))
+        self.assertTrue(np.array_equal(arc_rows(inst, cells, ["length", "exposure"]),
+                                       sorted_rows(want)))
         self.assertEqual(inst.metadata["view.GUARDS_2.objectives"], "length,exposure")
         self.assertEqual(inst.metadata["map.width"], str(passable.shape[1]))
         self.assertEqual(inst.metadata["map.height"], str(passable.shape[0]))
@@ -143,12 +181,8 @@ class GuardsCli(CliTest):
         self.assertNotEqual(r.returncode, 0)
 
     def test_real_maps(self):
-        self.skip_unless_present(os.path.join(DATA, "arena2.map"))
-        # arena2.map.scen has 932 lines: `version 1`, 929 rows and 2 trailing blank lines (so 929
-        # queries, not the 931 of its line count minus the header); random512-20-1: 1 + 1770 lines.
-        for name, rows, line_count in (("arena2.map", 929, 932), ("random512-20-1.map", 1770, 1771)):
+        for name, rows, line_count, m, s in real_maps(self):
             with self.subTest(map=name):
-                m, s = os.path.join(DATA, name), os.path.join(DATA, name + ".scen")
                 passable = read_map(m)
                 # A few fixed guards: the first passable cell of rows h/4, h/2 (unlimited), 3h/4.
                 h = passable.shape[0]
@@ -163,16 +197,11 @@ class GuardsCli(CliTest):
                 self.assertEqual(r.returncode, 0, r.stderr)
                 inst = self.check_instance(out, passable, exp)
                 with open(s) as f:
-                    text = f.read()
-                self.assertEqual(text.count("\n"), line_count)
-                scen_lines = [line for line in text.split("\n")[1:] if line.strip()]
-                self.assertEqual(len(scen_lines), rows)
-                q = np.asarray(inst.queries()["scen"], dtype=np.int64)
-                self.assertEqual(len(q), rows)
-                cells = np.asarray(inst.array(inst.section("cell", mosb_reader.VERTEX_DATA)), dtype=np.int64)
-                fields = np.array([[int(v) for v in line.split("\t")[4:8]] for line in scen_lines])
-                self.assertTrue(np.array_equal(cells[q[:, 0]], fields[:, 0:2]))
-                self.assertTrue(np.array_equal(cells[q[:, 1]], fields[:, 2:4]))
+                    self.assertEqual(f.read().count("\n"), line_count)
+                endpoints = scenario_endpoints(s)
+                self.assertEqual(len(endpoints), rows)
+                self.assertEqual(len(inst.queries()["scen"]), rows)
+                self.assertTrue(np.array_equal(query_cells(inst), endpoints))
                 self.assertEqual(inst.metadata["benchmark"], name[:-4])
                 self.assertEqual(inst.metadata["family"], "games")
                 r = run("verify", out, "--level", "full")

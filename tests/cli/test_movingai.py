@@ -14,7 +14,8 @@ import unittest
 import numpy as np
 
 from mosbtest import CliTest, mosb_reader, run, setUpModule  # noqa: F401
-from test_guards import DATA, expected_arcs, read_map
+from test_guards import (arc_rows, expected_arcs, query_cells, read_map, real_maps,
+                         scenario_endpoints, sorted_rows)
 
 HAND_MADE = "type octile\nheight 4\nwidth 5\nmap\n..@.S\n.@...\n...W.\nT.G..\n"
 
@@ -33,14 +34,8 @@ class MovingaiCli(CliTest):
         cells = np.asarray(inst.array(cell_section), dtype=np.int64)
         w = passable.shape[1]
         self.assertTrue(np.array_equal(cells[:, 1] * w + cells[:, 0], np.flatnonzero(passable.ravel())))
-        offsets = np.asarray(inst.array(inst.of_kind(mosb_reader.FORWARD_OFFSETS)[0]), dtype=np.int64)
-        targets = np.asarray(inst.array(inst.of_kind(mosb_reader.FORWARD_TARGETS)[0]), dtype=np.int64)
-        tails = np.repeat(np.arange(inst.n), np.diff(offsets))
-        got = np.stack([cells[tails, 0], cells[tails, 1], cells[targets, 0], cells[targets, 1],
-                        np.asarray(dict(inst.costs())["length"], dtype=np.int64)], axis=1)
         want = np.stack([tx, ty, hx, hy, length], axis=1)
-        sort = lambda a: a[np.lexsort(a.T[::-1])]  # noqa: E731
-        self.assertTrue(np.array_equal(sort(got), sort(want)))
+        self.assertTrue(np.array_equal(arc_rows(inst, cells, ["length"]), sorted_rows(want)))
         self.assertEqual(inst.metadata["map.width"], str(passable.shape[1]))
         self.assertEqual(inst.metadata["map.height"], str(passable.shape[0]))
         self.assertEqual(inst.metadata["family"], "games")
@@ -110,22 +105,15 @@ class MovingaiCli(CliTest):
         self.assertFalse(os.path.exists(self.path("x.mosb")))
 
     def test_real_maps(self):
-        self.skip_unless_present(os.path.join(DATA, "arena2.map"))
-        for name, rows in (("arena2.map", 929), ("random512-20-1.map", 1770)):
+        for name, rows, _, m, s in real_maps(self):
             with self.subTest(map=name):
-                m, s = os.path.join(DATA, name), os.path.join(DATA, name + ".scen")
                 out = self.path(name + ".mosb")
                 r = run("convert", "movingai", "--map", m, "--scen", s, "-o", out)
                 self.assertEqual(r.returncode, 0, r.stderr)
                 inst = self.check_instance(out, read_map(m))
-                with open(s) as f:
-                    scen_lines = [line for line in f.read().split("\n")[1:] if line.strip()]
-                self.assertEqual(len(scen_lines), rows)
-                q = np.asarray(inst.queries()["scen"], dtype=np.int64)
-                cells = np.asarray(inst.array(inst.section("cell", mosb_reader.VERTEX_DATA)), dtype=np.int64)
-                fields = np.array([[int(v) for v in line.split("\t")[4:8]] for line in scen_lines])
-                self.assertTrue(np.array_equal(cells[q[:, 0]], fields[:, 0:2]))
-                self.assertTrue(np.array_equal(cells[q[:, 1]], fields[:, 2:4]))
+                endpoints = scenario_endpoints(s)
+                self.assertEqual(len(endpoints), rows)
+                self.assertTrue(np.array_equal(query_cells(inst), endpoints))
                 self.assertEqual(inst.metadata["benchmark"], name[:-4])
                 self.assertEqual(inst.metadata["source.input.0.name"], name)
                 self.assertEqual(inst.metadata["source.input.1.name"], name + ".scen")

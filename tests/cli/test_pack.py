@@ -12,8 +12,8 @@ import os
 import subprocess
 import unittest
 
-from mosbtest import (GOLDEN, CliTest, entries, entry, header, read, reseal,  # noqa: F401
-                      set_entry, set_header, setUpModule)
+from mosbtest import (GOLDEN, CliTest, entries, entry, header, move_payload_to_end,  # noqa: F401
+                      read, reseal, set_entry, set_header, setUpModule)
 from test_fmi import TEN
 from test_movingai import HAND_MADE
 
@@ -141,16 +141,7 @@ class PackTest(CliTest):
             first = bytes(data[e["offset"]:e["offset"] + e["stored_length"]])
             extra = subprocess.run(["zstd", "-q", "-c"], input=b"\0" * 64,
                                    capture_output=True).stdout
-            table_offset = header(data)["table_offset"]
-            table = bytes(data[table_offset:])
-            body = first + extra
-            padded = body + bytes(-len(body) % 64)
-            del data[table_offset:]
-            data += padded + table
-            set_header(data, table_offset=table_offset + len(padded), file_size=len(data))
-            set_entry(data, "forward_targets", offset=table_offset, stored_length=len(body))
-            data[e["offset"]:e["offset"] + e["stored_length"]] = bytes(e["stored_length"])
-            reseal(data)
+            move_payload_to_end(data, "forward_targets", first + extra, checksum=e["checksum"])
         self.hostile(append_frame, "forward_targets", "bytes follow the zstd frame")
 
     def test_decompression_bomb(self):

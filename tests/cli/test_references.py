@@ -16,7 +16,7 @@ import os
 import unittest
 
 from mosbtest import CliTest, mosb_reader, run, setUpModule  # noqa: F401
-from test_guards import DATA
+from test_guards import real_maps
 
 QUERY_REFERENCE = 17
 MAP = "type octile\nheight 3\nwidth 3\nmap\n...\n...\n.@.\n"
@@ -148,10 +148,8 @@ class ReferencesCli(CliTest):
         self.assertEqual(ok.returncode, 0, ok.stderr)
 
     def test_real_maps(self):
-        self.skip_unless_present(os.path.join(DATA, "arena2.map"))
-        for name, rows in (("arena2.map", 929), ("random512-20-1.map", 1770)):
+        for name, rows, _, m, s in real_maps(self):
             with self.subTest(map=name):
-                m, s = os.path.join(DATA, name), os.path.join(DATA, name + ".scen")
                 out = self.path(name + ".mosb")
                 self.ok("convert", "movingai", "--map", m, "--scen", s, "-o", out)
                 values, _ = self.reference(out)
