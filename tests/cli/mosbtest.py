@@ -42,9 +42,10 @@ def run(*args, program=None, check=False, **options):
     say otherwise; with `check`, a non-zero exit raises AssertionError with the stderr."""
     options.setdefault("stdout", subprocess.PIPE)
     options.setdefault("stderr", subprocess.PIPE)
-    result = subprocess.run([program or MOSB, *args], text=True, errors="replace", **options)
+    program = program or MOSB
+    result = subprocess.run([program, *args], text=True, errors="replace", **options)
     if check and result.returncode != 0:
-        raise AssertionError("%s %s failed: %s" % (os.path.basename(program or MOSB), " ".join(args),
+        raise AssertionError("%s %s failed: %s" % (os.path.basename(program), " ".join(args),
                                                    result.stderr))
     return result
 
@@ -116,9 +117,10 @@ class CliTest(unittest.TestCase):
                 f.write(data)
         return path
 
-    def mosb(self, *args, timeout=120, **options):
-        """Runs mosb in self.dir. Never a hang (nothing within `timeout` seconds), never a crash:
-        no signal, no sanitizer report."""
+    def mosb(self, *args, timeout=600, **options):
+        """Runs mosb in self.dir. Never a hang (no exit within `timeout` seconds; the default
+        leaves room for a sanitizer build on real data), never a crash: no signal, no sanitizer
+        report."""
         try:
             r = run(*args, cwd=self.dir, timeout=timeout, **options)
         except subprocess.TimeoutExpired:

@@ -20,9 +20,10 @@ import unittest
 
 import xxhash
 
-from mosbtest import (CHECKSUM_OFFSET, ENTRY, MAGIC, MOSB, CliTest, entries, entry, header,  # noqa: F401
-                      patch_values, payload, relocate_as_f32, reseal, set_entry, set_header,
-                      setUpModule, values, write_payload)
+from mosbtest import (CHECKSUM_OFFSET, MAGIC, MOSB, CliTest, entries, entry, header, patch_values,
+                      payload, relocate_as_f32, reseal, set_entry, set_header, values,
+                      write_payload)
+from mosbtest import setUpModule  # noqa: F401
 
 GRID = ["generate", "grid", "--width", "5", "--height", "4", "--objectives", "3", "--seed", "7"]
 N = 5 * 4 + 2

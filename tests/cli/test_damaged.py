@@ -14,8 +14,8 @@ import json
 import os
 import unittest
 
-from mosbtest import (entries, entry, files_under, move_payload_to_end, setUpModule,  # noqa: F401
-                      write_payload)
+from mosbtest import entry, files_under, move_payload_to_end, write_payload
+from mosbtest import setUpModule  # noqa: F401
 from test_cli import GridTest
 
 

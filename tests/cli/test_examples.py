@@ -8,7 +8,6 @@ The exact front of a small graph is computed here by enumerating every simple pa
 of the solvers. The real-data parts skip with a message when shared/data is absent.
 """
 
-import itertools
 import json
 import os
 import random

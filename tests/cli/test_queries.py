@@ -19,8 +19,8 @@ WROTE = re.compile(r"^wrote (.+): query set (\S+), (\d+) queries, digest [0-9a-f
 
 def sections(data):
     """[(name, kind, checksum, payload bytes)] in table order."""
-    return [(e["name"], e["kind"], e["checksum"], data[e["offset"]:e["offset"] + e["stored_length"]])
-            for e in entries(data)]
+    return [(e["name"], e["kind"], e["checksum"],
+             data[e["offset"]:e["offset"] + e["stored_length"]]) for e in entries(data)]
 
 
 def query_pairs(data, name):

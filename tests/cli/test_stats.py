@@ -9,7 +9,6 @@ the reference reader (spec/reference/mosb_reader.py), or over the raw NetMaker t
 
 import functools
 import json
-import math
 import os
 import tempfile
 import unittest

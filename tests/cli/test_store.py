@@ -11,7 +11,6 @@ import os
 import random
 import shutil
 import signal
-import stat
 import subprocess
 import time
 import unittest
