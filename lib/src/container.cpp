@@ -25,8 +25,10 @@ std::string version_text(std::uint16_t major, std::uint16_t minor) {
 }
 
 // §6: encoding k (k >= 1) comes with required bit k - 1.
-constexpr const char* kEncodingNames[] = {"raw", "zstd", "shuffle-zstd", "delta-zstd"};
-constexpr const char* kFeatureNames[] = {"zstd-sections", "shuffle-sections", "delta-sections"};
+constexpr const char* kEncodingNames[] = {"raw", "zstd", "shuffle-zstd", "delta-zstd",
+                                          "transpose"};
+constexpr const char* kFeatureNames[] = {"zstd-sections", "shuffle-sections", "delta-sections",
+                                         "transpose-sections"};
 static_assert(std::size(kEncodingNames) == format::kLastEncoding + 1);
 
 bool mul_overflows(std::uint64_t a, std::uint64_t b, std::uint64_t& out) {
@@ -211,9 +213,23 @@ Container parse_container(std::span<const std::byte> bytes, std::string_view dis
       const auto encoding = static_cast<format::Encoding>(e.encoding);
       const std::uint64_t bit = format::feature_of(encoding);
       if (!(header.required_features & bit))
-        fail(label + ": " + kEncodingNames[e.encoding] + "-encoded but the header lacks the " +
-             kFeatureNames[std::countr_zero(bit)] + " feature");
-      if (e.stored_length == 0) fail(label + ": zstd-encoded with stored length 0");
+        fail(label + ": " + kEncodingNames[e.encoding] + "-encoded (encoding " +
+             std::to_string(e.encoding) + ") but the header lacks the " +
+             kFeatureNames[std::countr_zero(bit)] + " feature (bit " +
+             std::to_string(std::countr_zero(bit)) + ")");
+      if (encoding == format::Encoding::transpose) {
+        // Derived at decoding from the forward CSR (§6), so only the reverse CSR may be.
+        const bool reverse = s.kind == format::SectionKind::reverse_offsets ||
+                             s.kind == format::SectionKind::reverse_sources ||
+                             s.kind == format::SectionKind::reverse_arcs;
+        if (!reverse || kind != format::FileKind::instance)
+          fail(label + ": transpose encoding of a section that is not part of the reverse CSR");
+        if (e.stored_length != 0)
+          fail(label + ": transpose-encoded with stored length " +
+               std::to_string(e.stored_length) + ", not 0");
+      } else if (e.stored_length == 0) {
+        fail(label + ": zstd-encoded with stored length 0");
+      }
       if (encoding == format::Encoding::delta_zstd && format::is_float(s.type))
         fail(label + ": delta encoding of a float column");
       used_features |= bit;

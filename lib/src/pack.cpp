@@ -8,6 +8,7 @@
 #include <cstring>
 #include <exception>
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 #include <type_traits>
@@ -30,8 +31,64 @@ constexpr std::uint64_t kMaxZstdRatio = (std::uint64_t{128} << 10) / 4;
 
 using format::Encoding;
 
+// The required feature bits that make a file packed: one per encoding other than raw (§6).
+constexpr std::uint64_t kEncodingFeatures =
+    format::kFeatureZstdSections | format::kFeatureShuffleSections |
+    format::kFeatureDeltaSections | format::kFeatureTransposeSections;
+
 bool is_encoded(const Section& s) {
   return s.entry.encoding != static_cast<std::uint8_t>(Encoding::raw);
+}
+bool is_derived(const Section& s) {
+  return s.entry.encoding == static_cast<std::uint8_t>(Encoding::transpose);
+}
+
+// Where the sections of the CSR are in the table, when some reverse section is derived.
+struct TransposePlan {
+  std::size_t forward_offsets, forward_targets, reverse_offsets, reverse_sources, reverse_arcs;
+};
+
+// The five CSR sections, when there is exactly one of each kind with the type and width of §4 and
+// each reverse section is as long as the forward one it is derived from (reverse_offsets as
+// forward_offsets, the other two as forward_targets). A section without stored bytes has no zstd
+// ratio bound; this equality bounds what deriving it allocates.
+std::optional<TransposePlan> csr_sections(const std::vector<Section>& sections) {
+  auto one = [&](format::SectionKind kind, format::ElementType type) -> std::optional<std::size_t> {
+    std::optional<std::size_t> found;
+    for (std::size_t i = 0; i < sections.size(); ++i) {
+      if (sections[i].kind != kind) continue;
+      if (found || sections[i].type != type || sections[i].entry.row_width != 1)
+        return std::nullopt;
+      found = i;
+    }
+    return found;
+  };
+  using format::ElementType;
+  using format::SectionKind;
+  const auto fo = one(SectionKind::forward_offsets, ElementType::u64);
+  const auto ft = one(SectionKind::forward_targets, ElementType::u32);
+  const auto ro = one(SectionKind::reverse_offsets, ElementType::u64);
+  const auto rs = one(SectionKind::reverse_sources, ElementType::u32);
+  const auto ra = one(SectionKind::reverse_arcs, ElementType::u32);
+  if (!fo || !ft || !ro || !rs || !ra) return std::nullopt;
+  auto length = [&](std::size_t i) { return sections[i].decoded_length; };
+  if (length(*ro) != length(*fo) || length(*rs) != length(*ft) || length(*ra) != length(*ft))
+    return std::nullopt;
+  return TransposePlan{*fo, *ft, *ro, *rs, *ra};
+}
+
+// The CSR sections of a file in which some section is derived, checked before anything is
+// allocated.
+std::optional<TransposePlan> transpose_plan(const std::vector<Section>& sections,
+                                            std::string_view name) {
+  if (std::none_of(sections.begin(), sections.end(), is_derived)) return std::nullopt;
+  auto plan = csr_sections(sections);
+  if (!plan)
+    throw Error(ErrorCode::damaged,
+                std::string(name) +
+                    ": the reverse CSR cannot be derived (transpose encoding): the file needs one "
+                    "section of each CSR kind, reverse sections as long as forward ones (§4)");
+  return plan;
 }
 
 // §6 byte shuffle: byte k of element i goes to k * count + i (grouping bytes of one significance,
@@ -92,6 +149,36 @@ void undelta_in_place(std::byte* bytes, std::size_t count) {
     sum = static_cast<T>(sum + d);
     std::memcpy(bytes + i * W, &sum, W);
   }
+}
+
+// §6 encoding 4: the reverse CSR as the transpose of the forward CSR, each in-list in ascending
+// arc id (§4), by one counting sort: in-degrees, their prefix sums, then every arc in id order put
+// at its head's next free entry. `reverse_offsets` has n+1 entries, the other two m. Returns false,
+// with the outputs undefined, when (offsets, targets) is not a CSR: offsets from 0 to m, never
+// decreasing, every target below n, ids that fit u32.
+bool derive_transpose(std::span<const std::uint64_t> offsets, std::span<const std::uint32_t> targets,
+                      std::uint64_t* reverse_offsets, std::uint32_t* reverse_sources,
+                      std::uint32_t* reverse_arcs) {
+  if (offsets.empty()) return false;
+  const std::uint64_t n = offsets.size() - 1, m = targets.size();
+  if (n > UINT32_MAX || m > UINT32_MAX || offsets[0] != 0 || offsets[n] != m) return false;
+  for (std::uint64_t u = 0; u < n; ++u)
+    if (offsets[u] > offsets[u + 1]) return false;
+  // reverse_offsets[v + 2] counts the arcs into v (v + 2 <= n); the running sum then leaves the
+  // first entry of v in reverse_offsets[v + 1], which placing v's arcs advances to its end.
+  std::fill_n(reverse_offsets, n + 1, std::uint64_t{0});
+  for (const std::uint32_t v : targets) {
+    if (v >= n) return false;
+    if (v + 2 <= n) ++reverse_offsets[v + 2];
+  }
+  for (std::uint64_t v = 2; v <= n; ++v) reverse_offsets[v] += reverse_offsets[v - 1];
+  for (std::uint64_t u = 0; u < n; ++u)
+    for (std::uint64_t a = offsets[u]; a < offsets[u + 1]; ++a) {
+      const std::uint64_t entry = reverse_offsets[targets[a] + 1]++;
+      reverse_sources[entry] = static_cast<std::uint32_t>(u);
+      reverse_arcs[entry] = static_cast<std::uint32_t>(a);
+    }
+  return true;
 }
 
 // The content of the zstd frame of `s` under `encoding` (§6).
@@ -202,18 +289,17 @@ AtomicFile::Existing existing_for(const std::filesystem::path& in,
 }  // namespace
 
 bool is_packed(const format::FileHeader& header) {
-  return (header.required_features &
-          (format::kFeatureZstdSections | format::kFeatureShuffleSections |
-           format::kFeatureDeltaSections)) != 0;
+  return (header.required_features & kEncodingFeatures) != 0;
 }
 
 MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view display_name) {
   const auto container = parse_container(bytes, display_name, format::FileKind::instance);
   auto sections = container.sections;
+  const auto derived = transpose_plan(sections, display_name);
   // The canonical layout, and the bomb bound, before any allocation.
   std::uint64_t position = format::kHeaderSize;
   for (auto& s : sections) {
-    if (is_encoded(s) && s.decoded_length / kMaxZstdRatio > s.entry.stored_length)
+    if (is_encoded(s) && !is_derived(s) && s.decoded_length / kMaxZstdRatio > s.entry.stored_length)
       throw Error(ErrorCode::damaged,
                   std::string(display_name) + ": section '" + s.name + "': declares " +
                       std::to_string(s.decoded_length) + " decoded bytes, more than its " +
@@ -226,8 +312,7 @@ MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view displ
   auto header = container.header;
   header.table_offset = format::align_up(position);
   header.file_size = header.table_offset + sections.size() * sizeof(format::SectionEntry);
-  header.required_features &= ~(format::kFeatureZstdSections | format::kFeatureShuffleSections |
-                                format::kFeatureDeltaSections);
+  header.required_features &= ~kEncodingFeatures;
   header.version_minor =
       std::min(header.version_minor, format::minimum_version_minor(header.required_features));
 
@@ -236,27 +321,61 @@ MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view displ
   ZSTD_DCtx* context = ZSTD_createDCtx();
   if (!context) throw Error(ErrorCode::io, std::string(display_name) + ": out of memory");
   std::vector<std::byte> scratch;
+  auto check_and_mark_raw = [&](Section& s) {
+    const std::uint64_t computed = XXH3_64bits(out + s.entry.offset, s.decoded_length);
+    if (computed != s.entry.checksum)
+      throw Error(ErrorCode::damaged, std::string(display_name) + ": section '" + s.name +
+                                          "': checksum mismatch (stored " +
+                                          hex64(s.entry.checksum) + ", computed " +
+                                          hex64(computed) + ")");
+    s.entry.encoding = static_cast<std::uint8_t>(format::Encoding::raw);
+    s.entry.stored_length = s.decoded_length;
+  };
   try {
     for (auto& s : sections) {
+      if (is_derived(s)) continue;  // once the forward CSR is decoded and checked
       std::byte* target = out + s.entry.offset;
       if (is_encoded(s))
         decode_frame(s, target, context, display_name, scratch);
       else if (!s.stored.empty())
         std::memcpy(target, s.stored.data(), s.stored.size());
-      const std::uint64_t computed = XXH3_64bits(target, s.decoded_length);
-      if (computed != s.entry.checksum)
-        throw Error(ErrorCode::damaged, std::string(display_name) + ": section '" + s.name +
-                                            "': checksum mismatch (stored " +
-                                            hex64(s.entry.checksum) + ", computed " +
-                                            hex64(computed) + ")");
-      s.entry.encoding = static_cast<std::uint8_t>(format::Encoding::raw);
-      s.entry.stored_length = s.decoded_length;
+      check_and_mark_raw(s);
     }
   } catch (...) {
     ZSTD_freeDCtx(context);
     throw;
   }
   ZSTD_freeDCtx(context);
+  if (derived) {
+    auto at = [&](std::size_t i) { return out + sections[i].entry.offset; };
+    // A reverse section that is stored, not derived, is computed aside and left as decoded.
+    const std::uint64_t n1 = sections[derived->reverse_offsets].decoded_length / 8;
+    const std::uint64_t m = sections[derived->reverse_sources].decoded_length / 4;
+    std::vector<std::uint64_t> aside_offsets;
+    std::vector<std::uint32_t> aside_sources, aside_arcs;
+    auto place = [&](std::size_t i, auto& aside, std::uint64_t count) {
+      using T = typename std::remove_reference_t<decltype(aside)>::value_type;
+      if (is_derived(sections[i])) return reinterpret_cast<T*>(at(i));
+      aside.resize(count);
+      return aside.data();
+    };
+    const auto& fo = sections[derived->forward_offsets];
+    const auto& ft = sections[derived->forward_targets];
+    if (!derive_transpose(
+            {reinterpret_cast<const std::uint64_t*>(at(derived->forward_offsets)),
+             fo.decoded_length / 8},
+            {reinterpret_cast<const std::uint32_t*>(at(derived->forward_targets)),
+             ft.decoded_length / 4},
+            place(derived->reverse_offsets, aside_offsets, n1),
+            place(derived->reverse_sources, aside_sources, m),
+            place(derived->reverse_arcs, aside_arcs, m)))
+      throw Error(ErrorCode::damaged,
+                  std::string(display_name) +
+                      ": the reverse CSR cannot be derived (transpose encoding): the forward CSR "
+                      "is not one (offsets from 0 to m, never decreasing, every target below n)");
+    for (auto& s : sections)
+      if (is_derived(s)) check_and_mark_raw(s);
+  }
 
   const auto table = table_of(sections);
   std::memcpy(out + header.table_offset, table.data(), table.size() * sizeof table[0]);
@@ -306,6 +425,34 @@ void pack_file(const std::filesystem::path& in, const std::filesystem::path& out
                     "not write, so unpacking could not restore its exact bytes");
   const auto& sections = container.sections;
 
+  // The reverse CSR is not stored where it is the transpose of the forward CSR, as every valid
+  // file's is (§4): unpacking derives it again (encoding transpose). Compared here, so a file that
+  // breaks §4 keeps its reverse sections as they are.
+  std::vector<bool> derived(sections.size(), false);
+  if (options.derive_reverse)
+    if (const auto plan = csr_sections(sections)) {
+      auto elements = [&]<class T>(std::size_t i, T*) {
+        const auto& stored = sections[i].stored;
+        return std::span<const T>(reinterpret_cast<const T*>(stored.data()),
+                                  stored.size() / sizeof(T));
+      };
+      const auto offsets = elements(plan->forward_offsets, static_cast<std::uint64_t*>(nullptr));
+      const auto targets = elements(plan->forward_targets, static_cast<std::uint32_t*>(nullptr));
+      std::vector<std::uint64_t> reverse_offsets(offsets.size());
+      std::vector<std::uint32_t> reverse_sources(targets.size()), reverse_arcs(targets.size());
+      if (derive_transpose(offsets, targets, reverse_offsets.data(), reverse_sources.data(),
+                           reverse_arcs.data())) {
+        auto same = [&](std::size_t i, const auto& computed) {
+          const auto& stored = sections[i].stored;
+          derived[i] = stored.size() == computed.size() * sizeof computed[0] &&
+                       std::memcmp(stored.data(), computed.data(), stored.size()) == 0;
+        };
+        same(plan->reverse_offsets, reverse_offsets);
+        same(plan->reverse_sources, reverse_sources);
+        same(plan->reverse_arcs, reverse_arcs);
+      }
+    }
+
   // Each non-empty section as one frame under the encoding that gives the fewest bytes (ties: the
   // lower encoding), kept only when it is smaller than the elements. The metadata stays raw: a
   // few hundred bytes that keep a packed file self-describing (inspect reads the benchmark name
@@ -314,6 +461,10 @@ void pack_file(const std::filesystem::path& in, const std::filesystem::path& out
   std::vector<Encoding> encodings(sections.size(), Encoding::raw);
   run_parallel(sections.size(), options.threads, [&](std::size_t i) {
     const auto& s = sections[i];
+    if (derived[i]) {
+      encodings[i] = Encoding::transpose;
+      return;
+    }
     if (s.stored.empty() || s.kind == format::SectionKind::metadata) return;
     std::vector<Encoding> candidates = {Encoding::zstd};
     if (format::element_size(s.type) > 1) candidates.push_back(Encoding::shuffle_zstd);
@@ -350,12 +501,9 @@ void pack_file(const std::filesystem::path& in, const std::filesystem::path& out
   FileWriter writer(out, existing_for(in, out));
   for (std::size_t i = 0; i < sections.size(); ++i) {
     auto entry = sections[i].entry;
-    if (!frames[i].empty()) {
-      entry.encoding = static_cast<std::uint8_t>(encodings[i]);
-      writer.add_encoded_section(entry, frames[i]);
-    } else {
-      writer.add_encoded_section(entry, sections[i].stored);
-    }
+    entry.encoding = static_cast<std::uint8_t>(encodings[i]);
+    writer.add_encoded_section(entry, encodings[i] == Encoding::raw ? sections[i].stored
+                                                                      : std::span<const std::byte>(frames[i]));
   }
   writer.commit(container.header.vertex_count, container.header.arc_count);
 }

@@ -27,7 +27,7 @@ run() {  # target seconds seed-files...
 run mosb_fuzz_reader "$seconds" "$root"/spec/golden/*/valid/*.mosb "$root"/spec/golden/*/invalid/*.mosb
 run mosb_fuzz_solutions $((seconds / 3 > 5 ? seconds / 3 : 5)) "$root"/spec/golden/*/solutions/*/*.mosb
 run mosb_fuzz_unpack $((seconds / 3 > 5 ? seconds / 3 : 5)) "$root"/spec/golden/*/valid/*.mosb \
-  "$root"/spec/golden/1.1/packed/*/*.mosb
+  "$root"/spec/golden/*/packed/*/*.mosb
 for fuzzer in "$bin"/mosb_fuzz_*; do
   target="$(basename "$fuzzer")"
   [[ "$target" == mosb_fuzz_reader || "$target" == mosb_fuzz_solutions || "$target" == mosb_fuzz_unpack ]] && continue

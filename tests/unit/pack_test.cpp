@@ -2,6 +2,9 @@
 
 #include <doctest/doctest.h>
 
+#include <xxhash.h>
+
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -9,6 +12,7 @@
 #include <string>
 
 #include "golden_input.hpp"
+#include "mosb/file_writer.hpp"
 #include "mosb/graph_builder.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/verify.hpp"
@@ -78,23 +82,37 @@ TEST_CASE("pack_file refuses a bad level and leaves no output") {
 }
 
 namespace {
-const std::filesystem::path kPackedGolden =
-    std::filesystem::path(MOSB_SOURCE_DIR) / "spec" / "golden" / "1.1" / "packed";
+const std::filesystem::path kGolden = std::filesystem::path(MOSB_SOURCE_DIR) / "spec" / "golden";
+const std::filesystem::path kPackedGolden = kGolden / "1.1" / "packed";
+
+PackOptions keeping_reverse() {
+  PackOptions options;
+  options.derive_reverse = false;
+  return options;
 }
+}  // namespace
 
 TEST_CASE("the packed golden files unpack to verified instances and pack back to the same bytes") {
   testing::TempDir dir;
   std::set<format::Encoding> encodings;
-  for (const char* name : {"small.packed.mosb", "grid.packed.mosb"}) {
-    CAPTURE(name);
-    const auto golden = kPackedGolden / "valid" / name;
+  struct Golden {
+    std::filesystem::path file;
+    PackOptions options;  // what packs it again: 1.1 files keep their reverse CSR
+    std::uint16_t minor;
+  };
+  for (const auto& [golden, options, minor] :
+       {Golden{kPackedGolden / "valid" / "small.packed.mosb", keeping_reverse(), 1},
+        Golden{kPackedGolden / "valid" / "grid.packed.mosb", keeping_reverse(), 1},
+        Golden{kGolden / "1.2" / "packed" / "valid" / "grid.packed.mosb", {}, 2}}) {
+    CAPTURE(golden);
     const auto packed = GraphReader::open(golden);  // header, table and metadata, not the frames
+    CHECK(packed.header().version_minor == minor);
     for (const auto& s : packed.sections())
       encodings.insert(static_cast<format::Encoding>(s.entry.encoding));
     const auto loaded = GraphReader::load(golden, VerifyLevel::full);
     CHECK(loaded.digest() == packed.digest());
     unpack_file(golden, dir / "plain.mosb");
-    pack_file(dir / "plain.mosb", dir / "again.mosb", {});
+    pack_file(dir / "plain.mosb", dir / "again.mosb", options);
     CHECK_MESSAGE(bytes_of(dir / "again.mosb") == bytes_of(golden),
                   "mosb pack no longer reproduces the golden packed file: a change of the "
                   "packer or of libzstd's output; packed suites would change their bytes");
@@ -102,6 +120,7 @@ TEST_CASE("the packed golden files unpack to verified instances and pack back to
   CHECK(encodings.count(format::Encoding::zstd) == 1);
   CHECK(encodings.count(format::Encoding::shuffle_zstd) == 1);
   CHECK(encodings.count(format::Encoding::delta_zstd) == 1);
+  CHECK(encodings.count(format::Encoding::transpose) == 1);
   const auto small = GraphReader::load(kPackedGolden / "valid" / "small.packed.mosb");
   unpack_file(kPackedGolden / "valid" / "small.packed.mosb", dir / "small.mosb");
   CHECK(bytes_of(dir / "small.mosb") ==
@@ -112,9 +131,10 @@ TEST_CASE("the packed golden files unpack to verified instances and pack back to
 TEST_CASE("every invalid packed golden file is refused where EXPECTED.tsv says") {
   std::size_t files = 0;
   testing::TempDir dir;
-  for (const auto& row : testing::expected_rows(kPackedGolden / "invalid" / "EXPECTED.tsv")) {
+  for (const auto& invalid : {kPackedGolden / "invalid", kGolden / "1.2" / "packed" / "invalid"})
+  for (const auto& row : testing::expected_rows(invalid / "EXPECTED.tsv")) {
     REQUIRE(row.size() == 2);
-    const auto file = kPackedGolden / "invalid" / row[0];
+    const auto file = invalid / row[0];
     const auto& expected = row[1];
     CAPTURE(file);
     ++files;
@@ -129,5 +149,104 @@ TEST_CASE("every invalid packed golden file is refused where EXPECTED.tsv says")
     CHECK_THROWS_AS(unpack_file(file, dir / "out.mosb"), Error);
     CHECK_FALSE(std::filesystem::exists(dir / "out.mosb"));
   }
-  CHECK(files == std::size(testing::kPackedFaults));
+  CHECK(files == std::size(testing::kPackedFaults) + std::size(testing::kTransposeFaults));
+}
+
+namespace {
+std::vector<format::Encoding> encodings_of(const std::filesystem::path& file) {
+  std::vector<format::Encoding> encodings;
+  const auto reader = GraphReader::open(file);
+  for (const auto& s : reader.sections())
+    encodings.push_back(static_cast<format::Encoding>(s.entry.encoding));
+  return encodings;
+}
+bool is_reverse(const Section& s) {
+  return s.kind == format::SectionKind::reverse_offsets ||
+         s.kind == format::SectionKind::reverse_sources ||
+         s.kind == format::SectionKind::reverse_arcs;
+}
+}  // namespace
+
+TEST_CASE("pack derives the reverse CSR by default and --keep-reverse stores it") {
+  testing::TempDir dir;
+  write_graph(testing::golden_input(), dir / "plain.mosb");
+  pack_file(dir / "plain.mosb", dir / "derived.mosb", {});
+  pack_file(dir / "plain.mosb", dir / "kept.mosb", keeping_reverse());
+  const auto derived = GraphReader::open(dir / "derived.mosb");
+  CHECK(derived.header().version_minor == 2);
+  CHECK((derived.header().required_features & format::kFeatureTransposeSections) != 0);
+  std::size_t derived_sections = 0;
+  for (const auto& s : derived.sections()) {
+    const bool transposed = s.entry.encoding == static_cast<std::uint8_t>(format::Encoding::transpose);
+    CHECK(transposed == is_reverse(s));
+    if (transposed) CHECK(s.entry.stored_length == 0);
+    derived_sections += transposed;
+  }
+  CHECK(derived_sections == 3);
+  const auto kept = encodings_of(dir / "kept.mosb");
+  CHECK(std::count(kept.begin(), kept.end(), format::Encoding::transpose) == 0);
+  CHECK(std::filesystem::file_size(dir / "derived.mosb") <
+        std::filesystem::file_size(dir / "kept.mosb"));
+  unpack_file(dir / "derived.mosb", dir / "a.mosb");
+  unpack_file(dir / "kept.mosb", dir / "b.mosb");
+  CHECK(bytes_of(dir / "a.mosb") == bytes_of(dir / "plain.mosb"));
+  CHECK(bytes_of(dir / "b.mosb") == bytes_of(dir / "plain.mosb"));
+  CHECK(GraphReader::load(dir / "derived.mosb").digest() ==
+        GraphReader::open(dir / "plain.mosb").digest());
+}
+
+TEST_CASE("a reverse section that is not the transpose is stored, and restored exactly") {
+  // Structurally invalid (verify --level structure refuses it) but checksummed: the packer only
+  // derives what it can give back byte for byte.
+  testing::TempDir dir;
+  write_graph(testing::golden_input(), dir / "plain.mosb");
+  auto b = testing::read_bytes(dir / "plain.mosb");
+  const auto i = testing::find_entry(b, "reverse_sources");
+  const auto e = testing::entry_of(b, i);
+  std::uint32_t first;
+  std::memcpy(&first, b.data() + e.offset, 4);
+  first ^= 1;
+  std::memcpy(b.data() + e.offset, &first, 4);
+  testing::reseal_section(b, i);
+  testing::write_bytes(dir / "odd.mosb", b);
+  pack_file(dir / "odd.mosb", dir / "packed.mosb", {});
+  const auto packed = GraphReader::open(dir / "packed.mosb");
+  for (const auto& s : packed.sections())
+    if (is_reverse(s))
+      CHECK((s.entry.encoding == static_cast<std::uint8_t>(format::Encoding::transpose)) ==
+            (s.name != "reverse_sources"));
+  unpack_file(dir / "packed.mosb", dir / "back.mosb");
+  CHECK(bytes_of(dir / "back.mosb") == bytes_of(dir / "odd.mosb"));
+}
+
+TEST_CASE("a derived reverse CSR needs a forward CSR that is one") {
+  // The 1.2 golden Grid with its forward targets stored raw, one of them out of range and the
+  // checksums sealed: only the derivation can find it, and it must refuse, not write past the end.
+  testing::TempDir dir;
+  const auto golden = kGolden / "1.2" / "packed" / "valid" / "grid.packed.mosb";
+  const auto source = GraphReader::open(golden);
+  const auto n = source.header().vertex_count;
+  const auto loaded = GraphReader::load(golden);
+  const auto targets = loaded.forward_targets();
+  std::vector<std::uint32_t> broken(targets.begin(), targets.end());
+  broken.back() = static_cast<std::uint32_t>(n);
+  {
+    FileWriter writer(dir / "broken.mosb", AtomicFile::Existing::replace);
+    for (const auto& s : source.sections()) {
+      if (s.kind != format::SectionKind::forward_targets) {
+        writer.add_encoded_section(s.entry, s.stored);
+        continue;
+      }
+      auto entry = s.entry;
+      entry.encoding = static_cast<std::uint8_t>(format::Encoding::raw);
+      const auto raw = std::as_bytes(std::span(broken));
+      entry.checksum = XXH3_64bits(raw.data(), raw.size());
+      writer.add_encoded_section(entry, raw);
+    }
+    writer.commit(n, source.header().arc_count);
+  }
+  CHECK_THROWS_WITH_AS(GraphReader::load(dir / "broken.mosb"),
+                       doctest::Contains("the forward CSR is not one"), Error);
+  CHECK_THROWS_AS(unpack_file(dir / "broken.mosb", dir / "out.mosb"), Error);
+  CHECK_FALSE(std::filesystem::exists(dir / "out.mosb"));
 }

@@ -1,6 +1,6 @@
-// The invalid packed golden files (spec/golden/1.1/packed/invalid): each is the valid
-// grid.packed.mosb with one fault a hostile or damaged download could carry, the table and header
-// checksums resealed so that only decoding the frames can find it.
+// The invalid packed golden files (spec/golden/1.1/packed/invalid and 1.2/packed/invalid): each
+// is the valid grid.packed.mosb of its version with one fault a hostile or damaged download could
+// carry, the table and header checksums resealed so that only decoding the sections can find it.
 #pragma once
 
 #include <string_view>
@@ -15,16 +15,16 @@ struct PackedFault {
   void (*apply)(Bytes&);
 };
 
-inline std::size_t encoded_section(const Bytes& b, format::Encoding encoding) {
+inline std::size_t encoded_section(const Bytes& b, format::Encoding encoding, std::size_t nth = 0) {
   for (std::size_t i = 0; i < header_of(b).section_count; ++i)
-    if (entry_of(b, i).encoding == static_cast<std::uint8_t>(encoding)) return i;
+    if (entry_of(b, i).encoding == static_cast<std::uint8_t>(encoding) && nth-- == 0) return i;
   throw std::runtime_error("the packed golden file has no section in that encoding");
 }
 
-// Changes the table entry of the first section in `encoding`, then reseals the header checksum.
+// Changes the table entry of the nth section in `encoding`, then reseals the header checksum.
 template <class Change>
-void patch_entry(Bytes& b, format::Encoding encoding, Change change) {
-  const auto i = encoded_section(b, encoding);
+void patch_entry(Bytes& b, format::Encoding encoding, Change change, std::size_t nth = 0) {
+  const auto i = encoded_section(b, encoding, nth);
   auto e = entry_of(b, i);
   change(e);
   set_entry(b, i, e);
@@ -58,6 +58,43 @@ inline const PackedFault kPackedFaults[] = {
     {"unknown-encoding.mosb", "encoding 4",
      [](Bytes& b) {
        patch_entry(b, Encoding::delta_zstd, [](SectionEntry& e) { e.encoding = 4; });
+     }},
+};
+
+// Faults of the transpose encoding (1.2), in the 1.2 grid.packed.mosb, whose three reverse CSR
+// sections (offsets, sources, arcs, in table order) are derived.
+inline const PackedFault kTransposeFaults[] = {
+    {"transpose-not-reverse.mosb", "not part of the reverse CSR",
+     [](Bytes& b) {
+       patch_entry(b, Encoding::shuffle_zstd, [](SectionEntry& e) {
+         e.encoding = static_cast<std::uint8_t>(Encoding::transpose);
+         e.stored_length = 0;
+       });
+     }},
+    {"transpose-stored.mosb", "transpose-encoded with stored length 64",
+     [](Bytes& b) {
+       patch_entry(b, Encoding::transpose, [](SectionEntry& e) { e.stored_length = 64; });
+     }},
+    {"transpose-missing-bit.mosb", "lacks the transpose-sections feature (bit 3)",
+     [](Bytes& b) {
+       auto h = header_of(b);
+       h.required_features &= ~format::kFeatureTransposeSections;
+       set_header(b, h);
+       reseal_header(b);
+     }},
+    // reverse_arcs one entry longer than forward_targets: what it would allocate is not bounded.
+    {"transpose-length.mosb", "reverse sections as long as forward ones",
+     [](Bytes& b) {
+       patch_entry(b, Encoding::transpose, [](SectionEntry& e) { e.row_count += 1; }, 2);
+     }},
+    // The derived reverse_sources do not match the checksum the table holds.
+    {"transpose-checksum.mosb", "checksum mismatch",
+     [](Bytes& b) {
+       patch_entry(b, Encoding::transpose, [](SectionEntry& e) { e.checksum ^= 1; }, 1);
+     }},
+    {"unknown-encoding.mosb", "unknown encoding 5",
+     [](Bytes& b) {
+       patch_entry(b, Encoding::delta_zstd, [](SectionEntry& e) { e.encoding = 5; });
      }},
 };
 

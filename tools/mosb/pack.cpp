@@ -20,6 +20,7 @@ struct PackArgs {
   bool in_place = false;
   int level = PackOptions{}.level;
   unsigned threads = 1;
+  bool keep_reverse = false;
   bool json = false;
 };
 
@@ -49,7 +50,7 @@ int run(const PackArgs& a, bool pack) {
   for (std::size_t i = 0; i < a.inputs.size(); ++i) {
     const auto before = std::filesystem::file_size(a.inputs[i]);
     if (pack)
-      pack_file(a.inputs[i], outputs[i], PackOptions{a.level, a.threads});
+      pack_file(a.inputs[i], outputs[i], PackOptions{a.level, a.threads, !a.keep_reverse});
     else
       unpack_file(a.inputs[i], outputs[i]);
     const auto after = std::filesystem::file_size(outputs[i]);
@@ -95,6 +96,9 @@ Command add_pack_command(CLI::App& app, bool pack) {
                     "sections compressed at once; the output is the same for any value")
         ->check(CLI::Range(1U, 256U))
         ->capture_default_str();
+    sub->add_flag("--keep-reverse", args->keep_reverse,
+                  "store the reverse CSR instead of deriving it at unpack (format 1.1, not 1.2; "
+                  "larger, faster to unpack)");
   }
   add_json_flag(sub, args->json);
   return {sub, [args, pack] { return run(*args, pack); }};

@@ -18,7 +18,7 @@ static_assert(std::endian::native == std::endian::little,
 inline constexpr std::uint16_t kVersionMajor = 1;
 // The newest minor this code reads. A writer stamps a file with the lowest minor whose readers can
 // read it (spec/FORMAT.md §2): instance files using only 1.0 features still say 1.0.
-inline constexpr std::uint16_t kVersionMinor = 1;
+inline constexpr std::uint16_t kVersionMinor = 2;
 
 // PNG-style: a high-bit byte catches 7-bit transfers, CR LF catches CRLF->LF conversion,
 // the lone LF catches LF->CRLF conversion, 0x1A stops `type` on DOS.
@@ -41,13 +41,17 @@ enum RequiredFeature : std::uint64_t {
   kFeatureZstdSections = 1ULL << 0,     // some section has encoding zstd (a packed file)
   kFeatureShuffleSections = 1ULL << 1,  // some section has encoding shuffle_zstd (1.1)
   kFeatureDeltaSections = 1ULL << 2,    // some section has encoding delta_zstd (1.1)
+  kFeatureTransposeSections = 1ULL << 3,  // some section has encoding transpose (1.2)
 };
-inline constexpr std::uint64_t kKnownRequiredFeatures =
-    kFeatureZstdSections | kFeatureShuffleSections | kFeatureDeltaSections;
+inline constexpr std::uint64_t kKnownRequiredFeatures = kFeatureZstdSections |
+                                                        kFeatureShuffleSections |
+                                                        kFeatureDeltaSections |
+                                                        kFeatureTransposeSections;
 
 // §2: a file's version_minor is the lowest minor whose readers can read it, so a file using only
 // 1.0 features stays a 1.0 file, byte for byte.
 constexpr std::uint16_t minimum_version_minor(std::uint64_t required_features) {
+  if (required_features & kFeatureTransposeSections) return 2;
   return (required_features & (kFeatureShuffleSections | kFeatureDeltaSections)) ? 1 : 0;
 }
 // No optional features are defined in 1.0; readers ignore unknown optional bits.
@@ -122,16 +126,17 @@ enum class ElementType : std::uint8_t {
   f64 = 10,
 };
 
-// §6. Every encoding but raw stores one zstd frame that declares its content size, the decoded
-// length of the section; a reader must know the encoding's required feature bit.
+// §6. Encodings 1-3 store one zstd frame that declares its content size, the decoded length of
+// the section; encoding 4 stores nothing. A reader must know the encoding's required feature bit.
 enum class Encoding : std::uint8_t {
   raw = 0,           // the stored bytes are the elements
   zstd = 1,          // the frame's content is the elements
   shuffle_zstd = 2,  // the content is the elements' bytes grouped by significance (byte shuffle)
   delta_zstd = 3,    // the content is the byte shuffle of the wrapping differences x[i] - x[i-1]
                      // (x[-1] = 0) of an integer column
+  transpose = 4,     // nothing is stored: a reverse CSR section, derived from the forward CSR
 };
-inline constexpr std::uint8_t kLastEncoding = 3;
+inline constexpr std::uint8_t kLastEncoding = 4;
 
 // The required feature bit of a non-raw encoding.
 constexpr std::uint64_t feature_of(Encoding e) {
@@ -144,6 +149,8 @@ constexpr std::uint64_t feature_of(Encoding e) {
       return kFeatureShuffleSections;
     case Encoding::delta_zstd:
       return kFeatureDeltaSections;
+    case Encoding::transpose:
+      return kFeatureTransposeSections;
   }
   return 0;
 }

@@ -23,9 +23,12 @@ namespace mosb {
 struct PackOptions {
   int level = 19;        // zstd compression level, 1..22
   unsigned threads = 1;  // sections compressed at once; does not change the output bytes
+  // Store no reverse CSR section that is the transpose of the forward CSR (encoding transpose,
+  // format 1.2): the packed file shrinks by up to a third, unpacking derives the sections again.
+  bool derive_reverse = true;
 };
 
-// True when the header declares sections in a zstd encoding (required feature bits 0-2).
+// True when the header declares sections in an encoding other than raw (required bits 0-3).
 bool is_packed(const format::FileHeader& header);
 
 // Writes the packed form of the instance `in` (packed or not) to `out`, atomically
