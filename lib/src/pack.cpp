@@ -50,17 +50,26 @@ struct TransposePlan {
 
 // The five CSR sections, when there is exactly one of each kind with the type and width of §4 and
 // each reverse section is as long as the forward one it is derived from (reverse_offsets as
-// forward_offsets, the other two as forward_targets). A section without stored bytes has no zstd
-// ratio bound; this equality bounds what deriving it allocates.
-std::optional<TransposePlan> csr_sections(const std::vector<Section>& sections) {
+// forward_offsets, the other two as forward_targets); else nullopt and, in `why`, what is not so.
+// A section without stored bytes has no zstd ratio bound: these lengths bound what deriving it
+// allocates by sections that have one.
+std::optional<TransposePlan> csr_sections(const std::vector<Section>& sections, std::string& why) {
+  auto reject = [&](std::string what) {
+    why = std::move(what);
+    return std::nullopt;
+  };
   auto one = [&](format::SectionKind kind, format::ElementType type) -> std::optional<std::size_t> {
+    const std::string kind_name(format::to_string(kind));
     std::optional<std::size_t> found;
     for (std::size_t i = 0; i < sections.size(); ++i) {
       if (sections[i].kind != kind) continue;
-      if (found || sections[i].type != type || sections[i].entry.row_width != 1)
-        return std::nullopt;
+      if (found) return reject("two " + kind_name + " sections");
+      if (sections[i].type != type || sections[i].entry.row_width != 1)
+        return reject("section '" + sections[i].name + "' is not " +
+                      std::string(format::to_string(type)) + " x 1");
       found = i;
     }
+    if (!found) return reject("no " + kind_name + " section");
     return found;
   };
   using format::ElementType;
@@ -71,9 +80,12 @@ std::optional<TransposePlan> csr_sections(const std::vector<Section>& sections) 
   const auto rs = one(SectionKind::reverse_sources, ElementType::u32);
   const auto ra = one(SectionKind::reverse_arcs, ElementType::u32);
   if (!fo || !ft || !ro || !rs || !ra) return std::nullopt;
-  auto length = [&](std::size_t i) { return sections[i].decoded_length; };
-  if (length(*ro) != length(*fo) || length(*rs) != length(*ft) || length(*ra) != length(*ft))
-    return std::nullopt;
+  for (const auto& [reverse, forward] : {std::pair{*ro, *fo}, {*rs, *ft}, {*ra, *ft}})
+    if (sections[reverse].decoded_length != sections[forward].decoded_length)
+      return reject("section '" + sections[reverse].name + "' declares " +
+                    std::to_string(sections[reverse].decoded_length) + " bytes, '" +
+                    sections[forward].name + "' " +
+                    std::to_string(sections[forward].decoded_length));
   return TransposePlan{*fo, *ft, *ro, *rs, *ra};
 }
 
@@ -82,12 +94,13 @@ std::optional<TransposePlan> csr_sections(const std::vector<Section>& sections) 
 std::optional<TransposePlan> transpose_plan(const std::vector<Section>& sections,
                                             std::string_view name) {
   if (std::none_of(sections.begin(), sections.end(), is_derived)) return std::nullopt;
-  auto plan = csr_sections(sections);
+  std::string why;
+  auto plan = csr_sections(sections, why);
   if (!plan)
-    throw Error(ErrorCode::damaged,
-                std::string(name) +
-                    ": the reverse CSR cannot be derived (transpose encoding): the file needs one "
-                    "section of each CSR kind, reverse sections as long as forward ones (§4)");
+    throw Error(ErrorCode::damaged, std::string(name) +
+                                        ": the reverse CSR cannot be derived (transpose "
+                                        "encoding): " +
+                                        why);
   return plan;
 }
 
@@ -295,8 +308,8 @@ bool is_packed(const format::FileHeader& header) {
 MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view display_name) {
   const auto container = parse_container(bytes, display_name, format::FileKind::instance);
   auto sections = container.sections;
-  const auto derived = transpose_plan(sections, display_name);
-  // The canonical layout, and the bomb bound, before any allocation.
+  // The canonical layout, the bomb bound and the shapes the derived sections need, before any
+  // allocation.
   std::uint64_t position = format::kHeaderSize;
   for (auto& s : sections) {
     if (is_encoded(s) && !is_derived(s) && s.decoded_length / kMaxZstdRatio > s.entry.stored_length)
@@ -309,6 +322,7 @@ MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view displ
     if (__builtin_add_overflow(position, s.decoded_length, &position))
       throw Error(ErrorCode::damaged, std::string(display_name) + ": decoded size overflows");
   }
+  const auto derived = transpose_plan(sections, display_name);
   auto header = container.header;
   header.table_offset = format::align_up(position);
   header.file_size = header.table_offset + sections.size() * sizeof(format::SectionEntry);
@@ -429,8 +443,9 @@ void pack_file(const std::filesystem::path& in, const std::filesystem::path& out
   // file's is (§4): unpacking derives it again (encoding transpose). Compared here, so a file that
   // breaks §4 keeps its reverse sections as they are.
   std::vector<bool> derived(sections.size(), false);
+  std::string not_derivable;
   if (options.derive_reverse)
-    if (const auto plan = csr_sections(sections)) {
+    if (const auto plan = csr_sections(sections, not_derivable)) {
       auto elements = [&]<class T>(std::size_t i, T*) {
         const auto& stored = sections[i].stored;
         return std::span<const T>(reinterpret_cast<const T*>(stored.data()),

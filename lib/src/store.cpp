@@ -123,7 +123,10 @@ std::pair<GraphReader, fs::path> open_packed(const fs::path& directory, const Ma
       // Made again below from the packed file, which is checked as it is unpacked.
     }
   }
-  if (::access((fs::is_directory(cache, ec) ? cache : directory).c_str(), W_OK) != 0)
+  // A read-only store, or a directory where the copy belongs (rename cannot replace it, and the
+  // store does not delete what it did not make): decoded into memory, nothing written.
+  if (::access((fs::is_directory(cache, ec) ? cache : directory).c_str(), W_OK) != 0 ||
+      fs::is_directory(copy, ec))
     return {GraphReader::load(packed, VerifyLevel::full), packed};
   fs::create_directory(cache, ec);
   if (ec) throw Error(ErrorCode::io, cache.string() + ": cannot create the cache: " + ec.message());

@@ -577,10 +577,18 @@ class PackedSections(GridTest):
 
     def test_unknown_encoding(self):
         data = self.grid_bytes()
-        set_entry(data, "c1", encoding=4)  # 1-3 are §6's zstd encodings
+        set_entry(data, "c1", encoding=5)  # 1-4 are §6's encodings
         reseal(data)
         self.assert_fail(self.write("bad.mosb", data), "header", "section 'c1'",
-                         "unknown encoding 4")
+                         "unknown encoding 5")
+
+    def test_known_encoding_without_its_feature_bit(self):
+        data = self.grid_bytes()
+        set_entry(data, "c1", encoding=4)
+        reseal(data)
+        self.assert_fail(self.write("bad.mosb", data), "header", "section 'c1'",
+                         "transpose-encoded (encoding 4) but the header lacks the "
+                         "transpose-sections feature (bit 3)")
 
 
 class SpecConformance(GridTest):

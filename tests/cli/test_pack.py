@@ -51,6 +51,19 @@ class PackTest(CliTest):
         data = read(packed)
         if header(data)["required_features"]:
             self.assertTrue(any(e["encoding"] != 0 for e in entries(data)))
+        # An instance's reverse CSR is derived at unpacking (encoding 4, format 1.2), unless
+        # --keep-reverse; both unpack to the same bytes.
+        if header(data)["file_kind"] == 1:
+            reverse = [e for e in entries(data) if e["kind"] in (4, 5, 6)]
+            self.assertEqual([(e["encoding"], e["stored_length"]) for e in reverse], [(4, 0)] * 3)
+            self.assertEqual(header(data)["version_minor"], 2)
+            kept = self.path("kept.mosb")
+            self.ok("pack", "--keep-reverse", source, "-o", kept)
+            self.assertNotIn(4, [e["encoding"] for e in entries(read(kept))])
+            self.assertLessEqual(header(read(kept))["version_minor"], 1)
+            self.assertLess(len(data), len(read(kept)) + 1)
+            self.ok("unpack", kept, "-o", unpacked)
+            self.assertEqual(read(unpacked), original, source)
         # Same content digest, read from the tables alone; verify decodes and checks.
         digests = {json.loads(self.ok("inspect", "--json", f).stdout)["digest"]
                    for f in (source, packed)}
@@ -112,7 +125,8 @@ class PackTest(CliTest):
         one line containing every fragment of `expected`, writing nothing."""
         packed = self.path("p.mosb")
         if not os.path.exists(packed):
-            self.ok("pack", self.converter_outputs()["grid"], "-o", packed)
+            # Every section in a zstd frame: the frame checks are what these tests attack.
+            self.ok("pack", "--keep-reverse", self.converter_outputs()["grid"], "-o", packed)
         data = bytearray(read(packed))
         mutate(data)
         bad = self.write("bad.mosb", data)
@@ -178,6 +192,33 @@ class PackTest(CliTest):
             set_entry(data, e["name"], checksum=e["checksum"] ^ 1)
             reseal(data)
         self.hostile(flip, "checksum mismatch")
+
+    def derived_hostile(self, mutate, *expected):
+        """hostile() on a grid packed with its reverse CSR derived (encoding 4)."""
+        self.ok("pack", self.converter_outputs()["grid"], "-o", self.path("p.mosb"))
+        self.hostile(mutate, *expected)
+
+    def test_derived_section_longer_than_its_source(self):
+        def grow(data):
+            e = entry(data, "reverse_arcs")
+            set_entry(data, "reverse_arcs", row_count=e["row_count"] + 1)
+            reseal(data)
+        self.derived_hostile(grow, "reverse CSR cannot be derived",
+                             "section 'reverse_arcs' declares")
+
+    def test_derived_section_with_wrong_checksum(self):
+        def flip(data):
+            e = entry(data, "reverse_sources")
+            set_entry(data, "reverse_sources", checksum=e["checksum"] ^ 1)
+            reseal(data)
+        self.derived_hostile(flip, "reverse_sources", "checksum mismatch")
+
+    def test_derived_encoding_of_a_cost_column(self):
+        def derive_costs(data):
+            cost = [e for e in entries(data) if e["kind"] == 7][0]
+            set_entry(data, cost["name"], encoding=4, stored_length=0)
+            reseal(data)
+        self.derived_hostile(derive_costs, "not part of the reverse CSR")
 
 
 if __name__ == "__main__":

@@ -466,16 +466,24 @@ class DamagedEntries(Base):
             os.mkfifo(path)
         self.check_cache_remade(fifo)
 
-    # Fails today: the copy is made again beside the directory and the rename over it fails, exit 1
-    # with 'mosb: STORE/.cache/g7.mosb: cannot rename the finished file into place: Is a
-    # directory' (lib/src/store.cpp open_packed). Left for the owner of the store to decide:
-    # remove what is in the way, or read the packed entry into memory as for a read-only store.
-    @unittest.expectedFailure
-    def test_cache_copy_replaced_by_a_directory_is_made_again(self):
-        def directory(path):
-            os.remove(path)
-            os.mkdir(path)
-        self.check_cache_remade(directory)
+    def test_directory_in_place_of_the_cache_copy_is_left_alone(self):
+        # rename cannot replace a directory and the store deletes nothing it did not make: the
+        # packed entry is decoded into memory, as on a read-only store.
+        for options in ([], ["--json"]):
+            with self.subTest(options=options):
+                store = self.mixed_store()
+                cached = os.path.join(store, ".cache", "g7.mosb")
+                os.makedirs(os.path.join(cached, "inside"))
+                r = self.instance(store, "Grid-7x4/Grid_3", *options)
+                self.assertEqual(r.returncode, 0, r)
+                self.assertEqual(r.stderr, "", r)
+                packed = os.path.join(store, "g7.mosb")
+                if options:
+                    self.assertEqual(json.loads(r.stdout)["path"], packed)
+                else:
+                    self.assertEqual(r.stdout.splitlines()[0], packed, r)
+                self.assertTrue(os.path.isdir(os.path.join(cached, "inside")))
+                self.assertEqual(os.listdir(os.path.join(store, ".cache")), ["g7.mosb"])
 
 
 class Sources(Base):

@@ -83,7 +83,7 @@ inline const PackedFault kTransposeFaults[] = {
        reseal_header(b);
      }},
     // reverse_arcs one entry longer than forward_targets: what it would allocate is not bounded.
-    {"transpose-length.mosb", "reverse sections as long as forward ones",
+    {"transpose-length.mosb", "section 'reverse_arcs' declares",
      [](Bytes& b) {
        patch_entry(b, Encoding::transpose, [](SectionEntry& e) { e.row_count += 1; }, 2);
      }},
