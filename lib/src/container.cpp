@@ -25,8 +25,7 @@ std::string version_text(std::uint16_t major, std::uint16_t minor) {
 }
 
 // §6: encoding k (k >= 1) comes with required bit k - 1.
-constexpr const char* kEncodingNames[] = {"raw", "zstd", "shuffle-zstd", "delta-zstd",
-                                          "transpose"};
+constexpr const char* kEncodingNames[] = {"raw", "zstd", "shuffle-zstd", "delta-zstd", "transpose"};
 constexpr const char* kFeatureNames[] = {"zstd-sections", "shuffle-sections", "delta-sections",
                                          "transpose-sections"};
 static_assert(std::size(kEncodingNames) == format::kLastEncoding + 1);
@@ -225,8 +224,8 @@ Container parse_container(std::span<const std::byte> bytes, std::string_view dis
         if (!reverse || kind != format::FileKind::instance)
           fail(label + ": transpose encoding of a section that is not part of the reverse CSR");
         if (e.stored_length != 0)
-          fail(label + ": transpose-encoded with stored length " +
-               std::to_string(e.stored_length) + ", not 0");
+          fail(label + ": transpose-encoded with stored length " + std::to_string(e.stored_length) +
+               ", not 0");
       } else if (e.stored_length == 0) {
         fail(label + ": zstd-encoded with stored length 0");
       }

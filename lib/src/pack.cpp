@@ -33,8 +33,8 @@ using format::Encoding;
 
 // The required feature bits that make a file packed: one per encoding other than raw (§6).
 constexpr std::uint64_t kEncodingFeatures =
-    format::kFeatureZstdSections | format::kFeatureShuffleSections |
-    format::kFeatureDeltaSections | format::kFeatureTransposeSections;
+    format::kFeatureZstdSections | format::kFeatureShuffleSections | format::kFeatureDeltaSections |
+    format::kFeatureTransposeSections;
 
 bool is_encoded(const Section& s) {
   return s.entry.encoding != static_cast<std::uint8_t>(Encoding::raw);
@@ -169,9 +169,9 @@ void undelta_in_place(std::byte* bytes, std::size_t count) {
 // at its head's next free entry. `reverse_offsets` has n+1 entries, the other two m. Returns false,
 // with the outputs undefined, when (offsets, targets) is not a CSR: offsets from 0 to m, never
 // decreasing, every target below n, ids that fit u32.
-bool derive_transpose(std::span<const std::uint64_t> offsets, std::span<const std::uint32_t> targets,
-                      std::uint64_t* reverse_offsets, std::uint32_t* reverse_sources,
-                      std::uint32_t* reverse_arcs) {
+bool derive_transpose(std::span<const std::uint64_t> offsets,
+                      std::span<const std::uint32_t> targets, std::uint64_t* reverse_offsets,
+                      std::uint32_t* reverse_sources, std::uint32_t* reverse_arcs) {
   if (offsets.empty()) return false;
   const std::uint64_t n = offsets.size() - 1, m = targets.size();
   if (n > UINT32_MAX || m > UINT32_MAX || offsets[0] != 0 || offsets[n] != m) return false;
@@ -375,14 +375,13 @@ MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view displ
     };
     const auto& fo = sections[derived->forward_offsets];
     const auto& ft = sections[derived->forward_targets];
-    if (!derive_transpose(
-            {reinterpret_cast<const std::uint64_t*>(at(derived->forward_offsets)),
-             fo.decoded_length / 8},
-            {reinterpret_cast<const std::uint32_t*>(at(derived->forward_targets)),
-             ft.decoded_length / 4},
-            place(derived->reverse_offsets, aside_offsets, n1),
-            place(derived->reverse_sources, aside_sources, m),
-            place(derived->reverse_arcs, aside_arcs, m)))
+    if (!derive_transpose({reinterpret_cast<const std::uint64_t*>(at(derived->forward_offsets)),
+                           fo.decoded_length / 8},
+                          {reinterpret_cast<const std::uint32_t*>(at(derived->forward_targets)),
+                           ft.decoded_length / 4},
+                          place(derived->reverse_offsets, aside_offsets, n1),
+                          place(derived->reverse_sources, aside_sources, m),
+                          place(derived->reverse_arcs, aside_arcs, m)))
       throw Error(ErrorCode::damaged,
                   std::string(display_name) +
                       ": the reverse CSR cannot be derived (transpose encoding): the forward CSR "
@@ -517,8 +516,9 @@ void pack_file(const std::filesystem::path& in, const std::filesystem::path& out
   for (std::size_t i = 0; i < sections.size(); ++i) {
     auto entry = sections[i].entry;
     entry.encoding = static_cast<std::uint8_t>(encodings[i]);
-    writer.add_encoded_section(entry, encodings[i] == Encoding::raw ? sections[i].stored
-                                                                      : std::span<const std::byte>(frames[i]));
+    writer.add_encoded_section(entry, encodings[i] == Encoding::raw
+                                          ? sections[i].stored
+                                          : std::span<const std::byte>(frames[i]));
   }
   writer.commit(container.header.vertex_count, container.header.arc_count);
 }

@@ -76,11 +76,10 @@ int main(int argc, char** argv) {
     pack_file(file, kept_path, kept);
     const auto d = measure(derived_path, original, repeat);
     const auto k = measure(kept_path, original, repeat);
-    std::printf("%-28s %12.0f | %12llu %8.3f %9.2f | %12llu %8.3f %9.2f\n",
-                file.filename().c_str(), size, static_cast<unsigned long long>(d.packed_size),
-                d.packed_size / size, size / d.best_seconds / 1e9,
-                static_cast<unsigned long long>(k.packed_size), k.packed_size / size,
-                size / k.best_seconds / 1e9);
+    std::printf("%-28s %12.0f | %12llu %8.3f %9.2f | %12llu %8.3f %9.2f\n", file.filename().c_str(),
+                size, static_cast<unsigned long long>(d.packed_size), d.packed_size / size,
+                size / d.best_seconds / 1e9, static_cast<unsigned long long>(k.packed_size),
+                k.packed_size / size, size / k.best_seconds / 1e9);
   }
   std::filesystem::remove_all(dir);
   return 0;

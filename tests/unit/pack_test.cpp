@@ -1,7 +1,6 @@
 #include "mosb/pack.hpp"
 
 #include <doctest/doctest.h>
-
 #include <xxhash.h>
 
 #include <algorithm>
@@ -132,23 +131,23 @@ TEST_CASE("every invalid packed golden file is refused where EXPECTED.tsv says")
   std::size_t files = 0;
   testing::TempDir dir;
   for (const auto& invalid : {kPackedGolden / "invalid", kGolden / "1.2" / "packed" / "invalid"})
-  for (const auto& row : testing::expected_rows(invalid / "EXPECTED.tsv")) {
-    REQUIRE(row.size() == 2);
-    const auto file = invalid / row[0];
-    const auto& expected = row[1];
-    CAPTURE(file);
-    ++files;
-    std::string message;
-    try {
-      (void)GraphReader::load(file, VerifyLevel::full);
-    } catch (const Error& error) {
-      message = error.what();
+    for (const auto& row : testing::expected_rows(invalid / "EXPECTED.tsv")) {
+      REQUIRE(row.size() == 2);
+      const auto file = invalid / row[0];
+      const auto& expected = row[1];
+      CAPTURE(file);
+      ++files;
+      std::string message;
+      try {
+        (void)GraphReader::load(file, VerifyLevel::full);
+      } catch (const Error& error) {
+        message = error.what();
+      }
+      CHECK_MESSAGE(message.find(expected) != std::string::npos, message);
+      CHECK_MESSAGE(message.find(file.string()) == 0, message);
+      CHECK_THROWS_AS(unpack_file(file, dir / "out.mosb"), Error);
+      CHECK_FALSE(std::filesystem::exists(dir / "out.mosb"));
     }
-    CHECK_MESSAGE(message.find(expected) != std::string::npos, message);
-    CHECK_MESSAGE(message.find(file.string()) == 0, message);
-    CHECK_THROWS_AS(unpack_file(file, dir / "out.mosb"), Error);
-    CHECK_FALSE(std::filesystem::exists(dir / "out.mosb"));
-  }
   CHECK(files == std::size(testing::kPackedFaults) + std::size(testing::kTransposeFaults));
 }
 
@@ -177,7 +176,8 @@ TEST_CASE("pack derives the reverse CSR by default and --keep-reverse stores it"
   CHECK((derived.header().required_features & format::kFeatureTransposeSections) != 0);
   std::size_t derived_sections = 0;
   for (const auto& s : derived.sections()) {
-    const bool transposed = s.entry.encoding == static_cast<std::uint8_t>(format::Encoding::transpose);
+    const bool transposed =
+        s.entry.encoding == static_cast<std::uint8_t>(format::Encoding::transpose);
     CHECK(transposed == is_reverse(s));
     if (transposed) CHECK(s.entry.stored_length == 0);
     derived_sections += transposed;

@@ -85,12 +85,14 @@ inline const PackedFault kTransposeFaults[] = {
     // reverse_arcs one entry longer than forward_targets: what it would allocate is not bounded.
     {"transpose-length.mosb", "section 'reverse_arcs' declares",
      [](Bytes& b) {
-       patch_entry(b, Encoding::transpose, [](SectionEntry& e) { e.row_count += 1; }, 2);
+       patch_entry(
+           b, Encoding::transpose, [](SectionEntry& e) { e.row_count += 1; }, 2);
      }},
     // The derived reverse_sources do not match the checksum the table holds.
     {"transpose-checksum.mosb", "checksum mismatch",
      [](Bytes& b) {
-       patch_entry(b, Encoding::transpose, [](SectionEntry& e) { e.checksum ^= 1; }, 1);
+       patch_entry(
+           b, Encoding::transpose, [](SectionEntry& e) { e.checksum ^= 1; }, 1);
      }},
     {"unknown-encoding.mosb", "unknown encoding 5",
      [](Bytes& b) {

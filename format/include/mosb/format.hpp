@@ -38,15 +38,14 @@ enum class FileKind : std::uint32_t {
 
 // Required features: a reader refuses a file with a required bit it does not know.
 enum RequiredFeature : std::uint64_t {
-  kFeatureZstdSections = 1ULL << 0,     // some section has encoding zstd (a packed file)
-  kFeatureShuffleSections = 1ULL << 1,  // some section has encoding shuffle_zstd (1.1)
-  kFeatureDeltaSections = 1ULL << 2,    // some section has encoding delta_zstd (1.1)
+  kFeatureZstdSections = 1ULL << 0,       // some section has encoding zstd (a packed file)
+  kFeatureShuffleSections = 1ULL << 1,    // some section has encoding shuffle_zstd (1.1)
+  kFeatureDeltaSections = 1ULL << 2,      // some section has encoding delta_zstd (1.1)
   kFeatureTransposeSections = 1ULL << 3,  // some section has encoding transpose (1.2)
 };
-inline constexpr std::uint64_t kKnownRequiredFeatures = kFeatureZstdSections |
-                                                        kFeatureShuffleSections |
-                                                        kFeatureDeltaSections |
-                                                        kFeatureTransposeSections;
+inline constexpr std::uint64_t kKnownRequiredFeatures =
+    kFeatureZstdSections | kFeatureShuffleSections | kFeatureDeltaSections |
+    kFeatureTransposeSections;
 
 // §2: a file's version_minor is the lowest minor whose readers can read it, so a file using only
 // 1.0 features stays a 1.0 file, byte for byte.
