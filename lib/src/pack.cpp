@@ -180,14 +180,14 @@ bool derive_transpose(std::span<const std::uint64_t> offsets,
   // reverse_offsets[v + 2] counts the arcs into v (v + 2 <= n); the running sum then leaves the
   // first entry of v in reverse_offsets[v + 1], which placing v's arcs advances to its end.
   std::fill_n(reverse_offsets, n + 1, std::uint64_t{0});
-  for (const std::uint32_t v : targets) {
+  for (const std::uint64_t v : targets) {
     if (v >= n) return false;
     if (v + 2 <= n) ++reverse_offsets[v + 2];
   }
   for (std::uint64_t v = 2; v <= n; ++v) reverse_offsets[v] += reverse_offsets[v - 1];
   for (std::uint64_t u = 0; u < n; ++u)
     for (std::uint64_t a = offsets[u]; a < offsets[u + 1]; ++a) {
-      const std::uint64_t entry = reverse_offsets[targets[a] + 1]++;
+      const std::uint64_t entry = reverse_offsets[std::uint64_t{targets[a]} + 1]++;
       reverse_sources[entry] = static_cast<std::uint32_t>(u);
       reverse_arcs[entry] = static_cast<std::uint32_t>(a);
     }
