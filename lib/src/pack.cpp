@@ -164,6 +164,12 @@ void undelta_in_place(std::byte* bytes, std::size_t count) {
   }
 }
 
+// `bytes` bytes at p (aligned for T) as elements of type T.
+template <class T>
+std::span<const T> as_elements(const std::byte* p, std::uint64_t bytes) {
+  return {reinterpret_cast<const T*>(p), static_cast<std::size_t>(bytes / sizeof(T))};
+}
+
 // §6 encoding 4: the reverse CSR as the transpose of the forward CSR, each in-list in ascending
 // arc id (§4), by one counting sort: in-degrees, their prefix sums, then every arc in id order put
 // at its head's next free entry. `reverse_offsets` has n+1 entries, the other two m. Returns false,
@@ -375,13 +381,12 @@ MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view displ
     };
     const auto& fo = sections[derived->forward_offsets];
     const auto& ft = sections[derived->forward_targets];
-    if (!derive_transpose({reinterpret_cast<const std::uint64_t*>(at(derived->forward_offsets)),
-                           fo.decoded_length / 8},
-                          {reinterpret_cast<const std::uint32_t*>(at(derived->forward_targets)),
-                           ft.decoded_length / 4},
-                          place(derived->reverse_offsets, aside_offsets, n1),
-                          place(derived->reverse_sources, aside_sources, m),
-                          place(derived->reverse_arcs, aside_arcs, m)))
+    if (!derive_transpose(
+            as_elements<std::uint64_t>(at(derived->forward_offsets), fo.decoded_length),
+            as_elements<std::uint32_t>(at(derived->forward_targets), ft.decoded_length),
+            place(derived->reverse_offsets, aside_offsets, n1),
+            place(derived->reverse_sources, aside_sources, m),
+            place(derived->reverse_arcs, aside_arcs, m)))
       throw Error(ErrorCode::damaged,
                   std::string(display_name) +
                       ": the reverse CSR cannot be derived (transpose encoding): the forward CSR "
@@ -445,13 +450,10 @@ void pack_file(const std::filesystem::path& in, const std::filesystem::path& out
   std::string not_derivable;
   if (options.derive_reverse)
     if (const auto plan = csr_sections(sections, not_derivable)) {
-      auto elements = [&]<class T>(std::size_t i, T*) {
-        const auto& stored = sections[i].stored;
-        return std::span<const T>(reinterpret_cast<const T*>(stored.data()),
-                                  stored.size() / sizeof(T));
-      };
-      const auto offsets = elements(plan->forward_offsets, static_cast<std::uint64_t*>(nullptr));
-      const auto targets = elements(plan->forward_targets, static_cast<std::uint32_t*>(nullptr));
+      const auto& fo = sections[plan->forward_offsets].stored;
+      const auto& ft = sections[plan->forward_targets].stored;
+      const auto offsets = as_elements<std::uint64_t>(fo.data(), fo.size());
+      const auto targets = as_elements<std::uint32_t>(ft.data(), ft.size());
       std::vector<std::uint64_t> reverse_offsets(offsets.size());
       std::vector<std::uint32_t> reverse_sources(targets.size()), reverse_arcs(targets.size());
       if (derive_transpose(offsets, targets, reverse_offsets.data(), reverse_sources.data(),
