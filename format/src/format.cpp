@@ -12,6 +12,22 @@ std::optional<SectionKind> section_kind_from(std::uint16_t raw) {
   return std::nullopt;
 }
 
+std::string_view to_string(Encoding e) {
+  switch (e) {
+    case Encoding::raw:
+      return "raw";
+    case Encoding::zstd:
+      return "zstd";
+    case Encoding::shuffle_zstd:
+      return "shuffle-zstd";
+    case Encoding::delta_zstd:
+      return "delta-zstd";
+    case Encoding::transpose:
+      return "transpose";
+  }
+  return {};
+}
+
 std::string_view to_string(ElementType t) {
   switch (t) {
     case ElementType::u8:

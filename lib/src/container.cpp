@@ -25,10 +25,9 @@ std::string version_text(std::uint16_t major, std::uint16_t minor) {
 }
 
 // §6: encoding k (k >= 1) comes with required bit k - 1.
-constexpr const char* kEncodingNames[] = {"raw", "zstd", "shuffle-zstd", "delta-zstd", "transpose"};
 constexpr const char* kFeatureNames[] = {"zstd-sections", "shuffle-sections", "delta-sections",
                                          "transpose-sections"};
-static_assert(std::size(kEncodingNames) == format::kLastEncoding + 1);
+static_assert(std::size(kFeatureNames) == format::kLastEncoding);
 
 bool mul_overflows(std::uint64_t a, std::uint64_t b, std::uint64_t& out) {
   return __builtin_mul_overflow(a, b, &out);
@@ -212,7 +211,7 @@ Container parse_container(std::span<const std::byte> bytes, std::string_view dis
       const auto encoding = static_cast<format::Encoding>(e.encoding);
       const std::uint64_t bit = format::feature_of(encoding);
       if (!(header.required_features & bit))
-        fail(label + ": " + kEncodingNames[e.encoding] + "-encoded (encoding " +
+        fail(label + ": " + std::string(format::to_string(encoding)) + "-encoded (encoding " +
              std::to_string(e.encoding) + ") but the header lacks the " +
              kFeatureNames[std::countr_zero(bit)] + " feature (bit " +
              std::to_string(std::countr_zero(bit)) + ")");
@@ -247,7 +246,7 @@ Container parse_container(std::span<const std::byte> bytes, std::string_view dis
   if (std::uint64_t unused = header.required_features & ~used_features) {
     const int bit = std::countr_zero(unused);
     fail("header declares " + std::string(kFeatureNames[bit]) + " but no section is " +
-         kEncodingNames[bit + 1] + "-encoded");
+         std::string(format::to_string(static_cast<format::Encoding>(bit + 1))) + "-encoded");
   }
   {
     std::vector<const Section*> by_offset;

@@ -57,6 +57,9 @@ class PackTest(CliTest):
             reverse = [e for e in entries(data) if e["kind"] in (4, 5, 6)]
             self.assertEqual([(e["encoding"], e["stored_length"]) for e in reverse], [(4, 0)] * 3)
             self.assertEqual(header(data)["version_minor"], 2)
+            shown = json.loads(self.ok("inspect", "--json", packed).stdout)["sections"]
+            self.assertEqual([s["encoding"] for s in shown if s["kind"].startswith("reverse")],
+                             ["transpose"] * 3)
             kept = self.path("kept.mosb")
             self.ok("pack", "--keep-reverse", source, "-o", kept)
             self.assertNotIn(4, [e["encoding"] for e in entries(read(kept))])

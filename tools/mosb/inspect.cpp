@@ -55,8 +55,8 @@ void print_text(const GraphReader& r) {
     std::cout << "self-loops  " << multiplicity->self_loops << '\n'
               << "parallel    " << multiplicity->parallel_arcs << " (extra copies of an arc)\n";
   else
-    std::cout << "self-loops  n/a (zstd-packed file)\n"
-              << "parallel    n/a (zstd-packed file)\n";
+    std::cout << "self-loops  n/a (packed file)\n"
+              << "parallel    n/a (packed file)\n";
   std::cout << "objectives  " << r.objective_count() << '\n';
   for (std::size_t i = 0; i < r.objective_count(); ++i) {
     const auto& s = r.objective(i);
@@ -84,7 +84,13 @@ void print_text(const GraphReader& r) {
               << std::setw(5) << format::to_string(s.type) << std::right << std::setw(6)
               << s.entry.row_width << std::setw(12) << s.entry.row_count << std::setw(13)
               << s.entry.stored_length << std::setw(13) << s.entry.offset << "  "
-              << hex64(s.entry.checksum) << (s.is_packed() ? " (zstd)" : "") << '\n';
+              << hex64(s.entry.checksum)
+              << (s.is_packed() ? " (" +
+                                      std::string(format::to_string(
+                                          static_cast<format::Encoding>(s.entry.encoding))) +
+                                      ")"
+                                : "")
+              << '\n';
   std::cout << "metadata\n";
   for (const auto& [key, value] : metadata.entries())
     std::cout << "  " << key << " = " << escape_for_terminal(value) << '\n';
@@ -143,6 +149,7 @@ void print_json(const GraphReader& r) {
     json.key("bytes").value(s.entry.stored_length);
     json.key("checksum").value(hex64(s.entry.checksum));
     json.key("packed").value(s.is_packed());
+    json.key("encoding").value(format::to_string(static_cast<format::Encoding>(s.entry.encoding)));
     json.end_object();
   }
   json.end_array();

@@ -230,6 +230,7 @@ std::optional<SectionKind> section_kind_from(std::uint16_t raw);
 std::string_view to_string(ElementType t);
 std::string_view to_string(SectionKind k);
 std::string_view to_string(FileKind k);  // "graph instance"; empty for a kind unknown here
+std::string_view to_string(Encoding e);  // "delta-zstd"; empty for an encoding unknown here
 std::optional<ElementType> parse_element_type(std::string_view name);
 
 template <class T>
