@@ -24,7 +24,7 @@ struct PackOptions {
   int level = 19;        // zstd compression level, 1..22
   unsigned threads = 1;  // sections compressed at once; does not change the output bytes
   // Store no reverse CSR section that is the transpose of the forward CSR (encoding transpose,
-  // format 1.2): the packed file shrinks by up to a third, unpacking derives the sections again.
+  // format 1.2): unpacking derives the sections again. About a third of a packed NetMaker file.
   bool derive_reverse = true;
 };
 
