@@ -1,5 +1,6 @@
 #include "mosb/pack.hpp"
 
+#include <sys/mman.h>
 #include <zstd.h>
 
 #include <algorithm>
@@ -214,17 +215,24 @@ std::vector<std::byte> frame_content(const Section& s, Encoding encoding) {
   return content;
 }
 
-// A 64-byte aligned, zero-filled buffer owned by a shared_ptr (the owner of a MappedFile).
+// A zero-filled, page-aligned buffer owned by a shared_ptr (the owner of a MappedFile): anonymous
+// memory, which the kernel zeroes, so the image is written once, not cleared first. It is asked
+// for in transparent huge pages and populated in one call: a page fault per 4 KiB cost more than
+// decoding (FLA size: 0.30 GB/s with malloc and memset, 2.5 GB/s so). Both are advice, ignored
+// where unsupported; populating commits no more than the memset it replaces did.
 MappedFile allocate_image(std::uint64_t size, std::string_view name) {
-  const std::uint64_t rounded = format::align_up(std::max<std::uint64_t>(size, 1));
-  void* memory = rounded > SIZE_MAX ? nullptr : std::aligned_alloc(format::kAlignment, rounded);
-  if (!memory)
+  const std::uint64_t length = std::max<std::uint64_t>(size, 1);
+  void* memory = length > SIZE_MAX ? MAP_FAILED
+                                   : ::mmap(nullptr, length, PROT_READ | PROT_WRITE,
+                                            MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (memory == MAP_FAILED)
     throw Error(ErrorCode::io,
                 std::string(name) + ": out of memory unpacking " + std::to_string(size) + " bytes");
-  std::memset(memory, 0, rounded);
+  ::madvise(memory, length, MADV_HUGEPAGE);
+  ::madvise(memory, length, MADV_POPULATE_WRITE);
   MappedFile image;
-  image.owner =
-      std::shared_ptr<const void>(memory, [](const void* p) { std::free(const_cast<void*>(p)); });
+  image.owner = std::shared_ptr<const void>(
+      memory, [length](const void* p) { ::munmap(const_cast<void*>(p), length); });
   image.bytes = {static_cast<const std::byte*>(memory), static_cast<std::size_t>(size)};
   return image;
 }
