@@ -219,9 +219,13 @@ std::vector<std::byte> frame_content(const Section& s, Encoding encoding) {
 // memory, which the kernel zeroes, so the image is written once, not cleared first. It is asked
 // for in transparent huge pages and populated in one call: a page fault per 4 KiB cost more than
 // decoding (FLA size: 0.30 GB/s with malloc and memset, 2.5 GB/s so). Both are advice, ignored
-// where unsupported; populating commits no more than the memset it replaces did.
-MappedFile allocate_image(std::uint64_t size, std::string_view name) {
-  const std::uint64_t length = std::max<std::uint64_t>(size, 1);
+// where unsupported; populating commits no more than the memset it replaces did. `scratch` more
+// bytes follow the image in the same mapping, at the next 64-byte boundary: room to decode a
+// frame before un-shuffling it, without a second allocation and its page faults.
+MappedFile allocate_image(std::uint64_t size, std::uint64_t scratch, std::string_view name) {
+  std::uint64_t length = 0;
+  if (__builtin_add_overflow(format::align_up(size), std::max<std::uint64_t>(scratch, 1), &length))
+    length = UINT64_MAX;
   void* memory = length > SIZE_MAX ? MAP_FAILED
                                    : ::mmap(nullptr, length, PROT_READ | PROT_WRITE,
                                             MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
@@ -238,8 +242,9 @@ MappedFile allocate_image(std::uint64_t size, std::string_view name) {
 }
 
 // Decodes the zstd frame of `s` into `out` (exactly s.decoded_length bytes) or throws.
+// `scratch` holds s.decoded_length bytes when the encoding is not plain zstd.
 void decode_frame(const Section& s, std::byte* out, ZSTD_DCtx* context, std::string_view name,
-                  std::vector<std::byte>& scratch) {
+                  std::byte* scratch) {
   auto fail = [&](const std::string& what) {
     throw Error(ErrorCode::damaged, std::string(name) + ": section '" + s.name + "': " + what);
   };
@@ -257,8 +262,7 @@ void decode_frame(const Section& s, std::byte* out, ZSTD_DCtx* context, std::str
   const auto encoding = static_cast<Encoding>(s.entry.encoding);
   std::byte* content = out;
   if (encoding != Encoding::zstd) {
-    scratch.resize(s.decoded_length);
-    content = scratch.data();
+    content = scratch;
   }
   const std::size_t decoded =
       ZSTD_decompressDCtx(context, content, s.decoded_length, s.stored.data(), s.stored.size());
@@ -344,11 +348,16 @@ MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view displ
   header.version_minor =
       std::min(header.version_minor, format::minimum_version_minor(header.required_features));
 
-  auto image = allocate_image(header.file_size, display_name);
+  std::uint64_t scratch_size = 0;
+  for (const auto& s : sections)
+    if (is_encoded(s) && !is_derived(s) &&
+        s.entry.encoding != static_cast<std::uint8_t>(Encoding::zstd))
+      scratch_size = std::max(scratch_size, s.decoded_length);
+  auto image = allocate_image(header.file_size, scratch_size, display_name);
   auto* out = const_cast<std::byte*>(image.bytes.data());
   ZSTD_DCtx* context = ZSTD_createDCtx();
   if (!context) throw Error(ErrorCode::io, std::string(display_name) + ": out of memory");
-  std::vector<std::byte> scratch;
+  std::byte* const scratch = out + format::align_up(header.file_size);
   auto check_and_mark_raw = [&](Section& s) {
     const std::uint64_t computed = XXH3_64bits(out + s.entry.offset, s.decoded_length);
     if (computed != s.entry.checksum)
@@ -513,11 +522,11 @@ void pack_file(const std::filesystem::path& in, const std::filesystem::path& out
     Section encoded = s;
     encoded.entry.encoding = static_cast<std::uint8_t>(encodings[i]);
     encoded.stored = frames[i];
-    std::vector<std::byte> check(s.stored.size()), scratch;
+    std::vector<std::byte> check(s.stored.size()), scratch(s.stored.size());
     std::unique_ptr<ZSTD_DCtx, std::size_t (*)(ZSTD_DCtx*)> dcontext(ZSTD_createDCtx(),
                                                                      ZSTD_freeDCtx);
     if (!dcontext) throw Error(ErrorCode::io, name + ": out of memory");
-    decode_frame(encoded, check.data(), dcontext.get(), name, scratch);
+    decode_frame(encoded, check.data(), dcontext.get(), name, scratch.data());
     if (std::memcmp(check.data(), s.stored.data(), check.size()) != 0)
       throw Error(name + ": section '" + s.name + "': zstd frame does not decode to its bytes");
   });
