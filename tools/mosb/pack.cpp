@@ -97,8 +97,8 @@ Command add_pack_command(CLI::App& app, bool pack) {
         ->check(CLI::Range(1U, 256U))
         ->capture_default_str();
     sub->add_flag("--keep-reverse", args->keep_reverse,
-                  "store the reverse CSR instead of deriving it at unpack (format 1.1, not 1.2; "
-                  "larger, faster to unpack)");
+                  "store the reverse CSR instead of deriving it when unpacking, so that readers of "
+                  "format 1.1 can decode the file");
   }
   add_json_flag(sub, args->json);
   return {sub, [args, pack] { return run(*args, pack); }};
