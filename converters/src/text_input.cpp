@@ -6,7 +6,6 @@
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
-#include <xxhash.h>
 #include <zlib.h>
 #include <zstd.h>
 #include <zstd_errors.h>
@@ -17,6 +16,7 @@
 #include <cstring>
 #include <vector>
 
+#include "mosb/checksum.hpp"
 #include "mosb/error.hpp"
 #include "mosb/hex.hpp"
 
@@ -323,7 +323,7 @@ InputFile::InputFile(const std::filesystem::path& path) : stream_(std::make_uniq
     throw Error(facts_.display_name +
                 ": is a FIFO with no writer, or an empty one: nothing to read");
   facts_.raw_size = s.raw.size();
-  facts_.raw_xxh3 = hex64(XXH3_64bits(s.raw.data(), s.raw.size()));
+  facts_.raw_xxh3 = hex64(xxh3_64(s.raw.data(), s.raw.size()));
   facts_.compression = detect_compression(s.raw);
   rewind();
 }

@@ -234,7 +234,19 @@ void AtomicFile::write(const void* data, std::size_t size) {
     }
     bytes += written;
     size -= static_cast<std::size_t>(written);
+    appended_ += static_cast<std::uint64_t>(written);
   }
+#ifdef SYNC_FILE_RANGE_WRITE
+  // Starts writing each 8 MiB to disk as it is appended, without waiting: the disk then works
+  // while the caller computes the rest, and commit()'s fsync finds little left to do (FLA-size
+  // conversion: the fsync took ~45 ms of ~330). Advice only: errors surface at fsync.
+  constexpr std::uint64_t kWritebackStep = std::uint64_t{8} << 20;
+  if (appended_ - writeback_started_ >= kWritebackStep) {
+    ::sync_file_range(fd_, static_cast<off_t>(writeback_started_),
+                      static_cast<off_t>(appended_ - writeback_started_), SYNC_FILE_RANGE_WRITE);
+    writeback_started_ = appended_;
+  }
+#endif
 }
 
 void AtomicFile::write_at(const void* data, std::size_t size, std::uint64_t offset) {

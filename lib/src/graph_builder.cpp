@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <limits>
+#include <thread>
 
+#include "large_array.hpp"
 #include "mosb/error.hpp"
 #include "mosb/file_writer.hpp"
 #include "mosb/version.hpp"
@@ -56,56 +59,23 @@ std::string value_text(T value) {
   }
 }
 
-// An allocator that leaves elements uninitialized: for arrays that are written in full before
-// they are read, where zero-filling would cost a pass over memory the kernel has just zeroed.
-template <class T>
-struct NoInitAllocator : std::allocator<T> {
-  template <class U>
-  struct rebind {
-    using other = NoInitAllocator<U>;
-  };
-  NoInitAllocator() = default;
-  template <class U>
-  explicit NoInitAllocator(const NoInitAllocator<U>&) {}
-  template <class U>
-  void construct(U* p) {
-    ::new (static_cast<void*>(p)) U;
-  }
-  template <class U, class... Args>
-  void construct(U* p, Args&&... args) {
-    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-  }
-};
-template <class T>
-using WrittenBeforeRead = std::vector<T, NoInitAllocator<T>>;
-
-// Streams `values` permuted by `order` (order[p] = input index of output row p) as type Out.
-template <class Out, class In>
-void write_permuted(FileWriter& writer, const std::vector<In>& values,
-                    std::span<const std::uint32_t> order) {
-  constexpr std::size_t kChunk = 1 << 14;
-  Out chunk[kChunk];
-  std::size_t filled = 0;
-  for (std::uint32_t index : order) {
-    chunk[filled++] = static_cast<Out>(values[index]);
-    if (filled == kChunk) {
-      writer.append_values(std::span<const Out>(chunk, filled));
-      filled = 0;
-    }
-  }
-  writer.append_values(std::span<const Out>(chunk, filled));
-}
-
+// `values` permuted by `order` (order[p] = input index of output row p) as the stored bytes of
+// cost type `type`.
 template <class In>
-void write_cost(FileWriter& writer, ElementType type, const std::vector<In>& values,
-                std::span<const std::uint32_t> order) {
+LargeArray<std::byte> permuted_cost(ElementType type, const std::vector<In>& values,
+                                    std::span<const std::uint32_t> order) {
+  LargeArray<std::byte> bytes;
   format::visit_element_type(type, [&](auto tag) {
     using Out = typename decltype(tag)::type;
-    if constexpr (format::is_cost_type_v<Out>)
-      write_permuted<Out>(writer, values, order);
-    else
+    if constexpr (format::is_cost_type_v<Out>) {
+      bytes.resize(order.size() * sizeof(Out));
+      auto* out = reinterpret_cast<Out*>(bytes.data());
+      for (std::size_t p = 0; p < order.size(); ++p) out[p] = static_cast<Out>(values[order[p]]);
+    } else {
       throw Error("internal error: cost type " + std::string(format::to_string(type)));
+    }
   });
+  return bytes;
 }
 
 ElementType narrowest_unsigned(std::uint64_t max);
@@ -312,31 +282,40 @@ void write_graph(const GraphInput& in, const std::filesystem::path& path, const 
   report(progress, "write", 0, section_total);
 
   // Counting sort by tail; iterating arcs in input order keeps it stable.
-  std::vector<std::uint64_t> offsets(n + 1, 0);
+  LargeArray<std::uint64_t> offsets(n + 1, 0);
   for (auto t : in.tails) ++offsets[t + 1];
   for (std::uint64_t v = 0; v < n; ++v) offsets[v + 1] += offsets[v];
-  WrittenBeforeRead<std::uint32_t> order(m);  // order[p] = input index of CSR arc p
+  LargeArray<std::uint32_t> order(m);  // order[p] = input index of CSR arc p
   {
-    std::vector<std::uint64_t> cursor(offsets.begin(), offsets.end() - 1);
+    LargeArray<std::uint64_t> cursor(offsets.begin(), offsets.end() - 1);
     for (std::uint32_t a = 0; a < m; ++a) order[cursor[in.tails[a]]++] = a;
   }
-  WrittenBeforeRead<std::uint32_t> targets(m);
+  LargeArray<std::uint32_t> targets(m);
   for (std::size_t p = 0; p < m; ++p) targets[p] = in.heads[order[p]];
 
-  // The transpose: scanning forward arcs in id order makes each in-list ascending by arc id.
-  std::vector<std::uint64_t> reverse_offsets(n + 1, 0);
-  for (auto h : targets) ++reverse_offsets[h + 1];
-  for (std::uint64_t v = 0; v < n; ++v) reverse_offsets[v + 1] += reverse_offsets[v];
-  WrittenBeforeRead<std::uint32_t> reverse_sources(m), reverse_arcs(m);
-  {
-    std::vector<std::uint64_t> cursor(reverse_offsets.begin(), reverse_offsets.end() - 1);
-    for (std::uint32_t u = 0; u < n; ++u)
-      for (auto p = offsets[u]; p < offsets[u + 1]; ++p) {
-        auto slot = cursor[targets[p]]++;
-        reverse_sources[slot] = u;
-        reverse_arcs[slot] = static_cast<std::uint32_t>(p);
-      }
-  }
+  // The transpose, built on a second core while the forward sections are written and the costs
+  // gathered: scanning forward arcs in id order makes each in-list ascending by arc id.
+  LargeArray<std::uint64_t> reverse_offsets;
+  LargeArray<std::uint32_t> reverse_sources, reverse_arcs;
+  std::exception_ptr transpose_error;
+  std::jthread transpose([&] {
+    try {
+      reverse_offsets.assign(n + 1, 0);
+      for (auto h : targets) ++reverse_offsets[h + 1];
+      for (std::uint64_t v = 0; v < n; ++v) reverse_offsets[v + 1] += reverse_offsets[v];
+      reverse_sources.resize(m);
+      reverse_arcs.resize(m);
+      LargeArray<std::uint64_t> cursor(reverse_offsets.begin(), reverse_offsets.end() - 1);
+      for (std::uint32_t u = 0; u < n; ++u)
+        for (auto p = offsets[u]; p < offsets[u + 1]; ++p) {
+          auto slot = cursor[targets[p]]++;
+          reverse_sources[slot] = u;
+          reverse_arcs[slot] = static_cast<std::uint32_t>(p);
+        }
+    } catch (...) {
+      transpose_error = std::current_exception();
+    }
+  });
 
   FileWriter writer(path);
   writer.expect_digest(expect_digest);
@@ -345,6 +324,13 @@ void write_graph(const GraphInput& in, const std::filesystem::path& path, const 
                      std::span<const std::uint64_t>(offsets));
   writer.add_section(SectionKind::forward_targets, "forward_targets", 1,
                      std::span<const std::uint32_t>(targets));
+  std::vector<LargeArray<std::byte>> cost_bytes;
+  for (std::size_t i = 0; i < in.costs.size(); ++i)
+    cost_bytes.push_back(
+        std::visit([&](const auto& values) { return permuted_cost(cost_types[i], values, order); },
+                   in.costs[i].values));
+  transpose.join();
+  if (transpose_error) std::rethrow_exception(transpose_error);
   writer.add_section(SectionKind::reverse_offsets, "reverse_offsets", 1,
                      std::span<const std::uint64_t>(reverse_offsets));
   writer.add_section(SectionKind::reverse_sources, "reverse_sources", 1,
@@ -353,8 +339,7 @@ void write_graph(const GraphInput& in, const std::filesystem::path& path, const 
                      std::span<const std::uint32_t>(reverse_arcs));
   for (std::size_t i = 0; i < in.costs.size(); ++i) {
     writer.begin_section(SectionKind::cost, in.costs[i].name, cost_types[i], 1);
-    std::visit([&](const auto& values) { write_cost(writer, cost_types[i], values, order); },
-               in.costs[i].values);
+    writer.append(cost_bytes[i]);
     writer.end_section();
     report(progress, "write", 6 + i + 1, section_total);
   }
@@ -426,7 +411,7 @@ void write_graph(const StreamedGraph& in, const std::filesystem::path& path,
     writer.end_section();
   }
   // The transpose, as write_graph builds it: forward arcs in id order keep each in-list ascending.
-  std::vector<std::uint64_t> reverse_offsets(n + 1, 0);
+  LargeArray<std::uint64_t> reverse_offsets(n + 1, 0);
   in.replay_arcs([&](std::uint32_t, std::uint32_t head) {
     ++reverse_offsets[head + 1];
     counter.tick();
@@ -435,7 +420,7 @@ void write_graph(const StreamedGraph& in, const std::filesystem::path& path,
   writer.add_section(SectionKind::reverse_offsets, "reverse_offsets", 1,
                      std::span<const std::uint64_t>(reverse_offsets));
   {
-    WrittenBeforeRead<std::uint32_t> reverse_sources(m), reverse_arcs(m);
+    LargeArray<std::uint32_t> reverse_sources(m), reverse_arcs(m);
     auto& cursor = reverse_offsets;  // written already: reused as the next free slot per head
     std::uint32_t arc = 0;
     in.replay_arcs([&](std::uint32_t tail, std::uint32_t head) {

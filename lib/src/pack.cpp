@@ -1,6 +1,5 @@
 #include "mosb/pack.hpp"
 
-#include <sys/mman.h>
 #include <zstd.h>
 
 #include <algorithm>
@@ -15,6 +14,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "large_array.hpp"
 #include "mosb/atomic_file.hpp"
 #include "mosb/error.hpp"
 #include "mosb/file_writer.hpp"
@@ -216,27 +216,26 @@ std::vector<std::byte> frame_content(const Section& s, Encoding encoding) {
 }
 
 // A zero-filled, page-aligned buffer owned by a shared_ptr (the owner of a MappedFile): anonymous
-// memory, which the kernel zeroes, so the image is written once, not cleared first. It is asked
-// for in transparent huge pages and populated in one call: a page fault per 4 KiB cost more than
-// decoding (FLA size: 0.30 GB/s with malloc and memset, 2.5 GB/s so). Both are advice, ignored
-// where unsupported; populating commits no more than the memset it replaces did. `scratch` more
-// bytes follow the image in the same mapping, at the next 64-byte boundary: room to decode a
-// frame before un-shuffling it, without a second allocation and its page faults.
+// memory (map_large), which the kernel zeroes, so the image is written once, not cleared first,
+// populated in one call: a page fault per 4 KiB cost more than decoding (FLA size: 0.30 GB/s with
+// malloc and memset, 2.5 GB/s so). Populating commits no more than the memset it replaces did.
+// `scratch` more bytes follow the image in the same mapping, at the next 64-byte boundary: room to
+// decode a frame before un-shuffling it, without a second allocation and its page faults.
 MappedFile allocate_image(std::uint64_t size, std::uint64_t scratch, std::string_view name) {
   std::uint64_t length = 0;
   if (__builtin_add_overflow(format::align_up(size), std::max<std::uint64_t>(scratch, 1), &length))
     length = UINT64_MAX;
-  void* memory = length > SIZE_MAX ? MAP_FAILED
-                                   : ::mmap(nullptr, length, PROT_READ | PROT_WRITE,
-                                            MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-  if (memory == MAP_FAILED)
+  void* memory = nullptr;
+  try {
+    if (length > SIZE_MAX) throw std::bad_alloc();
+    memory = map_large(length, true);
+  } catch (const std::bad_alloc&) {
     throw Error(ErrorCode::io,
                 std::string(name) + ": out of memory unpacking " + std::to_string(size) + " bytes");
-  ::madvise(memory, length, MADV_HUGEPAGE);
-  ::madvise(memory, length, MADV_POPULATE_WRITE);
+  }
   MappedFile image;
   image.owner = std::shared_ptr<const void>(
-      memory, [length](const void* p) { ::munmap(const_cast<void*>(p), length); });
+      memory, [length](const void* p) { unmap_large(const_cast<void*>(p), length); });
   image.bytes = {static_cast<const std::byte*>(memory), static_cast<std::size_t>(size)};
   return image;
 }

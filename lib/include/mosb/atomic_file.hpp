@@ -63,7 +63,9 @@ class AtomicFile {
   std::filesystem::path target_;
   std::filesystem::path temporary_;
   int fd_ = -1;
-  int slot_ = -1;  // in the signal registry, or -1
+  std::uint64_t appended_ = 0;           // bytes appended by write()
+  std::uint64_t writeback_started_ = 0;  // of those, bytes whose writeback to disk has begun
+  int slot_ = -1;                        // in the signal registry, or -1
   bool committed_ = false;
 };
 
