@@ -28,6 +28,15 @@ namespace {
 
 using Problem = std::optional<std::string>;
 
+// The sequential scans below vectorize; on x86-64 each is also built for AVX2 and picked at run
+// time (twice the width of the baseline's SSE2: the FLA-size file's structure pass, 2.0 -> 1.4 ms
+// before the transpose).
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define MOSB_SCAN_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define MOSB_SCAN_CLONES
+#endif
+
 std::string in_section(const Section& s, std::string_view rule, const std::string& detail) {
   return "section '" + s.name + "': [" + std::string(rule) + "] " + detail;
 }
@@ -41,7 +50,7 @@ Problem check_checksum(const Section& s) {
   return std::nullopt;
 }
 
-Problem check_offsets(const Section& s, std::span<const std::uint64_t> offsets) {
+MOSB_SCAN_CLONES Problem check_offsets(const Section& s, std::span<const std::uint64_t> offsets) {
   // Branch-free scan (it vectorizes); the slow loop names the first decrease.
   bool decreases = false;
   for (std::size_t v = 0; v + 1 < offsets.size(); ++v) decreases |= offsets[v] > offsets[v + 1];
@@ -55,8 +64,8 @@ Problem check_offsets(const Section& s, std::span<const std::uint64_t> offsets) 
   return std::nullopt;
 }
 
-Problem check_ids(const Section& s, std::span<const std::uint32_t> ids, std::uint64_t n,
-                  std::string_view rule, std::string_view what) {
+MOSB_SCAN_CLONES Problem check_ids(const Section& s, std::span<const std::uint32_t> ids,
+                                   std::uint64_t n, std::string_view rule, std::string_view what) {
   // Branch-free scan (an OR of comparisons vectorizes on plain x86-64, where an unsigned maximum
   // does not); the slow loop names the first id out of range.
   if (n > UINT32_MAX) return std::nullopt;
