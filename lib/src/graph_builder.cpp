@@ -281,15 +281,15 @@ void write_graph(const GraphInput& in, const std::filesystem::path& path, const 
       6 + in.costs.size() + in.arc_data.size() + in.vertex_data.size() + in.queries.size();
   report(progress, "write", 0, section_total);
 
-  // Counting sort by tail; iterating arcs in input order keeps it stable.
-  LargeArray<std::uint64_t> offsets(n + 1, 0);
-  for (auto t : in.tails) ++offsets[t + 1];
-  for (std::uint64_t v = 0; v < n; ++v) offsets[v + 1] += offsets[v];
+  // Counting sort by tail; iterating arcs in input order keeps it stable. The offsets have one
+  // spare slot so that they serve as their own cursors: while arcs are placed, offsets[v + 1] is
+  // the next free slot of tail v; afterwards it is the end of v's arcs, as the CSR wants.
+  LargeArray<std::uint64_t> offsets(n + 2, 0);
+  for (auto t : in.tails) ++offsets[t + 2];
+  for (std::uint64_t v = 1; v <= n; ++v) offsets[v + 1] += offsets[v];
   LargeArray<std::uint32_t> order(m);  // order[p] = input index of CSR arc p
-  {
-    LargeArray<std::uint64_t> cursor(offsets.begin(), offsets.end() - 1);
-    for (std::uint32_t a = 0; a < m; ++a) order[cursor[in.tails[a]]++] = a;
-  }
+  for (std::uint32_t a = 0; a < m; ++a) order[offsets[in.tails[a] + 1]++] = a;
+  offsets.pop_back();
   LargeArray<std::uint32_t> targets(m);
   for (std::size_t p = 0; p < m; ++p) targets[p] = in.heads[order[p]];
 
@@ -300,18 +300,18 @@ void write_graph(const GraphInput& in, const std::filesystem::path& path, const 
   std::exception_ptr transpose_error;
   std::jthread transpose([&] {
     try {
-      reverse_offsets.assign(n + 1, 0);
-      for (auto h : targets) ++reverse_offsets[h + 1];
-      for (std::uint64_t v = 0; v < n; ++v) reverse_offsets[v + 1] += reverse_offsets[v];
+      reverse_offsets.assign(n + 2, 0);  // its own cursors, as the forward offsets above
+      for (auto h : targets) ++reverse_offsets[h + 2];
+      for (std::uint64_t v = 1; v <= n; ++v) reverse_offsets[v + 1] += reverse_offsets[v];
       reverse_sources.resize(m);
       reverse_arcs.resize(m);
-      LargeArray<std::uint64_t> cursor(reverse_offsets.begin(), reverse_offsets.end() - 1);
       for (std::uint32_t u = 0; u < n; ++u)
         for (auto p = offsets[u]; p < offsets[u + 1]; ++p) {
-          auto slot = cursor[targets[p]]++;
+          auto slot = reverse_offsets[targets[p] + 1]++;
           reverse_sources[slot] = u;
           reverse_arcs[slot] = static_cast<std::uint32_t>(p);
         }
+      reverse_offsets.pop_back();
     } catch (...) {
       transpose_error = std::current_exception();
     }
