@@ -4,6 +4,7 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <system_error>
 #include <thread>
 
 #include "large_array.hpp"
@@ -298,7 +299,7 @@ void write_graph(const GraphInput& in, const std::filesystem::path& path, const 
   LargeArray<std::uint64_t> reverse_offsets;
   LargeArray<std::uint32_t> reverse_sources, reverse_arcs;
   std::exception_ptr transpose_error;
-  std::jthread transpose([&] {
+  auto build_transpose = [&] {
     try {
       reverse_offsets.assign(n + 2, 0);  // its own cursors, as the forward offsets above
       for (auto h : targets) ++reverse_offsets[h + 2];
@@ -315,7 +316,13 @@ void write_graph(const GraphInput& in, const std::filesystem::path& path, const 
     } catch (...) {
       transpose_error = std::current_exception();
     }
-  });
+  };
+  std::jthread transpose;
+  try {
+    transpose = std::jthread(build_transpose);
+  } catch (const std::system_error&) {  // no thread to be had (say, under an address-space limit)
+    build_transpose();
+  }
 
   FileWriter writer(path);
   writer.expect_digest(expect_digest);
@@ -329,7 +336,7 @@ void write_graph(const GraphInput& in, const std::filesystem::path& path, const 
     cost_bytes.push_back(
         std::visit([&](const auto& values) { return permuted_cost(cost_types[i], values, order); },
                    in.costs[i].values));
-  transpose.join();
+  if (transpose.joinable()) transpose.join();
   if (transpose_error) std::rethrow_exception(transpose_error);
   writer.add_section(SectionKind::reverse_offsets, "reverse_offsets", 1,
                      std::span<const std::uint64_t>(reverse_offsets));

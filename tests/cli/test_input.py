@@ -55,8 +55,9 @@ class InputTest(CliTest):
 
     @unittest.skipIf("ASAN_OPTIONS" in os.environ, UNDER_ASAN)
     def test_out_of_memory_names_the_input(self):
-        # 60 million vertices fit in physical memory but not under a 1 GiB address-space limit.
-        gr = self.write("big.gr", "p sp 60000000 1\na 1 2 1\n")
+        # 90 million vertices fit in physical memory but not under a 1 GiB address-space limit:
+        # the CSR build holds the forward and the reverse offsets, 8 (n + 1) bytes each.
+        gr = self.write("big.gr", "p sp 90000000 1\na 1 2 1\n")
         self.assert_error(self.convert(gr, limit_bytes=1 << 30), f"{gr}: out of memory converting this input")
 
     @unittest.skipIf("ASAN_OPTIONS" in os.environ, UNDER_ASAN)
