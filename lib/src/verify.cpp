@@ -5,6 +5,7 @@
 #include <cmath>
 #include <exception>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <thread>
 
@@ -50,11 +51,24 @@ Problem check_checksum(const Section& s) {
   return std::nullopt;
 }
 
-MOSB_SCAN_CLONES Problem check_offsets(const Section& s, std::span<const std::uint64_t> offsets) {
-  // Branch-free scan (it vectorizes); the slow loop names the first decrease.
+// Branch-free scans, without a message: they vectorize.
+MOSB_SCAN_CLONES bool offsets_ascend(std::span<const std::uint64_t> offsets) {
   bool decreases = false;
   for (std::size_t v = 0; v + 1 < offsets.size(); ++v) decreases |= offsets[v] > offsets[v + 1];
-  if (!decreases) return std::nullopt;
+  return !decreases;
+}
+
+// An OR of comparisons, not an unsigned maximum, which plain x86-64 cannot vectorize.
+MOSB_SCAN_CLONES bool ids_below(std::span<const std::uint32_t> ids, std::uint64_t n) {
+  if (n > UINT32_MAX) return true;
+  const auto limit = static_cast<std::uint32_t>(n);
+  unsigned out_of_range = 0;
+  for (const std::uint32_t id : ids) out_of_range |= unsigned{id >= limit};
+  return out_of_range == 0;
+}
+
+Problem check_offsets(const Section& s, std::span<const std::uint64_t> offsets) {
+  if (offsets_ascend(offsets)) return std::nullopt;
   for (std::size_t v = 0; v + 1 < offsets.size(); ++v)
     if (offsets[v] > offsets[v + 1])
       return in_section(s, "offsets-monotonic",
@@ -64,20 +78,44 @@ MOSB_SCAN_CLONES Problem check_offsets(const Section& s, std::span<const std::ui
   return std::nullopt;
 }
 
-MOSB_SCAN_CLONES Problem check_ids(const Section& s, std::span<const std::uint32_t> ids,
-                                   std::uint64_t n, std::string_view rule, std::string_view what) {
-  // Branch-free scan (an OR of comparisons vectorizes on plain x86-64, where an unsigned maximum
-  // does not); the slow loop names the first id out of range.
-  if (n > UINT32_MAX) return std::nullopt;
-  const auto limit = static_cast<std::uint32_t>(n);
-  unsigned out_of_range = 0;
-  for (const std::uint32_t id : ids) out_of_range |= unsigned{id >= limit};
-  if (out_of_range == 0) return std::nullopt;
+Problem check_ids(const Section& s, std::span<const std::uint32_t> ids, std::uint64_t n,
+                  std::string_view rule, std::string_view what) {
+  if (ids_below(ids, n)) return std::nullopt;
   for (std::size_t i = 0; i < ids.size(); ++i)
     if (ids[i] >= n)
       return in_section(s, rule,
                         std::string(what) + " " + std::to_string(i) + " is vertex " +
                             std::to_string(ids[i]) + ", not below n = " + std::to_string(n));
+  return std::nullopt;
+}
+
+// A section's checksum and a rule over its elements in one pass, 64 KiB at a time, so the rule
+// scans from cache what the hash has just read from memory (as a pass of its own it cost about as
+// much as the hash). `holds` sees each chunk and the element after it; `rule_holds` says whether
+// it held throughout.
+template <class T, class Holds>
+Problem check_checksum_and_rule(const Section& s, std::span<const T> values, Holds holds,
+                                bool& rule_holds) {
+  rule_holds = true;
+  if (values.size_bytes() != s.stored.size()) {
+    rule_holds = holds(values);
+    return check_checksum(s);
+  }
+  std::unique_ptr<XXH3_state_t, decltype(&XXH3_freeState)> state(XXH3_createState(),
+                                                                 &XXH3_freeState);
+  if (!state) throw std::bad_alloc();
+  XXH3_64bits_reset(state.get());
+  constexpr std::size_t kChunk = (std::size_t{64} << 10) / sizeof(T);
+  for (std::size_t first = 0; first < values.size(); first += kChunk) {
+    const std::size_t count = std::min(kChunk, values.size() - first);
+    XXH3_64bits_update(state.get(), values.data() + first, count * sizeof(T));
+    rule_holds &= holds(values.subspan(first, std::min(count + 1, values.size() - first)));
+  }
+  const std::uint64_t computed = XXH3_64bits_digest(state.get());
+  if (computed != s.entry.checksum)
+    return in_section(
+        s, "checksum",
+        "mismatch (stored " + hex64(s.entry.checksum) + ", computed " + hex64(computed) + ")");
   return std::nullopt;
 }
 
@@ -105,44 +143,51 @@ Csr csr_of(const GraphReader& reader) {
 
 // Transpose (§4) over the in-lists of vertices [first, last): each entry j of v's in-list is an arc
 // a into v whose tail is rsources[j], and the arc ids ascend strictly within a list. With m entries
-// in all, that makes every arc appear exactly once. Needs offsets non-decreasing and every stored
-// vertex id below n (checked before). The fast loop is branch-free, so the out-of-order core keeps
-// the two random reads of many entries (targets[a], offsets[u]) in flight at once (explicit
-// prefetching measured no faster); the slow loop runs only to name the first broken entry.
+// in all, that makes every arc appear exactly once. On the way it meets the reverse CSR's own rules
+// (reverse_offsets non-decreasing, every reverse_sources id below n), so these need no pass of
+// their own. Every index is range-checked, so it runs on any bytes, at the same time as the other
+// checks; verify() reports its result only after the CSR rules §9 lists before it held, so a
+// message of its own about those rules is never shown. The fast loop is branch-free, so the
+// out-of-order core keeps the two random reads of many entries (targets[a], offsets[u]) in flight
+// at once (explicit prefetching measured no faster); the slow loop runs only to name the first
+// broken entry.
 Problem check_transpose(const Csr& c, std::uint64_t first, std::uint64_t last) {
-  const std::uint64_t m = c.targets.size();
+  const std::uint64_t n = c.offsets.size() - 1, m = c.targets.size();
   auto broken = [&](std::uint64_t v, std::uint64_t j, const std::string& what) {
     return in_section(*c.reverse_arcs, "reverse-transpose",
                       "entry " + std::to_string(j) + " (vertex " + std::to_string(v) + ") " + what);
   };
   for (std::uint64_t v = first; v < last; ++v) {
-    const std::uint64_t list_end = c.roffsets[v + 1];
+    const std::uint64_t list_first = c.roffsets[v], list_end = c.roffsets[v + 1];
+    if (list_first > list_end || list_end > m)
+      return in_section(*c.reverse_offsets, "offsets-monotonic",
+                        "the in-list of vertex " + std::to_string(v) + " is out of range");
     // Integer ORs, not ||, so every test is evaluated without branches; `previous` starts below
     // every arc id, so the first entry passes the order test.
     unsigned bad = 0;
     std::int64_t previous = -1;
-    for (auto j = c.roffsets[v]; j < list_end; ++j) {
+    for (auto j = list_first; j < list_end; ++j) {
       const std::uint32_t a = c.rarcs[j];
       const std::uint32_t u = c.rsources[j];
-      const bool in_range = a < m;
-      const std::uint32_t arc = in_range ? a : 0;
-      const std::uint64_t out_first = c.offsets[u];
+      const bool in_range = (a < m) & (u < n);
+      const std::uint32_t arc = in_range ? a : 0, tail = in_range ? u : 0;
+      const std::uint64_t out_first = c.offsets[tail];
       bad |= unsigned{!in_range} | unsigned{c.targets[arc] != v} |
-             unsigned{a - out_first >= c.offsets[u + 1] - out_first} |
+             unsigned{a - out_first >= c.offsets[tail + 1] - out_first} |
              unsigned{std::int64_t{a} <= previous};
       previous = a;
     }
-    const bool broken_list = bad != 0;
-    if (!broken_list) continue;
-    for (auto j = c.roffsets[v]; j < list_end; ++j) {
+    if (bad == 0) continue;
+    for (auto j = list_first; j < list_end; ++j) {
       const std::uint32_t a = c.rarcs[j];
       const std::uint32_t u = c.rsources[j];
-      if (a < m && c.targets[a] == v && c.offsets[u] <= a && a < c.offsets[u + 1] &&
-          (j == c.roffsets[v] || c.rarcs[j - 1] < a))
-        continue;
       if (a >= m)
         return broken(v, j,
                       "names arc " + std::to_string(a) + ", not below m = " + std::to_string(m));
+      if (u >= n)
+        return in_section(*c.reverse_sources, "source-range",
+                          "entry " + std::to_string(j) + " is vertex " + std::to_string(u) +
+                              ", not below n = " + std::to_string(n));
       if (c.targets[a] != v)
         return broken(v, j,
                       "names arc " + std::to_string(a) + ", which enters vertex " +
@@ -151,9 +196,10 @@ Problem check_transpose(const Csr& c, std::uint64_t first, std::uint64_t last) {
         return broken(v, j,
                       "says arc " + std::to_string(a) + " leaves vertex " + std::to_string(u) +
                           ", the forward CSR disagrees");
-      return broken(v, j,
-                    "breaks the ascending arc order (" + std::to_string(c.rarcs[j - 1]) + " then " +
-                        std::to_string(a) + ")");
+      if (j > list_first && c.rarcs[j - 1] >= a)
+        return broken(v, j,
+                      "breaks the ascending arc order (" + std::to_string(c.rarcs[j - 1]) +
+                          " then " + std::to_string(a) + ")");
     }
   }
   return std::nullopt;
@@ -294,12 +340,6 @@ std::vector<Problem> run_all(std::vector<Task>& tasks, unsigned threads, TaskPro
   return results;
 }
 
-Problem first_problem(const std::vector<Problem>& results) {
-  for (const auto& p : results)
-    if (p) return p;
-  return std::nullopt;
-}
-
 // Below this size threads cost more than they save.
 constexpr std::uint64_t kParallelFrom = 1 << 20;
 
@@ -319,28 +359,73 @@ std::optional<std::string> verify(const GraphReader& reader, VerifyLevel level,
   const unsigned threads =
       reader.bytes().size() < kParallelFrom ? 1 : std::max(1u, std::thread::hardware_concurrency());
 
-  // Phase 1, in the order problems are reported: every checksum; the CSR checks the transpose
-  // relies on; then the other structural rules. Phase 2: the transpose, in vertex blocks.
+  // Every check runs at once, on all threads; problems are reported in a fixed order: every
+  // checksum; the CSR rules of §9 (forward offsets, reverse offsets, targets, reverse sources); the
+  // transpose; then the other structural rules. The CSR rules cost no pass of their own: the
+  // forward ones are checked with the forward sections' checksums (or alone, by a message-less
+  // scan, at level structure), the reverse ones by the transpose's blocks (check_transpose); the
+  // scans that name a broken rule run only when one was found.
   std::vector<Task> tasks;
-  if (checksums)
-    for (const auto& s : reader.sections())
-      tasks.push_back({s.stored.size(), [&s] { return check_checksum(s); }});
   std::optional<Csr> csr;
+  if (structure) csr = csr_of(reader);
   const std::uint64_t n = reader.vertex_count(), m = reader.arc_count();
+  const bool fused = checksums && structure;
+  bool forward_offsets_ascend = true, targets_below_n = true;
+  if (checksums)
+    for (const auto& s : reader.sections()) {
+      if (fused && &s == csr->forward_offsets)
+        tasks.push_back({s.stored.size(), [&s, &c = *csr, &forward_offsets_ascend] {
+                           return check_checksum_and_rule(
+                               s, c.offsets, [](auto chunk) { return offsets_ascend(chunk); },
+                               forward_offsets_ascend);
+                         }});
+      else if (fused && &s == csr->forward_targets)
+        tasks.push_back({s.stored.size(), [&s, &c = *csr, n, &targets_below_n] {
+                           return check_checksum_and_rule(
+                               s, c.targets, [n](auto chunk) { return ids_below(chunk, n); },
+                               targets_below_n);
+                         }});
+      else
+        tasks.push_back({s.stored.size(), [&s] { return check_checksum(s); }});
+    }
+  const std::size_t checksums_end = tasks.size();
+  std::size_t transpose_first = tasks.size(), transpose_end = tasks.size();
   if (structure) {
-    csr = csr_of(reader);
     const Csr& c = *csr;
-    tasks.push_back({8 * n, [&c] { return check_offsets(*c.forward_offsets, c.offsets); }});
-    tasks.push_back({8 * n, [&c] { return check_offsets(*c.reverse_offsets, c.roffsets); }});
-    tasks.push_back({4 * m, [&c, n] {
-                       return check_ids(*c.forward_targets, c.targets, n, "target-range", "arc");
-                     }});
-    tasks.push_back({4 * m, [&c, n] {
-                       return check_ids(*c.reverse_sources, c.rsources, n, "source-range", "entry");
-                     }});
-  }
-  const std::size_t csr_last = tasks.size();
-  if (structure) {
+    if (!fused) {
+      tasks.push_back({8 * n, [&c, &forward_offsets_ascend] {
+                         forward_offsets_ascend = offsets_ascend(c.offsets);
+                         return Problem{};
+                       }});
+      tasks.push_back({4 * m, [&c, n, &targets_below_n] {
+                         targets_below_n = ids_below(c.targets, n);
+                         return Problem{};
+                       }});
+    }
+    // Blocks of about equal entry counts (found by bisecting the reverse offsets, which need not
+    // be sorted yet: any answer gives valid blocks), several per thread so that uneven cache
+    // behaviour evens out.
+    const std::uint64_t blocks = threads == 1 ? 1 : 8 * threads;
+    auto first_vertex_past = [&c, n](std::uint64_t entries) {
+      std::uint64_t low = 0, high = n;
+      while (low < high) {
+        const std::uint64_t middle = low + (high - low) / 2;
+        if (c.roffsets[middle] <= entries)
+          low = middle + 1;
+        else
+          high = middle;
+      }
+      return low;
+    };
+    transpose_first = tasks.size();
+    std::uint64_t first = 0;
+    for (std::uint64_t b = 1; b <= blocks && first < n; ++b) {
+      std::uint64_t last = b == blocks ? n : first_vertex_past(m / blocks * b) - 1;
+      last = std::clamp(last, first + 1, n);
+      tasks.push_back({m / blocks, [&c, first, last] { return check_transpose(c, first, last); }});
+      first = last;
+    }
+    transpose_end = tasks.size();
     for (const auto* s : reader.all(SectionKind::cost)) {
       if (s->type == ElementType::f32)
         tasks.push_back({s->stored.size(), [&reader, s] {
@@ -366,37 +451,31 @@ std::optional<std::string> verify(const GraphReader& reader, VerifyLevel level,
     tasks.push_back({0, [&reader] { return check_metadata(reader); }});
     tasks.push_back({0, [&reader] { return check_padding(reader); }});
   }
-  // Units: bytes for phase 1's tasks, in-arc entries for the transpose.
-  std::uint64_t total = structure ? m : 0;
+  std::uint64_t total = 0;
   for (const auto& t : tasks) total += t.cost;
   TaskProgress tracker(progress, total);
-  const auto phase1 = run_all(tasks, threads, tracker);
-  for (std::size_t i = 0; i < csr_last; ++i)
-    if (phase1[i]) return phase1[i];
+  const auto results = run_all(tasks, threads, tracker);
+  for (std::size_t i = 0; i < checksums_end; ++i)
+    if (results[i]) return results[i];
   if (structure) {
-    // Blocks of about equal entry counts, several per thread so that uneven cache behaviour evens
-    // out.
     const Csr& c = *csr;
-    const std::uint64_t blocks = threads == 1 ? 1 : 8 * threads;
-    std::vector<Task> transpose;
-    std::uint64_t first = 0;
-    for (std::uint64_t b = 1; b <= blocks && first < n; ++b) {
-      const std::uint64_t target_entries = m / blocks * b;
-      std::uint64_t last =
-          b == blocks ? n
-                      : static_cast<std::uint64_t>(
-                            std::upper_bound(c.roffsets.begin(), c.roffsets.end(), target_entries) -
-                            c.roffsets.begin()) -
-                            1;
-      last = std::clamp(last, first + 1, n);
-      transpose.push_back({c.roffsets[last] - c.roffsets[first],
-                           [&c, first, last] { return check_transpose(c, first, last); }});
-      first = last;
+    const bool transpose_broken =
+        std::any_of(results.begin() + transpose_first, results.begin() + transpose_end,
+                    [](const Problem& p) { return p.has_value(); });
+    if (!forward_offsets_ascend)
+      if (auto p = check_offsets(*c.forward_offsets, c.offsets)) return p;
+    if (transpose_broken)
+      if (auto p = check_offsets(*c.reverse_offsets, c.roffsets)) return p;
+    if (!targets_below_n)
+      if (auto p = check_ids(*c.forward_targets, c.targets, n, "target-range", "arc")) return p;
+    if (transpose_broken) {
+      if (auto p = check_ids(*c.reverse_sources, c.rsources, n, "source-range", "entry")) return p;
+      for (std::size_t i = transpose_first; i < transpose_end; ++i)
+        if (results[i]) return results[i];
     }
-    if (auto p = first_problem(run_all(transpose, threads, tracker))) return p;
   }
-  for (std::size_t i = csr_last; i < phase1.size(); ++i)
-    if (phase1[i]) return phase1[i];
+  for (std::size_t i = transpose_end; i < results.size(); ++i)
+    if (results[i]) return results[i];
   return std::nullopt;
 }
 

@@ -275,6 +275,74 @@ TEST_CASE("the structure level names the broken rule, with checksums recomputed"
   }
 }
 
+TEST_CASE("a file of megabytes: rules found across chunks, threads and transpose blocks") {
+  // verify checks the forward CSR's rules with its checksums, 64 KiB at a time, and the reverse
+  // CSR's rules inside the transpose's vertex blocks, on several threads (files of 1 MB and more):
+  // each break must still be found, and named as in a small file, at both levels.
+  TempDir dir;
+  write_graph(converters::generate_grid({300, 300, 2, 5}), dir / "big.mosb");
+  const Bytes good = read_bytes(dir / "big.mosb");
+  REQUIRE(good.size() > (std::size_t{4} << 20));
+  CHECK(verify_problem(good, VerifyLevel::full) == "(passed)");
+  const auto n = header_of(good).vertex_count;
+  const auto m = header_of(good).arc_count;
+  auto expect_rule = [](Bytes& b, std::size_t section, const std::string& start) {
+    reseal_section(b, section);
+    CHECK(verify_problem(b, VerifyLevel::checksums) == "(passed)");
+    const auto problem = verify_problem(b, VerifyLevel::structure);
+    CHECK_MESSAGE(problem.starts_with(start), problem);
+    CHECK(verify_problem(b, VerifyLevel::full) == problem);
+  };
+  auto value = [](const Bytes& b, std::size_t section, std::size_t index) {
+    std::uint64_t v = 0;
+    std::memcpy(&v, b.data() + entry_of(b, section).offset + 8 * index, 8);
+    return v;
+  };
+  SUBCASE("offsets decrease across the first 64 KiB chunk's end (8192 u64)") {
+    Bytes b = good;
+    const auto s = find_entry(b, "forward_offsets");
+    poke<std::uint64_t>(b, s, 8192, value(b, s, 8191) - 1);
+    expect_rule(b, s,
+                "section 'forward_offsets': [offsets-monotonic] offsets decrease at vertex 8191");
+  }
+  SUBCASE("a target out of range at the start of a chunk (16384 u32)") {
+    Bytes b = good;
+    const auto s = find_entry(b, "forward_targets");
+    poke<std::uint32_t>(b, s, 16384, static_cast<std::uint32_t>(n));
+    expect_rule(b, s, "section 'forward_targets': [target-range] arc 16384 is vertex");
+  }
+  SUBCASE("reverse offsets decrease far into the file") {
+    Bytes b = good;
+    const auto s = find_entry(b, "reverse_offsets");
+    poke<std::uint64_t>(b, s, 70000, 0);
+    expect_rule(b, s,
+                "section 'reverse_offsets': [offsets-monotonic] offsets decrease at vertex 69999");
+  }
+  SUBCASE("a reverse source out of range in a late block") {
+    Bytes b = good;
+    const auto s = find_entry(b, "reverse_sources");
+    poke<std::uint32_t>(b, s, m - 3, static_cast<std::uint32_t>(n + 1));
+    expect_rule(b, s,
+                "section 'reverse_sources': [source-range] entry " + std::to_string(m - 3) +
+                    " is vertex " + std::to_string(n + 1));
+  }
+  SUBCASE("a reverse entry naming the wrong arc in a middle block") {
+    Bytes b = good;
+    const auto s = find_entry(b, "reverse_arcs");
+    poke<std::uint32_t>(b, s, m / 2, 0);
+    expect_rule(b, s, "section 'reverse_arcs': [reverse-transpose] entry " + std::to_string(m / 2));
+  }
+  SUBCASE("a later rule is reported after an earlier one, whichever thread finds it first") {
+    Bytes b = good;
+    const auto arcs = find_entry(b, "reverse_arcs");
+    poke<std::uint32_t>(b, arcs, 5, 0);
+    reseal_section(b, arcs);
+    const auto s = find_entry(b, "forward_targets");
+    poke<std::uint32_t>(b, s, m - 1, static_cast<std::uint32_t>(n));
+    expect_rule(b, s, "section 'forward_targets': [target-range] arc " + std::to_string(m - 1));
+  }
+}
+
 TEST_CASE("float cost columns must be finite and non-negative") {
   TempDir dir;
   GraphInput g;
