@@ -36,6 +36,26 @@ std::string verify_problem(const Bytes& bytes, VerifyLevel level) {
   return verify(r, level).value_or("(passed)");
 }
 
+// With section `section` resealed (checksums pass), the structure level reports a problem that
+// starts with `start`, and the full level the same one.
+void expect_rule(Bytes& b, std::size_t section, const std::string& start) {
+  reseal_section(b, section);
+  CHECK(verify_problem(b, VerifyLevel::checksums) == "(passed)");
+  const auto problem = verify_problem(b, VerifyLevel::structure);
+  CHECK_MESSAGE(problem.starts_with(start), problem);
+  CHECK(verify_problem(b, VerifyLevel::full) == problem);
+}
+
+// `good` with element `index` of section `name` set to `value`: see expect_rule.
+template <class T>
+void expect_poked_rule(const Bytes& good, std::string_view name, std::size_t index, T value,
+                       const std::string& start) {
+  Bytes b = good;
+  const auto section = find_entry(b, name);
+  poke<T>(b, section, index, value);
+  expect_rule(b, section, start);
+}
+
 }  // namespace
 
 TEST_CASE("open refuses damaged headers and tables with a message naming the problem") {
@@ -215,43 +235,28 @@ TEST_CASE("the structure level names the broken rule, with checksums recomputed"
   TempDir dir;
   const Bytes good = grid_bytes(dir);
   const auto n = header_of(good).vertex_count;
-  auto expect_rule = [](Bytes& b, std::size_t section, const std::string& start) {
-    reseal_section(b, section);
-    CHECK(verify_problem(b, VerifyLevel::checksums) == "(passed)");
-    const auto problem = verify_problem(b, VerifyLevel::structure);
-    CHECK_MESSAGE(problem.starts_with(start), problem);
-    CHECK(verify_problem(b, VerifyLevel::full) == problem);
-  };
   SUBCASE("offsets decrease") {
-    Bytes b = good;
-    const auto s = find_entry(b, "forward_offsets");
-    poke<std::uint64_t>(b, s, 2, 0);
-    expect_rule(b, s,
-                "section 'forward_offsets': [offsets-monotonic] offsets decrease at vertex 1");
+    expect_poked_rule<std::uint64_t>(
+        good, "forward_offsets", 2, 0,
+        "section 'forward_offsets': [offsets-monotonic] offsets decrease at vertex 1");
   }
   SUBCASE("a target out of range") {
-    Bytes b = good;
-    const auto s = find_entry(b, "forward_targets");
-    poke<std::uint32_t>(b, s, 5, static_cast<std::uint32_t>(n));
-    expect_rule(b, s, "section 'forward_targets': [target-range] arc 5 is vertex 14");
+    expect_poked_rule<std::uint32_t>(
+        good, "forward_targets", 5, static_cast<std::uint32_t>(n),
+        "section 'forward_targets': [target-range] arc 5 is vertex 14");
   }
   SUBCASE("a reverse entry naming the wrong arc") {
-    Bytes b = good;
-    const auto s = find_entry(b, "reverse_arcs");
-    poke<std::uint32_t>(b, s, 0, 7);
-    expect_rule(b, s, "section 'reverse_arcs': [reverse-transpose]");
+    expect_poked_rule<std::uint32_t>(good, "reverse_arcs", 0, 7,
+                                     "section 'reverse_arcs': [reverse-transpose]");
   }
   SUBCASE("a reverse entry naming the wrong source") {
-    Bytes b = good;
-    const auto s = find_entry(b, "reverse_sources");
-    poke<std::uint32_t>(b, s, 0, 3);
-    expect_rule(b, s, "section 'reverse_arcs': [reverse-transpose] entry 0 (vertex 0) says arc");
+    expect_poked_rule<std::uint32_t>(
+        good, "reverse_sources", 0, 3,
+        "section 'reverse_arcs': [reverse-transpose] entry 0 (vertex 0) says arc");
   }
   SUBCASE("a query endpoint out of range") {
-    Bytes b = good;
-    const auto s = find_entry(b, "default");
-    poke<std::uint32_t>(b, s, 1, static_cast<std::uint32_t>(n + 3));
-    expect_rule(b, s, "section 'default': [query-range] endpoint 1 is vertex 17");
+    expect_poked_rule<std::uint32_t>(good, "default", 1, static_cast<std::uint32_t>(n + 3),
+                                     "section 'default': [query-range] endpoint 1 is vertex 17");
   }
   SUBCASE("metadata that breaks its grammar") {
     Bytes b = good;
@@ -286,51 +291,38 @@ TEST_CASE("a file of megabytes: rules found across chunks, threads and transpose
   CHECK(verify_problem(good, VerifyLevel::full) == "(passed)");
   const auto n = header_of(good).vertex_count;
   const auto m = header_of(good).arc_count;
-  auto expect_rule = [](Bytes& b, std::size_t section, const std::string& start) {
-    reseal_section(b, section);
-    CHECK(verify_problem(b, VerifyLevel::checksums) == "(passed)");
-    const auto problem = verify_problem(b, VerifyLevel::structure);
-    CHECK_MESSAGE(problem.starts_with(start), problem);
-    CHECK(verify_problem(b, VerifyLevel::full) == problem);
-  };
-  auto value = [](const Bytes& b, std::size_t section, std::size_t index) {
+  auto offset_at = [&good](std::size_t index) {
     std::uint64_t v = 0;
-    std::memcpy(&v, b.data() + entry_of(b, section).offset + 8 * index, 8);
+    std::memcpy(
+        &v, good.data() + entry_of(good, find_entry(good, "forward_offsets")).offset + 8 * index,
+        8);
     return v;
   };
   SUBCASE("offsets decrease across the first 64 KiB chunk's end (8192 u64)") {
-    Bytes b = good;
-    const auto s = find_entry(b, "forward_offsets");
-    poke<std::uint64_t>(b, s, 8192, value(b, s, 8191) - 1);
-    expect_rule(b, s,
-                "section 'forward_offsets': [offsets-monotonic] offsets decrease at vertex 8191");
+    expect_poked_rule<std::uint64_t>(
+        good, "forward_offsets", 8192, offset_at(8191) - 1,
+        "section 'forward_offsets': [offsets-monotonic] offsets decrease at vertex 8191");
   }
   SUBCASE("a target out of range at the start of a chunk (16384 u32)") {
-    Bytes b = good;
-    const auto s = find_entry(b, "forward_targets");
-    poke<std::uint32_t>(b, s, 16384, static_cast<std::uint32_t>(n));
-    expect_rule(b, s, "section 'forward_targets': [target-range] arc 16384 is vertex");
+    expect_poked_rule<std::uint32_t>(
+        good, "forward_targets", 16384, static_cast<std::uint32_t>(n),
+        "section 'forward_targets': [target-range] arc 16384 is vertex");
   }
   SUBCASE("reverse offsets decrease far into the file") {
-    Bytes b = good;
-    const auto s = find_entry(b, "reverse_offsets");
-    poke<std::uint64_t>(b, s, 70000, 0);
-    expect_rule(b, s,
-                "section 'reverse_offsets': [offsets-monotonic] offsets decrease at vertex 69999");
+    expect_poked_rule<std::uint64_t>(
+        good, "reverse_offsets", 70000, 0,
+        "section 'reverse_offsets': [offsets-monotonic] offsets decrease at vertex 69999");
   }
   SUBCASE("a reverse source out of range in a late block") {
-    Bytes b = good;
-    const auto s = find_entry(b, "reverse_sources");
-    poke<std::uint32_t>(b, s, m - 3, static_cast<std::uint32_t>(n + 1));
-    expect_rule(b, s,
-                "section 'reverse_sources': [source-range] entry " + std::to_string(m - 3) +
-                    " is vertex " + std::to_string(n + 1));
+    expect_poked_rule<std::uint32_t>(
+        good, "reverse_sources", m - 3, static_cast<std::uint32_t>(n + 1),
+        "section 'reverse_sources': [source-range] entry " + std::to_string(m - 3) + " is vertex " +
+            std::to_string(n + 1));
   }
   SUBCASE("a reverse entry naming the wrong arc in a middle block") {
-    Bytes b = good;
-    const auto s = find_entry(b, "reverse_arcs");
-    poke<std::uint32_t>(b, s, m / 2, 0);
-    expect_rule(b, s, "section 'reverse_arcs': [reverse-transpose] entry " + std::to_string(m / 2));
+    expect_poked_rule<std::uint32_t>(
+        good, "reverse_arcs", m / 2, 0,
+        "section 'reverse_arcs': [reverse-transpose] entry " + std::to_string(m / 2));
   }
   SUBCASE("a later rule is reported after an earlier one, whichever thread finds it first") {
     Bytes b = good;
