@@ -45,7 +45,8 @@ class AtomicFile {
   AtomicFile& operator=(const AtomicFile&) = delete;
 
   // Appends all of `size` bytes (retrying short writes); a failure throws mosb::Error naming the
-  // target, e.g. "out.mosb: write failed: File too large".
+  // target, e.g. "out.mosb: write failed: File too large". Each 8 MiB appended is handed to the
+  // disk at once (Linux: sync_file_range), so that commit()'s fsync has little left to wait for.
   void write(const void* data, std::size_t size);
   void write(std::string_view text) { write(text.data(), text.size()); }
   // Writes at `offset` without moving the append position.
