@@ -11,6 +11,7 @@
 #include "mosb/error.hpp"
 #include "mosb/file_writer.hpp"
 #include "mosb/version.hpp"
+#include "transpose.hpp"
 
 namespace mosb {
 
@@ -294,25 +295,19 @@ void write_graph(const GraphInput& in, const std::filesystem::path& path, const 
   LargeArray<std::uint32_t> targets(m);
   for (std::size_t p = 0; p < m; ++p) targets[p] = in.heads[order[p]];
 
-  // The transpose, built on a second core while the forward sections are written and the costs
-  // gathered: scanning forward arcs in id order makes each in-list ascending by arc id.
+  // The transpose (derive_transpose, as unpacking derives it), built on a second core while the
+  // forward sections are written and the costs gathered.
   LargeArray<std::uint64_t> reverse_offsets;
   LargeArray<std::uint32_t> reverse_sources, reverse_arcs;
   std::exception_ptr transpose_error;
   auto build_transpose = [&] {
     try {
-      reverse_offsets.assign(n + 2, 0);  // its own cursors, as the forward offsets above
-      for (auto h : targets) ++reverse_offsets[h + 2];
-      for (std::uint64_t v = 1; v <= n; ++v) reverse_offsets[v + 1] += reverse_offsets[v];
+      reverse_offsets.resize(n + 1);
       reverse_sources.resize(m);
       reverse_arcs.resize(m);
-      for (std::uint32_t u = 0; u < n; ++u)
-        for (auto p = offsets[u]; p < offsets[u + 1]; ++p) {
-          auto slot = reverse_offsets[targets[p] + 1]++;
-          reverse_sources[slot] = u;
-          reverse_arcs[slot] = static_cast<std::uint32_t>(p);
-        }
-      reverse_offsets.pop_back();
+      if (!derive_transpose(offsets, targets, reverse_offsets.data(), reverse_sources.data(),
+                            reverse_arcs.data()))
+        throw Error("internal error: the built forward CSR is not one");
     } catch (...) {
       transpose_error = std::current_exception();
     }

@@ -42,13 +42,16 @@ std::string in_section(const Section& s, std::string_view rule, const std::strin
   return "section '" + s.name + "': [" + std::string(rule) + "] " + detail;
 }
 
-Problem check_checksum(const Section& s) {
-  const std::uint64_t computed = XXH3_64bits(s.stored.data(), s.stored.size());
+Problem checksum_problem(const Section& s, std::uint64_t computed) {
   if (computed != s.entry.checksum)
     return in_section(
         s, "checksum",
         "mismatch (stored " + hex64(s.entry.checksum) + ", computed " + hex64(computed) + ")");
   return std::nullopt;
+}
+
+Problem check_checksum(const Section& s) {
+  return checksum_problem(s, XXH3_64bits(s.stored.data(), s.stored.size()));
 }
 
 // Branch-free scans, without a message: they vectorize.
@@ -91,32 +94,24 @@ Problem check_ids(const Section& s, std::span<const std::uint32_t> ids, std::uin
 
 // A section's checksum and a rule over its elements in one pass, 64 KiB at a time, so the rule
 // scans from cache what the hash has just read from memory (as a pass of its own it cost about as
-// much as the hash). `holds` sees each chunk and the element after it; `rule_holds` says whether
-// it held throughout.
+// much as the hash). `values` are the section's stored bytes as elements; `holds` sees each chunk
+// and the element after it; `rule_holds` says whether it held throughout.
 template <class T, class Holds>
 Problem check_checksum_and_rule(const Section& s, std::span<const T> values, Holds holds,
                                 bool& rule_holds) {
-  rule_holds = true;
-  if (values.size_bytes() != s.stored.size()) {
-    rule_holds = holds(values);
-    return check_checksum(s);
-  }
   std::unique_ptr<XXH3_state_t, decltype(&XXH3_freeState)> state(XXH3_createState(),
                                                                  &XXH3_freeState);
   if (!state) throw std::bad_alloc();
   XXH3_64bits_reset(state.get());
+  rule_holds = true;
   constexpr std::size_t kChunk = (std::size_t{64} << 10) / sizeof(T);
-  for (std::size_t first = 0; first < values.size(); first += kChunk) {
-    const std::size_t count = std::min(kChunk, values.size() - first);
-    XXH3_64bits_update(state.get(), values.data() + first, count * sizeof(T));
-    rule_holds &= holds(values.subspan(first, std::min(count + 1, values.size() - first)));
+  for (std::size_t first = 0; first * sizeof(T) < s.stored.size(); first += kChunk) {
+    const std::size_t bytes = std::min(kChunk * sizeof(T), s.stored.size() - first * sizeof(T));
+    XXH3_64bits_update(state.get(), s.stored.data() + first * sizeof(T), bytes);
+    if (first < values.size())
+      rule_holds &= holds(values.subspan(first, std::min(kChunk + 1, values.size() - first)));
   }
-  const std::uint64_t computed = XXH3_64bits_digest(state.get());
-  if (computed != s.entry.checksum)
-    return in_section(
-        s, "checksum",
-        "mismatch (stored " + hex64(s.entry.checksum) + ", computed " + hex64(computed) + ")");
-  return std::nullopt;
+  return checksum_problem(s, XXH3_64bits_digest(state.get()));
 }
 
 // The sections check_csr reads, found once.
