@@ -18,7 +18,7 @@
 
 #include "mosb/checksum.hpp"
 #include "mosb/error.hpp"
-#include "mosb/hex.hpp"
+#include "mosb/internal/hex.hpp"
 
 namespace mosb::converters {
 

@@ -13,6 +13,7 @@
 
 #include "mosb/error.hpp"
 #include "mosb/graph_reader.hpp"
+#include "mosb/pack.hpp"
 #include "mosb/store.hpp"
 #include "mosb/verify.hpp"
 #include "mosb/version.hpp"
@@ -130,7 +131,7 @@ PYBIND11_MODULE(_mosb, m) {
       .def_static(
           "load",
           [](const std::string& path) {
-            return std::make_shared<mosb::GraphReader>(mosb::GraphReader::load(path));
+            return std::make_shared<mosb::GraphReader>(mosb::load(path));
           },
           py::arg("path"), py::call_guard<py::gil_scoped_release>())
       .def_property_readonly("display_name", &mosb::GraphReader::display_name)

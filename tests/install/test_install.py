@@ -5,8 +5,10 @@ C and C++ programs, extracted from README.md, and examples/dijkstra.c) out of tr
 find_package and once through pkg-config, and runs them on a generated grid, checking their output
 against values computed independently with the reference reader (spec/reference). A second,
 library-only shared build shows the package needs neither CLI11, Boost nor doctest, and carries a
-SONAME. Environment: MOSB_BUILD_DIR, MOSB_SOURCE_DIR, MOSB_VERSION, CMAKE.
+SONAME. A reader-only consumer (find_package COMPONENTS core, pkg-config mosb-core) links xxHash and
+nothing else; ctypes loads libmosb.so, which exports the C ABI alone. Environment: MOSB_BUILD_DIR, MOSB_SOURCE_DIR, MOSB_VERSION, CMAKE.
 """
+import ctypes
 import heapq
 import os
 import re
@@ -147,10 +149,13 @@ class InstalledPackage(unittest.TestCase):
     def test_installs_library_headers_program_and_package_files(self):
         lib = libdir(self.prefix)
         for path in ("include/mosb.h", "include/mosb/graph_reader.hpp", "include/mosb/format.hpp",
-                     "include/mosb/version.hpp", "bin/mosb"):
+                     "include/mosb/version.hpp", "include/mosb/pack.hpp", "include/mosb/store.hpp",
+                     "include/mosb/solution_file.hpp", "bin/mosb"):
             self.assertTrue(os.path.isfile(os.path.join(self.prefix, path)), path)
+        # Internal headers stay in the source tree.
+        self.assertFalse(os.path.exists(os.path.join(self.prefix, "include", "mosb", "internal")))
         for path in ("cmake/mosb/mosbConfig.cmake", "cmake/mosb/mosbConfigVersion.cmake",
-                     "pkgconfig/mosb.pc", "pkgconfig/mosb_c.pc"):
+                     "pkgconfig/mosb.pc", "pkgconfig/mosb-core.pc", "pkgconfig/mosb_c.pc"):
             self.assertTrue(os.path.isfile(os.path.join(lib, path)), path)
         self.assertEqual(run(os.path.join(self.prefix, "bin", "mosb"), "--version").strip(),
                          "mosb " + VERSION)
@@ -183,13 +188,16 @@ class InstalledPackage(unittest.TestCase):
     def test_consumer_through_pkg_config(self):
         self.consumer(self.prefix, "pkg-config", "consumer-pkg-config")
 
-    def test_examples_build_through_find_package(self):
-        examples = os.path.join(SOURCE, "examples")
-        if not os.path.isfile(os.path.join(examples, "CMakeLists.txt")):
-            self.skipTest("examples/CMakeLists.txt does not exist yet")
+    def test_installed_examples_build_and_run(self):
+        # The example solvers' sources are installed (share/mosb/examples) and build against the
+        # installed package alone.
+        examples = os.path.join(self.prefix, "share", "mosb", "examples")
+        self.assertTrue(os.path.isfile(os.path.join(examples, "CMakeLists.txt")), examples)
         build = os.path.join(self.tmp, "examples")
         run(CMAKE, "-S", examples, "-B", build, "-DCMAKE_PREFIX_PATH=" + self.prefix)
         run(CMAKE, "--build", build, "-j2")
+        out = run(os.path.join(build, "dijkstra"), self.grid).splitlines()
+        self.assertEqual(out, self.expected["dijkstra"])
 
     def test_add_subdirectory_builds_the_libraries_only(self):
         # As a subproject, mosb must not look for CLI11, Boost or doctest, nor build the program.
@@ -215,13 +223,67 @@ class InstalledPackage(unittest.TestCase):
         run(CMAKE, "--install", build, "--prefix", prefix)
         self.assertFalse(os.path.exists(os.path.join(prefix, "bin", "mosb")))
         major, minor, _ = VERSION.split(".")
-        for lib in ("libmosb", "libmosb_c"):
+        for lib in ("libmosb", "libmosb_core", "libmosb_pack", "libmosb_store"):
             path = os.path.join(libdir(prefix), lib + ".so")
             self.assertTrue(os.path.islink(path), path)
             dynamic = run("readelf", "-d", path)
             self.assertIn("Library soname: [%s.so.%s.%s]" % (lib, major, minor), dynamic)
         build_consumer = self.consumer(prefix, "pkg-config", "consumer-shared")
-        self.assertIn("libmosb_c.so." + major, run("ldd", os.path.join(build_consumer, "readme_c")))
+        self.assertIn("libmosb.so." + major, run("ldd", os.path.join(build_consumer, "readme_c")))
+
+    def test_core_component_links_xxhash_alone(self):
+        # A solver that only maps files: find_package(mosb COMPONENTS core) and mosb-core.pc give
+        # the reader with libxxhash as its one dependency.
+        project = os.path.join(self.tmp, "core-only")
+        os.makedirs(project, exist_ok=True)
+        with open(os.path.join(project, "CMakeLists.txt"), "w") as f:
+            f.write("cmake_minimum_required(VERSION 3.16)\nproject(core_only CXX)\n"
+                    "find_package(mosb 0.2 REQUIRED COMPONENTS core)\n"
+                    "add_executable(count count.cpp)\n"
+                    "target_link_libraries(count PRIVATE mosb::core)\n")
+        with open(os.path.join(project, "count.cpp"), "w") as f:
+            f.write('#include <iostream>\n#include <mosb/graph_reader.hpp>\n'
+                    'int main(int, char** argv) {\n'
+                    '  auto g = mosb::GraphReader::open(argv[1], mosb::VerifyLevel::full);\n'
+                    '  std::cout << g.vertex_count() << " " << g.arc_count() << "\\n";\n}\n')
+        build = os.path.join(self.tmp, "core-only-build")
+        run(CMAKE, "-S", project, "-B", build, "-DCMAKE_PREFIX_PATH=" + self.prefix)
+        run(CMAKE, "--build", build)
+        with open(os.path.join(build, "CMakeFiles", "count.dir", "link.txt")) as f:
+            libraries = sorted(set(re.findall(r"lib[\w+-]+\.(?:a|so)\b|-l[\w+-]+", f.read())))
+        self.assertEqual(libraries, ["libmosb_core.a", "libxxhash.so"], libraries)
+        inst = mosb_reader.open_instance(self.grid)
+        self.assertEqual(run(os.path.join(build, "count"), self.grid).split(),
+                         [str(inst.n), str(inst.m)])
+        env = dict(os.environ, PKG_CONFIG_PATH=os.path.join(libdir(self.prefix), "pkgconfig"))
+        flags = run("pkg-config", "--libs", "mosb-core", env=env).split()
+        self.assertEqual([x for x in flags if x.startswith("-l")], ["-lmosb_core", "-lxxhash"])
+
+    def test_ctypes_reads_an_instance_through_libmosb_so(self):
+        # The shared C ABI loads without a build, as Julia ccall or R .Call would load it, and
+        # exports the mosb_* functions and nothing else.
+        path = os.path.join(libdir(self.prefix), "libmosb.so")
+        lib = ctypes.CDLL(path)
+        lib.mosb_version.restype = ctypes.c_char_p
+        self.assertEqual(lib.mosb_version().decode(), VERSION)
+        graph = ctypes.c_void_p()
+        self.assertEqual(lib.mosb_open(self.grid.encode(), ctypes.byref(graph)), 0)
+        n, m = ctypes.c_uint64(), ctypes.c_uint64()
+        self.assertEqual(lib.mosb_vertex_count(graph, ctypes.byref(n)), 0)
+        self.assertEqual(lib.mosb_arc_count(graph, ctypes.byref(m)), 0)
+        offsets, targets = ctypes.POINTER(ctypes.c_uint64)(), ctypes.POINTER(ctypes.c_uint32)()
+        self.assertEqual(lib.mosb_forward_csr(graph, ctypes.byref(offsets), ctypes.byref(targets)), 0)
+        inst = mosb_reader.open_instance(self.grid)
+        self.assertEqual((n.value, m.value), (inst.n, inst.m))
+        self.assertEqual(offsets[:n.value + 1], inst.array("forward_offsets").tolist())
+        self.assertEqual(targets[:m.value], inst.array("forward_targets").tolist())
+        self.assertEqual(lib.mosb_close(graph), 0)
+        self.assertNotEqual(lib.mosb_open(b"/nonexistent.mosb", ctypes.byref(graph)), 0)
+        lib.mosb_last_error.restype = ctypes.c_char_p
+        self.assertIn("/nonexistent.mosb", lib.mosb_last_error().decode())
+        symbols = run("nm", "-D", "--defined-only", path).split("\n")
+        exported = sorted({line.split()[-1] for line in symbols if line.strip()})
+        self.assertTrue(exported and all(name.startswith("mosb_") for name in exported), exported)
 
 
 if __name__ == "__main__":

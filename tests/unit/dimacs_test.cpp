@@ -12,7 +12,7 @@
 #include "mosb/converters/text_input.hpp"
 #include "mosb/error.hpp"
 #include "mosb/graph_reader.hpp"
-#include "mosb/hex.hpp"
+#include "mosb/internal/hex.hpp"
 #include "mosb/verify.hpp"
 #include "temp_dir.hpp"
 #include "test_files.hpp"

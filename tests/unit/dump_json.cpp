@@ -6,7 +6,7 @@
 #include <iostream>
 
 #include "mosb/graph_reader.hpp"
-#include "mosb/hex.hpp"
+#include "mosb/internal/hex.hpp"
 
 using namespace mosb;
 using format::ElementType;

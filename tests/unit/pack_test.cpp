@@ -47,7 +47,7 @@ TEST_CASE("pack_file and unpack_file restore the exact bytes, load reads the pac
 
   const auto original = GraphReader::open(plain, VerifyLevel::full);
   CHECK_FALSE(is_packed(original.header()));
-  const auto loaded = GraphReader::load(packed, VerifyLevel::full);
+  const auto loaded = mosb::load(packed, VerifyLevel::full);
   CHECK(is_packed(GraphReader::open(packed).header()));
   CHECK_FALSE(is_packed(loaded.header()));
   CHECK(loaded.digest() == original.digest());
@@ -69,7 +69,7 @@ TEST_CASE("pack_file and unpack_file restore the exact bytes, load reads the pac
   pack_file(packed, dir / "again.mosb", PackOptions{});
   CHECK(bytes_of(dir / "again.mosb") == bytes_of(packed));
   // An unpacked file loads as it opens.
-  CHECK(GraphReader::load(plain).bytes().size() == original.bytes().size());
+  CHECK(mosb::load(plain).bytes().size() == original.bytes().size());
 }
 
 TEST_CASE("pack_file refuses a bad level and leaves no output") {
@@ -108,7 +108,7 @@ TEST_CASE("the packed golden files unpack to verified instances and pack back to
     CHECK(packed.header().version_minor == minor);
     for (const auto& s : packed.sections())
       encodings.insert(static_cast<format::Encoding>(s.entry.encoding));
-    const auto loaded = GraphReader::load(golden, VerifyLevel::full);
+    const auto loaded = mosb::load(golden, VerifyLevel::full);
     CHECK(loaded.digest() == packed.digest());
     unpack_file(golden, dir / "plain.mosb");
     pack_file(dir / "plain.mosb", dir / "again.mosb", options);
@@ -120,7 +120,7 @@ TEST_CASE("the packed golden files unpack to verified instances and pack back to
   CHECK(encodings.count(format::Encoding::shuffle_zstd) == 1);
   CHECK(encodings.count(format::Encoding::delta_zstd) == 1);
   CHECK(encodings.count(format::Encoding::transpose) == 1);
-  const auto small = GraphReader::load(kPackedGolden / "valid" / "small.packed.mosb");
+  const auto small = mosb::load(kPackedGolden / "valid" / "small.packed.mosb");
   unpack_file(kPackedGolden / "valid" / "small.packed.mosb", dir / "small.mosb");
   CHECK(bytes_of(dir / "small.mosb") ==
         bytes_of(std::filesystem::path(MOSB_SOURCE_DIR) / "spec/golden/1.0/valid/small.mosb"));
@@ -139,7 +139,7 @@ TEST_CASE("every invalid packed golden file is refused where EXPECTED.tsv says")
       ++files;
       std::string message;
       try {
-        (void)GraphReader::load(file, VerifyLevel::full);
+        (void)mosb::load(file, VerifyLevel::full);
       } catch (const Error& error) {
         message = error.what();
       }
@@ -191,7 +191,7 @@ TEST_CASE("pack derives the reverse CSR by default and --keep-reverse stores it"
   unpack_file(dir / "kept.mosb", dir / "b.mosb");
   CHECK(bytes_of(dir / "a.mosb") == bytes_of(dir / "plain.mosb"));
   CHECK(bytes_of(dir / "b.mosb") == bytes_of(dir / "plain.mosb"));
-  CHECK(GraphReader::load(dir / "derived.mosb").digest() ==
+  CHECK(mosb::load(dir / "derived.mosb").digest() ==
         GraphReader::open(dir / "plain.mosb").digest());
 }
 
@@ -226,7 +226,7 @@ TEST_CASE("a derived reverse CSR needs a forward CSR that is one") {
   const auto golden = kGolden / "1.2" / "packed" / "valid" / "grid.packed.mosb";
   const auto source = GraphReader::open(golden);
   const auto n = source.header().vertex_count;
-  const auto loaded = GraphReader::load(golden);
+  const auto loaded = mosb::load(golden);
   const auto targets = loaded.forward_targets();
   std::vector<std::uint32_t> broken(targets.begin(), targets.end());
   broken.back() = static_cast<std::uint32_t>(n);
@@ -245,7 +245,7 @@ TEST_CASE("a derived reverse CSR needs a forward CSR that is one") {
     }
     writer.commit(n, source.header().arc_count);
   }
-  CHECK_THROWS_WITH_AS(GraphReader::load(dir / "broken.mosb"),
+  CHECK_THROWS_WITH_AS(mosb::load(dir / "broken.mosb"),
                        doctest::Contains("the forward CSR is not one"), Error);
   CHECK_THROWS_AS(unpack_file(dir / "broken.mosb", dir / "out.mosb"), Error);
   CHECK_FALSE(std::filesystem::exists(dir / "out.mosb"));

@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "file_patch.hpp"
+#include "mosb/pack.hpp"
 
 namespace mosb::testing {
 

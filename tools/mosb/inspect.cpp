@@ -7,9 +7,9 @@
 #include "commands.hpp"
 #include "json_writer.hpp"
 #include "mosb/graph_reader.hpp"
-#include "mosb/hex.hpp"
+#include "mosb/internal/hex.hpp"
 #include "mosb/stats.hpp"
-#include "mosb/utf8.hpp"
+#include "mosb/internal/utf8.hpp"
 
 namespace mosb::cli {
 
@@ -25,16 +25,10 @@ std::string shown(const std::optional<std::string>& value) {
   return escape_for_terminal(value.value_or(""));
 }
 
-bool is_packed(const GraphReader& r) {
-  for (const auto& s : r.sections())
-    if (s.is_packed()) return true;
-  return false;
-}
-
 // The counts walk the CSR: only on a reader verified in full (nullopt for a packed file, which
 // cannot be verified in place and is shown from its table alone).
 std::optional<ArcMultiplicity> loops_and_parallel_arcs(const GraphReader& r) {
-  if (is_packed(r)) return std::nullopt;
+  if (format::is_packed(r.header())) return std::nullopt;
   return count_loops_and_parallel_arcs(r);
 }
 
@@ -171,7 +165,7 @@ Command add_inspect(CLI::App& app) {
             // The loop counts walk the CSR, so a file is verified in full before anything is
             // printed; a packed file cannot be, and is shown without the counts.
             auto reader = GraphReader::open(*file);
-            if (!is_packed(reader)) reader = GraphReader::open(*file, VerifyLevel::full);
+            if (!format::is_packed(reader.header())) reader = GraphReader::open(*file, VerifyLevel::full);
             if (*as_json)
               print_json(reader);
             else

@@ -55,7 +55,7 @@ int run(const PackArgs& a, bool pack) {
       unpack_file(a.inputs[i], outputs[i]);
     const auto after = std::filesystem::file_size(outputs[i]);
     // Header and table only: the digest a packed and an unpacked file share.
-    const auto digest = GraphReader::load(outputs[i]).digest();
+    const auto digest = mosb::load(outputs[i]).digest();
     if (json) {
       json->begin_object();
       json->key("input").value(a.inputs[i]);

@@ -6,6 +6,7 @@
 
 #include "commands.hpp"
 #include "json_writer.hpp"
+#include "mosb/pack.hpp"
 #include "mosb/store.hpp"
 #include "terminal_progress.hpp"
 
@@ -84,7 +85,7 @@ int run_verify(const VerifyArgs& a) {
   for (const auto& file : a.files) {
     Outcome outcome{file, std::nullopt, ""};
     try {
-      const auto reader = GraphReader::load(file);  // a packed file is decoded first
+      const auto reader = mosb::load(file);  // a packed file is decoded first
       outcome.problem = verify(reader, verify_level, one_file ? progress : Progress{});
       if (outcome.problem) outcome.problem = file + ": " + *outcome.problem;
       outcome.digest = reader.digest();

@@ -89,6 +89,14 @@ static_assert(offsetof(FileHeader, arc_count) == 72);
 static_assert(offsetof(FileHeader, reserved) == 80);
 static_assert(offsetof(FileHeader, header_checksum) == kHeaderChecksumOffset);
 
+// The required feature bits that make a file packed: one per encoding other than raw (§6).
+inline constexpr std::uint64_t kEncodingFeatures = kFeatureZstdSections | kFeatureShuffleSections |
+                                                   kFeatureDeltaSections | kFeatureTransposeSections;
+// Whether a file is packed (§6): the one test every reader and command uses.
+constexpr bool is_packed(const FileHeader& header) {
+  return (header.required_features & kEncodingFeatures) != 0;
+}
+
 enum class SectionKind : std::uint16_t {
   metadata = 1,         // u8 x 1: UTF-8 "key=value\n" lines, sorted by key
   forward_offsets = 2,  // u64 x 1, n+1 rows: first outgoing arc of each vertex

@@ -17,6 +17,7 @@
 
 #include "mosb/container.hpp"
 #include "mosb/format.hpp"
+#include "mosb/graph_reader.hpp"
 
 namespace mosb {
 
@@ -27,9 +28,6 @@ struct PackOptions {
   // format 1.2): unpacking derives the sections again. About a third of a packed NetMaker file.
   bool derive_reverse = true;
 };
-
-// True when the header declares sections in an encoding other than raw (required bits 0-3).
-bool is_packed(const format::FileHeader& header);
 
 // Writes the packed form of the instance `in` (packed or not) to `out`, atomically
 // (mosb::AtomicFile: `out` shows the old file or the complete new one). Every frame is decoded
@@ -47,5 +45,12 @@ void unpack_file(const std::filesystem::path& in, const std::filesystem::path& o
 // before any allocation larger than the decoded lengths the table declares, which are bounded by
 // what each stored frame can hold at zstd's maximum ratio.
 MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view display_name);
+
+// Opens an instance whether packed or not: a packed file (§6) is decoded into owned, 64-byte
+// aligned memory (every section's checksum checked on the way) instead of being refused as
+// GraphReader::open refuses it; an unpacked file is mapped as by GraphReader::open. The accessors
+// then work the same on both. With `level`, runs verify(reader, level) as GraphReader::open does.
+GraphReader load(const std::filesystem::path& path);
+GraphReader load(const std::filesystem::path& path, VerifyLevel level);
 
 }  // namespace mosb

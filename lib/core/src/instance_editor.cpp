@@ -4,7 +4,7 @@
 
 #include "mosb/error.hpp"
 #include "mosb/file_writer.hpp"
-#include "xxh3.hpp"
+#include "mosb/internal/xxh3.hpp"
 
 namespace mosb {
 

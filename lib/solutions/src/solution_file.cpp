@@ -6,9 +6,9 @@
 
 #include "mosb/file_writer.hpp"
 #include "mosb/graph_reader.hpp"
-#include "mosb/hex.hpp"
+#include "mosb/internal/hex.hpp"
 #include "mosb/version.hpp"
-#include "xxh3.hpp"
+#include "mosb/internal/xxh3.hpp"
 
 namespace mosb {
 

@@ -10,6 +10,7 @@
 
 #include "mosb.h"
 #include "mosb/graph_reader.hpp"
+#include "mosb/pack.hpp"
 #include "mosb/store.hpp"
 #include "mosb/verify.hpp"
 #include "mosb/version.hpp"
@@ -162,7 +163,7 @@ mosb_status mosb_load(const char* path, mosb_graph** graph) {
   return guarded([&] {
     require(path, "the path");
     require(graph, "the output handle");
-    *graph = new mosb_graph(mosb::GraphReader::load(path));
+    *graph = new mosb_graph(mosb::load(path));
   });
 }
 

@@ -7,11 +7,11 @@
 #include <system_error>
 #include <thread>
 
-#include "large_array.hpp"
+#include "mosb/internal/large_array.hpp"
 #include "mosb/error.hpp"
 #include "mosb/file_writer.hpp"
 #include "mosb/version.hpp"
-#include "transpose.hpp"
+#include "mosb/internal/transpose.hpp"
 
 namespace mosb {
 

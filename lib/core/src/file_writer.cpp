@@ -5,7 +5,7 @@
 #include "mosb/container.hpp"
 #include "mosb/error.hpp"
 #include "mosb/metadata.hpp"
-#include "xxh3.hpp"
+#include "mosb/internal/xxh3.hpp"
 
 namespace mosb {
 

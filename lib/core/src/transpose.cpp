@@ -1,4 +1,4 @@
-#include "transpose.hpp"
+#include "mosb/internal/transpose.hpp"
 
 #include <algorithm>
 

@@ -14,13 +14,13 @@
 #include <type_traits>
 #include <vector>
 
-#include "large_array.hpp"
+#include "mosb/internal/large_array.hpp"
 #include "mosb/atomic_file.hpp"
 #include "mosb/error.hpp"
 #include "mosb/file_writer.hpp"
-#include "mosb/hex.hpp"
-#include "transpose.hpp"
-#include "xxh3.hpp"
+#include "mosb/internal/hex.hpp"
+#include "mosb/internal/transpose.hpp"
+#include "mosb/internal/xxh3.hpp"
 
 namespace mosb {
 
@@ -32,11 +32,6 @@ namespace {
 constexpr std::uint64_t kMaxZstdRatio = (std::uint64_t{128} << 10) / 4;
 
 using format::Encoding;
-
-// The required feature bits that make a file packed: one per encoding other than raw (§6).
-constexpr std::uint64_t kEncodingFeatures =
-    format::kFeatureZstdSections | format::kFeatureShuffleSections | format::kFeatureDeltaSections |
-    format::kFeatureTransposeSections;
 
 bool is_encoded(const Section& s) {
   return s.entry.encoding != static_cast<std::uint8_t>(Encoding::raw);
@@ -289,10 +284,6 @@ AtomicFile::Existing existing_for(const std::filesystem::path& in,
 
 }  // namespace
 
-bool is_packed(const format::FileHeader& header) {
-  return (header.required_features & kEncodingFeatures) != 0;
-}
-
 MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view display_name) {
   const auto container = parse_container(bytes, display_name, format::FileKind::instance);
   auto sections = container.sections;
@@ -314,7 +305,7 @@ MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view displ
   auto header = container.header;
   header.table_offset = format::align_up(position);
   header.file_size = header.table_offset + sections.size() * sizeof(format::SectionEntry);
-  header.required_features &= ~kEncodingFeatures;
+  header.required_features &= ~format::kEncodingFeatures;
   header.version_minor =
       std::min(header.version_minor, format::minimum_version_minor(header.required_features));
 
@@ -510,6 +501,24 @@ void pack_file(const std::filesystem::path& in, const std::filesystem::path& out
                                           : std::span<const std::byte>(frames[i]));
   }
   writer.commit(container.header.vertex_count, container.header.arc_count);
+}
+
+namespace {
+// The file's bytes, decoded when packed.
+MappedFile map_decoded(const std::filesystem::path& path) {
+  auto file = map_file(path);
+  format::FileHeader header{};
+  std::memcpy(&header, file.bytes.data(), sizeof header);
+  return is_packed(header) ? unpack_bytes(file.bytes, path.string()) : file;
+}
+}  // namespace
+
+GraphReader load(const std::filesystem::path& path) {
+  return GraphReader::adopt(map_decoded(path), path.string());
+}
+
+GraphReader load(const std::filesystem::path& path, VerifyLevel level) {
+  return GraphReader::adopt(map_decoded(path), path.string(), level);
 }
 
 }  // namespace mosb

@@ -9,8 +9,8 @@
 #include <mutex>
 #include <thread>
 
-#include "mosb/hex.hpp"
-#include "xxh3.hpp"
+#include "mosb/internal/hex.hpp"
+#include "mosb/internal/xxh3.hpp"
 
 namespace mosb {
 

@@ -71,11 +71,11 @@ class GraphReader : public ContainerReader {
   static GraphReader open(const std::filesystem::path& path);
   // Opens, then runs verify(reader, level); throws "FILE: file is damaged: ...; run mosb verify".
   static GraphReader open(const std::filesystem::path& path, VerifyLevel level);
-  // Like open, but a packed file (spec/FORMAT.md §6) is decoded into owned, 64-byte aligned memory
-  // (every section's checksum checked on the way, see mosb/pack.hpp) instead of being refused; an
-  // unpacked file is mapped as by open. The accessors then work the same on both.
-  static GraphReader load(const std::filesystem::path& path);
-  static GraphReader load(const std::filesystem::path& path, VerifyLevel level);
+  // Reads `file` (a mapping, or memory such as a decoded packed file) and keeps it alive as long as
+  // the reader or a copy lives; `display_name` stands for the file in messages. mosb::load
+  // (mosb/pack.hpp) uses it to hand out decoded packed files.
+  static GraphReader adopt(MappedFile file, std::string display_name);
+  static GraphReader adopt(MappedFile file, std::string display_name, VerifyLevel level);
   // Reads bytes the caller keeps alive; `display_name` stands for the file in messages.
   static GraphReader from_memory(std::span<const std::byte> bytes, std::string display_name);
   static GraphReader from_memory(std::span<const std::byte> bytes, std::string display_name,

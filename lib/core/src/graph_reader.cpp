@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstring>
 
-#include "mosb/pack.hpp"
 #include "mosb/verify.hpp"
 
 namespace mosb {
@@ -31,25 +30,18 @@ constexpr Shape kStructural[] = {
 }  // namespace
 
 GraphReader GraphReader::open(const std::filesystem::path& path) {
+  return adopt(map_file(path), path.string());
+}
+
+GraphReader GraphReader::adopt(MappedFile file, std::string display_name) {
   GraphReader reader;
-  reader.attach(map_file(path), path.string(), format::FileKind::instance);
+  reader.attach(std::move(file), std::move(display_name), format::FileKind::instance);
   reader.validate();
   return reader;
 }
 
-GraphReader GraphReader::load(const std::filesystem::path& path) {
-  auto file = map_file(path);
-  format::FileHeader header{};
-  std::memcpy(&header, file.bytes.data(), sizeof header);
-  if (is_packed(header)) file = unpack_bytes(file.bytes, path.string());
-  GraphReader reader;
-  reader.attach(std::move(file), path.string(), format::FileKind::instance);
-  reader.validate();
-  return reader;
-}
-
-GraphReader GraphReader::load(const std::filesystem::path& path, VerifyLevel level) {
-  auto reader = load(path);
+GraphReader GraphReader::adopt(MappedFile file, std::string display_name, VerifyLevel level) {
+  auto reader = adopt(std::move(file), std::move(display_name));
   reader.verify_at_open(level);
   return reader;
 }

@@ -13,11 +13,11 @@
 
 #include "mosb/atomic_file.hpp"
 #include "mosb/error.hpp"
-#include "mosb/hex.hpp"
+#include "mosb/internal/hex.hpp"
 #include "mosb/pack.hpp"
 #include "mosb/sha256.hpp"
 #include "mosb/verify.hpp"
-#include "xxh3.hpp"
+#include "mosb/internal/xxh3.hpp"
 
 namespace mosb {
 
@@ -89,7 +89,7 @@ FileCheck check_one(const ManifestEntry& e, const fs::path& path) {
       problem("wrong-digest", "content digest " + digest + ", the manifest says " + e.digest);
     // A packed file is checked as it will be used: unpacked (every frame decoded and checked
     // against its section checksum), then verified in full.
-    const auto checked = is_packed(reader.header()) ? GraphReader::load(path) : reader;
+    const auto checked = is_packed(reader.header()) ? mosb::load(path) : reader;
     if (const auto found = verify(checked, VerifyLevel::full)) problem("damaged", *found);
   } catch (const Error& error) {
     c.problems.push_back({error.code() == ErrorCode::io ? "unreadable" : "damaged", error.what()});
@@ -127,7 +127,7 @@ std::pair<GraphReader, fs::path> open_packed(const fs::path& directory, const Ma
   // store does not delete what it did not make): decoded into memory, nothing written.
   if (::access((fs::is_directory(cache, ec) ? cache : directory).c_str(), W_OK) != 0 ||
       fs::is_directory(copy, ec))
-    return {GraphReader::load(packed, VerifyLevel::full), packed};
+    return {mosb::load(packed, VerifyLevel::full), packed};
   fs::create_directory(cache, ec);
   if (ec) throw Error(ErrorCode::io, cache.string() + ": cannot create the cache: " + ec.message());
   unpack_file(packed, copy);
@@ -276,7 +276,7 @@ std::vector<ManifestEntry> Store::add(const std::vector<fs::path>& files,
     const auto& source = files[i];
     auto entry = describe_file(source);
     // A packed file is decoded (every frame checked) and verified like any other.
-    const auto reader = entry.packed ? GraphReader::load(source) : GraphReader::open(source);
+    const auto reader = entry.packed ? mosb::load(source) : GraphReader::open(source);
     if (const auto problem = mosb::verify(reader, VerifyLevel::full))
       throw Error(ErrorCode::damaged, source.string() + ": file is damaged: " + *problem);
     if (!names.insert(entry.file).second)

@@ -13,8 +13,8 @@
 #include <unordered_set>
 
 #include "mosb/error.hpp"
-#include "mosb/hex.hpp"
-#include "xxh3.hpp"
+#include "mosb/internal/hex.hpp"
+#include "mosb/internal/xxh3.hpp"
 
 namespace mosb {
 

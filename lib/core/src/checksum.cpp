@@ -1,6 +1,6 @@
 #include "mosb/checksum.hpp"
 
-#include "xxh3.hpp"
+#include "mosb/internal/xxh3.hpp"
 
 namespace mosb {
 

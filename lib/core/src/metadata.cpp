@@ -5,7 +5,7 @@
 
 #include "mosb/error.hpp"
 #include "mosb/format.hpp"
-#include "mosb/utf8.hpp"
+#include "mosb/internal/utf8.hpp"
 
 namespace mosb {
 
