@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstring>
 
-#include "mosb/verify.hpp"
 
 namespace mosb {
 
@@ -38,37 +37,6 @@ GraphReader GraphReader::adopt(MappedFile file, std::string display_name) {
   reader.attach(std::move(file), std::move(display_name), format::FileKind::instance);
   reader.validate();
   return reader;
-}
-
-GraphReader GraphReader::adopt(MappedFile file, std::string display_name, VerifyLevel level) {
-  auto reader = adopt(std::move(file), std::move(display_name));
-  reader.verify_at_open(level);
-  return reader;
-}
-
-GraphReader GraphReader::open(const std::filesystem::path& path, VerifyLevel level) {
-  auto reader = open(path);
-  reader.verify_at_open(level);
-  return reader;
-}
-
-GraphReader GraphReader::from_memory(std::span<const std::byte> bytes, std::string display_name,
-                                     VerifyLevel level) {
-  auto reader = from_memory(bytes, std::move(display_name));
-  reader.verify_at_open(level);
-  return reader;
-}
-
-void GraphReader::verify_at_open(VerifyLevel level) {
-  if (level != VerifyLevel::header)
-    for (const auto& s : sections_)
-      if (s.is_packed())
-        fail(ErrorCode::packed, "section '" + s.name +
-                                    "' is zstd-packed; its payload cannot be verified or walked "
-                                    "in place; unpack the file first");
-  if (auto problem = verify(*this, level))
-    fail("file is damaged: " + *problem + "; run mosb verify");
-  verified_level_ = level;
 }
 
 void GraphReader::require_verified(VerifyLevel level, std::string_view user) const {

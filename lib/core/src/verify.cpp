@@ -474,4 +474,37 @@ std::optional<std::string> verify(const GraphReader& reader, VerifyLevel level,
   return std::nullopt;
 }
 
+// The opens that verify live here, not in graph_reader.cpp: verify reads a GraphReader, and the
+// reader's own source does not depend on verify.
+GraphReader GraphReader::adopt(MappedFile file, std::string display_name, VerifyLevel level) {
+  auto reader = adopt(std::move(file), std::move(display_name));
+  reader.verify_at_open(level);
+  return reader;
+}
+
+GraphReader GraphReader::open(const std::filesystem::path& path, VerifyLevel level) {
+  auto reader = open(path);
+  reader.verify_at_open(level);
+  return reader;
+}
+
+GraphReader GraphReader::from_memory(std::span<const std::byte> bytes, std::string display_name,
+                                     VerifyLevel level) {
+  auto reader = from_memory(bytes, std::move(display_name));
+  reader.verify_at_open(level);
+  return reader;
+}
+
+void GraphReader::verify_at_open(VerifyLevel level) {
+  if (level != VerifyLevel::header)
+    for (const auto& s : sections_)
+      if (s.is_packed())
+        fail(ErrorCode::packed, "section '" + s.name +
+                                    "' is zstd-packed; its payload cannot be verified or walked "
+                                    "in place; unpack the file first");
+  if (auto problem = verify(*this, level))
+    fail("file is damaged: " + *problem + "; run mosb verify");
+  verified_level_ = level;
+}
+
 }  // namespace mosb
