@@ -8,8 +8,8 @@
 #include "json_writer.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/internal/hex.hpp"
-#include "mosb/stats.hpp"
 #include "mosb/internal/utf8.hpp"
+#include "mosb/stats.hpp"
 
 namespace mosb::cli {
 
@@ -165,7 +165,8 @@ Command add_inspect(CLI::App& app) {
             // The loop counts walk the CSR, so a file is verified in full before anything is
             // printed; a packed file cannot be, and is shown without the counts.
             auto reader = GraphReader::open(*file);
-            if (!format::is_packed(reader.header())) reader = GraphReader::open(*file, VerifyLevel::full);
+            if (!format::is_packed(reader.header()))
+              reader = GraphReader::open(*file, VerifyLevel::full);
             if (*as_json)
               print_json(reader);
             else

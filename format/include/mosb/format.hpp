@@ -91,7 +91,8 @@ static_assert(offsetof(FileHeader, header_checksum) == kHeaderChecksumOffset);
 
 // The required feature bits that make a file packed: one per encoding other than raw (§6).
 inline constexpr std::uint64_t kEncodingFeatures = kFeatureZstdSections | kFeatureShuffleSections |
-                                                   kFeatureDeltaSections | kFeatureTransposeSections;
+                                                   kFeatureDeltaSections |
+                                                   kFeatureTransposeSections;
 // Whether a file is packed (§6): the one test every reader and command uses.
 constexpr bool is_packed(const FileHeader& header) {
   return (header.required_features & kEncodingFeatures) != 0;

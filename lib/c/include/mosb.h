@@ -44,8 +44,8 @@ typedef enum mosb_status {
 } mosb_status;
 
 /* The element type of a column; the values are those of the file format (spec/FORMAT.md §5). Cost
- * columns are unsigned or float; the signed types (MOSB_I8 ... MOSB_I64) are valid in vertex_data and
- * arc_data sections (§4). */
+ * columns are unsigned or float; the signed types (MOSB_I8 ... MOSB_I64) are valid in vertex_data
+ * and arc_data sections (§4). */
 typedef enum mosb_element_type {
   MOSB_U8 = 1,
   MOSB_U16 = 2,

@@ -4,8 +4,8 @@
 
 #include "mosb/container.hpp"
 #include "mosb/error.hpp"
-#include "mosb/metadata.hpp"
 #include "mosb/internal/xxh3.hpp"
+#include "mosb/metadata.hpp"
 
 namespace mosb {
 

@@ -7,11 +7,11 @@
 #include <system_error>
 #include <thread>
 
-#include "mosb/internal/large_array.hpp"
 #include "mosb/error.hpp"
 #include "mosb/file_writer.hpp"
-#include "mosb/version.hpp"
+#include "mosb/internal/large_array.hpp"
 #include "mosb/internal/transpose.hpp"
+#include "mosb/version.hpp"
 
 namespace mosb {
 

@@ -14,11 +14,11 @@
 #include <type_traits>
 #include <vector>
 
-#include "mosb/internal/large_array.hpp"
 #include "mosb/atomic_file.hpp"
 #include "mosb/error.hpp"
 #include "mosb/file_writer.hpp"
 #include "mosb/internal/hex.hpp"
+#include "mosb/internal/large_array.hpp"
 #include "mosb/internal/transpose.hpp"
 #include "mosb/internal/xxh3.hpp"
 

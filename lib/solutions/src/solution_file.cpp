@@ -7,8 +7,8 @@
 #include "mosb/file_writer.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/internal/hex.hpp"
-#include "mosb/version.hpp"
 #include "mosb/internal/xxh3.hpp"
+#include "mosb/version.hpp"
 
 namespace mosb {
 

@@ -14,10 +14,10 @@
 #include "mosb/atomic_file.hpp"
 #include "mosb/error.hpp"
 #include "mosb/internal/hex.hpp"
+#include "mosb/internal/xxh3.hpp"
 #include "mosb/pack.hpp"
 #include "mosb/sha256.hpp"
 #include "mosb/verify.hpp"
-#include "mosb/internal/xxh3.hpp"
 
 namespace mosb {
 
