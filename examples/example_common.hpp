@@ -80,7 +80,7 @@ inline std::uint32_t parse_vertex(const Options& o, const char* text) {
   char* end = nullptr;
   errno = 0;
   const unsigned long long v = std::strtoull(text, &end, 10);
-  if (*text < '0' || *text > '9' || *end != '\0' || errno != 0 || v > 0xFFFFFFFEull)
+  if (*text < '0' || *text > '9' || *end != '\0' || errno != 0 || v > mosb::format::kMaxCount)
     usage_error(o.program, std::string("'") + text + "' is not a vertex id");
   return static_cast<std::uint32_t>(v);
 }

@@ -74,7 +74,7 @@ Command add_convert_fmi(CLI::App& convert) {
                       "keep the first --count vertices in BFS order from this vertex (0-based)");
   auto* count =
       fmi->add_option("--count", args->bfs_count, "number of vertices --extract-bfs keeps")
-          ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{0xFFFFFFFEULL}));
+          ->check(CLI::Range(std::uint64_t{1}, format::kMaxCount));
   auto* undirected =
       fmi->add_flag("--bfs-undirected", args->bfs_undirected,
                     "let the BFS follow arcs in both directions (default: out-arcs only)");

@@ -89,6 +89,10 @@ static_assert(offsetof(FileHeader, arc_count) == 72);
 static_assert(offsetof(FileHeader, reserved) == 80);
 static_assert(offsetof(FileHeader, header_checksum) == kHeaderChecksumOffset);
 
+// The largest vertex or arc count (§4): ids are u32, and 2^32-1 stays free as a "no vertex" mark
+// for solvers and the library's own searches.
+inline constexpr std::uint64_t kMaxCount = 0xFFFFFFFEULL;
+
 // The required feature bits that make a file packed: one per encoding other than raw (§6).
 inline constexpr std::uint64_t kEncodingFeatures = kFeatureZstdSections | kFeatureShuffleSections |
                                                    kFeatureDeltaSections |

@@ -142,9 +142,9 @@ ElementType narrowest_unsigned(std::uint64_t max) {
 }
 
 void check_counts(std::uint64_t n, std::uint64_t m) {
-  if (n >= std::numeric_limits<std::uint32_t>::max())
+  if (n > format::kMaxCount)
     throw Error("vertex count " + std::to_string(n) + " exceeds the format limit of 2^32-2");
-  if (m >= std::numeric_limits<std::uint32_t>::max())
+  if (m > format::kMaxCount)
     throw Error("arc count " + std::to_string(m) + " exceeds the format limit of 2^32-2");
 }
 

@@ -56,7 +56,7 @@ GraphReader GraphReader::from_memory(std::span<const std::byte> bytes, std::stri
 void GraphReader::validate() {
   // 8. Kinds and counts (names are unique within a kind: checked with the container).
   const std::uint64_t n = header_.vertex_count, m = header_.arc_count;
-  if (n >= 0xFFFFFFFFULL || m >= 0xFFFFFFFFULL)
+  if (n > format::kMaxCount || m > format::kMaxCount)
     fail("vertex count " + std::to_string(n) + " or arc count " + std::to_string(m) +
          " exceeds the format limit of 2^32-2");
   std::fill(std::begin(structural_), std::end(structural_), SIZE_MAX);
