@@ -12,6 +12,7 @@
 #include "mosb/converters/guards_converter.hpp"
 #include "mosb/eval.hpp"
 #include "mosb/graph_reader.hpp"
+#include "mosb/report/figures.hpp"
 #include "mosb/report/plots.hpp"
 #include "mosb/solution_eval.hpp"
 #include "mosb/solution_file.hpp"
@@ -60,11 +61,16 @@ int run_correlation(const PlotArgs& args) {
   return 0;
 }
 
-// Throws unless query q exists in r and is solved (the error gives its status).
-void require_solved(const SolutionReader& r, std::uint64_t q) {
+// Throws a usage error unless query q exists in r.
+void require_query(const SolutionReader& r, std::uint64_t q) {
   if (q >= r.query_count())
     throw UsageError("--query " + std::to_string(q) + ": " + r.display_name() + " has " +
                      std::to_string(r.query_count()) + " queries");
+}
+
+// Throws unless query q exists in r and is solved (the error gives its status).
+void require_solved(const SolutionReader& r, std::uint64_t q) {
+  require_query(r, q);
   if (r.status(q) != QueryStatus::solved)
     throw Error(ErrorCode::invalid_argument, r.display_name() + ": query " + std::to_string(q) +
                                                  " is " + std::string(to_string(r.status(q))) +
@@ -76,8 +82,7 @@ struct MapPaths {
   std::optional<std::uint64_t> query;
 };
 
-// The grid of a games instance: metadata map.width/map.height, vertex data `cell` (x, y), and the
-// exposure of a cell as the cost of an orthogonal move into it (spec/families/games.md §2).
+// The grid of a games instance, with one query's front paths when --solutions is given.
 int run_map(const PlotArgs& args, const std::string& exposure_objective, const MapPaths& paths) {
   if (paths.solutions.empty() != !paths.query)
     throw UsageError("--solutions and --query go together: the paths of one query's front");
@@ -85,70 +90,11 @@ int run_map(const PlotArgs& args, const std::string& exposure_objective, const M
   // Every input is opened (and verified) before any of it is used.
   std::optional<SolutionReader> solutions;
   if (!paths.solutions.empty()) solutions.emplace(SolutionReader::open_verified(paths.solutions));
-  const auto& meta = reader.metadata();
-  const auto width_text = meta.get("map.width"), height_text = meta.get("map.height");
-  const auto* cells = reader.find(format::SectionKind::vertex_data, "cell");
-  if (!width_text || !height_text || cells == nullptr)
-    throw Error(reader.display_name() +
-                ": not a grid instance (needs metadata map.width, map.height and vertex data "
-                "'cell')");
-  plots::MapPlot plot;
+  auto plot = plots::map_of(reader, exposure_objective);
   plot.title = default_title(reader, args, "map");
-  try {
-    plot.width = static_cast<std::uint32_t>(std::stoul(*width_text));
-    plot.height = static_cast<std::uint32_t>(std::stoul(*height_text));
-  } catch (const std::exception&) {
-    throw Error(reader.display_name() + ": metadata map.width/map.height is not a number");
-  }
-  const std::size_t area = std::size_t{plot.width} * plot.height;
-  plot.passable.assign(area, false);
-  std::vector<std::uint32_t> x(reader.vertex_count()), y(reader.vertex_count());
-  auto read_cells = [&](auto values) {
-    for (std::size_t v = 0; v < x.size(); ++v) {
-      x[v] = static_cast<std::uint32_t>(values[2 * v]);
-      y[v] = static_cast<std::uint32_t>(values[2 * v + 1]);
-      if (x[v] >= plot.width || y[v] >= plot.height)
-        throw Error(reader.display_name() + ": vertex " + std::to_string(v) +
-                    "'s cell lies outside the map");
-      plot.passable[std::size_t{y[v]} * plot.width + x[v]] = true;
-    }
-  };
-  if (cells->type == format::ElementType::u16)
-    read_cells(reader.values<std::uint16_t>(*cells));
-  else
-    read_cells(reader.values<std::uint32_t>(*cells));
-  const auto objective = reader.find_objective(exposure_objective);
-  if (objective) {
-    plot.exposure.assign(area, std::numeric_limits<double>::quiet_NaN());
-    std::vector<double> cost(reader.arc_count());
-    reader.read_cost_as(*objective, cost);
-    const auto offsets = reader.forward_offsets();
-    const auto targets = reader.forward_targets();
-    for (std::size_t u = 0; u + 1 < offsets.size(); ++u)
-      for (std::uint64_t a = offsets[u]; a < offsets[u + 1]; ++a) {
-        const std::uint32_t v = targets[a];
-        if (x[u] != x[v] && y[u] != y[v]) continue;  // diagonal: charged max of three cells
-        plot.exposure[std::size_t{y[v]} * plot.width + x[v]] = cost[a];
-      }
-  }
   if (solutions) {
-    solutions->check_bound_to(reader);
-    if (!solutions->has_paths())
-      throw Error(ErrorCode::invalid_argument,
-                  paths.solutions + ": the solver gave no paths (vertex sequences) to draw");
-    require_solved(*solutions, *paths.query);
-    const std::uint64_t begin = solutions->front_begin(*paths.query);
-    for (std::uint64_t row = begin; row < begin + solutions->front_size(*paths.query); ++row) {
-      auto& cells_of_path = plot.paths.emplace_back();
-      for (const std::uint32_t v : solutions->path(row)) {
-        if (v >= x.size())
-          throw Error(ErrorCode::invalid_argument,
-                      paths.solutions + ": query " + std::to_string(*paths.query) +
-                          ": path vertex " + std::to_string(v) + " is not a vertex of " +
-                          reader.display_name() + "; run mosb solutions verify --instance");
-        cells_of_path.push_back({static_cast<double>(x[v]), static_cast<double>(y[v])});
-      }
-    }
+    require_query(*solutions, *paths.query);
+    plots::add_front_paths(plot, reader, *solutions, *paths.query);
   }
   std::vector<std::filesystem::path> inputs = {args.instance};
   if (!paths.solutions.empty()) inputs.emplace_back(paths.solutions);

@@ -1,0 +1,110 @@
+#include "mosb/report/figures.hpp"
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "mosb/error.hpp"
+
+namespace mosb::plots {
+
+namespace {
+
+struct Grid {
+  std::uint32_t width = 0, height = 0;
+  std::vector<Point2> cell;  // of each vertex, on the map
+};
+
+// The map's size and each vertex's cell, checked to lie on the map.
+Grid grid_of(const GraphReader& reader) {
+  const auto& meta = reader.metadata();
+  const auto width = meta.get("map.width"), height = meta.get("map.height");
+  const auto* cells = reader.find(format::SectionKind::vertex_data, "cell");
+  if (!width || !height || cells == nullptr)
+    throw Error(reader.display_name() +
+                ": not a grid instance (needs metadata map.width, map.height and vertex data "
+                "'cell')");
+  Grid grid;
+  try {
+    grid.width = static_cast<std::uint32_t>(std::stoul(*width));
+    grid.height = static_cast<std::uint32_t>(std::stoul(*height));
+  } catch (const std::exception&) {
+    throw Error(reader.display_name() + ": metadata map.width/map.height is not a number");
+  }
+  grid.cell.resize(reader.vertex_count());
+  auto read_cells = [&](auto values) {
+    for (std::size_t v = 0; v < grid.cell.size(); ++v) {
+      const auto x = values[2 * v], y = values[2 * v + 1];
+      if (x >= grid.width || y >= grid.height)
+        throw Error(reader.display_name() + ": vertex " + std::to_string(v) +
+                    "'s cell lies outside the map");
+      grid.cell[v] = {static_cast<double>(x), static_cast<double>(y)};
+    }
+  };
+  if (cells->type == format::ElementType::u16)
+    read_cells(reader.values<std::uint16_t>(*cells));
+  else
+    read_cells(reader.values<std::uint32_t>(*cells));
+  return grid;
+}
+
+std::size_t index_of(const Point2& cell, std::uint32_t width) {
+  return static_cast<std::size_t>(cell.y) * width + static_cast<std::size_t>(cell.x);
+}
+
+}  // namespace
+
+MapPlot map_of(const GraphReader& reader, std::string_view exposure_objective) {
+  reader.require_verified(VerifyLevel::full, "a map");
+  const Grid grid = grid_of(reader);
+  MapPlot plot;
+  plot.width = grid.width;
+  plot.height = grid.height;
+  const std::size_t area = std::size_t{plot.width} * plot.height;
+  plot.passable.assign(area, false);
+  for (const auto& cell : grid.cell) plot.passable[index_of(cell, plot.width)] = true;
+  const auto objective = reader.find_objective(exposure_objective);
+  if (!objective) return plot;
+  plot.exposure.assign(area, std::numeric_limits<double>::quiet_NaN());
+  std::vector<double> cost(reader.arc_count());
+  reader.read_cost_as(*objective, cost);
+  const auto offsets = reader.forward_offsets();
+  const auto targets = reader.forward_targets();
+  for (std::size_t u = 0; u + 1 < offsets.size(); ++u)
+    for (std::uint64_t a = offsets[u]; a < offsets[u + 1]; ++a) {
+      const Point2 from = grid.cell[u], to = grid.cell[targets[a]];
+      if (from.x != to.x && from.y != to.y) continue;  // diagonal: charged max of three cells
+      plot.exposure[index_of(to, plot.width)] = cost[a];
+    }
+  return plot;
+}
+
+void add_front_paths(MapPlot& map, const GraphReader& instance, const SolutionReader& solutions,
+                     std::uint64_t query) {
+  solutions.check_bound_to(instance);
+  const auto& name = solutions.display_name();
+  if (!solutions.has_paths())
+    throw Error(ErrorCode::invalid_argument,
+                name + ": the solver gave no paths (vertex sequences) to draw");
+  if (solutions.status(query) != QueryStatus::solved)
+    throw Error(ErrorCode::invalid_argument,
+                name + ": query " + std::to_string(query) + " is " +
+                    std::string(to_string(solutions.status(query))) +
+                    ", not solved: no front to draw");
+  const Grid grid = grid_of(instance);
+  const std::uint64_t begin = solutions.front_begin(query);
+  for (std::uint64_t row = begin; row < begin + solutions.front_size(query); ++row) {
+    auto& path = map.paths.emplace_back();
+    for (const std::uint32_t v : solutions.path(row)) {
+      if (v >= grid.cell.size())
+        throw Error(ErrorCode::invalid_argument,
+                    name + ": query " + std::to_string(query) + ": path vertex " +
+                        std::to_string(v) + " is not a vertex of " + instance.display_name() +
+                        "; run mosb solutions verify --instance");
+      path.push_back(grid.cell[v]);
+    }
+  }
+}
+
+}  // namespace mosb::plots

@@ -1,0 +1,44 @@
+#include "mosb/report/figures.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <string>
+
+#include "mosb/converters/guards_converter.hpp"
+#include "mosb/error.hpp"
+#include "mosb/graph_builder.hpp"
+#include "temp_dir.hpp"
+#include "test_files.hpp"
+
+using namespace mosb;
+
+TEST_CASE("map_of: cells, walls and exposure of a GUARDS instance") {
+  testing::TempDir dir;
+  // 4 x 3 with a wall at (1, 1); each cell's exposure given (the wall's value is ignored).
+  testing::write_text(dir / "small.map", "type octile\nheight 3\nwidth 4\nmap\n....\n.@..\n....\n");
+  testing::write_text(dir / "e.txt", "1 2 3 4\n5 0 6 7\n8 9 1 2\n");
+  converters::GuardsOptions o;
+  o.map_file = (dir / "small.map").string();
+  o.exposure_file = (dir / "e.txt").string();
+  write_graph(converters::convert_guards(o).graph, dir / "g.mosb");
+
+  const auto reader = GraphReader::open(dir / "g.mosb", VerifyLevel::full);
+  const auto plot = plots::map_of(reader, "exposure");
+  CHECK(plot.width == 4);
+  CHECK(plot.height == 3);
+  CHECK(plot.passable == std::vector<bool>{true, true, true, true,   //
+                                           true, false, true, true,  //
+                                           true, true, true, true});
+  REQUIRE(plot.exposure.size() == 12);
+  // The cost of an orthogonal move into a cell is the cell's exposure; the wall has none.
+  const double expected[] = {1, 2, 3, 4, 5, NAN, 6, 7, 8, 9, 1, 2};
+  for (std::size_t i = 0; i < 12; ++i)
+    CHECK(std::isnan(plot.exposure[i]) == std::isnan(expected[i]));
+  for (std::size_t i = 0; i < 12; ++i)
+    if (!std::isnan(expected[i])) CHECK(plot.exposure[i] == expected[i]);
+  CHECK(plots::map_of(reader, "no-such-objective").exposure.empty());
+
+  // A reader not verified in full is refused: the map walks the CSR.
+  CHECK_THROWS_AS(plots::map_of(GraphReader::open(dir / "g.mosb"), "exposure"), Error);
+}
