@@ -136,13 +136,13 @@ class ReferencesCli(CliTest):
         self.assertEqual(bad.returncode, 1)
         self.assertEqual(bad.stderr.strip(),
                          "mosb: %s: query 1: [reference] the smallest length c* = 30 does not match "
-                         "Moving AI's optimum L* = 2: c*/10 = 3 > L* + tau (spec/SOLUTIONS.md "
-                         "section 6)" % sol)
+                         "the movingai-optimal optimum L* = 2: c*/10 = 3 > L* + tau "
+                         "(spec/SOLUTIONS.md section 6)" % sol)
         # Query 3's minimum lowered to 20 (a path through the wall): L* exceeds the upper bound.
         bad, sol = self.solutions(inst, "3,20,1\n")
         self.assertEqual(bad.returncode, 1)
-        self.assertIn("query 3: [reference] the smallest length c* = 20 does not match Moving AI's "
-                      "optimum L* = 4: L* > (sqrt 2/1.4) c*/10 + tau", bad.stderr)
+        self.assertIn("query 3: [reference] the smallest length c* = 20 does not match the "
+                      "movingai-optimal optimum L* = 4: L* > (sqrt 2/1.4) c*/10 + tau", bad.stderr)
         # Unsolved queries are not checked; only the minimum of a front counts.
         ok, _ = self.solutions(inst, "1,20,9\n1,40,1\n")
         self.assertEqual(ok.returncode, 0, ok.stderr)

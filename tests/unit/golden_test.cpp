@@ -54,7 +54,7 @@ TEST_CASE("the writer reproduces the golden file byte for byte") {
   REQUIRE_MESSAGE(!golden.empty(), "spec/golden/1.0/valid/small.mosb is missing");
   CHECK_MESSAGE(written == golden,
                 "the writer's output changed: if deliberate, bump the format version, update "
-                "spec/FORMAT.md and regenerate spec/golden with mosb_make_golden");
+                "spec/FORMAT.md and regenerate spec/golden with mosb_make_golden instance");
 }
 
 TEST_CASE("the golden file reads back with every value intact") {
@@ -83,7 +83,7 @@ TEST_CASE("golden query references: reproduced byte for byte, read back, faults 
   REQUIRE_MESSAGE(!golden.empty(), "spec/golden/1.1/references/valid/references.mosb is missing");
   CHECK_MESSAGE(testing::read_bytes(dir / "references.mosb") == golden,
                 "the writer no longer reproduces the golden references file: regenerate it with "
-                "mosb_make_golden_references only with a version change in spec/FORMAT.md");
+                "mosb_make_golden references only with a version change in spec/FORMAT.md");
   const auto r = GraphReader::open(kGoldenReferences / "valid" / "references.mosb");
   CHECK_FALSE(verify(r, VerifyLevel::full).has_value());
   CHECK(r.header().version_minor == 0);

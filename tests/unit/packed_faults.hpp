@@ -12,7 +12,7 @@ namespace mosb::testing {
 
 struct PackedFault {
   const char* file;
-  const char* expected;  // a fragment of the message GraphReader::load and mosb unpack give
+  const char* expected;  // a fragment of the message mosb::load and mosb unpack give
   void (*apply)(Bytes&);
 };
 

@@ -12,6 +12,7 @@
 #include "mosb/converters/movingai.hpp"
 #include "mosb/error.hpp"
 #include "mosb/instance_editor.hpp"
+#include "mosb/solution_file.hpp"
 #include "mosb/solution_verify.hpp"
 #include "mosb/verify.hpp"
 #include "temp_dir.hpp"
@@ -59,6 +60,11 @@ std::uint64_t shortest(const GraphReader& r, const std::vector<std::uint64_t>& c
       }
   }
   return UINT64_MAX;
+}
+
+// §6's bracket for Moving AI's optima of the games `length`.
+std::optional<std::string> movingai_bracket(double c_star, double l_star) {
+  return reference_bracket_problem(c_star, l_star, "length", "movingai-optimal");
 }
 
 }  // namespace
@@ -145,13 +151,12 @@ TEST_CASE("movingai: scenario optimal must be a finite non-negative decimal, loc
 }
 
 TEST_CASE("movingai bracket: §6's inequalities, both sides") {
-  CHECK_FALSE(movingai_bracket_problem(28, 2.82842712).has_value());  // one diagonal pair: 2·14
-  CHECK_FALSE(movingai_bracket_problem(20, 2).has_value());
-  CHECK(movingai_bracket_problem(30, 2.82842712)->find("c*/10 = 3 > L* + tau") !=
+  CHECK_FALSE(movingai_bracket(28, 2.82842712).has_value());  // one diagonal pair: 2·14
+  CHECK_FALSE(movingai_bracket(20, 2).has_value());
+  CHECK(movingai_bracket(30, 2.82842712)->find("c*/10 = 3 > L* + tau") != std::string::npos);
+  CHECK(movingai_bracket(20, 2.82842712)->find("L* > (sqrt 2/1.4) c*/10 + tau") !=
         std::string::npos);
-  CHECK(movingai_bracket_problem(20, 2.82842712)->find("L* > (sqrt 2/1.4) c*/10 + tau") !=
-        std::string::npos);
-  CHECK_FALSE(movingai_bracket_problem(10, 1.000001).has_value());  // within tau
+  CHECK_FALSE(movingai_bracket(10, 1.000001).has_value());  // within tau
 }
 
 TEST_CASE("movingai: published optima bracket the true length optimum (shared/data/movingai)") {
@@ -181,7 +186,7 @@ TEST_CASE("movingai: published optima bracket the true length optimum (shared/da
       CAPTURE(q);
       const auto c_star = shortest(r, length, queries[q].start, queries[q].goal);
       REQUIRE(c_star != UINT64_MAX);
-      const auto problem = movingai_bracket_problem(static_cast<double>(c_star), (*ref)[q]);
+      const auto problem = movingai_bracket(static_cast<double>(c_star), (*ref)[q]);
       CHECK_MESSAGE(!problem.has_value(), *problem);
     }
     // The tight row that sized tau (SOLUTIONS.md §6): an all-diagonal optimal path, where the
@@ -190,9 +195,37 @@ TEST_CASE("movingai: published optima bracket the true length optimum (shared/da
     if (std::string(name) == "arena2.map") {
       CHECK(shortest(r, length, queries[1].start, queries[1].goal) == 28);
       CHECK((*ref)[1] == 2.82843);
-      CHECK_FALSE(movingai_bracket_problem(28, (*ref)[1]).has_value());
-      CHECK_FALSE(movingai_bracket_problem(28, 2 * std::sqrt(2.0)).has_value());
-      CHECK(movingai_bracket_problem(28, 2.82853).has_value());
+      CHECK_FALSE(movingai_bracket(28, (*ref)[1]).has_value());
+      CHECK_FALSE(movingai_bracket(28, 2 * std::sqrt(2.0)).has_value());
+      CHECK(movingai_bracket(28, 2.82853).has_value());
     }
   }
+}
+
+TEST_CASE("solutions verify: a declared reference of any source is checked by §6's bracket") {
+  // Small_2 (distance, time) on `default`: query 0's front is (60, 5.25) and (80, 3.75), query 1's
+  // (120, 7.5); the optima 6 and 12 bracket the smallest distances 60 and 120.
+  testing::TempDir dir;
+  auto g = testing::golden_input();
+  g.queries[0].reference = QueryReference{"distance", "published-optimum", {6, 12, 0}};
+  write_graph(g, dir / "r.mosb");
+  const auto instance = GraphReader::open(dir / "r.mosb", VerifyLevel::full);
+  auto verify_front = [&](std::vector<double> query_1) {
+    SolutionWriter w(instance, "Small_2");
+    w.set_query(0, QueryStatus::solved, std::vector<double>{60, 5.25, 80, 3.75});
+    w.set_query(1, QueryStatus::solved, query_1);
+    w.write(dir / "s.sol.mosb");
+    return verify_solutions(SolutionReader::open(dir / "s.sol.mosb", instance), instance);
+  };
+  CHECK_FALSE(verify_front({120, 7.5}).has_value());
+  const auto problem = verify_front({130, 7.5});
+  REQUIRE(problem.has_value());
+  CHECK(*problem ==
+        "query 1: [reference] the smallest distance c* = 130 does not match the published-optimum "
+        "optimum L* = 12: c*/10 = 13 > L* + tau (spec/SOLUTIONS.md section 6)");
+  // The same check as for Moving AI's optima: only the source's name in the message differs.
+  CHECK(*problem ==
+        "query 1: " + *reference_bracket_problem(130, 12, "distance", "published-optimum"));
+  CHECK(movingai_bracket(130, 12)->find("the movingai-optimal optimum L* = 12: c*/10 = 13") !=
+        std::string::npos);
 }

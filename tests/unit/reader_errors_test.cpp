@@ -189,6 +189,31 @@ TEST_CASE("open refuses damaged headers and tables with a message naming the pro
     reseal_header(b);
     CHECK(open_error(b) == "f.mosb: section 'c1': cost type i8 is not unsigned or float");
   }
+  // The kind checks of FORMAT.md §9 step 8 (SectionsByKind): each message names the section.
+  auto with_kind = [&](std::string_view name, format::SectionKind kind) {
+    Bytes b = good;
+    const auto i = find_entry(b, name);
+    auto e = entry_of(b, i);
+    e.kind = static_cast<std::uint16_t>(kind);
+    set_entry(b, i, e);
+    reseal_header(b);
+    return b;
+  };
+  SUBCASE("a second section of a kind held once") {
+    CHECK(open_error(with_kind("reverse_sources", format::SectionKind::reverse_arcs)) ==
+          "f.mosb: section 'reverse_arcs': a second reverse_arcs section");
+    CHECK(open_error(with_kind("c1", format::SectionKind::metadata)) ==
+          "f.mosb: section 'c1': a second metadata section");
+  }
+  SUBCASE("a structural section of another type") {
+    Bytes b = good;
+    const auto i = find_entry(b, "forward_targets");
+    auto e = entry_of(b, i);
+    e.element_type = static_cast<std::uint8_t>(format::ElementType::i32);
+    set_entry(b, i, e);
+    reseal_header(b);
+    CHECK(open_error(b) == "f.mosb: section 'forward_targets': must be u32 x 1");
+  }
   SUBCASE("a missing structural section") {
     Bytes b = good;
     auto e = entry_of(b, 4);

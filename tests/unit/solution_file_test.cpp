@@ -32,7 +32,7 @@ TEST_CASE("the solution writer reproduces the golden solution file byte for byte
   REQUIRE_MESSAGE(!golden.empty(), "spec/golden/1.1/solutions/valid/small.sol.mosb is missing");
   CHECK_MESSAGE(written == golden,
                 "the solution writer's output changed: if deliberate, update spec/SOLUTIONS.md "
-                "and regenerate with mosb_make_golden_solutions");
+                "and regenerate with mosb_make_golden solutions");
 }
 
 TEST_CASE("the golden solution file reads back with every value intact") {

@@ -14,6 +14,7 @@
 
 #include "mosb/error.hpp"
 #include "mosb/internal/hex.hpp"
+#include "mosb/internal/sections_by_kind.hpp"
 #include "mosb/internal/xxh3.hpp"
 
 namespace mosb {
@@ -333,6 +334,42 @@ void ContainerReader::fail(const std::string& what) const {
 }
 void ContainerReader::fail(ErrorCode code, const std::string& what) const {
   throw Error(code, display_name_ + ": " + what);
+}
+
+SectionsByKind::SectionsByKind(std::span<const Section> sections, std::string_view display_name)
+    : sections_(sections), display_name_(display_name) {
+  for (std::size_t i = 0; i < sections.size(); ++i)
+    if (sections[i].kind) indices_[static_cast<std::size_t>(*sections[i].kind)].push_back(i);
+}
+
+std::size_t SectionsByKind::single(format::SectionKind kind) const {
+  const auto found = all(kind);
+  if (found.empty()) return SIZE_MAX;
+  if (found.size() > 1)
+    fail(sections_[found[1]], "a second " + std::string(format::to_string(kind)) + " section");
+  return found[0];
+}
+
+std::size_t SectionsByKind::single(format::SectionKind kind, format::ElementType type) const {
+  const auto found = all(kind);
+  if (!found.empty()) expect_shape(sections_[found[0]], type);
+  return single(kind);
+}
+
+void SectionsByKind::expect_shape(const Section& s, format::ElementType type) const {
+  if (s.type != type || s.entry.row_width != 1)
+    fail(s, "must be " + std::string(format::to_string(type)) + " x 1");
+}
+
+void SectionsByKind::expect_cost_column(const Section& s) const {
+  if (!format::is_unsigned(s.type) && !format::is_float(s.type))
+    fail(s, "cost type " + std::string(format::to_string(s.type)) + " is not unsigned or float");
+  if (s.entry.row_width != 1) fail(s, "cost columns have width 1");
+}
+
+void SectionsByKind::fail(const Section& s, const std::string& what) const {
+  throw Error(ErrorCode::damaged,
+              std::string(display_name_) + ": section '" + s.name + "': " + what);
 }
 
 }  // namespace mosb

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "mosb/internal/sections_by_kind.hpp"
+
 namespace mosb {
 
 using format::ElementType;
@@ -59,60 +61,41 @@ void GraphReader::validate() {
   if (n > format::kMaxCount || m > format::kMaxCount)
     fail("vertex count " + std::to_string(n) + " or arc count " + std::to_string(m) +
          " exceeds the format limit of 2^32-2");
-  std::fill(std::begin(structural_), std::end(structural_), SIZE_MAX);
-  std::size_t metadata_index = SIZE_MAX;
-  cost_indices_.clear();
-  for (std::size_t i = 0; i < sections_.size(); ++i) {
+  auto expect_rows = [&](const Section& s, std::uint64_t rows, const char* what) {
+    if (s.entry.row_count != rows)
+      fail("section '" + s.name + "': has " + std::to_string(s.entry.row_count) + " rows, but " +
+           what + " is " + std::to_string(rows));
+  };
+  const SectionsByKind table(sections_, display_name_);
+  const auto metadata_index = table.single(SectionKind::metadata);
+  if (metadata_index != SIZE_MAX) {
+    const auto& s = sections_[metadata_index];
+    if (s.type != ElementType::u8 || s.entry.row_width != 1)
+      fail("section '" + s.name + "': metadata must be u8 x 1");
+  }
+  for (const auto& shape : kStructural) {
+    const auto i = table.single(shape.kind, shape.type);
+    if (i != SIZE_MAX)
+      expect_rows(sections_[i], shape.per_vertex_plus_one ? n + 1 : m,
+                  shape.per_vertex_plus_one ? "the vertex count + 1" : "the arc count");
+    structural_[static_cast<std::size_t>(shape.kind)] = i;
+  }
+  const auto costs = table.all(SectionKind::cost);
+  for (auto i : costs) {
+    table.expect_cost_column(sections_[i]);
+    expect_rows(sections_[i], m, "the arc count");
+  }
+  cost_indices_.assign(costs.begin(), costs.end());
+  for (auto i : table.all(SectionKind::vertex_data))
+    expect_rows(sections_[i], n, "the vertex count");
+  for (auto i : table.all(SectionKind::arc_data)) expect_rows(sections_[i], m, "the arc count");
+  for (auto i : table.all(SectionKind::queries))
+    if (sections_[i].type != ElementType::u32 || sections_[i].entry.row_width != 2)
+      fail("section '" + sections_[i].name + "': queries must be u32 x 2");
+  for (auto i : table.all(SectionKind::query_reference)) {
     const auto& s = sections_[i];
-    if (!s.kind) continue;  // a later minor's kind: ignored
-    const std::string label = "section '" + s.name + "'";
-    auto expect = [&](bool ok, const std::string& what) {
-      if (!ok) fail(label + ": " + what);
-    };
-    auto expect_rows = [&](std::uint64_t rows, const char* what) {
-      expect(s.entry.row_count == rows, "has " + std::to_string(s.entry.row_count) + " rows, but " +
-                                            what + " is " + std::to_string(rows));
-    };
-    const auto k = *s.kind;
-    switch (k) {
-      case SectionKind::metadata:
-        expect(metadata_index == SIZE_MAX, "a second metadata section");
-        expect(s.type == ElementType::u8 && s.entry.row_width == 1, "metadata must be u8 x 1");
-        metadata_index = i;
-        break;
-      case SectionKind::cost:
-        expect(format::is_unsigned(s.type) || format::is_float(s.type),
-               "cost type " + std::string(format::to_string(s.type)) + " is not unsigned or float");
-        expect(s.entry.row_width == 1, "cost columns have width 1");
-        expect_rows(m, "the arc count");
-        cost_indices_.push_back(i);
-        break;
-      case SectionKind::vertex_data:
-        expect_rows(n, "the vertex count");
-        break;
-      case SectionKind::arc_data:
-        expect_rows(m, "the arc count");
-        break;
-      case SectionKind::queries:
-        expect(s.type == ElementType::u32 && s.entry.row_width == 2, "queries must be u32 x 2");
-        break;
-      case SectionKind::query_reference:
-        expect(s.type == ElementType::f64 && s.entry.row_width == 1,
-               "query references must be f64 x 1");
-        break;
-      default:
-        for (const auto& shape : kStructural)
-          if (shape.kind == k) {
-            const auto slot = static_cast<std::size_t>(k);
-            expect(structural_[slot] == SIZE_MAX,
-                   "a second " + std::string(format::to_string(k)) + " section");
-            expect(s.type == shape.type && s.entry.row_width == 1,
-                   "must be " + std::string(format::to_string(shape.type)) + " x 1");
-            expect_rows(shape.per_vertex_plus_one ? n + 1 : m,
-                        shape.per_vertex_plus_one ? "the vertex count + 1" : "the arc count");
-            structural_[slot] = i;
-          }
-    }
+    if (s.type != ElementType::f64 || s.entry.row_width != 1)
+      fail("section '" + s.name + "': query references must be f64 x 1");
   }
   if (metadata_index == SIZE_MAX) fail("no metadata section");
   for (const auto& shape : kStructural)
@@ -120,8 +103,8 @@ void GraphReader::validate() {
       fail("no " + std::string(format::to_string(shape.kind)) + " section");
   // A reference belongs to the query set of its name, one value per query (names are unique within
   // a kind, so at most one of each).
-  for (const auto& s : sections_) {
-    if (s.kind != SectionKind::query_reference) continue;
+  for (auto i : table.all(SectionKind::query_reference)) {
+    const auto& s = sections_[i];
     const Section* set = find(SectionKind::queries, s.name);
     if (!set) fail("section '" + s.name + "': a query reference naming no query set");
     if (s.entry.row_count != set->entry.row_count)

@@ -19,6 +19,7 @@
 #include "mosb/file_writer.hpp"
 #include "mosb/internal/hex.hpp"
 #include "mosb/internal/large_array.hpp"
+#include "mosb/internal/sections_by_kind.hpp"
 #include "mosb/internal/transpose.hpp"
 #include "mosb/internal/xxh3.hpp"
 
@@ -55,19 +56,17 @@ std::optional<TransposePlan> csr_sections(const std::vector<Section>& sections, 
     why = std::move(what);
     return std::nullopt;
   };
+  const SectionsByKind table(sections, "");  // only its groups: no check throws
   auto one = [&](format::SectionKind kind, format::ElementType type) -> std::optional<std::size_t> {
     const std::string kind_name(format::to_string(kind));
-    std::optional<std::size_t> found;
-    for (std::size_t i = 0; i < sections.size(); ++i) {
-      if (sections[i].kind != kind) continue;
-      if (found) return reject("two " + kind_name + " sections");
-      if (sections[i].type != type || sections[i].entry.row_width != 1)
-        return reject("section '" + sections[i].name + "' is not " +
-                      std::string(format::to_string(type)) + " x 1");
-      found = i;
-    }
-    if (!found) return reject("no " + kind_name + " section");
-    return found;
+    const auto found = table.all(kind);
+    if (found.empty()) return reject("no " + kind_name + " section");
+    const auto& s = sections[found[0]];
+    if (s.type != type || s.entry.row_width != 1)
+      return reject("section '" + s.name + "' is not " + std::string(format::to_string(type)) +
+                    " x 1");
+    if (found.size() > 1) return reject("two " + kind_name + " sections");
+    return found[0];
   };
   using format::ElementType;
   using format::SectionKind;

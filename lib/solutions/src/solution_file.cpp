@@ -7,6 +7,7 @@
 #include "mosb/file_writer.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/internal/hex.hpp"
+#include "mosb/internal/sections_by_kind.hpp"
 #include "mosb/internal/xxh3.hpp"
 #include "mosb/version.hpp"
 
@@ -21,6 +22,11 @@ constexpr std::string_view kStatusNames[] = {"solved", "timeout", "memory-limit"
                                              "not-run"};
 constexpr std::string_view kStatisticNames[] = {"runtime_seconds", "expanded", "generated",
                                                 "peak_memory_bytes"};
+// The section kinds of a solution file (SOLUTIONS.md §3).
+constexpr SectionKind kSolutionKinds[] = {
+    SectionKind::metadata,     SectionKind::solution_status,     SectionKind::front_offsets,
+    SectionKind::front_cost,   SectionKind::solution_statistics, SectionKind::path_offsets,
+    SectionKind::path_vertices};
 
 bool is_digest(std::string_view text) {
   return text.size() == 32 && std::all_of(text.begin(), text.end(), [](char c) {
@@ -92,56 +98,32 @@ void SolutionReader::validate() {
     fail("a solution file states format 1." + std::to_string(header_.version_minor) +
          ", but solution files exist since 1.1");
 
-  std::size_t metadata_index = SIZE_MAX;
-  for (std::size_t i = 0; i < sections_.size(); ++i) {
-    const auto& s = sections_[i];
+  for (const auto& s : sections_) {
     if (!s.kind) continue;  // a later minor's kind: ignored
-    const std::string label = "section '" + s.name + "'";
-    auto expect = [&](bool ok, const std::string& what) {
-      if (!ok) fail(label + ": " + what);
-    };
-    auto single = [&](std::size_t& slot, ElementType type) {
-      expect(slot == SIZE_MAX, "a second " + std::string(format::to_string(*s.kind)) + " section");
-      expect(s.type == type && s.entry.row_width == 1,
-             "must be " + std::string(format::to_string(type)) + " x 1");
-      expect(!s.is_packed(), "is packed; solution files store raw sections");
-      slot = i;
-    };
-    switch (*s.kind) {
-      case SectionKind::metadata:
-        single(metadata_index, ElementType::u8);
-        break;
-      case SectionKind::solution_status:
-        single(status_index_, ElementType::u8);
-        break;
-      case SectionKind::front_offsets:
-        single(front_offsets_index_, ElementType::u64);
-        break;
-      case SectionKind::path_offsets:
-        single(path_offsets_index_, ElementType::u64);
-        break;
-      case SectionKind::path_vertices:
-        single(path_vertices_index_, ElementType::u32);
-        break;
-      case SectionKind::front_cost:
-        expect(format::is_unsigned(s.type) || format::is_float(s.type),
-               "cost type " + std::string(format::to_string(s.type)) + " is not unsigned or float");
-        expect(s.entry.row_width == 1, "cost columns have width 1");
-        expect(!s.is_packed(), "is packed; solution files store raw sections");
-        cost_indices_.push_back(i);
-        break;
-      case SectionKind::solution_statistics: {
-        const auto* found =
-            std::find(std::begin(kStatisticNames), std::end(kStatisticNames), s.name);
-        expect(found != std::end(kStatisticNames), "is not a statistic of SOLUTIONS.md §3");
-        const auto which = static_cast<std::size_t>(found - std::begin(kStatisticNames));
-        single(statistic_indices_[which], which == 0 ? ElementType::f64 : ElementType::u64);
-        break;
-      }
-      default:
-        expect(false, "a " + std::string(format::to_string(*s.kind)) +
-                          " section does not belong in a solution file");
-    }
+    if (std::find(std::begin(kSolutionKinds), std::end(kSolutionKinds), *s.kind) ==
+        std::end(kSolutionKinds))
+      fail("section '" + s.name + "': a " + std::string(format::to_string(*s.kind)) +
+           " section does not belong in a solution file");
+    if (s.is_packed())
+      fail("section '" + s.name + "': is packed; solution files store raw sections");
+  }
+  const SectionsByKind table(sections_, display_name_);
+  const auto metadata_index = table.single(SectionKind::metadata, ElementType::u8);
+  status_index_ = table.single(SectionKind::solution_status, ElementType::u8);
+  front_offsets_index_ = table.single(SectionKind::front_offsets, ElementType::u64);
+  path_offsets_index_ = table.single(SectionKind::path_offsets, ElementType::u64);
+  path_vertices_index_ = table.single(SectionKind::path_vertices, ElementType::u32);
+  const auto costs = table.all(SectionKind::front_cost);
+  for (auto i : costs) table.expect_cost_column(sections_[i]);
+  cost_indices_.assign(costs.begin(), costs.end());
+  for (auto i : table.all(SectionKind::solution_statistics)) {
+    const auto& s = sections_[i];
+    const auto* found = std::find(std::begin(kStatisticNames), std::end(kStatisticNames), s.name);
+    if (found == std::end(kStatisticNames))
+      fail("section '" + s.name + "': is not a statistic of SOLUTIONS.md §3");
+    const auto which = static_cast<std::size_t>(found - std::begin(kStatisticNames));
+    table.expect_shape(s, which == 0 ? ElementType::f64 : ElementType::u64);
+    statistic_indices_[which] = i;  // one at most: names are unique within a kind
   }
   if (metadata_index == SIZE_MAX) fail("no metadata section");
   if (status_index_ == SIZE_MAX) fail("no solution_status section");
