@@ -64,7 +64,7 @@ std::uint64_t shortest(const GraphReader& r, const std::vector<std::uint64_t>& c
 
 // §6's bracket for Moving AI's optima of the games `length`.
 std::optional<std::string> movingai_bracket(double c_star, double l_star) {
-  return reference_bracket_problem(c_star, l_star, "length", "movingai-optimal");
+  return reference_problem(c_star, l_star, {"length", "movingai-optimal", ReferenceUnits::octile});
 }
 
 }  // namespace
@@ -202,30 +202,50 @@ TEST_CASE("movingai: published optima bracket the true length optimum (shared/da
   }
 }
 
-TEST_CASE("solutions verify: a declared reference of any source is checked by §6's bracket") {
+TEST_CASE("solutions verify: a declared reference of any source is checked in its declared units") {
   // Small_2 (distance, time) on `default`: query 0's front is (60, 5.25) and (80, 3.75), query 1's
-  // (120, 7.5); the optima 6 and 12 bracket the smallest distances 60 and 120.
+  // (120, 7.5).
   testing::TempDir dir;
-  auto g = testing::golden_input();
-  g.queries[0].reference = QueryReference{"distance", "published-optimum", {6, 12, 0}};
-  write_graph(g, dir / "r.mosb");
-  const auto instance = GraphReader::open(dir / "r.mosb", VerifyLevel::full);
-  auto verify_front = [&](std::vector<double> query_1) {
+  auto verify_front = [&](std::vector<double> optima, const char* units,
+                          std::vector<double> query_1) {
+    auto g = testing::golden_input();
+    g.queries[0].reference = QueryReference{"distance", "published-optimum", std::move(optima)};
+    if (units) g.metadata.set("queries.default.reference.units", units);
+    write_graph(g, dir / "r.mosb");
+    const auto instance = GraphReader::open(dir / "r.mosb", VerifyLevel::full);
     SolutionWriter w(instance, "Small_2");
     w.set_query(0, QueryStatus::solved, std::vector<double>{60, 5.25, 80, 3.75});
     w.set_query(1, QueryStatus::solved, query_1);
     w.write(dir / "s.sol.mosb");
     return verify_solutions(SolutionReader::open(dir / "s.sol.mosb", instance), instance);
   };
-  CHECK_FALSE(verify_front({120, 7.5}).has_value());
-  const auto problem = verify_front({130, 7.5});
+  // No units: octile, Moving AI's. The optima 6 and 12 bracket the smallest distances 60 and 120.
+  CHECK_FALSE(verify_front({6, 12, 0}, nullptr, {120, 7.5}).has_value());
+  auto problem = verify_front({6, 12, 0}, nullptr, {130, 7.5});
   REQUIRE(problem.has_value());
   CHECK(*problem ==
         "query 1: [reference] the smallest distance c* = 130 does not match the published-optimum "
         "optimum L* = 12: c*/10 = 13 > L* + tau (spec/SOLUTIONS.md section 6)");
-  // The same check as for Moving AI's optima: only the source's name in the message differs.
+  CHECK(*problem == "query 1: " + *reference_problem(130, 12, {"distance", "published-optimum",
+                                                               ReferenceUnits::octile}));
+  CHECK_FALSE(verify_front({6, 12, 0}, "octile", {120, 7.5}).has_value());
+  // Units of the objective itself: the smallest distance must be the optimum.
+  CHECK_FALSE(verify_front({60, 120, 0}, "objective", {120, 7.5}).has_value());
+  problem = verify_front({60, 120, 0}, "objective", {130, 7.5});
+  REQUIRE(problem.has_value());
   CHECK(*problem ==
-        "query 1: " + *reference_bracket_problem(130, 12, "distance", "published-optimum"));
-  CHECK(movingai_bracket(130, 12)->find("the movingai-optimal optimum L* = 12: c*/10 = 13") !=
-        std::string::npos);
+        "query 1: [reference] the smallest distance c* = 130 does not match the published-optimum "
+        "optimum L* = 120: |c* - L*| > tau (spec/SOLUTIONS.md section 6)");
+  // The octile optima read as the objective's own units fail, and the reverse.
+  CHECK(verify_front({6, 12, 0}, "objective", {120, 7.5}).has_value());
+  CHECK(verify_front({60, 120, 0}, nullptr, {120, 7.5}).has_value());
+  // Other units are refused by verify (rule metadata-reference).
+  auto g = testing::golden_input();
+  g.queries[0].reference = QueryReference{"distance", "published-optimum", {6, 12, 0}};
+  g.metadata.set("queries.default.reference.units", "miles");
+  write_graph(g, dir / "bad.mosb");
+  const auto bad = verify(GraphReader::open(dir / "bad.mosb"), VerifyLevel::structure);
+  REQUIRE(bad.has_value());
+  CHECK(bad->find("[metadata-reference] queries.default.reference.units is 'miles', not octile "
+                  "or objective") != std::string::npos);
 }

@@ -229,6 +229,10 @@ std::optional<std::string> find_reference_problem(const GraphReader& reader,
       return "query set '" + s->name + "' carries a reference, but " + key + " is missing";
     if (!reader.find(SectionKind::cost, *objective))
       return key + " names objective '" + *objective + "', which is no cost section";
+    const std::string units_key = "queries." + s->name + ".reference.units";
+    const auto units = metadata.get(units_key);
+    if (units && *units != "octile" && *units != "objective")
+      return units_key + " is '" + *units + "', not octile or objective";
   }
   return std::nullopt;
 }

@@ -32,20 +32,40 @@ bool weakly_dominates(const std::vector<double>& a, const std::vector<double>& b
 
 }  // namespace
 
-std::optional<std::string> reference_bracket_problem(double c_star, double l_star,
-                                                     std::string_view objective,
-                                                     std::string_view source) {
-  // Moving AI prints `optimal` with 6 or more significant digits (relative rounding at most
-  // 5e-6); twice that covers it (spec/SOLUTIONS.md §6).
+std::optional<std::string> reference_problem(double c_star, double l_star,
+                                             const QueryReferenceDeclaration& reference) {
+  const std::string head = "[reference] the smallest " + reference.objective +
+                           " c* = " + number_text(c_star) + " does not match the " +
+                           reference.source + " optimum L* = " + number_text(l_star) + ": ";
+  if (reference.units == ReferenceUnits::objective) {
+    // The objective's own unit: an exact front's smallest value is the optimum, up to the
+    // rounding of a printed real.
+    const double tau = 1e-9 * std::max(1.0, l_star);
+    if (std::fabs(c_star - l_star) <= tau) return std::nullopt;
+    return head + "|c* - L*| > tau (spec/SOLUTIONS.md section 6)";
+  }
+  // Octile: Moving AI prints `optimal` with 6 or more significant digits (relative rounding at
+  // most 5e-6); twice that covers it (spec/SOLUTIONS.md §6).
   const double tau = 1e-5 * std::max(1.0, l_star);
   const double low = c_star / 10, high = std::sqrt(2.0) / 1.4 * c_star / 10;
   if (low <= l_star + tau && l_star <= high + tau) return std::nullopt;
-  return "[reference] the smallest " + std::string(objective) + " c* = " + number_text(c_star) +
-         " does not match the " + std::string(source) + " optimum L* = " + number_text(l_star) +
-         ": " +
+  return head +
          (low > l_star + tau ? "c*/10 = " + number_text(low) + " > L* + tau"
                              : "L* > (sqrt 2/1.4) c*/10 + tau = " + number_text(high + tau)) +
          " (spec/SOLUTIONS.md section 6)";
+}
+
+std::optional<QueryReferenceDeclaration> declared_reference(const GraphReader& instance,
+                                                           const std::string& query_set) {
+  if (!instance.query_reference(query_set)) return std::nullopt;
+  const std::string key = "queries." + query_set + ".reference.";
+  const auto& metadata = instance.metadata();
+  QueryReferenceDeclaration d;
+  d.objective = metadata.get(key + "objective").value_or("");
+  d.source = metadata.get(key + "source").value_or("");
+  d.units = metadata.get(key + "units") == "objective" ? ReferenceUnits::objective
+                                                       : ReferenceUnits::octile;
+  return d;
 }
 
 std::optional<std::string> verify_solutions(const SolutionReader& s, const GraphReader& g) {
@@ -61,16 +81,14 @@ std::optional<std::string> verify_solutions(const SolutionReader& s, const Graph
   const auto view = g.view(s.view_name());
   const auto offsets = g.forward_offsets();
   const auto targets = g.forward_targets();
-  // The optima the query set declares (kind 17 and its metadata), whatever their source, when the
-  // view holds their objective; the source only names them in messages.
+  // The optima the query set declares (kind 17 and its metadata), checked as their declared units
+  // say, when the view holds their objective; the source only names them in messages.
   const auto reference = g.query_reference(s.query_set());
-  const std::string reference_key = "queries." + s.query_set() + ".reference.";
-  const auto reference_name = g.metadata().get(reference_key + "objective");
-  const auto reference_source = g.metadata().get(reference_key + "source").value_or("");
+  const auto declared = declared_reference(g, s.query_set());
   std::optional<std::size_t> reference_objective;
-  if (reference)
+  if (declared)
     for (std::size_t i = 0; i < d; ++i)
-      if (reference_name == s.objective_name(i)) reference_objective = i;
+      if (declared->objective == s.objective_name(i)) reference_objective = i;
   for (std::uint64_t q = 0; q < s.query_count(); ++q) {
     const std::string label = "query " + std::to_string(q) + ": ";
     const auto begin = s.front_begin(q), size = s.front_size(q);
@@ -107,8 +125,7 @@ std::optional<std::string> verify_solutions(const SolutionReader& s, const Graph
     if (reference_objective && size > 0 && s.status(q) == QueryStatus::solved) {
       double c_star = INFINITY;
       for (const auto& v : front) c_star = std::min(c_star, v[*reference_objective]);
-      if (auto problem =
-              reference_bracket_problem(c_star, (*reference)[q], *reference_name, reference_source))
+      if (auto problem = reference_problem(c_star, (*reference)[q], *declared))
         return label + *problem;
     }
     if (!s.has_paths()) continue;

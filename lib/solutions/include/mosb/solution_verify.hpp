@@ -11,14 +11,28 @@
 
 namespace mosb {
 
-// spec/SOLUTIONS.md §6: a query's reference optimum L* (octile, diagonal sqrt 2, as Moving AI
-// publishes it) brackets the smallest value c* of its objective (10 straight, 14 diagonal, as the
-// games `length`) in an exact front: c*/10 <= L* + tau and L* <= (sqrt 2 / 1.4) c*/10 + tau,
-// tau = 1e-5 max(1, L*). nullopt when it holds, else the "[reference] ..." message showing both
-// values and naming the objective and the reference's source.
-std::optional<std::string> reference_bracket_problem(double c_star, double l_star,
-                                                     std::string_view objective,
-                                                     std::string_view source);
+// spec/SOLUTIONS.md §6: the reference a query set declares (section kind 17 and the metadata
+// `queries.<set>.reference.objective`, `.source` and `.units`).
+enum class ReferenceUnits {
+  // Moving AI's: 1 per straight and sqrt 2 per diagonal step, against an objective that costs 10
+  // and 14 (the games `length`). The default when `.units` is absent.
+  octile,
+  objective,  // the objective's own unit
+};
+struct QueryReferenceDeclaration {
+  std::string objective, source;
+  ReferenceUnits units = ReferenceUnits::octile;
+};
+// nullopt when the query set carries no reference.
+std::optional<QueryReferenceDeclaration> declared_reference(const GraphReader& instance,
+                                                           const std::string& query_set);
+
+// Whether the smallest value c* of the reference's objective in an exact front agrees with the
+// query's optimum L*. Octile: the bracket c*/10 <= L* + tau and L* <= (sqrt 2 / 1.4) c*/10 + tau,
+// tau = 1e-5 max(1, L*). Objective: |c* - L*| <= 1e-9 max(1, L*). nullopt when it holds, else the
+// "[reference] ..." message showing both values and naming the objective and the source.
+std::optional<std::string> reference_problem(double c_star, double l_star,
+                                             const QueryReferenceDeclaration& reference);
 
 // The first problem, as one line naming the query (and both vectors, or the path step), or
 // nullopt. `instance` must be opened with VerifyLevel::full (paths walk its CSR). Cost: the
@@ -26,8 +40,9 @@ std::optional<std::string> reference_bracket_problem(double c_star, double l_sta
 // lexicographically after a vector (O(k log k) for d = 2, O(k^2) worst case for d > 2), plus the
 // path lengths times the out-degrees along them. When the query set declares a reference (section
 // kind 17 and `queries.<set>.reference.objective`, of any source) for an objective of the view,
-// each solved front's smallest value of that objective is checked against the query's optimum by
-// spec/SOLUTIONS.md §6's bracket ("[reference]"); the source's name appears only in the message.
+// each solved front's smallest value of that objective is checked against the query's optimum in
+// the declared units (reference_problem, "[reference]"); the source's name appears only in the
+// message.
 std::optional<std::string> verify_solutions(const SolutionReader& solutions,
                                             const GraphReader& instance);
 
