@@ -218,6 +218,38 @@ TEST_CASE("dimacs: malformed lines give FILE:LINE:COLUMN messages") {
   check_parse_error("c only a comment\n", "t.gr:1:1: no 'p sp n m' line");
 }
 
+TEST_CASE("dimacs: malformed .co lines give FILE:LINE:COLUMN messages") {
+  auto check_co_error = [](const std::string& text, const std::string& message) {
+    CAPTURE(text);
+    CHECK_THROWS_WITH_AS(converters::parse_dimacs_co(text, "t.co", 1, 2), message.c_str(), Error);
+  };
+  check_co_error("v 1 3 4\n", "t.co:1:1: 'v' line before the 'p aux sp co' line");
+  check_co_error("p aux sp co 3\n", "t.co:1:13: declares 3 vertices, the graph has 2");
+  check_co_error("p aux sp co 1\n", "t.co:1:13: declares 1 vertex, the graph has 2");
+  check_co_error("p aux sp elev 2\n", "t.co:1:3: expected 'p aux sp co n'");
+  check_co_error("p aux sp co\n", "t.co:1:12: missing field: the header is 'p aux sp co n'");
+  check_co_error("p aux sp co 2 9\n", "t.co:1:15: extra field '9': the header is 'p aux sp co n'");
+  check_co_error("p aux sp co x\n", "t.co:1:13: expected the vertex count, found 'x'");
+  check_co_error("p aux sp co 4294967295\n",
+                 "t.co:1:13: the vertex count '4294967295' exceeds 4294967294");
+  check_co_error("p aux sp co 2\np aux sp co 2\n",
+                 "t.co:2:1: second 'p' line (the first is line 1)");
+  check_co_error("p aux sp co 2\nv 1 5\n",
+                 "t.co:2:6: missing field: a coordinate line is 'v id x y'");
+  check_co_error("p aux sp co 2\nv 1 5 6 7\n",
+                 "t.co:2:9: extra field '7': a coordinate line is 'v id x y'");
+  check_co_error("p aux sp co 2\nv x 5 6\n", "t.co:2:3: expected a vertex id, found 'x'");
+  check_co_error("p aux sp co 2\nv 3 5 6\n", "t.co:2:3: vertex id '3' outside 1..2");
+  check_co_error("p aux sp co 2\nv 1 5 6\nv 1 5 6\n", "t.co:3:3: second 'v' line for vertex 1");
+  check_co_error("p aux sp co 2\nv 1 5 1.5\n",
+                 "t.co:2:7: expected an integer coordinate, found '1.5'");
+  check_co_error("p aux sp co 2\nv 2 5 6\n", "t.co:1:1: no 'v' line for vertex 1");
+  check_co_error("c only\n", "t.co:1:1: no 'p aux sp co n' line");
+  check_co_error("p aux sp co 2\nx\n", "t.co:2:1: unknown line type 'x'");
+  CHECK(converters::parse_dimacs_co("p aux sp co 2\nv 2 -5 6\nv 1 7 8\n", "t.co", 1, 2) ==
+        std::vector<std::int64_t>{7, 8, -5, 6});
+}
+
 TEST_CASE("dimacs: decimal columns are real-valued and --cost-type forces every column") {
   testing::TempDir dir;
   write_text(dir / "d.gr", "p sp 3 3\na 1 2 1 7\na 2 3 2.5 8\na 3 1 1e1 9\n");

@@ -15,6 +15,7 @@
 #include "mosb/converters/text_input.hpp"
 #include "mosb/converters/text_scan.hpp"
 #include "mosb/error.hpp"
+#include "vertex_values.hpp"
 
 namespace mosb::converters {
 
@@ -297,14 +298,15 @@ std::vector<std::uint64_t> dimacs_arc_lines(TextSource& source) {
   return numbers;
 }
 
-namespace {
-
-std::vector<std::int64_t> parse_co(LineScanner& lines, const std::string& display_name,
-                                   unsigned id_base, std::uint64_t vertex_count) {
+std::vector<std::int64_t> parse_vertex_values(LineScanner& lines, const std::string& display_name,
+                                              unsigned id_base, std::uint64_t vertex_count,
+                                              const VertexValueFile& file) {
+  const std::string header = std::string("'p aux sp ") + file.tag + " n'";
+  const std::size_t fields = 2 + file.values;  // v id value...
   std::string_view line;
   std::vector<Token> t;
   std::uint64_t p_line = 0, n = 0;
-  std::vector<std::int64_t> xy;
+  std::vector<std::int64_t> values;
   std::vector<bool> seen;
   while (lines.next(line)) {
     tokenize(line, t);
@@ -313,66 +315,83 @@ std::vector<std::int64_t> parse_co(LineScanner& lines, const std::string& displa
     const auto end_column = line.size() + 1;
     if (t[0].text == "v") {
       if (p_line == 0)
-        fail(display_name, ln, t[0].column, "'v' line before the 'p aux sp co' line");
-      if (t.size() < 4)
-        fail(display_name, ln, end_column, "missing field: a coordinate line is 'v id x y'");
-      if (t.size() > 4)
-        fail(display_name, ln, t[4].column,
-             "extra field " + quoted(t[4].text) + ": a coordinate line is 'v id x y'");
-      const auto id = parse_id(display_name, ln, t[1], id_base, n);
+        fail(display_name, ln, t[0].column,
+             std::string("'v' line before the ") + file.header_cited_by_v + " line");
+      if (t.size() < fields)
+        fail(display_name, ln, end_column, std::string("missing field: ") + file.line_rule);
+      if (t.size() > fields)
+        fail(display_name, ln, t[fields].column,
+             "extra field " + quoted(t[fields].text) + ": " + file.line_rule);
+      if (file.precise_field_errors && !is_digits(t[1].text))
+        fail(display_name, ln, t[1].column, "expected a vertex id, found " + quoted(t[1].text));
+      const auto number = to_u64(t[1].text);
+      if (!number || *number < id_base || *number - id_base >= n)
+        fail(display_name, ln, t[1].column,
+             "vertex id " + quoted(t[1].text) + " outside " + id_range(id_base, n));
+      const auto id = *number - id_base;
       if (seen[id])
         fail(display_name, ln, t[1].column,
-             "second 'v' line for vertex " + std::to_string(id + id_base));
+             "second 'v' line for vertex " + std::to_string(*number));
       seen[id] = true;
-      for (int k = 0; k < 2; ++k) {
+      for (std::size_t k = 0; k < file.values; ++k) {
         const auto value = to_i64(t[2 + k].text);
         if (!value)
           fail(display_name, ln, t[2 + k].column,
-               "expected an integer coordinate, found " + quoted(t[2 + k].text));
-        xy[2 * std::size_t{id} + k] = *value;
+               std::string("expected an integer ") + file.value_name + ", found " +
+                   quoted(t[2 + k].text));
+        values[file.values * id + k] = *value;
       }
     } else if (t[0].text == "p") {
       if (p_line != 0)
         fail(display_name, ln, t[0].column,
              "second 'p' line (the first is line " + std::to_string(p_line) + ")");
       if (t.size() < 5)
-        fail(display_name, ln, end_column, "missing field: the header is 'p aux sp co n'");
-      if (t[1].text != "aux" || t[2].text != "sp" || t[3].text != "co")
-        fail(display_name, ln, t[1].column, "expected 'p aux sp co n'");
+        fail(display_name, ln, end_column, "missing field: the header is " + header);
+      if (t[1].text != "aux" || t[2].text != "sp" || t[3].text != file.tag)
+        fail(display_name, ln, t[1].column, "expected " + header);
       if (t.size() > 5)
         fail(display_name, ln, t[5].column,
-             "extra field " + quoted(t[5].text) + ": the header is 'p aux sp co n'");
-      n = parse_count(display_name, ln, t[4], "vertex count");
+             "extra field " + quoted(t[5].text) + ": the header is " + header);
+      if (file.precise_field_errors) {
+        n = parse_count(display_name, ln, t[4], "vertex count");
+      } else {
+        const auto count = to_u64(t[4].text, kMaxCount);
+        if (!count)
+          fail(display_name, ln, t[4].column,
+               "expected the vertex count, found " + quoted(t[4].text));
+        n = *count;
+      }
       if (n != vertex_count)
         fail(display_name, ln, t[4].column,
-             "declares " + plural(n, "vertex") + ", the graph has " + std::to_string(vertex_count));
+             "declares " +
+                 (file.precise_field_errors ? plural(n, "vertex")
+                                            : std::to_string(n) + " vertices") +
+                 ", the graph has " + std::to_string(vertex_count));
       p_line = ln;
-      xy.assign(2 * n, 0);
+      values.assign(file.values * n, 0);  // n equals the graph's vertex count, already in memory
       seen.assign(n, false);
     } else {
       fail(display_name, ln, t[0].column, "unknown line type " + quoted(t[0].text));
     }
   }
   if (p_line == 0)
-    fail(display_name, std::max<std::uint64_t>(lines.number(), 1), 1, "no 'p aux sp co n' line");
+    fail(display_name, std::max<std::uint64_t>(lines.number(), 1), 1, "no " + header + " line");
   for (std::uint64_t id = 0; id < n; ++id)
     if (!seen[id])
       fail(display_name, p_line, 1, "no 'v' line for vertex " + std::to_string(id + id_base));
-  return xy;
+  return values;
 }
-
-}  // namespace
 
 std::vector<std::int64_t> parse_dimacs_co(std::string_view text, const std::string& display_name,
                                           unsigned id_base, std::uint64_t vertex_count) {
   LineScanner lines(text);
-  return parse_co(lines, display_name, id_base, vertex_count);
+  return parse_vertex_values(lines, display_name, id_base, vertex_count, kCoordinateFile);
 }
 
 std::vector<std::int64_t> parse_dimacs_co(TextSource& source, const std::string& display_name,
                                           unsigned id_base, std::uint64_t vertex_count) {
   LineScanner lines(source);
-  return parse_co(lines, display_name, id_base, vertex_count);
+  return parse_vertex_values(lines, display_name, id_base, vertex_count, kCoordinateFile);
 }
 
 namespace {

@@ -7,12 +7,11 @@
 #include "mosb/error.hpp"
 #include "mosb/format.hpp"
 #include "mosb/metadata.hpp"
+#include "vertex_values.hpp"
 
 namespace mosb::converters {
 
 namespace {
-
-constexpr std::uint64_t kMaxCount = 0xFFFFFFFEULL;
 
 using namespace text;  // the shared primitives of text_scan.hpp
 
@@ -61,95 +60,18 @@ ViewSpec parse_view_spec(std::string_view text) {
   return view;
 }
 
-namespace {
-
-std::vector<std::int64_t> parse_elevation(LineScanner& lines, const std::string& display_name,
-                                          unsigned id_base, std::uint64_t vertex_count) {
-  std::uint64_t p_line = 0, n = 0;
-  std::vector<std::int64_t> elevation;
-  std::vector<bool> seen;
-  std::string_view line;
-  std::vector<Token> t;
-  while (lines.next(line)) {
-    const auto line_number = lines.number();
-    tokenize(line, t);
-    if (t.empty() || t[0].text == "c") continue;
-    const auto end_column = line.size() + 1;
-    if (t[0].text == "v") {
-      if (p_line == 0)
-        fail(display_name, line_number, t[0].column, "'v' line before the 'p aux sp elev n' line");
-      if (t.size() < 3)
-        fail(display_name, line_number, end_column,
-             "missing field: an elevation line is 'v id elevation'");
-      if (t.size() > 3)
-        fail(display_name, line_number, t[3].column,
-             "extra field " + quoted(t[3].text) + ": an elevation line is 'v id elevation'");
-      const auto id = to_u64(t[1].text);
-      if (!id || *id < id_base || *id - id_base >= n)
-        fail(display_name, line_number, t[1].column,
-             "vertex id " + quoted(t[1].text) + " outside " +
-                 (n == 0 ? std::string("(none: the graph has no vertices)")
-                         : std::to_string(id_base) + ".." + std::to_string(n - 1 + id_base)));
-      const auto v = *id - id_base;
-      if (seen[v])
-        fail(display_name, line_number, t[1].column,
-             "second 'v' line for vertex " + std::to_string(*id));
-      const auto value = to_i64(t[2].text);
-      if (!value)
-        fail(display_name, line_number, t[2].column,
-             "expected an integer elevation, found " + quoted(t[2].text));
-      seen[v] = true;
-      elevation[v] = *value;
-    } else if (t[0].text == "p") {
-      if (p_line != 0)
-        fail(display_name, line_number, t[0].column,
-             "second 'p' line (the first is line " + std::to_string(p_line) + ")");
-      if (t.size() < 5)
-        fail(display_name, line_number, end_column,
-             "missing field: the header is 'p aux sp elev n'");
-      if (t[1].text != "aux" || t[2].text != "sp" || t[3].text != "elev")
-        fail(display_name, line_number, t[1].column, "expected 'p aux sp elev n'");
-      if (t.size() > 5)
-        fail(display_name, line_number, t[5].column,
-             "extra field " + quoted(t[5].text) + ": the header is 'p aux sp elev n'");
-      const auto count = to_u64(t[4].text);
-      if (!count || *count > kMaxCount)
-        fail(display_name, line_number, t[4].column,
-             "expected the vertex count, found " + quoted(t[4].text));
-      if (*count != vertex_count)
-        fail(display_name, line_number, t[4].column,
-             "declares " + std::to_string(*count) + " vertices, the graph has " +
-                 std::to_string(vertex_count));
-      n = *count;
-      p_line = line_number;
-      elevation.assign(n, 0);  // n equals the graph's vertex count, already held in memory
-      seen.assign(n, false);
-    } else {
-      fail(display_name, line_number, t[0].column, "unknown line type " + quoted(t[0].text));
-    }
-  }
-  if (p_line == 0)
-    fail(display_name, std::max<std::uint64_t>(lines.number(), 1), 1, "no 'p aux sp elev n' line");
-  for (std::uint64_t v = 0; v < n; ++v)
-    if (!seen[v])
-      fail(display_name, p_line, 1, "no 'v' line for vertex " + std::to_string(v + id_base));
-  return elevation;
-}
-
-}  // namespace
-
 std::vector<std::int64_t> parse_dimacs_elevation(std::string_view text,
                                                  const std::string& display_name, unsigned id_base,
                                                  std::uint64_t vertex_count) {
   LineScanner lines(text);
-  return parse_elevation(lines, display_name, id_base, vertex_count);
+  return parse_vertex_values(lines, display_name, id_base, vertex_count, kElevationFile);
 }
 
 std::vector<std::int64_t> parse_dimacs_elevation(TextSource& source,
                                                  const std::string& display_name, unsigned id_base,
                                                  std::uint64_t vertex_count) {
   LineScanner lines(source);
-  return parse_elevation(lines, display_name, id_base, vertex_count);
+  return parse_vertex_values(lines, display_name, id_base, vertex_count, kElevationFile);
 }
 
 std::vector<std::uint32_t> out_degrees(std::uint64_t vertex_count,
