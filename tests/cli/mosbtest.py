@@ -2,6 +2,12 @@
 run the program, a temporary directory per test, the assertions on a refusal, and the byte-level
 view of a .mosb file (spec/FORMAT.md) that the suites use to read or damage one on purpose.
 
+Its byte-level functions (header, entries, payload, metadata, reseal, ...) are written from
+spec/FORMAT.md alone, never from the C++ sources, and the suites also read files through
+spec/reference/mosb_reader.py, the spec's independent second implementation: what the program writes
+is checked by code that does not share its mistakes. Keep both that way: a change here follows the
+spec, not the library.
+
 The suites import it as a sibling module: ctest runs each one by path, so its directory is
 sys.path[0]. They need /usr/bin/python3 with python3-numpy and python3-xxhash.
 """

@@ -79,6 +79,22 @@ const std::vector<Ratio> kEpsilons = {{0, 1}, {1, 100}, {1, 20}, {1, 10}, {1, 2}
 
 }  // namespace
 
+TEST_CASE("achieved_epsilon_text rounds up at the 9th digit, exact decimals when exact") {
+  FrontEvaluation f;
+  f.achieved_value = 0.05;
+  CHECK(achieved_epsilon_text(f, false) == "0.05");
+  f.achieved_value = 1.0 / 3;
+  CHECK(achieved_epsilon_text(f, false) == "0.333333334");
+  f.achieved_value = 0;
+  CHECK(achieved_epsilon_text(f, false) == "0");
+  f.achieved_value = std::numeric_limits<double>::infinity();
+  CHECK(achieved_epsilon_text(f, false) == "inf");
+  f.achieved = Ratio{1, 4};
+  CHECK(achieved_epsilon_text(f, true) == "0.25");
+  f.achieved = Ratio{1, 0};
+  CHECK(achieved_epsilon_text(f, true) == "inf");
+}
+
 TEST_CASE("parse_epsilon gives exact reduced ratios and rejects the rest") {
   CHECK(parse_epsilon("0.05") == Ratio{1, 20});
   CHECK(parse_epsilon("0.050").num == 1);

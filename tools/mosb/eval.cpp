@@ -44,23 +44,6 @@ std::string vector_text(const std::vector<double>& v) {
   return out.str();
 }
 
-// Rounded up at the 9th digit, so the printed ε passed back as --eps still covers (for double
-// costs up to the last ulps of the ratio's own rounding).
-std::string achieved_text(const FrontEvaluation& f, bool exact) {
-  if (exact) {
-    if (f.achieved.den == 0) return "inf";
-    return f.achieved.to_decimal();
-  }
-  if (!std::isfinite(f.achieved_value)) return "inf";
-  const double up = std::max(0.0, std::ceil(f.achieved_value * 1e9 - 1e-6) / 1e9);
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.9f", up);
-  std::string text = buffer;
-  while (text.back() == '0') text.pop_back();
-  if (text.back() == '.') text.pop_back();
-  return text;
-}
-
 void print_text(const SolutionEvaluation& result, const std::vector<Ratio>& eps,
                 const std::vector<std::string>& eps_text) {
   for (const auto& q : result.queries) {
@@ -78,7 +61,7 @@ void print_text(const SolutionEvaluation& result, const std::vector<Ratio>& eps,
               << (f.reference_size
                       ? static_cast<double>(f.solution_size) / static_cast<double>(f.reference_size)
                       : 0.0)
-              << ", achieved ε " << achieved_text(f, result.exact_arithmetic);
+              << ", achieved ε " << achieved_epsilon_text(f, result.exact_arithmetic);
     for (std::size_t k = 0; k < eps.size(); ++k) {
       std::cout << ", ε=" << eps_text[k] << ' '
                 << (f.coverage[k].covered
@@ -117,7 +100,7 @@ void print_json(const SolutionEvaluation& result, const std::vector<std::string>
       const auto& f = *q.front;
       j.key("solution_size").value(std::uint64_t{f.solution_size});
       j.key("reference_size").value(std::uint64_t{f.reference_size});
-      j.key("achieved_epsilon").value(achieved_text(f, result.exact_arithmetic));
+      j.key("achieved_epsilon").value(achieved_epsilon_text(f, result.exact_arithmetic));
       j.key("achieved_epsilon_value").value(f.achieved_value);
       j.key("coverage").begin_array();
       for (std::size_t k = 0; k < f.coverage.size(); ++k)

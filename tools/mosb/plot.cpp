@@ -9,7 +9,6 @@
 
 #include "commands.hpp"
 #include "mosb/atomic_file.hpp"
-#include "mosb/converters/guards_converter.hpp"
 #include "mosb/eval.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/report/figures.hpp"
@@ -41,7 +40,7 @@ std::string default_title(const GraphReader& reader, const PlotArgs& args, const
 
 void write_svg(const PlotArgs& args, const std::string& svg) {
   check_output_is_not_input(args.output, {args.instance});
-  converters::write_text_atomically(args.output, svg);
+  write_file_atomically(args.output, svg);
 }
 
 int run_correlation(const PlotArgs& args) {
@@ -99,7 +98,7 @@ int run_map(const PlotArgs& args, const std::string& exposure_objective, const M
   std::vector<std::filesystem::path> inputs = {args.instance};
   if (!paths.solutions.empty()) inputs.emplace_back(paths.solutions);
   check_output_is_not_input(args.output, inputs);
-  converters::write_text_atomically(args.output, plots::plot_map(plot));
+  write_file_atomically(args.output, plots::plot_map(plot));
   return 0;
 }
 
@@ -185,7 +184,7 @@ int run_front(const FrontArgs& args) {
   std::vector<std::filesystem::path> inputs = {args.solutions};
   if (reference) inputs.emplace_back(args.reference);
   check_output_is_not_input(args.output, inputs);
-  converters::write_text_atomically(args.output, plots::plot_front(plot));
+  write_file_atomically(args.output, plots::plot_front(plot));
   return 0;
 }
 
@@ -211,7 +210,7 @@ int run_cardinality(const CardinalityArgs& args) {
     plot.title += " (" + std::to_string(unsolved) + " unsolved quer" +
                   (unsolved == 1 ? "y" : "ies") + " left out)";
   check_output_is_not_input(args.output, {args.solutions});
-  converters::write_text_atomically(args.output, plots::plot_cardinality(plot));
+  write_file_atomically(args.output, plots::plot_cardinality(plot));
   return 0;
 }
 

@@ -13,6 +13,7 @@
 #include "mosb/converters/text_input.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/solution_file.hpp"
+#include "mosb/solution_summary.hpp"
 #include "mosb/solution_verify.hpp"
 
 namespace mosb::cli {
@@ -108,89 +109,55 @@ struct InspectArgs {
   bool json = false;
 };
 
-int run_inspect(const InspectArgs& a) {
-  const auto r = SolutionReader::open_verified(a.file);
-  std::uint64_t counts[kLastQueryStatus + 1] = {};
-  std::vector<std::uint64_t> sizes;
-  for (std::uint64_t q = 0; q < r.query_count(); ++q) {
-    const auto status = r.status(q);
-    ++counts[static_cast<std::size_t>(status)];
-    if (status == QueryStatus::solved) sizes.push_back(r.front_size(q));
-  }
-  std::sort(sizes.begin(), sizes.end());
-  // The median of an even count is the lower middle one: a front cardinality, never a fraction.
-  const auto median = sizes.empty() ? 0 : sizes[(sizes.size() - 1) / 2];
+void print_inspect_json(const InspectArgs& a, const SolutionReader& r, const SolutionSummary& t) {
   const auto solver = r.solver();
-  // Each statistic the file has, over the queries that carry it: count, total and maximum.
-  struct StatisticSummary {
-    Statistic statistic;
-    std::uint64_t queries = 0;
-    double total = 0, max = 0;
-  };
-  std::vector<StatisticSummary> statistics;
-  for (const auto statistic : kStatistics) {
-    if (!r.has_statistic(statistic)) continue;
-    StatisticSummary summary{statistic};
-    for (std::uint64_t q = 0; q < r.query_count(); ++q) {
-      std::optional<double> value;
-      if (statistic == Statistic::runtime_seconds) {
-        value = r.runtime_seconds(q);
-      } else if (const auto count = r.count_statistic(statistic, q)) {
-        value = static_cast<double>(*count);
-      }
-      if (!value) continue;
-      ++summary.queries;
-      summary.total += *value;
-      summary.max = std::max(summary.max, *value);
-    }
-    statistics.push_back(summary);
-  }
-  if (a.json) {
-    JsonWriter json(std::cout);
+  JsonWriter json(std::cout);
+  json.begin_object();
+  json.key("file").value(a.file);
+  json.key("instance_digest").value(r.instance_digest());
+  json.key("view").value(r.view_name());
+  json.key("query_set").value(r.query_set());
+  json.key("objectives").begin_array();
+  for (std::size_t i = 0; i < r.objective_count(); ++i) {
     json.begin_object();
-    json.key("file").value(a.file);
-    json.key("instance_digest").value(r.instance_digest());
-    json.key("view").value(r.view_name());
-    json.key("query_set").value(r.query_set());
-    json.key("objectives").begin_array();
-    for (std::size_t i = 0; i < r.objective_count(); ++i) {
-      json.begin_object();
-      json.key("name").value(r.objective_name(i));
-      json.key("type").value(format::to_string(r.objective_type(i)));
-      json.end_object();
-    }
-    json.end_array();
-    json.key("solver").value(solver.name);
-    json.key("solver_version").value(solver.version);
-    json.key("epsilon").value(solver.epsilon);
-    json.key("queries").value(r.query_count());
-    json.key("vectors").value(r.vector_count());
-    json.key("statuses").begin_object();
-    for (std::uint8_t s = 0; s <= kLastQueryStatus; ++s)
-      json.key(to_string(static_cast<QueryStatus>(s))).value(counts[s]);
+    json.key("name").value(r.objective_name(i));
+    json.key("type").value(format::to_string(r.objective_type(i)));
     json.end_object();
-    json.key("front_size").begin_object();
-    if (sizes.empty()) {
-      json.key("min").null().key("median").null().key("max").null();
-    } else {
-      json.key("min").value(sizes.front());
-      json.key("median").value(median);
-      json.key("max").value(sizes.back());
-    }
-    json.end_object();
-    json.key("paths").value(r.has_paths());
-    json.key("statistics").begin_object();
-    for (const auto& t : statistics) {
-      json.key(to_string(t.statistic)).begin_object();
-      json.key("queries").value(t.queries);
-      json.key("total").value(t.total);
-      json.key("max").value(t.max);
-      json.end_object();
-    }
-    json.end_object();
-    json.end_object();
-    return 0;
   }
+  json.end_array();
+  json.key("solver").value(solver.name);
+  json.key("solver_version").value(solver.version);
+  json.key("epsilon").value(solver.epsilon);
+  json.key("queries").value(r.query_count());
+  json.key("vectors").value(r.vector_count());
+  json.key("statuses").begin_object();
+  for (std::uint8_t s = 0; s <= kLastQueryStatus; ++s)
+    json.key(to_string(static_cast<QueryStatus>(s))).value(t.status_counts[s]);
+  json.end_object();
+  json.key("front_size").begin_object();
+  if (!t.front_sizes) {
+    json.key("min").null().key("median").null().key("max").null();
+  } else {
+    json.key("min").value(t.front_sizes->min);
+    json.key("median").value(t.front_sizes->median);
+    json.key("max").value(t.front_sizes->max);
+  }
+  json.end_object();
+  json.key("paths").value(r.has_paths());
+  json.key("statistics").begin_object();
+  for (const auto& statistic : t.statistics) {
+    json.key(to_string(statistic.statistic)).begin_object();
+    json.key("queries").value(statistic.queries);
+    json.key("total").value(statistic.total);
+    json.key("max").value(statistic.max);
+    json.end_object();
+  }
+  json.end_object();
+  json.end_object();
+}
+
+void print_inspect_text(const InspectArgs& a, const SolutionReader& r, const SolutionSummary& t) {
+  const auto solver = r.solver();
   std::cout << a.file << ": solutions of instance " << r.instance_digest() << ", view "
             << r.view_name() << ", query set " << r.query_set() << "\n";
   std::cout << "objectives";
@@ -202,17 +169,26 @@ int run_inspect(const InspectArgs& a) {
             << solver.epsilon << "\n";
   std::cout << r.query_count() << " queries:";
   for (std::uint8_t s = 0; s <= kLastQueryStatus; ++s)
-    std::cout << ' ' << counts[s] << ' ' << to_string(static_cast<QueryStatus>(s))
+    std::cout << ' ' << t.status_counts[s] << ' ' << to_string(static_cast<QueryStatus>(s))
               << (s < kLastQueryStatus ? "," : "\n");
-  if (sizes.empty())
+  if (!t.front_sizes)
     std::cout << "front size: no solved query\n";
   else
-    std::cout << "front size: min " << sizes.front() << ", median " << median << ", max "
-              << sizes.back() << " (" << r.vector_count() << " vectors)\n";
+    std::cout << "front size: min " << t.front_sizes->min << ", median " << t.front_sizes->median
+              << ", max " << t.front_sizes->max << " (" << r.vector_count() << " vectors)\n";
   std::cout << "paths: " << (r.has_paths() ? "yes" : "no") << "\n";
-  for (const auto& t : statistics)
-    std::cout << to_string(t.statistic) << ": " << t.queries << " queries, total " << t.total
-              << ", max " << t.max << "\n";
+  for (const auto& statistic : t.statistics)
+    std::cout << to_string(statistic.statistic) << ": " << statistic.queries << " queries, total "
+              << statistic.total << ", max " << statistic.max << "\n";
+}
+
+int run_inspect(const InspectArgs& a) {
+  const auto r = SolutionReader::open_verified(a.file);
+  const auto summary = summarize(r);
+  if (a.json)
+    print_inspect_json(a, r, summary);
+  else
+    print_inspect_text(a, r, summary);
   return 0;
 }
 

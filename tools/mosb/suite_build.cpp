@@ -32,15 +32,7 @@ std::string joined(const std::vector<std::string>& names) {
 int run_suite_build(const SuiteBuildArgs& a) {
   if (a.no_generated && a.raw.empty()) throw UsageError("--no-generated needs --raw RAWDIR");
   std::vector<converters::SuiteInstance> instances;
-  if (!a.no_generated) {
-    // The published suite: seed 1, the paper's sizes; the same instances `generate grid|netmaker
-    // --suite` writes, so a single file can still be rebuilt from its own command.
-    constexpr std::uint64_t kSuiteSeed = 1;
-    instances = converters::grid_suite(kSuiteSeed, converters::paper_grid_sizes());
-    for (auto& instance :
-         converters::netmaker_suite(kSuiteSeed, converters::paper_netmaker_vertex_counts()))
-      instances.push_back(std::move(instance));
-  }
+  if (!a.no_generated) instances = converters::published_generated_suite();
   std::vector<converters::RawStatus> raw;
   if (!a.raw.empty()) {
     auto plan = converters::plan_raw_suite(a.raw);

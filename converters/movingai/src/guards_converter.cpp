@@ -193,12 +193,6 @@ std::string format_exposure(const OctileMap& map, const std::vector<std::uint64_
   return out;
 }
 
-void write_text_atomically(const std::filesystem::path& path, std::string_view content) {
-  AtomicFile file(path);
-  file.write(content);
-  file.commit();
-}
-
 StreamedGraph build_guards_graph(const OctileMap& map, const std::vector<std::uint64_t>& exposure) {
   auto g = build_octile_graph(
       map, CellObjective{"exposure", "guards",

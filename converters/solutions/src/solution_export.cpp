@@ -45,9 +45,7 @@ std::uint64_t export_front_directory(const SolutionReader& r, const std::filesys
         text += (i ? " " : "") + value_text(r, i, begin + k);
       text += '\n';
     }
-    AtomicFile file(out_dir / (std::to_string(q + id_base) + ".txt"));
-    file.write(text);
-    file.commit();
+    write_file_atomically(out_dir / (std::to_string(q + id_base) + ".txt"), text);
     ++files;
   }
   return files;
@@ -82,9 +80,7 @@ std::uint64_t export_json_log(const SolutionReader& r, const GraphReader& instan
     record["finish_info"] = Json{{"solutions", std::move(front)}};
     log.push_back(std::move(record));
   }
-  AtomicFile file(output);
-  file.write(log.dump(1) + "\n");
-  file.commit();
+  write_file_atomically(output, log.dump(1) + "\n");
   return log.size();
 }
 

@@ -129,4 +129,11 @@ std::vector<SuiteInstance> netmaker_suite(std::uint64_t suite_seed,
   return out;
 }
 
+std::vector<SuiteInstance> published_generated_suite() {
+  auto instances = grid_suite(kPublishedSuiteSeed, paper_grid_sizes());
+  for (auto& instance : netmaker_suite(kPublishedSuiteSeed, paper_netmaker_vertex_counts()))
+    instances.push_back(std::move(instance));
+  return instances;
+}
+
 }  // namespace mosb::converters

@@ -305,4 +305,10 @@ void check_output_is_not_input(const std::filesystem::path& output,
   }
 }
 
+void write_file_atomically(const std::filesystem::path& target, std::string_view content) {
+  AtomicFile file(target);
+  file.write(content);
+  file.commit();
+}
+
 }  // namespace mosb

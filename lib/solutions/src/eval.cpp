@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numeric>
 
@@ -525,6 +526,20 @@ std::vector<std::size_t> uncovered_reference(FrontView<double> solution,
                                              FrontView<double> reference, Ratio epsilon,
                                              const EvalOptions& options) {
   return uncovered_impl(solution, reference, epsilon, options);
+}
+
+// Rounded up at the 9th digit (less a millionth of a unit there, so that a ratio whose double
+// rounding lands just above a 9-digit decimal is not pushed one unit up).
+std::string achieved_epsilon_text(const FrontEvaluation& front, bool exact) {
+  if (exact) return front.achieved.den == 0 ? "inf" : front.achieved.to_decimal();
+  if (!std::isfinite(front.achieved_value)) return "inf";
+  const double up = std::max(0.0, std::ceil(front.achieved_value * 1e9 - 1e-6) / 1e9);
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.9f", up);
+  std::string text = buffer;
+  while (text.back() == '0') text.pop_back();
+  if (text.back() == '.') text.pop_back();
+  return text;
 }
 
 }  // namespace mosb

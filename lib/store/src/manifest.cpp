@@ -234,10 +234,7 @@ std::string serialize_manifest(const Manifest& manifest) {
 }
 
 void write_manifest(const std::filesystem::path& path, const Manifest& manifest) {
-  const auto text = serialize_manifest(manifest);
-  AtomicFile file(path);
-  file.write(text);
-  file.commit();
+  write_file_atomically(path, serialize_manifest(manifest));
 }
 
 std::vector<SourceInput> source_inputs(const Metadata& metadata, const std::string& display_name) {

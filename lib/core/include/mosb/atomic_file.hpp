@@ -70,6 +70,10 @@ class AtomicFile {
   bool committed_ = false;
 };
 
+// Writes `content` as the whole of `target` through an AtomicFile (Existing::replace): the target
+// shows its old content or all of the new. Throws mosb::Error naming the target.
+void write_file_atomically(const std::filesystem::path& target, std::string_view content);
+
 // Called (from the writing thread, one call at a time) with each stale temporary that was
 // removed; the library prints nothing itself. An empty function removes them silently (the
 // default).

@@ -73,6 +73,11 @@ struct FrontEvaluation {
   bool same_multiset = false;
 };
 
+// The achieved ε as printed by `mosb eval` (spec/EVALUATION.md): exact (`achieved`, a terminating
+// or rounded-up decimal) with `exact` arithmetic, else `achieved_value` rounded up at the 9th
+// digit, so that the printed ε passed back as --eps still covers; "inf" when nothing covers.
+std::string achieved_epsilon_text(const FrontEvaluation& front, bool exact);
+
 // Both fronts must have the same dimension ≥ 1 (throws mosb::Error otherwise); values must be
 // non-negative (double: finite and ≥ 0), which the caller checks.
 // Time: O((|S| + |R|) log(|S| + |R|)) per coverage test for d ≤ 3, O(|S|·|R|·d) worst case for

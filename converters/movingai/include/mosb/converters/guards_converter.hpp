@@ -42,9 +42,6 @@ std::vector<std::uint64_t> compute_exposure(const OctileMap& map, const std::vec
 // The grid in the parse_exposure format, one row per line.
 std::string format_exposure(const OctileMap& map, const std::vector<std::uint64_t>& exposure);
 
-// Writes `content` to `path` under a temporary name, then renames it into place.
-void write_text_atomically(const std::filesystem::path& path, std::string_view content);
-
 // The graph alone: vertices are the passable cells in row-major order; vertex data `cell` (x, y).
 StreamedGraph build_guards_graph(const OctileMap& map, const std::vector<std::uint64_t>& exposure);
 

@@ -66,4 +66,10 @@ std::vector<SuiteInstance> grid_suite(std::uint64_t suite_seed,
 std::vector<SuiteInstance> netmaker_suite(std::uint64_t suite_seed,
                                           const std::vector<std::uint32_t>& vertex_counts);
 
+// The generated part of the published suite (`mosb suite build`): seed 1, the paper's sizes, the 49
+// Grids then the 12 NetMakers; the same instances `generate grid|netmaker --suite` writes, so a
+// single file can still be rebuilt from its own command.
+inline constexpr std::uint64_t kPublishedSuiteSeed = 1;
+std::vector<SuiteInstance> published_generated_suite();
+
 }  // namespace mosb::converters
