@@ -6,6 +6,7 @@
 
 #include "golden_input.hpp"
 #include "mosb/graph_builder.hpp"
+#include "mosb/graph_reader.hpp"
 #include "temp_dir.hpp"
 
 using namespace mosb;
