@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Every test: installs what is missing, then the release build and its tests, the style and static
-# checks, a bounded fuzz run of every parser, and the tests again under AddressSanitizer and
-# UndefinedBehaviorSanitizer.
+# checks, and one clang build with AddressSanitizer and UndefinedBehaviorSanitizer (the `sanitize`
+# preset) that serves both a bounded fuzz run of every parser and the tests again.
 # MOSB_FUZZ_SECONDS sets the fuzz time (default 60).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -16,12 +16,12 @@ ctest --preset release -j "$jobs"
 echo "== clang-format and clang-tidy"
 bash tools/lint.sh build/release
 
-echo "== fuzz the reader for ${MOSB_FUZZ_SECONDS:-60}s"
-cmake --preset fuzz >/dev/null
-cmake --build --preset fuzz -j "$jobs"
-bash tests/fuzz/run.sh "${MOSB_FUZZ_SECONDS:-60}"
-
-echo "== AddressSanitizer + UndefinedBehaviorSanitizer build and tests"
+echo "== AddressSanitizer + UndefinedBehaviorSanitizer build (clang; tests and fuzz targets)"
 cmake --preset sanitize >/dev/null
 cmake --build --preset sanitize -j "$jobs"
+
+echo "== fuzz the reader for ${MOSB_FUZZ_SECONDS:-60}s"
+bash tests/fuzz/run.sh "${MOSB_FUZZ_SECONDS:-60}" build/sanitize
+
+echo "== AddressSanitizer + UndefinedBehaviorSanitizer tests"
 ctest --preset sanitize -j "$jobs"

@@ -57,7 +57,12 @@ class Base(CliTest):
         self.assertIsNotNone(match, names[0])
         self.assertEqual(match.group(1), "big.mosb")
         self.assertEqual(int(match.group(2)), process.pid)
-        time.sleep(0.1)  # inside the writing
+        # Inside the writing: its first bytes are in the temporary (they arrive 8 MiB at a time, a
+        # fixed pause is not enough under a sanitizer on a loaded machine).
+        temporary = self.path(names[0])
+        while (process.poll() is None and os.path.getsize(temporary) == 0
+               and time.monotonic() < deadline):
+            time.sleep(0.01)
         self.assertIsNone(process.poll(), "the generate finished before it could be interrupted")
         return process
 

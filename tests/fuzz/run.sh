@@ -1,11 +1,20 @@
 #!/usr/bin/env bash
 # Bounded fuzz runs: the binary reader for SECONDS (default 60), every text-parser target for a
 # third of that. Seeds: spec/golden for the reader, tests/fuzz/corpus/<target>/ for the others.
-# Needs the `fuzz` preset built: cmake --preset fuzz && cmake --build --preset fuzz
+# Usage: tests/fuzz/run.sh [SECONDS] [BUILD_DIR]. BUILD_DIR (default build/sanitize, the build CI
+# tests) needs its fuzz targets built: cmake --preset sanitize && cmake --build --preset fuzz
+# (or the whole `sanitize` build). Any build configured with MOSB_FUZZ=ON will do.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
 seconds="${1:-60}"
-bin="$root/build/fuzz/tests/fuzz"
+build="${2:-$root/build/sanitize}"
+bin="$build/tests/fuzz"
+if [[ ! -x "$bin/mosb_fuzz_reader" ]]; then
+  echo "tests/fuzz/run.sh: no fuzz targets in $bin; build them first:" \
+    "cmake --preset sanitize && cmake --build --preset fuzz" >&2
+  exit 1
+fi
+bin="$(cd "$bin" && pwd)"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 

@@ -148,7 +148,8 @@ TEST_CASE("dimacs: gzip, bzip2, xz and zstd inputs are detected by magic bytes")
   auto plain = convert(gr({dir / "plain.gr"}), dir / "plain.mosb");
   const std::vector<std::pair<std::string, std::string>> tools = {
       {"gzip", "gzip -c"}, {"bzip2", "bzip2 -c"}, {"xz", "xz -c"}, {"zstd", "zstd -q -c"}};
-  for (const auto& [tool, command] : tools) {
+  for (const auto& entry : tools) {
+    const auto &tool = entry.first, &command = entry.second;  // not a binding: see pack_test.cpp
     CAPTURE(tool);
     if (!have_command(tool)) {
       MESSAGE("skipped the " << tool << " variant: no '" << tool << "' command");

@@ -194,7 +194,8 @@ TEST_CASE("NetMaker correlations: about -0.44 on cycle arcs, about 0 on locality
   REQUIRE(cycle[0].size() == 10000);
   // The sample correlation of n pairs has sd ~ (1 - rho^2) / sqrt(n): 0.008 for the 10000 cycle
   // arcs, 0.0045 for the ~50000 locality arcs; the bounds are 5 sd.
-  for (auto [x, y] : {std::pair{0, 1}, std::pair{0, 2}, std::pair{1, 2}}) {
+  for (const auto& pair : {std::pair{0, 1}, std::pair{0, 2}, std::pair{1, 2}}) {
+    const int x = pair.first, y = pair.second;  // not a binding: see pack_test.cpp
     CAPTURE(x);
     CAPTURE(y);
     CHECK(std::abs(pearson(cycle[x], cycle[y]) - expected) < 0.04);

@@ -99,10 +99,14 @@ TEST_CASE("the packed golden files unpack to verified instances and pack back to
     PackOptions options;  // what packs it again: 1.1 files keep their reverse CSR
     std::uint16_t minor;
   };
-  for (const auto& [golden, options, minor] :
+  for (const auto& entry :
        {Golden{kPackedGolden / "valid" / "small.packed.mosb", keeping_reverse(), 1},
         Golden{kPackedGolden / "valid" / "grid.packed.mosb", keeping_reverse(), 1},
         Golden{kGolden / "1.2" / "packed" / "valid" / "grid.packed.mosb", {}, 2}}) {
+    // Not a structured binding: CAPTURE (a lambda) cannot name one in clang 14.
+    const auto& golden = entry.file;
+    const auto& options = entry.options;
+    const auto minor = entry.minor;
     CAPTURE(golden);
     const auto packed = GraphReader::open(golden);  // header, table and metadata, not the frames
     CHECK(packed.header().version_minor == minor);
