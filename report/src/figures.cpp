@@ -88,10 +88,9 @@ void add_front_paths(MapPlot& map, const GraphReader& instance, const SolutionRe
     throw Error(ErrorCode::invalid_argument,
                 name + ": the solver gave no paths (vertex sequences) to draw");
   if (solutions.status(query) != QueryStatus::solved)
-    throw Error(ErrorCode::invalid_argument,
-                name + ": query " + std::to_string(query) + " is " +
-                    std::string(to_string(solutions.status(query))) +
-                    ", not solved: no front to draw");
+    throw Error(ErrorCode::invalid_argument, name + ": query " + std::to_string(query) + " is " +
+                                                 std::string(to_string(solutions.status(query))) +
+                                                 ", not solved: no front to draw");
   const Grid grid = grid_of(instance);
   const std::uint64_t begin = solutions.front_begin(query);
   for (std::uint64_t row = begin; row < begin + solutions.front_size(query); ++row) {

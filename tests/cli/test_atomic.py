@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""End-to-end tests of how `mosb` writes files (lib/include/mosb/atomic_file.hpp): temporaries
+"""End-to-end tests of how `mosb` writes files (lib/core/include/mosb/atomic_file.hpp): temporaries
 removed on signals and write errors, stale temporaries of killed runs removed, modes, in-place
 rewrites, and outputs that are an input.
 

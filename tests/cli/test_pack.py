@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""End-to-end tests of `mosb pack` and `mosb unpack` (lib/include/mosb/pack.hpp, spec/FORMAT.md §6):
+"""End-to-end tests of `mosb pack` and `mosb unpack` (lib/pack/include/mosb/pack.hpp,
+spec/FORMAT.md §6):
 exact round trips over the golden valid files and every converter's output, deterministic bytes,
 packed files read by inspect and verify, and hostile packed files refused in one line.
 

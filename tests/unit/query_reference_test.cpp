@@ -226,8 +226,9 @@ TEST_CASE("solutions verify: a declared reference of any source is checked in it
   CHECK(*problem ==
         "query 1: [reference] the smallest distance c* = 130 does not match the published-optimum "
         "optimum L* = 12: c*/10 = 13 > L* + tau (spec/SOLUTIONS.md section 6)");
-  CHECK(*problem == "query 1: " + *reference_problem(130, 12, {"distance", "published-optimum",
-                                                               ReferenceUnits::octile}));
+  CHECK(*problem ==
+        "query 1: " +
+            *reference_problem(130, 12, {"distance", "published-optimum", ReferenceUnits::octile}));
   CHECK_FALSE(verify_front({6, 12, 0}, "octile", {120, 7.5}).has_value());
   // Units of the objective itself: the smallest distance must be the optimum.
   CHECK_FALSE(verify_front({60, 120, 0}, "objective", {120, 7.5}).has_value());

@@ -52,9 +52,9 @@ TEST_CASE("sections start 64-byte aligned and padding is zero") {
 }
 
 TEST_CASE("write_graph sorts arcs listed out of order into the CSR, with arrays of megabytes") {
-  // Every array of the build is past the size where it is mapped in huge pages (lib/src/
-  // large_array.hpp), and the transpose is built on its own thread: the result must not depend on
-  // either.
+  // Every array of the build is past the size where it is mapped in huge pages
+  // (lib/core/internal/mosb/internal/large_array.hpp), and the transpose is built on its own
+  // thread: the result must not depend on either.
   constexpr std::uint32_t n = 150'000;
   constexpr std::size_t m = 400'000;
   GraphInput in;

@@ -40,7 +40,7 @@ int run_guards(const GuardsArgs& a) {
   const auto result = converters::convert_guards(o);
   if (!a.write_exposure.empty())
     write_file_atomically(a.write_exposure,
-                                      converters::format_exposure(result.map, result.exposure));
+                          converters::format_exposure(result.map, result.exposure));
   write_graph(result.graph, a.output, progress.callback(), a.expect_digest);
   return report_written(a.output, a.json);
 }

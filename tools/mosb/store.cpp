@@ -1,4 +1,4 @@
-// `mosb store init|add|list|verify DIR`: the CLI of mosb::Store (lib/include/mosb/store.hpp).
+// `mosb store init|add|list|verify DIR`: the CLI of mosb::Store (lib/store/include/mosb/store.hpp).
 #include "mosb/store.hpp"
 
 #include <CLI/CLI.hpp>

@@ -56,7 +56,7 @@ std::optional<std::string> reference_problem(double c_star, double l_star,
 }
 
 std::optional<QueryReferenceDeclaration> declared_reference(const GraphReader& instance,
-                                                           const std::string& query_set) {
+                                                            const std::string& query_set) {
   if (!instance.query_reference(query_set)) return std::nullopt;
   const std::string key = "queries." + query_set + ".reference.";
   const auto& metadata = instance.metadata();

@@ -25,7 +25,7 @@ struct QueryReferenceDeclaration {
 };
 // nullopt when the query set carries no reference.
 std::optional<QueryReferenceDeclaration> declared_reference(const GraphReader& instance,
-                                                           const std::string& query_set);
+                                                            const std::string& query_set);
 
 // Whether the smallest value c* of the reference's objective in an exact front agrees with the
 // query's optimum L*. Octile: the bracket c*/10 <= L* + tau and L* <= (sqrt 2 / 1.4) c*/10 + tau,

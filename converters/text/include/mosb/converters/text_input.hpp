@@ -107,7 +107,7 @@ std::string benchmark_name_from(std::string base,
 std::uint64_t physical_memory_bytes();
 
 // Bytes per vertex that building an instance needs at its peak: forward and reverse offsets of
-// 8 bytes each and a fill cursor of 8 (lib/src/graph_builder.cpp).
+// 8 bytes each and a fill cursor of 8 (lib/core/src/graph_builder.cpp).
 inline constexpr std::uint64_t kBuildBytesPerVertex = 24;
 
 // A declared vertex count is untrusted: fails "FILE:LINE:COLUMN: the header declares N vertices:
