@@ -9,12 +9,13 @@
 #include "mosb/converters/text_input.hpp"
 #include "mosb/converters/text_scan.hpp"
 #include "mosb/error.hpp"
+#include "mosb/format.hpp"
 
 namespace mosb::converters {
 
 namespace {
 
-constexpr std::uint64_t kMaxCount = 0xFFFFFFFEULL;  // n and m are at most 2^32 - 2 (FORMAT.md §4)
+using format::kMaxCount;
 
 using namespace text;  // the shared primitives of text_scan.hpp
 

@@ -7,6 +7,7 @@
 #include "mosb/converters/text_input.hpp"
 #include "mosb/converters/text_scan.hpp"
 #include "mosb/error.hpp"
+#include "mosb/format.hpp"
 #include "octile_steps.hpp"
 
 namespace mosb::converters {
@@ -15,7 +16,7 @@ namespace {
 
 using namespace text;  // the shared primitives of text_scan.hpp
 
-constexpr std::uint64_t kMaxCells = 0xFFFFFFFEULL;  // vertex ids are u32 with one value to spare
+constexpr std::uint64_t kMaxCells = format::kMaxCount;  // a vertex per passable cell
 
 // 1 passable, 0 blocked, nullopt for a character the format does not define.
 std::optional<std::uint8_t> terrain(char c, const TerrainRules& rules) {

@@ -3,6 +3,7 @@
 #include "mosb/converters/text_input.hpp"
 #include "mosb/converters/text_scan.hpp"
 #include "mosb/error.hpp"
+#include "mosb/format.hpp"
 
 namespace mosb::converters {
 
@@ -179,7 +180,7 @@ std::vector<Query> parse_queries(text::LineScanner& lines, const std::string& di
                                  const QueryFileOptions& options) {
   if (options.id_base > 1) throw Error(display_name + ": id base must be 0 or 1");
   // Ids are u32 with one value to spare (spec/FORMAT.md §4).
-  if (options.vertex_count > 0xFFFFFFFEULL)
+  if (options.vertex_count > format::kMaxCount)
     throw Error(display_name + ": vertex count exceeds 2^32-2");
   QueryParser parser(display_name, options);
   std::vector<Query> out;

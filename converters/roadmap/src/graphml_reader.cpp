@@ -6,13 +6,14 @@
 #include <unordered_map>
 
 #include "mosb/error.hpp"
+#include "mosb/format.hpp"
 
 namespace mosb::converters {
 
 namespace {
 
 constexpr std::size_t kMaxDepth = 64;
-constexpr std::uint64_t kMaxCount = 0xFFFFFFFEULL;  // n at most 2^32 - 2 (FORMAT.md §4)
+using format::kMaxCount;
 
 // Text shown in a one-line message: control bytes as '?', long text cut.
 std::string shown(std::string_view s) {
