@@ -281,13 +281,9 @@ AtomicFile::Existing existing_for(const std::filesystem::path& in,
                                                      : AtomicFile::Existing::replace;
 }
 
-}  // namespace
-
-MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view display_name) {
-  const auto container = parse_container(bytes, display_name, format::FileKind::instance);
-  auto sections = container.sections;
-  // The canonical layout, the bomb bound and the shapes the derived sections need, before any
-  // allocation.
+// The canonical layout, the bomb bound and the shapes the derived sections need, before any
+// allocation: every section gets its decoded offset. Returns the end of the last one.
+std::uint64_t lay_out_decoded(std::vector<Section>& sections, std::string_view display_name) {
   std::uint64_t position = format::kHeaderSize;
   for (auto& s : sections) {
     if (is_encoded(s) && !is_derived(s) && s.decoded_length / kMaxZstdRatio > s.entry.stored_length)
@@ -300,6 +296,78 @@ MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view displ
     if (__builtin_add_overflow(position, s.decoded_length, &position))
       throw Error(ErrorCode::damaged, std::string(display_name) + ": decoded size overflows");
   }
+  return position;
+}
+
+// A decoded section's bytes must match its checksum; then its entry says raw.
+void check_and_mark_raw(Section& s, const std::byte* out, std::string_view display_name) {
+  const std::uint64_t computed = XXH3_64bits(out + s.entry.offset, s.decoded_length);
+  if (computed != s.entry.checksum)
+    throw Error(ErrorCode::damaged, std::string(display_name) + ": section '" + s.name +
+                                        "': checksum mismatch (stored " + hex64(s.entry.checksum) +
+                                        ", computed " + hex64(computed) + ")");
+  s.entry.encoding = static_cast<std::uint8_t>(format::Encoding::raw);
+  s.entry.stored_length = s.decoded_length;
+}
+
+// Every section but the derived ones, decoded (or copied) into place and checked.
+void decode_stored(std::vector<Section>& sections, std::byte* out, std::byte* scratch,
+                   std::string_view display_name) {
+  ZSTD_DCtx* context = ZSTD_createDCtx();
+  if (!context) throw Error(ErrorCode::io, std::string(display_name) + ": out of memory");
+  try {
+    for (auto& s : sections) {
+      if (is_derived(s)) continue;  // once the forward CSR is decoded and checked
+      std::byte* target = out + s.entry.offset;
+      if (is_encoded(s))
+        decode_frame(s, target, context, display_name, scratch);
+      else if (!s.stored.empty())
+        std::memcpy(target, s.stored.data(), s.stored.size());
+      check_and_mark_raw(s, out, display_name);
+    }
+  } catch (...) {
+    ZSTD_freeDCtx(context);
+    throw;
+  }
+  ZSTD_freeDCtx(context);
+}
+
+// The derived sections, transposed from the decoded forward CSR straight into place, then checked.
+void derive_reverse(std::vector<Section>& sections, const TransposePlan& derived, std::byte* out,
+                    std::string_view display_name) {
+  auto at = [&](std::size_t i) { return out + sections[i].entry.offset; };
+  // A reverse section that is stored, not derived, is computed aside and left as decoded.
+  const std::uint64_t n1 = sections[derived.reverse_offsets].decoded_length / 8;
+  const std::uint64_t m = sections[derived.reverse_sources].decoded_length / 4;
+  std::vector<std::uint64_t> aside_offsets;
+  std::vector<std::uint32_t> aside_sources, aside_arcs;
+  auto place = [&](std::size_t i, auto& aside, std::uint64_t count) {
+    using T = typename std::remove_reference_t<decltype(aside)>::value_type;
+    if (is_derived(sections[i])) return reinterpret_cast<T*>(at(i));
+    aside.resize(count);
+    return aside.data();
+  };
+  const auto& fo = sections[derived.forward_offsets];
+  const auto& ft = sections[derived.forward_targets];
+  if (!derive_transpose(as_elements<std::uint64_t>(at(derived.forward_offsets), fo.decoded_length),
+                        as_elements<std::uint32_t>(at(derived.forward_targets), ft.decoded_length),
+                        place(derived.reverse_offsets, aside_offsets, n1),
+                        place(derived.reverse_sources, aside_sources, m),
+                        place(derived.reverse_arcs, aside_arcs, m)))
+    throw Error(ErrorCode::damaged,
+                std::string(display_name) +
+                    ": the reverse CSR cannot be derived (transpose encoding): the forward CSR "
+                    "is not one (offsets from 0 to m, never decreasing, every target below n)");
+  for (auto& s : sections)
+    if (is_derived(s)) check_and_mark_raw(s, out, display_name);
+}
+
+}  // namespace
+
+MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view display_name) {
+  const auto container = parse_container(bytes, display_name, format::FileKind::instance);
+  auto sections = container.sections;
+  const std::uint64_t position = lay_out_decoded(sections, display_name);
   const auto derived = transpose_plan(sections, display_name);
   auto header = container.header;
   header.table_offset = format::align_up(position);
@@ -315,62 +383,8 @@ MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view displ
       scratch_size = std::max(scratch_size, s.decoded_length);
   auto image = allocate_image(header.file_size, scratch_size, display_name);
   auto* out = const_cast<std::byte*>(image.bytes.data());
-  ZSTD_DCtx* context = ZSTD_createDCtx();
-  if (!context) throw Error(ErrorCode::io, std::string(display_name) + ": out of memory");
-  std::byte* const scratch = out + format::align_up(header.file_size);
-  auto check_and_mark_raw = [&](Section& s) {
-    const std::uint64_t computed = XXH3_64bits(out + s.entry.offset, s.decoded_length);
-    if (computed != s.entry.checksum)
-      throw Error(ErrorCode::damaged, std::string(display_name) + ": section '" + s.name +
-                                          "': checksum mismatch (stored " +
-                                          hex64(s.entry.checksum) + ", computed " +
-                                          hex64(computed) + ")");
-    s.entry.encoding = static_cast<std::uint8_t>(format::Encoding::raw);
-    s.entry.stored_length = s.decoded_length;
-  };
-  try {
-    for (auto& s : sections) {
-      if (is_derived(s)) continue;  // once the forward CSR is decoded and checked
-      std::byte* target = out + s.entry.offset;
-      if (is_encoded(s))
-        decode_frame(s, target, context, display_name, scratch);
-      else if (!s.stored.empty())
-        std::memcpy(target, s.stored.data(), s.stored.size());
-      check_and_mark_raw(s);
-    }
-  } catch (...) {
-    ZSTD_freeDCtx(context);
-    throw;
-  }
-  ZSTD_freeDCtx(context);
-  if (derived) {
-    auto at = [&](std::size_t i) { return out + sections[i].entry.offset; };
-    // A reverse section that is stored, not derived, is computed aside and left as decoded.
-    const std::uint64_t n1 = sections[derived->reverse_offsets].decoded_length / 8;
-    const std::uint64_t m = sections[derived->reverse_sources].decoded_length / 4;
-    std::vector<std::uint64_t> aside_offsets;
-    std::vector<std::uint32_t> aside_sources, aside_arcs;
-    auto place = [&](std::size_t i, auto& aside, std::uint64_t count) {
-      using T = typename std::remove_reference_t<decltype(aside)>::value_type;
-      if (is_derived(sections[i])) return reinterpret_cast<T*>(at(i));
-      aside.resize(count);
-      return aside.data();
-    };
-    const auto& fo = sections[derived->forward_offsets];
-    const auto& ft = sections[derived->forward_targets];
-    if (!derive_transpose(
-            as_elements<std::uint64_t>(at(derived->forward_offsets), fo.decoded_length),
-            as_elements<std::uint32_t>(at(derived->forward_targets), ft.decoded_length),
-            place(derived->reverse_offsets, aside_offsets, n1),
-            place(derived->reverse_sources, aside_sources, m),
-            place(derived->reverse_arcs, aside_arcs, m)))
-      throw Error(ErrorCode::damaged,
-                  std::string(display_name) +
-                      ": the reverse CSR cannot be derived (transpose encoding): the forward CSR "
-                      "is not one (offsets from 0 to m, never decreasing, every target below n)");
-    for (auto& s : sections)
-      if (is_derived(s)) check_and_mark_raw(s);
-  }
+  decode_stored(sections, out, out + format::align_up(header.file_size), display_name);
+  if (derived) derive_reverse(sections, *derived, out, display_name);
 
   const auto table = table_of(sections);
   std::memcpy(out + header.table_offset, table.data(), table.size() * sizeof table[0]);
@@ -449,7 +463,8 @@ std::vector<bool> derived_sections(const std::vector<Section>& sections) {
 // One section as one frame under the encoding that gives the fewest bytes (ties: the lower
 // encoding), kept only when it is smaller than the elements. The metadata stays raw: a few
 // hundred bytes that keep a packed file self-describing (inspect reads the benchmark name and
-// views without decoding anything). Leaves frame empty and encoding raw when nothing is kept.
+// views without decoding anything). Leaves `kept` empty and `encoding_kept` raw when nothing is
+// kept.
 void encode_section(const Section& s, bool derived, int level, const std::string& name,
                     std::vector<std::byte>& kept, Encoding& encoding_kept) {
   if (derived) {
