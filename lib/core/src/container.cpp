@@ -89,19 +89,10 @@ MappedFile map_file(const std::filesystem::path& path) {
   return file;
 }
 
-Container parse_container(std::span<const std::byte> bytes, std::string_view display_name,
-                          format::FileKind kind) {
-  using format::ElementType;
-  const Failure fail{display_name};
-  Container result;
-  auto& header = result.header;
-  auto& sections = result.sections;
-  if (bytes.size() < format::kHeaderSize)
-    fail(ErrorCode::not_mosb, "not a mosb file: " + std::to_string(bytes.size()) +
-                                  " bytes is shorter than the 128-byte header");
-  std::memcpy(&header, bytes.data(), sizeof header);
+namespace {
 
-  // 1. Identity.
+// §9 step 1: the magic and byte-order mark, naming the usual ways a transfer damages them.
+void check_identity(const format::FileHeader& header, const Failure& fail) {
   const auto& magic = header.magic;
   if (!std::equal(magic.begin(), magic.end(), format::kMagic.begin())) {
     if (std::equal(magic.begin(), magic.end(), format::kMagic.rbegin()))
@@ -121,7 +112,11 @@ Container parse_container(std::span<const std::byte> bytes, std::string_view dis
   }
   if (header.byte_order_mark != format::kByteOrderMark)
     fail("byte-swapped mosb file (byte-order mark reads " + hex64(header.byte_order_mark) + ")");
-  // 2. Version and kind.
+}
+
+// §9 step 2: a format this reader reads, a 128-byte header, the kind the caller asked for.
+void check_version_and_kind(const format::FileHeader& header, format::FileKind kind,
+                            const Failure& fail) {
   if (header.version_major != format::kVersionMajor)
     fail(ErrorCode::version,
          "prepared with format " + version_text(header.version_major, header.version_minor) +
@@ -138,140 +133,195 @@ Container parse_container(std::span<const std::byte> bytes, std::string_view dis
              std::string(format::to_string(kind)) + " (" +
              std::to_string(static_cast<std::uint32_t>(kind)) + ")");
   }
-  // 3. Truncation.
-  if (header.file_size != bytes.size())
-    fail(header.file_size > bytes.size()
+}
+
+// §9 steps 3 and 4: the file is as long as it says, and the table ends it. Returns the table's
+// size in bytes.
+std::uint64_t check_extent(const format::FileHeader& header, std::uint64_t file_bytes,
+                           const Failure& fail) {
+  if (header.file_size != file_bytes)
+    fail(header.file_size > file_bytes
              ? "truncated: header says " + std::to_string(header.file_size) + " bytes, file has " +
-                   std::to_string(bytes.size())
+                   std::to_string(file_bytes)
              : "extended: header says " + std::to_string(header.file_size) + " bytes, file has " +
-                   std::to_string(bytes.size()));
-  // 4. Table bounds.
+                   std::to_string(file_bytes));
   std::uint64_t table_bytes = 0;
   if (header.table_offset % format::kAlignment != 0 || header.table_offset < format::kHeaderSize)
     fail("section table offset " + std::to_string(header.table_offset) +
          " is not a 64-aligned offset after the header");
   if (mul_overflows(header.section_count, sizeof(format::SectionEntry), table_bytes) ||
-      header.table_offset > bytes.size() || table_bytes != bytes.size() - header.table_offset)
+      header.table_offset > file_bytes || table_bytes != file_bytes - header.table_offset)
     fail("section table (" + std::to_string(header.section_count) + " entries at offset " +
          std::to_string(header.table_offset) + ") does not end at the end of the file (" +
-         std::to_string(bytes.size()) + " bytes)");
-  // 5. Header checksum.
-  const std::byte* table = bytes.data() + header.table_offset;
-  {
-    XXH3_state_t* state = XXH3_createState();
-    XXH3_64bits_reset(state);
-    XXH3_64bits_update(state, bytes.data(), format::kHeaderChecksumOffset);
-    XXH3_64bits_update(state, table, table_bytes);
-    const std::uint64_t computed = XXH3_64bits_digest(state);
-    XXH3_freeState(state);
-    if (computed != header.header_checksum)
-      fail("header checksum mismatch (stored " + hex64(header.header_checksum) + ", computed " +
-           hex64(computed) + "): header or section table is damaged");
-  }
-  // 6. Features.
+         std::to_string(file_bytes) + " bytes)");
+  return table_bytes;
+}
+
+// §9 step 5: the checksum covers the header up to itself and the whole section table.
+void check_header_checksum(std::span<const std::byte> bytes, const format::FileHeader& header,
+                           const std::byte* table, std::uint64_t table_bytes, const Failure& fail) {
+  XXH3_state_t* state = XXH3_createState();
+  XXH3_64bits_reset(state);
+  XXH3_64bits_update(state, bytes.data(), format::kHeaderChecksumOffset);
+  XXH3_64bits_update(state, table, table_bytes);
+  const std::uint64_t computed = XXH3_64bits_digest(state);
+  XXH3_freeState(state);
+  if (computed != header.header_checksum)
+    fail("header checksum mismatch (stored " + hex64(header.header_checksum) + ", computed " +
+         hex64(computed) + "): header or section table is damaged");
+}
+
+// §9 step 6: a required feature this reader does not know is refused by its bit number.
+void check_known_features(const format::FileHeader& header, const Failure& fail) {
   if (std::uint64_t unknown = header.required_features & ~format::kKnownRequiredFeatures) {
     const int bit = std::countr_zero(unknown);
     fail(ErrorCode::version, "requires feature bit " + std::to_string(bit) +
                                  ", unknown to this reader (format " +
                                  version_text(format::kVersionMajor, format::kVersionMinor) + ")");
   }
+}
 
-  // 7. Entries.
-  sections.clear();
-  sections.reserve(header.section_count);
-  std::uint64_t used_features = 0;
-  for (std::uint32_t i = 0; i < header.section_count; ++i) {
-    Section s{};
-    std::memcpy(&s.entry, table + i * sizeof(format::SectionEntry), sizeof s.entry);
-    const auto& e = s.entry;
-    const std::string where = "section #" + std::to_string(i);
-    s.name = std::string(format::name_of(e));
-    for (std::size_t k = s.name.size(); k < format::kNameSize; ++k)
-      if (e.name[k] != '\0') fail(where + ": name has bytes after its NUL padding");
-    if (!format::is_valid_section_name(s.name))
-      fail(where + ": invalid name (" + std::string(format::kSectionNameRule) + ")");
-    const std::string label = "section '" + s.name + "'";
-    auto type = format::element_type_from(e.element_type);
-    if (!type) fail(label + ": unknown element type " + std::to_string(e.element_type));
-    s.type = *type;
-    s.kind = format::section_kind_from(e.kind);
-    if (e.row_width == 0) fail(label + ": row width 0");
-    std::uint64_t elements = 0;
-    if (mul_overflows(e.row_count, e.row_width, elements) ||
-        mul_overflows(elements, format::element_size(s.type), s.decoded_length))
-      fail(label + ": size overflows");
-    if (e.encoding == static_cast<std::uint8_t>(format::Encoding::raw)) {
-      if (e.stored_length != s.decoded_length)
-        fail(label + ": stored length " + std::to_string(e.stored_length) + " differs from " +
-             std::to_string(s.decoded_length) + " bytes of elements");
-    } else if (e.encoding <= format::kLastEncoding) {
-      const auto encoding = static_cast<format::Encoding>(e.encoding);
-      const std::uint64_t bit = format::feature_of(encoding);
-      if (!(header.required_features & bit))
-        fail(label + ": " + std::string(format::to_string(encoding)) + "-encoded (encoding " +
-             std::to_string(e.encoding) + ") but the header lacks the " +
-             kFeatureNames[std::countr_zero(bit)] + " feature (bit " +
-             std::to_string(std::countr_zero(bit)) + ")");
-      if (encoding == format::Encoding::transpose) {
-        // Derived at decoding from the forward CSR (§6), so only the reverse CSR may be.
-        const bool reverse = s.kind == format::SectionKind::reverse_offsets ||
-                             s.kind == format::SectionKind::reverse_sources ||
-                             s.kind == format::SectionKind::reverse_arcs;
-        if (!reverse || kind != format::FileKind::instance)
-          fail(label + ": transpose encoding of a section that is not part of the reverse CSR");
-        if (e.stored_length != 0)
-          fail(label + ": transpose-encoded with stored length " + std::to_string(e.stored_length) +
-               ", not 0");
-      } else if (e.stored_length == 0) {
-        fail(label + ": zstd-encoded with stored length 0");
-      }
-      if (encoding == format::Encoding::delta_zstd && format::is_float(s.type))
-        fail(label + ": delta encoding of a float column");
-      used_features |= bit;
-    } else {
-      fail(label + ": unknown encoding " + std::to_string(e.encoding));
-    }
-    if (e.offset % format::kAlignment != 0)
-      fail(label + ": offset " + std::to_string(e.offset) + " is not 64-byte aligned");
-    if (e.offset < format::kHeaderSize || e.offset > header.table_offset ||
-        e.stored_length > header.table_offset - e.offset)
-      fail(label + ": bytes " + std::to_string(e.offset) + "+" + std::to_string(e.stored_length) +
-           " lie outside the data area [128, " + std::to_string(header.table_offset) + ")");
-    s.stored = bytes.subspan(e.offset, e.stored_length);
-    sections.push_back(std::move(s));
+// §9 step 7, an entry's encoding: declared by its feature bit and consistent with its stored
+// length. Returns the feature bit the entry uses (0 for raw).
+std::uint64_t check_encoding(const Section& s, const format::FileHeader& header,
+                             format::FileKind kind, const std::string& label, const Failure& fail) {
+  const auto& e = s.entry;
+  if (e.encoding == static_cast<std::uint8_t>(format::Encoding::raw)) {
+    if (e.stored_length != s.decoded_length)
+      fail(label + ": stored length " + std::to_string(e.stored_length) + " differs from " +
+           std::to_string(s.decoded_length) + " bytes of elements");
+    return 0;
   }
+  if (e.encoding > format::kLastEncoding)
+    fail(label + ": unknown encoding " + std::to_string(e.encoding));
+  const auto encoding = static_cast<format::Encoding>(e.encoding);
+  const std::uint64_t bit = format::feature_of(encoding);
+  if (!(header.required_features & bit))
+    fail(label + ": " + std::string(format::to_string(encoding)) + "-encoded (encoding " +
+         std::to_string(e.encoding) + ") but the header lacks the " +
+         kFeatureNames[std::countr_zero(bit)] + " feature (bit " +
+         std::to_string(std::countr_zero(bit)) + ")");
+  if (encoding == format::Encoding::transpose) {
+    // Derived at decoding from the forward CSR (§6), so only the reverse CSR may be.
+    const bool reverse = s.kind == format::SectionKind::reverse_offsets ||
+                         s.kind == format::SectionKind::reverse_sources ||
+                         s.kind == format::SectionKind::reverse_arcs;
+    if (!reverse || kind != format::FileKind::instance)
+      fail(label + ": transpose encoding of a section that is not part of the reverse CSR");
+    if (e.stored_length != 0)
+      fail(label + ": transpose-encoded with stored length " + std::to_string(e.stored_length) +
+           ", not 0");
+  } else if (e.stored_length == 0) {
+    fail(label + ": zstd-encoded with stored length 0");
+  }
+  if (encoding == format::Encoding::delta_zstd && format::is_float(s.type))
+    fail(label + ": delta encoding of a float column");
+  return bit;
+}
+
+// §9 step 7: one table entry, checked and resolved into a Section. Adds the feature bit its
+// encoding uses to used_features.
+Section read_entry(std::span<const std::byte> bytes, const format::FileHeader& header,
+                   const std::byte* table, std::uint32_t i, format::FileKind kind,
+                   std::uint64_t& used_features, const Failure& fail) {
+  Section s{};
+  std::memcpy(&s.entry, table + i * sizeof(format::SectionEntry), sizeof s.entry);
+  const auto& e = s.entry;
+  const std::string where = "section #" + std::to_string(i);
+  s.name = std::string(format::name_of(e));
+  for (std::size_t k = s.name.size(); k < format::kNameSize; ++k)
+    if (e.name[k] != '\0') fail(where + ": name has bytes after its NUL padding");
+  if (!format::is_valid_section_name(s.name))
+    fail(where + ": invalid name (" + std::string(format::kSectionNameRule) + ")");
+  const std::string label = "section '" + s.name + "'";
+  auto type = format::element_type_from(e.element_type);
+  if (!type) fail(label + ": unknown element type " + std::to_string(e.element_type));
+  s.type = *type;
+  s.kind = format::section_kind_from(e.kind);
+  if (e.row_width == 0) fail(label + ": row width 0");
+  std::uint64_t elements = 0;
+  if (mul_overflows(e.row_count, e.row_width, elements) ||
+      mul_overflows(elements, format::element_size(s.type), s.decoded_length))
+    fail(label + ": size overflows");
+  used_features |= check_encoding(s, header, kind, label, fail);
+  if (e.offset % format::kAlignment != 0)
+    fail(label + ": offset " + std::to_string(e.offset) + " is not 64-byte aligned");
+  if (e.offset < format::kHeaderSize || e.offset > header.table_offset ||
+      e.stored_length > header.table_offset - e.offset)
+    fail(label + ": bytes " + std::to_string(e.offset) + "+" + std::to_string(e.stored_length) +
+         " lie outside the data area [128, " + std::to_string(header.table_offset) + ")");
+  s.stored = bytes.subspan(e.offset, e.stored_length);
+  return s;
+}
+
+// §9 step 6, the other direction: every declared feature is used by some section.
+void check_features_used(const format::FileHeader& header, std::uint64_t used_features,
+                         const Failure& fail) {
   if (std::uint64_t unused = header.required_features & ~used_features) {
     const int bit = std::countr_zero(unused);
     fail("header declares " + std::string(kFeatureNames[bit]) + " but no section is " +
          std::string(format::to_string(static_cast<format::Encoding>(bit + 1))) + "-encoded");
   }
-  {
-    std::vector<const Section*> by_offset;
-    for (const auto& s : sections)
-      if (s.entry.stored_length > 0) by_offset.push_back(&s);
-    std::sort(by_offset.begin(), by_offset.end(),
-              [](auto* a, auto* b) { return a->entry.offset < b->entry.offset; });
-    for (std::size_t i = 1; i < by_offset.size(); ++i) {
-      const auto& prev = by_offset[i - 1]->entry;
-      if (prev.offset + prev.stored_length > by_offset[i]->entry.offset)
-        fail("sections '" + by_offset[i - 1]->name + "' and '" + by_offset[i]->name + "' overlap");
-    }
-  }
+}
 
-  // Names are unique within a kind (§4), known or not: one hash set keeps open O(section_count).
-  {
-    std::unordered_set<std::string> seen;
-    seen.reserve(sections.size());
-    for (const auto& s : sections) {
-      std::string key(reinterpret_cast<const char*>(&s.entry.kind), sizeof s.entry.kind);
-      key += s.name;
-      if (!seen.insert(std::move(key)).second)
-        fail("section '" + s.name + "': a second " +
-             (s.kind ? std::string(format::to_string(*s.kind))
-                     : "kind " + std::to_string(s.entry.kind)) +
-             " section of that name");
-    }
+// §9 step 7: no two payloads overlap; sorting by offset makes it one pass over neighbours.
+void check_no_overlap(const std::vector<Section>& sections, const Failure& fail) {
+  std::vector<const Section*> by_offset;
+  for (const auto& s : sections)
+    if (s.entry.stored_length > 0) by_offset.push_back(&s);
+  std::sort(by_offset.begin(), by_offset.end(),
+            [](auto* a, auto* b) { return a->entry.offset < b->entry.offset; });
+  for (std::size_t i = 1; i < by_offset.size(); ++i) {
+    const auto& prev = by_offset[i - 1]->entry;
+    if (prev.offset + prev.stored_length > by_offset[i]->entry.offset)
+      fail("sections '" + by_offset[i - 1]->name + "' and '" + by_offset[i]->name + "' overlap");
   }
+}
+
+// Names are unique within a kind (§4), known or not: one hash set keeps open O(section_count).
+void check_unique_names(const std::vector<Section>& sections, const Failure& fail) {
+  std::unordered_set<std::string> seen;
+  seen.reserve(sections.size());
+  for (const auto& s : sections) {
+    std::string key(reinterpret_cast<const char*>(&s.entry.kind), sizeof s.entry.kind);
+    key += s.name;
+    if (!seen.insert(std::move(key)).second)
+      fail("section '" + s.name + "': a second " +
+           (s.kind ? std::string(format::to_string(*s.kind))
+                   : "kind " + std::to_string(s.entry.kind)) +
+           " section of that name");
+  }
+}
+
+}  // namespace
+
+// The open checks of spec/FORMAT.md §9, steps 1 to 7 and the name rule of step 8, in that order.
+Container parse_container(std::span<const std::byte> bytes, std::string_view display_name,
+                          format::FileKind kind) {
+  const Failure fail{display_name};
+  Container result;
+  auto& header = result.header;
+  auto& sections = result.sections;
+  if (bytes.size() < format::kHeaderSize)
+    fail(ErrorCode::not_mosb, "not a mosb file: " + std::to_string(bytes.size()) +
+                                  " bytes is shorter than the 128-byte header");
+  std::memcpy(&header, bytes.data(), sizeof header);
+
+  check_identity(header, fail);
+  check_version_and_kind(header, kind, fail);
+  const std::uint64_t table_bytes = check_extent(header, bytes.size(), fail);
+  const std::byte* table = bytes.data() + header.table_offset;
+  check_header_checksum(bytes, header, table, table_bytes, fail);
+  check_known_features(header, fail);
+
+  sections.clear();
+  sections.reserve(header.section_count);
+  std::uint64_t used_features = 0;
+  for (std::uint32_t i = 0; i < header.section_count; ++i)
+    sections.push_back(read_entry(bytes, header, table, i, kind, used_features, fail));
+  check_features_used(header, used_features, fail);
+  check_no_overlap(sections, fail);
+  check_unique_names(sections, fail);
   return result;
 }
 

@@ -358,61 +358,68 @@ void write_graph(const GraphInput& in, const std::filesystem::path& path, const 
   report(progress, "write", section_total, section_total);
 }
 
-void write_graph(const StreamedGraph& in, const std::filesystem::path& path,
-                 const Progress& progress, std::string_view expect_digest) {
-  const std::uint64_t n = in.vertex_count;
-  const std::uint64_t m = in.arc_count;
-  check_counts(n, m);
+namespace {
+
+// The streamed instance's declared counts and in-memory columns, checked before any pass.
+void check_streamed_input(const StreamedGraph& in) {
+  check_counts(in.vertex_count, in.arc_count);
   check_unique_names("objective", in.costs);
   check_unique_names("vertex data", in.vertex_data);
   check_unique_names("arc data", in.arc_data);
   check_unique_names("query set", in.queries);
-  for (const auto& d : in.vertex_data) check_rows(d, n, "vertex");
-  for (const auto& d : in.arc_data) check_rows(d, m, "arc");
-  check_queries(in.queries, n);
-  const Metadata metadata = stored_metadata(in.metadata, in.costs, in.queries);
-  PassCounter counter(progress, m * (4 + 2 * in.costs.size()));
+  for (const auto& d : in.vertex_data) check_rows(d, in.vertex_count, "vertex");
+  for (const auto& d : in.arc_data) check_rows(d, in.arc_count, "arc");
+  check_queries(in.queries, in.vertex_count);
+}
 
-  // Every pass sees the same arcs: the first checks them, the others rely on that.
-  FileWriter writer(path);
-  writer.expect_digest(expect_digest);
-  add_metadata_section(writer, metadata);
-  {
-    writer.begin_section(SectionKind::forward_offsets, "forward_offsets", ElementType::u64, 1);
-    ChunkedAppender<std::uint64_t> out(writer);
-    std::uint64_t arcs = 0, emitted = 0;  // offsets[v] = arcs with a tail below v
-    in.replay_arcs([&](std::uint32_t tail, std::uint32_t head) {
-      if (tail >= n || head >= n)
-        throw Error("arc " + std::to_string(arcs) + " (" + std::to_string(tail) + " -> " +
-                    std::to_string(head) + ") has an endpoint not below the vertex count " +
-                    std::to_string(n));
-      if (tail + std::uint64_t{1} < emitted)
-        throw Error("internal error: streamed arc " + std::to_string(arcs) + " breaks tail order");
-      if (arcs == m)
-        throw Error("internal error: more streamed arcs than the " + std::to_string(m) +
-                    " declared");
-      for (; emitted <= tail; ++emitted) out.push(arcs);
-      ++arcs;
-      counter.tick();
-    });
-    if (arcs != m)
-      throw Error("internal error: " + std::to_string(arcs) + " streamed arcs, " +
-                  std::to_string(m) + " declared");
-    for (; emitted <= n; ++emitted) out.push(arcs);
-    out.flush();
-    writer.end_section();
-  }
-  {
-    writer.begin_section(SectionKind::forward_targets, "forward_targets", ElementType::u32, 1);
-    ChunkedAppender<std::uint32_t> out(writer);
-    in.replay_arcs([&](std::uint32_t, std::uint32_t head) {
-      out.push(head);
-      counter.tick();
-    });
-    out.flush();
-    writer.end_section();
-  }
-  // The transpose, as write_graph builds it: forward arcs in id order keep each in-list ascending.
+// Pass 1: the forward offsets, counted from the tails. It is also the pass that checks the arcs
+// (endpoints, tail order, count); the later passes rely on it.
+void write_streamed_forward_offsets(FileWriter& writer, const StreamedGraph& in,
+                                    PassCounter& counter) {
+  const std::uint64_t n = in.vertex_count;
+  const std::uint64_t m = in.arc_count;
+  writer.begin_section(SectionKind::forward_offsets, "forward_offsets", ElementType::u64, 1);
+  ChunkedAppender<std::uint64_t> out(writer);
+  std::uint64_t arcs = 0, emitted = 0;  // offsets[v] = arcs with a tail below v
+  in.replay_arcs([&](std::uint32_t tail, std::uint32_t head) {
+    if (tail >= n || head >= n)
+      throw Error("arc " + std::to_string(arcs) + " (" + std::to_string(tail) + " -> " +
+                  std::to_string(head) + ") has an endpoint not below the vertex count " +
+                  std::to_string(n));
+    if (tail + std::uint64_t{1} < emitted)
+      throw Error("internal error: streamed arc " + std::to_string(arcs) + " breaks tail order");
+    if (arcs == m)
+      throw Error("internal error: more streamed arcs than the " + std::to_string(m) + " declared");
+    for (; emitted <= tail; ++emitted) out.push(arcs);
+    ++arcs;
+    counter.tick();
+  });
+  if (arcs != m)
+    throw Error("internal error: " + std::to_string(arcs) + " streamed arcs, " + std::to_string(m) +
+                " declared");
+  for (; emitted <= n; ++emitted) out.push(arcs);
+  out.flush();
+  writer.end_section();
+}
+
+// Pass 2: the forward targets, the heads in arc order.
+void write_streamed_forward_targets(FileWriter& writer, const StreamedGraph& in,
+                                    PassCounter& counter) {
+  writer.begin_section(SectionKind::forward_targets, "forward_targets", ElementType::u32, 1);
+  ChunkedAppender<std::uint32_t> out(writer);
+  in.replay_arcs([&](std::uint32_t, std::uint32_t head) {
+    out.push(head);
+    counter.tick();
+  });
+  out.flush();
+  writer.end_section();
+}
+
+// Passes 3 and 4: the transpose, as write_graph builds it: forward arcs in id order keep each
+// in-list ascending. The only arrays held in memory: 8 (n + 1) + 8 m bytes.
+void write_streamed_transpose(FileWriter& writer, const StreamedGraph& in, PassCounter& counter) {
+  const std::uint64_t n = in.vertex_count;
+  const std::uint64_t m = in.arc_count;
   LargeArray<std::uint64_t> reverse_offsets(n + 1, 0);
   in.replay_arcs([&](std::uint32_t, std::uint32_t head) {
     ++reverse_offsets[head + 1];
@@ -421,21 +428,25 @@ void write_graph(const StreamedGraph& in, const std::filesystem::path& path,
   for (std::uint64_t v = 0; v < n; ++v) reverse_offsets[v + 1] += reverse_offsets[v];
   writer.add_section(SectionKind::reverse_offsets, "reverse_offsets", 1,
                      std::span<const std::uint64_t>(reverse_offsets));
-  {
-    LargeArray<std::uint32_t> reverse_sources(m), reverse_arcs(m);
-    auto& cursor = reverse_offsets;  // written already: reused as the next free slot per head
-    std::uint32_t arc = 0;
-    in.replay_arcs([&](std::uint32_t tail, std::uint32_t head) {
-      const auto slot = cursor[head]++;
-      reverse_sources[slot] = tail;
-      reverse_arcs[slot] = arc++;
-      counter.tick();
-    });
-    writer.add_section(SectionKind::reverse_sources, "reverse_sources", 1,
-                       std::span<const std::uint32_t>(reverse_sources));
-    writer.add_section(SectionKind::reverse_arcs, "reverse_arcs", 1,
-                       std::span<const std::uint32_t>(reverse_arcs));
-  }
+  LargeArray<std::uint32_t> reverse_sources(m), reverse_arcs(m);
+  auto& cursor = reverse_offsets;  // written already: reused as the next free slot per head
+  std::uint32_t arc = 0;
+  in.replay_arcs([&](std::uint32_t tail, std::uint32_t head) {
+    const auto slot = cursor[head]++;
+    reverse_sources[slot] = tail;
+    reverse_arcs[slot] = arc++;
+    counter.tick();
+  });
+  writer.add_section(SectionKind::reverse_sources, "reverse_sources", 1,
+                     std::span<const std::uint32_t>(reverse_sources));
+  writer.add_section(SectionKind::reverse_arcs, "reverse_arcs", 1,
+                     std::span<const std::uint32_t>(reverse_arcs));
+}
+
+// Two passes per objective: one finds the narrowest type that holds its largest cost, the other
+// writes the costs in it.
+void write_streamed_costs(FileWriter& writer, const StreamedGraph& in, PassCounter& counter) {
+  const std::uint64_t m = in.arc_count;
   for (const auto& costs : in.costs) {
     std::uint64_t max = 0, count = 0;
     costs.replay([&](std::uint64_t value) {
@@ -464,6 +475,26 @@ void write_graph(const StreamedGraph& in, const std::filesystem::path& path,
     }
     writer.end_section();
   }
+}
+
+}  // namespace
+
+void write_graph(const StreamedGraph& in, const std::filesystem::path& path,
+                 const Progress& progress, std::string_view expect_digest) {
+  const std::uint64_t n = in.vertex_count;
+  const std::uint64_t m = in.arc_count;
+  check_streamed_input(in);
+  const Metadata metadata = stored_metadata(in.metadata, in.costs, in.queries);
+  PassCounter counter(progress, m * (4 + 2 * in.costs.size()));
+
+  // Every pass sees the same arcs: the first checks them, the others rely on that.
+  FileWriter writer(path);
+  writer.expect_digest(expect_digest);
+  add_metadata_section(writer, metadata);
+  write_streamed_forward_offsets(writer, in, counter);
+  write_streamed_forward_targets(writer, in, counter);
+  write_streamed_transpose(writer, in, counter);
+  write_streamed_costs(writer, in, counter);
   for (const auto& d : in.arc_data) {  // already in arc order: the arcs come in tail order
     writer.begin_section(SectionKind::arc_data, d.name, d.type, d.width);
     writer.append(std::span(d.bytes));

@@ -342,6 +342,149 @@ std::vector<Problem> run_all(std::vector<Task>& tasks, unsigned threads, TaskPro
 // Below this size threads cost more than they save.
 constexpr std::uint64_t kParallelFrom = 1 << 20;
 
+// Packed sections cannot be checked in place: the first one found ends verification.
+Problem refuse_packed(const GraphReader& reader, bool checksums) {
+  for (const auto& s : reader.sections()) {
+    if (s.is_packed() && checksums)
+      return in_section(s, "checksum", "zstd-packed sections are verified after unpacking");
+    if (s.is_packed()) return in_section(s, "structure", "zstd-packed; unpack the file first");
+  }
+  return std::nullopt;
+}
+
+// One verification laid out as tasks. The tasks point into it (the CSR, the flags the forward
+// scans set), so it stays where verify made it; the index ranges say which results are which.
+struct Plan {
+  Plan() = default;
+  Plan(const Plan&) = delete;
+  Plan& operator=(const Plan&) = delete;
+
+  std::vector<Task> tasks;
+  std::optional<Csr> csr;
+  bool forward_offsets_ascend = true, targets_below_n = true;
+  std::size_t checksums_end = 0, transpose_first = 0, transpose_end = 0;
+};
+
+// Every section's checksum. Fused with structure, the forward CSR's two sections also run their
+// rule's scan on the bytes the checksum reads, so neither costs a pass of its own.
+void add_checksum_tasks(const GraphReader& reader, bool fused, std::uint64_t n, Plan& plan) {
+  auto& tasks = plan.tasks;
+  for (const auto& s : reader.sections()) {
+    if (fused && &s == plan.csr->forward_offsets)
+      tasks.push_back({s.stored.size(), [&s, &c = *plan.csr, &ok = plan.forward_offsets_ascend] {
+                         return check_checksum_and_rule(
+                             s, c.offsets, [](auto chunk) { return offsets_ascend(chunk); }, ok);
+                       }});
+    else if (fused && &s == plan.csr->forward_targets)
+      tasks.push_back({s.stored.size(), [&s, &c = *plan.csr, n, &ok = plan.targets_below_n] {
+                         return check_checksum_and_rule(
+                             s, c.targets, [n](auto chunk) { return ids_below(chunk, n); }, ok);
+                       }});
+    else
+      tasks.push_back({s.stored.size(), [&s] { return check_checksum(s); }});
+  }
+}
+
+// The transpose check, in blocks of about equal entry counts (found by bisecting the reverse
+// offsets, which need not be sorted yet: any answer gives valid blocks), several per thread so that
+// uneven cache behaviour evens out.
+void add_transpose_tasks(unsigned threads, std::uint64_t n, std::uint64_t m, Plan& plan) {
+  const Csr& c = *plan.csr;
+  const std::uint64_t blocks = threads == 1 ? 1 : 8 * threads;
+  auto first_vertex_past = [&c, n](std::uint64_t entries) {
+    std::uint64_t low = 0, high = n;
+    while (low < high) {
+      const std::uint64_t middle = low + (high - low) / 2;
+      if (c.roffsets[middle] <= entries)
+        low = middle + 1;
+      else
+        high = middle;
+    }
+    return low;
+  };
+  plan.transpose_first = plan.tasks.size();
+  std::uint64_t first = 0;
+  for (std::uint64_t b = 1; b <= blocks && first < n; ++b) {
+    std::uint64_t last = b == blocks ? n : first_vertex_past(m / blocks * b) - 1;
+    last = std::clamp(last, first + 1, n);
+    plan.tasks.push_back(
+        {m / blocks, [&c, first, last] { return check_transpose(c, first, last); }});
+    first = last;
+  }
+  plan.transpose_end = plan.tasks.size();
+}
+
+// The structural rules: the forward CSR's scans when no checksum carries them, the transpose,
+// then the value ranges, the metadata and the padding.
+void add_structure_tasks(const GraphReader& reader, bool fused, unsigned threads, Plan& plan) {
+  const std::uint64_t n = reader.vertex_count(), m = reader.arc_count();
+  auto& tasks = plan.tasks;
+  const Csr& c = *plan.csr;
+  if (!fused) {
+    tasks.push_back({8 * n, [&c, &ok = plan.forward_offsets_ascend] {
+                       ok = offsets_ascend(c.offsets);
+                       return Problem{};
+                     }});
+    tasks.push_back({4 * m, [&c, n, &ok = plan.targets_below_n] {
+                       ok = ids_below(c.targets, n);
+                       return Problem{};
+                     }});
+  }
+  add_transpose_tasks(threads, n, m, plan);
+  for (const auto* s : reader.all(SectionKind::cost)) {
+    if (s->type == ElementType::f32)
+      tasks.push_back({s->stored.size(), [&reader, s] {
+                         return check_float_values(*s, reader.values<float>(*s), "cost", "arc",
+                                                   "costs");
+                       }});
+    else if (s->type == ElementType::f64)
+      tasks.push_back({s->stored.size(), [&reader, s] {
+                         return check_float_values(*s, reader.values<double>(*s), "cost", "arc",
+                                                   "costs");
+                       }});
+  }
+  for (const auto* s : reader.all(SectionKind::queries))
+    tasks.push_back({s->stored.size(), [&reader, s, n] {
+                       return check_ids(*s, reader.values<std::uint32_t>(*s), n, "query-range",
+                                        "endpoint");
+                     }});
+  for (const auto* s : reader.all(SectionKind::query_reference))
+    tasks.push_back({s->stored.size(), [&reader, s] {
+                       return check_float_values(*s, reader.values<double>(*s), "reference",
+                                                 "query", "has");
+                     }});
+  tasks.push_back({0, [&reader] { return check_metadata(reader); }});
+  tasks.push_back({0, [&reader] { return check_padding(reader); }});
+}
+
+// The first problem in the fixed order: every checksum; the CSR rules of §9 (forward offsets,
+// reverse offsets, targets, reverse sources), whose message-naming scans run only now and only
+// for a rule found broken; the transpose; then the other structural rules.
+Problem first_problem(const Plan& plan, const std::vector<Problem>& results, std::uint64_t n) {
+  for (std::size_t i = 0; i < plan.checksums_end; ++i)
+    if (results[i]) return results[i];
+  if (plan.csr) {
+    const Csr& c = *plan.csr;
+    const bool transpose_broken =
+        std::any_of(results.begin() + plan.transpose_first, results.begin() + plan.transpose_end,
+                    [](const Problem& p) { return p.has_value(); });
+    if (!plan.forward_offsets_ascend)
+      if (auto p = check_offsets(*c.forward_offsets, c.offsets)) return p;
+    if (transpose_broken)
+      if (auto p = check_offsets(*c.reverse_offsets, c.roffsets)) return p;
+    if (!plan.targets_below_n)
+      if (auto p = check_ids(*c.forward_targets, c.targets, n, "target-range", "arc")) return p;
+    if (transpose_broken) {
+      if (auto p = check_ids(*c.reverse_sources, c.rsources, n, "source-range", "entry")) return p;
+      for (std::size_t i = plan.transpose_first; i < plan.transpose_end; ++i)
+        if (results[i]) return results[i];
+    }
+  }
+  for (std::size_t i = plan.transpose_end; i < results.size(); ++i)
+    if (results[i]) return results[i];
+  return std::nullopt;
+}
+
 }  // namespace
 
 std::optional<std::string> verify(const GraphReader& reader, VerifyLevel level,
@@ -350,132 +493,26 @@ std::optional<std::string> verify(const GraphReader& reader, VerifyLevel level,
   const bool checksums = level == VerifyLevel::checksums || level == VerifyLevel::full;
   const bool structure = level == VerifyLevel::structure || level == VerifyLevel::full;
   if (!checksums && !structure) return std::nullopt;
-  for (const auto& s : reader.sections()) {
-    if (s.is_packed() && checksums)
-      return in_section(s, "checksum", "zstd-packed sections are verified after unpacking");
-    if (s.is_packed()) return in_section(s, "structure", "zstd-packed; unpack the file first");
-  }
+  if (auto problem = refuse_packed(reader, checksums)) return problem;
   const unsigned threads =
       reader.bytes().size() < kParallelFrom ? 1 : std::max(1u, std::thread::hardware_concurrency());
 
-  // Every check runs at once, on all threads; problems are reported in a fixed order: every
-  // checksum; the CSR rules of §9 (forward offsets, reverse offsets, targets, reverse sources); the
-  // transpose; then the other structural rules. The CSR rules cost no pass of their own: the
-  // forward ones are checked with the forward sections' checksums (or alone, by a message-less
-  // scan, at level structure), the reverse ones by the transpose's blocks (check_transpose); the
-  // scans that name a broken rule run only when one was found.
-  std::vector<Task> tasks;
-  std::optional<Csr> csr;
-  if (structure) csr = csr_of(reader);
-  const std::uint64_t n = reader.vertex_count(), m = reader.arc_count();
+  // Every check runs at once, on all threads; first_problem then reports in a fixed order. The CSR
+  // rules cost no pass of their own: the forward ones are checked with the forward sections'
+  // checksums (or alone, by a message-less scan, at level structure), the reverse ones by the
+  // transpose's blocks (check_transpose).
+  Plan plan;
+  if (structure) plan.csr = csr_of(reader);
   const bool fused = checksums && structure;
-  bool forward_offsets_ascend = true, targets_below_n = true;
-  if (checksums)
-    for (const auto& s : reader.sections()) {
-      if (fused && &s == csr->forward_offsets)
-        tasks.push_back({s.stored.size(), [&s, &c = *csr, &forward_offsets_ascend] {
-                           return check_checksum_and_rule(
-                               s, c.offsets, [](auto chunk) { return offsets_ascend(chunk); },
-                               forward_offsets_ascend);
-                         }});
-      else if (fused && &s == csr->forward_targets)
-        tasks.push_back({s.stored.size(), [&s, &c = *csr, n, &targets_below_n] {
-                           return check_checksum_and_rule(
-                               s, c.targets, [n](auto chunk) { return ids_below(chunk, n); },
-                               targets_below_n);
-                         }});
-      else
-        tasks.push_back({s.stored.size(), [&s] { return check_checksum(s); }});
-    }
-  const std::size_t checksums_end = tasks.size();
-  std::size_t transpose_first = tasks.size(), transpose_end = tasks.size();
-  if (structure) {
-    const Csr& c = *csr;
-    if (!fused) {
-      tasks.push_back({8 * n, [&c, &forward_offsets_ascend] {
-                         forward_offsets_ascend = offsets_ascend(c.offsets);
-                         return Problem{};
-                       }});
-      tasks.push_back({4 * m, [&c, n, &targets_below_n] {
-                         targets_below_n = ids_below(c.targets, n);
-                         return Problem{};
-                       }});
-    }
-    // Blocks of about equal entry counts (found by bisecting the reverse offsets, which need not
-    // be sorted yet: any answer gives valid blocks), several per thread so that uneven cache
-    // behaviour evens out.
-    const std::uint64_t blocks = threads == 1 ? 1 : 8 * threads;
-    auto first_vertex_past = [&c, n](std::uint64_t entries) {
-      std::uint64_t low = 0, high = n;
-      while (low < high) {
-        const std::uint64_t middle = low + (high - low) / 2;
-        if (c.roffsets[middle] <= entries)
-          low = middle + 1;
-        else
-          high = middle;
-      }
-      return low;
-    };
-    transpose_first = tasks.size();
-    std::uint64_t first = 0;
-    for (std::uint64_t b = 1; b <= blocks && first < n; ++b) {
-      std::uint64_t last = b == blocks ? n : first_vertex_past(m / blocks * b) - 1;
-      last = std::clamp(last, first + 1, n);
-      tasks.push_back({m / blocks, [&c, first, last] { return check_transpose(c, first, last); }});
-      first = last;
-    }
-    transpose_end = tasks.size();
-    for (const auto* s : reader.all(SectionKind::cost)) {
-      if (s->type == ElementType::f32)
-        tasks.push_back({s->stored.size(), [&reader, s] {
-                           return check_float_values(*s, reader.values<float>(*s), "cost", "arc",
-                                                     "costs");
-                         }});
-      else if (s->type == ElementType::f64)
-        tasks.push_back({s->stored.size(), [&reader, s] {
-                           return check_float_values(*s, reader.values<double>(*s), "cost", "arc",
-                                                     "costs");
-                         }});
-    }
-    for (const auto* s : reader.all(SectionKind::queries))
-      tasks.push_back({s->stored.size(), [&reader, s, n] {
-                         return check_ids(*s, reader.values<std::uint32_t>(*s), n, "query-range",
-                                          "endpoint");
-                       }});
-    for (const auto* s : reader.all(SectionKind::query_reference))
-      tasks.push_back({s->stored.size(), [&reader, s] {
-                         return check_float_values(*s, reader.values<double>(*s), "reference",
-                                                   "query", "has");
-                       }});
-    tasks.push_back({0, [&reader] { return check_metadata(reader); }});
-    tasks.push_back({0, [&reader] { return check_padding(reader); }});
-  }
+  if (checksums) add_checksum_tasks(reader, fused, reader.vertex_count(), plan);
+  plan.checksums_end = plan.transpose_first = plan.transpose_end = plan.tasks.size();
+  if (structure) add_structure_tasks(reader, fused, threads, plan);
+
   std::uint64_t total = 0;
-  for (const auto& t : tasks) total += t.cost;
+  for (const auto& t : plan.tasks) total += t.cost;
   TaskProgress tracker(progress, total);
-  const auto results = run_all(tasks, threads, tracker);
-  for (std::size_t i = 0; i < checksums_end; ++i)
-    if (results[i]) return results[i];
-  if (structure) {
-    const Csr& c = *csr;
-    const bool transpose_broken =
-        std::any_of(results.begin() + transpose_first, results.begin() + transpose_end,
-                    [](const Problem& p) { return p.has_value(); });
-    if (!forward_offsets_ascend)
-      if (auto p = check_offsets(*c.forward_offsets, c.offsets)) return p;
-    if (transpose_broken)
-      if (auto p = check_offsets(*c.reverse_offsets, c.roffsets)) return p;
-    if (!targets_below_n)
-      if (auto p = check_ids(*c.forward_targets, c.targets, n, "target-range", "arc")) return p;
-    if (transpose_broken) {
-      if (auto p = check_ids(*c.reverse_sources, c.rsources, n, "source-range", "entry")) return p;
-      for (std::size_t i = transpose_first; i < transpose_end; ++i)
-        if (results[i]) return results[i];
-    }
-  }
-  for (std::size_t i = transpose_end; i < results.size(); ++i)
-    if (results[i]) return results[i];
-  return std::nullopt;
+  const auto results = run_all(plan.tasks, threads, tracker);
+  return first_problem(plan, results, reader.vertex_count());
 }
 
 // The opens that verify live here, not in graph_reader.cpp: verify reads a GraphReader, and the

@@ -281,13 +281,9 @@ AtomicFile::Existing existing_for(const std::filesystem::path& in,
                                                      : AtomicFile::Existing::replace;
 }
 
-}  // namespace
-
-MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view display_name) {
-  const auto container = parse_container(bytes, display_name, format::FileKind::instance);
-  auto sections = container.sections;
-  // The canonical layout, the bomb bound and the shapes the derived sections need, before any
-  // allocation.
+// The canonical layout, the bomb bound and the shapes the derived sections need, before any
+// allocation: every section gets its decoded offset. Returns the end of the last one.
+std::uint64_t lay_out_decoded(std::vector<Section>& sections, std::string_view display_name) {
   std::uint64_t position = format::kHeaderSize;
   for (auto& s : sections) {
     if (is_encoded(s) && !is_derived(s) && s.decoded_length / kMaxZstdRatio > s.entry.stored_length)
@@ -300,6 +296,78 @@ MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view displ
     if (__builtin_add_overflow(position, s.decoded_length, &position))
       throw Error(ErrorCode::damaged, std::string(display_name) + ": decoded size overflows");
   }
+  return position;
+}
+
+// A decoded section's bytes must match its checksum; then its entry says raw.
+void check_and_mark_raw(Section& s, const std::byte* out, std::string_view display_name) {
+  const std::uint64_t computed = XXH3_64bits(out + s.entry.offset, s.decoded_length);
+  if (computed != s.entry.checksum)
+    throw Error(ErrorCode::damaged, std::string(display_name) + ": section '" + s.name +
+                                        "': checksum mismatch (stored " + hex64(s.entry.checksum) +
+                                        ", computed " + hex64(computed) + ")");
+  s.entry.encoding = static_cast<std::uint8_t>(format::Encoding::raw);
+  s.entry.stored_length = s.decoded_length;
+}
+
+// Every section but the derived ones, decoded (or copied) into place and checked.
+void decode_stored(std::vector<Section>& sections, std::byte* out, std::byte* scratch,
+                   std::string_view display_name) {
+  ZSTD_DCtx* context = ZSTD_createDCtx();
+  if (!context) throw Error(ErrorCode::io, std::string(display_name) + ": out of memory");
+  try {
+    for (auto& s : sections) {
+      if (is_derived(s)) continue;  // once the forward CSR is decoded and checked
+      std::byte* target = out + s.entry.offset;
+      if (is_encoded(s))
+        decode_frame(s, target, context, display_name, scratch);
+      else if (!s.stored.empty())
+        std::memcpy(target, s.stored.data(), s.stored.size());
+      check_and_mark_raw(s, out, display_name);
+    }
+  } catch (...) {
+    ZSTD_freeDCtx(context);
+    throw;
+  }
+  ZSTD_freeDCtx(context);
+}
+
+// The derived sections, transposed from the decoded forward CSR straight into place, then checked.
+void derive_reverse(std::vector<Section>& sections, const TransposePlan& derived, std::byte* out,
+                    std::string_view display_name) {
+  auto at = [&](std::size_t i) { return out + sections[i].entry.offset; };
+  // A reverse section that is stored, not derived, is computed aside and left as decoded.
+  const std::uint64_t n1 = sections[derived.reverse_offsets].decoded_length / 8;
+  const std::uint64_t m = sections[derived.reverse_sources].decoded_length / 4;
+  std::vector<std::uint64_t> aside_offsets;
+  std::vector<std::uint32_t> aside_sources, aside_arcs;
+  auto place = [&](std::size_t i, auto& aside, std::uint64_t count) {
+    using T = typename std::remove_reference_t<decltype(aside)>::value_type;
+    if (is_derived(sections[i])) return reinterpret_cast<T*>(at(i));
+    aside.resize(count);
+    return aside.data();
+  };
+  const auto& fo = sections[derived.forward_offsets];
+  const auto& ft = sections[derived.forward_targets];
+  if (!derive_transpose(as_elements<std::uint64_t>(at(derived.forward_offsets), fo.decoded_length),
+                        as_elements<std::uint32_t>(at(derived.forward_targets), ft.decoded_length),
+                        place(derived.reverse_offsets, aside_offsets, n1),
+                        place(derived.reverse_sources, aside_sources, m),
+                        place(derived.reverse_arcs, aside_arcs, m)))
+    throw Error(ErrorCode::damaged,
+                std::string(display_name) +
+                    ": the reverse CSR cannot be derived (transpose encoding): the forward CSR "
+                    "is not one (offsets from 0 to m, never decreasing, every target below n)");
+  for (auto& s : sections)
+    if (is_derived(s)) check_and_mark_raw(s, out, display_name);
+}
+
+}  // namespace
+
+MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view display_name) {
+  const auto container = parse_container(bytes, display_name, format::FileKind::instance);
+  auto sections = container.sections;
+  const std::uint64_t position = lay_out_decoded(sections, display_name);
   const auto derived = transpose_plan(sections, display_name);
   auto header = container.header;
   header.table_offset = format::align_up(position);
@@ -315,62 +383,8 @@ MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view displ
       scratch_size = std::max(scratch_size, s.decoded_length);
   auto image = allocate_image(header.file_size, scratch_size, display_name);
   auto* out = const_cast<std::byte*>(image.bytes.data());
-  ZSTD_DCtx* context = ZSTD_createDCtx();
-  if (!context) throw Error(ErrorCode::io, std::string(display_name) + ": out of memory");
-  std::byte* const scratch = out + format::align_up(header.file_size);
-  auto check_and_mark_raw = [&](Section& s) {
-    const std::uint64_t computed = XXH3_64bits(out + s.entry.offset, s.decoded_length);
-    if (computed != s.entry.checksum)
-      throw Error(ErrorCode::damaged, std::string(display_name) + ": section '" + s.name +
-                                          "': checksum mismatch (stored " +
-                                          hex64(s.entry.checksum) + ", computed " +
-                                          hex64(computed) + ")");
-    s.entry.encoding = static_cast<std::uint8_t>(format::Encoding::raw);
-    s.entry.stored_length = s.decoded_length;
-  };
-  try {
-    for (auto& s : sections) {
-      if (is_derived(s)) continue;  // once the forward CSR is decoded and checked
-      std::byte* target = out + s.entry.offset;
-      if (is_encoded(s))
-        decode_frame(s, target, context, display_name, scratch);
-      else if (!s.stored.empty())
-        std::memcpy(target, s.stored.data(), s.stored.size());
-      check_and_mark_raw(s);
-    }
-  } catch (...) {
-    ZSTD_freeDCtx(context);
-    throw;
-  }
-  ZSTD_freeDCtx(context);
-  if (derived) {
-    auto at = [&](std::size_t i) { return out + sections[i].entry.offset; };
-    // A reverse section that is stored, not derived, is computed aside and left as decoded.
-    const std::uint64_t n1 = sections[derived->reverse_offsets].decoded_length / 8;
-    const std::uint64_t m = sections[derived->reverse_sources].decoded_length / 4;
-    std::vector<std::uint64_t> aside_offsets;
-    std::vector<std::uint32_t> aside_sources, aside_arcs;
-    auto place = [&](std::size_t i, auto& aside, std::uint64_t count) {
-      using T = typename std::remove_reference_t<decltype(aside)>::value_type;
-      if (is_derived(sections[i])) return reinterpret_cast<T*>(at(i));
-      aside.resize(count);
-      return aside.data();
-    };
-    const auto& fo = sections[derived->forward_offsets];
-    const auto& ft = sections[derived->forward_targets];
-    if (!derive_transpose(
-            as_elements<std::uint64_t>(at(derived->forward_offsets), fo.decoded_length),
-            as_elements<std::uint32_t>(at(derived->forward_targets), ft.decoded_length),
-            place(derived->reverse_offsets, aside_offsets, n1),
-            place(derived->reverse_sources, aside_sources, m),
-            place(derived->reverse_arcs, aside_arcs, m)))
-      throw Error(ErrorCode::damaged,
-                  std::string(display_name) +
-                      ": the reverse CSR cannot be derived (transpose encoding): the forward CSR "
-                      "is not one (offsets from 0 to m, never decreasing, every target below n)");
-    for (auto& s : sections)
-      if (is_derived(s)) check_and_mark_raw(s);
-  }
+  decode_stored(sections, out, out + format::align_up(header.file_size), display_name);
+  if (derived) derive_reverse(sections, *derived, out, display_name);
 
   const auto table = table_of(sections);
   std::memcpy(out + header.table_offset, table.data(), table.size() * sizeof table[0]);
@@ -392,15 +406,12 @@ void unpack_file(const std::filesystem::path& in, const std::filesystem::path& o
   writer.commit();
 }
 
-void pack_file(const std::filesystem::path& in, const std::filesystem::path& out,
-               const PackOptions& options) {
-  const std::string name = in.string();
-  if (options.level < 1 || options.level > ZSTD_maxCLevel())
-    throw Error(ErrorCode::invalid_argument, name + ": zstd level " +
-                                                 std::to_string(options.level) + " is not in 1.." +
-                                                 std::to_string(ZSTD_maxCLevel()));
-  const auto file = map_file(in);
-  const auto image = unpack_bytes(file.bytes, name);
+namespace {
+
+// A file packing can restore byte for byte: in the writer's canonical layout (or packed already,
+// so unpacked first), with no header bits the writer does not write. Returns the unpacked image's
+// container.
+Container parse_packable(const MappedFile& file, const MappedFile& image, const std::string& name) {
   const auto input = parse_container(file.bytes, name, format::FileKind::instance);
   if (!is_packed(input.header) &&
       (image.bytes.size() != file.bytes.size() ||
@@ -410,7 +421,7 @@ void pack_file(const std::filesystem::path& in, const std::filesystem::path& out
                     ": not in the canonical layout of the mosb writer (section order, 64-byte "
                     "alignment, zero padding), so unpacking could not restore its exact bytes; "
                     "rewrite it with a mosb command first");
-  const auto container = parse_container(image.bytes, name, format::FileKind::instance);
+  auto container = parse_container(image.bytes, name, format::FileKind::instance);
   const auto& reserved = container.header.reserved;
   if (container.header.optional_features != 0 ||
       std::any_of(reserved.begin(), reserved.end(), [](std::uint8_t b) { return b != 0; }))
@@ -418,77 +429,100 @@ void pack_file(const std::filesystem::path& in, const std::filesystem::path& out
                 name +
                     ": has optional feature bits or reserved header bytes the mosb writer does "
                     "not write, so unpacking could not restore its exact bytes");
-  const auto& sections = container.sections;
+  return container;
+}
 
-  // The reverse CSR is not stored where it is the transpose of the forward CSR, as every valid
-  // file's is (§4): unpacking derives it again (encoding transpose). Compared here, so a file that
-  // breaks §4 keeps its reverse sections as they are.
+// The reverse CSR is not stored where it is the transpose of the forward CSR, as every valid
+// file's is (§4): unpacking derives it again (encoding transpose). Compared here, so a file that
+// breaks §4 keeps its reverse sections as they are. Returns, per section, whether it is derived.
+std::vector<bool> derived_sections(const std::vector<Section>& sections) {
   std::vector<bool> derived(sections.size(), false);
   std::string not_derivable;
-  if (options.derive_reverse)
-    if (const auto plan = csr_sections(sections, not_derivable)) {
-      const auto& fo = sections[plan->forward_offsets].stored;
-      const auto& ft = sections[plan->forward_targets].stored;
-      const auto offsets = as_elements<std::uint64_t>(fo.data(), fo.size());
-      const auto targets = as_elements<std::uint32_t>(ft.data(), ft.size());
-      std::vector<std::uint64_t> reverse_offsets(offsets.size());
-      std::vector<std::uint32_t> reverse_sources(targets.size()), reverse_arcs(targets.size());
-      if (derive_transpose(offsets, targets, reverse_offsets.data(), reverse_sources.data(),
-                           reverse_arcs.data())) {
-        auto same = [&](std::size_t i, const auto& computed) {
-          const auto& stored = sections[i].stored;
-          derived[i] = stored.size() == computed.size() * sizeof computed[0] &&
-                       std::memcmp(stored.data(), computed.data(), stored.size()) == 0;
-        };
-        same(plan->reverse_offsets, reverse_offsets);
-        same(plan->reverse_sources, reverse_sources);
-        same(plan->reverse_arcs, reverse_arcs);
-      }
+  if (const auto plan = csr_sections(sections, not_derivable)) {
+    const auto& fo = sections[plan->forward_offsets].stored;
+    const auto& ft = sections[plan->forward_targets].stored;
+    const auto offsets = as_elements<std::uint64_t>(fo.data(), fo.size());
+    const auto targets = as_elements<std::uint32_t>(ft.data(), ft.size());
+    std::vector<std::uint64_t> reverse_offsets(offsets.size());
+    std::vector<std::uint32_t> reverse_sources(targets.size()), reverse_arcs(targets.size());
+    if (derive_transpose(offsets, targets, reverse_offsets.data(), reverse_sources.data(),
+                         reverse_arcs.data())) {
+      auto same = [&](std::size_t i, const auto& computed) {
+        const auto& stored = sections[i].stored;
+        derived[i] = stored.size() == computed.size() * sizeof computed[0] &&
+                     std::memcmp(stored.data(), computed.data(), stored.size()) == 0;
+      };
+      same(plan->reverse_offsets, reverse_offsets);
+      same(plan->reverse_sources, reverse_sources);
+      same(plan->reverse_arcs, reverse_arcs);
     }
+  }
+  return derived;
+}
 
-  // Each non-empty section as one frame under the encoding that gives the fewest bytes (ties: the
-  // lower encoding), kept only when it is smaller than the elements. The metadata stays raw: a
-  // few hundred bytes that keep a packed file self-describing (inspect reads the benchmark name
-  // and views without decoding anything).
+// One section as one frame under the encoding that gives the fewest bytes (ties: the lower
+// encoding), kept only when it is smaller than the elements. The metadata stays raw: a few
+// hundred bytes that keep a packed file self-describing (inspect reads the benchmark name and
+// views without decoding anything). Leaves `kept` empty and `encoding_kept` raw when nothing is
+// kept.
+void encode_section(const Section& s, bool derived, int level, const std::string& name,
+                    std::vector<std::byte>& kept, Encoding& encoding_kept) {
+  if (derived) {
+    encoding_kept = Encoding::transpose;
+    return;
+  }
+  if (s.stored.empty() || s.kind == format::SectionKind::metadata) return;
+  std::vector<Encoding> candidates = {Encoding::zstd};
+  if (format::element_size(s.type) > 1) candidates.push_back(Encoding::shuffle_zstd);
+  if (!format::is_float(s.type)) candidates.push_back(Encoding::delta_zstd);
+  std::unique_ptr<ZSTD_CCtx, std::size_t (*)(ZSTD_CCtx*)> context(ZSTD_createCCtx(), ZSTD_freeCCtx);
+  if (!context) throw Error(ErrorCode::io, name + ": out of memory");
+  for (const auto encoding : candidates) {
+    const auto content = frame_content(s, encoding);
+    std::vector<std::byte> frame(ZSTD_compressBound(content.size()));
+    const std::size_t size = ZSTD_compressCCtx(context.get(), frame.data(), frame.size(),
+                                               content.data(), content.size(), level);
+    if (ZSTD_isError(size))
+      throw Error(name + ": section '" + s.name + "': zstd compression failed");
+    if (size >= s.stored.size() || (!kept.empty() && size >= kept.size())) continue;
+    frame.resize(size);
+    kept = std::move(frame);
+    encoding_kept = encoding;
+  }
+  if (kept.empty()) return;
+  // Verified before it is written: the frame decodes to the very bytes.
+  Section encoded = s;
+  encoded.entry.encoding = static_cast<std::uint8_t>(encoding_kept);
+  encoded.stored = kept;
+  std::vector<std::byte> check(s.stored.size()), scratch(s.stored.size());
+  std::unique_ptr<ZSTD_DCtx, std::size_t (*)(ZSTD_DCtx*)> dcontext(ZSTD_createDCtx(),
+                                                                   ZSTD_freeDCtx);
+  if (!dcontext) throw Error(ErrorCode::io, name + ": out of memory");
+  decode_frame(encoded, check.data(), dcontext.get(), name, scratch.data());
+  if (std::memcmp(check.data(), s.stored.data(), check.size()) != 0)
+    throw Error(name + ": section '" + s.name + "': zstd frame does not decode to its bytes");
+}
+
+}  // namespace
+
+void pack_file(const std::filesystem::path& in, const std::filesystem::path& out,
+               const PackOptions& options) {
+  const std::string name = in.string();
+  if (options.level < 1 || options.level > ZSTD_maxCLevel())
+    throw Error(ErrorCode::invalid_argument, name + ": zstd level " +
+                                                 std::to_string(options.level) + " is not in 1.." +
+                                                 std::to_string(ZSTD_maxCLevel()));
+  const auto file = map_file(in);
+  const auto image = unpack_bytes(file.bytes, name);
+  const auto container = parse_packable(file, image, name);
+  const auto& sections = container.sections;
+
+  const std::vector<bool> derived =
+      options.derive_reverse ? derived_sections(sections) : std::vector<bool>(sections.size());
   std::vector<std::vector<std::byte>> frames(sections.size());
   std::vector<Encoding> encodings(sections.size(), Encoding::raw);
   run_parallel(sections.size(), options.threads, [&](std::size_t i) {
-    const auto& s = sections[i];
-    if (derived[i]) {
-      encodings[i] = Encoding::transpose;
-      return;
-    }
-    if (s.stored.empty() || s.kind == format::SectionKind::metadata) return;
-    std::vector<Encoding> candidates = {Encoding::zstd};
-    if (format::element_size(s.type) > 1) candidates.push_back(Encoding::shuffle_zstd);
-    if (!format::is_float(s.type)) candidates.push_back(Encoding::delta_zstd);
-    std::unique_ptr<ZSTD_CCtx, std::size_t (*)(ZSTD_CCtx*)> context(ZSTD_createCCtx(),
-                                                                    ZSTD_freeCCtx);
-    if (!context) throw Error(ErrorCode::io, name + ": out of memory");
-    for (const auto encoding : candidates) {
-      const auto content = frame_content(s, encoding);
-      std::vector<std::byte> frame(ZSTD_compressBound(content.size()));
-      const std::size_t size = ZSTD_compressCCtx(context.get(), frame.data(), frame.size(),
-                                                 content.data(), content.size(), options.level);
-      if (ZSTD_isError(size))
-        throw Error(name + ": section '" + s.name + "': zstd compression failed");
-      if (size >= s.stored.size() || (!frames[i].empty() && size >= frames[i].size())) continue;
-      frame.resize(size);
-      frames[i] = std::move(frame);
-      encodings[i] = encoding;
-    }
-    if (frames[i].empty()) return;
-    // Verified before it is written: the frame decodes to the very bytes.
-    Section encoded = s;
-    encoded.entry.encoding = static_cast<std::uint8_t>(encodings[i]);
-    encoded.stored = frames[i];
-    std::vector<std::byte> check(s.stored.size()), scratch(s.stored.size());
-    std::unique_ptr<ZSTD_DCtx, std::size_t (*)(ZSTD_DCtx*)> dcontext(ZSTD_createDCtx(),
-                                                                     ZSTD_freeDCtx);
-    if (!dcontext) throw Error(ErrorCode::io, name + ": out of memory");
-    decode_frame(encoded, check.data(), dcontext.get(), name, scratch.data());
-    if (std::memcmp(check.data(), s.stored.data(), check.size()) != 0)
-      throw Error(name + ": section '" + s.name + "': zstd frame does not decode to its bytes");
+    encode_section(sections[i], derived[i], options.level, name, frames[i], encodings[i]);
   });
 
   FileWriter writer(out, existing_for(in, out));

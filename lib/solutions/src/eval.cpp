@@ -317,20 +317,12 @@ std::vector<std::size_t> uncovered_impl(FrontView<T> solution, FrontView<T> refe
   return test.uncovered(Arith<T>::make(epsilon));
 }
 
+// Exact matches (ε = 0 is the same multiset): merge the two lexicographic orders.
 template <class T>
-FrontEvaluation evaluate_impl(FrontView<T> solution, FrontView<T> reference,
-                              std::span<const Ratio> epsilons, const EvalOptions& options) {
-  using A = Arith<T>;
-  using Eps = typename A::Eps;
-  check_fronts(solution, reference);
+std::uint64_t count_matches(FrontView<T> solution, FrontView<T> reference,
+                            const std::vector<std::size_t>& solution_lex,
+                            const std::vector<std::size_t>& reference_lex) {
   const std::size_t d = reference.dimension;
-  FrontEvaluation result;
-  result.solution_size = solution.size();
-  result.reference_size = reference.size();
-
-  // Exact matches (ε = 0 is the same multiset): merge the two lexicographic orders.
-  const auto solution_lex = lex_order(solution);
-  const auto reference_lex = lex_order(reference);
   std::uint64_t matched = 0;
   for (std::size_t a = 0, b = 0; a < solution_lex.size() && b < reference_lex.size();) {
     const T* p = solution[solution_lex[a]];
@@ -343,35 +335,53 @@ FrontEvaluation evaluate_impl(FrontView<T> solution, FrontView<T> reference,
       ++matched, ++a, ++b;
     }
   }
-  result.same_multiset = matched == reference.size() && matched == solution.size();
+  return matched;
+}
 
-  // Solution vectors the reference strictly dominates: weakly dominated, and not equal to a
-  // reference vector (if equal to q, nothing else in a non-dominated reference is ≤ it).
-  {
-    Sweeper<T> reverse(reference, solution);
-    const auto not_dominated = reverse.uncovered(A::zero());
-    std::size_t next = 0;
-    for (std::size_t k = 0; k < solution.size(); ++k) {
-      if (next < not_dominated.size() && not_dominated[next] == k) {
-        ++next;
-        continue;
-      }
-      const T* p = solution[k];
-      const auto it = std::lower_bound(
-          reference_lex.begin(), reference_lex.end(), p,
-          [&](std::size_t r, const T* probe) { return lex_less(reference[r], probe, d); });
-      if (it != reference_lex.end() && std::equal(p, p + d, reference[*it])) continue;
-      result.dominated_by_reference.push_back(k);
+// Solution vectors the reference strictly dominates: weakly dominated, and not equal to a
+// reference vector (if equal to q, nothing else in a non-dominated reference is ≤ it).
+template <class T>
+std::vector<std::size_t> dominated_by_reference(FrontView<T> solution, FrontView<T> reference,
+                                                const std::vector<std::size_t>& reference_lex) {
+  const std::size_t d = reference.dimension;
+  std::vector<std::size_t> dominated;
+  Sweeper<T> reverse(reference, solution);
+  const auto not_dominated = reverse.uncovered(Arith<T>::zero());
+  std::size_t next = 0;
+  for (std::size_t k = 0; k < solution.size(); ++k) {
+    if (next < not_dominated.size() && not_dominated[next] == k) {
+      ++next;
+      continue;
     }
+    const T* p = solution[k];
+    const auto it = std::lower_bound(
+        reference_lex.begin(), reference_lex.end(), p,
+        [&](std::size_t r, const T* probe) { return lex_less(reference[r], probe, d); });
+    if (it != reference_lex.end() && std::equal(p, p + d, reference[*it])) continue;
+    dominated.push_back(k);
   }
+  return dominated;
+}
 
-  // The coverage tests at the requested ε. The componentwise ones also bracket the achieved ε:
-  // the largest requested ε that leaves something uncovered, and what it leaves.
-  CoverageTest<T> weak(solution, reference, false);
+// What the componentwise coverage tests learn about the achieved ε: it is above `floor`, and
+// `open` holds the reference vectors the test at `floor` left uncovered (unset: none tested).
+template <class T>
+struct Bracket {
+  typename Arith<T>::Eps floor = Arith<T>::zero();
+  std::optional<std::vector<std::size_t>> open;
+};
+
+// The coverage tests at the requested ε, one entry of result.coverage each. The componentwise
+// ones also bracket the achieved ε: the largest requested ε that leaves something uncovered, and
+// what it leaves.
+template <class T>
+Bracket<T> test_requested(FrontView<T> solution, FrontView<T> reference,
+                          std::span<const Ratio> epsilons, const EvalOptions& options,
+                          std::uint64_t matched, CoverageTest<T>& weak, FrontEvaluation& result) {
+  using A = Arith<T>;
   std::optional<CoverageTest<T>> strict;
   if (options.strict_dominance) strict.emplace(solution, reference, true);
-  Eps floor = A::zero();
-  std::optional<std::vector<std::size_t>> open;
+  Bracket<T> bracket;
   for (const Ratio& epsilon : epsilons) {
     EpsilonCoverage c;
     c.epsilon = epsilon;
@@ -379,25 +389,36 @@ FrontEvaluation evaluate_impl(FrontView<T> solution, FrontView<T> reference,
       c.covered = result.same_multiset;
       c.uncovered = reference.size() - matched;
     } else {
-      const Eps e = A::make(epsilon);
+      const typename A::Eps e = A::make(epsilon);
       auto u = weak.uncovered(e);
       c.uncovered = strict ? strict->uncovered(e).size() : u.size();
       c.covered = c.uncovered == 0;
-      if (!u.empty() && (!open || A::less(floor, e))) {
-        floor = e;
-        open = std::move(u);
+      if (!u.empty() && (!bracket.open || A::less(bracket.floor, e))) {
+        bracket.floor = e;
+        bracket.open = std::move(u);
       }
     }
     result.coverage.push_back(c);
   }
+  return bracket;
+}
 
-  // The achieved ε always uses the componentwise reading (under the strict one the smallest ε
-  // need not exist: it is an infimum). It is the largest ε a reference vector needs, and the
-  // coverage test at ε returns exactly the vectors that need more than ε. A scan of the solution
-  // gives one vector's need in O(|S|·d), far cheaper than a coverage test. So: while many vectors
-  // are open, take the largest need of a sample of them and test it (what stays open needs more:
-  // about 1/(sample+1) of them); once few are open, the largest of their needs is the answer.
+// The achieved ε always uses the componentwise reading (under the strict one the smallest ε
+// need not exist: it is an infimum). It is the largest ε a reference vector needs, and the
+// coverage test at ε returns exactly the vectors that need more than ε. A scan of the solution
+// gives one vector's need in O(|S|·d), far cheaper than a coverage test. So: while many vectors
+// are open, take the largest need of a sample of them and test it (what stays open needs more:
+// about 1/(sample+1) of them); once few are open, the largest of their needs is the answer.
+// Sets result.worst_reference.
+template <class T>
+typename Arith<T>::Eps search_achieved(FrontView<T> solution, FrontView<T> reference,
+                                       CoverageTest<T>& weak, Bracket<T> bracket,
+                                       FrontEvaluation& result) {
+  using A = Arith<T>;
+  using Eps = typename A::Eps;
   constexpr std::size_t kSample = 64, kScanAll = 256;
+  auto& open = bracket.open;
+  Eps& floor = bracket.floor;
   if (!open) open = weak.uncovered(A::zero());
   Eps achieved = A::zero();
   SplitMix64 pick(0x5eed);  // a fixed seed: the same result and time on every run
@@ -425,6 +446,26 @@ FrontEvaluation evaluate_impl(FrontView<T> solution, FrontView<T> reference,
     open = weak.uncovered(largest);
     floor = largest;
   }
+  return achieved;
+}
+
+template <class T>
+FrontEvaluation evaluate_impl(FrontView<T> solution, FrontView<T> reference,
+                              std::span<const Ratio> epsilons, const EvalOptions& options) {
+  check_fronts(solution, reference);
+  FrontEvaluation result;
+  result.solution_size = solution.size();
+  result.reference_size = reference.size();
+
+  const auto solution_lex = lex_order(solution);
+  const auto reference_lex = lex_order(reference);
+  const std::uint64_t matched = count_matches(solution, reference, solution_lex, reference_lex);
+  result.same_multiset = matched == reference.size() && matched == solution.size();
+  result.dominated_by_reference = dominated_by_reference(solution, reference, reference_lex);
+
+  CoverageTest<T> weak(solution, reference, false);
+  auto bracket = test_requested(solution, reference, epsilons, options, matched, weak, result);
+  const auto achieved = search_achieved(solution, reference, weak, std::move(bracket), result);
   if constexpr (std::is_same_v<T, std::uint64_t>) {
     result.achieved = achieved.is_infinite() ? kInfinity : reduced(achieved.num, achieved.den);
     result.achieved_value = achieved.to_double();

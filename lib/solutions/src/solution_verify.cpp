@@ -30,6 +30,99 @@ bool weakly_dominates(const std::vector<double>& a, const std::vector<double>& b
   return true;
 }
 
+// The front of query q, values as doubles: exact for every integer cost (the writer refuses
+// integers above 2^53) and for f32/f64 costs.
+std::vector<std::vector<double>> front_of(const SolutionReader& s, std::uint64_t begin,
+                                          std::uint64_t size) {
+  const std::size_t d = s.objective_count();
+  std::vector<std::vector<double>> front(size, std::vector<double>(d));
+  for (std::size_t i = 0; i < d; ++i)
+    for (std::uint64_t k = 0; k < size; ++k) front[k][i] = s.value_as_double(i, begin + k);
+  return front;
+}
+
+// [duplicate] and [dominated]: sorted lexicographically, a vector can only be weakly dominated by
+// one before it; with two objectives, only when its second value is not below every earlier one.
+std::optional<std::string> dominance_problem(const std::vector<std::vector<double>>& front,
+                                             std::size_t d, const std::string& label) {
+  std::vector<std::size_t> order(front.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return front[a] < front[b]; });
+  double best_second = INFINITY;  // d = 2: the smallest second value so far
+  for (std::size_t j = 0; j < order.size(); ++j) {
+    const auto& v = front[order[j]];
+    auto report = [&](std::size_t by) {
+      const auto& w = front[by];
+      return label + (w == v ? "[duplicate] vector " + vector_text(v) + " appears twice"
+                             : "[dominated] vector " + vector_text(v) + " is dominated by " +
+                                   vector_text(w));
+    };
+    if (d == 2) {
+      if (j > 0 && v[1] >= best_second) {
+        for (std::size_t k = 0; k < j; ++k)
+          if (weakly_dominates(front[order[k]], v)) return report(order[k]);
+      }
+      best_second = std::min(best_second, v[1]);
+      continue;
+    }
+    for (std::size_t k = 0; k < j; ++k)
+      if (weakly_dominates(front[order[k]], v)) return report(order[k]);
+  }
+  return std::nullopt;
+}
+
+// [path] and [path-cost]: the path runs from the query's start to its goal along arcs, and some
+// choice among parallel arcs sums to the stored vector (SOLUTIONS.md §5).
+std::optional<std::string> path_problem(const SolutionReader& s, const GraphReader& g,
+                                        const View& view, std::span<const std::uint64_t> offsets,
+                                        std::span<const std::uint32_t> targets, const Query& query,
+                                        std::span<const std::uint32_t> path,
+                                        const std::vector<double>& vector,
+                                        const std::string& where) {
+  const std::size_t d = s.objective_count();
+  if (path.empty()) return where + "[path] is empty";
+  if (path.front() != query.start || path.back() != query.goal)
+    return where + "[path] runs from " + std::to_string(path.front()) + " to " +
+           std::to_string(path.back()) + ", the query from " + std::to_string(query.start) +
+           " to " + std::to_string(query.goal);
+  // Partial sums reachable by some choice among parallel arcs.
+  std::vector<std::vector<double>> sums{std::vector<double>(d, 0.0)};
+  for (std::size_t step = 0; step + 1 < path.size(); ++step) {
+    std::vector<std::vector<double>> next;
+    for (auto arc = offsets[path[step]]; arc < offsets[path[step] + 1]; ++arc) {
+      if (targets[arc] != path[step + 1]) continue;
+      for (const auto& sum : sums) {
+        auto extended = sum;
+        for (std::size_t i = 0; i < d; ++i)
+          extended[i] += g.cost_as<double>(view.objectives[i])[arc];
+        next.push_back(std::move(extended));
+      }
+    }
+    if (next.empty())
+      return where + "[path] no arc from " + std::to_string(path[step]) + " to " +
+             std::to_string(path[step + 1]);
+    std::sort(next.begin(), next.end());
+    next.erase(std::unique(next.begin(), next.end()), next.end());
+    sums = std::move(next);
+  }
+  const bool matches = std::any_of(sums.begin(), sums.end(), [&](const auto& sum) {
+    for (std::size_t i = 0; i < d; ++i) {
+      const auto tolerance =
+          format::is_float(s.objective_type(i))
+              ? 1e-9 * static_cast<double>(path.size()) * std::max(1.0, std::abs(vector[i]))
+              : 0.0;
+      if (std::abs(sum[i] - vector[i]) > tolerance) return false;
+    }
+    return true;
+  });
+  if (!matches)
+    return where + "[path-cost] the arcs sum to " + vector_text(sums.front()) +
+           (sums.size() > 1 ? " (or another parallel-arc choice)" : "") +
+           ", not to the stored vector";
+  return std::nullopt;
+}
+
 }  // namespace
 
 std::optional<std::string> reference_problem(double c_star, double l_star,
@@ -92,36 +185,8 @@ std::optional<std::string> verify_solutions(const SolutionReader& s, const Graph
   for (std::uint64_t q = 0; q < s.query_count(); ++q) {
     const std::string label = "query " + std::to_string(q) + ": ";
     const auto begin = s.front_begin(q), size = s.front_size(q);
-    // Values as doubles: exact for every integer cost (the writer refuses integers above 2^53)
-    // and for f32/f64 costs.
-    std::vector<std::vector<double>> front(size, std::vector<double>(d));
-    for (std::size_t i = 0; i < d; ++i)
-      for (std::uint64_t k = 0; k < size; ++k) front[k][i] = s.value_as_double(i, begin + k);
-    // Sorted lexicographically, a vector can only be weakly dominated by one before it.
-    std::vector<std::size_t> order(size);
-    std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(), order.end(),
-              [&](std::size_t a, std::size_t b) { return front[a] < front[b]; });
-    double best_second = INFINITY;  // d = 2: the smallest second value so far
-    for (std::size_t j = 0; j < order.size(); ++j) {
-      const auto& v = front[order[j]];
-      auto report = [&](std::size_t by) {
-        const auto& w = front[by];
-        return label + (w == v ? "[duplicate] vector " + vector_text(v) + " appears twice"
-                               : "[dominated] vector " + vector_text(v) + " is dominated by " +
-                                     vector_text(w));
-      };
-      if (d == 2) {
-        if (j > 0 && v[1] >= best_second) {
-          for (std::size_t k = 0; k < j; ++k)
-            if (weakly_dominates(front[order[k]], v)) return report(order[k]);
-        }
-        best_second = std::min(best_second, v[1]);
-        continue;
-      }
-      for (std::size_t k = 0; k < j; ++k)
-        if (weakly_dominates(front[order[k]], v)) return report(order[k]);
-    }
+    const auto front = front_of(s, begin, size);
+    if (auto problem = dominance_problem(front, d, label)) return problem;
     if (reference_objective && size > 0 && s.status(q) == QueryStatus::solved) {
       double c_star = INFINITY;
       for (const auto& v : front) c_star = std::min(c_star, v[*reference_objective]);
@@ -130,47 +195,10 @@ std::optional<std::string> verify_solutions(const SolutionReader& s, const Graph
     }
     if (!s.has_paths()) continue;
     for (std::uint64_t k = 0; k < size; ++k) {
-      const auto path = s.path(begin + k);
       const std::string where = label + "path of vector " + vector_text(front[k]) + ": ";
-      if (path.empty()) return where + "[path] is empty";
-      if (path.front() != queries[q].start || path.back() != queries[q].goal)
-        return where + "[path] runs from " + std::to_string(path.front()) + " to " +
-               std::to_string(path.back()) + ", the query from " +
-               std::to_string(queries[q].start) + " to " + std::to_string(queries[q].goal);
-      // Partial sums reachable by some choice among parallel arcs (SOLUTIONS.md §5).
-      std::vector<std::vector<double>> sums{std::vector<double>(d, 0.0)};
-      for (std::size_t step = 0; step + 1 < path.size(); ++step) {
-        std::vector<std::vector<double>> next;
-        for (auto arc = offsets[path[step]]; arc < offsets[path[step] + 1]; ++arc) {
-          if (targets[arc] != path[step + 1]) continue;
-          for (const auto& sum : sums) {
-            auto extended = sum;
-            for (std::size_t i = 0; i < d; ++i)
-              extended[i] += g.cost_as<double>(view.objectives[i])[arc];
-            next.push_back(std::move(extended));
-          }
-        }
-        if (next.empty())
-          return where + "[path] no arc from " + std::to_string(path[step]) + " to " +
-                 std::to_string(path[step + 1]);
-        std::sort(next.begin(), next.end());
-        next.erase(std::unique(next.begin(), next.end()), next.end());
-        sums = std::move(next);
-      }
-      const bool matches = std::any_of(sums.begin(), sums.end(), [&](const auto& sum) {
-        for (std::size_t i = 0; i < d; ++i) {
-          const auto tolerance =
-              format::is_float(s.objective_type(i))
-                  ? 1e-9 * static_cast<double>(path.size()) * std::max(1.0, std::abs(front[k][i]))
-                  : 0.0;
-          if (std::abs(sum[i] - front[k][i]) > tolerance) return false;
-        }
-        return true;
-      });
-      if (!matches)
-        return where + "[path-cost] the arcs sum to " + vector_text(sums.front()) +
-               (sums.size() > 1 ? " (or another parallel-arc choice)" : "") +
-               ", not to the stored vector";
+      if (auto problem = path_problem(s, g, view, offsets, targets, queries[q], s.path(begin + k),
+                                      front[k], where))
+        return problem;
     }
   }
   return std::nullopt;
