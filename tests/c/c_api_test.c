@@ -1,5 +1,5 @@
 /* The C ABI (mosb.h) from C99, over the golden files of spec/golden/1.0 (see
- * tests/unit/golden_input.hpp for the values). Usage: mosb_c_api_test GOLDEN_DIR VERSION [STORE]
+ * tests/support/golden_input.hpp for the values). Usage: mosb_c_api_test GOLDEN_DIR VERSION [STORE]
  * where STORE, when given, is a store holding valid/small.mosb packed (tests/c/CMakeLists.txt). */
 #include <pthread.h>
 #define _POSIX_C_SOURCE 200809L /* pthreads under -std=c99 */

@@ -62,7 +62,7 @@ def run(*args):
 
 
 def cpp_dump(path):
-    """Everything the C++ reader sees in the file (tests/unit/dump_json.cpp)."""
+    """Everything the C++ reader sees in the file (tests/support/dump_json.cpp)."""
     done = run(DUMP_JSON, path)
     if done.returncode != 0:
         raise AssertionError(done.stderr)
