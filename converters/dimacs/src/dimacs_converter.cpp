@@ -134,141 +134,185 @@ bool scan_integer_arc(std::string_view line, std::size_t cost_count, unsigned id
   return true;
 }
 
+// One pass over a .gr text: `p sp n m` once, then `a u v c1 .. cd` lines (all with the same d),
+// comments anywhere. With a reference (the first file of a per-objective pair), every arc must be
+// the reference's arc at the same index.
+class GrParser {
+ public:
+  GrParser(std::uint64_t size_hint, const std::string& display_name, unsigned id_base,
+           const DimacsReference* reference, bool record_arc_lines)
+      : size_hint_(size_hint),
+        file_(display_name),
+        id_base_(id_base),
+        reference_(reference),
+        record_arc_lines_(record_arc_lines) {
+    if (id_base > 1) throw Error(display_name + ": id base must be 0 or 1");
+  }
+
+  DimacsGraph parse(LineScanner& lines) {
+    std::string_view line;
+    while (lines.next(line)) {
+      const auto ln = lines.number();
+      if (fast_integer_arc(line, ln)) continue;
+      tokenize(line, t_);
+      if (t_.empty() || t_[0].text == "c") continue;
+      const auto end_column = line.size() + 1;
+      if (t_[0].text == "a")
+        arc_line(ln, end_column);
+      else if (t_[0].text == "p")
+        problem_line(ln, end_column);
+      else
+        fail(file_, ln, t_[0].column, "unknown line type " + quoted(t_[0].text));
+    }
+    return finish(lines.number());
+  }
+
+ private:
+  // The common case without tokenizing: all columns integers so far, an arc the reference agrees
+  // with. Anything else takes the general path, which reports the precise error.
+  bool fast_integer_arc(std::string_view line, std::uint64_t ln) {
+    if (integer_columns_.empty() || line.size() <= 1 || line[0] != 'a') return false;
+    std::uint32_t u = 0, v = 0;
+    if (!scan_integer_arc(line, cost_count_, id_base_, g_.vertex_count, u, v, fast_costs_.data()))
+      return false;
+    const auto k = g_.tails.size();
+    const bool matches_reference =
+        !reference_ || (k < reference_->graph->tails.size() && reference_->graph->tails[k] == u &&
+                        reference_->graph->heads[k] == v);
+    if (!matches_reference || k >= kMaxCount) return false;
+    for (std::size_t j = 0; j < cost_count_; ++j) integer_columns_[j]->push_back(fast_costs_[j]);
+    g_.tails.push_back(u);
+    g_.heads.push_back(v);
+    if (record_arc_lines_) g_.arc_lines.push_back(ln);
+    return true;
+  }
+
+  void arc_line(std::uint64_t ln, std::size_t end_column) {
+    if (p_line_ == 0) fail(file_, ln, t_[0].column, "arc line before the 'p sp' line");
+    if (t_.size() < 4) {
+      if (t_.size() >= 2) parse_id(file_, ln, t_[1], id_base_, g_.vertex_count);
+      if (t_.size() >= 3) parse_id(file_, ln, t_[2], id_base_, g_.vertex_count);
+      fail(file_, ln, end_column, "missing field: an arc line is 'a u v cost...'");
+    }
+    check_cost_count(ln, end_column);
+    const auto u = parse_id(file_, ln, t_[1], id_base_, g_.vertex_count);
+    const auto v = parse_id(file_, ln, t_[2], id_base_, g_.vertex_count);
+    for (std::size_t j = 0; j < cost_count_; ++j) add_cost(file_, ln, t_[3 + j], g_.columns[j]);
+    if (g_.tails.size() >= kMaxCount)
+      fail(file_, ln, t_[0].column, "more than " + std::to_string(kMaxCount) + " arcs");
+    if (reference_) check_reference_arc(ln, u, v);
+    g_.tails.push_back(u);
+    g_.heads.push_back(v);
+    if (record_arc_lines_) g_.arc_lines.push_back(ln);
+    // The fast path applies again once every column is (still) integer.
+    integer_columns_.clear();
+    for (auto& c : g_.columns)
+      if (auto* ints = std::get_if<std::vector<std::uint64_t>>(&c))
+        integer_columns_.push_back(ints);
+    if (integer_columns_.size() != cost_count_ || cost_count_ == 0) integer_columns_.clear();
+    fast_costs_.resize(cost_count_);
+  }
+
+  // The first arc line fixes the number of cost columns; every later one must have as many.
+  void check_cost_count(std::uint64_t ln, std::size_t end_column) {
+    if (first_arc_line_ == 0) {
+      first_arc_line_ = ln;
+      cost_count_ = t_.size() - 3;
+      g_.columns.assign(cost_count_, Column{});
+      for (auto& c : g_.columns) {
+        auto& values = std::get<std::vector<std::uint64_t>>(c);
+        values.reserve(g_.tails.capacity());
+        advise_huge_pages(values);
+      }
+      return;
+    }
+    if (t_.size() - 3 == cost_count_) return;
+    const std::string expected = "expected " + plural(cost_count_, "cost") + " as on line " +
+                                 std::to_string(first_arc_line_);
+    if (t_.size() - 3 < cost_count_) fail(file_, ln, end_column, "missing field: " + expected);
+    fail(file_, ln, t_[3 + cost_count_].column,
+         "extra field " + quoted(t_[3 + cost_count_].text) + ": " + expected);
+  }
+
+  void check_reference_arc(std::uint64_t ln, std::uint32_t u, std::uint32_t v) const {
+    const auto& ref = *reference_->graph;
+    const auto k = g_.tails.size();
+    if (k >= ref.tails.size())
+      fail(
+          file_, ln, t_[1].column,
+          "arc beyond the " + plural(ref.tails.size(), "arc") + " of " + *reference_->display_name);
+    if (ref.tails[k] != u || ref.heads[k] != v)
+      fail(file_, ln, t_[1].column,
+           "arc " + std::to_string(u + id_base_) + " " + std::to_string(v + id_base_) +
+               " differs from arc " + std::to_string(ref.tails[k] + id_base_) + " " +
+               std::to_string(ref.heads[k] + id_base_) + " at " + *reference_->display_name + ":" +
+               std::to_string(ref.arc_lines[k]) +
+               " (per-objective files must list the same arcs in the same order)");
+  }
+
+  void problem_line(std::uint64_t ln, std::size_t end_column) {
+    if (p_line_ != 0)
+      fail(file_, ln, t_[0].column,
+           "second 'p' line (the first is line " + std::to_string(p_line_) + ")");
+    if (t_.size() < 2) fail(file_, ln, end_column, "missing field: the header is 'p sp n m'");
+    if (t_[1].text != "sp")
+      fail(file_, ln, t_[1].column, "expected 'sp' after 'p', found " + quoted(t_[1].text));
+    if (t_.size() < 4) fail(file_, ln, end_column, "missing field: the header is 'p sp n m'");
+    if (t_.size() > 4)
+      fail(file_, ln, t_[4].column,
+           "extra field " + quoted(t_[4].text) + ": the header is 'p sp n m'");
+    g_.vertex_count = parse_count(file_, ln, t_[2], "vertex count");
+    declared_arcs_ = parse_count(file_, ln, t_[3], "arc count");
+    check_declared_vertices(file_, ln, t_[2].column, g_.vertex_count);
+    p_line_ = ln;
+    m_column_ = t_[3].column;
+    if (reference_) {
+      const auto& ref = *reference_->graph;
+      if (g_.vertex_count != ref.vertex_count)
+        fail(file_, ln, t_[2].column,
+             "declares " + plural(g_.vertex_count, "vertex") + ", " + *reference_->display_name +
+                 " has " + std::to_string(ref.vertex_count));
+      if (declared_arcs_ != ref.tails.size())
+        fail(file_, ln, t_[3].column,
+             "declares " + plural(declared_arcs_, "arc") + ", " + *reference_->display_name +
+                 " has " + std::to_string(ref.tails.size()));
+    }
+    // The header is untrusted: reserve no more than the text could hold (a line is >= 8 bytes).
+    const auto reserve = std::min<std::uint64_t>(declared_arcs_, size_hint_ / 8 + 1);
+    g_.tails.reserve(reserve);
+    g_.heads.reserve(reserve);
+    if (record_arc_lines_) g_.arc_lines.reserve(reserve);
+    advise_huge_pages(g_.tails);
+    advise_huge_pages(g_.heads);
+  }
+
+  DimacsGraph finish(std::uint64_t last_line) {
+    if (p_line_ == 0) fail(file_, std::max<std::uint64_t>(last_line, 1), 1, "no 'p sp n m' line");
+    if (g_.tails.size() != declared_arcs_)
+      fail(file_, p_line_, m_column_,
+           "the header declares " + plural(declared_arcs_, "arc") + ", found " +
+               std::to_string(g_.tails.size()));
+    if (first_arc_line_ == 0)  // no arcs at all: as many (zero) columns as the reference, or one
+      g_.columns.assign(reference_ ? reference_->graph->columns.size() : 1, Column{});
+    return std::move(g_);
+  }
+
+  const std::uint64_t size_hint_;
+  const std::string& file_;
+  const unsigned id_base_;
+  const DimacsReference* const reference_;
+  const bool record_arc_lines_;
+  DimacsGraph g_;
+  std::vector<Token> t_;
+  std::uint64_t p_line_ = 0, m_column_ = 0, declared_arcs_ = 0, first_arc_line_ = 0;
+  std::size_t cost_count_ = 0;
+  std::vector<std::vector<std::uint64_t>*> integer_columns_;  // all columns, while all are integers
+  std::vector<std::uint64_t> fast_costs_;
+};
+
 DimacsGraph parse_gr(LineScanner& lines, std::uint64_t size_hint, const std::string& display_name,
                      unsigned id_base, const DimacsReference* reference, bool record_arc_lines) {
-  if (id_base > 1) throw Error(display_name + ": id base must be 0 or 1");
-  DimacsGraph g;
-  std::string_view line;
-  std::vector<Token> t;
-  std::uint64_t p_line = 0, m_column = 0, declared_arcs = 0, first_arc_line = 0;
-  std::size_t cost_count = 0;
-  std::vector<std::vector<std::uint64_t>*> integer_columns;  // all columns, while all are integers
-  std::vector<std::uint64_t> fast_costs;
-  while (lines.next(line)) {
-    const auto ln = lines.number();
-    std::uint32_t fast_u = 0, fast_v = 0;
-    if (!integer_columns.empty() && line.size() > 1 && line[0] == 'a' &&
-        scan_integer_arc(line, cost_count, id_base, g.vertex_count, fast_u, fast_v,
-                         fast_costs.data())) {
-      const auto k = g.tails.size();
-      const bool matches_reference = !reference || (k < reference->graph->tails.size() &&
-                                                    reference->graph->tails[k] == fast_u &&
-                                                    reference->graph->heads[k] == fast_v);
-      if (matches_reference && k < kMaxCount) {
-        for (std::size_t j = 0; j < cost_count; ++j) integer_columns[j]->push_back(fast_costs[j]);
-        g.tails.push_back(fast_u);
-        g.heads.push_back(fast_v);
-        if (record_arc_lines) g.arc_lines.push_back(ln);
-        continue;
-      }
-    }
-    tokenize(line, t);
-    if (t.empty() || t[0].text == "c") continue;
-    const auto end_column = line.size() + 1;
-    if (t[0].text == "a") {
-      if (p_line == 0) fail(display_name, ln, t[0].column, "arc line before the 'p sp' line");
-      if (t.size() < 4) {
-        if (t.size() >= 2) parse_id(display_name, ln, t[1], id_base, g.vertex_count);
-        if (t.size() >= 3) parse_id(display_name, ln, t[2], id_base, g.vertex_count);
-        fail(display_name, ln, end_column, "missing field: an arc line is 'a u v cost...'");
-      }
-      if (first_arc_line == 0) {
-        first_arc_line = ln;
-        cost_count = t.size() - 3;
-        g.columns.assign(cost_count, Column{});
-        for (auto& c : g.columns) {
-          auto& values = std::get<std::vector<std::uint64_t>>(c);
-          values.reserve(g.tails.capacity());
-          advise_huge_pages(values);
-        }
-      } else if (t.size() - 3 != cost_count) {
-        const std::string expected = "expected " + plural(cost_count, "cost") + " as on line " +
-                                     std::to_string(first_arc_line);
-        if (t.size() - 3 < cost_count)
-          fail(display_name, ln, end_column, "missing field: " + expected);
-        fail(display_name, ln, t[3 + cost_count].column,
-             "extra field " + quoted(t[3 + cost_count].text) + ": " + expected);
-      }
-      const auto u = parse_id(display_name, ln, t[1], id_base, g.vertex_count);
-      const auto v = parse_id(display_name, ln, t[2], id_base, g.vertex_count);
-      for (std::size_t j = 0; j < cost_count; ++j)
-        add_cost(display_name, ln, t[3 + j], g.columns[j]);
-      const auto k = g.tails.size();
-      if (k >= kMaxCount)
-        fail(display_name, ln, t[0].column, "more than " + std::to_string(kMaxCount) + " arcs");
-      if (reference) {
-        const auto& ref = *reference->graph;
-        if (k >= ref.tails.size())
-          fail(display_name, ln, t[1].column,
-               "arc beyond the " + plural(ref.tails.size(), "arc") + " of " +
-                   *reference->display_name);
-        if (ref.tails[k] != u || ref.heads[k] != v)
-          fail(display_name, ln, t[1].column,
-               "arc " + std::to_string(u + id_base) + " " + std::to_string(v + id_base) +
-                   " differs from arc " + std::to_string(ref.tails[k] + id_base) + " " +
-                   std::to_string(ref.heads[k] + id_base) + " at " + *reference->display_name +
-                   ":" + std::to_string(ref.arc_lines[k]) +
-                   " (per-objective files must list the same arcs in the same order)");
-      }
-      g.tails.push_back(u);
-      g.heads.push_back(v);
-      if (record_arc_lines) g.arc_lines.push_back(ln);
-      integer_columns.clear();
-      for (auto& c : g.columns)
-        if (auto* ints = std::get_if<std::vector<std::uint64_t>>(&c))
-          integer_columns.push_back(ints);
-      if (integer_columns.size() != cost_count || cost_count == 0) integer_columns.clear();
-      fast_costs.resize(cost_count);
-    } else if (t[0].text == "p") {
-      if (p_line != 0)
-        fail(display_name, ln, t[0].column,
-             "second 'p' line (the first is line " + std::to_string(p_line) + ")");
-      if (t.size() < 2)
-        fail(display_name, ln, end_column, "missing field: the header is 'p sp n m'");
-      if (t[1].text != "sp")
-        fail(display_name, ln, t[1].column, "expected 'sp' after 'p', found " + quoted(t[1].text));
-      if (t.size() < 4)
-        fail(display_name, ln, end_column, "missing field: the header is 'p sp n m'");
-      if (t.size() > 4)
-        fail(display_name, ln, t[4].column,
-             "extra field " + quoted(t[4].text) + ": the header is 'p sp n m'");
-      g.vertex_count = parse_count(display_name, ln, t[2], "vertex count");
-      declared_arcs = parse_count(display_name, ln, t[3], "arc count");
-      check_declared_vertices(display_name, ln, t[2].column, g.vertex_count);
-      p_line = ln;
-      m_column = t[3].column;
-      if (reference) {
-        const auto& ref = *reference->graph;
-        if (g.vertex_count != ref.vertex_count)
-          fail(display_name, ln, t[2].column,
-               "declares " + plural(g.vertex_count, "vertex") + ", " + *reference->display_name +
-                   " has " + std::to_string(ref.vertex_count));
-        if (declared_arcs != ref.tails.size())
-          fail(display_name, ln, t[3].column,
-               "declares " + plural(declared_arcs, "arc") + ", " + *reference->display_name +
-                   " has " + std::to_string(ref.tails.size()));
-      }
-      // The header is untrusted: reserve no more than the text could hold (a line is >= 8 bytes).
-      const auto reserve = std::min<std::uint64_t>(declared_arcs, size_hint / 8 + 1);
-      g.tails.reserve(reserve);
-      g.heads.reserve(reserve);
-      if (record_arc_lines) g.arc_lines.reserve(reserve);
-      advise_huge_pages(g.tails);
-      advise_huge_pages(g.heads);
-    } else {
-      fail(display_name, ln, t[0].column, "unknown line type " + quoted(t[0].text));
-    }
-  }
-  if (p_line == 0)
-    fail(display_name, std::max<std::uint64_t>(lines.number(), 1), 1, "no 'p sp n m' line");
-  if (g.tails.size() != declared_arcs)
-    fail(display_name, p_line, m_column,
-         "the header declares " + plural(declared_arcs, "arc") + ", found " +
-             std::to_string(g.tails.size()));
-  if (first_arc_line == 0 && reference)  // no arcs at all: as many (zero) columns as the reference
-    g.columns.assign(reference->graph->columns.size(), Column{});
-  if (first_arc_line == 0 && !reference) g.columns.assign(1, Column{});
-  return g;
+  return GrParser(size_hint, display_name, id_base, reference, record_arc_lines).parse(lines);
 }
 
 }  // namespace
