@@ -15,6 +15,7 @@ import subprocess
 
 from pybind11.setup_helpers import Pybind11Extension, build_ext
 from setuptools import setup
+from setuptools.command.build_py import build_py
 
 here = os.path.dirname(os.path.abspath(__file__))
 root = os.path.dirname(here)
@@ -62,6 +63,16 @@ class BuildWithCMake(build_ext):
         super().run()
 
 
+class BuildPyWithSuite(build_py):
+    """Installs spec/suite.json, the suite's one description (the library compiles in the same
+    file), as mosb/suite.json: mosb.suite() reads it."""
+
+    def run(self):
+        super().run()
+        self.copy_file(os.path.join(root, "spec", "suite.json"),
+                       os.path.join(self.build_lib, "mosb", "suite.json"))
+
+
 extension = Pybind11Extension(
     "mosb._mosb",
     ["src/mosb_module.cpp"],
@@ -69,4 +80,5 @@ extension = Pybind11Extension(
     cxx_std=20,
 )
 
-setup(version=project_version(), ext_modules=[extension], cmdclass={"build_ext": BuildWithCMake})
+setup(version=project_version(), ext_modules=[extension],
+      cmdclass={"build_ext": BuildWithCMake, "build_py": BuildPyWithSuite})

@@ -14,6 +14,8 @@ so they stay valid after the object that handed them out is gone.
 """
 import collections
 import importlib
+import io
+import json
 import operator
 import os
 
@@ -23,7 +25,7 @@ from . import _mosb
 from ._mosb import Error
 
 __version__ = _mosb.__version__
-__all__ = ["Error", "Instance", "Store", "StoreInstance", "View", "VERIFY_LEVELS", "load", "open"]
+__all__ = ["Error", "Instance", "Store", "StoreInstance", "View", "VERIFY_LEVELS", "load", "open", "suite"]
 
 VERIFY_LEVELS = ("header", "checksums", "structure", "full")
 
@@ -39,6 +41,14 @@ def open(path, verify=None):  # noqa: A001 (the package's entry point, like io.o
     if verify is not None:
         instance.verify(verify)
     return instance
+
+
+def suite():
+    """The benchmark suite as data: spec/suite.json, the description `mosb suite build` builds from
+    (the generated benchmarks' parameters and views, one recipe per raw-source benchmark with its
+    input files). A new dict on every call."""
+    with io.open(os.path.join(os.path.dirname(__file__), "suite.json"), encoding="utf-8") as f:
+        return json.load(f)
 
 
 def load(path, verify=None):

@@ -132,6 +132,16 @@ class InstallTest(unittest.TestCase):
         self.assertEqual(mosb.__version__, version)
         self.assertIn(version, run(MOSB, "--version").stdout + run(MOSB, "--version").stderr)
 
+    def test_suite_is_the_description_the_library_builds_from(self):
+        with open(os.path.join(SOURCE, "spec", "suite.json"), encoding="utf-8") as f:
+            expected = json.load(f)
+        suite = mosb.suite()
+        self.assertEqual(suite, expected)
+        grid = [g for g in suite["generated"] if g["generator"] == "grid"][0]
+        self.assertEqual(len(grid["sizes"]) ** 2, 49)
+        suite["seed"] = 2  # a copy: the next call is unaffected
+        self.assertEqual(mosb.suite()["seed"], 1)
+
     def test_import_loads_no_optional_library(self):
         done = run(sys.executable, "-c",
                    "import sys, mosb; print(sorted(m for m in ('scipy', 'pandas', 'networkx', "

@@ -1,6 +1,7 @@
 #include "mosb/converters/raw_suite.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <set>
 #include <system_error>
 
@@ -14,6 +15,7 @@
 #include "mosb/error.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/instance_editor.hpp"
+#include "suite_description.hpp"
 
 namespace mosb::converters {
 
@@ -41,36 +43,60 @@ std::function<void(const std::filesystem::path&)> import_default_queries(
   };
 }
 
+namespace description = suite_description;
+
+// Input `name` of a recipe: its index in the recipe's `inputs` (the order `instance` gets paths).
+std::size_t add_input(RawRecipe& r, std::string name, bool optional = false) {
+  r.inputs.push_back({std::move(name), optional});
+  return r.inputs.size() - 1;
+}
+
 // DIMACS-NY (views DIMACS-NY_2 and, with the elevation file, DIMACS-Extended-NY_3/_4/_5) and
 // DIMACS-FLA (DIMACS-FLA_2): spec/families/road.md, "Recipe".
-RawRecipe dimacs_recipe(const std::string& region, bool extended, bool queries) {
+RawRecipe dimacs_recipe(const description::Json& d) {
   RawRecipe r;
-  r.name = "DIMACS-" + region;
-  r.inputs = {{"USA-road-d." + region + ".gr.gz"},
-              {"USA-road-t." + region + ".gr.gz"},
-              {"USA-road-d." + region + ".co.gz"}};
-  if (extended) r.inputs.push_back({region + ".elev", true});
-  if (queries) r.inputs.push_back({"USA-road-" + region + "-queries", true});
-  r.instance = [region, name = r.name,
-                extended](const std::vector<std::filesystem::path>& paths) -> SuiteInstance {
-    DimacsOptions o;
-    o.gr_files = {paths[0].string(), paths[1].string()};
-    o.objectives = {parse_objective("distance", "convert dimacs"),
-                    parse_objective("time", "convert dimacs")};
-    o.co_file = paths[2].string();
-    o.name = name;
-    ExtendedOptions e;
-    e.views.push_back(parse_view_spec("DIMACS-" + region + "_2=distance,time"));
-    if (extended && !paths[3].empty()) {
-      e.elevation_file = paths[3].string();
-      e.avg_outdegree = true;
-      e.hop = true;
-      const std::string prefix = "DIMACS-Extended-" + region;
-      e.views.push_back(parse_view_spec(prefix + "_3=distance,time,elevation"));
-      e.views.push_back(parse_view_spec(prefix + "_4=distance,time,elevation,avg_outdegree"));
-      e.views.push_back(parse_view_spec(prefix + "_5=distance,time,elevation,avg_outdegree,hop"));
+  r.name = description::text(d, "name");
+  std::vector<std::size_t> gr;
+  for (const auto& file : description::texts(d, "gr")) gr.push_back(add_input(r, file));
+  const auto co = add_input(r, description::text(d, "co"));
+  DimacsOptions o;
+  for (const auto& objective : description::texts(d, "objectives"))
+    o.objectives.push_back(parse_objective(objective, "convert dimacs"));
+  o.name = r.name;
+  ExtendedOptions e;
+  for (const auto& view : description::texts(d, "views")) e.views.push_back(parse_view_spec(view));
+  // With its optional elevation file, the recipe derives and views what the file allows.
+  std::optional<std::size_t> elevation;
+  ExtendedOptions with_elevation = e;
+  if (d.contains("elevation")) {
+    const auto& elev = d.at("elevation");
+    elevation = add_input(r, description::text(elev, "input"), true);
+    for (const auto& derived : description::texts(elev, "derive")) {
+      if (derived == "avg-outdegree")
+        with_elevation.avg_outdegree = true;
+      else if (derived == "hop")
+        with_elevation.hop = true;
+      else
+        throw Error("spec/suite.json (built in): unknown derived objective '" + derived + "'");
     }
-    const std::filesystem::path query_file = paths.size() > 4 ? paths[4] : "";
+    for (const auto& view : description::texts(elev, "views"))
+      with_elevation.views.push_back(parse_view_spec(view));
+  }
+  std::optional<std::size_t> queries;
+  if (d.contains("queries")) {
+    if (description::text(d.at("queries"), "set") != "default")
+      throw Error("spec/suite.json (built in): a raw recipe's query set must be 'default'");
+    queries = add_input(r, description::text(d.at("queries"), "input"), true);
+  }
+  r.instance = [name = r.name, gr, co, elevation, queries, o, e, with_elevation](
+                   const std::vector<std::filesystem::path>& paths) mutable -> SuiteInstance {
+    for (auto i : gr) o.gr_files.push_back(paths[i].string());
+    o.co_file = paths[co].string();
+    if (elevation && !paths[*elevation].empty()) {
+      e = with_elevation;
+      e.elevation_file = paths[*elevation].string();
+    }
+    const std::filesystem::path query_file = queries ? paths[*queries] : "";
     return {name, [o, e] { return convert_dimacs_extended(o, e); },
             import_default_queries(query_file)};
   };
@@ -78,25 +104,27 @@ RawRecipe dimacs_recipe(const std::string& region, bool extended, bool queries) 
 }
 
 // GER_10: the paper's 10,000-vertex extract in the FMI multi-cost layout (spec/families/ger.md).
-RawRecipe ger10_recipe() {
+RawRecipe fmi_recipe(const description::Json& d) {
   RawRecipe r;
-  r.name = "GER_10";
-  r.inputs = {{"GER_10.txt"}};
-  r.instance = [](const std::vector<std::filesystem::path>& paths) -> SuiteInstance {
-    FmiOptions o;
+  r.name = description::text(d, "name");
+  add_input(r, description::text(d, "input"));
+  FmiOptions o;
+  o.cost_count = description::count(d, "costs");
+  o.name = r.name;
+  r.instance = [o](const std::vector<std::filesystem::path>& paths) mutable -> SuiteInstance {
     o.file = paths[0].string();
-    o.cost_count = 10;
-    o.name = "GER_10";
-    return {"GER_10", [o] { return convert_fmi(o); }, {}};
+    return {*o.name, [o] { return convert_fmi(o); }, {}};
   };
   return r;
 }
 
-// One GUARDS map: MAP.map with its guards MAP.guards (spec/families/games.md), view GUARDS_2.
-RawRecipe guards_recipe(const std::string& map) {
+// One GUARDS map: MAP.map with its guards MAP.guards (spec/families/games.md).
+RawRecipe guards_recipe(const description::Json& d, const std::string& map) {
   RawRecipe r;
-  r.name = "Games-GUARDS-" + map;
-  r.inputs = {{map + ".map"}, {map + ".guards"}};
+  const std::vector<std::pair<std::string, std::string>> values = {{"map", map}};
+  r.name = description::expand(description::text(d, "name"), values);
+  add_input(r, description::expand(description::text(d, "map"), values));
+  add_input(r, description::expand(description::text(d, "guards"), values));
   r.instance = [name = r.name](const std::vector<std::filesystem::path>& paths) -> SuiteInstance {
     GuardsOptions o;
     o.map_file = paths[0].string();
@@ -108,31 +136,41 @@ RawRecipe guards_recipe(const std::string& map) {
 
 // Panda-RRG_2 (aggregate clearance) and Panda-RRG_8 (per link): OMPL GraphML roadmaps
 // (spec/families/robots.md).
-RawRecipe panda_recipe(const std::string& name, ClearanceMode clearance) {
+RawRecipe roadmap_recipe(const description::Json& d) {
   RawRecipe r;
-  r.name = name;
-  r.inputs = {{name + ".graphml"}};
-  r.instance = [name, clearance](const std::vector<std::filesystem::path>& paths) -> SuiteInstance {
-    RoadmapOptions o;
+  r.name = description::text(d, "name");
+  add_input(r, description::text(d, "graphml"));
+  RoadmapOptions o;
+  const auto clearance = parse_clearance_mode(description::text(d, "clearance"));
+  if (!clearance) throw Error("spec/suite.json (built in): unknown clearance mode in " + r.name);
+  o.clearance = *clearance;
+  o.name = r.name;
+  r.instance = [o](const std::vector<std::filesystem::path>& paths) mutable -> SuiteInstance {
     o.graphml_file = paths[0].string();
-    o.clearance = clearance;
-    o.name = name;
-    return {name, [o] { return convert_roadmap(o); }, {}};
+    return {*o.name, [o] { return convert_roadmap(o); }, {}};
   };
   return r;
 }
 
-// The paper names one of its 12 GUARDS maps exactly (random512-20-1); the others are found by
+// The maps the description names (the paper names one of its 12 GUARDS maps exactly), and every
+// map whose file matches `maps_from` ("{map}.guards") in RAWDIR, since the others are found by
 // their guard files.
-std::set<std::string> guards_maps(const std::filesystem::path& raw_dir) {
-  std::set<std::string> maps = {"random512-20-1"};
+std::set<std::string> guards_maps(const description::Json& d,
+                                  const std::filesystem::path& raw_dir) {
+  const auto names = description::texts(d, "maps");
+  std::set<std::string> maps(names.begin(), names.end());
+  const auto pattern = description::text(d, "maps_from");
+  const auto at = pattern.find("{map}");
+  if (at == std::string::npos)
+    throw Error("spec/suite.json (built in): 'maps_from' must contain {map}");
+  const auto prefix = pattern.substr(0, at), suffix = pattern.substr(at + 5);
   std::error_code ec;
   for (std::filesystem::directory_iterator it(raw_dir, ec), end; !ec && it != end;
        it.increment(ec)) {
     const auto name = strip_compression(it->path().filename().string());
-    constexpr std::string_view kSuffix = ".guards";
-    if (name.size() > kSuffix.size() && name.ends_with(kSuffix))
-      maps.insert(name.substr(0, name.size() - kSuffix.size()));
+    if (name.size() > prefix.size() + suffix.size() && name.starts_with(prefix) &&
+        name.ends_with(suffix))
+      maps.insert(name.substr(prefix.size(), name.size() - prefix.size() - suffix.size()));
   }
   if (ec) throw Error(raw_dir.string() + ": cannot list the raw-source directory: " + ec.message());
   return maps;
@@ -154,12 +192,19 @@ std::vector<std::string> raw_input_candidates(const std::string& name) {
 
 std::vector<RawRecipe> raw_recipes(const std::filesystem::path& raw_dir) {
   std::vector<RawRecipe> out;
-  out.push_back(dimacs_recipe("NY", true, true));
-  out.push_back(dimacs_recipe("FLA", false, false));
-  out.push_back(ger10_recipe());
-  for (const auto& map : guards_maps(raw_dir)) out.push_back(guards_recipe(map));
-  out.push_back(panda_recipe("Panda-RRG_2", ClearanceMode::aggregate));
-  out.push_back(panda_recipe("Panda-RRG_8", ClearanceMode::per_link));
+  for (const auto& d : description::root().at("raw")) {
+    const auto converter = description::text(d, "converter");
+    if (converter == "dimacs")
+      out.push_back(dimacs_recipe(d));
+    else if (converter == "fmi")
+      out.push_back(fmi_recipe(d));
+    else if (converter == "guards")
+      for (const auto& map : guards_maps(d, raw_dir)) out.push_back(guards_recipe(d, map));
+    else if (converter == "roadmap")
+      out.push_back(roadmap_recipe(d));
+    else
+      throw Error("spec/suite.json (built in): unknown converter '" + converter + "'");
+  }
   std::sort(out.begin(), out.end(),
             [](const RawRecipe& a, const RawRecipe& b) { return a.name < b.name; });
   return out;

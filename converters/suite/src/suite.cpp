@@ -14,6 +14,7 @@
 #include "mosb/graph_reader.hpp"
 #include "mosb/manifest.hpp"
 #include "mosb/random.hpp"
+#include "suite_description.hpp"
 
 namespace mosb::converters {
 
@@ -88,14 +89,17 @@ std::uint64_t suite_instance_seed(std::uint64_t suite_seed, std::uint64_t key) {
 }
 
 std::vector<std::uint32_t> paper_grid_sizes() {
-  return {300, 350, 400, 450, 500, 550, 600};
+  return suite_description::counts(suite_description::generated("grid"), "sizes");
 }
 std::vector<std::uint32_t> paper_netmaker_vertex_counts() {
-  return {10000, 20000, 30000};
+  return suite_description::counts(suite_description::generated("netmaker"), "vertices");
 }
 
 std::vector<SuiteInstance> grid_suite(std::uint64_t suite_seed,
                                       const std::vector<std::uint32_t>& sizes) {
+  const auto& grid = suite_description::generated("grid");
+  const auto name = suite_description::text(grid, "name");
+  const auto objectives = suite_description::count(grid, "objectives");
   std::vector<SuiteInstance> out;
   const auto unique = sorted_unique(sizes);
   for (auto width : unique)
@@ -103,8 +107,10 @@ std::vector<SuiteInstance> grid_suite(std::uint64_t suite_seed,
       if (width < 1 || height < 1 || width >= (1u << 20) || height >= (1u << 20))
         throw Error("grid suite: sizes must be 1 to 2^20 - 1");
       const GridParameters p{
-          width, height, 3, suite_instance_seed(suite_seed, (std::uint64_t{width} << 20) + height)};
-      out.push_back({"Grid-" + std::to_string(width) + "x" + std::to_string(height),
+          width, height, objectives,
+          suite_instance_seed(suite_seed, (std::uint64_t{width} << 20) + height)};
+      out.push_back({suite_description::expand(name, {{"width", std::to_string(width)},
+                                                      {"height", std::to_string(height)}}),
                      [p] { return grid_graph(p); }});
     }
   return out;
@@ -112,26 +118,32 @@ std::vector<SuiteInstance> grid_suite(std::uint64_t suite_seed,
 
 std::vector<SuiteInstance> netmaker_suite(std::uint64_t suite_seed,
                                           const std::vector<std::uint32_t>& vertex_counts) {
+  const auto& netmaker = suite_description::generated("netmaker");
+  const auto name = suite_description::text(netmaker, "name");
+  const auto localities = suite_description::counts(netmaker, "locality");
+  const auto replicas = suite_description::count(netmaker, "replicas");
   std::vector<SuiteInstance> out;
   for (auto n : sorted_unique(vertex_counts))
-    for (std::uint32_t locality : {20u, 50u})
-      for (std::uint32_t r = 1; r <= 2; ++r) {
+    for (std::uint32_t locality : localities)
+      for (std::uint32_t r = 1; r <= replicas; ++r) {
         NetMakerParameters p;
         p.vertices = n;
-        p.amin = 1;
-        p.amax = 10;
+        p.amin = suite_description::count(netmaker, "amin");
+        p.amax = suite_description::count(netmaker, "amax");
         p.locality = locality;
         p.seed = suite_instance_seed(suite_seed, ((std::uint64_t{n} << 16) + locality) * 4 + r);
-        p.name = "NetMaker-N" + std::to_string(n) + "-I" + std::to_string(locality) + "-" +
-                 std::to_string(r);
+        p.name = suite_description::expand(name, {{"vertices", std::to_string(n)},
+                                                  {"locality", std::to_string(locality)},
+                                                  {"replica", std::to_string(r)}});
         out.push_back({*p.name, [p] { return netmaker_graph(p); }});
       }
   return out;
 }
 
 std::vector<SuiteInstance> published_generated_suite() {
-  auto instances = grid_suite(kPublishedSuiteSeed, paper_grid_sizes());
-  for (auto& instance : netmaker_suite(kPublishedSuiteSeed, paper_netmaker_vertex_counts()))
+  const std::uint64_t seed = suite_description::count(suite_description::root(), "seed");
+  auto instances = grid_suite(seed, paper_grid_sizes());
+  for (auto& instance : netmaker_suite(seed, paper_netmaker_vertex_counts()))
     instances.push_back(std::move(instance));
   return instances;
 }

@@ -8,6 +8,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -53,7 +54,12 @@ std::vector<SuiteEntry> run_suite(const std::filesystem::path& directory,
 // the instance's parameters, so a subset of a suite reproduces the full suite's files exactly.
 std::uint64_t suite_instance_seed(std::uint64_t suite_seed, std::uint64_t key);
 
-// The paper's sizes: 300, 350, ..., 600 (7 x 7 = 49 graphs) and N = 10000, 20000, 30000.
+// The suite as data (spec/suite.json, compiled in): the generated benchmarks' parameters and one
+// recipe per raw-source benchmark. The Python package installs the same file (mosb.suite()).
+std::string_view suite_description_json();
+
+// The paper's sizes, from the description: 300, 350, ..., 600 (7 x 7 = 49 graphs) and
+// N = 10000, 20000, 30000.
 std::vector<std::uint32_t> paper_grid_sizes();
 std::vector<std::uint32_t> paper_netmaker_vertex_counts();
 
@@ -66,10 +72,9 @@ std::vector<SuiteInstance> grid_suite(std::uint64_t suite_seed,
 std::vector<SuiteInstance> netmaker_suite(std::uint64_t suite_seed,
                                           const std::vector<std::uint32_t>& vertex_counts);
 
-// The generated part of the published suite (`mosb suite build`): seed 1, the paper's sizes, the 49
-// Grids then the 12 NetMakers; the same instances `generate grid|netmaker --suite` writes, so a
-// single file can still be rebuilt from its own command.
-inline constexpr std::uint64_t kPublishedSuiteSeed = 1;
+// The generated part of the published suite (`mosb suite build`): the description's seed (1), the
+// paper's sizes, the 49 Grids then the 12 NetMakers; the same instances `generate grid|netmaker
+// --suite` writes, so a single file can still be rebuilt from its own command.
 std::vector<SuiteInstance> published_generated_suite();
 
 }  // namespace mosb::converters
