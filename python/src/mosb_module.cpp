@@ -104,11 +104,8 @@ const char* code_name(mosb::ErrorCode code) {
   return "other";
 }
 
-}  // namespace
-
-PYBIND11_MODULE(_mosb, m) {
-  m.doc() = "Binding of the mosb C++ reader; use the `mosb` package, not this module.";
-  m.attr("__version__") = mosb::kVersion;
+// mosb::Error as the Python exception mosb.Error.
+void bind_error(py::module_& m) {
   // One message line (naming the file) as str(error), and the C++ ErrorCode as error.code.
   static py::exception<mosb::Error> error_type(m, "Error");
   py::register_exception_translator([](std::exception_ptr thrown) {
@@ -120,8 +117,11 @@ PYBIND11_MODULE(_mosb, m) {
       PyErr_SetObject(error_type.ptr(), error.ptr());
     }
   });
+}
 
-  py::class_<mosb::GraphReader, std::shared_ptr<mosb::GraphReader>>(m, "Reader")
+// Opening, sizes, the arrays (zero-copy views that keep the mapping alive), names and views.
+void bind_reader_data(py::class_<mosb::GraphReader, ReaderPtr>& reader) {
+  reader
       .def_static(
           "open",
           [](const std::string& path) {
@@ -181,7 +181,12 @@ PYBIND11_MODULE(_mosb, m) {
             auto view = r.view(name);
             return py::make_tuple(view.name, view.objectives, view.query_set);
           },
-          py::arg("name"))
+          py::arg("name"));
+}
+
+// Metadata, verification and the mapping's address range (for the tests of zero-copy views).
+void bind_reader_checks(py::class_<mosb::GraphReader, ReaderPtr>& reader) {
+  reader
       .def("metadata",
            [](const mosb::GraphReader& r) {
              py::dict entries;
@@ -209,7 +214,10 @@ PYBIND11_MODULE(_mosb, m) {
       .def("mapping_range", [](const mosb::GraphReader& r) {
         return py::make_tuple(reinterpret_cast<std::uintptr_t>(r.bytes().data()), r.bytes().size());
       });
+}
 
+// A store's instances by name, and its listing.
+void bind_store(py::module_& m) {
   // (reader, view name or "", query set or "", path mapped, manifest file name) of
   // mosb::Store::instance.
   m.def(
@@ -233,4 +241,16 @@ PYBIND11_MODULE(_mosb, m) {
         return files;
       },
       py::arg("directory"));
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_mosb, m) {
+  m.doc() = "Binding of the mosb C++ reader; use the `mosb` package, not this module.";
+  m.attr("__version__") = mosb::kVersion;
+  bind_error(m);
+  py::class_<mosb::GraphReader, ReaderPtr> reader(m, "Reader");
+  bind_reader_data(reader);
+  bind_reader_checks(reader);
+  bind_store(m);
 }
