@@ -129,8 +129,10 @@ inline Options parse_args(int argc, char** argv) {
 // The objectives and queries a .mosb run uses. View: --view, else the file's only view, else the
 // first in name order; a file without views uses all its objectives. Queries: --query, else
 // --queries, else the view's query set, else the file's only query set.
+// The structure is verified first (one pass over the file): the search indexes by ids from it.
 inline Instance open_mosb(const Options& o) {
-  auto reader = std::make_shared<const mosb::GraphReader>(mosb::GraphReader::open(o.instance));
+  auto reader = std::make_shared<const mosb::GraphReader>(
+      mosb::GraphReader::open(o.instance, mosb::VerifyLevel::structure));
   const mosb::GraphReader& r = *reader;
   const std::string file = r.display_name();
   std::optional<mosb::View> view;

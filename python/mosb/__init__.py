@@ -8,7 +8,10 @@
 The reading, the checks and the error messages are those of the C++ library (the same sources the
 `mosb` program is built from); every failure is a `mosb.Error` whose message names the file and
 whose `code` is the C++ ErrorCode's name ("io", "not_mosb", "version", "damaged", "not_found",
-"invalid_argument", "packed", "other").
+"invalid_argument", "packed", "other"). Text in a file that is not UTF-8 is such an error
+('damaged'), never a UnicodeDecodeError. An argument of the wrong type (a view that is
+neither a name nor a View) raises TypeError, and a negative index IndexError, as Python does.
+Paths may be str, bytes or os.PathLike; one with a NUL byte is refused.
 Arrays are views into the memory-mapped file: they are read-only and each keeps the mapping alive,
 so they stay valid after the object that handed them out is gone.
 """
@@ -34,10 +37,32 @@ VERIFY_LEVELS = ("header", "checksums", "structure", "full")
 View = collections.namedtuple("View", "name objectives query_set")
 
 
+def _error(code, message):
+    """A mosb.Error raised from Python, with the same `code` attribute as the library's."""
+    error = Error(message)
+    error.code = code
+    return error
+
+
+def _os_path(path, function):
+    """`path` (str, bytes or os.PathLike) as the bytes the operating system gets, as open() takes
+    it; an embedded NUL would silently cut the name short, so it is refused."""
+    encoded = os.fsencode(os.fspath(path))
+    if b"\0" in encoded:
+        raise _error("invalid_argument",
+                     "mosb.%s: the path %r contains a NUL byte" % (function, path))
+    return encoded
+
+
 def open(path, verify=None):  # noqa: A001 (the package's entry point, like io.open)
     """Maps and checks the instance at `path` (FORMAT.md §9); `verify` is an optional level of
-    VERIFY_LEVELS run right after opening. Raises mosb.Error naming the file."""
-    instance = Instance(_mosb.Reader.open(os.fspath(path)))
+    VERIFY_LEVELS run right after opening. Raises mosb.Error naming the file; a packed file
+    (`mosb pack`) is refused at once with code 'packed' (mosb.load decodes it).
+
+    The file stays mapped while the instance or an array from it lives: truncating or rewriting
+    it in place meanwhile ends the process with SIGBUS (what mmap does). Replace a file by
+    writing a new one and renaming it over the old, as mosb's own writers do."""
+    instance = Instance(_mosb.Reader.open(_os_path(path, "open")))
     if verify is not None:
         instance.verify(verify)
     return instance
@@ -54,7 +79,7 @@ def suite():
 def load(path, verify=None):
     """Like open(), but a packed file (`mosb pack`) is decoded into memory the instance owns (every
     section's checksum checked) instead of being refused; an unpacked file is mapped as by open()."""
-    instance = Instance(_mosb.Reader.load(os.fspath(path)))
+    instance = Instance(_mosb.Reader.load(_os_path(path, "load")))
     if verify is not None:
         instance.verify(verify)
     return instance
@@ -99,6 +124,16 @@ class Instance:
 
     def __init__(self, reader):
         self._reader = reader
+        self._structure_checked = False
+
+    def _checked(self):
+        """The reader, once its structure is verified (checksums, CSR and id ranges; O(m), once
+        per instance): the adapters walk the arcs, and an unchecked file could send them out of
+        bounds or into huge allocations."""
+        if not self._structure_checked:
+            self._reader.verify("structure")
+            self._structure_checked = True
+        return self._reader
 
     def __repr__(self):
         return "<mosb.Instance %r: %d vertices, %d arcs, objectives %s>" % (
@@ -145,7 +180,9 @@ class Instance:
         return self._reader.reverse_arcs()
 
     def arc_sources(self):
-        """u32, m: the tail of each forward arc (computed, not stored: a new array)."""
+        """u32, m: the tail of each forward arc (computed, not stored: a new array). Verifies the
+        structure first (once per instance)."""
+        self._checked()
         out_degrees = np.diff(self.forward_offsets.view(np.int64))  # offsets <= m < 2^32
         return np.repeat(np.arange(self.vertex_count, dtype=np.uint32), out_degrees)
 
@@ -161,6 +198,9 @@ class Instance:
         index = operator.index(name_or_index)
         if index < 0:
             raise IndexError("mosb: objective index %d is negative" % index)
+        if index >= len(self.objectives):  # the library's error for cost(index)
+            raise _error("invalid_argument", "%s: objective index %d out of range (the file has "
+                         "%d objectives)" % (self.path, index, len(self.objectives)))
         return index
 
     def cost(self, name_or_index):
@@ -207,6 +247,9 @@ class Instance:
             return list(range(len(self.objectives)))
         if isinstance(view, str):
             view = self.view(view)
+        if not isinstance(view, View):
+            raise TypeError("mosb: view must be a view name, a mosb.View or None, not %s"
+                            % type(view).__name__)
         return list(view.objectives)
 
     def to_scipy_csr(self, objective):
@@ -219,6 +262,7 @@ class Instance:
         entries. Parallel arcs stay separate entries (scipy sums them only if asked to).
         """
         sparse = _require("scipy.sparse", "scipy", "to_scipy_csr")
+        self._checked()
         data = self.cost(objective)
         n = self.vertex_count
         # Ids are < n and offsets <= m < 2^32, so the signed reinterpretations hold the same values.
@@ -233,6 +277,7 @@ class Instance:
         """A networkx.MultiDiGraph: vertices 0..n-1, one edge per arc keyed by its arc id, with
         one attribute per objective of `view` (all objectives when None)."""
         nx = _require("networkx", "networkx", "to_networkx")
+        self._checked()
         graph = nx.MultiDiGraph()
         graph.add_nodes_from(range(self.vertex_count))
         names = self.objectives
@@ -248,6 +293,7 @@ class Instance:
         """A directed igraph.Graph: vertices 0..n-1, edge i = arc i, one edge attribute per
         objective of `view` (all objectives when None)."""
         ig = _require("igraph", "igraph", "to_igraph")
+        self._checked()
         edges = np.column_stack((self.arc_sources(), self.forward_targets)).tolist()
         graph = ig.Graph(n=self.vertex_count, edges=edges, directed=True)
         names = self.objectives
@@ -259,6 +305,7 @@ class Instance:
         """A pandas.DataFrame with one row per arc (index: arc id): source, target, then one
         column per objective of `view` (all objectives when None). pandas copies the columns."""
         pd = _require("pandas", "pandas", "arcs_frame")
+        self._checked()
         columns = {"source": self.arc_sources(), "target": self.forward_targets}
         names = self.objectives
         for i in self._objective_list(view):

@@ -75,10 +75,36 @@ py::array cost_column(const ReaderPtr& reader, std::size_t index) {
   throw mosb::Error(reader->display_name() + ": section '" + s.name + "' has an unknown type");
 }
 
+// Text from the file (names, metadata) as str. The format requires UTF-8, but an unverified file
+// may break that: such text is a mosb.Error ('damaged') naming the file, never UnicodeDecodeError.
+py::str text_of(const mosb::GraphReader& reader, std::string_view text) {
+  PyObject* decoded =
+      PyUnicode_DecodeUTF8(text.data(), static_cast<py::ssize_t>(text.size()), "strict");
+  if (!decoded) {
+    PyErr_Clear();
+    throw mosb::Error(mosb::ErrorCode::damaged,
+                      reader.display_name() + ": text in the file is not valid UTF-8");
+  }
+  return py::reinterpret_steal<py::str>(decoded);
+}
+
+py::list texts_of(const mosb::GraphReader& reader, const std::vector<std::string>& texts) {
+  py::list out;
+  for (const auto& text : texts) out.append(text_of(reader, text));
+  return out;
+}
+
 std::vector<std::string> names_of(const std::vector<const mosb::Section*>& sections) {
   std::vector<std::string> names;
   for (const auto* s : sections) names.push_back(s->name);
   return names;
+}
+
+// A path as the operating system has it (bytes; Python hands str paths over with
+// os.fsencode) shown as os.fsdecode would: undecodable bytes as surrogate escapes.
+py::str path_text(const std::string& path) {
+  return py::reinterpret_steal<py::str>(
+      PyUnicode_DecodeFSDefaultAndSize(path.data(), static_cast<py::ssize_t>(path.size())));
 }
 
 // mosb.Error.code: the C++ ErrorCode as its enumerator's name, for callers to branch on.
@@ -112,7 +138,11 @@ void bind_error(py::module_& m) {
     try {
       if (thrown) std::rethrow_exception(thrown);
     } catch (const mosb::Error& e) {
-      py::object error = py::reinterpret_borrow<py::object>(error_type.ptr())(e.what());
+      // Messages quote names from the file and paths, which need not be UTF-8.
+      const std::string_view what = e.what();
+      auto message = py::reinterpret_steal<py::str>(PyUnicode_DecodeUTF8(
+          what.data(), static_cast<py::ssize_t>(what.size()), "backslashreplace"));
+      py::object error = py::reinterpret_borrow<py::object>(error_type.ptr())(message);
       error.attr("code") = code_name(e.code());
       PyErr_SetObject(error_type.ptr(), error.ptr());
     }
@@ -125,7 +155,7 @@ void bind_reader_data(py::class_<mosb::GraphReader, ReaderPtr>& reader) {
       .def_static(
           "open",
           [](const std::string& path) {
-            return std::make_shared<mosb::GraphReader>(mosb::GraphReader::open(path));
+            return std::make_shared<mosb::GraphReader>(mosb::GraphReader::open_unpacked(path));
           },
           py::arg("path"), py::call_guard<py::gil_scoped_release>())
       .def_static(
@@ -134,7 +164,8 @@ void bind_reader_data(py::class_<mosb::GraphReader, ReaderPtr>& reader) {
             return std::make_shared<mosb::GraphReader>(mosb::load(path));
           },
           py::arg("path"), py::call_guard<py::gil_scoped_release>())
-      .def_property_readonly("display_name", &mosb::GraphReader::display_name)
+      .def_property_readonly("display_name",
+                             [](const mosb::GraphReader& r) { return path_text(r.display_name()); })
       .def_property_readonly("vertex_count", &mosb::GraphReader::vertex_count)
       .def_property_readonly("arc_count", &mosb::GraphReader::arc_count)
       .def_property_readonly("format_version",
@@ -150,9 +181,9 @@ void bind_reader_data(py::class_<mosb::GraphReader, ReaderPtr>& reader) {
       .def("reverse_arcs", [](const ReaderPtr& r) { return column(r, r->reverse_arcs()); })
       .def("objective_names",
            [](const mosb::GraphReader& r) {
-             std::vector<std::string> names;
+             py::list names;
              for (std::size_t i = 0; i < r.objective_count(); ++i)
-               names.push_back(r.objective(i).name);
+               names.append(text_of(r, r.objective(i).name));
              return names;
            })
       .def("objective_index", &mosb::GraphReader::objective_index, py::arg("name"))
@@ -163,7 +194,7 @@ void bind_reader_data(py::class_<mosb::GraphReader, ReaderPtr>& reader) {
       .def("cost", &cost_column, py::arg("index"))
       .def("query_set_names",
            [](const mosb::GraphReader& r) {
-             return names_of(r.all(mosb::format::SectionKind::queries));
+             return texts_of(r, names_of(r.all(mosb::format::SectionKind::queries)));
            })
       .def(
           "queries",
@@ -174,12 +205,13 @@ void bind_reader_data(py::class_<mosb::GraphReader, ReaderPtr>& reader) {
                                    {static_cast<py::ssize_t>(queries.size()), 2});
           },
           py::arg("name"))
-      .def("view_names", &mosb::GraphReader::view_names)
+      .def("view_names", [](const mosb::GraphReader& r) { return texts_of(r, r.view_names()); })
       .def(
           "view",
           [](const mosb::GraphReader& r, const std::string& name) {
             auto view = r.view(name);
-            return py::make_tuple(view.name, view.objectives, view.query_set);
+            return py::make_tuple(text_of(r, view.name), view.objectives,
+                                  text_of(r, view.query_set));
           },
           py::arg("name"));
 }
@@ -191,7 +223,7 @@ void bind_reader_checks(py::class_<mosb::GraphReader, ReaderPtr>& reader) {
            [](const mosb::GraphReader& r) {
              py::dict entries;
              for (const auto& [key, value] : r.metadata().entries())
-               entries[py::str(key)] = py::str(value);
+               entries[text_of(r, key)] = text_of(r, value);
              return entries;
            })
       .def(

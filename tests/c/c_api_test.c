@@ -187,6 +187,10 @@ static void check_failures(const char* dir) {
   CHECK(mosb_verify(g, MOSB_VERIFY_CHECKSUMS) == MOSB_ERROR_DAMAGED);
   CHECK(contains(mosb_last_error(), "section 'time': [checksum] mismatch"));
   CHECK(mosb_verify(g, (mosb_verify_level)42) == MOSB_ERROR_INVALID_ARGUMENT);
+  CHECK(contains(mosb_last_error(), "mosb_verify: unknown verify level 42"));
+  /* A call error is reported as one, before anything is read from the file. */
+  CHECK(mosb_view_count(g, NULL) == MOSB_ERROR_INVALID_ARGUMENT);
+  CHECK(contains(mosb_last_error(), "mosb_view_count: the output count is NULL"));
   mosb_close(g);
   g = NULL;
   CHECK(mosb_open_verified(golden(dir, "invalid/section-checksum.mosb"), MOSB_VERIFY_HEADER, &g) ==
@@ -197,6 +201,7 @@ static void check_failures(const char* dir) {
         MOSB_ERROR_DAMAGED);
   CHECK(g == NULL && contains(mosb_last_error(), "[target-range]"));
   CHECK(mosb_open(NULL, &g) == MOSB_ERROR_INVALID_ARGUMENT);
+  CHECK(strcmp(mosb_last_error(), "mosb_open: the path is NULL") == 0);
   mosb_close(NULL);
 }
 
@@ -220,6 +225,18 @@ static void check_store(const char* store) {
   CHECK(g == NULL && view == NULL);
   CHECK(contains(mosb_last_error(), "no-such-benchmark"));
   CHECK(mosb_store_instance(store, NULL, &g, &view) == MOSB_ERROR_INVALID_ARGUMENT);
+
+  /* The packed file itself: refused by the zero-copy opens at once, decoded by mosb_load. */
+  g = NULL;
+  CHECK(mosb_open(golden(store, "small.mosb"), &g) == MOSB_ERROR_PACKED);
+  CHECK(g == NULL && contains(mosb_last_error(), "small.mosb") &&
+        contains(mosb_last_error(), "mosb_load"));
+  CHECK(mosb_open_verified(golden(store, "small.mosb"), MOSB_VERIFY_CHECKSUMS, &g) ==
+        MOSB_ERROR_PACKED);
+  CHECK(g == NULL);
+  CHECK(mosb_load(golden(store, "small.mosb"), &g) == MOSB_OK);
+  check_graph(g);
+  mosb_close(g);
 }
 
 int main(int argc, char** argv) {

@@ -126,6 +126,16 @@ class InstalledPackage(unittest.TestCase):
         run(mosb, "queries", "generate", cls.grid, "--in-place", "--set", "default", "--count", "25",
             "--seed", "5", "--replace")
         cls.expected = expected_outputs(cls.grid)
+        # What the C programs must refuse: the file packed, and one target bit flipped with the
+        # checksums untouched (the walk would index out of bounds).
+        cls.packed = os.path.join(cls.tmp, "packed.mosb")
+        run(mosb, "pack", cls.grid, "-o", cls.packed)
+        cls.flipped = os.path.join(cls.tmp, "flipped.mosb")
+        shutil.copy(cls.grid, cls.flipped)
+        inst = mosb_reader.open_instance(cls.grid)
+        with open(cls.flipped, "r+b") as f:
+            f.seek(inst.of_kind(mosb_reader.FORWARD_TARGETS)[0].offset + 3)
+            f.write(b"\x80")
 
     @classmethod
     def tearDownClass(cls):
@@ -144,6 +154,13 @@ class InstalledPackage(unittest.TestCase):
         for program in ("readme_c", "readme_cpp", "dijkstra", "c_api_doc"):
             out = run(os.path.join(build, program), self.grid).splitlines()
             self.assertEqual(out, self.expected[program], program + " via " + via)
+        for program in ("readme_c", "dijkstra", "c_api_doc"):
+            for bad, why in ((self.packed, "packed"), (self.flipped, "damaged")):
+                r = subprocess.run([os.path.join(build, program), bad], capture_output=True,
+                                   text=True)
+                self.assertEqual(r.returncode, 1, (program, why, r.stdout, r.stderr))
+                self.assertIn(bad, r.stderr, program)
+                self.assertEqual(len(r.stderr.splitlines()), 1, (program, r.stderr))
         return build
 
     def test_installs_library_headers_program_and_package_files(self):

@@ -370,6 +370,80 @@ class ErrorTest(Temp):
             mosb.open(os.path.join(self.dir, "missing.mosb"))
 
 
+class HardeningTest(Temp):
+    """What a damaged file or a careless call must never do: crash, corrupt memory, or surface as
+    a foreign exception (issue: the bindings keep the CLI's promise)."""
+
+    def flip_target(self):
+        path = self.generate_grid("flip.mosb")
+        g = mosb.open(path)
+        offset = int(g.forward_targets.ctypes.data - g._reader.mapping_range()[0])
+        del g
+        patch(path, offset + 3, b"\x80")  # target 0 becomes >= 2^31; checksums untouched
+        return path
+
+    def test_adapters_refuse_an_unchecked_walk(self):
+        path = self.flip_target()
+        g = mosb.open(path)
+        adapters = [g.arc_sources, lambda: g.to_scipy_csr("c1"), g.to_networkx, g.to_igraph,
+                    g.arcs_frame]
+        for adapter in adapters:
+            with self.assertRaises(mosb.Error) as caught:
+                adapter()
+            self.assertIn(path, str(caught.exception))
+            self.assertEqual(caught.exception.code, "damaged")
+        # A sound file is verified once, then walked.
+        sound = mosb.open(self.generate_grid())
+        self.assertEqual(sound.to_scipy_csr(0).nnz, sound.arc_count)
+        self.assertTrue(sound._structure_checked)
+
+    def test_zero_copy_open_refuses_a_packed_file_at_once(self):
+        packed = os.path.join(self.dir, "packed.mosb")
+        done = run(MOSB, "pack", self.generate_grid(), "-o", packed)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        with self.assertRaises(mosb.Error) as caught:
+            mosb.open(packed)
+        self.assertEqual(caught.exception.code, "packed")
+        self.assertIn("mosb.load", str(caught.exception))
+        self.assertEqual(mosb.load(packed).vertex_count, 30 * 20 + 2)
+
+    def test_paths_str_bytes_pathlike_and_nul(self):
+        import pathlib
+        odd = os.path.join(os.fsencode(self.dir), b"g\xff.mosb")  # not UTF-8
+        shutil.copy(self.generate_grid(), odd)
+        for path in (odd, os.fsdecode(odd), pathlib.Path(os.fsdecode(odd))):
+            g = mosb.open(path)
+            self.assertEqual(g.path, os.fsdecode(odd))
+        with self.assertRaises(mosb.Error) as caught:
+            mosb.open(GOLDEN_SMALL + "\0junk")
+        self.assertEqual(caught.exception.code, "invalid_argument")
+        with self.assertRaises(mosb.Error) as caught:
+            mosb.open(os.path.join(os.fsencode(self.dir), b"missing\xff.mosb"))
+        self.assertEqual(caught.exception.code, "io")
+        self.assertIn("missing", str(caught.exception))
+
+    def test_text_that_is_not_utf8_is_a_mosb_error(self):
+        path = self.generate_grid("text.mosb")
+        with open(path, "rb") as f:
+            data = f.read()
+        patch(path, data.index(b"view.Grid_2") + 9, b"\xff")  # a view name in the metadata
+        g = mosb.open(path)
+        for call in (lambda: g.metadata, lambda: g.views):
+            with self.assertRaises(mosb.Error) as caught:
+                call()
+            self.assertEqual(caught.exception.code, "damaged")
+            self.assertIn(path, str(caught.exception))
+
+    def test_argument_checks_name_the_argument(self):
+        g = mosb.open(GOLDEN_SMALL)
+        with self.assertRaises(mosb.Error) as caught:
+            g.objective_index(99)
+        self.assertEqual(caught.exception.code, "invalid_argument")
+        self.assertIn("objective index 99 out of range", str(caught.exception))
+        with self.assertRaisesRegex(TypeError, "view must be a view name"):
+            g._objective_list(5)
+
+
 class AdapterTest(Temp):
     def test_scipy_csr_shares_every_cost_type(self):
         # small.mosb: u16, f32, f64, u32, u64; the grid: u8. Costs are never of another type.

@@ -4,11 +4,17 @@
  * ccall, Python ctypes). A mosb_graph is an opened, memory-mapped .mosb instance.
  *
  * Errors: every call that can fail returns a mosb_status; on anything but MOSB_OK it leaves its
- * outputs untouched and mosb_last_error() returns a one-line message naming the file. No C++
- * exception crosses this interface.
+ * outputs untouched and mosb_last_error() returns a one-line message naming the file (a call
+ * error, such as a NULL pointer, names the function instead; control bytes quoted from a file are
+ * written as \xNN). No C++ exception crosses this interface.
  *
  * Lifetime: every pointer a call hands out (arrays, names, metadata values, the digest) points into
  * the mapping or into the handle and stays valid until mosb_close() on that handle.
+ *
+ * Trust: opening reads the header and section table only. Before indexing arrays by ids read from
+ * the file, verify its structure (mosb_open_verified with MOSB_VERIFY_STRUCTURE, or mosb_verify).
+ * A mapped file truncated or rewritten in place ends the process with SIGBUS in any call that
+ * reads it (what mmap does): replace files by writing a new one and renaming it over the old.
  *
  * Threads: every call except mosb_close may be made on one handle from many threads at once.
  * mosb_close must not run while another thread uses the handle. mosb_last_error() is per thread:
@@ -77,7 +83,8 @@ const char* mosb_version(void);
 const char* mosb_last_error(void);
 
 /* Opens and maps `path`; checks the header, the table and the counts (time independent of the
- * file size). *graph receives the handle. */
+ * file size). *graph receives the handle. A packed file (`mosb pack`) is refused at once with
+ * MOSB_ERROR_PACKED: its sections cannot be mapped in place (mosb_load decodes it). */
 mosb_status mosb_open(const char* path, mosb_graph** graph);
 /* mosb_open, then mosb_verify at `level`: a file that fails is closed again and not returned. */
 mosb_status mosb_open_verified(const char* path, mosb_verify_level level, mosb_graph** graph);

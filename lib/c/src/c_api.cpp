@@ -5,6 +5,7 @@
 #include <mutex>
 #include <new>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <vector>
 
@@ -55,21 +56,53 @@ mosb_status status_of(mosb::ErrorCode code) {
   return MOSB_ERROR_OTHER;
 }
 
-mosb_status failed(mosb_status status, const char* what) {
+// An error in how the library was called (a NULL pointer, an unknown enumerator): its message
+// names the function, as there may be no file to name.
+struct CallError : mosb::Error {
+  explicit CallError(const std::string& what)
+      : mosb::Error(mosb::ErrorCode::invalid_argument, what) {}
+};
+
+// One line, whatever the message quotes from a file (metadata values, names): control bytes are
+// written as \xNN.
+std::string one_line(std::string_view message) {
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string out;
+  out.reserve(message.size());
+  for (const char c : message) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte >= 0x20 && byte != 0x7f) {
+      out += c;
+    } else {
+      out += "\\x";
+      out += kHex[byte >> 4];
+      out += kHex[byte & 0xf];
+    }
+  }
+  return out;
+}
+
+mosb_status failed(mosb_status status, std::string_view what) {
   try {
-    last_error = what;
+    last_error = one_line(what);
   } catch (...) {
     // Keep the previous message rather than throw out of a C function.
   }
   return status;
 }
 
-// Runs body, turning every exception into a status and a message.
+// Runs body, turning every exception into a status and a message; `function` is the entry point.
 template <class Body>
-mosb_status guarded(Body&& body) noexcept {
+mosb_status guarded(const char* function, Body&& body) noexcept {
   try {
     body();
     return MOSB_OK;
+  } catch (const CallError& e) {
+    try {
+      return failed(MOSB_ERROR_INVALID_ARGUMENT, std::string(function) + ": " + e.what());
+    } catch (...) {
+      return failed(MOSB_ERROR_INVALID_ARGUMENT, e.what());
+    }
   } catch (const mosb::Error& e) {
     return failed(status_of(e.code()), e.what());
   } catch (const std::bad_alloc&) {
@@ -82,8 +115,7 @@ mosb_status guarded(Body&& body) noexcept {
 }
 
 void require(const void* pointer, const char* what) {
-  if (!pointer)
-    throw mosb::Error(mosb::ErrorCode::invalid_argument, std::string(what) + " is NULL");
+  if (!pointer) throw CallError(std::string(what) + " is NULL");
 }
 
 const mosb_graph& checked(const mosb_graph* graph) {
@@ -122,8 +154,7 @@ mosb::VerifyLevel level_of(const mosb_verify_level& level) {
     case MOSB_VERIFY_FULL:
       return mosb::VerifyLevel::full;
   }
-  throw mosb::Error(mosb::ErrorCode::invalid_argument,
-                    "unknown verify level " + std::to_string(raw));
+  throw CallError("unknown verify level " + std::to_string(raw));
 }
 
 void verify(const mosb_graph& g, const mosb_verify_level& level) {
@@ -152,15 +183,15 @@ const char* mosb_last_error(void) {
 }
 
 mosb_status mosb_open(const char* path, mosb_graph** graph) {
-  return guarded([&] {
+  return guarded(__func__, [&] {
     require(path, "the path");
     require(graph, "the output handle");
-    *graph = new mosb_graph(mosb::GraphReader::open(path));
+    *graph = new mosb_graph(mosb::GraphReader::open_unpacked(path));
   });
 }
 
 mosb_status mosb_load(const char* path, mosb_graph** graph) {
-  return guarded([&] {
+  return guarded(__func__, [&] {
     require(path, "the path");
     require(graph, "the output handle");
     *graph = new mosb_graph(mosb::load(path));
@@ -169,7 +200,7 @@ mosb_status mosb_load(const char* path, mosb_graph** graph) {
 
 mosb_status mosb_store_instance(const char* directory, const char* name, mosb_graph** graph,
                                 const char** view) {
-  return guarded([&] {
+  return guarded(__func__, [&] {
     require(directory, "the store directory");
     require(name, "the name");
     require(graph, "the output handle");
@@ -182,11 +213,11 @@ mosb_status mosb_store_instance(const char* directory, const char* name, mosb_gr
 }
 
 mosb_status mosb_open_verified(const char* path, mosb_verify_level level, mosb_graph** graph) {
-  return guarded([&] {
+  return guarded(__func__, [&] {
     require(path, "the path");
     require(graph, "the output handle");
     level_of(level);
-    std::unique_ptr<mosb_graph> opened(new mosb_graph(mosb::GraphReader::open(path)));
+    std::unique_ptr<mosb_graph> opened(new mosb_graph(mosb::GraphReader::open_unpacked(path)));
     verify(*opened, level);
     *graph = opened.release();
   });
@@ -197,11 +228,11 @@ void mosb_close(mosb_graph* graph) {
 }
 
 mosb_status mosb_verify(const mosb_graph* graph, mosb_verify_level level) {
-  return guarded([&] { verify(checked(graph), level); });
+  return guarded(__func__, [&] { verify(checked(graph), level); });
 }
 
 mosb_status mosb_vertex_count(const mosb_graph* graph, uint64_t* count) {
-  return guarded([&] {
+  return guarded(__func__, [&] {
     const auto& g = checked(graph);
     require(count, "the output count");
     *count = g.reader.vertex_count();
@@ -209,7 +240,7 @@ mosb_status mosb_vertex_count(const mosb_graph* graph, uint64_t* count) {
 }
 
 mosb_status mosb_arc_count(const mosb_graph* graph, uint64_t* count) {
-  return guarded([&] {
+  return guarded(__func__, [&] {
     const auto& g = checked(graph);
     require(count, "the output count");
     *count = g.reader.arc_count();
@@ -218,7 +249,7 @@ mosb_status mosb_arc_count(const mosb_graph* graph, uint64_t* count) {
 
 mosb_status mosb_forward_csr(const mosb_graph* graph, const uint64_t** offsets,
                              const uint32_t** targets) {
-  return guarded([&] {
+  return guarded(__func__, [&] {
     const auto& g = checked(graph);
     require(offsets, "the output offsets");
     require(targets, "the output targets");
@@ -231,7 +262,7 @@ mosb_status mosb_forward_csr(const mosb_graph* graph, const uint64_t** offsets,
 
 mosb_status mosb_reverse_csr(const mosb_graph* graph, const uint64_t** offsets,
                              const uint32_t** sources, const uint32_t** arcs) {
-  return guarded([&] {
+  return guarded(__func__, [&] {
     const auto& g = checked(graph);
     require(offsets, "the output offsets");
     require(sources, "the output sources");
@@ -246,7 +277,7 @@ mosb_status mosb_reverse_csr(const mosb_graph* graph, const uint64_t** offsets,
 }
 
 mosb_status mosb_objective_count(const mosb_graph* graph, size_t* count) {
-  return guarded([&] {
+  return guarded(__func__, [&] {
     const auto& g = checked(graph);
     require(count, "the output count");
     *count = g.reader.objective_count();
@@ -254,7 +285,7 @@ mosb_status mosb_objective_count(const mosb_graph* graph, size_t* count) {
 }
 
 mosb_status mosb_objective_name(const mosb_graph* graph, size_t objective, const char** name) {
-  return guarded([&] {
+  return guarded(__func__, [&] {
     const auto& g = checked(graph);
     require(name, "the output name");
     *name = g.reader.objective(objective).name.c_str();
@@ -262,9 +293,9 @@ mosb_status mosb_objective_name(const mosb_graph* graph, size_t objective, const
 }
 
 mosb_status mosb_objective_unit(const mosb_graph* graph, size_t objective, const char** unit) {
-  return guarded([&] {
+  return guarded(__func__, [&] {
+    require(unit, "the output unit");  // before the metadata is parsed: a call error first
     const auto& g = described(graph);
-    require(unit, "the output unit");
     g.reader.objective(objective);  // range check with the reader's message
     *unit = g.units[objective].c_str();
   });
@@ -272,7 +303,7 @@ mosb_status mosb_objective_unit(const mosb_graph* graph, size_t objective, const
 
 mosb_status mosb_objective_type(const mosb_graph* graph, size_t objective,
                                 mosb_element_type* type) {
-  return guarded([&] {
+  return guarded(__func__, [&] {
     const auto& g = checked(graph);
     require(type, "the output type");
     *type = static_cast<mosb_element_type>(g.reader.objective(objective).type);
@@ -280,7 +311,7 @@ mosb_status mosb_objective_type(const mosb_graph* graph, size_t objective,
 }
 
 mosb_status mosb_find_objective(const mosb_graph* graph, const char* name, size_t* objective) {
-  return guarded([&] {
+  return guarded(__func__, [&] {
     const auto& g = checked(graph);
     require(name, "the objective name");
     require(objective, "the output index");
@@ -290,7 +321,7 @@ mosb_status mosb_find_objective(const mosb_graph* graph, const char* name, size_
 
 mosb_status mosb_cost(const mosb_graph* graph, size_t objective, mosb_element_type* type,
                       const void** values) {
-  return guarded([&] {
+  return guarded(__func__, [&] {
     const auto& g = checked(graph);
     require(type, "the output type");
     require(values, "the output values");
@@ -303,7 +334,7 @@ mosb_status mosb_cost(const mosb_graph* graph, size_t objective, mosb_element_ty
 
 mosb_status mosb_cost_copy_u64(const mosb_graph* graph, size_t objective, uint64_t* out,
                                size_t count) {
-  return guarded([&] {
+  return guarded(__func__, [&] {
     const auto& g = checked(graph);
     require(out, "the output buffer");
     g.reader.read_cost_as(objective, std::span<std::uint64_t>(out, count));
@@ -312,7 +343,7 @@ mosb_status mosb_cost_copy_u64(const mosb_graph* graph, size_t objective, uint64
 
 mosb_status mosb_cost_copy_f64(const mosb_graph* graph, size_t objective, double* out,
                                size_t count) {
-  return guarded([&] {
+  return guarded(__func__, [&] {
     const auto& g = checked(graph);
     require(out, "the output buffer");
     g.reader.read_cost_as(objective, std::span<double>(out, count));
@@ -320,17 +351,17 @@ mosb_status mosb_cost_copy_f64(const mosb_graph* graph, size_t objective, double
 }
 
 mosb_status mosb_view_count(const mosb_graph* graph, size_t* count) {
-  return guarded([&] {
+  return guarded(__func__, [&] {
+    require(count, "the output count");  // before the metadata is parsed: a call error first
     const auto& g = described(graph);
-    require(count, "the output count");
     *count = g.views.size();
   });
 }
 
 mosb_status mosb_view_name(const mosb_graph* graph, size_t view, const char** name) {
-  return guarded([&] {
+  return guarded(__func__, [&] {
+    require(name, "the output name");  // before the metadata is parsed: a call error first
     const auto& g = described(graph);
-    require(name, "the output name");
     if (view >= g.views.size())
       throw mosb::Error(mosb::ErrorCode::invalid_argument,
                         g.reader.display_name() + ": view index " + std::to_string(view) +
@@ -342,7 +373,8 @@ mosb_status mosb_view_name(const mosb_graph* graph, size_t view, const char** na
 
 mosb_status mosb_view(const mosb_graph* graph, const char* name, const size_t** objectives,
                       size_t* count, const char** query_set) {
-  return guarded([&] {
+  return guarded(__func__, [&] {
+    require(name, "the view name");
     const auto& v = view_named(described(graph), name);
     if (objectives) *objectives = v.objectives.data();
     if (count) *count = v.objectives.size();
@@ -351,7 +383,7 @@ mosb_status mosb_view(const mosb_graph* graph, const char* name, const size_t** 
 }
 
 mosb_status mosb_query_set_count(const mosb_graph* graph, size_t* count) {
-  return guarded([&] {
+  return guarded(__func__, [&] {
     const auto& g = checked(graph);
     require(count, "the output count");
     *count = g.query_sets.size();
@@ -359,7 +391,7 @@ mosb_status mosb_query_set_count(const mosb_graph* graph, size_t* count) {
 }
 
 mosb_status mosb_query_set_name(const mosb_graph* graph, size_t set, const char** name) {
-  return guarded([&] {
+  return guarded(__func__, [&] {
     const auto& g = checked(graph);
     require(name, "the output name");
     if (set >= g.query_sets.size())
@@ -373,7 +405,7 @@ mosb_status mosb_query_set_name(const mosb_graph* graph, size_t set, const char*
 
 mosb_status mosb_queries(const mosb_graph* graph, const char* name, const uint32_t** pairs,
                          size_t* count) {
-  return guarded([&] {
+  return guarded(__func__, [&] {
     const auto& g = checked(graph);
     require(name, "the query set name");
     require(pairs, "the output pairs");
@@ -387,7 +419,7 @@ mosb_status mosb_queries(const mosb_graph* graph, const char* name, const uint32
 
 mosb_status mosb_metadata(const mosb_graph* graph, const char* key, const char** value,
                           size_t* length) {
-  return guarded([&] {
+  return guarded(__func__, [&] {
     const auto& g = checked(graph);
     require(key, "the key");
     require(value, "the output value");
@@ -402,7 +434,7 @@ mosb_status mosb_metadata(const mosb_graph* graph, const char* key, const char**
 }
 
 mosb_status mosb_digest(const mosb_graph* graph, const char** digest) {
-  return guarded([&] {
+  return guarded(__func__, [&] {
     const auto& g = checked(graph);
     require(digest, "the output digest");
     *digest = g.digest.c_str();

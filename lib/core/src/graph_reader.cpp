@@ -33,6 +33,15 @@ GraphReader GraphReader::open(const std::filesystem::path& path) {
   return adopt(map_file(path), path.string());
 }
 
+GraphReader GraphReader::open_unpacked(const std::filesystem::path& path) {
+  auto reader = open(path);
+  if (format::is_packed(reader.header()))
+    reader.fail(ErrorCode::packed,
+                "zstd-packed file (mosb pack): its sections cannot be mapped in place; load it "
+                "(mosb::load, mosb_load, mosb.load) or unpack it (mosb unpack)");
+  return reader;
+}
+
 GraphReader GraphReader::adopt(MappedFile file, std::string display_name) {
   GraphReader reader;
   reader.attach(std::move(file), std::move(display_name), format::FileKind::instance);

@@ -71,6 +71,10 @@ class GraphReader : public ContainerReader {
   static GraphReader open(const std::filesystem::path& path);
   // Opens, then runs verify(reader, level); throws "FILE: file is damaged: ...; run mosb verify".
   static GraphReader open(const std::filesystem::path& path, VerifyLevel level);
+  // open() for callers that walk the sections in place (the C ABI's mosb_open, Python's
+  // mosb.open): a packed file is refused at once (ErrorCode::packed, naming mosb::load), rather
+  // than when a packed section is first read.
+  static GraphReader open_unpacked(const std::filesystem::path& path);
   // Reads `file` (a mapping, or memory such as a decoded packed file) and keeps it alive as long as
   // the reader or a copy lives; `display_name` stands for the file in messages. mosb::load
   // (mosb/pack.hpp) uses it to hand out decoded packed files.
