@@ -92,7 +92,7 @@ RawRecipe ger10_recipe() {
   return r;
 }
 
-// One GUARDS map: MAP.map with its guards MAP.guards (spec/families/games.md), view GUARDS_2.
+// One GUARDS map: MAP.map with its guards MAP.guards (spec/families/games.md), view Games-GUARDS_2.
 RawRecipe guards_recipe(const std::string& map) {
   RawRecipe r;
   r.name = "Games-GUARDS-" + map;
