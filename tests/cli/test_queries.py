@@ -129,9 +129,8 @@ class QueriesTest(CliTest):
                                           "--force-id-base", code=2)
         self.assertIn(g, line)
         self.assertEqual(read(g), before)
-        self.ok("queries", "import", g, q, "--in-place", "--set", "x", "--id-base", "0")
         self.ok("queries", "import", g, q, "--in-place", "--set", "x", "--id-base", "1",
-                "--force-id-base", "--replace")
+                "--force-id-base")
         self.assertEqual(query_pairs(read(g), "x"), [(0, 1), (0, 21)])
         self.assertEqual(metadata(read(g))["queries.x.id_base"], "1")
         self.verify_full(g)

@@ -161,7 +161,7 @@ TEST_CASE("stats: --by-kind groups arcs by the u8 arc data 'kind'") {
   g.costs.push_back(integer_column("y", {4, 3, 2, 1, 10, 20, 30}));
   g.arc_data.push_back(DataColumn::from<std::uint8_t>("kind", 1, {0, 0, 0, 0, 1, 1, 1}));
   const auto r = write_and_open(dir, g);
-  const auto s = compute_stats(r, {std::nullopt, true});
+  const auto s = compute_stats(r, {ViewChoice{}, true});
   REQUIRE(s.by_kind.size() == 2);
   CHECK(s.by_kind[0].kind == 0);
   CHECK(s.by_kind[0].stats.arc_count == 4);
@@ -175,7 +175,7 @@ TEST_CASE("stats: --by-kind groups arcs by the u8 arc data 'kind'") {
   testing::TempDir other;
   g.arc_data.clear();
   const auto plain = write_and_open(other, g);
-  CHECK_THROWS_WITH_AS(compute_stats(plain, {std::nullopt, true}),
+  CHECK_THROWS_WITH_AS(compute_stats(plain, {ViewChoice{}, true}),
                        doctest::Contains("no arc data section 'kind'"), Error);
 }
 

@@ -110,7 +110,10 @@ Command add_queries_import(CLI::App& queries) {
                 GraphReader::open(a->target.instance, VerifyLevel::full);  // its payload is copied
             converters::QueryImportOptions options;
             options.file = a->file;
-            options.id_base = a->id_base.checked(reader);
+            // A scenario has no ids: the importer refuses any --id-base with its own message.
+            options.id_base = a->scenario && a->id_base.option->count() > 0
+                                  ? std::optional<unsigned>(a->id_base.value)
+                                  : a->id_base.checked(reader);
             options.binding = binding(a->target);
             if (!a->match.empty()) options.match = a->match;
             options.scenario = a->scenario;
