@@ -151,7 +151,8 @@ CLI::Option* add_view_spec_option(CLI::App* subcommand, std::vector<std::string>
 }
 
 void add_view_choice_options(CLI::App* subcommand, ViewChoice& choice, const std::string& what) {
-  auto* view = subcommand->add_option("--view", choice.view, what + ": this view's objectives");
+  auto* view = subcommand->add_option("--view", choice.view,
+                                      what + ": those of this view (and its query set)");
   auto* objectives = subcommand
                          ->add_option_function<std::string>(
                              "--objectives",
@@ -162,7 +163,7 @@ void add_view_choice_options(CLI::App* subcommand, ViewChoice& choice, const std
                                  throw CLI::ValidationError(e.what());
                                }
                              },
-                             "A,B,...: these objectives, in this order, instead of a view's")
+                             "these objectives, in this order, instead of a view's")
                          ->option_text("A,B,...");
   view->excludes(objectives);
   subcommand->add_option("--queries", choice.queries,

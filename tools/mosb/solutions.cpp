@@ -258,7 +258,7 @@ Command add_solutions(CLI::App& app) {
   auto* import = group_app->add_subcommand(
       "import", "Write a solution file from solver output: per-query files, a table or a JSON log");
   import->add_option("--instance", import_args->instance, "the instance (.mosb)")->required();
-  add_view_choice_options(import, import_args->choice, "the costs are");
+  add_view_choice_options(import, import_args->choice, "the objectives of the costs");
   import->add_option("--dir", import_args->directory,
                      "a directory of per-query front files (query id in the name)");
   import
