@@ -126,16 +126,33 @@ class Extended(DimacsCase):
         self.assertEqual(m["view.one.objectives"], "c1")
         self.assertNotIn("view.one.queries", m)
         self.assertEqual(m["source.param.view.one"], "c1@ny100")
-        self.ok("export", "dimacs", "g.mosb", "-o", "v", "--view", "two", "--id-base", "0")
+        # The instance records id_base 1: --id-base 0 is refused (exit 2) unless forced.
+        r = self.mosb("export", "dimacs", "g.mosb", "-o", "v", "--view", "two", "--id-base", "0")
+        self.assert_one_line_error(r, "--id-base 0 contradicts g.mosb, whose metadata records "
+                                   "id_base 1", code=2)
+        self.assertFalse(os.path.exists(self.path("v")))
+        self.ok("export", "dimacs", "g.mosb", "-o", "v", "--view", "two", "--id-base", "0",
+                "--force-id-base")
         self.assertEqual(sorted(os.listdir(self.path("v"))), ["g-c1.gr", "g-hop.gr"])
         self.assertIn("\na 0 1 3\n", self.read("v/g-c1.gr"))
+        # The view's objective list given directly: the same files, no view needed.
+        self.ok("export", "dimacs", "g.mosb", "-o", "w", "--objectives", "hop,c1")
+        self.ok("export", "dimacs", "g.mosb", "-o", "u", "--view", "two")
+        for name in ("g-c1.gr", "g-hop.gr"):
+            self.assertEqual(self.read("w/" + name), self.read("u/" + name))
+        r = self.mosb("export", "dimacs", "g.mosb", "-o", "z", "--view", "two", "--objectives", "c1")
+        self.assertEqual(r.returncode, 2, r)
+        r = self.mosb("export", "dimacs", "g.mosb", "-o", "z", "--objectives", "c1,c1")
+        self.assert_one_line_error(r, "--objectives: objective 'c1' listed twice", code=2)
+        self.fails("no objective named 'nope'", "export", "dimacs", "g.mosb", "-o", "z",
+                   "--objectives", "nope")
 
     def test_errors_are_one_line_with_exit_1(self):
         self.write("bad.elev", "p aux sp elev 4\nv 1 1\nv 2 x\n")
         self.fails("bad.elev:3:5: expected an integer elevation, found 'x'", *self.convert_args("--elevation", "bad.elev"))
-        self.fails("convert dimacs: --view 'v': objective 'hop' is not a column (columns: c1)",
+        self.fails("--view 'v': objective 'hop' is not a column (columns: c1)",
                    *self.convert_args("--view", "v=hop"))
-        self.fails("convert dimacs: --view 'v': expected NAME=OBJ1,OBJ2,...[@QUERYSET]",
+        self.fails("--view 'v': expected NAME=OBJ1,OBJ2,...[@QUERYSET]",
                    *self.convert_args("--view", "v"))
         r = self.mosb(*self.convert_args("--derive", "elevation"))
         self.assertNotEqual(r.returncode, 0, r)

@@ -288,7 +288,7 @@ class RealData(Base):
         self.assertEqual(len(queries), 929)
         picked = queries[::116]  # buckets from short to long
         args = [x for s, t in picked for x in ("--query", str(s), str(t))]
-        rows = self.agree(inst, ["--view", "GUARDS_2"] + args)
+        rows = self.agree(inst, ["--view", "Games-GUARDS_2"] + args)
         self.assertEqual(len(rows), len(picked))
         self.assertTrue(all(int(r[2]) >= 1 for r in rows))
 

@@ -116,7 +116,7 @@ class GuardsCli(CliTest):
         want = np.stack([tx, ty, hx, hy, length, cost], axis=1)
         self.assertTrue(np.array_equal(arc_rows(inst, cells, ["length", "exposure"]),
                                        sorted_rows(want)))
-        self.assertEqual(inst.metadata["view.GUARDS_2.objectives"], "length,exposure")
+        self.assertEqual(inst.metadata["view.Games-GUARDS_2.objectives"], "length,exposure")
         self.assertEqual(inst.metadata["map.width"], str(passable.shape[1]))
         self.assertEqual(inst.metadata["map.height"], str(passable.shape[0]))
         return inst
@@ -143,6 +143,15 @@ class GuardsCli(CliTest):
         run("convert", "guards", "--map", m, "--guards", g, "-o", out3)
         with open(out, "rb") as f1, open(out3, "rb") as f3:
             self.assertEqual(f1.read(), f3.read())
+        # The paper's view name; its query set is the first one added (the paper's random pairs).
+        self.assertNotIn("view.Games-GUARDS_2.queries", a.metadata)
+        self.assertNotIn("source.param.view.Games-GUARDS_2", a.metadata)
+        q = self.path("q.mosb")
+        r = run("queries", "generate", out, "--set", "random", "--count", "3", "-o", q)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertEqual(r.stderr, "query set random is now the query set of view Games-GUARDS_2\n")
+        self.assertEqual(mosb_reader.open_instance(q).metadata["view.Games-GUARDS_2.queries"],
+                         "random")
 
     def test_swamp_and_water_options(self):
         m = self.write("t.map", "type octile\nheight 1\nwidth 4\nmap\n.SW.")

@@ -40,7 +40,7 @@ class MovingaiCli(CliTest):
         self.assertEqual(inst.metadata["map.height"], str(passable.shape[0]))
         self.assertEqual(inst.metadata["family"], "games")
         self.assertEqual(inst.metadata["source.command"], "convert movingai")
-        self.assertNotIn("view.GUARDS_2.objectives", inst.metadata)
+        self.assertNotIn("view.Games-GUARDS_2.objectives", inst.metadata)
         r = run("verify", out, "--level", "full")
         self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
         return inst
@@ -95,6 +95,35 @@ class MovingaiCli(CliTest):
         r = run("convert", "movingai", "--map", m, "--water", "passable", "-o", out)
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertEqual(mosb_reader.open_instance(out).n, 1)
+
+    def test_default_view_length_on_the_scenario(self):
+        # The suite's default view (games.md §6): `length` on query set `scen`, so a solution file
+        # can be imported for the converted file with no edit of it.
+        m = self.write("hand.map", HAND_MADE)
+        s = self.write("s.scen", "version 1\n0\thand.map\t5\t4\t0\t0\t1\t0\t1\n")
+        out = self.path("s.mosb")
+        self.ok("convert", "movingai", "--map", m, "--scen", s, "-o", out)
+        md = mosb_reader.open_instance(out).metadata
+        self.assertEqual(md["view.length.objectives"], "length")
+        self.assertEqual(md["view.length.queries"], "scen")
+        table = self.write("t.csv", "query,length\n0,10\n")
+        sol = self.path("s.sol")
+        self.ok("solutions", "import", "--instance", out, "--view", "length", "--table", table,
+                "-o", sol)
+        self.ok("solutions", "import", "--instance", out, "--objectives", "length", "--queries",
+                "scen", "--table", table, "-o", self.path("o.sol"))
+        self.assertEqual(open(sol, "rb").read(), open(self.path("o.sol"), "rb").read())
+        # Without --scen the view waits for its set: `queries import --scen --set scen` adds it.
+        bare = self.path("bare.mosb")
+        self.ok("convert", "movingai", "--map", m, "--view", "twice=length@other", "-o", bare)
+        md = mosb_reader.open_instance(bare).metadata
+        self.assertNotIn("view.length.queries", md)
+        self.assertEqual(md["source.param.view.length"], "length@scen")
+        self.assertEqual(md["view.twice.objectives"], "length")
+        r = self.ok("queries", "import", bare, s, "--scen", "--set", "scen", "-o", out)
+        self.assertEqual(r.stderr, "query set scen is now the query set of view length\n")
+        self.assertEqual(mosb_reader.open_instance(out).metadata["view.length.queries"], "scen")
+        self.assertNotIn("view.twice.queries", mosb_reader.open_instance(out).metadata)
 
     def test_scenario_errors_are_located(self):
         m = self.write("hand.map", HAND_MADE)

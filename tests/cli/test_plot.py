@@ -263,7 +263,7 @@ class MapPathsTest(PlotCase):
             self.map)
 
     def solutions(self, name, spec):
-        return write_solution(self.path(name), self.map, "GUARDS_2", spec, "0", "s")
+        return write_solution(self.path(name), self.map, "Games-GUARDS_2", spec, "0", "s")
 
     def test_paths_drawn_on_the_map(self):
         # (0,0) (1,0) (2,0) (3,1) (3,2), and (0,0) (0,1) (0,2) (1,2) (2,2) (3,2).

@@ -122,10 +122,47 @@ class QueriesTest(CliTest):
         err = self.fails("queries", "import", g, q, "--in-place", "--set", "x")
         self.assertEqual(err, "mosb: %s:2:3: vertex id '22' outside 0..21" % q)
         self.assertEqual(read(g), before)  # untouched
-        self.ok("queries", "import", g, q, "--in-place", "--set", "x", "--id-base", "1")
+        # The grid records id_base 0: an explicit --id-base 1 is the classic off-by-one, refused
+        # (usage error, file untouched) unless --force-id-base says it is meant.
+        r = self.mosb("queries", "import", g, q, "--in-place", "--set", "x", "--id-base", "1")
+        line = self.assert_one_line_error(r, "--id-base 1 contradicts", "records id_base 0",
+                                          "--force-id-base", code=2)
+        self.assertIn(g, line)
+        self.assertEqual(read(g), before)
+        self.ok("queries", "import", g, q, "--in-place", "--set", "x", "--id-base", "1",
+                "--force-id-base")
         self.assertEqual(query_pairs(read(g), "x"), [(0, 1), (0, 21)])
         self.assertEqual(metadata(read(g))["queries.x.id_base"], "1")
         self.verify_full(g)
+
+    def test_a_new_set_becomes_the_query_set_of_views_without_one(self):
+        # Views written before any set existed (here: by --view, with no intended set given
+        # through a family default) get the first set added, and stderr says so.
+        q = self.write("q.txt", "0 1\n")
+        g = self.path("n.mosb")
+        self.ok("generate", "netmaker", "--vertices", "30", "--queries", "2", "-o", g)
+        meta = metadata(read(g))
+        self.assertEqual(meta["view.NetMaker_3.queries"], "default")  # bound already: untouched
+        gr = self.write("n.gr", "p sp 3 2\na 0 1 5 6\na 1 2 7 8\n")
+        inst = self.path("c.mosb")
+        self.ok("convert", "netmaker", gr, "-o", inst)
+        self.assertNotIn("view.NetMaker_2.queries", metadata(read(inst)))
+        c = self.ok("queries", "import", inst, q, "-o", self.path("c1.mosb"), "--set", "mine")
+        self.assertEqual(c.stderr, "query set mine is now the query set of view NetMaker_2\n")
+        self.assertEqual(metadata(read(self.path("c1.mosb")))["view.NetMaker_2.queries"], "mine")
+        # A view bound already keeps its set; --view V rebinds V alone.
+        c = self.ok("queries", "generate", self.path("c1.mosb"), "--set", "other", "--count", "2",
+                    "-o", self.path("c2.mosb"))
+        self.assertEqual(c.stderr, "")
+        self.assertEqual(metadata(read(self.path("c2.mosb")))["view.NetMaker_2.queries"], "mine")
+        c = self.ok("queries", "generate", self.path("c2.mosb"), "--set", "third", "--count", "2",
+                    "--view", "NetMaker_2", "-o", self.path("c3.mosb"))
+        self.assertEqual(c.stderr, "query set third is now the query set of view NetMaker_2\n")
+        self.assertEqual(metadata(read(self.path("c3.mosb")))["view.NetMaker_2.queries"], "third")
+        err = self.fails("queries", "generate", self.path("c2.mosb"), "--set", "fourth",
+                         "--view", "nope", "-o", self.path("c4.mosb"))
+        self.assertIn("no view 'nope' (views: NetMaker_2)", err)
+        self.assertFalse(os.path.exists(self.path("c4.mosb")))
 
     def test_replace_keeps_position(self):
         g = self.grid()

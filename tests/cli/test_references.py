@@ -119,7 +119,7 @@ class ReferencesCli(CliTest):
     def solutions(self, instance, table):
         t = self.write("front.csv", "query,length,exposure\n" + table)
         sol = self.path("f.sol")
-        self.ok("solutions", "import", "--instance", instance, "--view", "GUARDS_2", "--queries",
+        self.ok("solutions", "import", "--instance", instance, "--view", "Games-GUARDS_2", "--queries",
                   "scen", "--table", t, "-o", sol)
         return run("solutions", "verify", sol, "--instance", instance), sol
 

@@ -118,9 +118,13 @@ class SolutionsTest(CliTest):
                             "%s/7.txt: query id 7 outside 0..3 (the set has 4 queries)" % d)
         os.remove(self.path("fronts/7.txt"))
         self.write("fronts/4.txt", "1 9\n")
-        self.import_("--dir", d, "--id-base", "1")  # 1-based ids: 4 is the last query
+        # The grid records id_base 0: 1-based solver output needs --force-id-base (exit 2 without).
+        r = self.import_("--dir", d, "--id-base", "1", check=False)
+        self.assertEqual(r.returncode, 2, r)
+        self.assertIn("--id-base 1 contradicts", r.stderr)
+        self.import_("--dir", d, "--id-base", "1", "--force-id-base")  # 1-based: 4 is the last query
         self.write("fronts/q04.txt", "1 9\n")
-        self.assert_refused(["--dir", d, "--id-base", "1"],
+        self.assert_refused(["--dir", d, "--id-base", "1", "--force-id-base"],
                             "%s/q04.txt: a second result for query 3 (the first: %s/4.txt)" % (d, d))
 
     # --- CSV/TSV table --------------------------------------------------------------------------
@@ -181,12 +185,12 @@ class SolutionsTest(CliTest):
         # 1-based endpoints, in another order, matched by endpoints; the repeated pair (1, 5)
         # takes queries 1 and 3 in record order; a record without solutions is disconnected.
         shuffled = [self.record(9, 1, []), self.record(2, 6, [[4, 4]]), self.record(2, 6, [[5, 5]])]
-        self.import_("--json-log", self.log(shuffled), "--match", "endpoints", "--id-base", "1")
+        self.import_("--json-log", self.log(shuffled), "--match", "endpoints", "--id-base", "1", "--force-id-base")
         info = self.inspect()
         self.assertEqual(info["statuses"], {"solved": 2, "timeout": 0, "memory-limit": 0,
                                             "disconnected": 1, "not-run": 1})
         # By position, the same records do not fit query 0.
-        self.assert_refused(["--json-log", self.path("log.json"), "--id-base", "1"],
+        self.assert_refused(["--json-log", self.path("log.json"), "--id-base", "1", "--force-id-base"],
                             "%s: /0: source 9 and target 1, but query 0 runs from 1 to 9"
                             % self.path("log.json"))
 
@@ -242,12 +246,12 @@ class SolutionsTest(CliTest):
         self.assertEqual(self.read("a.sol"), self.read("b.sol"))
         records = [self.record(s + 1, t + 1, [[1, 9], [2, 7]] if k == 0 else [[4, 4]], ms=12.5)
                    for k, (s, t) in enumerate(QUERIES)]
-        self.import_("--json-log", self.log(records), "--id-base", "1", output="c.sol")
+        self.import_("--json-log", self.log(records), "--id-base", "1", "--force-id-base", output="c.sol")
         run("solutions", "export", self.path("c.sol"), "--instance", self.grid, "--json-log",
             self.path("exported.json"), "--id-base", "1")
         with open(self.path("exported.json")) as f:
             self.assertEqual(json.load(f), records)
-        self.import_("--json-log", self.path("exported.json"), "--id-base", "1", output="d.sol")
+        self.import_("--json-log", self.path("exported.json"), "--id-base", "1", "--force-id-base", output="d.sol")
         self.assertEqual(self.read("c.sol"), self.read("d.sol"))
         bad = run("solutions", "export", self.path("c.sol"), "--instance", self.other, "--json-log",
                   self.path("x.json"), check=False)

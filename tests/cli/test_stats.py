@@ -153,6 +153,18 @@ class StatsTest(CliTest):
         _, expected = self.grid_expectation(["c1", "c2"])
         self.check_against(s, expected, ["c1", "c2"])
 
+    def test_objectives_select_and_order_without_a_view(self):
+        s = stats_json(self.grid, "--objectives", "c3,c1")
+        self.assertIsNone(s["view"])
+        _, expected = self.grid_expectation(["c3", "c1"])
+        self.check_against(s, expected, ["c3", "c1"])
+        self.assertIn("(listed objectives)", run("stats", self.grid, "--objectives", "c2").stdout)
+        r = run("stats", self.grid, "--view", "Grid_2", "--objectives", "c1", check=False)
+        self.assertEqual(r.returncode, 2, r)
+        r = run("stats", self.grid, "--objectives", "c1,", check=False)
+        self.assertEqual(r.returncode, 2, r)
+        self.assertIn("--objectives: empty or invalid objective name ''", r.stderr)
+
     def test_text_is_an_aligned_table(self):
         text = run("stats", self.grid).stdout
         s = stats_json(self.grid)
@@ -172,6 +184,8 @@ class StatsTest(CliTest):
         cases = [
             (["stats", self.grid, "--by-kind"], "no arc data section 'kind'"),
             (["stats", self.grid, "--view", "Grid_9"], "no view 'Grid_9' (views: Grid_2, Grid_3)"),
+            (["stats", self.grid, "--objectives", "c9"], "no objective named 'c9'"),
+            (["stats", self.grid, "--queries", "none"], "no query set 'none'"),
             (["stats", self.path("missing.mosb")], "missing.mosb"),
         ]
         for args, message in cases:

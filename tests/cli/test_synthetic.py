@@ -184,6 +184,29 @@ class Suites(SyntheticTest):
 
 
 class ConvertNetMaker(SyntheticTest):
+    def test_view_option_adds_or_replaces_views(self):
+        # Every convert and generate command takes --view NAME=OBJ,...[@SET] (the parser of
+        # convert dimacs): here one more view and a replaced default.
+        gr = self.write("n.gr", "p sp 3 2\na 0 1 5 6\na 1 2 7 8\n")
+        self.ok("convert", "netmaker", gr, "--view", "second=c2", "--view", "NetMaker_2=c2,c1",
+                "-o", self.path("n.mosb"))
+        md = self.inspect(self.path("n.mosb"))["metadata"]
+        self.assertEqual(md["view.second.objectives"], "c2")
+        self.assertEqual(md["source.param.view.second"], "c2@default")
+        self.assertEqual(md["view.NetMaker_2.objectives"], "c2,c1")
+        r = self.mosb("convert", "netmaker", gr, "--view", "x=c9", "-o", self.path("x.mosb"))
+        self.assert_one_line_error(r, "--view 'x': objective 'c9' is not a column (columns: c1,c2)")
+        self.assertFalse(os.path.exists(self.path("x.mosb")))
+        self.ok("generate", "grid", "--width", "3", "--height", "3", "--view", "Grid_2=c2,c1",
+                "--view", "one=c3@default", "-o", self.path("g.mosb"))
+        md = self.inspect(self.path("g.mosb"))["metadata"]
+        self.assertEqual(md["view.Grid_2.objectives"], "c2,c1")
+        self.assertEqual(md["view.Grid_2.queries"], "default")
+        self.assertEqual(md["view.one.queries"], "default")
+        self.assertEqual(md["view.Grid_3.objectives"], "c1,c2,c3")
+        r = self.mosb("generate", "netmaker", "--suite", self.path("s"), "--view", "v=c1")
+        self.assertEqual(r.returncode, 2, r)
+
     def test_published_file(self):
         self.skip_unless_present(NETMAKER_FILE)
         r = self.ok("convert", "netmaker", NETMAKER_FILE, "-o", self.path("n.mosb"))

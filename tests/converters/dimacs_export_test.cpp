@@ -57,9 +57,9 @@ GraphReader convert(const converters::DimacsOptions& o, bool derive, const fs::p
   auto g = converters::convert_dimacs(o);
   converters::ExtendedOptions extra;
   extra.hop = extra.avg_outdegree = derive;
-  extra.views = {converters::parse_view_spec("two=time,dist")};
+  extra.views = {mosb::parse_view_spec("two=time,dist")};
   converters::append_derived_columns(g, extra, o.id_base);
-  converters::add_views(g, extra.views);
+  mosb::add_views(g, extra.views);
   write_graph(g, out);
   return GraphReader::open(out);
 }
@@ -85,7 +85,7 @@ TEST_CASE(
     REQUIRE(first.objective_count() == 4);
 
     const auto written =
-        converters::export_dimacs(dir / "first.mosb", {dir / "out", std::nullopt, std::nullopt});
+        converters::export_dimacs(dir / "first.mosb", {dir / "out", {}, std::nullopt});
     REQUIRE(written.size() == 5);
     CHECK(written[0] == dir / "out" / "B-dist.gr");
     CHECK(written[4] == dir / "out" / "B.co");
@@ -126,14 +126,13 @@ TEST_CASE("dimacs export: --view exports only its columns, in its order and its 
   g.metadata.set("view.V.queries", "default");
   write_graph(g, dir / "t.mosb");
 
-  const auto all =
-      converters::export_dimacs(dir / "t.mosb", {dir / "all", std::nullopt, std::nullopt});
+  const auto all = converters::export_dimacs(dir / "t.mosb", {dir / "all", {}, std::nullopt});
   CHECK(all.size() == 5);
   CHECK(slurp(dir / "all" / "T-other.queries") == "3 3\n");
   CHECK(slurp(dir / "all" / "T-b.gr").find("p sp 3 2\na 1 2 1.0\na 3 1 0.5\n") !=
         std::string::npos);
 
-  const auto view = converters::export_dimacs(dir / "t.mosb", {dir / "view", "V", 0u});
+  const auto view = converters::export_dimacs(dir / "t.mosb", {dir / "view", {"V", {}, {}}, 0u});
   REQUIRE(view.size() == 3);
   CHECK(view[0].filename() == "T-c.gr");
   CHECK(view[1].filename() == "T-b.gr");
@@ -144,8 +143,14 @@ TEST_CASE("dimacs export: --view exports only its columns, in its order and its 
   for (const auto& entry : fs::directory_iterator(dir / "view"))
     CHECK(entry.path().string().find(".tmp-") == std::string::npos);
 
-  CHECK_THROWS_WITH_AS(converters::export_dimacs(dir / "t.mosb", {dir / "x", "W", std::nullopt}),
-                       ((dir / "t.mosb").string() + ": no view 'W'").c_str(), Error);
+  CHECK_THROWS_WITH_AS(converters::export_dimacs(dir / "t.mosb", {dir / "x", {"W", {}, {}}, {}}),
+                       ((dir / "t.mosb").string() + ": no view 'W' (views: V)").c_str(), Error);
+
+  // The view's objective list and query set given directly: the same files, no view needed.
+  const auto listed =
+      converters::export_dimacs(dir / "t.mosb", {dir / "list", {{}, {"c", "b"}, "default"}, 0u});
+  REQUIRE(listed.size() == 3);
+  for (std::size_t i = 0; i < 3; ++i) CHECK(slurp(listed[i]) == slurp(view[i]));
 }
 
 TEST_CASE("dimacs export: reals print with '.' or an exponent and read back to the same value") {

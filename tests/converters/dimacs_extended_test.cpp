@@ -53,7 +53,7 @@ GraphReader extended(const testing::TempDir& dir, const ExtendedOptions& extra) 
   o.gr_files = {(dir / "g.gr").string()};
   auto graph = converters::convert_dimacs(o);
   converters::append_derived_columns(graph, extra, o.id_base);
-  converters::add_views(graph, extra.views);
+  mosb::add_views(graph, extra.views);
   write_graph(graph, dir / "g.mosb");
   return GraphReader::open(dir / "g.mosb");
 }
@@ -130,8 +130,7 @@ TEST_CASE(
   testing::TempDir dir;
   ExtendedOptions o;
   o.hop = true;
-  o.views = {converters::parse_view_spec("NY_2=c1,hop"),
-             converters::parse_view_spec("only_hop=hop@q100")};
+  o.views = {mosb::parse_view_spec("NY_2=c1,hop"), mosb::parse_view_spec("only_hop=hop@q100")};
   const auto r = extended(dir, o);
   const auto& m = r.metadata();
   CHECK(m.get("view.NY_2.objectives") == "c1,hop");
@@ -147,31 +146,27 @@ TEST_CASE(
   g.heads = {1};
   g.costs.push_back({"c1", "", std::vector<std::uint64_t>{4}, std::nullopt});
   g.queries.push_back({"default", {{0, 1}}});
-  converters::add_views(g, {converters::parse_view_spec("v=c1")});
+  mosb::add_views(g, {mosb::parse_view_spec("v=c1")});
   CHECK(g.metadata.get("view.v.queries") == "default");
   CHECK_NOTHROW(write_graph(g, dir / "q.mosb"));
-  CHECK_THROWS_WITH_AS(converters::add_views(g, {converters::parse_view_spec("w=c1,c2")}),
-                       "convert dimacs: --view 'w': objective 'c2' is not a column (columns: c1)",
-                       Error);
+  CHECK_THROWS_WITH_AS(mosb::add_views(g, {mosb::parse_view_spec("w=c1,c2")}),
+                       "--view 'w': objective 'c2' is not a column (columns: c1)", Error);
 }
 
 TEST_CASE("dimacs-extended: malformed --view texts are refused with one line") {
-  CHECK_THROWS_WITH_AS(converters::parse_view_spec("NY"),
-                       "convert dimacs: --view 'NY': expected NAME=OBJ1,OBJ2,...[@QUERYSET]",
+  CHECK_THROWS_WITH_AS(mosb::parse_view_spec("NY"),
+                       "--view 'NY': expected NAME=OBJ1,OBJ2,...[@QUERYSET]", Error);
+  CHECK_THROWS_WITH_AS(mosb::parse_view_spec("=a"),
+                       "--view '=a': the view name must be 1 or more of [A-Za-z0-9_.+-]", Error);
+  CHECK_THROWS_WITH_AS(mosb::parse_view_spec("v=a,,b"),
+                       "--view 'v=a,,b': empty or invalid objective name ''", Error);
+  CHECK_THROWS_WITH_AS(mosb::parse_view_spec("v=a,a"), "--view 'v=a,a': objective 'a' listed twice",
                        Error);
-  CHECK_THROWS_WITH_AS(
-      converters::parse_view_spec("=a"),
-      "convert dimacs: --view '=a': the view name must be 1 or more of [A-Za-z0-9_.+-]", Error);
-  CHECK_THROWS_WITH_AS(converters::parse_view_spec("v=a,,b"),
-                       "convert dimacs: --view 'v=a,,b': empty or invalid objective name ''",
-                       Error);
-  CHECK_THROWS_WITH_AS(converters::parse_view_spec("v=a,a"),
-                       "convert dimacs: --view 'v=a,a': objective 'a' listed twice", Error);
-  CHECK_THROWS_WITH_AS(converters::parse_view_spec("v=a@"),
-                       "convert dimacs: --view 'v=a@': the query set name must be 1-24 characters "
+  CHECK_THROWS_WITH_AS(mosb::parse_view_spec("v=a@"),
+                       "--view 'v=a@': the query set name must be 1-24 characters "
                        "from [A-Za-z0-9_.+-]",
                        Error);
-  const auto v = converters::parse_view_spec("DIMACS-NY_2=distance,time@ny100");
+  const auto v = mosb::parse_view_spec("DIMACS-NY_2=distance,time@ny100");
   CHECK(v.name == "DIMACS-NY_2");
   CHECK(v.objectives == std::vector<std::string>{"distance", "time"});
   CHECK(v.queries == "ny100");

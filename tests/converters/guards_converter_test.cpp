@@ -1,10 +1,11 @@
+#include "mosb/converters/guards_converter.hpp"
+
 #include <doctest/doctest.h>
 
 #include <algorithm>
 #include <fstream>
 #include <string>
 
-#include "mosb/converters/guards_converter.hpp"
 #include "mosb/converters/movingai.hpp"
 #include "mosb/error.hpp"
 #include "mosb/graph_reader.hpp"
@@ -201,7 +202,7 @@ TEST_CASE("guards: exposure file round trip, scenario import and errors, determi
   CHECK(r.graph.queries[0].name == "scen");
   CHECK(r.graph.queries[0].pairs == std::vector<Query>{{0, 10}, {5, 7}});
   CHECK(r.graph.metadata.get("benchmark") == "small");
-  CHECK(r.graph.metadata.get("view.GUARDS_2.objectives") == "length,exposure");
+  CHECK(r.graph.metadata.get("view.Games-GUARDS_2.objectives") == "length,exposure");
 
   // The written grid read back as --exposure gives the same costs; blocked cells may hold anything.
   auto text = format_exposure(r.map, r.exposure);

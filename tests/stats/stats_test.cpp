@@ -161,7 +161,7 @@ TEST_CASE("stats: --by-kind groups arcs by the u8 arc data 'kind'") {
   g.costs.push_back(integer_column("y", {4, 3, 2, 1, 10, 20, 30}));
   g.arc_data.push_back(DataColumn::from<std::uint8_t>("kind", 1, {0, 0, 0, 0, 1, 1, 1}));
   const auto r = write_and_open(dir, g);
-  const auto s = compute_stats(r, {std::nullopt, true});
+  const auto s = compute_stats(r, {ViewChoice{}, true});
   REQUIRE(s.by_kind.size() == 2);
   CHECK(s.by_kind[0].kind == 0);
   CHECK(s.by_kind[0].stats.arc_count == 4);
@@ -175,7 +175,7 @@ TEST_CASE("stats: --by-kind groups arcs by the u8 arc data 'kind'") {
   testing::TempDir other;
   g.arc_data.clear();
   const auto plain = write_and_open(other, g);
-  CHECK_THROWS_WITH_AS(compute_stats(plain, {std::nullopt, true}),
+  CHECK_THROWS_WITH_AS(compute_stats(plain, {ViewChoice{}, true}),
                        doctest::Contains("no arc data section 'kind'"), Error);
 }
 
@@ -185,14 +185,21 @@ TEST_CASE("stats: a view selects and orders objectives") {
                           integer_column("c3", {1, 1, 2, 2})});
   input.metadata.set("view.pair.objectives", "c3,c1");
   const auto r = write_and_open(dir, input);
-  const auto s = compute_stats(r, {std::string("pair"), false});
+  const auto s = compute_stats(r, {ViewChoice{"pair", {}, {}}, false});
   REQUIRE(s.all_arcs.objectives.size() == 2);
   CHECK(s.all_arcs.objectives[0].name == "c3");
   CHECK(s.all_arcs.objectives[1].name == "c1");
   REQUIRE(s.all_arcs.correlations.size() == 1);
   CHECK(rho(s.all_arcs, 0, 1) == doctest::Approx(2 / std::sqrt(5.0)));
-  CHECK_THROWS_WITH_AS(compute_stats(r, {std::string("nope"), false}),
+  CHECK_THROWS_WITH_AS(compute_stats(r, {ViewChoice{"nope", {}, {}}, false}),
                        doctest::Contains("no view 'nope' (views: pair)"), Error);
+  // The same objective list without a view: no edit of the instance is needed.
+  const auto listed = compute_stats(r, {ViewChoice{{}, {"c3", "c1"}, {}}, false});
+  REQUIRE(listed.all_arcs.objectives.size() == 2);
+  CHECK(listed.all_arcs.objectives[0].name == "c3");
+  CHECK(rho(listed.all_arcs, 0, 1) == doctest::Approx(2 / std::sqrt(5.0)));
+  CHECK_THROWS_WITH_AS(compute_stats(r, {ViewChoice{{}, {"c9"}, {}}, false}),
+                       doctest::Contains("no objective named 'c9'"), Error);
 }
 
 TEST_CASE("stats: an empty graph has undefined ranges and degrees") {

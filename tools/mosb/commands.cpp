@@ -32,6 +32,25 @@ CLI::Option* add_id_base_option(CLI::App* subcommand, unsigned& id_base,
       ->check(CLI::IsMember({0u, 1u}));
 }
 
+void add_instance_id_base_options(CLI::App* subcommand, InstanceIdBase& id_base,
+                                  const std::string& default_text) {
+  id_base.option = add_id_base_option(subcommand, id_base.value, default_text);
+  subcommand
+      ->add_flag("--force-id-base", id_base.force,
+                 "use --id-base even where it contradicts the instance's metadata id_base")
+      ->needs(id_base.option);
+}
+
+std::optional<unsigned> InstanceIdBase::checked(const GraphReader& instance) const {
+  if (option == nullptr || option->count() == 0) return std::nullopt;
+  const auto recorded = instance.metadata().get("id_base");
+  if (recorded && *recorded != std::to_string(value) && !force)
+    throw UsageError("--id-base " + std::to_string(value) + " contradicts " +
+                     instance.display_name() + ", whose metadata records id_base " + *recorded +
+                     " (every vertex id would be off by one); pass --force-id-base if meant");
+  return value;
+}
+
 CLI::Option* add_seed_option(CLI::App* subcommand, std::uint64_t& seed, const std::string& what) {
   seed = 1;
   return subcommand->add_option("--seed", seed, what + " (default 1)");
@@ -122,6 +141,34 @@ Command add_convert(CLI::App& app) {
 Command add_generate(CLI::App& app) {
   auto* generate = app.add_subcommand("generate", "Generate a synthetic benchmark instance");
   return group(generate, {add_generate_grid(*generate), add_generate_netmaker(*generate)});
+}
+
+CLI::Option* add_view_spec_option(CLI::App* subcommand, std::vector<std::string>& specs) {
+  return subcommand->add_option(
+      "--view", specs,
+      "NAME=OBJ1,OBJ2,...[@QUERYSET]: a benchmark over some columns, besides the family's default "
+      "views (repeatable; a default view's name replaces it)");
+}
+
+void add_view_choice_options(CLI::App* subcommand, ViewChoice& choice, const std::string& what) {
+  auto* view = subcommand->add_option("--view", choice.view,
+                                      what + ": those of this view (and its query set)");
+  auto* objectives = subcommand
+                         ->add_option_function<std::string>(
+                             "--objectives",
+                             [&choice](const std::string& text) {
+                               try {
+                                 choice.objectives = parse_objective_list(text, "--objectives");
+                               } catch (const Error& e) {
+                                 throw CLI::ValidationError(e.what());
+                               }
+                             },
+                             "these objectives, in this order, instead of a view's")
+                         ->option_text("A,B,...");
+  view->excludes(objectives);
+  subcommand->add_option("--queries", choice.queries,
+                         "the query set (default: the view's); with --objectives, a view's "
+                         "objective list and query set need no view in the instance");
 }
 
 converters::TerrainRules TerrainOptions::rules() const {

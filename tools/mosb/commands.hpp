@@ -11,6 +11,7 @@
 
 #include "mosb/error.hpp"
 #include "mosb/pack.hpp"
+#include "mosb/views.hpp"
 
 namespace CLI {
 class App;
@@ -23,7 +24,8 @@ struct SuiteEntry;
 
 namespace mosb {
 struct FileCheck;
-}
+class GraphReader;
+}  // namespace mosb
 
 namespace mosb::converters {
 struct TerrainRules;
@@ -52,6 +54,19 @@ void add_json_flag(CLI::App* subcommand, bool& json);
 CLI::Option* add_id_base_option(CLI::App* subcommand, unsigned& id_base,
                                 const std::string& default_text);
 
+// `--id-base 0|1` with `--force-id-base`, for a command whose text files concern an existing
+// instance: an explicit --id-base contradicting the id_base the instance's metadata records is
+// refused (an off-by-one in every vertex id would otherwise pass silently), unless forced.
+struct InstanceIdBase {
+  unsigned value = 0;
+  bool force = false;
+  CLI::Option* option = nullptr;
+  // The explicit --id-base, nullopt when absent; throws UsageError (exit 2) on a contradiction.
+  std::optional<unsigned> checked(const GraphReader& instance) const;
+};
+void add_instance_id_base_options(CLI::App* subcommand, InstanceIdBase& id_base,
+                                  const std::string& default_text);
+
 // `--seed S`, the same for every generator: the seed of the specified random stream, default 1.
 CLI::Option* add_seed_option(CLI::App* subcommand, std::uint64_t& seed, const std::string& what);
 
@@ -62,6 +77,23 @@ CLI::Option* add_output_option(CLI::App* subcommand, std::string& output, const 
 // digits, FORMAT.md §8) the written file must have; with another, nothing is written
 // (spec/MANIFEST.md, "Proving a conversion"). Upper-case digits are taken as lower-case.
 CLI::Option* add_expect_digest_option(CLI::App* subcommand, std::string& digest);
+
+// `--view NAME=OBJ1,OBJ2,...[@SET]` (repeatable) of every `convert` and `generate` command: views
+// written besides (or, with a default view's name, instead of) the family's default views.
+CLI::Option* add_view_spec_option(CLI::App* subcommand, std::vector<std::string>& specs);
+// The converter's output with the --view texts added (mosb::add_views); throws on a bad text.
+template <class Graph>
+Graph with_views(Graph graph, const std::vector<std::string>& specs) {
+  std::vector<ViewSpec> views;
+  for (const auto& text : specs) views.push_back(parse_view_spec(text));
+  add_views(graph, views);
+  return graph;
+}
+
+// `--view NAME`, `--objectives A,B,...` and `--queries SET` of every command that reads a view:
+// the same choice everywhere, resolved by mosb::select_view. `what` says what the command does
+// with the objectives (the --view help).
+void add_view_choice_options(CLI::App* subcommand, ViewChoice& choice, const std::string& what);
 
 // --swamp and --water, the Moving AI terrain options of `convert guards` and `convert movingai`.
 struct TerrainOptions {

@@ -54,7 +54,7 @@ int run_dimacs(const DimacsArgs& a) {
   }
   if (a.avg_outdegree_mode == "round-half-up")
     extended.avg_outdegree_mode = converters::AvgOutdegreeMode::round_half_up;
-  for (const auto& v : a.views) extended.views.push_back(converters::parse_view_spec(v));
+  for (const auto& v : a.views) extended.views.push_back(mosb::parse_view_spec(v));
   TerminalProgress progress;
   o.progress = progress.callback();
   // Out of memory anywhere in the conversion names the input (a parser names the file it reads).
@@ -101,8 +101,7 @@ Command add_convert_dimacs(CLI::App& convert) {
           "avg_outdegree as outdeg(u)+outdeg(v) (twice, exact) or their mean rounded half up")
       ->check(CLI::IsMember({"twice", "round-half-up"}))
       ->capture_default_str();
-  dimacs->add_option("--view", args->views,
-                     "NAME=OBJ1,OBJ2,...[@QUERYSET]: a benchmark over some columns (repeatable)");
+  add_view_spec_option(dimacs, args->views);
   add_output_option(dimacs, args->output, "the .mosb file to write")->required();
   add_expect_digest_option(dimacs, args->expect_digest);
   add_json_flag(dimacs, args->json);

@@ -24,6 +24,7 @@ struct FmiArgs {
   std::string name;
   std::string output;
   std::string expect_digest;
+  std::vector<std::string> views;
   bool json = false;
   CLI::Option* costs_option = nullptr;
   CLI::Option* bfs_option = nullptr;
@@ -44,7 +45,8 @@ int run_fmi(const FmiArgs& a) {
   o.progress = progress.callback();
   // Out of memory anywhere in the conversion names the input.
   converters::naming_input_on_out_of_memory(a.file, [&] {
-    write_graph(converters::convert_fmi(o), a.output, progress.callback(), a.expect_digest);
+    write_graph(with_views(converters::convert_fmi(o), a.views), a.output, progress.callback(),
+                a.expect_digest);
   });
   return report_written(a.output, a.json);
 }
@@ -83,6 +85,7 @@ Command add_convert_fmi(CLI::App& convert) {
   undirected->needs(args->bfs_option);
   fmi->add_option("--name", args->name, "benchmark name (default: the file's base name)");
   add_output_option(fmi, args->output, "the .mosb file to write")->required();
+  add_view_spec_option(fmi, args->views);
   add_expect_digest_option(fmi, args->expect_digest);
   add_json_flag(fmi, args->json);
   return {fmi, [args] { return run_fmi(*args); }};

@@ -22,6 +22,7 @@ struct GuardsArgs {
   std::string name;
   std::string output;
   std::string expect_digest;
+  std::vector<std::string> views;
   bool json = false;
 };
 
@@ -41,7 +42,7 @@ int run_guards(const GuardsArgs& a) {
   if (!a.write_exposure.empty())
     write_file_atomically(a.write_exposure,
                           converters::format_exposure(result.map, result.exposure));
-  write_graph(result.graph, a.output, progress.callback(), a.expect_digest);
+  write_graph(with_views(result.graph, a.views), a.output, progress.callback(), a.expect_digest);
   return report_written(a.output, a.json);
 }
 
@@ -74,6 +75,7 @@ Command add_convert_guards(CLI::App& convert) {
   guards->add_option("--name", args->name,
                      "benchmark name (default: the map's base name without .map)");
   add_output_option(guards, args->output, "the .mosb file to write")->required();
+  add_view_spec_option(guards, args->views);
   add_expect_digest_option(guards, args->expect_digest);
   add_json_flag(guards, args->json);
   return {guards, [args] {

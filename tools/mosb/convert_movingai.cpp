@@ -18,6 +18,7 @@ struct MovingaiArgs {
   std::string name;
   std::string output;
   std::string expect_digest;
+  std::vector<std::string> views;
   bool json = false;
 };
 
@@ -29,7 +30,8 @@ int run_movingai(const MovingaiArgs& a) {
   o.terrain = a.terrain.rules();
   if (!a.name.empty()) o.name = a.name;
   TerminalProgress progress;
-  write_graph(converters::convert_movingai(o), a.output, progress.callback(), a.expect_digest);
+  write_graph(with_views(converters::convert_movingai(o), a.views), a.output, progress.callback(),
+              a.expect_digest);
   return report_written(a.output, a.json);
 }
 
@@ -48,6 +50,7 @@ Command add_convert_movingai(CLI::App& convert) {
   movingai->add_option("--name", args->name,
                        "benchmark name (default: the map's base name without .map)");
   add_output_option(movingai, args->output, "the .mosb file to write")->required();
+  add_view_spec_option(movingai, args->views);
   add_expect_digest_option(movingai, args->expect_digest);
   add_json_flag(movingai, args->json);
   return {movingai, [args] { return run_movingai(*args); }};

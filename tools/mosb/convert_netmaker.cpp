@@ -17,6 +17,7 @@ struct ConvertNetMakerArgs {
   std::string name;
   std::string output;
   std::string expect_digest;
+  std::vector<std::string> views;
   bool json = false;
 };
 
@@ -32,6 +33,7 @@ Command add_convert_netmaker(CLI::App& convert) {
       ->check(CLI::ExistingFile);
   netmaker->add_option("--name", args->name, "benchmark name (default: the file's base name)");
   add_output_option(netmaker, args->output, "the .mosb file to write")->required();
+  add_view_spec_option(netmaker, args->views);
   add_expect_digest_option(netmaker, args->expect_digest);
   add_json_flag(netmaker, args->json);
   return {netmaker, [args] {
@@ -39,8 +41,8 @@ Command add_convert_netmaker(CLI::App& convert) {
             const auto name =
                 args->name.empty() ? std::nullopt : std::optional<std::string>(args->name);
             TerminalProgress progress;
-            write_graph(converters::convert_netmaker(args->input, name), args->output,
-                        progress.callback(), args->expect_digest);
+            write_graph(with_views(converters::convert_netmaker(args->input, name), args->views),
+                        args->output, progress.callback(), args->expect_digest);
             return report_written(args->output, args->json);
           }};
 }

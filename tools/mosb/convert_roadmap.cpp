@@ -25,6 +25,7 @@ struct RoadmapArgs {
   std::string name;
   std::string output;
   std::string expect_digest;
+  std::vector<std::string> views;
   bool json = false;
 };
 
@@ -51,7 +52,7 @@ int run_roadmap(const RoadmapArgs& a) {
   for (const auto& [key, value] : input.metadata.entries())
     if (key.starts_with("warning."))
       std::cerr << "mosb: warning: " << key.substr(8) << ": " << value << '\n';
-  write_graph(input, a.output, progress.callback(), a.expect_digest);
+  write_graph(with_views(input, a.views), a.output, progress.callback(), a.expect_digest);
   return report_written(a.output, a.json);
 }
 
@@ -86,6 +87,7 @@ Command add_convert_roadmap(CLI::App& convert) {
   roadmap->add_option("--objective", args->objectives, "NAME[:UNIT] of each objective, in order");
   roadmap->add_option("--name", args->name, "benchmark name (default: the first file's base name)");
   add_output_option(roadmap, args->output, "the .mosb file to write")->required();
+  add_view_spec_option(roadmap, args->views);
   add_expect_digest_option(roadmap, args->expect_digest);
   add_json_flag(roadmap, args->json);
   return {roadmap, [args] { return run_roadmap(*args); }};

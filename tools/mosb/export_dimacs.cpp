@@ -5,6 +5,7 @@
 #include "commands.hpp"
 #include "json_writer.hpp"
 #include "mosb/converters/dimacs_export.hpp"
+#include "mosb/graph_reader.hpp"
 #include "terminal_progress.hpp"
 
 namespace mosb::cli {
@@ -14,17 +15,16 @@ namespace {
 struct ExportDimacsArgs {
   std::string instance;
   std::string output;
-  std::string view;
-  unsigned id_base = 1;
-  CLI::Option* id_base_option = nullptr;
+  ViewChoice choice;
+  InstanceIdBase id_base;
   bool json = false;
 };
 
 int run_export_dimacs(const ExportDimacsArgs& a) {
   converters::DimacsExportOptions o;
   o.out_dir = a.output;
-  if (!a.view.empty()) o.view = a.view;
-  if (a.id_base_option->count() > 0) o.id_base = a.id_base;
+  o.selection = a.choice;
+  o.id_base = a.id_base.checked(GraphReader::open(a.instance));
   TerminalProgress progress;
   const auto written = converters::export_dimacs(a.instance, o, progress.callback());
   if (a.json) {
@@ -51,9 +51,8 @@ Command add_export_dimacs(CLI::App& parent) {
       ->check(CLI::ExistingFile);
   add_output_option(dimacs, args->output, "directory for <benchmark>-<objective>.gr etc. (created)")
       ->required();
-  dimacs->add_option("--view", args->view, "export only this view's objectives and query set");
-  args->id_base_option =
-      add_id_base_option(dimacs, args->id_base, "the instance's metadata id_base, else 1");
+  add_view_choice_options(dimacs, args->choice, "export only these objectives and their query set");
+  add_instance_id_base_options(dimacs, args->id_base, "the instance's metadata id_base, else 1");
   add_json_flag(dimacs, args->json);
   return {dimacs, [args] { return run_export_dimacs(*args); }};
 }

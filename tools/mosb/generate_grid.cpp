@@ -18,6 +18,7 @@ struct GridArgs {
   std::vector<std::uint32_t> sizes = converters::paper_grid_sizes();
   unsigned threads = 0;
   bool pack = false;
+  std::vector<std::string> views;
   bool json = false;
 };
 
@@ -31,7 +32,8 @@ int run_grid(const GridArgs& a) {
   }
   if (a.output.empty()) throw UsageError("--output FILE is required (or --suite DIR)");
   // Streamed: memory holds the reverse CSR only, not the arc list (BENCHMARKS.md).
-  write_graph(converters::grid_graph(a.params), a.output, progress.callback(), a.expect_digest);
+  write_graph(with_views(converters::grid_graph(a.params), a.views), a.output, progress.callback(),
+              a.expect_digest);
   return report_written(a.output, a.json);
 }
 
@@ -56,6 +58,7 @@ Command add_generate_grid(CLI::App& generate) {
                          ->capture_default_str();
   add_seed_option(grid, p.seed, "seed of the specified generator (with --suite: of the suite)");
   auto* out = add_output_option(grid, args->output, "the .mosb file to write");
+  auto* views = add_view_spec_option(grid, args->views);
   auto* expect = add_expect_digest_option(grid, args->expect_digest);
   auto* directory = grid->add_option(
       "--suite", args->suite,
@@ -66,7 +69,7 @@ Command add_generate_grid(CLI::App& generate) {
                     ->check(CLI::Range(1u, 60000u))
                     ->group("");
   auto* threads = grid->add_option("--threads", args->threads, "suite worker threads")->group("");
-  for (auto* single_only : {width, height, objectives, out, expect})
+  for (auto* single_only : {width, height, objectives, out, expect, views})
     directory->excludes(single_only);
   sizes->needs(directory);
   threads->needs(directory);

@@ -18,6 +18,7 @@ struct NetMakerArgs {
   std::string suite;
   unsigned threads = 0;
   bool pack = false;
+  std::vector<std::string> views;
   bool json = false;
 };
 
@@ -34,7 +35,8 @@ int run_netmaker(NetMakerArgs a, const CLI::App& app) {
   }
   if (a.output.empty()) throw UsageError("--output FILE is required (or --suite DIR)");
   if (!a.name.empty()) a.params.name = a.name;
-  write_graph(converters::netmaker_graph(a.params), a.output, progress.callback(), a.expect_digest);
+  write_graph(with_views(converters::netmaker_graph(a.params), a.views), a.output,
+              progress.callback(), a.expect_digest);
   return report_written(a.output, a.json);
 }
 
@@ -72,6 +74,7 @@ Command add_generate_netmaker(CLI::App& generate) {
   auto* name =
       netmaker->add_option("--name", args->name, "benchmark name (default NetMaker-N<N>-I<I>)");
   auto* output = add_output_option(netmaker, args->output, "the .mosb file to write");
+  auto* views = add_view_spec_option(netmaker, args->views);
   auto* expect = add_expect_digest_option(netmaker, args->expect_digest);
   auto* suite = netmaker->add_option(
       "--suite", args->suite,
@@ -79,7 +82,7 @@ Command add_generate_netmaker(CLI::App& generate) {
   netmaker
       ->add_option("--threads", args->threads, "worker threads for --suite (default: all cores)")
       ->group("");
-  for (auto* single_only : {amin, amax, locality, queries, percent, name, output, expect})
+  for (auto* single_only : {amin, amax, locality, queries, percent, name, output, expect, views})
     suite->excludes(single_only);
   add_suite_pack_flag(netmaker, args->pack)->needs(suite);
   add_json_flag(netmaker, args->json);

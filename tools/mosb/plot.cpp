@@ -22,7 +22,8 @@ namespace mosb::cli {
 namespace {
 
 struct PlotArgs {
-  std::string instance, output, view, title;
+  std::string instance, output, title;
+  ViewChoice choice;
 };
 
 void add_common(CLI::App* sub, PlotArgs& args) {
@@ -46,7 +47,7 @@ void write_svg(const PlotArgs& args, const std::string& svg) {
 int run_correlation(const PlotArgs& args) {
   const auto reader = GraphReader::open(args.instance, VerifyLevel::full);
   StatsOptions options;
-  if (!args.view.empty()) options.view = args.view;
+  options.selection = args.choice;
   const auto stats = compute_stats(reader, options);
   plots::CorrelationPlot plot;
   plot.title = default_title(reader, args, "objective correlation");
@@ -222,7 +223,7 @@ Command add_plot(CLI::App& app) {
   auto* correlation =
       plot->add_subcommand("correlation", "the objective-correlation matrix as a heat map");
   add_common(correlation, *correlation_args);
-  correlation->add_option("--view", correlation_args->view, "only this view's objectives");
+  add_view_choice_options(correlation, correlation_args->choice, "only these objectives");
   auto map_args = std::make_shared<PlotArgs>();
   auto exposure = std::make_shared<std::string>("exposure");
   auto* map = plot->add_subcommand(

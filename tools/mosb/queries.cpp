@@ -24,7 +24,12 @@ struct Target {
   bool in_place = false;
   bool replace = false;
   bool json = false;
+  std::string view;  // bind the set to this view only (else to every view without a set)
 };
+
+converters::ViewBinding binding(const Target& t) {
+  return {t.view.empty() ? std::nullopt : std::optional<std::string>(t.view)};
+}
 
 void add_target_options(CLI::App* sub, Target& t) {
   sub->add_option("INSTANCE", t.instance, "the .mosb instance")
@@ -35,6 +40,8 @@ void add_target_options(CLI::App* sub, Target& t) {
       add_output_option(sub, t.output, "write the instance with the set to this new file");
   sub->add_flag("--in-place", t.in_place, "rewrite INSTANCE itself (atomically)")->excludes(output);
   sub->add_flag("--replace", t.replace, "overwrite an existing query set of that name");
+  sub->add_option("--view", t.view,
+                  "make the set this view's query set (default: of every view that has none)");
   add_json_flag(sub, t.json);
 }
 
@@ -46,6 +53,12 @@ const std::string& destination(const Target& t) {
 int write_and_report(const GraphReader& reader, converters::QuerySetEdit edit, const Target& t) {
   const auto& path = destination(t);
   const std::string name = edit.set.name;
+  if (!edit.bound_views.empty()) {
+    std::string views;
+    for (const auto& v : edit.bound_views) views += (views.empty() ? "" : ", ") + v;
+    std::cerr << "query set " << name << " is now the query set of view"
+              << (edit.bound_views.size() > 1 ? "s " : " ") << views << '\n';
+  }
   rewrite_instance(reader, edit.metadata, {std::move(edit.set)}, path);
   const auto written = GraphReader::open(path);
   const std::uint64_t count = written.queries(name).size();
@@ -67,8 +80,7 @@ int write_and_report(const GraphReader& reader, converters::QuerySetEdit edit, c
 struct ImportArgs {
   Target target;
   std::string file;
-  unsigned id_base = 0;
-  CLI::Option* id_base_option = nullptr;
+  InstanceIdBase id_base;
   std::string match;
   bool scenario = false;
 };
@@ -86,8 +98,7 @@ Command add_queries_import(CLI::App& queries) {
   import->add_option("QUERIES", a->file, "the query file (plain, gzip, bzip2, xz or zstd)")
       ->required()
       ->check(CLI::ExistingFile);
-  a->id_base_option =
-      add_id_base_option(import, a->id_base, "the instance's metadata id_base, else 0");
+  add_instance_id_base_options(import, a->id_base, "the instance's metadata id_base, else 0");
   import->add_option("--match", a->match,
                      "keep only 'graph s t' lines whose graph field contains TEXT");
   import->add_flag("--scen", a->scenario,
@@ -99,7 +110,11 @@ Command add_queries_import(CLI::App& queries) {
                 GraphReader::open(a->target.instance, VerifyLevel::full);  // its payload is copied
             converters::QueryImportOptions options;
             options.file = a->file;
-            if (a->id_base_option->count() > 0) options.id_base = a->id_base;
+            // A scenario has no ids: the importer refuses any --id-base with its own message.
+            options.id_base = a->scenario && a->id_base.option->count() > 0
+                                  ? std::optional<unsigned>(a->id_base.value)
+                                  : a->id_base.checked(reader);
+            options.binding = binding(a->target);
             if (!a->match.empty()) options.match = a->match;
             options.scenario = a->scenario;
             return write_and_report(
@@ -124,9 +139,10 @@ Command add_queries_generate(CLI::App& queries) {
             destination(a->target);
             const auto reader =
                 GraphReader::open(a->target.instance, VerifyLevel::full);  // its payload is copied
+            auto draw = a->draw;
+            draw.binding = binding(a->target);
             return write_and_report(
-                reader,
-                converters::draw_query_set(reader, a->target.set, a->draw, a->target.replace),
+                reader, converters::draw_query_set(reader, a->target.set, draw, a->target.replace),
                 a->target);
           }};
 }

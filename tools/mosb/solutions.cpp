@@ -21,27 +21,46 @@ namespace mosb::cli {
 namespace {
 
 struct ImportArgs {
-  std::string instance, view, query_set, output;
+  std::string instance, output;
+  ViewChoice choice;
   std::string directory, table, json_log;  // exactly one
   std::string example_log;                 // with directory: the example solvers' stdout
   std::string match = "position";
-  unsigned id_base = 0;
+  InstanceIdBase id_base;
   std::vector<std::size_t> columns;
   std::string solver, solver_version, epsilon = "0";
   bool json = false;
 };
 
+// The name of the instance's view whose objectives are `selected`'s, in order.
+std::string view_with_objectives(const GraphReader& instance, const View& selected) {
+  std::string list;
+  for (auto i : selected.objectives) list += (list.empty() ? "" : ",") + instance.objective(i).name;
+  for (const auto& name : instance.view_names())
+    if (instance.view(name).objectives == selected.objectives) return name;
+  throw UsageError("--objectives " + list + ": " + instance.display_name() +
+                   " has no view with these objectives, and a solution file records a view "
+                   "(spec/SOLUTIONS.md); name one with --view");
+}
+
 int run_import(const ImportArgs& a) {
   const int inputs = !a.directory.empty() + !a.table.empty() + !a.json_log.empty();
   if (inputs != 1)
     throw Error(ErrorCode::invalid_argument, "give exactly one of --dir, --table, --json-log");
+  if (a.choice.view.empty() && a.choice.objectives.empty())
+    throw UsageError("give --view V or --objectives A,B,... (the objectives the costs are)");
   const auto instance = GraphReader::open(a.instance, VerifyLevel::checksums);
-  SolutionWriter writer(instance, a.view, a.query_set);
-  const auto set = a.query_set.empty() ? instance.view(a.view).query_set : a.query_set;
+  const auto selected = select_view(instance, a.choice);
+  // A solution file still records a view name (spec/SOLUTIONS.md §2): an objective list stands
+  // for the instance's view with exactly those objectives.
+  const auto view =
+      a.choice.view.empty() ? view_with_objectives(instance, *selected) : a.choice.view;
+  SolutionWriter writer(instance, view, a.choice.queries);
+  const auto set = a.choice.queries.empty() ? instance.view(view).query_set : a.choice.queries;
   converters::SolutionImportOptions options;
   options.objective_count = writer.objective_count();
   options.columns = a.columns;
-  options.id_base = a.id_base;
+  options.id_base = a.id_base.checked(instance).value_or(0);
   options.vertex_count = instance.vertex_count();
   options.queries = instance.queries(set);
   options.match = a.match == "endpoints" ? converters::RecordMatch::endpoints
@@ -239,9 +258,7 @@ Command add_solutions(CLI::App& app) {
   auto* import = group_app->add_subcommand(
       "import", "Write a solution file from solver output: per-query files, a table or a JSON log");
   import->add_option("--instance", import_args->instance, "the instance (.mosb)")->required();
-  import->add_option("--view", import_args->view, "the view whose objectives the costs are")
-      ->required();
-  import->add_option("--queries", import_args->query_set, "query set (default: the view's)");
+  add_view_choice_options(import, import_args->choice, "the objectives of the costs");
   import->add_option("--dir", import_args->directory,
                      "a directory of per-query front files (query id in the name)");
   import
@@ -257,7 +274,7 @@ Command add_solutions(CLI::App& app) {
       ->add_option("--match", import_args->match,
                    "JSON records to queries by 'position' (default) or 'endpoints'")
       ->check(CLI::IsMember({"position", "endpoints"}));
-  add_id_base_option(import, import_args->id_base, "0");
+  add_instance_id_base_options(import, import_args->id_base, "0");
   import
       ->add_option("--columns", import_args->columns,
                    "0-based positions of the view's values in each input vector (or table "

@@ -76,7 +76,10 @@ void print_text(const GraphReader& r, const std::optional<std::string>& view, co
     return std::cout << std::left << std::setw(15) << label;
   };
   row("file") << r.display_name() << '\n';
-  row("view") << view.value_or("(all objectives)") << '\n';
+  row("view") << view.value_or(s.all_arcs.objectives.size() == r.objective_count()
+                                   ? "(all objectives)"
+                                   : "(listed objectives)")
+              << '\n';
   row("vertices") << s.vertex_count << '\n';
   row("arcs") << s.arc_count << '\n';
   row("objectives") << s.all_arcs.objectives.size() << '\n';
@@ -197,25 +200,25 @@ Command add_stats(CLI::App& app) {
   auto* sub =
       app.add_subcommand("stats", "Cost ranges, objective correlations, degrees and components");
   auto file = std::make_shared<std::string>();
-  auto view = std::make_shared<std::string>();
+  auto choice = std::make_shared<ViewChoice>();
   auto by_kind = std::make_shared<bool>(false);
   auto as_json = std::make_shared<bool>(false);
   sub->add_option("INSTANCE", *file, "a .mosb instance")->required();
-  auto* view_option =
-      sub->add_option("--view", *view, "only the objectives of this benchmark view, in its order");
+  add_view_choice_options(sub, *choice, "only these objectives, in this order");
   sub->add_flag("--by-kind", *by_kind,
                 "also per value of the u8 arc data 'kind' (NetMaker: 0 cycle, 1 locality)");
   add_json_flag(sub, *as_json);
-  return {sub, [file, view, view_option, by_kind, as_json] {
+  return {sub, [file, choice, by_kind, as_json] {
             const auto reader = GraphReader::open(*file, VerifyLevel::full);
             StatsOptions options;
-            if (view_option->count() > 0) options.view = *view;
+            options.selection = *choice;
             options.by_kind = *by_kind;
             const auto stats = compute_stats(reader, options);
+            const auto view = choice->view.empty() ? std::nullopt : std::optional(choice->view);
             if (*as_json)
-              print_json(reader, options.view, stats);
+              print_json(reader, view, stats);
             else
-              print_text(reader, options.view, stats);
+              print_text(reader, view, stats);
             return 0;
           }};
 }

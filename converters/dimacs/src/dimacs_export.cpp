@@ -185,11 +185,7 @@ std::vector<std::filesystem::path> export_dimacs(const std::filesystem::path& in
 
   std::vector<std::size_t> objectives;
   std::vector<std::string> query_sets;
-  if (options.view) {
-    const auto view = reader.find_view(*options.view);
-    if (!view)
-      throw Error(ErrorCode::not_found,
-                  reader.display_name() + ": no view '" + comment_safe(*options.view) + "'");
+  if (const auto view = select_view(reader, options.selection)) {
     objectives = view->objectives;
     if (!view->query_set.empty()) query_sets.push_back(view->query_set);
   } else {

@@ -29,37 +29,6 @@ std::uint64_t absolute_difference(std::int64_t a, std::int64_t b) {
 
 }  // namespace
 
-ViewSpec parse_view_spec(std::string_view text) {
-  const std::string where = "convert dimacs: --view " + quoted(text) + ": ";
-  const auto equals = text.find('=');
-  if (equals == std::string_view::npos)
-    throw Error(where + "expected NAME=OBJ1,OBJ2,...[@QUERYSET]");
-  ViewSpec view;
-  view.name = std::string(text.substr(0, equals));
-  auto rest = text.substr(equals + 1);
-  if (const auto at = rest.find('@'); at != std::string_view::npos) {
-    view.queries = std::string(rest.substr(at + 1));
-    rest = rest.substr(0, at);
-  }
-  if (!Metadata::is_valid_key(view.name))
-    throw Error(where + "the view name must be 1 or more of [A-Za-z0-9_.+-]");
-  if (!format::is_valid_section_name(view.queries))
-    throw Error(where + "the query set name must be " + std::string(format::kSectionNameRule));
-  std::set<std::string> seen;
-  while (true) {
-    const auto comma = rest.find(',');
-    const std::string objective(rest.substr(0, comma));
-    if (!format::is_valid_section_name(objective))
-      throw Error(where + "empty or invalid objective name " + quoted(objective));
-    if (!seen.insert(objective).second)
-      throw Error(where + "objective '" + objective + "' listed twice");
-    view.objectives.push_back(objective);
-    if (comma == std::string_view::npos) break;
-    rest = rest.substr(comma + 1);
-  }
-  return view;
-}
-
 std::vector<std::int64_t> parse_dimacs_elevation(std::string_view text,
                                                  const std::string& display_name, unsigned id_base,
                                                  std::uint64_t vertex_count) {
@@ -114,32 +83,6 @@ void append_derived_columns(GraphInput& graph, const ExtendedOptions& options, u
   if (options.avg_outdegree) derived = "avg-outdegree";
   if (options.hop) derived += derived.empty() ? "hop" : ",hop";
   if (!derived.empty()) meta.set("source.param.derive", derived);
-}
-
-void add_views(GraphInput& graph, const std::vector<ViewSpec>& views) {
-  std::set<std::string> names;
-  for (const auto& view : views) {
-    if (!names.insert(view.name).second)
-      throw Error("convert dimacs: --view '" + view.name + "' given twice");
-    std::string list;
-    for (const auto& objective : view.objectives) {
-      bool found = false;
-      for (const auto& c : graph.costs) found |= c.name == objective;
-      if (!found) {
-        std::string columns;
-        for (const auto& c : graph.costs) columns += (columns.empty() ? "" : ",") + c.name;
-        throw Error("convert dimacs: --view '" + view.name + "': objective '" + objective +
-                    "' is not a column (columns: " + columns + ")");
-      }
-      list += (list.empty() ? "" : ",") + objective;
-    }
-    graph.metadata.set("view." + view.name + ".objectives", list);
-    bool has_queries = false;
-    for (const auto& q : graph.queries) has_queries |= q.name == view.queries;
-    if (has_queries) graph.metadata.set("view." + view.name + ".queries", view.queries);
-    // The intended query set survives in the parameters for `mosb queries import`.
-    graph.metadata.set("source.param.view." + view.name, list + "@" + view.queries);
-  }
 }
 
 GraphInput convert_dimacs_extended(const DimacsOptions& options, const ExtendedOptions& extended) {

@@ -97,20 +97,35 @@ OctileMap instance_map(const GraphReader& reader) {
   return map;
 }
 
-// A view whose converter meant it for this set (`source.param.view.NAME = OBJ,...@SET`, written
-// when the set did not exist yet, spec/families/road.md §2) now gets its `view.NAME.queries` key.
-void link_views_to(QuerySetEdit& edit) {
-  static const std::string kPrefix = "source.param.view.";
+// Gives views their `view.NAME.queries` key (ViewBinding): so a family's default views, written
+// before any query set existed, name the set a user adds, and no view is left without one by
+// accident. A converter's intended set (`source.param.view.NAME = OBJ,...@SET`, spec/families/
+// road.md §2) keeps a view for that set.
+void link_views_to(QuerySetEdit& edit, const GraphReader& reader, const ViewBinding& binding) {
   Metadata& m = edit.metadata;
-  std::vector<std::string> views;
-  for (const auto& [key, value] : m.entries()) {
-    const auto at = value.rfind('@');
-    if (key.starts_with(kPrefix) && at != std::string::npos &&
-        value.substr(at + 1) == edit.set.name)
-      views.push_back(key.substr(kPrefix.size()));
+  const auto views = view_keys(m);
+  if (binding.view) {
+    bool found = false;
+    std::string names;
+    for (const auto& v : views) {
+      found |= v.name == *binding.view && !v.objectives.empty();
+      names += (names.empty() ? "" : ", ") + v.name;
+    }
+    if (!found)
+      throw Error(ErrorCode::not_found, reader.display_name() + ": no view '" + *binding.view +
+                                            "' (views: " + (names.empty() ? "none" : names) + ")");
+    m.set("view." + *binding.view + ".queries", edit.set.name);
+    edit.bound_views = {*binding.view};
+    return;
   }
-  for (const auto& view : views)
-    if (!m.get("view." + view + ".queries")) m.set("view." + view + ".queries", edit.set.name);
+  for (const auto& v : views) {
+    if (v.objectives.empty() || !v.query_set.empty()) continue;
+    const auto intended = m.get("source.param.view." + v.name);
+    const auto at = intended ? intended->rfind('@') : std::string::npos;
+    if (at != std::string::npos && intended->substr(at + 1) != edit.set.name) continue;
+    m.set("view." + v.name + ".queries", edit.set.name);
+    edit.bound_views.push_back(v.name);
+  }
 }
 
 }  // namespace
@@ -126,7 +141,8 @@ QuerySetEdit import_query_set(const GraphReader& reader, const std::string& set,
     const auto entries = parse_scenario(input.text, input.display_name);
     if (entries.empty()) throw Error(input.display_name + ": no queries");
     check_scenario(entries, input.display_name, map, reader.display_name());
-    QuerySetEdit edit{without_query_keys(reader.metadata(), set), scenario_queries(entries, map)};
+    QuerySetEdit edit{
+        without_query_keys(reader.metadata(), set), scenario_queries(entries, map), {}};
     edit.set.name = set;
     const std::string key = "queries." + set + ".";
     edit.metadata.set(key + "source", "import");
@@ -134,7 +150,7 @@ QuerySetEdit import_query_set(const GraphReader& reader, const std::string& set,
     edit.metadata.set(key + "input.name", input.base_name);
     edit.metadata.set(key + "input.size", std::to_string(input.raw_size));
     edit.metadata.set(key + "input.xxh3", input.raw_xxh3);
-    link_views_to(edit);
+    link_views_to(edit, reader, options.binding);
     return edit;
   }
   const unsigned id_base = options.id_base ? *options.id_base : instance_id_base(reader);
@@ -145,7 +161,8 @@ QuerySetEdit import_query_set(const GraphReader& reader, const std::string& set,
   parse.vertex_count = reader.vertex_count();
   parse.match = options.match;
   QuerySetEdit edit{without_query_keys(reader.metadata(), set),
-                    {set, parse_query_file(file, input.display_name, parse)}};
+                    {set, parse_query_file(file, input.display_name, parse)},
+                    {}};
   const std::string key = "queries." + set + ".";
   edit.metadata.set(key + "source", "import");
   edit.metadata.set(key + "input.name", input.base_name);
@@ -153,7 +170,7 @@ QuerySetEdit import_query_set(const GraphReader& reader, const std::string& set,
   edit.metadata.set(key + "input.xxh3", input.raw_xxh3);
   edit.metadata.set(key + "id_base", std::to_string(id_base));
   if (options.match) edit.metadata.set(key + "match", *options.match);
-  link_views_to(edit);
+  link_views_to(edit, reader, options.binding);
   return edit;
 }
 
@@ -169,7 +186,7 @@ QuerySetEdit draw_query_set(const GraphReader& reader, const std::string& set,
   if (options.count < 1 || options.count > kMaxDrawnQueries)
     throw Error("query count " + std::to_string(options.count) + " is not 1 to " +
                 std::to_string(kMaxDrawnQueries));
-  QuerySetEdit edit{without_query_keys(reader.metadata(), set), {set, {}}};
+  QuerySetEdit edit{without_query_keys(reader.metadata(), set), {set, {}}, {}};
   auto& pairs = edit.set.pairs;
   pairs.reserve(options.count);
   auto random = stream(options.seed, 0);
@@ -185,7 +202,7 @@ QuerySetEdit draw_query_set(const GraphReader& reader, const std::string& set,
   edit.metadata.set(key + "seed", std::to_string(options.seed));
   edit.metadata.set(key + "count", std::to_string(options.count));
   edit.metadata.set(key + "allow_same", options.allow_same ? "1" : "0");
-  link_views_to(edit);
+  link_views_to(edit, reader, options.binding);
   return edit;
 }
 

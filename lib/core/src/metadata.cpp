@@ -21,6 +21,10 @@ void Metadata::set(std::string_view key, std::string_view value) {
   entries_.insert_or_assign(std::string(key), std::string(value));
 }
 
+void Metadata::erase(std::string_view key) {
+  if (const auto it = entries_.find(key); it != entries_.end()) entries_.erase(it);
+}
+
 std::optional<std::string> Metadata::get(std::string_view key) const {
   auto it = entries_.find(key);
   if (it == entries_.end()) return std::nullopt;

@@ -1,5 +1,10 @@
-// GraphReader's views: the §7 view keys (parsed by view_keys) resolved to objective indices.
-#include "mosb/graph_reader.hpp"
+// Views: GraphReader's §7 view keys (parsed by view_keys) resolved to objective indices, how
+// converters write views and how commands choose one (mosb/views.hpp).
+#include "mosb/views.hpp"
+
+#include <algorithm>
+
+#include "mosb/format.hpp"
 
 namespace mosb {
 
@@ -34,6 +39,131 @@ View GraphReader::view(std::string_view name) const {
   for (const auto& n : view_names()) names += (names.empty() ? "" : ", ") + n;
   fail(ErrorCode::not_found, "no view '" + std::string(name) + "' (views: " +
                                  (names.empty() ? std::string("none") : names) + ")");
+}
+
+namespace {
+
+// A user's text in a message: control characters shown as '?', at most 40 characters.
+std::string shown(std::string_view text) {
+  std::string out = "'";
+  for (std::size_t i = 0; i < text.size() && i < 40; ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    out += (c < 0x20 || c == 0x7F) ? '?' : static_cast<char>(c);
+  }
+  return out + (text.size() > 40 ? "...'" : "'");
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ",") + n;
+  return out;
+}
+
+template <class Graph>
+void add_views_to(Graph& graph, const std::vector<ViewSpec>& views) {
+  std::vector<std::string> columns, sets;
+  for (const auto& c : graph.costs) columns.push_back(c.name);
+  for (const auto& q : graph.queries) sets.push_back(q.name);
+  add_views(graph.metadata, columns, sets, views);
+}
+
+}  // namespace
+
+std::vector<std::string> parse_objective_list(std::string_view text, std::string_view option) {
+  std::vector<std::string> list;
+  while (true) {
+    const auto comma = text.find(',');
+    std::string objective(text.substr(0, comma));
+    if (!format::is_valid_section_name(objective))
+      throw Error(ErrorCode::invalid_argument,
+                  std::string(option) + ": empty or invalid objective name " + shown(objective));
+    for (const auto& seen : list)
+      if (seen == objective)
+        throw Error(ErrorCode::invalid_argument,
+                    std::string(option) + ": objective '" + objective + "' listed twice");
+    list.push_back(std::move(objective));
+    if (comma == std::string_view::npos) return list;
+    text = text.substr(comma + 1);
+  }
+}
+
+ViewSpec parse_view_spec(std::string_view text) {
+  const std::string where = "--view " + shown(text);
+  const auto equals = text.find('=');
+  if (equals == std::string_view::npos)
+    throw Error(ErrorCode::invalid_argument, where + ": expected NAME=OBJ1,OBJ2,...[@QUERYSET]");
+  ViewSpec view;
+  view.name = std::string(text.substr(0, equals));
+  auto rest = text.substr(equals + 1);
+  if (const auto at = rest.find('@'); at != std::string_view::npos) {
+    view.queries = std::string(rest.substr(at + 1));
+    rest = rest.substr(0, at);
+  }
+  if (!Metadata::is_valid_key(view.name))
+    throw Error(ErrorCode::invalid_argument,
+                where + ": the view name must be 1 or more of [A-Za-z0-9_.+-]");
+  if (!format::is_valid_section_name(view.queries))
+    throw Error(ErrorCode::invalid_argument,
+                where + ": the query set name must be " + std::string(format::kSectionNameRule));
+  view.objectives = parse_objective_list(rest, where);
+  return view;
+}
+
+void add_views(Metadata& metadata, const std::vector<std::string>& columns,
+               const std::vector<std::string>& query_sets, const std::vector<ViewSpec>& views) {
+  auto contains = [](const std::vector<std::string>& names, const std::string& name) {
+    return std::find(names.begin(), names.end(), name) != names.end();
+  };
+  std::vector<std::string> seen;
+  for (const auto& view : views) {
+    if (contains(seen, view.name))
+      throw Error(ErrorCode::invalid_argument, "--view '" + view.name + "' given twice");
+    seen.push_back(view.name);
+    for (const auto& objective : view.objectives)
+      if (!contains(columns, objective))
+        throw Error(ErrorCode::not_found, "--view '" + view.name + "': objective '" + objective +
+                                              "' is not a column (columns: " + joined(columns) +
+                                              ")");
+    const std::string key = "view." + view.name;
+    metadata.set(key + ".objectives", joined(view.objectives));
+    // A replaced default view must not keep a query set the new one does not name.
+    metadata.erase(key + ".queries");
+    if (contains(query_sets, view.queries)) metadata.set(key + ".queries", view.queries);
+    // The intended query set survives in the parameters for `mosb queries import|generate`.
+    if (!view.queries.empty())
+      metadata.set("source.param." + key, joined(view.objectives) + "@" + view.queries);
+  }
+}
+
+void add_views(GraphInput& graph, const std::vector<ViewSpec>& views) {
+  add_views_to(graph, views);
+}
+
+void add_views(StreamedGraph& graph, const std::vector<ViewSpec>& views) {
+  add_views_to(graph, views);
+}
+
+std::optional<View> select_view(const GraphReader& reader, const ViewChoice& choice) {
+  if (choice.empty()) return std::nullopt;
+  if (!choice.view.empty() && !choice.objectives.empty())
+    throw Error(ErrorCode::invalid_argument,
+                "give --view or --objectives, not both (a view is a name for an objective list)");
+  View selected;
+  if (!choice.view.empty()) selected = reader.view(choice.view);
+  if (!choice.objectives.empty()) {
+    selected.objectives.clear();
+    for (const auto& name : choice.objectives)
+      selected.objectives.push_back(reader.objective_index(name));
+  } else if (choice.view.empty()) {
+    for (std::size_t j = 0; j < reader.objective_count(); ++j) selected.objectives.push_back(j);
+  }
+  if (!choice.queries.empty()) {
+    if (!reader.find(format::SectionKind::queries, choice.queries))
+      throw Error(ErrorCode::not_found,
+                  reader.display_name() + ": no query set '" + choice.queries + "'");
+    selected.query_set = choice.queries;
+  }
+  return selected;
 }
 
 }  // namespace mosb

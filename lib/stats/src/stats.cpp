@@ -288,8 +288,8 @@ SccSummary strongly_connected_components(const GraphReader& graph) {
 GraphStats compute_stats(const GraphReader& graph, const StatsOptions& options) {
   require_verified(graph, "compute_stats");
   std::vector<std::size_t> objectives;
-  if (options.view) {
-    objectives = graph.view(*options.view).objectives;
+  if (const auto selected = select_view(graph, options.selection)) {
+    objectives = selected->objectives;
   } else {
     for (std::size_t i = 0; i < graph.objective_count(); ++i) objectives.push_back(i);
   }

@@ -12,6 +12,7 @@ class Metadata {
  public:
   void set(std::string_view key, std::string_view value);
   std::optional<std::string> get(std::string_view key) const;
+  void erase(std::string_view key);  // nothing when absent
   const std::map<std::string, std::string, std::less<>>& entries() const { return entries_; }
 
   std::string serialize() const;

@@ -10,6 +10,7 @@
 
 #include "mosb/format.hpp"
 #include "mosb/graph_reader.hpp"
+#include "mosb/views.hpp"
 
 namespace mosb {
 
@@ -52,14 +53,15 @@ struct GraphStats {
 };
 
 struct StatsOptions {
-  std::optional<std::string> view;  // the objectives of metadata `view.<view>.objectives`, in order
-  bool by_kind = false;             // also group by the u8 arc-data section `kind`
+  // The objectives, in order: a view's, or a list (mosb::select_view); empty: every objective.
+  ViewChoice selection;
+  bool by_kind = false;  // also group by the u8 arc-data section `kind`
 };
 
 // Every function here walks payload and requires a reader opened with
 // GraphReader::open(path, VerifyLevel::full); given another, it throws mosb::Error.
-// Throws mosb::Error naming the file for an unknown view, a missing or malformed `kind` section
-// (with by_kind), or a packed column.
+// Throws mosb::Error naming the file for an unknown view or objective, a missing or malformed
+// `kind` section (with by_kind), or a packed column.
 GraphStats compute_stats(const GraphReader& graph, const StatsOptions& options = {});
 
 // Pieces, usable on their own.

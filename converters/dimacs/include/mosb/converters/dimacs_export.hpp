@@ -8,12 +8,13 @@
 #include <vector>
 
 #include "mosb/progress.hpp"
+#include "mosb/views.hpp"
 
 namespace mosb::converters {
 
 struct DimacsExportOptions {
-  std::filesystem::path out_dir;    // created when missing
-  std::optional<std::string> view;  // only the view's objectives and query set
+  std::filesystem::path out_dir;  // created when missing
+  ViewChoice selection;  // only these objectives and their query set (none when it names none)
   std::optional<unsigned> id_base;  // default: metadata id_base, else 1 (the DIMACS convention)
 };
 

@@ -12,6 +12,7 @@
 #include "mosb/converters/dimacs_converter.hpp"
 #include "mosb/converters/text_scan.hpp"
 #include "mosb/graph_builder.hpp"
+#include "mosb/views.hpp"  // ViewSpec, add_views: the views of every family
 
 namespace mosb::converters {
 
@@ -21,13 +22,6 @@ enum class AvgOutdegreeMode {
   round_half_up,  // floor((outdeg(u) + outdeg(v) + 1) / 2)
 };
 
-// A benchmark over some columns of the instance: `NAME=OBJ1,OBJ2,...[@QUERYSET]`.
-struct ViewSpec {
-  std::string name;
-  std::vector<std::string> objectives;
-  std::string queries = "default";
-};
-
 struct ExtendedOptions {
   std::optional<std::string> elevation_file;
   bool avg_outdegree = false;
@@ -35,9 +29,6 @@ struct ExtendedOptions {
   bool hop = false;
   std::vector<ViewSpec> views;
 };
-
-// Parses the text of one --view option; throws mosb::Error naming the option.
-ViewSpec parse_view_spec(std::string_view text);
 
 // Parses an elevation file: `c` comments, one `p aux sp elev n` line, then one `v id elevation`
 // line (signed integer) per vertex. Errors are "FILE:LINE:COLUMN: message".
@@ -54,10 +45,6 @@ std::vector<std::uint32_t> out_degrees(std::uint64_t vertex_count,
 
 // Cost columns in the fixed order elevation, avg_outdegree, hop, appended after the existing ones.
 void append_derived_columns(GraphInput& graph, const ExtendedOptions& options, unsigned id_base);
-
-// Writes view.NAME.objectives, and view.NAME.queries only when `graph` has that query set (a
-// later `mosb queries import` adds it); refuses objectives that are not columns of `graph`.
-void add_views(GraphInput& graph, const std::vector<ViewSpec>& views);
 
 // `mosb convert dimacs` as a whole: convert_dimacs, then the derived columns, then the views; out
 // of memory names the first .gr file. The one code path of the command and of the suite's recipes.

@@ -18,6 +18,14 @@ namespace mosb::converters {
 struct QuerySetEdit {
   Metadata metadata;
   QuerySet set;
+  std::vector<std::string> bound_views;  // the views whose query set the new set became
+};
+
+// Which views a new query set becomes the query set of (spec/QUERIES.md, "Views"): `view` alone
+// when given (it must exist; a query set it had is replaced), else every view that has none yet,
+// except one its converter meant for another set (`source.param.view.NAME = OBJ,...@OTHER`).
+struct ViewBinding {
+  std::optional<std::string> view;
 };
 
 struct QueryImportOptions {
@@ -30,12 +38,14 @@ struct QueryImportOptions {
   // each `optimal` as the set's reference for `length` (spec/SOLUTIONS.md §6). Excludes id_base and
   // match.
   bool scenario = false;
+  ViewBinding binding;
 };
 
 struct QueryDrawOptions {
   std::uint64_t count = 100;
   std::uint64_t seed = 1;
   bool allow_same = false;  // keep start = goal pairs (redrawn otherwise)
+  ViewBinding binding;
 };
 
 // The most pairs one `draw` may ask for (800 MB of pairs).
