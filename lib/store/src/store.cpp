@@ -163,7 +163,7 @@ void sweep_staging(const fs::path& staging) {
 // never write one another's files. Removed, with what it holds, on destruction.
 class Staging {
  public:
-  explicit Staging(fs::path store) : parent_(std::move(store) / kStagingDirectory) {}
+  explicit Staging(const fs::path& store) : parent_(store / kStagingDirectory) {}
   ~Staging() {
     if (path_.empty()) return;
     std::error_code ec;
@@ -488,6 +488,7 @@ std::vector<ManifestEntry> Store::add(const std::vector<fs::path>& files,
         fs::remove(source, ec);
     }
   std::vector<ManifestEntry> added;
+  added.reserve(placements.size());
   for (auto& p : placements) added.push_back(std::move(p.entry));
   return added;
 }
