@@ -178,10 +178,11 @@ class Staging {
     for (int attempt = 0; path_.empty(); ++attempt) {
       own_directory(parent_);
       std::string name_template = (parent_ / (std::to_string(::getpid()) + "-XXXXXX")).string();
-      if (::mkdtemp(name_template.data()) != nullptr)
+      if (::mkdtemp(name_template.data()) != nullptr) {
         path_ = name_template;
-      else if (errno != ENOENT || attempt == 3)
-        throw Error(ErrorCode::io, parent_.string() + ": cannot create: " + std::strerror(errno));
+      } else if (const int error = errno; error != ENOENT || attempt == 3) {
+        throw Error(ErrorCode::io, parent_.string() + ": cannot create: " + std::strerror(error));
+      }
     }
     return path_ / name;
   }
