@@ -196,7 +196,7 @@ class Manifest(Base):
         self.assertEqual(r.returncode, 1)
         self.assertIn("bad.mosb", r.stderr)
         self.assertEqual(read(os.path.join(store, "MANIFEST")), before)
-        self.assertEqual(sorted(os.listdir(store)), ["MANIFEST", "g3.mosb"])
+        self.assertEqual(sorted(os.listdir(store)), [".lock", "MANIFEST", "g3.mosb"])
 
     def test_read_only_store_is_listed_and_verified_without_writing(self):
         store = self.store_with(3, 4)
@@ -240,7 +240,7 @@ class Packed(Base):
         self.assertLess(len(read(stored)), len(read(original)))
         self.ok("unpack", stored, "-o", self.path("back.mosb"))
         self.assertEqual(read(self.path("back.mosb")), read(original))
-        self.assertEqual(sorted(os.listdir(store)), ["MANIFEST", "g5.mosb"])  # no staging left
+        self.assertEqual(sorted(os.listdir(store)), [".lock", "MANIFEST", "g5.mosb"])  # no staging
         self.ok("store", "verify", store)
 
     def test_add_pack_of_a_name_listed_with_other_content_changes_nothing(self):
@@ -252,7 +252,7 @@ class Packed(Base):
         self.assertIn("already lists a different 'g3.mosb'", r.stderr)
         self.assertEqual((read(os.path.join(store, "MANIFEST")),
                           read(os.path.join(store, "g3.mosb"))), before)
-        self.assertEqual(sorted(os.listdir(store)), ["MANIFEST", "g3.mosb"])
+        self.assertEqual(sorted(os.listdir(store)), [".lock", "MANIFEST", "g3.mosb"])
 
     def damaged_packed_copy(self):
         """A packed file with one byte of a zstd frame changed (the header and table intact)."""
@@ -270,7 +270,7 @@ class Packed(Base):
         self.assertEqual(r.returncode, 1, r)
         self.assertIn("bad.mosb", r.stderr)
         self.assertEqual(len(r.stderr.splitlines()), 1, r.stderr)
-        self.assertEqual(sorted(os.listdir(store)), ["MANIFEST", "g3.mosb"])
+        self.assertEqual(sorted(os.listdir(store)), [".lock", "MANIFEST", "g3.mosb"])
 
     def test_verify_decodes_packed_entries(self):
         # The damaged file is listed with its own size and SHA-256: only decoding can find it.
@@ -305,7 +305,9 @@ class Packed(Base):
         self.assertEqual(read(cached), read(original))
         self.ok("store", "verify", store)  # the cache is the store's own, not an extra file
 
-    def test_instance_of_a_read_only_store_unpacks_in_memory(self):
+    def test_instance_of_a_read_only_store_gives_the_unpacked_copy_or_refuses(self):
+        # A solver maps the path printed: without an unpacked copy a read-only store has none to
+        # give (the packed file would be the wrong bytes), so it says so and fails.
         store, _ = self.packed_store()
         before = sorted(os.listdir(store))
         prefix = read_only_bind(store)
@@ -314,11 +316,22 @@ class Packed(Base):
         if prefix is None:
             os.chmod(store, 0o555)
             prefix = []
+        for options in ([], ["--json"]):
+            r = subprocess.run(prefix + [MOSB, "store", "instance", *options, store, "Grid_3"],
+                               capture_output=True, text=True)
+            cached = os.path.join(store, ".cache", "g5.mosb")
+            self.assert_one_line_error(r, cached + ": cannot unpack there")
+            self.assertEqual(r.stdout, "")
+            self.assertEqual(sorted(os.listdir(store)), before)
+        if not prefix:
+            os.chmod(store, 0o755)
+        self.ok("store", "instance", store, "Grid_3")  # writable: the copy is made
+        if not prefix:
+            os.chmod(store, 0o555)
         r = subprocess.run(prefix + [MOSB, "store", "instance", "--json", store, "Grid_3"],
                            capture_output=True, text=True)
         self.assertEqual(r.returncode, 0, r)
-        self.assertEqual(json.loads(r.stdout)["path"], os.path.join(store, "g5.mosb"))
-        self.assertEqual(sorted(os.listdir(store)), before)
+        self.assertEqual(json.loads(r.stdout)["path"], cached)
 
 
 class KilledAdd(Base):
@@ -354,7 +367,7 @@ class KilledAdd(Base):
         self.ok("store", "add", store, big, *small)
         code, report = self.verify_json("store", "verify", store)
         self.assertEqual(code, 0, report)
-        self.assertEqual([n for n in os.listdir(store) if n.startswith(".")], [])
+        self.assertEqual([n for n in os.listdir(store) if n.startswith(".")], [".lock"])
 
 
 class DamagedEntries(Base):
@@ -467,23 +480,232 @@ class DamagedEntries(Base):
         self.check_cache_remade(fifo)
 
     def test_directory_in_place_of_the_cache_copy_is_left_alone(self):
-        # rename cannot replace a directory and the store deletes nothing it did not make: the
-        # packed entry is decoded into memory, as on a read-only store.
+        # rename cannot replace a directory and the store deletes nothing it did not make: no
+        # unpacked copy can be made, so instance says so (the packed file is no path to map).
         for options in ([], ["--json"]):
             with self.subTest(options=options):
                 store = self.mixed_store()
                 cached = os.path.join(store, ".cache", "g7.mosb")
                 os.makedirs(os.path.join(cached, "inside"))
                 r = self.instance(store, "Grid-7x4/Grid_3", *options)
-                self.assertEqual(r.returncode, 0, r)
-                self.assertEqual(r.stderr, "", r)
-                packed = os.path.join(store, "g7.mosb")
-                if options:
-                    self.assertEqual(json.loads(r.stdout)["path"], packed)
-                else:
-                    self.assertEqual(r.stdout.splitlines()[0], packed, r)
+                self.assert_one_line_error(r, cached + ": cannot unpack there")
+                self.assertEqual(r.stdout, "")
                 self.assertTrue(os.path.isdir(os.path.join(cached, "inside")))
                 self.assertEqual(os.listdir(os.path.join(store, ".cache")), ["g7.mosb"])
+
+
+class Safety(Base):
+    """The store never loses what it lists and never writes or deletes outside its directory:
+    reserved names, concurrent writers, planted symlinks, leftovers of interrupted runs."""
+
+    def snapshot(self, directory):
+        """Every path under `directory` with its bytes (None for a directory or a symlink)."""
+        out = {}
+        for root, dirs, files in os.walk(directory):
+            for name in dirs + files:
+                path = os.path.join(root, name)
+                plain = os.path.isfile(path) and not os.path.islink(path)
+                out[os.path.relpath(path, directory)] = read(path) if plain else None
+        return out
+
+    def test_reserved_names_are_refused_before_anything_is_placed(self):
+        store = self.store_with(3)
+        os.makedirs(self.path("in"))
+        before = self.snapshot(store)
+        for name in ("MANIFEST", ".MANIFEST.tmp-123-abcdef", ".cache", ".staging", ".lock",
+                     ".hidden.mosb"):
+            source = grid(self.path("in", name), 4)
+            for options in ([], ["--move"], ["--pack"]):
+                with self.subTest(name=name, options=options):
+                    r = self.mosb("store", "add", *options, store, source)
+                    self.assert_one_line_error(r, source, "cannot be added as '%s'" % name,
+                                               "keeps MANIFEST and names starting with '.'")
+                    self.assertEqual(self.snapshot(store), before)
+                    self.assertTrue(os.path.exists(source))
+            os.remove(source)
+        listed = json.loads(self.ok("store", "list", "--json", store).stdout)["entries"]
+        self.assertEqual([e["file"] for e in listed], ["g3.mosb"])
+
+    def test_a_manifest_listing_a_reserved_name_is_refused(self):
+        store = self.store_with(3)
+        manifest = os.path.join(store, "MANIFEST")
+        header, entries = self.records(manifest)
+        entries[0]["file"] = ".cache"
+        with open(manifest, "w") as f:
+            f.write("".join(json.dumps(x) + "\n" for x in [header] + entries))
+        for command in ("list", "verify"):
+            r = self.mosb("store", command, store)
+            self.assert_one_line_error(r, manifest + ": lists '.cache', a name the store keeps")
+
+    def test_forty_concurrent_adds_are_all_listed(self):
+        store = self.path("store")
+        self.ok("store", "init", store)
+        os.makedirs(self.path("in"))
+        files = [grid(self.path("in", "c%02d.mosb" % i), 2 + i % 3, height=2, seed=i)
+                 for i in range(40)]
+        # Half of them packed: each add stages its packed file in .staging at the same time.
+        procs = [subprocess.Popen([MOSB, "store", "add", *(["--pack"] if i % 2 else []), store,
+                                   f], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+                 for i, f in enumerate(files)]
+        errors = [(p.wait(timeout=120), p.stderr.read()) for p in procs]
+        for p in procs:
+            p.stderr.close()
+        self.assertEqual([e for e in errors if e[0] != 0], [])
+        listed = json.loads(self.ok("store", "list", "--json", store).stdout)["entries"]
+        self.assertEqual([e["file"] for e in listed], ["c%02d.mosb" % i for i in range(40)])
+        self.assertEqual([e["packed"] for e in listed], [i % 2 == 1 for i in range(40)])
+        code, report = self.verify_json("store", "verify", store)
+        self.assertEqual(code, 0, report)
+        self.assertEqual(len(report["files"]), 40)
+        self.assertEqual(sorted(n for n in os.listdir(store) if n.startswith(".")), [".lock"])
+
+    def outside(self):
+        """A directory outside the store holding a file, and that file's bytes."""
+        outside = self.path("outside")
+        os.makedirs(outside, exist_ok=True)
+        victim = grid(os.path.join(outside, "g5.mosb"), 6)
+        shutil.copy(victim, os.path.join(outside, "g7.mosb"))
+        return outside, self.snapshot(outside)
+
+    def test_symlinked_staging_is_refused(self):
+        store = self.store_with(3)
+        outside, before = self.outside()
+        os.symlink(outside, os.path.join(store, ".staging"))
+        source = grid(self.path("g5.mosb"), 5)
+        r = self.mosb("store", "add", "--pack", store, source)
+        self.assert_one_line_error(r, os.path.join(store, ".staging") + ": is a symbolic link")
+        self.assertEqual(self.snapshot(outside), before)
+        self.assertTrue(os.path.islink(os.path.join(store, ".staging")))
+
+    def test_symlinked_cache_and_cache_copy_are_refused(self):
+        store = self.path("store")
+        self.ok("store", "init", store)
+        self.ok("store", "add", "--pack", store, grid(self.path("g7.mosb"), 7))
+        outside, before = self.outside()
+        cache = os.path.join(store, ".cache")
+        os.symlink(outside, cache)
+        r = self.mosb("store", "instance", store, "Grid-7x4/Grid_3")
+        self.assert_one_line_error(r, cache + ": is a symbolic link")
+        self.assertEqual(self.snapshot(outside), before)
+        os.remove(cache)
+        os.mkdir(cache)
+        os.symlink(os.path.join(outside, "g7.mosb"), os.path.join(cache, "g7.mosb"))
+        r = self.mosb("store", "instance", store, "Grid-7x4/Grid_3")
+        self.assert_one_line_error(r, os.path.join(cache, "g7.mosb") + ": is a symbolic link")
+        self.assertEqual(self.snapshot(outside), before)
+
+    def test_symlinked_entry_and_lock_are_refused(self):
+        store = self.store_with(5)
+        outside, before = self.outside()
+        entry_path = os.path.join(store, "g5.mosb")
+        os.remove(entry_path)
+        os.symlink(os.path.join(outside, "g5.mosb"), entry_path)
+        r = self.mosb("store", "add", store, self.path("g5.mosb"))
+        self.assert_one_line_error(r, entry_path + ": is a symbolic link")
+        r = self.mosb("store", "instance", store, "Grid-5x4/Grid_3")
+        self.assert_one_line_error(r, entry_path + ": is a symbolic link")
+        code, report = self.verify_json("store", "verify", store)
+        self.assertEqual((code, self.problems(report)), (1, [("g5.mosb", "unreadable")]))
+        self.assertEqual(self.snapshot(outside), before)
+        os.remove(entry_path)
+        shutil.copy(self.path("g5.mosb"), entry_path)
+        lock = os.path.join(store, ".lock")
+        os.remove(lock)
+        os.symlink(os.path.join(outside, "g7.mosb"), lock)
+        r = self.mosb("store", "add", store, grid(self.path("g4.mosb"), 4))
+        self.assert_one_line_error(r, lock + ": is a symbolic link")
+        self.assertEqual(self.snapshot(outside), before)
+        listed = json.loads(self.ok("store", "list", "--json", store).stdout)["entries"]
+        self.assertEqual([e["file"] for e in listed], ["g5.mosb"])
+
+    def test_staging_left_by_ended_processes_is_swept(self):
+        store = self.store_with(3)
+        ended = subprocess.Popen(["true"])
+        ended.wait()
+        staging = os.path.join(store, ".staging")
+        dead = os.path.join(staging, "%d-AbC123" % ended.pid)
+        alive = os.path.join(staging, "%d-XyZ789" % os.getpid())
+        foreign = os.path.join(staging, "not-ours")
+        for d in (dead, alive, foreign):
+            os.makedirs(d)
+            shutil.copy(os.path.join(store, "g3.mosb"), d)
+        self.ok("store", "add", store, grid(self.path("g4.mosb"), 4))
+        self.assertEqual(sorted(os.listdir(staging)), sorted(os.path.basename(d)
+                                                             for d in (alive, foreign)))
+        shutil.rmtree(alive)
+        shutil.rmtree(foreign)
+        self.ok("store", "add", "--pack", store, grid(self.path("g6.mosb"), 6))
+        self.assertFalse(os.path.lexists(staging), "an empty .staging is removed")
+
+    def test_interrupted_pack_leaves_nothing_after_the_next_add(self):
+        store = self.store_with(3)
+        big = grid(self.path("big.mosb"), 300, 300)
+        staging = os.path.join(store, ".staging")
+        for sig in (signal.SIGINT, signal.SIGKILL):
+            with self.subTest(signal=sig):
+                p = subprocess.Popen([MOSB, "store", "add", "--pack", store, big],
+                                     stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                deadline = time.time() + 30
+                while not (os.path.isdir(staging) and os.listdir(staging)) and p.poll() is None \
+                        and time.time() < deadline:
+                    time.sleep(0.002)
+                p.send_signal(sig)  # while it packs (seconds at the default level)
+                p.wait()
+                # Its own staging directory, which it had no chance to remove.
+                self.assertEqual(len(os.listdir(staging)), 1)
+                self.ok("store", "add", store, grid(self.path("g4.mosb"), 4))
+                left = [n for n in os.listdir(store) if n.startswith(".") and n != ".lock"]
+                self.assertEqual(left, [])
+                listed = json.loads(self.ok("store", "list", "--json", store).stdout)["entries"]
+                self.assertEqual([e["file"] for e in listed], ["g3.mosb", "g4.mosb"])
+
+    def test_a_refused_packed_entry_leaves_no_empty_cache(self):
+        store = self.path("store")
+        self.ok("store", "init", store)
+        self.ok("store", "add", "--pack", store, grid(self.path("g7.mosb"), 7, height=7))
+        target = os.path.join(store, "g7.mosb")
+        data = bytearray(read(target))
+        e = entry(data, "forward_offsets")
+        data[e["offset"] + e["stored_length"] // 2] ^= 0x04
+        with open(target, "wb") as f:
+            f.write(data)
+        r = self.mosb("store", "instance", store, "Grid_3")
+        self.assert_one_line_error(r, target)
+        self.assertFalse(os.path.lexists(os.path.join(store, ".cache")))
+
+    def test_move_keeps_the_source_until_its_copy_is_listed(self):
+        # A destination that cannot take the file (here a directory where it goes): the add
+        # fails and the source is still there, the manifest as it was.
+        store = self.store_with(3)
+        os.mkdir(os.path.join(store, "g5.mosb"))
+        source = grid(self.path("g5.mosb"), 5)
+        data = read(source)
+        before = read(os.path.join(store, "MANIFEST"))
+        r = self.mosb("store", "add", "--move", store, source)
+        self.assert_one_line_error(r, "g5.mosb")
+        self.assertEqual(read(source), data)
+        self.assertEqual(read(os.path.join(store, "MANIFEST")), before)
+
+    def test_move_onto_a_full_disk_keeps_the_source(self):
+        # The store on a small tmpfs (another file system: --move copies), too small for the file.
+        if os.geteuid() != 0:
+            self.skipTest("needs root for a private tmpfs mount")
+        small = self.path("small")
+        os.mkdir(small)
+        source = grid(self.path("big.mosb"), 200, 200)
+        data = read(source)
+        script = ('mount -t tmpfs -o size=256k tmpfs "$1" || exit 77; "$0" store init "$1/s" && '
+                  '"$0" store add "$1/s" "$3"; "$0" store add --move "$1/s" "$2"; echo "rc=$?"; '
+                  'cat "$1/s/MANIFEST"; ls -A "$1/s"')
+        r = subprocess.run(["unshare", "-m", "sh", "-c", script, MOSB, small, source,
+                            grid(self.path("g3.mosb"), 3)], capture_output=True, text=True)
+        if r.returncode == 77 or "rc=" not in r.stdout:
+            self.skipTest("no private tmpfs mount allowed here: %s" % r.stderr)
+        self.assertIn("No space left on device", r.stderr)
+        self.assertIn("rc=1", r.stdout)
+        self.assertNotIn("big.mosb", r.stdout)  # not listed, no file, no temporary left
+        self.assertIn('"file":"g3.mosb"', r.stdout)
+        self.assertEqual(read(source), data)
 
 
 class Sources(Base):

@@ -2,9 +2,13 @@
 
 #include <doctest/doctest.h>
 
+#include <atomic>
+#include <chrono>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "file_patch.hpp"
@@ -14,6 +18,7 @@
 #include "mosb/graph_builder.hpp"
 #include "mosb/manifest.hpp"
 #include "mosb/sha256.hpp"
+#include "mosb/store_lock.hpp"
 #include "temp_dir.hpp"
 
 using namespace mosb;
@@ -136,4 +141,51 @@ TEST_CASE("Store::instance resolves views and benchmarks and refuses ambiguous n
   bytes[bytes.size() / 2] ^= std::byte{1};
   testing::write_bytes(dir / "store" / "g1.mosb", bytes);
   CHECK_THROWS_AS(reopened.instance("Grid-4x3/Grid_3"), Error);
+}
+
+TEST_CASE("a store refuses reserved names before placing anything") {
+  CHECK(is_reserved_store_name("MANIFEST"));
+  CHECK(is_reserved_store_name(".MANIFEST.tmp-123-abcdef"));
+  CHECK(is_reserved_store_name(".cache"));
+  CHECK(is_reserved_store_name(".staging"));
+  CHECK(is_reserved_store_name(kStoreLockFile));
+  CHECK(is_reserved_store_name(".x.mosb"));
+  CHECK_FALSE(is_reserved_store_name("MANIFEST.mosb"));
+  CHECK_FALSE(is_reserved_store_name("g.mosb"));
+
+  testing::TempDir dir;
+  std::filesystem::create_directories(dir / "in");
+  write_graph(converters::grid_graph({4, 3, 3, 1}), dir / "in" / "MANIFEST");
+  write_graph(converters::grid_graph({4, 3, 3, 1}), dir / "in" / ".cache");
+  auto store = Store::init(dir / "store");
+  const auto manifest = testing::read_bytes(store.manifest_path());
+  CHECK_THROWS_WITH_AS(store.add({dir / "in" / "MANIFEST"}, {}),
+                       doctest::Contains("cannot be added as 'MANIFEST'"), Error);
+  CHECK_THROWS_WITH_AS(store.add({dir / "in" / ".cache"}, {}),
+                       doctest::Contains("cannot be added as '.cache'"), Error);
+  CHECK(testing::read_bytes(store.manifest_path()) == manifest);
+  CHECK_FALSE(std::filesystem::exists(dir / "store" / ".cache"));
+}
+
+TEST_CASE("StoreLock excludes a second holder until released and refuses a symlink") {
+  testing::TempDir dir;
+  std::filesystem::create_directories(dir / "store");
+  std::atomic<bool> second_holds{false};
+  std::optional<StoreLock> first(std::in_place, dir / "store");
+  std::jthread second([&] {
+    const StoreLock lock(dir / "store");  // flock: a second open file excludes even this process
+    second_holds = true;
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  CHECK_FALSE(second_holds.load());
+  first.reset();
+  second.join();
+  CHECK(second_holds.load());
+  CHECK(std::filesystem::is_regular_file(dir / "store" / ".lock"));  // kept: see store_lock.hpp
+
+  std::filesystem::remove(dir / "store" / ".lock");
+  testing::write_bytes(dir / "outside", testing::Bytes(3));
+  std::filesystem::create_symlink(dir / "outside", dir / "store" / ".lock");
+  CHECK_THROWS_WITH_AS(StoreLock(dir / "store"), doctest::Contains("is a symbolic link"), Error);
+  CHECK(testing::read_bytes(dir / "outside").size() == 3);
 }

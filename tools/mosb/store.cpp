@@ -9,6 +9,7 @@
 
 #include "commands.hpp"
 #include "json_writer.hpp"
+#include "mosb/error.hpp"
 #include "terminal_progress.hpp"
 
 namespace mosb::cli {
@@ -119,10 +120,20 @@ int run_store_verify(const StoreArgs& a) {
 }
 
 // Resolves a name as solvers do (Store::instance) and says which file, view and query set serve
-// it; for a packed entry the unpacked copy is made in the store's cache.
+// it; for a packed entry the unpacked copy is made in the store's cache, and without one (a
+// read-only store) the answer is an error, not the packed file.
 int run_instance(const StoreArgs& a) {
   const auto store = Store::open(a.directory);
   const auto found = store.instance(a.name);
+  // A solver maps the path printed: a packed file decoded in memory (the store cannot be written)
+  // has no path to give.
+  if (found.entry.packed && found.path != store.directory() / kCacheDirectory / found.entry.file)
+    throw Error(ErrorCode::io, (store.directory() / kCacheDirectory / found.entry.file).string() +
+                                   ": cannot unpack there (the store cannot be written, or "
+                                   "something else is in the way); "
+                                   "mosb unpack " +
+                                   (store.directory() / found.entry.file).string() +
+                                   " -o FILE unpacks it elsewhere");
   const std::string view = found.view ? found.view->name : "";
   if (a.json) {
     JsonWriter json(std::cout);

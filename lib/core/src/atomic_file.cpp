@@ -142,7 +142,7 @@ void remove_stale_temporaries(const std::filesystem::path& directory, const std:
     const std::string name = it->path().filename().string();
     const auto pid = temporary_pid(name, prefix);
     if (!pid || *pid == ::getpid()) continue;
-    if (::kill(*pid, 0) == 0 || errno != ESRCH) continue;  // alive (or not ours to signal: alive)
+    if (!process_has_ended(*pid)) continue;
     struct stat st {};
     if (::lstat(it->path().c_str(), &st) != 0 || !S_ISREG(st.st_mode)) continue;
     if (::unlink(it->path().c_str()) != 0) continue;
@@ -290,6 +290,11 @@ void remove_temporaries_on_signals() {
     for (int other : kCleanupSignals) ::sigaddset(&action.sa_mask, other);
     ::sigaction(signal_number, &action, nullptr);
   }
+}
+
+bool process_has_ended(long pid) {
+  if (pid <= 0 || pid > INT_MAX) return false;
+  return ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
 }
 
 void check_output_is_not_input(const std::filesystem::path& output,

@@ -1,6 +1,7 @@
 #include "mosb/store.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -8,6 +9,7 @@
 #include <cerrno>
 #include <cstring>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <thread>
 
@@ -17,6 +19,7 @@
 #include "mosb/internal/xxh3.hpp"
 #include "mosb/pack.hpp"
 #include "mosb/sha256.hpp"
+#include "mosb/store_lock.hpp"
 #include "mosb/verify.hpp"
 
 namespace mosb {
@@ -107,6 +110,101 @@ void copy_into(const fs::path& source, AtomicFile& out) {
   in.read_all(source, [&](const char* data, std::size_t size) { out.write(data, size); });
 }
 
+// Throws when `path` itself is a symlink. The store makes none, so one there was planted, and
+// following it would read, write or delete outside the store.
+void refuse_symlink(const fs::path& path) {
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) == 0 && S_ISLNK(st.st_mode))
+    throw Error(path.string() + ": is a symbolic link, which the store did not make; not followed");
+}
+
+// One of the store's own directories (.cache, .staging): made when absent, refused when something
+// else sits there. True when this call made it.
+bool own_directory(const fs::path& path) {
+  if (::mkdir(path.c_str(), 0777) == 0) return true;
+  const int error = errno;
+  struct stat st {};
+  if (error != EEXIST || ::lstat(path.c_str(), &st) != 0)
+    throw Error(ErrorCode::io, path.string() + ": cannot create: " + std::strerror(error));
+  refuse_symlink(path);
+  if (!S_ISDIR(st.st_mode))
+    throw Error(path.string() + ": is not a directory; the store keeps its own files there");
+  return false;
+}
+
+// The PID in a staging directory's name `PID-XXXXXX` (mkdtemp), or 0.
+long staging_pid(const std::string& name) {
+  const auto dash = name.find('-');
+  if (dash == 0 || dash > 10 || dash == std::string::npos || name.size() != dash + 7) return 0;
+  long pid = 0;
+  for (std::size_t i = 0; i < dash; ++i) {
+    if (name[i] < '0' || name[i] > '9') return 0;
+    pid = pid * 10 + (name[i] - '0');
+  }
+  return pid;
+}
+
+// Removes the staging directories of adds whose process has ended (interrupted, killed), then
+// .staging itself when empty. Nothing else is touched: what the store cannot name is not its own.
+void sweep_staging(const fs::path& staging) {
+  struct stat st {};
+  if (::lstat(staging.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) return;  // absent, or refused
+  std::error_code ec;
+  for (fs::directory_iterator it(staging, ec), end; !ec && it != end; it.increment(ec)) {
+    const long pid = staging_pid(it->path().filename().string());
+    std::error_code ignored;
+    // remove_all removes a symlink, never what it leads to.
+    if (pid != 0 && process_has_ended(pid)) fs::remove_all(it->path(), ignored);
+  }
+  ::rmdir(staging.c_str());  // fails, harmlessly, while it holds anything
+}
+
+// This add's own directory in DIR/.staging: unique per process and call, so concurrent adds
+// never write one another's files. Removed, with what it holds, on destruction.
+class Staging {
+ public:
+  explicit Staging(const fs::path& store) : parent_(store / kStagingDirectory) {}
+  ~Staging() {
+    if (path_.empty()) return;
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+    ::rmdir(parent_.c_str());  // fails, harmlessly, while a concurrent add still uses it
+  }
+  Staging(const Staging&) = delete;
+  Staging& operator=(const Staging&) = delete;
+
+  fs::path file(const std::string& name) {
+    // A concurrent add's sweep may remove an empty .staging between its creation and mkdtemp.
+    for (int attempt = 0; path_.empty(); ++attempt) {
+      own_directory(parent_);
+      std::string name_template = (parent_ / (std::to_string(::getpid()) + "-XXXXXX")).string();
+      if (::mkdtemp(name_template.data()) != nullptr) {
+        path_ = name_template;
+      } else if (const int error = errno; error != ENOENT || attempt == 3) {
+        throw Error(ErrorCode::io, parent_.string() + ": cannot create: " + std::strerror(error));
+      }
+    }
+    return path_ / name;
+  }
+
+ private:
+  fs::path parent_;
+  fs::path path_;  // empty until the first file
+};
+
+// The unpacked copy at `copy` when it holds the entry's content, verified in full.
+std::optional<GraphReader> open_cached(const fs::path& copy, const ManifestEntry& e) {
+  std::error_code ec;
+  if (!fs::exists(copy, ec)) return std::nullopt;
+  try {
+    auto reader = GraphReader::open(copy, VerifyLevel::full);
+    if (reader.digest() == e.digest) return reader;
+  } catch (const Error&) {
+    // Made again by the caller from the packed file, which is checked as it is unpacked.
+  }
+  return std::nullopt;
+}
+
 // The reader of a packed entry: its unpacked copy in DIR/.cache, made first when absent or not
 // the entry's content (a damaged or an earlier version's copy), or, when the store cannot be
 // written, the packed file unpacked into memory.
@@ -114,23 +212,22 @@ std::pair<GraphReader, fs::path> open_packed(const fs::path& directory, const Ma
   const auto packed = directory / e.file;
   const auto cache = directory / kCacheDirectory;
   const auto copy = cache / e.file;
-  std::error_code ec;
-  if (fs::exists(copy, ec)) {
-    try {
-      auto reader = GraphReader::open(copy, VerifyLevel::full);
-      if (reader.digest() == e.digest) return {std::move(reader), copy};
-    } catch (const Error&) {
-      // Made again below from the packed file, which is checked as it is unpacked.
-    }
-  }
+  refuse_symlink(cache);
+  refuse_symlink(copy);
+  if (auto reader = open_cached(copy, e)) return {std::move(*reader), copy};
   // A read-only store, or a directory where the copy belongs (rename cannot replace it, and the
   // store does not delete what it did not make): decoded into memory, nothing written.
+  std::error_code ec;
   if (::access((fs::is_directory(cache, ec) ? cache : directory).c_str(), W_OK) != 0 ||
       fs::is_directory(copy, ec))
     return {mosb::load(packed, VerifyLevel::full), packed};
-  fs::create_directory(cache, ec);
-  if (ec) throw Error(ErrorCode::io, cache.string() + ": cannot create the cache: " + ec.message());
-  unpack_file(packed, copy);
+  const bool made = own_directory(cache);
+  try {
+    unpack_file(packed, copy);
+  } catch (...) {
+    if (made) ::rmdir(cache.c_str());  // no empty .cache left by a refused entry
+    throw;
+  }
   return {GraphReader::open(copy, VerifyLevel::full), copy};
 }
 
@@ -231,6 +328,119 @@ std::vector<SourceCheck> check_sources(const GraphReader& instance, const fs::pa
   return checks;
 }
 
+bool is_reserved_store_name(std::string_view name) {
+  return name == kManifestName || name.starts_with('.');
+}
+
+namespace {
+
+// The manifest of a store: a listed reserved name would make the store hand out, check or
+// replace one of its own files as an entry.
+Manifest read_store_manifest(const fs::path& path) {
+  auto manifest = read_manifest(path);
+  for (const auto& e : manifest.entries)
+    if (is_reserved_store_name(e.file))
+      throw Error(path.string() + ": lists '" + e.file +
+                  "', a name the store keeps for itself (MANIFEST, names starting with '.')");
+  return manifest;
+}
+
+// Every base name may become an entry: checked before any file is read or anything written.
+void check_names(const std::vector<fs::path>& files) {
+  std::set<std::string> names;
+  for (const auto& source : files) {
+    const auto name = source.filename().string();
+    if (is_reserved_store_name(name))
+      throw Error(source.string() + ": cannot be added as '" + name +
+                  "': the store keeps MANIFEST and names starting with '.' for itself");
+    if (!is_valid_manifest_file_name(name))
+      throw Error(source.string() + ": '" + name + "' cannot be an entry's name");
+    if (!names.insert(name).second)
+      throw Error(source.string() + ": a second file named '" + name + "' in one add");
+  }
+}
+
+// One file of an add: its entry, and where the stored bytes come from.
+struct Placement {
+  ManifestEntry entry;
+  fs::path source;  // as given
+  fs::path from;    // the source, or its packed form in the staging directory
+  bool staged = false;
+};
+
+Placement prepare(const fs::path& source, const Store::AddOptions& options, Staging& staging) {
+  Placement p{describe_file(source), source, source, false};
+  // A packed file is decoded (every frame checked) and verified like any other.
+  const auto reader = p.entry.packed ? mosb::load(source) : GraphReader::open(source);
+  if (const auto problem = mosb::verify(reader, VerifyLevel::full))
+    throw Error(ErrorCode::damaged, source.string() + ": file is damaged: " + *problem);
+  if (options.pack && !p.entry.packed) {
+    p.from = staging.file(p.entry.file);
+    pack_file(source, p.from, *options.pack);
+    p.staged = true;
+    p.entry = describe_file(p.from);
+  }
+  return p;
+}
+
+void check_conflicts(const Manifest& manifest, const std::vector<Placement>& placements) {
+  for (const auto& p : placements)
+    if (const auto* listed = manifest.find(p.entry.file);
+        listed && (listed->sha256.empty() || listed->sha256 != p.entry.sha256))
+      throw Error(p.source.string() + ": the store already lists a different '" + p.entry.file +
+                  "'");
+}
+
+void place(const fs::path& directory, const Placement& p, bool move) {
+  const auto target = directory / p.entry.file;
+  refuse_symlink(target);
+  std::error_code ec;
+  // A file already in place is adopted where it lies; a rename within one file system is atomic
+  // by itself (a symlinked source is copied: moving the link would make the entry a link);
+  // anything else is copied through a temporary, and a --move source stays until the manifest
+  // lists its copy.
+  if (!p.staged && fs::exists(target, ec) && fs::equivalent(target, p.source, ec)) return;
+  if (p.staged || (move && !fs::is_symlink(fs::symlink_status(p.from, ec)))) {
+    fs::rename(p.from, target, ec);
+    if (!ec) return;
+  }
+  AtomicFile out(target);
+  copy_into(p.from, out);
+  out.commit();
+}
+
+// Places every file, checks the placed bytes, then replaces the manifest. The caller holds the
+// store's lock and `manifest` is what the MANIFEST listed once it was taken.
+Manifest place_all(const fs::path& directory, const Manifest& manifest,
+                   const std::vector<Placement>& placements, const Store::AddOptions& options) {
+  report(options.progress, "add", 0, placements.size());
+  for (std::size_t i = 0; i < placements.size(); ++i) {
+    place(directory, placements[i], options.move);
+    report(options.progress, "add", i + 1, placements.size());
+  }
+  // The bytes just placed are the bytes described: a source changed between the check and the
+  // copy is caught here, before the manifest names it.
+  for (const auto& p : placements)
+    if (sha256_file(directory / p.entry.file) != p.entry.sha256)
+      throw Error(p.source.string() + ": changed while it was being added");
+  Manifest next = manifest;
+  next.legacy = false;
+  for (const auto& p : placements) {
+    auto it = std::find_if(next.entries.begin(), next.entries.end(),
+                           [&](const ManifestEntry& x) { return x.file == p.entry.file; });
+    if (it != next.entries.end())
+      *it = p.entry;
+    else
+      next.entries.push_back(p.entry);
+  }
+  std::sort(next.entries.begin(), next.entries.end(),
+            [](const auto& a, const auto& b) { return a.file < b.file; });
+  write_manifest(directory / kManifestName, next);
+  return next;
+}
+
+}  // namespace
+
 Store Store::init(const fs::path& directory) {
   std::error_code ec;
   fs::create_directories(directory, ec);
@@ -249,111 +459,65 @@ Store Store::open(const fs::path& directory) {
     throw Error(
         ErrorCode::not_found,
         directory.string() + ": not a store (no MANIFEST; create one with mosb store init)");
-  return {directory, read_manifest(path)};
+  return {directory, read_store_manifest(path)};
 }
 
 std::vector<ManifestEntry> Store::add(const std::vector<fs::path>& files,
                                       const AddOptions& options) {
-  // Everything is checked before anything the manifest lists is written.
-  std::vector<ManifestEntry> added;
-  std::vector<fs::path> stored_from = files;  // where each file's stored bytes come from
-  std::vector<bool> staged(files.size(), false);
-  std::set<std::string> names;
-  const auto staging = directory_ / kStagingDirectory;
-  // Packed copies not placed (an add that fails) are removed; the staging directory too when empty.
-  struct StagingCleanup {
-    const std::vector<fs::path>& paths;
-    const std::vector<bool>& staged;
-    fs::path directory;
-    ~StagingCleanup() {
-      std::error_code ec;
-      for (std::size_t i = 0; i < paths.size(); ++i)
-        if (staged[i]) fs::remove(paths[i], ec);
-      fs::remove(directory, ec);  // fails, harmlessly, while a concurrent add still uses it
-    }
-  } cleanup{stored_from, staged, staging};
+  // Everything is checked (and packed) before anything the manifest lists is written.
+  check_names(files);
+  sweep_staging(directory_ / kStagingDirectory);
+  Staging staging(directory_);  // removed, with anything not placed, on every way out
+  std::vector<Placement> placements;
   for (std::size_t i = 0; i < files.size(); ++i) {
-    const auto& source = files[i];
-    auto entry = describe_file(source);
-    // A packed file is decoded (every frame checked) and verified like any other.
-    const auto reader = entry.packed ? mosb::load(source) : GraphReader::open(source);
-    if (const auto problem = mosb::verify(reader, VerifyLevel::full))
-      throw Error(ErrorCode::damaged, source.string() + ": file is damaged: " + *problem);
-    if (!names.insert(entry.file).second)
-      throw Error(source.string() + ": a second file named '" + entry.file + "' in one add");
-    if (options.pack && !entry.packed) {
-      report(options.progress, "pack", i, files.size());
-      std::error_code ec;
-      fs::create_directory(staging, ec);
-      if (ec) throw Error(ErrorCode::io, staging.string() + ": cannot create: " + ec.message());
-      stored_from[i] = staging / entry.file;
-      pack_file(source, stored_from[i], *options.pack);
-      staged[i] = true;
-      entry = describe_file(stored_from[i]);
-    }
-    if (const auto* listed = manifest_.find(entry.file);
-        listed && (listed->sha256.empty() || listed->sha256 != entry.sha256))
-      throw Error(source.string() + ": the store already lists a different '" + entry.file + "'");
-    added.push_back(std::move(entry));
+    if (options.pack) report(options.progress, "pack", i, files.size());
+    placements.push_back(prepare(files[i], options, staging));
   }
   if (options.pack) report(options.progress, "pack", files.size(), files.size());
-  report(options.progress, "add", 0, files.size());
-  for (std::size_t i = 0; i < files.size(); ++i) {
-    const auto target = directory_ / added[i].file;
-    std::error_code ec;
-    // A file already in place is adopted where it lies; a rename within one file system is atomic
-    // by itself; anything else is copied through a temporary.
-    const bool in_place =
-        !staged[i] && fs::exists(target, ec) && fs::equivalent(target, files[i], ec);
-    bool renamed = false;
-    if (!in_place && (options.move || staged[i])) {
-      fs::rename(stored_from[i], target, ec);
-      renamed = !ec;
-    }
-    if (!in_place && !renamed) {
-      AtomicFile out(target);
-      copy_into(stored_from[i], out);
-      out.commit();
-    }
-    report(options.progress, "add", i + 1, files.size());
+  check_conflicts(manifest_, placements);  // refused at once, without waiting for the lock
+  {
+    const StoreLock lock(directory_);
+    // Concurrent adds may have listed files since this store was opened.
+    auto current = read_store_manifest(manifest_path());
+    check_conflicts(current, placements);
+    manifest_ = place_all(directory_, current, placements, options);
   }
-  // The bytes just placed are the bytes described: a source changed between the check and the
-  // copy is caught here, before the manifest names it.
-  for (std::size_t i = 0; i < files.size(); ++i)
-    if (sha256_file(directory_ / added[i].file) != added[i].sha256)
-      throw Error(files[i].string() + ": changed while it was being added");
-  Manifest next = manifest_;
-  next.legacy = false;
-  for (const auto& e : added) {
-    auto it = std::find_if(next.entries.begin(), next.entries.end(),
-                           [&](const ManifestEntry& x) { return x.file == e.file; });
-    if (it != next.entries.end())
-      *it = e;
-    else
-      next.entries.push_back(e);
-  }
-  std::sort(next.entries.begin(), next.entries.end(),
-            [](const auto& a, const auto& b) { return a.file < b.file; });
-  write_manifest(manifest_path(), next);
-  manifest_ = std::move(next);
   if (options.move)
     for (const auto& source : files) {
       std::error_code ec;
       if (fs::exists(source, ec) && !fs::equivalent(source, directory_ / source.filename(), ec))
         fs::remove(source, ec);
     }
+  std::vector<ManifestEntry> added;
+  added.reserve(placements.size());
+  for (auto& p : placements) added.push_back(std::move(p.entry));
   return added;
 }
 
 std::vector<FileCheck> Store::verify(const CheckOptions& options) const {
   std::vector<std::pair<ManifestEntry, fs::path>> files;
-  for (const auto& e : manifest_.entries) files.emplace_back(e, directory_ / e.file);
+  std::vector<FileCheck> links;
+  for (const auto& e : manifest_.entries) {
+    const auto path = directory_ / e.file;
+    std::error_code absent;
+    if (fs::is_symlink(fs::symlink_status(path, absent)))
+      links.push_back({e.file,
+                       path,
+                       {{"unreadable", path.string() + ": is a symbolic link, "
+                                                       "which the store did not "
+                                                       "make; not followed"}}});
+    else
+      files.emplace_back(e, path);
+  }
   auto checks = check_files(files, options);
+  checks.insert(checks.end(), links.begin(), links.end());
+  std::sort(checks.begin(), checks.end(),
+            [](const FileCheck& a, const FileCheck& b) { return a.file < b.file; });
   std::vector<std::string> extra;
   std::error_code ec;
   for (fs::directory_iterator it(directory_, ec), end; !ec && it != end; it.increment(ec)) {
     const auto name = it->path().filename().string();
-    if (name == kManifestName || name.starts_with('.')) continue;
+    if (is_reserved_store_name(name)) continue;
     if (!manifest_.find(name)) extra.push_back(name);
   }
   if (ec) throw Error(ErrorCode::io, directory_.string() + ": cannot list: " + ec.message());
@@ -401,6 +565,7 @@ StoreInstance Store::instance(std::string_view name) const {
     throw Error(ErrorCode::not_found,
                 label + " is ambiguous: served by " + files + " (use BENCHMARK/VIEW)");
   }
+  refuse_symlink(directory_ / found->file);
   auto [reader, path] =
       found->packed ? open_packed(directory_, *found)
                     : std::pair{GraphReader::open(directory_ / found->file, VerifyLevel::full),

@@ -85,6 +85,11 @@ void set_stale_temporary_handler(std::function<void(const std::filesystem::path&
 // its own handlers unless it calls this.
 void remove_temporaries_on_signals();
 
+// True when no process `pid` exists (in this PID namespace; one that exists but is not ours to
+// signal counts as alive): how a leftover named after the PID of its writer is known to be
+// abandoned (the stale temporaries above; a store's staging directories).
+bool process_has_ended(long pid);
+
 // Throws mosb::Error when `output` exists and is the same file (device and inode, after following
 // symlinks) as one of `inputs`: writing it would destroy that input. Empty paths are skipped.
 void check_output_is_not_input(const std::filesystem::path& output,

@@ -67,7 +67,15 @@ std::string xxh3_file(const std::filesystem::path& path);
 
 // A store's own directories (names starting with '.', which store verification skips).
 inline constexpr std::string_view kCacheDirectory = ".cache";  // unpacked copies of packed entries
-inline constexpr std::string_view kStagingDirectory = ".staging";  // packed by add, not yet placed
+// Packed by add, not yet placed: one directory `PID-XXXXXX` per add, removed when it ends; one
+// left by an add that was interrupted or killed is removed by the next add once that PID has ended
+// (the rule of AtomicFile's stale temporaries).
+inline constexpr std::string_view kStagingDirectory = ".staging";
+
+// True for the names a store keeps for itself, which no entry may have: MANIFEST and every name
+// starting with '.' (the MANIFEST's and the entries' temporaries `.NAME.tmp-PID-XXXXXX`, .cache,
+// .staging, the writers' lock .lock, and whatever a later version adds).
+bool is_reserved_store_name(std::string_view name);
 
 // A store's entry resolved for a benchmark: the reader, the file and the view to use.
 struct StoreInstance {
@@ -85,7 +93,8 @@ class Store {
  public:
   // Creates `directory` (if needed) and an empty manifest; refuses a directory that has one.
   static Store init(const std::filesystem::path& directory);
-  // Reads the manifest; throws mosb::Error when `directory` has none. Writes nothing.
+  // Reads the manifest; throws mosb::Error when `directory` has none, or when it lists a reserved
+  // name (is_reserved_store_name). Writes nothing.
   static Store open(const std::filesystem::path& directory);
 
   const std::filesystem::path& directory() const { return directory_; }
@@ -100,14 +109,21 @@ class Store {
     Progress progress;  // stage "pack" (when packing) and stage "add": once per file
   };
   // Copies (or moves, or packs) each file in under its base name, each through mosb::AtomicFile,
-  // then rewrites the manifest atomically, last. A file must open as a mosb file and pass verify
-  // --level full (a packed one once decoded). A name already listed with other bytes is refused;
-  // the same bytes again are accepted (a retry after an interrupted add). Returns the new entries.
+  // then rewrites the manifest atomically, last. Refused before anything is written: a reserved
+  // or invalid base name, two files of one name, a file that does not open as a mosb file or fails
+  // verify --level full (a packed one once decoded), a name already listed with other bytes (the
+  // same bytes again are accepted: a retry after an interrupted add). Files are checked (and
+  // packed) first; then, holding the store's StoreLock, the manifest is read again, each file
+  // placed and the manifest rewritten, so concurrent adds each see the others' entries. A symlink
+  // at DIR/.staging, DIR/.lock or where an entry goes is refused, never followed. With `move`, a
+  // source is removed only after the manifest listing its copy is in place. Returns the new
+  // entries.
   std::vector<ManifestEntry> add(const std::vector<std::filesystem::path>& files,
                                  const AddOptions& options);
 
   // Every entry (see check_files) plus every file in the directory the manifest does not list
-  // (`extra`; names starting with '.' are the store's own temporaries and cache, not counted).
+  // (`extra`; reserved names, the store's own files, are not counted). An entry that is a symlink
+  // is `unreadable` and not followed.
   std::vector<FileCheck> verify(const CheckOptions& options) const;
 
   // Resolves `name`, in this order: "BENCHMARK/VIEW"; a view name served by exactly one entry;
@@ -115,7 +131,9 @@ class Store {
   // otherwise the whole file). Throws mosb::Error (ErrorCode::not_found) listing what was
   // ambiguous or what exists. A packed entry is unpacked into DIR/.cache/FILE on first use
   // (atomically; the copy is verified in full and against the manifest's digest at every use, and
-  // made again when it does not match).
+  // made again when it does not match). A symlink at the entry, DIR/.cache or DIR/.cache/FILE is
+  // refused (mosb::Error naming it), never followed; a .cache this call made and could not fill is
+  // removed again.
   StoreInstance instance(std::string_view name) const;
 
  private:
