@@ -199,9 +199,9 @@ TEST_CASE("pack derives the reverse CSR by default and --keep-reverse stores it"
         GraphReader::open(dir / "plain.mosb").digest());
 }
 
-TEST_CASE("a reverse section that is not the transpose is stored, and restored exactly") {
-  // Structurally invalid (verify --level structure refuses it) but checksummed: the packer only
-  // derives what it can give back byte for byte.
+TEST_CASE("pack and unpack refuse a damaged input and write nothing") {
+  // Structurally invalid (verify --level structure refuses it) but checksummed: packing it once
+  // kept the damage (storing the reverse section, not deriving it); now it writes nothing.
   testing::TempDir dir;
   write_graph(testing::golden_input(), dir / "plain.mosb");
   auto b = testing::read_bytes(dir / "plain.mosb");
@@ -213,14 +213,64 @@ TEST_CASE("a reverse section that is not the transpose is stored, and restored e
   std::memcpy(b.data() + e.offset, &first, 4);
   testing::reseal_section(b, i);
   testing::write_bytes(dir / "odd.mosb", b);
-  pack_file(dir / "odd.mosb", dir / "packed.mosb", {});
-  const auto packed = GraphReader::open(dir / "packed.mosb");
-  for (const auto& s : packed.sections())
-    if (is_reverse(s))
-      CHECK((s.entry.encoding == static_cast<std::uint8_t>(format::Encoding::transpose)) ==
-            (s.name != "reverse_sources"));
-  unpack_file(dir / "packed.mosb", dir / "back.mosb");
-  CHECK(bytes_of(dir / "back.mosb") == bytes_of(dir / "odd.mosb"));
+  const auto odd = dir / "odd.mosb";
+  for (const auto& out : {dir / "packed.mosb", odd}) {
+    CHECK_THROWS_WITH_AS(pack_file(odd, out, {}),
+                         doctest::Contains((odd.string() + ": file is damaged: section ").c_str()),
+                         Error);
+    CHECK_THROWS_WITH_AS(unpack_file(odd, out), doctest::Contains("nothing written"), Error);
+  }
+  CHECK_FALSE(std::filesystem::exists(dir / "packed.mosb"));
+  CHECK(testing::read_bytes(odd) == b);
+  CHECK(std::distance(std::filesystem::directory_iterator(dir.path()),
+                      std::filesystem::directory_iterator()) == 2);  // plain, odd: no temporary
+}
+
+TEST_CASE("every padding byte of a packed file is checked, and pack does not repair it") {
+  testing::TempDir dir;
+  const auto golden = kPackedGolden / "valid" / "small.packed.mosb";
+  const auto original = testing::read_bytes(golden);
+  const auto reader = GraphReader::open(golden);
+  std::vector<bool> padding(reader.header().table_offset, true);
+  for (std::size_t i = 0; i < format::kHeaderSize; ++i) padding[i] = false;
+  for (const auto& s : reader.sections())
+    for (std::uint64_t i = 0; i < s.entry.stored_length; ++i) padding[s.entry.offset + i] = false;
+  const auto bad = dir / "bad.mosb";
+  std::size_t flipped = 0;
+  for (std::size_t i = 0; i < padding.size(); ++i) {
+    if (!padding[i]) continue;
+    auto b = original;
+    b[i] ^= std::byte{0x01};
+    testing::write_bytes(bad, b);
+    CAPTURE(i);
+    const auto full = verify_file(bad, VerifyLevel::full);
+    REQUIRE(full.problem.has_value());
+    CHECK(full.problem->starts_with("[padding] byte " + std::to_string(i) + " "));
+    CHECK(verify_file(bad, VerifyLevel::structure).problem == full.problem);
+    CHECK_FALSE(verify_file(bad, VerifyLevel::checksums).problem.has_value());
+    CHECK_FALSE(verify_file(bad, VerifyLevel::header).problem.has_value());
+    ++flipped;
+  }
+  CHECK(flipped > 64);
+  CHECK_FALSE(verify_file(golden, VerifyLevel::full).problem.has_value());
+  CHECK_THROWS_WITH_AS(pack_file(bad, dir / "out.mosb", keeping_reverse()),
+                       doctest::Contains("[padding]"), Error);
+  CHECK_THROWS_WITH_AS(unpack_file(bad, dir / "out.mosb"), doctest::Contains("[padding]"), Error);
+  CHECK_FALSE(std::filesystem::exists(dir / "out.mosb"));
+}
+
+TEST_CASE("decoding stays within the memory cap, refusing before it allocates") {
+  const auto golden = kPackedGolden / "valid" / "grid.packed.mosb";
+  const auto file = map_file(golden);
+  const auto needed = unpack_bytes(file.bytes, "grid").bytes.size();
+  CHECK_THROWS_WITH_AS(unpack_bytes(file.bytes, "grid", 1024),
+                       doctest::Contains("grid: decoding needs "), Error);
+  CHECK_THROWS_WITH_AS(
+      unpack_bytes(file.bytes, "grid", needed),
+      doctest::Contains(("more than the cap of " + std::to_string(needed)).c_str()), Error);
+  CHECK(unpack_bytes(file.bytes, "grid", 2 * needed + 64).bytes.size() == needed);
+  CHECK_THROWS_WITH_AS(mosb::load(golden, 4096), doctest::Contains("more than the cap"), Error);
+  CHECK(available_memory() > 0);
 }
 
 TEST_CASE("a derived reverse CSR needs a forward CSR that is one") {

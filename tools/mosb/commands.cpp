@@ -23,6 +23,15 @@ void add_json_flag(CLI::App* subcommand, bool& json) {
   subcommand->add_flag("--json", json, "print the report as one JSON object on stdout");
 }
 
+CLI::Option* add_max_memory_option(CLI::App* subcommand, std::uint64_t& max_memory) {
+  return subcommand
+      ->add_option("--max-memory", max_memory,
+                   "the most memory decoding a packed file may take (bytes, or 512M, 4G: powers "
+                   "of 1024); 0: the memory available")
+      ->transform(CLI::AsSizeValue(false))
+      ->capture_default_str();
+}
+
 CLI::Option* add_id_base_option(CLI::App* subcommand, unsigned& id_base,
                                 const std::string& default_text) {
   return subcommand

@@ -48,6 +48,12 @@ class UsageError : public Error {
 // Registers `--json` (the report as one JSON object on stdout) on a reporting command.
 void add_json_flag(CLI::App* subcommand, bool& json);
 
+// `--max-memory SIZE` of every command that decodes packed files: the most memory decoding one
+// may take (a number of bytes, or with a unit: 512M, 4G; powers of 1024). 0, the default: the
+// memory the system reports available. A file that would need more is refused before anything
+// is allocated (mosb::unpack_bytes).
+CLI::Option* add_max_memory_option(CLI::App* subcommand, std::uint64_t& max_memory);
+
 // `--id-base 0|1`, the same everywhere: the id of the first vertex in the text files a command
 // reads or writes (the instance itself is always 0-based). `default_text` says what applies
 // when the option is absent (check the returned option's count()).

@@ -22,6 +22,7 @@ struct PackArgs {
   unsigned threads = 1;
   bool keep_reverse = false;
   bool json = false;
+  std::uint64_t max_memory = 0;
 };
 
 // The output of each input: -o OUT for one input, the input itself with --in-place.
@@ -50,12 +51,13 @@ int run(const PackArgs& a, bool pack) {
   for (std::size_t i = 0; i < a.inputs.size(); ++i) {
     const auto before = std::filesystem::file_size(a.inputs[i]);
     if (pack)
-      pack_file(a.inputs[i], outputs[i], PackOptions{a.level, a.threads, !a.keep_reverse});
+      pack_file(a.inputs[i], outputs[i],
+                PackOptions{a.level, a.threads, !a.keep_reverse, a.max_memory});
     else
-      unpack_file(a.inputs[i], outputs[i]);
+      unpack_file(a.inputs[i], outputs[i], a.max_memory);
     const auto after = std::filesystem::file_size(outputs[i]);
     // Header and table only: the digest a packed and an unpacked file share.
-    const auto digest = mosb::load(outputs[i]).digest();
+    const auto digest = GraphReader::open(outputs[i]).digest();
     if (json) {
       json->begin_object();
       json->key("input").value(a.inputs[i]);
@@ -100,6 +102,7 @@ Command add_pack_command(CLI::App& app, bool pack) {
                   "store the reverse CSR instead of deriving it when unpacking, so that readers of "
                   "format 1.1 can decode the file");
   }
+  add_max_memory_option(sub, args->max_memory);
   add_json_flag(sub, args->json);
   return {sub, [args, pack] { return run(*args, pack); }};
 }

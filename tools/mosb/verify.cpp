@@ -20,6 +20,7 @@ struct VerifyArgs {
   std::string manifest;
   std::string sources;
   bool json = false;
+  std::uint64_t max_memory = 0;
 };
 
 // `verify --manifest FILE [PATH...]`: downloaded files against a published manifest.
@@ -85,10 +86,11 @@ int run_verify(const VerifyArgs& a) {
   for (const auto& file : a.files) {
     Outcome outcome{file, std::nullopt, ""};
     try {
-      const auto reader = mosb::load(file);  // a packed file is decoded first
-      outcome.problem = verify(reader, verify_level, one_file ? progress : Progress{});
+      // A packed file is decoded first, unless only its header and table are checked.
+      auto result = verify_file(file, verify_level, a.max_memory, one_file ? progress : Progress{});
+      outcome.problem = std::move(result.problem);
       if (outcome.problem) outcome.problem = file + ": " + *outcome.problem;
-      outcome.digest = reader.digest();
+      outcome.digest = std::move(result.digest);
     } catch (const Error& e) {
       outcome.problem = e.what();
     }
@@ -143,6 +145,7 @@ Command add_verify(CLI::App& app) {
   auto* sources = sub->add_option(
       "--sources", args->sources,
       "check that the raw files in this directory are the instance's recorded inputs");
+  add_max_memory_option(sub, args->max_memory);
   manifest->excludes(sources);
   level->excludes(manifest)->excludes(sources);
   add_json_flag(sub, args->json);

@@ -147,6 +147,7 @@ void FileWriter::commit(std::uint64_t vertex_count, std::uint64_t arc_count) {
            " was expected (--expect-digest); nothing written");
   }
   file_.write_at(&header, sizeof header, 0);
+  if (check_) check_(file_.temporary());
   file_.commit();
 }
 

@@ -260,30 +260,6 @@ Problem check_metadata(const GraphReader& reader) {
   return std::nullopt;
 }
 
-// §1: every byte of [128, table_offset) outside the sections' stored bytes is zero.
-Problem check_padding(const GraphReader& reader) {
-  std::vector<const Section*> by_offset;
-  for (const auto& s : reader.sections())
-    if (s.entry.stored_length > 0) by_offset.push_back(&s);
-  std::sort(by_offset.begin(), by_offset.end(),
-            [](auto* a, auto* b) { return a->entry.offset < b->entry.offset; });
-  const auto bytes = reader.bytes();
-  auto gap = [&](std::uint64_t from, std::uint64_t to, const std::string& where) -> Problem {
-    for (auto i = from; i < to; ++i)
-      if (bytes[i] != std::byte{0})
-        return "[padding] byte " + std::to_string(i) + " (" + where + ") is 0x" +
-               hex64(std::to_integer<std::uint64_t>(bytes[i])).substr(14) +
-               ", but bytes outside every section are zero";
-    return std::nullopt;
-  };
-  std::uint64_t position = format::kHeaderSize;
-  for (const auto* s : by_offset) {
-    if (auto p = gap(position, s->entry.offset, "before section '" + s->name + "'")) return p;
-    position = s->entry.offset + s->entry.stored_length;
-  }
-  return gap(position, reader.header().table_offset, "before the section table");
-}
-
 // Runs every task on up to `threads` threads; results stay in task order, so the first problem
 // reported does not depend on the scheduling. Tasks run longest first (by their `cost`).
 struct Task {
@@ -454,7 +430,7 @@ void add_structure_tasks(const GraphReader& reader, bool fused, unsigned threads
                                                  "query", "has");
                      }});
   tasks.push_back({0, [&reader] { return check_metadata(reader); }});
-  tasks.push_back({0, [&reader] { return check_padding(reader); }});
+  tasks.push_back({0, [&reader] { return find_padding_problem(reader); }});
 }
 
 // The first problem in the fixed order: every checksum; the CSR rules of §9 (forward offsets,
@@ -486,6 +462,30 @@ Problem first_problem(const Plan& plan, const std::vector<Problem>& results, std
 }
 
 }  // namespace
+
+std::optional<std::string> find_padding_problem(const ContainerReader& reader) {
+  std::vector<const Section*> by_offset;
+  for (const auto& s : reader.sections())
+    if (s.entry.stored_length > 0) by_offset.push_back(&s);
+  std::sort(by_offset.begin(), by_offset.end(),
+            [](auto* a, auto* b) { return a->entry.offset < b->entry.offset; });
+  const auto bytes = reader.bytes();
+  auto gap = [&](std::uint64_t from, std::uint64_t to,
+                 const std::string& where) -> std::optional<std::string> {
+    for (auto i = from; i < to; ++i)
+      if (bytes[i] != std::byte{0})
+        return "[padding] byte " + std::to_string(i) + " (" + where + ") is 0x" +
+               hex64(std::to_integer<std::uint64_t>(bytes[i])).substr(14) +
+               ", but bytes outside every section are zero";
+    return std::nullopt;
+  };
+  std::uint64_t position = format::kHeaderSize;
+  for (const auto* s : by_offset) {
+    if (auto p = gap(position, s->entry.offset, "before section '" + s->name + "'")) return p;
+    position = s->entry.offset + s->entry.stored_length;
+  }
+  return gap(position, reader.header().table_offset, "before the section table");
+}
 
 std::optional<std::string> verify(const GraphReader& reader, VerifyLevel level,
                                   const Progress& progress) {

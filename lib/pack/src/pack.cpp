@@ -1,5 +1,6 @@
 #include "mosb/pack.hpp"
 
+#include <unistd.h>
 #include <zstd.h>
 
 #include <algorithm>
@@ -7,6 +8,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <fstream>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -22,6 +25,7 @@
 #include "mosb/internal/sections_by_kind.hpp"
 #include "mosb/internal/transpose.hpp"
 #include "mosb/internal/xxh3.hpp"
+#include "mosb/verify.hpp"
 
 namespace mosb {
 
@@ -205,13 +209,14 @@ MappedFile allocate_image(std::uint64_t size, std::uint64_t scratch, std::string
   return image;
 }
 
-// Decodes the zstd frame of `s` into `out` (exactly s.decoded_length bytes) or throws.
-// `scratch` holds s.decoded_length bytes when the encoding is not plain zstd.
-void decode_frame(const Section& s, std::byte* out, ZSTD_DCtx* context, std::string_view name,
-                  std::byte* scratch) {
-  auto fail = [&](const std::string& what) {
-    throw Error(ErrorCode::damaged, std::string(name) + ": section '" + s.name + "': " + what);
-  };
+[[noreturn]] void fail_section(const Section& s, std::string_view name, const std::string& what) {
+  throw Error(ErrorCode::damaged, std::string(name) + ": section '" + s.name + "': " + what);
+}
+
+// The stored bytes of `s` are one zstd frame, and its header declares s.decoded_length bytes of
+// content: checked from the frame header alone, before anything is allocated for it.
+void check_frame_header(const Section& s, std::string_view name) {
+  auto fail = [&](const std::string& what) { fail_section(s, name, what); };
   const auto declared = ZSTD_getFrameContentSize(s.stored.data(), s.stored.size());
   if (declared == ZSTD_CONTENTSIZE_ERROR) fail("stored bytes are not a zstd frame");
   if (declared == ZSTD_CONTENTSIZE_UNKNOWN) fail("zstd frame does not declare its content size");
@@ -223,6 +228,14 @@ void decode_frame(const Section& s, std::byte* out, ZSTD_DCtx* context, std::str
     fail("zstd frame is truncated or damaged (" + std::string(ZSTD_getErrorName(frame)) + ")");
   if (frame != s.stored.size())
     fail(std::to_string(s.stored.size() - frame) + " bytes follow the zstd frame");
+}
+
+// Decodes the zstd frame of `s` into `out` (exactly s.decoded_length bytes) or throws.
+// `scratch` holds s.decoded_length bytes when the encoding is not plain zstd.
+void decode_frame(const Section& s, std::byte* out, ZSTD_DCtx* context, std::string_view name,
+                  std::byte* scratch) {
+  auto fail = [&](const std::string& what) { fail_section(s, name, what); };
+  check_frame_header(s, name);
   const auto encoding = static_cast<Encoding>(s.entry.encoding);
   std::byte* content = out;
   if (encoding != Encoding::zstd) {
@@ -281,8 +294,9 @@ AtomicFile::Existing existing_for(const std::filesystem::path& in,
                                                      : AtomicFile::Existing::replace;
 }
 
-// The canonical layout, the bomb bound and the shapes the derived sections need, before any
-// allocation: every section gets its decoded offset. Returns the end of the last one.
+// The canonical layout, the bomb bound, each frame's declared content size and the shapes the
+// derived sections need, before any allocation: every section gets its decoded offset. Returns
+// the end of the last one.
 std::uint64_t lay_out_decoded(std::vector<Section>& sections, std::string_view display_name) {
   std::uint64_t position = format::kHeaderSize;
   for (auto& s : sections) {
@@ -291,6 +305,7 @@ std::uint64_t lay_out_decoded(std::vector<Section>& sections, std::string_view d
                   std::string(display_name) + ": section '" + s.name + "': declares " +
                       std::to_string(s.decoded_length) + " decoded bytes, more than its " +
                       std::to_string(s.entry.stored_length) + "-byte zstd frame can hold");
+    if (is_encoded(s) && !is_derived(s)) check_frame_header(s, display_name);
     position = format::align_up(position);
     s.entry.offset = position;
     if (__builtin_add_overflow(position, s.decoded_length, &position))
@@ -362,13 +377,49 @@ void derive_reverse(std::vector<Section>& sections, const TransposePlan& derived
     if (is_derived(s)) check_and_mark_raw(s, out, display_name);
 }
 
+// All that decoding allocates, the image, the scratch after it and the reverse sections derived
+// aside, must fit in `max_memory` (0: available_memory()): checked before any of it is allocated.
+void check_memory(const std::vector<Section>& sections, const std::optional<TransposePlan>& derived,
+                  std::uint64_t image, std::uint64_t scratch, std::uint64_t max_memory,
+                  std::string_view display_name) {
+  std::uint64_t total = format::align_up(image);
+  bool overflows = __builtin_add_overflow(total, scratch, &total);
+  if (derived)
+    for (const auto i : {derived->reverse_offsets, derived->reverse_sources, derived->reverse_arcs})
+      if (!is_derived(sections[i]))
+        overflows |= __builtin_add_overflow(total, sections[i].decoded_length, &total);
+  const std::uint64_t cap = max_memory != 0 ? max_memory : available_memory();
+  if (overflows || total > cap)
+    throw Error(ErrorCode::damaged,
+                std::string(display_name) + ": decoding needs " +
+                    (overflows ? std::string("more than 2^64") : std::to_string(total)) +
+                    " bytes of memory, more than the cap of " + std::to_string(cap) +
+                    " bytes (the memory available, or --max-memory)");
+}
+
 }  // namespace
 
-MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view display_name) {
+std::uint64_t available_memory() {
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  std::uint64_t kib = 0;
+  while (meminfo >> key >> kib) {
+    if (key == "MemAvailable:") return kib << 10;
+    meminfo.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+  }
+  const long pages = sysconf(_SC_AVPHYS_PAGES), page_size = sysconf(_SC_PAGESIZE);
+  if (pages <= 0 || page_size <= 0) return UINT64_MAX;  // unknown: the other bounds hold
+  return static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page_size);
+}
+
+MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view display_name,
+                        std::uint64_t max_memory) {
   const auto container = parse_container(bytes, display_name, format::FileKind::instance);
   auto sections = container.sections;
   const std::uint64_t position = lay_out_decoded(sections, display_name);
   const auto derived = transpose_plan(sections, display_name);
+  // The instance's own checks: each section's length is the one the header's counts give it.
+  (void)GraphReader::from_memory(bytes, std::string(display_name));
   auto header = container.header;
   header.table_offset = format::align_up(position);
   header.file_size = header.table_offset + sections.size() * sizeof(format::SectionEntry);
@@ -381,6 +432,8 @@ MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view displ
     if (is_encoded(s) && !is_derived(s) &&
         s.entry.encoding != static_cast<std::uint8_t>(Encoding::zstd))
       scratch_size = std::max(scratch_size, s.decoded_length);
+  check_memory(sections, derived, header.file_size, std::max<std::uint64_t>(scratch_size, 1),
+               max_memory, display_name);
   auto image = allocate_image(header.file_size, scratch_size, display_name);
   auto* out = const_cast<std::byte*>(image.bytes.data());
   decode_stored(sections, out, out + format::align_up(header.file_size), display_name);
@@ -398,9 +451,35 @@ MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view displ
   return image;
 }
 
-void unpack_file(const std::filesystem::path& in, const std::filesystem::path& out) {
+namespace {
+
+// What verify at `level` finds in an instance from its unpacked form `image`: the image's checks
+// at that level, then (at structure and full) the padding of the instance's own bytes `file`,
+// which unpacking does not carry over (a packed file's frames keep it).
+std::optional<std::string> decoded_problem(const MappedFile& file, const MappedFile& image,
+                                           const std::string& name, VerifyLevel level,
+                                           const Progress& progress = {}) {
+  const auto reader = GraphReader::from_memory(image.bytes, name);
+  if (auto problem = verify(reader, level, progress)) return problem;
+  if (!covers(level, VerifyLevel::structure)) return std::nullopt;
+  return find_padding_problem(GraphReader::from_memory(file.bytes, name));
+}
+
+// Pack and unpack write nothing from a damaged input: its checksums were checked while unpacking
+// it into `image`; here its structure and padding (verify at level full, in all).
+void refuse_damaged(const MappedFile& file, const MappedFile& image, const std::string& name) {
+  if (auto problem = decoded_problem(file, image, name, VerifyLevel::structure))
+    throw Error(ErrorCode::damaged, name + ": file is damaged: " + *problem + "; nothing written");
+}
+
+}  // namespace
+
+void unpack_file(const std::filesystem::path& in, const std::filesystem::path& out,
+                 std::uint64_t max_memory) {
   const auto file = map_file(in);
-  const auto image = unpack_bytes(file.bytes, in.string());
+  const auto image = unpack_bytes(file.bytes, in.string(), max_memory);
+  // The image is the output, byte for byte: checking it checks what is written.
+  refuse_damaged(file, image, in.string());
   AtomicFile writer(out, existing_for(in, out));
   writer.write(image.bytes.data(), image.bytes.size());
   writer.commit();
@@ -513,7 +592,8 @@ void pack_file(const std::filesystem::path& in, const std::filesystem::path& out
                                                  std::to_string(options.level) + " is not in 1.." +
                                                  std::to_string(ZSTD_maxCLevel()));
   const auto file = map_file(in);
-  const auto image = unpack_bytes(file.bytes, name);
+  const auto image = unpack_bytes(file.bytes, name, options.max_memory);
+  refuse_damaged(file, image, name);
   const auto container = parse_packable(file, image, name);
   const auto& sections = container.sections;
 
@@ -533,25 +613,55 @@ void pack_file(const std::filesystem::path& in, const std::filesystem::path& out
                                           ? sections[i].stored
                                           : std::span<const std::byte>(frames[i]));
   }
+  // The packed file, complete under its temporary name, must unpack and verify as its input did.
+  writer.expect_digest(content_digest(container.sections));
+  writer.check_before_commit([&](const std::filesystem::path& temporary) {
+    const auto packed = map_file(temporary);
+    try {
+      refuse_damaged(packed, unpack_bytes(packed.bytes, name, options.max_memory), name);
+    } catch (const Error& e) {
+      throw Error(ErrorCode::io, name + ": internal error: the packed file does not verify (" +
+                                     e.what() + "); nothing written");
+    }
+  });
   writer.commit(container.header.vertex_count, container.header.arc_count);
 }
 
 namespace {
-// The file's bytes, decoded when packed.
-MappedFile map_decoded(const std::filesystem::path& path) {
-  auto file = map_file(path);
+bool packed_bytes(const MappedFile& file) {
   format::FileHeader header{};
   std::memcpy(&header, file.bytes.data(), sizeof header);
-  return is_packed(header) ? unpack_bytes(file.bytes, path.string()) : file;
+  return is_packed(header);
+}
+
+// The file's bytes, decoded when packed.
+MappedFile map_decoded(const std::filesystem::path& path, std::uint64_t max_memory) {
+  auto file = map_file(path);
+  return packed_bytes(file) ? unpack_bytes(file.bytes, path.string(), max_memory) : file;
 }
 }  // namespace
 
-GraphReader load(const std::filesystem::path& path) {
-  return GraphReader::adopt(map_decoded(path), path.string());
+GraphReader load(const std::filesystem::path& path, std::uint64_t max_memory) {
+  return GraphReader::adopt(map_decoded(path, max_memory), path.string());
 }
 
-GraphReader load(const std::filesystem::path& path, VerifyLevel level) {
-  return GraphReader::adopt(map_decoded(path), path.string(), level);
+GraphReader load(const std::filesystem::path& path, VerifyLevel level, std::uint64_t max_memory) {
+  return GraphReader::adopt(map_decoded(path, max_memory), path.string(), level);
+}
+
+FileVerification verify_file(const std::filesystem::path& path, VerifyLevel level,
+                             std::uint64_t max_memory, const Progress& progress) {
+  const auto file = map_file(path);
+  const std::string name = path.string();
+  if (level == VerifyLevel::header || !packed_bytes(file)) {
+    // Opening checks the header and the table (the header level) and decodes nothing.
+    const auto opened = GraphReader::adopt(file, name);
+    return {verify(opened, level, progress), opened.digest()};
+  }
+  // Decoding first, so that a damaged packed file gets the message unpack gives it.
+  const auto image = unpack_bytes(file.bytes, name, max_memory);
+  const auto problem = decoded_problem(file, image, name, level, progress);
+  return {problem, GraphReader::adopt(file, name).digest()};
 }
 
 }  // namespace mosb

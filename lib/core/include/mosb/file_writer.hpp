@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -52,6 +53,12 @@ class FileWriter {
   // Makes commit() refuse (throwing mosb::Error that shows both digests, writing nothing under the
   // target's name) a file whose content digest is not `digest`; empty: no expectation.
   void expect_digest(std::string_view digest) { expected_digest_ = digest; }
+  // Makes commit() call `check` with the temporary file, complete (table and header written),
+  // before renaming it into place; a check that throws leaves the target untouched and the
+  // temporary removed. Empty: no check.
+  void check_before_commit(std::function<void(const std::filesystem::path& temporary)> check) {
+    check_ = std::move(check);
+  }
 
   // Adds a section whose bytes are already stored as they go on disk (say, one zstd frame): `entry`
   // gives the name, kind, type, width, row count, encoding and the checksum of the decoded
@@ -79,6 +86,7 @@ class FileWriter {
   format::FileKind file_kind_ = format::FileKind::instance;
   std::uint16_t version_minor_ = 0;
   std::string expected_digest_;
+  std::function<void(const std::filesystem::path&)> check_;
 };
 
 }  // namespace mosb

@@ -20,4 +20,10 @@ std::optional<VerifyLevel> parse_verify_level(std::string_view text);
 std::optional<std::string> verify(const GraphReader& reader, VerifyLevel level,
                                   const Progress& progress = {});
 
+// §1 padding: the first byte of [128, table_offset) outside every section's stored bytes that is
+// not zero, as "[padding] byte B (before section 'S') is 0x.."; nullopt when there is none. Part
+// of verify()'s structure level; public for packed files, whose stored bytes are their frames
+// (their padding is checked on the packed bytes themselves, before they are decoded).
+std::optional<std::string> find_padding_problem(const ContainerReader& reader);
+
 }  // namespace mosb

@@ -12,12 +12,15 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 
 #include "mosb/container.hpp"
 #include "mosb/format.hpp"
 #include "mosb/graph_reader.hpp"
+#include "mosb/progress.hpp"
 
 namespace mosb {
 
@@ -27,30 +30,62 @@ struct PackOptions {
   // Store no reverse CSR section that is the transpose of the forward CSR (encoding transpose,
   // format 1.2): unpacking derives the sections again. About a third of a packed NetMaker file.
   bool derive_reverse = true;
+  // The most memory decoding the input (and the packed result, to verify it) may take; 0: the
+  // available_memory() (see unpack_bytes).
+  std::uint64_t max_memory = 0;
 };
 
+// The memory decoding a packed file may take when the caller gives no cap (max_memory 0 below):
+// what the system reports available (Linux: MemAvailable in /proc/meminfo; elsewhere
+// sysconf(_SC_AVPHYS_PAGES) pages).
+std::uint64_t available_memory();
+
 // Writes the packed form of the instance `in` (packed or not) to `out`, atomically
-// (mosb::AtomicFile: `out` shows the old file or the complete new one). Every frame is decoded
-// again and compared before the file is committed. `out` may be `in` itself (an in-place rewrite);
-// the CLI allows that only with --in-place. Throws mosb::Error naming the file.
+// (mosb::AtomicFile: `out` shows the old file or the complete new one). The input is checked
+// first as verify does at level full (checksums, structure, the padding of a packed input): a
+// damaged input is refused, not repaired. Every frame is decoded again and compared before the
+// file is committed. `out` may be `in` itself (an in-place rewrite); the CLI allows that only with
+// --in-place. Throws mosb::Error naming the file; `out` is then untouched.
 void pack_file(const std::filesystem::path& in, const std::filesystem::path& out,
                const PackOptions& options);
 
-// Writes the unpacked form of `in` to `out`, atomically, after checking every section's checksum:
-// byte-identical to the file that was packed. An unpacked input is rewritten in canonical layout.
-void unpack_file(const std::filesystem::path& in, const std::filesystem::path& out);
+// Writes the unpacked form of `in` to `out`, atomically, after checking every section's checksum,
+// the structure of the result and the padding of a packed input (verify at level full): byte-
+// identical to the file that was packed. An unpacked input is rewritten in canonical layout.
+// Throws mosb::Error naming `in`; `out` is then untouched.
+void unpack_file(const std::filesystem::path& in, const std::filesystem::path& out,
+                 std::uint64_t max_memory = 0);
 
 // The unpacked form of a container in memory (64-byte aligned, owned by the result), each section
-// decoded and its checksum checked. Hostile input is refused with "DISPLAY_NAME: section 'S': ..."
-// before any allocation larger than the decoded lengths the table declares, which are bounded by
-// what each stored frame can hold at zstd's maximum ratio.
-MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view display_name);
+// decoded and its checksum checked. Hostile input is refused with "DISPLAY_NAME: ..." before any
+// allocation: each frame must declare its content size, equal to the length the table gives its
+// section; those lengths must be the ones the header's counts give each section (GraphReader's
+// checks); and all the memory decoding takes must fit in `max_memory` bytes (0: the
+// available_memory()). `bytes` must be 8-byte aligned (a mapping is).
+MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view display_name,
+                        std::uint64_t max_memory = 0);
 
 // Opens an instance whether packed or not: a packed file (§6) is decoded into owned, 64-byte
-// aligned memory (every section's checksum checked on the way) instead of being refused as
-// GraphReader::open refuses it; an unpacked file is mapped as by GraphReader::open. The accessors
-// then work the same on both. With `level`, runs verify(reader, level) as GraphReader::open does.
-GraphReader load(const std::filesystem::path& path);
-GraphReader load(const std::filesystem::path& path, VerifyLevel level);
+// aligned memory (every section's checksum checked on the way, within `max_memory` as
+// unpack_bytes) instead of being refused as GraphReader::open refuses it; an unpacked file is
+// mapped as by GraphReader::open. The accessors then work the same on both. With `level`, runs
+// verify(reader, level) as GraphReader::open does.
+GraphReader load(const std::filesystem::path& path, std::uint64_t max_memory = 0);
+GraphReader load(const std::filesystem::path& path, VerifyLevel level,
+                 std::uint64_t max_memory = 0);
+
+// What verify_file found: the first problem (as verify() words it) or none, and the §8 digest.
+struct FileVerification {
+  std::optional<std::string> problem;
+  std::string digest;
+};
+
+// verify(level) of the instance at `path`, packed or not. Level header reads the header and the
+// section table alone, and decodes nothing. The other levels decode a packed file as load() does
+// (within `max_memory`) and verify the result; at structure and full, a packed file's own padding
+// (§1: every byte outside its frames is zero) is checked too. Throws mosb::Error naming the file
+// when it cannot be opened or decoded.
+FileVerification verify_file(const std::filesystem::path& path, VerifyLevel level,
+                             std::uint64_t max_memory = 0, const Progress& progress = {});
 
 }  // namespace mosb
