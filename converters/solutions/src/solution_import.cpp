@@ -170,6 +170,47 @@ void json_record_status(const Json& record, const std::string& record_at, const 
   }
 }
 
+// A JSON record's finish_info.solutions[].cost_until_now into `result` (its status already read:
+// a record stating a status without a front needs no finish_info).
+template <class Json, class At>
+void json_record_front(const Json& record, const std::string& record_at, const std::string& name,
+                       const SolutionImportOptions& o, const At& at, ImportedResult& result) {
+  const auto info = record.find("finish_info");
+  const bool has_info = info != record.end() && info->is_object();
+  const Json* solutions = nullptr;
+  if (has_info)
+    if (const auto found = info->find("solutions"); found != info->end() && found->is_array())
+      solutions = &*found;
+  // A record stating a status without a front needs no finish_info.
+  if (!result.status_stated || result.status == QueryStatus::solved) {
+    if (!has_info) throw at(record_at, "no 'finish_info' object");
+    if (!solutions) throw at(record_at + "/finish_info", "no 'solutions' array");
+  }
+  const std::size_t solution_count = solutions ? solutions->size() : 0;
+  std::vector<double> row;
+  for (std::size_t k = 0; k < solution_count; ++k) {
+    const std::string solution_at = record_at + "/finish_info/solutions/" + std::to_string(k);
+    const Json& solution = (*solutions)[k];
+    const auto cost = solution.is_object() ? solution.find("cost_until_now") : solution.end();
+    if (!solution.is_object() || cost == solution.end() || !cost->is_array())
+      throw at(solution_at, "no 'cost_until_now' array");
+    row.clear();
+    for (std::size_t i = 0; i < cost->size(); ++i) {
+      const Json& value = (*cost)[i];
+      const std::string value_at = solution_at + "/cost_until_now/" + std::to_string(i);
+      if (!value.is_number()) throw at(value_at, "expected a cost, found " + value.dump());
+      const double v = value.template get<double>();
+      if (!std::isfinite(v)) throw at(value_at, "non-finite cost " + value.dump());
+      if (v < 0) throw at(value_at, "negative cost " + value.dump());
+      row.push_back(v);
+    }
+    if (const auto problem = width_problem(row.size(), o); !problem.empty())
+      throw at(solution_at + "/cost_until_now", problem);
+    append_picked(row, o, result.costs);
+    result.vector_sources.push_back(name + ": " + solution_at + "/cost_until_now");
+  }
+}
+
 }  // namespace
 
 std::optional<std::string> stated_status_problem(std::string_view word, QueryStatus& status) {
@@ -528,40 +569,7 @@ std::vector<ImportedResult> parse_solver_json_log(std::string_view text, const s
     }
     result.source = name + ": " + record_at;
     json_record_status(record, record_at, at, result);
-    const auto info = record.find("finish_info");
-    const bool has_info = info != record.end() && info->is_object();
-    const Json* solutions = nullptr;
-    if (has_info)
-      if (const auto found = info->find("solutions"); found != info->end() && found->is_array())
-        solutions = &*found;
-    // A record stating a status without a front needs no finish_info.
-    if (!result.status_stated || result.status == QueryStatus::solved) {
-      if (!has_info) throw at(record_at, "no 'finish_info' object");
-      if (!solutions) throw at(record_at + "/finish_info", "no 'solutions' array");
-    }
-    const std::size_t solution_count = solutions ? solutions->size() : 0;
-    std::vector<double> row;
-    for (std::size_t k = 0; k < solution_count; ++k) {
-      const std::string solution_at = record_at + "/finish_info/solutions/" + std::to_string(k);
-      const Json& solution = (*solutions)[k];
-      const auto cost = solution.is_object() ? solution.find("cost_until_now") : solution.end();
-      if (!solution.is_object() || cost == solution.end() || !cost->is_array())
-        throw at(solution_at, "no 'cost_until_now' array");
-      row.clear();
-      for (std::size_t i = 0; i < cost->size(); ++i) {
-        const Json& value = (*cost)[i];
-        const std::string value_at = solution_at + "/cost_until_now/" + std::to_string(i);
-        if (!value.is_number()) throw at(value_at, "expected a cost, found " + value.dump());
-        const double v = value.get<double>();
-        if (!std::isfinite(v)) throw at(value_at, "non-finite cost " + value.dump());
-        if (v < 0) throw at(value_at, "negative cost " + value.dump());
-        row.push_back(v);
-      }
-      if (const auto problem = width_problem(row.size(), o); !problem.empty())
-        throw at(solution_at + "/cost_until_now", problem);
-      append_picked(row, o, result.costs);
-      result.vector_sources.push_back(name + ": " + solution_at + "/cost_until_now");
-    }
+    json_record_front(record, record_at, name, o, at, result);
     if (!result.status_stated && result.costs.empty()) result.status = QueryStatus::disconnected;
     if (const auto problem = stated_front_problem(result); !problem.empty())
       throw at(record_at, problem);
