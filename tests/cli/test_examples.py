@@ -188,6 +188,22 @@ class ImportedAsSolutionFiles(Base):
         self.assertEqual(json.loads(self.ok("solutions", "inspect", "--json", plain).stdout)
                          ["statistics"], {})
 
+    def test_path_sums_beyond_the_arc_type_import(self):
+        # Issue 19: on a 40x40 grid the fronts' sums pass 255, the u8 arc type of c2; the file
+        # stores path sums (u64), so the import no longer fails.
+        inst = self.path("g40.mosb")
+        self.ok("generate", "grid", "--width", "40", "--height", "40", "--seed", "1", "-o", inst)
+        fronts = self.path("fronts40")
+        r = run_solver("namoa", inst, "--view", "Grid_2", "--fronts", fronts)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        log = self.write("namoa40.log", r.stdout)
+        out = self.path("g40.sol")
+        self.ok("solutions", "import", "--instance", inst, "--view", "Grid_2", "--dir", fronts,
+                "--example-log", log, "-o", out)
+        self.ok("solutions", "verify", "--instance", inst, out)
+        summary = json.loads(self.ok("solutions", "inspect", "--json", out).stdout)
+        self.assertEqual([o["type"] for o in summary["objectives"]], ["u64", "u64"])
+
     def test_a_log_that_disagrees_with_the_fronts_is_refused_at_its_line(self):
         inst = self.grid_with_queries(7, 6, 1, 3, 4)
         fronts, log, lines = self.run_namoa(inst)

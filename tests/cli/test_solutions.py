@@ -69,13 +69,15 @@ class SolutionsTest(CliTest):
         self.assertEqual([o["name"] for o in info["objectives"]], ["c1", "c2"])
         self.assertEqual((info["solver"], info["solver_version"], info["epsilon"]), ("brute", "1", "0"))
         self.assertEqual((info["queries"], info["vectors"]), (4, 4))
+        # An empty front file is `failed` unless the user says otherwise (--status-for-empty).
         self.assertEqual(info["statuses"], {"solved": 2, "timeout": 0, "memory-limit": 0,
-                                            "disconnected": 1, "not-run": 1})
+                                            "disconnected": 0, "not-run": 1, "failed": 1})
         # Front sizes 3 and 1: the median of an even count is the lower middle one.
         self.assertEqual(info["front_size"], {"min": 1, "median": 1, "max": 3})
         self.assertFalse(info["paths"])
         text = run("solutions", "inspect", self.path("out.sol")).stdout
-        self.assertIn("4 queries: 2 solved, 0 timeout, 0 memory-limit, 1 disconnected, 1 not-run", text)
+        self.assertIn("4 queries: 2 solved, 0 timeout, 0 memory-limit, 0 disconnected, 1 not-run, "
+                      "1 failed", text)
         self.assertIn("front size: min 1, median 1, max 3 (4 vectors)", text)
         ok = run("solutions", "verify", self.path("out.sol"), "--instance", self.grid)
         self.assertIn("OK", ok.stdout)
@@ -158,12 +160,10 @@ class SolutionsTest(CliTest):
         self.assert_refused(["--table", t], "%s:2:5: non-finite cost 'nan'" % t)
         t = self.write("t.csv", "query,c1,c2\n0,-1,2\n")
         self.assert_refused(["--table", t], "%s:2:3: negative cost '-1'" % t)
-        # A cost the view's u8 objective cannot hold: refused by the writer, nothing written.
-        t = self.write("t.csv", "query,c1,c2\n0,1.5,2\n")
-        result = self.import_("--table", t, check=False, output="bad.sol")
-        self.assertEqual(result.returncode, 1)
-        self.assertIn("query 0", result.stderr)
-        self.assertFalse(os.path.exists(self.path("bad.sol")))
+        # A cost that is no path sum of the u8 objective: refused naming the input line.
+        t = self.write("t.csv", "query,c1,c2\n0,1,2\n0,1.5,2\n")
+        self.assert_refused(["--table", t], "%s:3: query 0, objective 'c1': cost is not an integer "
+                            "(the objective's arc costs are u8)" % t)
 
     # --- JSON logs ------------------------------------------------------------------------------
 
@@ -188,7 +188,7 @@ class SolutionsTest(CliTest):
         self.import_("--json-log", self.log(shuffled), "--match", "endpoints", "--id-base", "1", "--force-id-base")
         info = self.inspect()
         self.assertEqual(info["statuses"], {"solved": 2, "timeout": 0, "memory-limit": 0,
-                                            "disconnected": 1, "not-run": 1})
+                                            "disconnected": 1, "not-run": 1, "failed": 0})
         # By position, the same records do not fit query 0.
         self.assert_refused(["--json-log", self.path("log.json"), "--id-base", "1", "--force-id-base"],
                             "%s: /0: source 9 and target 1, but query 0 runs from 1 to 9"
@@ -240,7 +240,7 @@ class SolutionsTest(CliTest):
         with open(self.path("exported/0.txt")) as f:
             self.assertEqual(f.read(), "1 9\n2 7\n")
         with open(self.path("exported/2.txt")) as f:
-            self.assertEqual(f.read(), "")  # disconnected
+            self.assertEqual(f.read(), "status failed\n")  # the empty input file, stated
         self.assertFalse(os.path.exists(self.path("exported/1.txt")))  # not-run
         self.import_("--dir", self.path("exported"), output="b.sol")
         self.assertEqual(self.read("a.sol"), self.read("b.sol"))
@@ -258,6 +258,141 @@ class SolutionsTest(CliTest):
         self.assertEqual(bad.returncode, 1)
         self.assertIn(self.digest(self.other), bad.stderr)
         self.assertFalse(os.path.exists(self.path("x.json")))
+
+
+    # --- path sums (spec/SOLUTIONS.md §3) -------------------------------------------------------
+
+    def test_sums_above_the_arc_type_are_stored(self):
+        # c1 and c2 are u8 arc costs; a path's sum is not: 300 and 70000 are stored as u64.
+        d = self.front_dir({"0.txt": "300 70000\n"})
+        self.import_("--dir", d)
+        info = self.inspect()
+        self.assertEqual([o["type"] for o in info["objectives"]], ["u64", "u64"])
+        run("solutions", "export", self.path("out.sol"), "--dir", self.path("exported"))
+        with open(self.path("exported/0.txt")) as f:
+            self.assertEqual(f.read(), "300 70000\n")
+        self.assertEqual(mosbtest.header(self.read("out.sol"))["version_minor"], 3)
+        # Above 2^53 a sum is refused, naming the file and line, never wrapped.
+        self.write("fronts/0.txt", "1 1\n9007199254740994 1\n")
+        self.assert_refused(["--dir", d], "%s/0.txt:2: query 0, objective 'c1': path sum above "
+                            "2^53, the largest integer a solution file stores exactly" % d)
+        records = [self.record(1, 9, [[1, 1], [2, 1e300]])]
+        self.assert_refused(["--json-log", self.log(records), "--id-base", "1"],
+                            "%s: /0/finish_info/solutions/1/cost_until_now: query 0, objective 'c2': "
+                            "path sum above 2^53, the largest integer a solution file stores exactly"
+                            % self.path("log.json"))
+
+    def test_ppa_json_log_on_u16_costs_with_sums_in_millions(self):
+        # A chain 1 -> 2 -> ... -> 101 of arcs costing 50000 and 60000 (u16 columns): the path sums
+        # are 5,000,000 and 6,000,000.
+        n = 101
+        arcs = "".join("a %d %d %%d\n" % (v, v + 1) for v in range(1, n))
+        self.write("chain-distance.gr", "p sp %d %d\n" % (n, n - 1) + arcs.replace("%d\n", "50000\n"))
+        self.write("chain-time.gr", "p sp %d %d\n" % (n, n - 1) + arcs.replace("%d\n", "60000\n"))
+        run("convert", "dimacs", "--gr", self.path("chain-distance.gr"), "--gr",
+            self.path("chain-time.gr"), "--view", "PP=c1,c2", "-o", self.path("chain0.mosb"))
+        objectives = json.loads(run("inspect", "--json", self.path("chain0.mosb")).stdout)["objectives"]
+        self.assertEqual([(o["name"], o["type"]) for o in objectives],
+                         [("c1", "u16"), ("c2", "u16")])
+        self.write("pairs.txt", "1 101\n101 1\n")  # DIMACS ids are 1-based
+        run("queries", "import", self.path("chain0.mosb"), self.path("pairs.txt"), "--set", "s",
+            "-o", self.path("chain.mosb"))
+        # PPA*'s log: 1-based ids, the front in finish_info.solutions[].cost_until_now.
+        log = self.write("ppa.json", json.dumps([
+            {"source": 1, "target": 101, "total_runtime(ms)": 3.5,
+             "finish_info": {"solutions": [{"cost_until_now": [5000000, 6000000]}]}},
+            {"source": 101, "target": 1, "finish_info": {"solutions": []}}]))
+        r = run("solutions", "import", "--instance", self.path("chain.mosb"), "--view", "PP",
+                "--queries", "s", "--json-log", log, "--id-base", "1", "-o", self.path("chain.sol"))
+        self.assertIn("2 of 2 queries imported, 1 vectors", r.stdout)
+        # 101 cannot reach 1 (the chain runs one way): the disconnected claim holds.
+        run("solutions", "verify", self.path("chain.sol"), "--instance", self.path("chain.mosb"))
+        run("solutions", "export", self.path("chain.sol"), "--dir", self.path("chain-out"))
+        with open(self.path("chain-out/0.txt")) as f:
+            self.assertEqual(f.read(), "5000000 6000000\n")
+
+    # --- statuses (spec/SOLUTIONS.md §4, §7) ----------------------------------------------------
+
+    def test_status_for_empty_front_files(self):
+        d = self.front_dir({"0.txt": "1 9\n", "2.txt": "", "3.txt": "# nothing\n"})
+        self.import_("--dir", d)
+        self.assertEqual(self.inspect()["statuses"]["failed"], 2)
+        for status in ("disconnected", "timeout", "failed"):
+            self.import_("--dir", d, "--status-for-empty", status)
+            self.assertEqual(self.inspect()["statuses"][status], 2, status)
+        bad = self.import_("--dir", d, "--status-for-empty", "solved", check=False)
+        self.assertEqual(bad.returncode, 2)
+
+    def test_stated_statuses_in_front_files(self):
+        d = self.front_dir({"0.txt": "1 9\n", "1.txt": "status timeout\n",
+                            "2.txt": "status failed\nexit_status 139\n",
+                            "3.txt": "# killed\nstatus memory-limit\n"})
+        self.import_("--dir", d)
+        info = self.inspect()
+        self.assertEqual(info["statuses"], {"solved": 1, "timeout": 1, "memory-limit": 1,
+                                            "disconnected": 0, "not-run": 0, "failed": 1})
+        self.assertEqual(info["statistics"]["exit_status"], {"queries": 1, "total": 139, "max": 139})
+        run("solutions", "verify", self.path("out.sol"), "--instance", self.grid)
+        # Exported and imported again: the same file.
+        run("solutions", "export", self.path("out.sol"), "--dir", self.path("exported"))
+        with open(self.path("exported/2.txt")) as f:
+            self.assertEqual(f.read(), "status failed\nexit_status 139\n")
+        self.import_("--dir", self.path("exported"), output="again.sol")
+        self.assertEqual(self.read("out.sol"), self.read("again.sol"))
+        self.write("fronts/1.txt", "status timeout\n1 2\n")
+        self.assert_refused(["--dir", d], "%s/1.txt: status timeout with vectors (only a solved "
+                            "query has a front)" % d)
+        self.write("fronts/1.txt", "status crashed\n")
+        self.assert_refused(["--dir", d], "%s/1.txt:1:8: unknown status 'crashed' (solved, timeout, "
+                            "memory-limit, disconnected, failed)" % d)
+        self.write("fronts/1.txt", "status timeout\nexit_status 1\n")
+        self.assert_refused(["--dir", d], "%s/1.txt: an exit status for a timeout query (only "
+                            "failed ones carry it)" % d)
+
+    def test_table_status_columns(self):
+        t = self.write("t.csv", "query,status,exit_status,c1,c2\n0,,,1,9\n0,solved,,2,7\n"
+                       "1,timeout,,,\n2,failed,6,,\n3,disconnected,,,\n")
+        self.import_("--table", t)
+        info = self.inspect()
+        self.assertEqual(info["statuses"], {"solved": 1, "timeout": 1, "memory-limit": 0,
+                                            "disconnected": 1, "not-run": 0, "failed": 1})
+        self.assertEqual(info["statistics"]["exit_status"]["max"], 6)
+        t = self.write("t.csv", "query,status,c1,c2\n1,timeout,1,2\n")
+        self.assert_refused(["--table", t], "%s:2:11: a cost for a timeout query (only a solved "
+                            "query has a front; leave the field empty)" % t)
+        t = self.write("t.csv", "query,status,c1,c2\n0,,1,2\n0,failed,,\n")
+        self.assert_refused(["--table", t], "%s:3:3: a second row for query 0 with status failed "
+                            "(an earlier row says solved; only a solved query has several rows)" % t)
+
+    def test_json_log_statuses(self):
+        records = [self.record(1, 9, [[1, 9]]), {"source": 2, "target": 6, "status": "timeout",
+                                                 "total_runtime(ms)": 60000},
+                   {"source": 9, "target": 1, "status": "failed", "exit_status": 134},
+                   {"source": 2, "target": 6, "status": "memory-limit"}]
+        self.import_("--json-log", self.log(records), "--id-base", "1")
+        info = self.inspect()
+        self.assertEqual(info["statuses"], {"solved": 1, "timeout": 1, "memory-limit": 1,
+                                            "disconnected": 0, "not-run": 0, "failed": 1})
+        # A timeout's runtime is not kept (an interrupted run carries no statistics).
+        self.assertEqual(info["statistics"]["runtime_seconds"]["queries"], 1)
+        run("solutions", "export", self.path("out.sol"), "--instance", self.grid, "--json-log",
+            self.path("exported.json"), "--id-base", "1")
+        with open(self.path("exported.json")) as f:
+            self.assertEqual(json.load(f)[2], {"source": 9, "target": 1, "status": "failed",
+                                               "exit_status": 134})
+        records[1]["status"] = "finished"
+        self.assert_refused(["--json-log", self.log(records), "--id-base", "1"],
+                            "%s: /1/status: unknown status 'finished' (solved, timeout, "
+                            "memory-limit, disconnected, failed)" % self.path("log.json"))
+
+    def test_verify_checks_disconnected_claims(self):
+        # The 3x3 grid is strongly connected: a disconnected claim is a wrong answer.
+        d = self.front_dir({"0.txt": "1 9\n", "2.txt": "status disconnected\n"})
+        self.import_("--dir", d)
+        bad = run("solutions", "verify", self.path("out.sol"), "--instance", self.grid, check=False)
+        self.assertEqual(bad.returncode, 1)
+        self.assertEqual(bad.stderr.strip(), "mosb: %s: query 2: [disconnected] the goal 0 is "
+                         "reachable from the start 8 (a wrong answer)" % self.path("out.sol"))
 
     # --- verify ---------------------------------------------------------------------------------
 

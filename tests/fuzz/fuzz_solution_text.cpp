@@ -26,6 +26,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       if (result.query != 1 || result.costs.size() % 2 != 0) __builtin_trap();
       for (double v : result.costs)
         if (!std::isfinite(v) || v < 0) __builtin_trap();
+      // A stated status other than solved has no front; an exit status only on failed.
+      if (result.status != mosb::QueryStatus::solved && !result.costs.empty()) __builtin_trap();
+      if (result.statistics.exit_status && result.status != mosb::QueryStatus::failed)
+        __builtin_trap();
+      if (result.vector_sources.size() * 2 != result.costs.size()) __builtin_trap();
     } catch (const mosb::Error&) {
     }
   }

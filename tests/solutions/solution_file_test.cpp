@@ -1,5 +1,6 @@
 // Solution files (spec/SOLUTIONS.md): the writer's checks, the reader's view of what was written,
-// the binding to the instance, and the golden files in spec/golden/1.1/solutions.
+// the binding to the instance, and the golden files in spec/golden/1.3/solutions (and the older
+// layout's in 1.1/solutions, which stay readable).
 #include "mosb/solution_file.hpp"
 
 #include <doctest/doctest.h>
@@ -12,6 +13,7 @@
 #include "golden_input.hpp"
 #include "golden_solutions.hpp"
 #include "mosb/graph_builder.hpp"
+#include "mosb/solution_verify.hpp"
 #include "solution_faults.hpp"
 #include "temp_dir.hpp"
 #include "test_files.hpp"
@@ -21,7 +23,9 @@ using namespace mosb;
 namespace {
 const std::filesystem::path kGolden = std::filesystem::path(MOSB_SOURCE_DIR) / "spec" / "golden";
 const auto kSmall = kGolden / "1.0" / "valid" / "small.mosb";
-const auto kSolutions = kGolden / "1.1" / "solutions";
+const auto kSolutions = kGolden / "1.3" / "solutions";
+// Written before path sums (front_cost in the arc type): read, never regenerated.
+const auto kOldSolutions = kGolden / "1.1" / "solutions";
 }  // namespace
 
 TEST_CASE("the solution writer reproduces the golden solution file byte for byte") {
@@ -29,7 +33,7 @@ TEST_CASE("the solution writer reproduces the golden solution file byte for byte
   testing::write_golden_solutions(GraphReader::open(kSmall), dir / "small.sol.mosb");
   const auto written = testing::read_bytes(dir / "small.sol.mosb");
   const auto golden = testing::read_bytes(kSolutions / "valid" / "small.sol.mosb");
-  REQUIRE_MESSAGE(!golden.empty(), "spec/golden/1.1/solutions/valid/small.sol.mosb is missing");
+  REQUIRE_MESSAGE(!golden.empty(), "spec/golden/1.3/solutions/valid/small.sol.mosb is missing");
   CHECK_MESSAGE(written == golden,
                 "the solution writer's output changed: if deliberate, update spec/SOLUTIONS.md "
                 "and regenerate with mosb_make_golden solutions");
@@ -40,26 +44,27 @@ TEST_CASE("the golden solution file reads back with every value intact") {
   const auto r = SolutionReader::open(kSolutions / "valid" / "small.sol.mosb", instance);
   CHECK_FALSE(r.verify_payload().has_value());
   CHECK(r.header().file_kind == 2);
-  CHECK(r.header().version_minor == 1);
+  CHECK(r.header().version_minor == 3);
+  CHECK(r.stores_path_sums());
   CHECK(r.header().vertex_count == 4);
   CHECK(r.instance_digest() == instance.digest());
   CHECK(r.view_name() == "Small_2");
   CHECK(r.query_set() == "default");
   REQUIRE(r.objective_count() == 2);
   CHECK(r.objective_name(0) == "distance");
-  CHECK(r.objective_type(0) == format::ElementType::u16);
+  CHECK(r.objective_type(0) == format::ElementType::u64);  // sums of u16 arc costs
   CHECK(r.objective_name(1) == "time");
-  CHECK(r.objective_type(1) == format::ElementType::f32);
+  CHECK(r.objective_type(1) == format::ElementType::f64);  // sums of f32 arc costs
   REQUIRE(r.query_count() == 3);
   CHECK(r.vector_count() == 3);
   CHECK(r.status(0) == QueryStatus::solved);
   CHECK(r.status(2) == QueryStatus::timeout);
   CHECK(r.front_size(0) == 2);
   CHECK(r.front_size(2) == 0);
-  const auto distance = r.front<std::uint16_t>(0, 0);
-  CHECK(std::vector<std::uint16_t>(distance.begin(), distance.end()) ==
-        std::vector<std::uint16_t>{60, 80});
-  CHECK(r.front<float>(1, 1)[0] == 7.5f);
+  const auto distance = r.front<std::uint64_t>(0, 0);
+  CHECK(std::vector<std::uint64_t>(distance.begin(), distance.end()) ==
+        std::vector<std::uint64_t>{60, 80});
+  CHECK(r.front<double>(1, 1)[0] == 7.5);
   CHECK(r.value_as_double(1, 1) == 3.75);
   CHECK_THROWS_AS(r.column<std::uint32_t>(0), Error);
   const auto sum = r.visit_column(0, [](auto column) {
@@ -80,6 +85,61 @@ TEST_CASE("the golden solution file reads back with every value intact") {
   CHECK(solver.name == "hand");
   CHECK(solver.epsilon == "0");
   CHECK(solver.parameters.at("order") == "lexicographic");
+}
+
+TEST_CASE("a solution file of the older layout (1.1, arc-type columns) reads widened") {
+  const auto instance = GraphReader::open(kSmall);
+  const auto r = SolutionReader::open(kOldSolutions / "valid" / "small.sol.mosb", instance);
+  CHECK(r.header().version_minor == 1);
+  CHECK_FALSE(r.stores_path_sums());
+  CHECK_FALSE(r.verify_payload().has_value());
+  CHECK(r.objective_type(0) == format::ElementType::u16);
+  CHECK(r.objective_type(1) == format::ElementType::f32);
+  const auto current = SolutionReader::open(kSolutions / "valid" / "small.sol.mosb", instance);
+  REQUIRE(r.vector_count() == current.vector_count());
+  for (std::size_t i = 0; i < 2; ++i)
+    for (std::uint64_t row = 0; row < r.vector_count(); ++row)
+      CHECK(r.value_as_double(i, row) == current.value_as_double(i, row));
+  CHECK(r.visit_column(0, [](auto column) { return static_cast<double>(column[1]); }) == 80);
+}
+
+TEST_CASE("path sums beyond the arc type are stored as u64 (a u16 objective summing to 70000)") {
+  testing::TempDir dir;
+  const auto instance = GraphReader::open(kSmall);
+  SolutionWriter w(instance, "Small_2");
+  w.set_query(0, QueryStatus::solved, std::vector<double>{70000, 0.1, 4294967296.0 * 3, 0.05});
+  w.set_query(1, QueryStatus::solved, std::vector<double>{9007199254740992.0, 1});  // 2^53
+  w.write(dir / "s.sol.mosb");
+  const auto r = SolutionReader::open(dir / "s.sol.mosb", instance);
+  CHECK_FALSE(r.verify_payload().has_value());
+  CHECK(r.column<std::uint64_t>(0)[0] == 70000u);
+  CHECK(r.column<std::uint64_t>(0)[1] == 3 * (std::uint64_t{1} << 32));
+  CHECK(r.column<std::uint64_t>(0)[2] == std::uint64_t{1} << 53);
+  CHECK(r.column<double>(1)[0] == 0.1);  // an f64 sum, not rounded to f32
+}
+
+TEST_CASE("failed queries carry no front and only an exit status") {
+  testing::TempDir dir;
+  const auto instance = GraphReader::open(kSmall);
+  SolutionWriter w(instance, "Small_2");
+  QueryStatistics crashed;
+  crashed.exit_status = 139;  // SIGSEGV: 128 + 11
+  w.set_query(0, QueryStatus::failed, {}, crashed);
+  w.set_query(1, QueryStatus::failed, {});
+  CHECK_THROWS_WITH(w.set_query(2, QueryStatus::failed, std::vector<double>{1, 2}),
+                    doctest::Contains("failed with a front"));
+  CHECK_THROWS_WITH(w.set_query(2, QueryStatus::failed, {}, {1.0, {}, {}, {}}),
+                    doctest::Contains("failed carries no statistics"));
+  CHECK_THROWS_WITH(w.set_query(2, QueryStatus::solved, std::vector<double>{1, 2}, crashed),
+                    doctest::Contains("solved carries no exit_status"));
+  w.write(dir / "s.sol.mosb");
+  const auto r = SolutionReader::open(dir / "s.sol.mosb", instance);
+  CHECK_FALSE(r.verify_payload().has_value());
+  CHECK(r.status(0) == QueryStatus::failed);
+  CHECK(r.count_statistic(Statistic::exit_status, 0) == 139u);
+  CHECK_FALSE(r.count_statistic(Statistic::exit_status, 1).has_value());
+  CHECK(parse_query_status("failed") == QueryStatus::failed);
+  CHECK(to_string(QueryStatus::failed) == "failed");
 }
 
 TEST_CASE("a solution file opened against another instance names both digests") {
@@ -111,11 +171,10 @@ TEST_CASE("the solution writer refuses what the instance's cost types cannot hol
   SolutionWriter w(instance, "Small_2");
   CHECK(w.query_count() == 3);
   CHECK_THROWS_WITH(w.set_query(0, QueryStatus::solved, std::vector<double>{60.5, 1}),
-                    doctest::Contains("does not fit the objective's type u16"));
-  CHECK_THROWS_WITH(w.set_query(0, QueryStatus::solved, std::vector<double>{70000, 1}),
-                    doctest::Contains("u16"));
-  CHECK_THROWS_WITH(w.set_query(0, QueryStatus::solved, std::vector<double>{1, 0.1}),
-                    doctest::Contains("f32"));
+                    doctest::Contains("vector 0, objective 'distance': cost is not an integer"));
+  CHECK_THROWS_WITH(
+      w.set_query(0, QueryStatus::solved, std::vector<double>{1, 1, 9007199254740994.0, 1}),
+      doctest::Contains("vector 1, objective 'distance': path sum above 2^53"));
   CHECK_THROWS_WITH(w.set_query(0, QueryStatus::solved, std::vector<double>{1, -1}),
                     doctest::Contains("negative"));
   CHECK_THROWS_WITH(w.set_query(0, QueryStatus::solved, std::vector<double>{1, 2, 3}),
@@ -147,6 +206,19 @@ TEST_CASE("queries never set are written as not-run, and the file binds to the v
 }
 
 TEST_CASE("every golden invalid solution file fails where EXPECTED.tsv says") {
+  // The older layout's invalid files must keep failing where they did.
+  for (const auto& row : testing::expected_rows(kOldSolutions / "invalid" / "EXPECTED.tsv")) {
+    REQUIRE(row.size() == 3);
+    CAPTURE(row[0]);
+    const auto path = kOldSolutions / "invalid" / row[0];
+    if (row[1] == "open") {
+      CHECK_THROWS_WITH_AS(SolutionReader::open(path), doctest::Contains(row[2].c_str()), Error);
+      continue;
+    }
+    const auto problem = SolutionReader::open(path).verify_payload();
+    REQUIRE(problem.has_value());
+    CHECK_MESSAGE(problem->find(row[2]) != std::string::npos, *problem);
+  }
   int cases = 0;
   for (const auto& row : testing::expected_rows(kSolutions / "invalid" / "EXPECTED.tsv")) {
     REQUIRE(row.size() == 3);
@@ -164,4 +236,58 @@ TEST_CASE("every golden invalid solution file fails where EXPECTED.tsv says") {
     CHECK_MESSAGE(problem->find(expected) != std::string::npos, *problem);
   }
   CHECK(cases == static_cast<int>(std::size(testing::kSolutionFaults)));
+}
+
+namespace {
+// A chain 0 -> 1 -> 2 -> 3 of u16 arcs costing 60000 each (paths sum past 65535), and 4 -> 0: 4
+// reaches everything, nothing reaches 4, 3 reaches nothing.
+std::filesystem::path write_chain(const std::filesystem::path& dir) {
+  GraphInput g;
+  g.vertex_count = 5;
+  g.tails = {0, 1, 2, 4};
+  g.heads = {1, 2, 3, 0};
+  g.costs.push_back(
+      {"c", "", std::vector<std::uint64_t>{60000, 60000, 60000, 7}, format::ElementType::u16});
+  g.queries.push_back({"q", {{0, 3}, {0, 4}, {3, 0}, {4, 3}}});
+  g.metadata.set("view.V.objectives", "c");
+  g.metadata.set("view.V.queries", "q");
+  write_graph(g, dir / "chain.mosb");
+  return dir / "chain.mosb";
+}
+}  // namespace
+
+TEST_CASE("verify sums a path's u16 arcs exactly in u64 and compares with the stored sum") {
+  testing::TempDir dir;
+  const auto instance = GraphReader::open(write_chain(dir.path()), VerifyLevel::full);
+  const std::vector<std::vector<std::uint32_t>> path = {{0, 1, 2, 3}};
+  for (const double stored : {180000.0, 180001.0}) {
+    SolutionWriter w(instance, "V");
+    w.set_query(0, QueryStatus::solved, std::vector<double>{stored}, {}, path);
+    w.write(dir / "s.sol.mosb");
+    const auto problem = verify_solutions(SolutionReader::open(dir / "s.sol.mosb"), instance);
+    if (stored == 180000.0) {
+      CHECK_FALSE(problem.has_value());
+    } else {
+      REQUIRE(problem.has_value());
+      CHECK(problem->find("[path-cost] the arcs sum to (180000), not to the stored vector") !=
+            std::string::npos);
+    }
+  }
+}
+
+TEST_CASE("verify checks every disconnected claim by a search from its start") {
+  testing::TempDir dir;
+  const auto instance = GraphReader::open(write_chain(dir.path()), VerifyLevel::full);
+  SolutionWriter w(instance, "V");
+  w.set_query(1, QueryStatus::disconnected, {});  // 0 cannot reach 4: true
+  w.set_query(2, QueryStatus::disconnected, {});  // 3 reaches nothing: true
+  w.write(dir / "right.sol.mosb");
+  CHECK_FALSE(verify_solutions(SolutionReader::open(dir / "right.sol.mosb"), instance));
+  w.set_query(3, QueryStatus::disconnected, {});  // 4 -> 0 -> 1 -> 2 -> 3: a wrong answer
+  w.write(dir / "wrong.sol.mosb");
+  const auto problem = verify_solutions(SolutionReader::open(dir / "wrong.sol.mosb"), instance);
+  REQUIRE(problem.has_value());
+  CHECK(*problem ==
+        "query 3: [disconnected] the goal 3 is reachable from the start 4 (a wrong "
+        "answer)");
 }

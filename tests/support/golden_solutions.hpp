@@ -1,4 +1,4 @@
-// The solution file behind spec/golden/1.1/solutions/valid/small.sol.mosb: the exact fronts of view
+// The solution file behind spec/golden/1.3/solutions/valid/small.sol.mosb: the exact fronts of view
 // Small_2 (distance u16, time f32) of the golden instance, worked out by hand from its 7 arcs.
 // Changing it changes the golden file, deliberately.
 #pragma once

@@ -9,7 +9,7 @@
 //               derived, encoding 4); the faults of packed_faults.hpp
 //   references  1.1/references/: valid/references.mosb from golden_references_input(), faults in
 //               its query reference
-//   solutions   1.1/solutions/: valid/small.sol.mosb (golden_solutions.hpp, bound to
+//   solutions   1.3/solutions/: valid/small.sol.mosb (golden_solutions.hpp, bound to
 //               1.0/valid/small.mosb), the faults of solution_faults.hpp
 // packed and solutions read 1.0/valid/small.mosb from DIR.
 // Usage: mosb_make_golden instance|packed|references|solutions DIR (e.g. spec/golden)
@@ -300,7 +300,7 @@ void make_references(const fs::path& golden) {
       level_and_message<ReferenceFault>);
 }
 
-// ---- solutions: 1.1/solutions/ ----
+// ---- solutions: 1.3/solutions/ (1.1/solutions/ keeps the files written before path sums) ----
 
 // The columns of a solution fault: the stage at which it must fail, then the message fragment.
 std::string stage_and_message(const SolutionFault& fault) {
@@ -308,7 +308,7 @@ std::string stage_and_message(const SolutionFault& fault) {
 }
 
 void make_solutions(const fs::path& golden) {
-  const auto root = golden / "1.1" / "solutions";
+  const auto root = golden / "1.3" / "solutions";
   fs::create_directories(root / "valid");
   const auto instance = GraphReader::open(golden / "1.0" / "valid" / "small.mosb");
   write_golden_solutions(instance, root / "valid" / "small.sol.mosb");

@@ -14,7 +14,7 @@ for file in "$source/spec/golden/1.0/valid/small.mosb" "$work/grid.mosb" "$work/
 done
 # Solution files (file kind 2, spec/SOLUTIONS.md) are not instances: the reference reader refuses
 # every golden one by its kind, never crashes on it.
-for file in "$source"/spec/golden/1.1/solutions/valid/*.sol.mosb; do
+for file in "$source"/spec/golden/1.1/solutions/valid/*.sol.mosb "$source"/spec/golden/1.3/solutions/valid/*.sol.mosb; do
   if "$python" "$source/spec/reference/mosb_reader.py" "$file" > "$work/out.txt" 2>&1; then
     echo "reference reader accepted solution file $file" >&2; exit 1
   fi

@@ -1,4 +1,4 @@
-// The invalid golden solution files: each is spec/golden/1.1/solutions/valid/small.sol.mosb with
+// The invalid golden solution files: each is spec/golden/1.3/solutions/valid/small.sol.mosb with
 // one deliberate fault, and the stage ("open" or "payload") whose check must name it.
 #pragma once
 
@@ -30,7 +30,7 @@ inline const SolutionFault kSolutionFaults[] = {
        reseal_section(b, s);
      }},
     {"cost-checksum.sol.mosb", "payload", "section 'time': [checksum] mismatch",
-     [](Bytes& b) { poke<float>(b, find_entry(b, "time"), 0, 9.5f); }},
+     [](Bytes& b) { poke<double>(b, find_entry(b, "time"), 0, 9.5); }},
     {"status-range.sol.mosb", "payload", "query 2: [status] value 9 is not a status",
      [](Bytes& b) {
        const auto s = find_entry(b, "solution_status");
@@ -58,7 +58,22 @@ inline const SolutionFault kSolutionFaults[] = {
     {"negative-time.sol.mosb", "payload", "section 'time': [cost-value] front vector 1",
      [](Bytes& b) {
        const auto s = find_entry(b, "time");
-       poke<float>(b, s, 1, -1.0f);
+       poke<double>(b, s, 1, -1.0);
+       reseal_section(b, s);
+     }},
+    // 1.3: integer path sums stop at 2^53 (they are read as exact doubles).
+    {"sum-above-2-53.sol.mosb", "payload",
+     "section 'distance': [cost-value] front vector 2 is above 2^53",
+     [](Bytes& b) {
+       const auto s = find_entry(b, "distance");
+       poke<std::uint64_t>(b, s, 2, (std::uint64_t{1} << 53) + 1);
+       reseal_section(b, s);
+     }},
+    // 1.3: a failed query carries no front.
+    {"failed-front.sol.mosb", "payload", "query 1: [status] failed with a front of 1 vectors",
+     [](Bytes& b) {
+       const auto s = find_entry(b, "solution_status");
+       poke<std::uint8_t>(b, s, 1, 5);
        reseal_section(b, s);
      }},
 };

@@ -26,6 +26,7 @@ struct ImportArgs {
   std::string directory, table, json_log;  // exactly one
   std::string example_log;                 // with directory: the example solvers' stdout
   std::string match = "position";
+  std::string status_for_empty = "failed";
   InstanceIdBase id_base;
   std::vector<std::size_t> columns;
   std::string solver, solver_version, epsilon = "0";
@@ -65,6 +66,7 @@ int run_import(const ImportArgs& a) {
   options.queries = instance.queries(set);
   options.match = a.match == "endpoints" ? converters::RecordMatch::endpoints
                                          : converters::RecordMatch::position;
+  options.status_for_empty = *parse_query_status(a.status_for_empty);  // checked by CLI11
   std::vector<converters::ImportedResult> results;
   if (!a.directory.empty()) {
     results = converters::import_front_directory(a.directory, options);
@@ -81,7 +83,7 @@ int run_import(const ImportArgs& a) {
     results = converters::parse_solver_json_log(input.text, a.json_log, options);
   }
   writer.set_solver({a.solver, a.solver_version, {}, a.epsilon, {}});
-  for (const auto& r : results) writer.set_query(r.query, r.status, r.costs, r.statistics);
+  converters::set_imported_results(writer, results);
   writer.write(a.output);
   const auto written = SolutionReader::open(a.output);
   if (a.json) {
@@ -275,6 +277,13 @@ Command add_solutions(CLI::App& app) {
                    "JSON records to queries by 'position' (default) or 'endpoints'")
       ->check(CLI::IsMember({"position", "endpoints"}));
   add_instance_id_base_options(import, import_args->id_base, "0");
+  import
+      ->add_option("--status-for-empty", import_args->status_for_empty,
+                   "with --dir: the status of a front file with no vector and no 'status' line: "
+                   "disconnected, timeout or failed (default: failed; with --example-log, a "
+                   "line saying front size 0 makes it disconnected)")
+      ->check(CLI::IsMember({"disconnected", "timeout", "failed"}))
+      ->needs(import->get_option("--dir"));
   import
       ->add_option("--columns", import_args->columns,
                    "0-based positions of the view's values in each input vector (or table "

@@ -14,11 +14,12 @@ namespace mosb::converters {
 
 namespace {
 
-bool has_front_or_answer(QueryStatus status) {
-  return status == QueryStatus::solved || status == QueryStatus::disconnected;
+// Every status but not-run has an input form (spec/SOLUTIONS.md §7); not-run is no input at all.
+bool exported(QueryStatus status) {
+  return status != QueryStatus::not_run;
 }
 
-// Integer objectives hold values below 2^53 (SolutionWriter refuses larger), exact as doubles.
+// Integer path sums are at most 2^53 (verify_payload), exact as doubles.
 std::string value_text(const SolutionReader& r, std::size_t i, std::uint64_t row) {
   const double v = r.value_as_double(i, row);
   if (format::is_float(r.objective_type(i))) return format_real_cost(v);
@@ -37,8 +38,14 @@ std::uint64_t export_front_directory(const SolutionReader& r, const std::filesys
                 out_dir.string() + ": cannot create the directory: " + error.message());
   std::uint64_t files = 0;
   for (std::uint64_t q = 0; q < r.query_count(); ++q) {
-    if (!has_front_or_answer(r.status(q))) continue;
+    const auto status = r.status(q);
+    if (!exported(status)) continue;
+    // A status without a front is stated, so that importing the file gives it back (an empty
+    // file alone would get --status-for-empty).
     std::string text;
+    if (status != QueryStatus::solved) text = "status " + std::string(to_string(status)) + "\n";
+    if (const auto code = r.count_statistic(Statistic::exit_status, q))
+      text += "exit_status " + std::to_string(*code) + "\n";
     const auto begin = r.front_begin(q);
     for (std::uint64_t k = 0; k < r.front_size(q); ++k) {
       for (std::size_t i = 0; i < r.objective_count(); ++i)
@@ -59,10 +66,20 @@ std::uint64_t export_json_log(const SolutionReader& r, const GraphReader& instan
   using Json = nlohmann::ordered_json;
   Json log = Json::array();
   for (std::uint64_t q = 0; q < r.query_count(); ++q) {
-    if (!has_front_or_answer(r.status(q))) continue;
+    const auto status = r.status(q);
+    if (!exported(status)) continue;
     Json record = Json::object();
     record["source"] = std::uint64_t{queries[q].start} + id_base;
     record["target"] = std::uint64_t{queries[q].goal} + id_base;
+    // PPA*'s shape for what it writes (a front, or none: disconnected); a stated status for the
+    // runs that gave no answer.
+    if (status != QueryStatus::solved && status != QueryStatus::disconnected) {
+      record["status"] = std::string(to_string(status));
+      if (const auto code = r.count_statistic(Statistic::exit_status, q))
+        record["exit_status"] = *code;
+      log.push_back(std::move(record));
+      continue;
+    }
     if (const auto seconds = r.runtime_seconds(q)) record["total_runtime(ms)"] = *seconds * 1000.0;
     Json front = Json::array();
     const auto begin = r.front_begin(q);

@@ -104,20 +104,154 @@ std::vector<ImportedResult> by_query(std::vector<ImportedResult> results,
   return sorted;
 }
 
+// Applies a stated status to `result`, whose vectors (if any) are already read, or why not.
+std::string stated_front_problem(const ImportedResult& result) {
+  if (result.status != QueryStatus::solved && !result.costs.empty())
+    return "status " + std::string(to_string(result.status)) +
+           " with vectors (only a solved query has a front)";
+  if (result.statistics.exit_status && result.status != QueryStatus::failed)
+    return "an exit status for a " + std::string(to_string(result.status)) +
+           " query (only failed ones carry it)";
+  return {};
+}
+
+// An exit status as an input writes it: the code, or 128 + N for signal N.
+std::string exit_status_problem(std::string_view token, std::optional<std::uint64_t>& out) {
+  const auto code = text::to_u64(token, kAbsentCount - 1);
+  if (!code) return "expected an exit status (0 .. 2^64-2), found " + quoted(token);
+  out = *code;
+  return {};
+}
+
+// A table row's `status` and `exit_status` fields (either column may be absent): the first row of
+// a query sets its status, later rows must agree, and only a solved query has more than one row.
+void table_row_status(const std::string& name, std::uint64_t line,
+                      const std::vector<text::Token>& fields, std::size_t status_column,
+                      std::size_t exit_column, bool first_row, ImportedResult& result) {
+  QueryStatus status = QueryStatus::solved;
+  if (status_column != SIZE_MAX && !fields[status_column].text.empty())
+    if (auto problem = stated_status_problem(fields[status_column].text, status))
+      fail(name, line, fields[status_column].column, *problem);
+  if (first_row) {
+    result.status = status;
+    result.status_stated = status_column != SIZE_MAX;
+  } else if (status != result.status || status != QueryStatus::solved) {
+    fail(name, line, status_column == SIZE_MAX ? 1 : fields[status_column].column,
+         "a second row for query " + std::to_string(result.query) + " with status " +
+             std::string(to_string(status)) + " (an earlier row says " +
+             std::string(to_string(result.status)) + "; only a solved query has several rows)");
+  }
+  if (exit_column != SIZE_MAX && !fields[exit_column].text.empty()) {
+    if (auto problem = exit_status_problem(fields[exit_column].text, result.statistics.exit_status);
+        !problem.empty())
+      fail(name, line, fields[exit_column].column, problem);
+    if (status != QueryStatus::failed)
+      fail(name, line, fields[exit_column].column,
+           "an exit status for a " + std::string(to_string(status)) +
+               " query (only failed ones carry it)");
+  }
+}
+
+// A JSON record's optional "status" and "exit_status" into `result`.
+template <class Json, class At>
+void json_record_status(const Json& record, const std::string& record_at, const At& at,
+                        ImportedResult& result) {
+  if (const auto status = record.find("status"); status != record.end()) {
+    if (!status->is_string())
+      throw at(record_at + "/status", "expected a status word, found " + status->dump());
+    if (auto problem = stated_status_problem(status->template get<std::string>(), result.status))
+      throw at(record_at + "/status", *problem);
+    result.status_stated = true;
+  }
+  if (const auto code = record.find("exit_status"); code != record.end()) {
+    if (!code->is_number_unsigned() || code->template get<std::uint64_t>() == kAbsentCount)
+      throw at(record_at + "/exit_status", "expected an exit status, found " + code->dump());
+    result.statistics.exit_status = code->template get<std::uint64_t>();
+  }
+}
+
+// A JSON record's finish_info.solutions[].cost_until_now into `result` (its status already read:
+// a record stating a status without a front needs no finish_info).
+template <class Json, class At>
+void json_record_front(const Json& record, const std::string& record_at, const std::string& name,
+                       const SolutionImportOptions& o, const At& at, ImportedResult& result) {
+  const auto info = record.find("finish_info");
+  const bool has_info = info != record.end() && info->is_object();
+  const Json* solutions = nullptr;
+  if (has_info)
+    if (const auto found = info->find("solutions"); found != info->end() && found->is_array())
+      solutions = &*found;
+  // A record stating a status without a front needs no finish_info.
+  if (!result.status_stated || result.status == QueryStatus::solved) {
+    if (!has_info) throw at(record_at, "no 'finish_info' object");
+    if (!solutions) throw at(record_at + "/finish_info", "no 'solutions' array");
+  }
+  const std::size_t solution_count = solutions ? solutions->size() : 0;
+  std::vector<double> row;
+  for (std::size_t k = 0; k < solution_count; ++k) {
+    const std::string solution_at = record_at + "/finish_info/solutions/" + std::to_string(k);
+    const Json& solution = (*solutions)[k];
+    const auto cost = solution.is_object() ? solution.find("cost_until_now") : solution.end();
+    if (!solution.is_object() || cost == solution.end() || !cost->is_array())
+      throw at(solution_at, "no 'cost_until_now' array");
+    row.clear();
+    for (std::size_t i = 0; i < cost->size(); ++i) {
+      const Json& value = (*cost)[i];
+      const std::string value_at = solution_at + "/cost_until_now/" + std::to_string(i);
+      if (!value.is_number()) throw at(value_at, "expected a cost, found " + value.dump());
+      const double v = value.template get<double>();
+      if (!std::isfinite(v)) throw at(value_at, "non-finite cost " + value.dump());
+      if (v < 0) throw at(value_at, "negative cost " + value.dump());
+      row.push_back(v);
+    }
+    if (const auto problem = width_problem(row.size(), o); !problem.empty())
+      throw at(solution_at + "/cost_until_now", problem);
+    append_picked(row, o, result.costs);
+    result.vector_sources.push_back(name + ": " + solution_at + "/cost_until_now");
+  }
+}
+
 }  // namespace
+
+std::optional<std::string> stated_status_problem(std::string_view word, QueryStatus& status) {
+  const auto parsed = parse_query_status(word);
+  if (!parsed || *parsed == QueryStatus::not_run)
+    return "unknown status " + quoted(word) +
+           " (solved, timeout, memory-limit, disconnected, failed)";
+  status = *parsed;
+  return std::nullopt;
+}
 
 ImportedResult parse_front_text(std::string_view text, const std::string& name, std::uint64_t query,
                                 const SolutionImportOptions& o) {
   check_options(o);
   ImportedResult result;
   result.query = query;
+  result.source = name;
   text::LineScanner lines(text);
   std::string_view line;
   std::vector<double> row;
+  std::vector<text::Token> words;
   while (lines.next(line)) {
     std::size_t begin = 0, end = line.size();
     while (begin < end && (line[begin] == ' ' || line[begin] == '\t')) ++begin;
     if (begin == end || line[begin] == '#') continue;
+    if (line.substr(begin).starts_with("status") || line.substr(begin).starts_with("exit_status")) {
+      text::tokenize(line, words);
+      if (words.size() != 2 || (words[0].text != "status" && words[0].text != "exit_status"))
+        fail(name, lines.number(), begin + 1,
+             "expected 'status WORD' or 'exit_status N', found " + quoted(line));
+      std::string problem;
+      if (words[0].text == "status") {
+        if (result.status_stated) fail(name, lines.number(), begin + 1, "a second status line");
+        if (auto p = stated_status_problem(words[1].text, result.status)) problem = *p;
+        result.status_stated = true;
+      } else {
+        problem = exit_status_problem(words[1].text, result.statistics.exit_status);
+      }
+      if (!problem.empty()) fail(name, lines.number(), words[1].column, problem);
+      continue;
+    }
     if (line[begin] == '[') {
       if (line[end - 1] != ']') fail(name, lines.number(), end + 1, "'[' without a closing ']'");
       ++begin;
@@ -138,8 +272,11 @@ ImportedResult parse_front_text(std::string_view text, const std::string& name, 
     if (const auto problem = width_problem(row.size(), o); !problem.empty())
       fail(name, lines.number(), begin + 1, problem);
     append_picked(row, o, result.costs);
+    result.vector_sources.push_back(name + ":" + std::to_string(lines.number()));
   }
-  if (result.costs.empty()) result.status = QueryStatus::disconnected;
+  if (!result.status_stated && result.costs.empty()) result.status = o.status_for_empty;
+  if (const auto problem = stated_front_problem(result); !problem.empty())
+    throw Error(ErrorCode::invalid_argument, name + ": " + problem);
   return result;
 }
 
@@ -212,6 +349,9 @@ void apply_example_run_log(std::string_view text, const std::string& name,
                std::to_string(query + o.id_base) + ".txt)");
     auto& result = results[next++];
     const auto size = text::to_u64(fields[2].text);
+    // The solver finished the query and reported an empty front: the proof the file alone lacks.
+    if (!result.status_stated && result.costs.empty() && size == 0u)
+      result.status = QueryStatus::disconnected;
     const auto vectors = result.costs.size() / o.objective_count;
     if (!size || *size != vectors)
       fail(name, lines.number(), fields[2].column,
@@ -225,8 +365,10 @@ void apply_example_run_log(std::string_view text, const std::string& name,
     if (!expansions)
       fail(name, lines.number(), fields[4].column,
            "expected an expansion count, found " + quoted(fields[4].text));
-    result.statistics.runtime_seconds = *seconds;
-    result.statistics.expanded = *expansions;
+    if (result.status == QueryStatus::solved || result.status == QueryStatus::disconnected) {
+      result.statistics.runtime_seconds = *seconds;
+      result.statistics.expanded = *expansions;
+    }
   }
   if (next < results.size())
     throw Error(ErrorCode::invalid_argument,
@@ -270,9 +412,12 @@ std::vector<ImportedResult> parse_solution_table(std::string_view text, const st
   if (line.find('\t') != std::string_view::npos) separator = '\t';
   const auto header = split(line);
   const std::uint64_t header_line = lines.number();
-  std::size_t query_column = SIZE_MAX;
-  for (std::size_t k = 0; k < header.size(); ++k)
+  std::size_t query_column = SIZE_MAX, status_column = SIZE_MAX, exit_column = SIZE_MAX;
+  for (std::size_t k = 0; k < header.size(); ++k) {
     if (header[k].text == "query") query_column = k;
+    if (header[k].text == "status") status_column = k;
+    if (header[k].text == "exit_status") exit_column = k;
+  }
   if (query_column == SIZE_MAX) fail(name, header_line, 1, "no 'query' column in the header");
   std::vector<std::size_t> cost_columns;
   if (!o.columns.empty()) {
@@ -308,14 +453,26 @@ std::vector<ImportedResult> parse_solution_table(std::string_view text, const st
     const auto& qf = fields[query_column];
     if (const auto problem = query_problem(qf.text, o, query); !problem.empty())
       fail(name, lines.number(), qf.column, problem);
+    const bool first_row = !results.contains(query);
     auto& result = results[query];
     result.query = query;
+    result.source = name + ":" + std::to_string(lines.number());
+    table_row_status(name, lines.number(), fields, status_column, exit_column, first_row, result);
+    if (result.status != QueryStatus::solved) {
+      for (auto c : cost_columns)
+        if (!fields[c].text.empty())
+          fail(name, lines.number(), fields[c].column,
+               "a cost for a " + std::string(to_string(result.status)) +
+                   " query (only a solved query has a front; leave the field empty)");
+      continue;
+    }
     for (auto c : cost_columns) {
       double value = 0;
       if (const auto problem = cost_problem(fields[c].text, value); !problem.empty())
         fail(name, lines.number(), fields[c].column, problem);
       result.costs.push_back(value);
     }
+    result.vector_sources.push_back(name + ":" + std::to_string(lines.number()));
   }
   std::vector<ImportedResult> sorted;
   sorted.reserve(results.size());
@@ -410,34 +567,17 @@ std::vector<ImportedResult> parse_solver_json_log(std::string_view text, const s
       result.query = first->second;
       by_endpoints.erase(first);
     }
-    const auto info = record.find("finish_info");
-    if (info == record.end() || !info->is_object()) throw at(record_at, "no 'finish_info' object");
-    const auto solutions = info->find("solutions");
-    if (solutions == info->end() || !solutions->is_array())
-      throw at(record_at + "/finish_info", "no 'solutions' array");
-    std::vector<double> row;
-    for (std::size_t k = 0; k < solutions->size(); ++k) {
-      const std::string solution_at = record_at + "/finish_info/solutions/" + std::to_string(k);
-      const Json& solution = (*solutions)[k];
-      const auto cost = solution.is_object() ? solution.find("cost_until_now") : solution.end();
-      if (!solution.is_object() || cost == solution.end() || !cost->is_array())
-        throw at(solution_at, "no 'cost_until_now' array");
-      row.clear();
-      for (std::size_t i = 0; i < cost->size(); ++i) {
-        const Json& value = (*cost)[i];
-        const std::string value_at = solution_at + "/cost_until_now/" + std::to_string(i);
-        if (!value.is_number()) throw at(value_at, "expected a cost, found " + value.dump());
-        const double v = value.get<double>();
-        if (!std::isfinite(v)) throw at(value_at, "non-finite cost " + value.dump());
-        if (v < 0) throw at(value_at, "negative cost " + value.dump());
-        row.push_back(v);
-      }
-      if (const auto problem = width_problem(row.size(), o); !problem.empty())
-        throw at(solution_at + "/cost_until_now", problem);
-      append_picked(row, o, result.costs);
-    }
-    if (result.costs.empty()) result.status = QueryStatus::disconnected;
-    if (const auto runtime = record.find("total_runtime(ms)"); runtime != record.end()) {
+    result.source = name + ": " + record_at;
+    json_record_status(record, record_at, at, result);
+    json_record_front(record, record_at, name, o, at, result);
+    if (!result.status_stated && result.costs.empty()) result.status = QueryStatus::disconnected;
+    if (const auto problem = stated_front_problem(result); !problem.empty())
+      throw at(record_at, problem);
+    // An interrupted or failed run carries no runtime (SOLUTIONS.md §4): the log's is dropped.
+    const bool keeps_runtime =
+        result.status == QueryStatus::solved || result.status == QueryStatus::disconnected;
+    if (const auto runtime = record.find("total_runtime(ms)");
+        keeps_runtime && runtime != record.end()) {
       const std::string runtime_at = record_at + "/total_runtime(ms)";
       if (!runtime->is_number())
         throw at(runtime_at, "expected milliseconds, found " + runtime->dump());
@@ -449,6 +589,24 @@ std::vector<ImportedResult> parse_solver_json_log(std::string_view text, const s
     where.push_back(name + ": " + record_at);
   }
   return by_query(std::move(results), std::move(where));
+}
+
+void set_imported_results(SolutionWriter& writer, std::span<const ImportedResult> results) {
+  const std::size_t d = writer.objective_count();
+  for (const auto& r : results) {
+    for (std::size_t k = 0; k < r.costs.size(); ++k)
+      if (const auto problem = writer.cost_problem(k % d, r.costs[k]))
+        throw Error(ErrorCode::invalid_argument,
+                    (k / d < r.vector_sources.size() ? r.vector_sources[k / d] : r.source) +
+                        ": query " + std::to_string(r.query) + ", objective '" +
+                        writer.objective_names()[k % d] + "': " + *problem);
+    try {
+      writer.set_query(r.query, r.status, r.costs, r.statistics);
+    } catch (const Error& e) {
+      if (r.source.empty()) throw;
+      throw Error(e.code(), r.source + ": " + e.what());
+    }
+  }
 }
 
 }  // namespace mosb::converters

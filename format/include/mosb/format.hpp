@@ -1,4 +1,4 @@
-// The on-disk layout of mosb format 1.1: the one source of truth that spec/FORMAT.md describes.
+// The on-disk layout of mosb format 1.3: the one source of truth that spec/FORMAT.md describes.
 // Everything here is plain data with fixed sizes; every multi-byte field is little-endian.
 #pragma once
 
@@ -18,7 +18,10 @@ static_assert(std::endian::native == std::endian::little,
 inline constexpr std::uint16_t kVersionMajor = 1;
 // The newest minor this code reads. A writer stamps a file with the lowest minor whose readers can
 // read it (spec/FORMAT.md §2): instance files using only 1.0 features still say 1.0.
-inline constexpr std::uint16_t kVersionMinor = 2;
+inline constexpr std::uint16_t kVersionMinor = 3;
+// Solution files since 1.3 store path sums (u64 / i64 / f64 front_cost columns, path_sum_type);
+// those of 1.1 and 1.2 stored each objective in its arc cost type (spec/SOLUTIONS.md §3).
+inline constexpr std::uint16_t kSolutionSumsMinor = 3;
 
 // PNG-style: a high-bit byte catches 7-bit transfers, CR LF catches CRLF->LF conversion,
 // the lone LF catches LF->CRLF conversion, 0x1A stops `type` on DOS.
@@ -116,7 +119,7 @@ enum class SectionKind : std::uint16_t {
   // Since 1.1, in solution files (file kind 2, spec/SOLUTIONS.md):
   solution_status = 11,      // u8 x 1, Q rows: the QueryStatus of each query
   front_offsets = 12,        // u64 x 1, Q+1 rows: first front vector of each query
-  front_cost = 13,           // unsigned or float x 1, F rows: one view objective, named by it
+  front_cost = 13,           // path_sum_type x 1 (1.3; 1.1: the arc type), F rows: one objective
   solution_statistics = 14,  // f64 or u64 x 1, Q rows: one statistic, named by it
   path_offsets = 15,         // u64 x 1, F+1 rows: first path vertex of each front vector
   path_vertices = 16,        // u32 x 1: the vertices of every path, concatenated
@@ -236,6 +239,13 @@ constexpr bool is_float(ElementType t) {
 constexpr bool is_unsigned(ElementType t) {
   return t == ElementType::u8 || t == ElementType::u16 || t == ElementType::u32 ||
          t == ElementType::u64;
+}
+// The type a solution file (1.3) stores a path's cost sum in, for arc costs of type t: a sum of
+// u16 arcs does not fit u16, so the widest type of the same family (spec/SOLUTIONS.md §3).
+constexpr ElementType path_sum_type(ElementType t) {
+  if (is_unsigned(t)) return ElementType::u64;
+  if (is_float(t)) return ElementType::f64;
+  return ElementType::i64;
 }
 
 std::optional<ElementType> element_type_from(std::uint8_t raw);

@@ -18,10 +18,10 @@ using format::SectionKind;
 
 namespace {
 
-constexpr std::string_view kStatusNames[] = {"solved", "timeout", "memory-limit", "disconnected",
-                                             "not-run"};
+constexpr std::string_view kStatusNames[] = {"solved",       "timeout", "memory-limit",
+                                             "disconnected", "not-run", "failed"};
 constexpr std::string_view kStatisticNames[] = {"runtime_seconds", "expanded", "generated",
-                                                "peak_memory_bytes"};
+                                                "peak_memory_bytes", "exit_status"};
 // The section kinds of a solution file (SOLUTIONS.md §3).
 constexpr SectionKind kSolutionKinds[] = {
     SectionKind::metadata,     SectionKind::solution_status,     SectionKind::front_offsets,
@@ -38,10 +38,23 @@ bool is_digest(std::string_view text) {
 bool has_front(QueryStatus s) {
   return s == QueryStatus::solved;
 }
-// A status that may carry statistics: a solved query, and a disconnected one (the search ran to
-// completion and proved it).
-bool has_statistics(QueryStatus s) {
+// Which statistics a status may carry (SOLUTIONS.md §4): the search counters on a solved query
+// and a disconnected one (the search ran to completion and proved it); the exit status on a failed
+// one; nothing on the others.
+bool statistic_allowed(QueryStatus s, Statistic statistic) {
+  if (statistic == Statistic::exit_status) return s == QueryStatus::failed;
   return s == QueryStatus::solved || s == QueryStatus::disconnected;
+}
+
+// The first statistic `stats` holds that `status` may not carry, or nullopt.
+std::optional<Statistic> forbidden_statistic(QueryStatus status, const QueryStatistics& stats) {
+  const bool present[] = {stats.runtime_seconds.has_value(), stats.expanded.has_value(),
+                          stats.generated.has_value(), stats.peak_memory_bytes.has_value(),
+                          stats.exit_status.has_value()};
+  for (const auto statistic : kStatistics)
+    if (present[static_cast<std::size_t>(statistic)] && !statistic_allowed(status, statistic))
+      return statistic;
+  return std::nullopt;
 }
 
 }  // namespace
@@ -114,7 +127,14 @@ void SolutionReader::validate() {
   path_offsets_index_ = table.single(SectionKind::path_offsets, ElementType::u64);
   path_vertices_index_ = table.single(SectionKind::path_vertices, ElementType::u32);
   const auto costs = table.all(SectionKind::front_cost);
-  for (auto i : costs) table.expect_cost_column(sections_[i]);
+  for (auto i : costs) {
+    table.expect_cost_column(sections_[i]);
+    const auto type = sections_[i].type;
+    if (stores_path_sums() && type != format::path_sum_type(type))
+      fail("section '" + sections_[i].name + "': a front_cost column of format 1." +
+           std::to_string(format::kSolutionSumsMinor) + " holds path sums (u64 or f64), not " +
+           std::string(format::to_string(type)));
+  }
   cost_indices_.assign(costs.begin(), costs.end());
   for (auto i : table.all(SectionKind::solution_statistics)) {
     const auto& s = sections_[i];
@@ -193,10 +213,13 @@ void SolutionReader::check_bound_to(const GraphReader& instance) const {
   const auto view = instance.find_view(view_);
   if (!view)
     fail(ErrorCode::invalid_argument, "view '" + view_ + "' is not in " + instance.display_name());
+  // Format 1.3 stores path sums; 1.1 and 1.2 stored the arc cost type itself.
   bool same = view->objectives.size() == objective_count();
-  for (std::size_t i = 0; same && i < objective_count(); ++i)
-    same = instance.objective(view->objectives[i]).name == objective_name(i) &&
-           instance.objective(view->objectives[i]).type == objective_type(i);
+  for (std::size_t i = 0; same && i < objective_count(); ++i) {
+    const auto& arc = instance.objective(view->objectives[i]);
+    same = arc.name == objective_name(i) &&
+           (stores_path_sums() ? format::path_sum_type(arc.type) : arc.type) == objective_type(i);
+  }
   if (!same)
     fail(ErrorCode::invalid_argument, "front_cost columns differ from the objectives of view '" +
                                           view_ + "' in " + instance.display_name());
@@ -291,7 +314,8 @@ std::optional<std::uint64_t> SolutionReader::count_statistic(Statistic s, std::u
 QueryStatistics SolutionReader::statistics(std::uint64_t q) const {
   return {runtime_seconds(q), count_statistic(Statistic::expanded, q),
           count_statistic(Statistic::generated, q),
-          count_statistic(Statistic::peak_memory_bytes, q)};
+          count_statistic(Statistic::peak_memory_bytes, q),
+          count_statistic(Statistic::exit_status, q)};
 }
 
 std::span<const std::uint32_t> SolutionReader::path(std::uint64_t row) const {
@@ -329,23 +353,28 @@ std::optional<std::string> SolutionReader::verify_payload() const {
     if (!has_front(status) && size != 0)
       return label + "[status] " + std::string(to_string(status)) + " with a front of " +
              std::to_string(size) + " vectors (only solved queries carry a front)";
-    if (!has_statistics(status)) {
-      const auto stats = statistics(q);
-      if (stats.runtime_seconds || stats.expanded || stats.generated || stats.peak_memory_bytes)
-        return label + "[statistics] " + std::string(to_string(status)) +
-               " carries statistics (SOLUTIONS.md §4)";
-    }
+    if (const auto statistic = forbidden_statistic(status, statistics(q)))
+      return label + "[statistics] " + std::string(to_string(status)) + " carries " +
+             (*statistic == Statistic::exit_status ? "exit_status" : "statistics") +
+             " (SOLUTIONS.md §4)";
     if (auto runtime = runtime_seconds(q); runtime && !(std::isfinite(*runtime) && *runtime >= 0))
       return label + "[statistics] runtime_seconds is not finite and >= 0";
   }
   for (std::size_t i = 0; i < objective_count(); ++i) {
     auto problem = visit_column(i, [&](auto column) -> std::optional<std::string> {
       using T = typename decltype(column)::value_type;
-      if constexpr (std::is_floating_point_v<T>)
+      if constexpr (std::is_floating_point_v<T>) {
         for (std::uint64_t row = 0; row < column.size(); ++row)
           if (!(std::isfinite(column[row]) && column[row] >= 0))
             return "section '" + objective_name(i) + "': [cost-value] front vector " +
                    std::to_string(row) + " is not finite and >= 0";
+      } else if constexpr (sizeof(T) == 8) {
+        // Above 2^53 a sum is no exact double, and verify, eval and export read sums as doubles.
+        for (std::uint64_t row = 0; row < column.size(); ++row)
+          if (static_cast<std::uint64_t>(column[row]) > kMaxIntegerSum)
+            return "section '" + objective_name(i) + "': [cost-value] front vector " +
+                   std::to_string(row) + " is above 2^53";
+      }
       return std::nullopt;
     });
     if (problem) return problem;
@@ -429,6 +458,18 @@ const std::vector<std::string>& SolutionWriter::objective_names() const {
   return state_->objective_names;
 }
 
+std::optional<std::string> SolutionWriter::cost_problem(std::size_t objective, double v) const {
+  const auto type = state_->objective_types.at(objective);
+  if (!std::isfinite(v) || v < 0) return "cost is negative or not finite";
+  if (format::is_float(type)) return std::nullopt;  // an f64 sum holds every double
+  if (v != std::floor(v))
+    return "cost is not an integer (the objective's arc costs are " +
+           std::string(format::to_string(type)) + ")";
+  if (v > static_cast<double>(kMaxIntegerSum))
+    return "path sum above 2^53, the largest integer a solution file stores exactly";
+  return std::nullopt;
+}
+
 void SolutionWriter::set_query(std::uint64_t q, QueryStatus status, std::span<const double> costs,
                                const QueryStatistics& statistics,
                                std::span<const std::vector<std::uint32_t>> paths) {
@@ -448,13 +489,15 @@ void SolutionWriter::set_query(std::uint64_t q, QueryStatus status, std::span<co
   if (status == QueryStatus::solved && vectors == 0) refuse("solved with an empty front");
   if (!has_front(status) && vectors != 0)
     refuse(std::string(to_string(status)) + " with a front (only solved queries carry one)");
-  if (!has_statistics(status) && (statistics.runtime_seconds || statistics.expanded ||
-                                  statistics.generated || statistics.peak_memory_bytes))
-    refuse(std::string(to_string(status)) + " carries no statistics");
+  if (const auto statistic = forbidden_statistic(status, statistics))
+    refuse(std::string(to_string(status)) + (*statistic == Statistic::exit_status
+                                                 ? " carries no exit_status"
+                                                 : " carries no statistics"));
   if (statistics.runtime_seconds &&
       !(std::isfinite(*statistics.runtime_seconds) && *statistics.runtime_seconds >= 0))
     refuse("runtime is not finite and >= 0");
-  for (auto count : {statistics.expanded, statistics.generated, statistics.peak_memory_bytes})
+  for (auto count : {statistics.expanded, statistics.generated, statistics.peak_memory_bytes,
+                     statistics.exit_status})
     if (count == kAbsentCount) refuse("a statistic equals the reserved value 2^64-1");
   if (!paths.empty() && paths.size() != vectors)
     refuse(std::to_string(paths.size()) + " paths for " + std::to_string(vectors) + " vectors");
@@ -463,24 +506,10 @@ void SolutionWriter::set_query(std::uint64_t q, QueryStatus status, std::span<co
       if (v >= st.vertex_count)
         refuse("path vertex " + std::to_string(v) + " is not below the vertex count " +
                std::to_string(st.vertex_count));
-  for (std::size_t k = 0; k < costs.size(); ++k) {
-    const double v = costs[k];
-    const auto type = st.objective_types[k % d];
-    const std::string where =
-        "vector " + std::to_string(k / d) + ", objective '" + st.objective_names[k % d] + "': ";
-    if (!std::isfinite(v) || v < 0) refuse(where + "cost is negative or not finite");
-    if (format::is_float(type)) {
-      if (type == ElementType::f32 && static_cast<double>(static_cast<float>(v)) != v)
-        refuse(where + "cost does not fit the objective's type f32 exactly");
-      continue;
-    }
-    const double max = type == ElementType::u64
-                           ? 9007199254740992.0  // 2^53: above it a double is no exact integer
-                           : std::ldexp(1.0, static_cast<int>(8 * format::element_size(type))) - 1;
-    if (v != std::floor(v) || v > max)
-      refuse(where + "cost does not fit the objective's type " +
-             std::string(format::to_string(type)) + " exactly");
-  }
+  for (std::size_t k = 0; k < costs.size(); ++k)
+    if (auto problem = cost_problem(k % d, costs[k]))
+      refuse("vector " + std::to_string(k / d) + ", objective '" + st.objective_names[k % d] +
+             "': " + *problem);
   auto& r = st.results[q];
   r.status = status;
   r.costs.assign(costs.begin(), costs.end());
@@ -492,7 +521,7 @@ void SolutionWriter::write(const std::filesystem::path& target) const {
   const auto& st = *state_;
   const std::size_t d = st.objective_names.size();
   bool any_paths = false, all_paths = true;
-  bool stat_present[4] = {};
+  bool stat_present[kStatisticCount] = {};
   for (const auto& r : st.results) {
     if (!r.costs.empty()) {
       if (r.paths.empty())
@@ -504,6 +533,7 @@ void SolutionWriter::write(const std::filesystem::path& target) const {
     stat_present[1] |= r.statistics.expanded.has_value();
     stat_present[2] |= r.statistics.generated.has_value();
     stat_present[3] |= r.statistics.peak_memory_bytes.has_value();
+    stat_present[4] |= r.statistics.exit_status.has_value();
   }
   if (any_paths && !all_paths)
     throw Error(ErrorCode::invalid_argument,
@@ -523,7 +553,7 @@ void SolutionWriter::write(const std::filesystem::path& target) const {
 
   FileWriter out(target);
   out.set_file_kind(format::FileKind::solutions);
-  out.require_minor(1);
+  out.require_minor(format::kSolutionSumsMinor);
   const auto text = meta.serialize();
   out.add_section<std::uint8_t>(
       SectionKind::metadata, "metadata", 1,
@@ -540,7 +570,7 @@ void SolutionWriter::write(const std::filesystem::path& target) const {
   out.add_section<std::uint64_t>(SectionKind::front_offsets, "front_offsets", 1,
                                  std::span<const std::uint64_t>(offsets));
   for (std::size_t i = 0; i < d; ++i) {
-    format::visit_element_type(st.objective_types[i], [&](auto tag) {
+    format::visit_element_type(format::path_sum_type(st.objective_types[i]), [&](auto tag) {
       using T = typename decltype(tag)::type;
       std::vector<T> column;
       column.reserve(offsets.back());
@@ -551,7 +581,7 @@ void SolutionWriter::write(const std::filesystem::path& target) const {
                          std::span<const T>(column));
     });
   }
-  for (std::size_t s = 0; s < 4; ++s) {
+  for (std::size_t s = 0; s < kStatisticCount; ++s) {
     if (!stat_present[s]) continue;
     const auto name = kStatisticNames[s];
     if (s == 0) {
@@ -564,8 +594,10 @@ void SolutionWriter::write(const std::filesystem::path& target) const {
     } else {
       std::vector<std::uint64_t> column;
       for (const auto& r : st.results) {
-        const auto& v = s == 1 ? r.statistics.expanded
-                               : (s == 2 ? r.statistics.generated : r.statistics.peak_memory_bytes);
+        const std::optional<std::uint64_t>* counts[] = {
+            nullptr, &r.statistics.expanded, &r.statistics.generated,
+            &r.statistics.peak_memory_bytes, &r.statistics.exit_status};
+        const auto& v = *counts[s];
         column.push_back(v.value_or(kAbsentCount));
       }
       out.add_section<std::uint64_t>(SectionKind::solution_statistics, name, 1,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <map>
 #include <numeric>
 #include <string>
 #include <string_view>
@@ -72,6 +73,57 @@ std::optional<std::string> dominance_problem(const std::vector<std::vector<doubl
   return std::nullopt;
 }
 
+// A path's cost so far: integer objectives summed exactly in u64 (a file's integer sums are at most
+// 2^53, so a sum that overflows u64 cannot match), float objectives in f64 (SOLUTIONS.md §5).
+struct PartialSum {
+  std::vector<std::uint64_t> integer;  // one per objective; 0 for a float objective
+  std::vector<double> real;            // one per objective; 0 for an integer objective
+  bool overflow = false;               // some integer sum passed 2^64 - 1
+  auto operator<=>(const PartialSum&) const = default;
+};
+
+PartialSum extended(PartialSum sum, const GraphReader& g, const View& view,
+                    const std::vector<bool>& is_float, std::uint64_t arc) {
+  for (std::size_t i = 0; i < is_float.size(); ++i) {
+    if (is_float[i]) {
+      sum.real[i] += g.cost_as<double>(view.objectives[i])[arc];
+    } else {
+      const auto cost = g.cost_as<std::uint64_t>(view.objectives[i])[arc];
+      sum.overflow = sum.overflow || __builtin_add_overflow(sum.integer[i], cost, &sum.integer[i]);
+    }
+  }
+  return sum;
+}
+
+// Whether the arcs' sum is the stored vector: exactly for integers, within 1e-9 per arc (relative)
+// for floats.
+bool sum_matches(const PartialSum& sum, const std::vector<double>& vector,
+                 const std::vector<bool>& is_float, std::size_t path_size) {
+  if (sum.overflow) return false;
+  for (std::size_t i = 0; i < is_float.size(); ++i) {
+    if (!is_float[i]) {
+      // The stored value is an integer of at most 2^53 (verify_payload), exact as a double.
+      if (static_cast<double>(sum.integer[i]) != vector[i] ||
+          sum.integer[i] != static_cast<std::uint64_t>(vector[i]))
+        return false;
+      continue;
+    }
+    const auto tolerance =
+        1e-9 * static_cast<double>(path_size) * std::max(1.0, std::abs(vector[i]));
+    if (std::abs(sum.real[i] - vector[i]) > tolerance) return false;
+  }
+  return true;
+}
+
+std::string sum_text(const PartialSum& sum, const std::vector<bool>& is_float) {
+  if (sum.overflow) return "more than 2^64 - 1";
+  std::string text = "(";
+  for (std::size_t i = 0; i < is_float.size(); ++i)
+    text +=
+        (i ? ", " : "") + (is_float[i] ? number_text(sum.real[i]) : std::to_string(sum.integer[i]));
+  return text + ")";
+}
+
 // [path] and [path-cost]: the path runs from the query's start to its goal along arcs, and some
 // choice among parallel arcs sums to the stored vector (SOLUTIONS.md §5).
 std::optional<std::string> path_problem(const SolutionReader& s, const GraphReader& g,
@@ -86,18 +138,16 @@ std::optional<std::string> path_problem(const SolutionReader& s, const GraphRead
     return where + "[path] runs from " + std::to_string(path.front()) + " to " +
            std::to_string(path.back()) + ", the query from " + std::to_string(query.start) +
            " to " + std::to_string(query.goal);
+  std::vector<bool> is_float(d);
+  for (std::size_t i = 0; i < d; ++i) is_float[i] = format::is_float(s.objective_type(i));
   // Partial sums reachable by some choice among parallel arcs.
-  std::vector<std::vector<double>> sums{std::vector<double>(d, 0.0)};
+  std::vector<PartialSum> sums{
+      PartialSum{std::vector<std::uint64_t>(d, 0), std::vector<double>(d, 0.0), false}};
   for (std::size_t step = 0; step + 1 < path.size(); ++step) {
-    std::vector<std::vector<double>> next;
+    std::vector<PartialSum> next;
     for (auto arc = offsets[path[step]]; arc < offsets[path[step] + 1]; ++arc) {
       if (targets[arc] != path[step + 1]) continue;
-      for (const auto& sum : sums) {
-        auto extended = sum;
-        for (std::size_t i = 0; i < d; ++i)
-          extended[i] += g.cost_as<double>(view.objectives[i])[arc];
-        next.push_back(std::move(extended));
-      }
+      for (const auto& sum : sums) next.push_back(extended(sum, g, view, is_float, arc));
     }
     if (next.empty())
       return where + "[path] no arc from " + std::to_string(path[step]) + " to " +
@@ -107,19 +157,46 @@ std::optional<std::string> path_problem(const SolutionReader& s, const GraphRead
     sums = std::move(next);
   }
   const bool matches = std::any_of(sums.begin(), sums.end(), [&](const auto& sum) {
-    for (std::size_t i = 0; i < d; ++i) {
-      const auto tolerance =
-          format::is_float(s.objective_type(i))
-              ? 1e-9 * static_cast<double>(path.size()) * std::max(1.0, std::abs(vector[i]))
-              : 0.0;
-      if (std::abs(sum[i] - vector[i]) > tolerance) return false;
-    }
-    return true;
+    return sum_matches(sum, vector, is_float, path.size());
   });
   if (!matches)
-    return where + "[path-cost] the arcs sum to " + vector_text(sums.front()) +
+    return where + "[path-cost] the arcs sum to " + sum_text(sums.front(), is_float) +
            (sums.size() > 1 ? " (or another parallel-arc choice)" : "") +
            ", not to the stored vector";
+  return std::nullopt;
+}
+
+// [disconnected]: every query the file calls disconnected must have its goal unreachable from its
+// start. One breadth-first search over the forward CSR per distinct start, O(n + m) each.
+std::optional<std::string> disconnected_problem(const SolutionReader& s,
+                                                std::span<const Query> queries,
+                                                std::span<const std::uint64_t> offsets,
+                                                std::span<const std::uint32_t> targets,
+                                                std::uint64_t vertex_count) {
+  std::map<std::uint32_t, std::vector<std::uint64_t>> by_start;  // ordered: reports are stable
+  for (std::uint64_t q = 0; q < s.query_count(); ++q)
+    if (s.status(q) == QueryStatus::disconnected) by_start[queries[q].start].push_back(q);
+  std::vector<std::uint32_t> seen(vertex_count, 0);  // the search number that reached a vertex
+  std::vector<std::uint32_t> frontier;
+  std::uint32_t search = 0;
+  for (const auto& [start, claims] : by_start) {
+    ++search;
+    frontier.assign(1, start);
+    seen[start] = search;
+    for (std::size_t k = 0; k < frontier.size(); ++k) {
+      const auto u = frontier[k];
+      for (auto arc = offsets[u]; arc < offsets[u + 1]; ++arc)
+        if (seen[targets[arc]] != search) {
+          seen[targets[arc]] = search;
+          frontier.push_back(targets[arc]);
+        }
+    }
+    for (const auto q : claims)
+      if (seen[queries[q].goal] == search)
+        return "query " + std::to_string(q) + ": [disconnected] the goal " +
+               std::to_string(queries[q].goal) + " is reachable from the start " +
+               std::to_string(start) + " (a wrong answer)";
+  }
   return std::nullopt;
 }
 
@@ -182,6 +259,8 @@ std::optional<std::string> verify_solutions(const SolutionReader& s, const Graph
   if (declared)
     for (std::size_t i = 0; i < d; ++i)
       if (declared->objective == s.objective_name(i)) reference_objective = i;
+  if (auto problem = disconnected_problem(s, queries, offsets, targets, g.vertex_count()))
+    return problem;
   for (std::uint64_t q = 0; q < s.query_count(); ++q) {
     const std::string label = "query " + std::to_string(q) + ": ";
     const auto begin = s.front_begin(q), size = s.front_size(q);

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <memory>
@@ -37,18 +38,32 @@ enum class QueryStatus : std::uint8_t {
   memory_limit = 2,  // no answer within the memory limit: empty front, no statistics
   disconnected = 3,  // the goal is unreachable from the start: empty front, statistics allowed
   not_run = 4,       // the query was not attempted: empty front, no statistics
+  // Since 1.3: the solver crashed, exited non-zero or printed something unreadable: empty front;
+  // the only statistic it may carry is exit_status.
+  failed = 5,
 };
-inline constexpr std::uint8_t kLastQueryStatus = 4;
+inline constexpr std::uint8_t kLastQueryStatus = 5;
 std::string_view to_string(QueryStatus status);  // "solved", "timeout", "memory-limit", ...
 std::optional<QueryStatus> parse_query_status(std::string_view text);
 
 // The optional per-query statistics; each is its own solution_statistics section, named as here.
-enum class Statistic : std::uint8_t { runtime_seconds, expanded, generated, peak_memory_bytes };
+enum class Statistic : std::uint8_t {
+  runtime_seconds,
+  expanded,
+  generated,
+  peak_memory_bytes,
+  exit_status,  // since 1.3, failed queries only: the exit code, or 128 + N for signal N
+};
 inline constexpr Statistic kStatistics[] = {Statistic::runtime_seconds, Statistic::expanded,
-                                            Statistic::generated, Statistic::peak_memory_bytes};
+                                            Statistic::generated, Statistic::peak_memory_bytes,
+                                            Statistic::exit_status};
+inline constexpr std::size_t kStatisticCount = std::size(kStatistics);
 std::string_view to_string(Statistic s);  // the section name, e.g. "runtime_seconds"
 // runtime_seconds is f64 (absent: NaN); the counters are u64 (absent: kAbsentCount).
 inline constexpr std::uint64_t kAbsentCount = std::numeric_limits<std::uint64_t>::max();
+// The largest integer path sum a solution file stores: every integer up to 2^53 is exact as a
+// double, which is how the importers parse costs and how verify, eval, plot and export read them.
+inline constexpr std::uint64_t kMaxIntegerSum = std::uint64_t{1} << 53;
 
 // Per-query statistics as the writer takes them; nullopt means absent.
 struct QueryStatistics {
@@ -56,6 +71,8 @@ struct QueryStatistics {
   std::optional<std::uint64_t> expanded;
   std::optional<std::uint64_t> generated;
   std::optional<std::uint64_t> peak_memory_bytes;
+  std::optional<std::uint64_t> exit_status =
+      std::nullopt;  // default: brace lists of four stay valid
 };
 
 // Who produced the fronts (metadata `solution.solver.*`, `solution.epsilon`, `solution.machine`).
@@ -90,6 +107,10 @@ class SolutionReader : public ContainerReader {
   const std::string& query_set() const { return query_set_; }
   SolverInfo solver() const;
 
+  // Whether the front_cost columns hold path sums in format::path_sum_type (format 1.3 on), or,
+  // in a 1.1/1.2 file, each objective in its arc cost type. Readers need not care: every value
+  // reads through visit_column / value_as_double whatever its stored type, i.e. widened.
+  bool stores_path_sums() const { return header_.version_minor >= format::kSolutionSumsMinor; }
   // The view's objectives in order: names and stored types of the front_cost columns.
   std::size_t objective_count() const { return cost_indices_.size(); }
   const std::string& objective_name(std::size_t i) const { return objective(i).name; }
@@ -147,7 +168,8 @@ class SolutionReader : public ContainerReader {
   std::size_t status_index_ = SIZE_MAX, front_offsets_index_ = SIZE_MAX;
   std::size_t path_offsets_index_ = SIZE_MAX, path_vertices_index_ = SIZE_MAX;
   std::vector<std::size_t> cost_indices_;
-  std::size_t statistic_indices_[4] = {SIZE_MAX, SIZE_MAX, SIZE_MAX, SIZE_MAX};
+  std::size_t statistic_indices_[kStatisticCount] = {SIZE_MAX, SIZE_MAX, SIZE_MAX, SIZE_MAX,
+                                                     SIZE_MAX};
 };
 
 template <class F>
@@ -155,9 +177,10 @@ decltype(auto) SolutionReader::visit_column(std::size_t i, F&& f) const {
   return visit_cost_values(objective(i), std::forward<F>(f));
 }
 
-// Collects fronts query by query and writes a solution file for one view and query set of an
-// instance. Costs arrive as doubles and are stored in the instance's type of each objective; an
-// integer objective refuses a non-integral, negative or (above 2^53) inexact value.
+// Collects fronts query by query and writes a solution file (format 1.3) for one view and query set
+// of an instance. Costs arrive as doubles, path sums, and are stored in format::path_sum_type of
+// each objective's arc type (u64 for unsigned, f64 for float objectives); an integer objective
+// refuses a non-integral, negative or larger than kMaxIntegerSum value.
 class SolutionWriter {
  public:
   // `query_set` empty: the view's query set (an error when the view names none).
@@ -174,11 +197,16 @@ class SolutionWriter {
   std::uint64_t query_count() const;  // Q: the query set's size
   const std::vector<std::string>& objective_names() const;
 
+  // Why `value` cannot be objective i's path sum (negative, not finite, a fraction or above
+  // kMaxIntegerSum for an integer objective), or nullopt. set_query refuses such a value with this
+  // message; importers call it to name the input line of the value.
+  std::optional<std::string> cost_problem(std::size_t objective, double value) const;
+
   // Sets query q's result (any order; a query never set is written as not_run). `costs` holds
   // front_size·d values row-major (vector after vector). `paths`, when given, holds one vertex
   // sequence per vector. Throws mosb::Error (ErrorCode::invalid_argument) naming the query on a
-  // value the objective's type cannot hold exactly, a front for a status that has none, or
-  // statistics for a timeout, memory-limit or not-run query.
+  // value cost_problem refuses, a front for a status that has none, statistics for a timeout,
+  // memory-limit or not-run query, or a failed query with a statistic other than exit_status.
   void set_query(std::uint64_t q, QueryStatus status, std::span<const double> costs,
                  const QueryStatistics& statistics = {},
                  std::span<const std::vector<std::uint32_t>> paths = {});

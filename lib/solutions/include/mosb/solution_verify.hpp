@@ -1,5 +1,6 @@
 // Checks of a solution file against its instance (spec/SOLUTIONS.md §5): the binding, then the
-// payload, then every front mutually non-dominated and duplicate-free, then every stored path.
+// payload, then every disconnected claim, then every front mutually non-dominated and
+// duplicate-free, then every stored path.
 #pragma once
 
 #include <optional>
@@ -38,7 +39,10 @@ std::optional<std::string> reference_problem(double c_star, double l_star,
 // nullopt. `instance` must be opened with VerifyLevel::full (paths walk its CSR). Cost: the
 // payload, plus O(k log k + k·w) per front of k vectors where w is the number of vectors not
 // lexicographically after a vector (O(k log k) for d = 2, O(k^2) worst case for d > 2), plus the
-// path lengths times the out-degrees along them. When the query set declares a reference (section
+// path lengths times the out-degrees along them, plus O(n + m) per distinct start of the queries
+// claimed `disconnected` (one breadth-first search each over the forward CSR: a reachable goal is
+// "[disconnected] ... (a wrong answer)"). Integer path costs are summed exactly in u64 and compared
+// exactly with the stored sums. When the query set declares a reference (section
 // kind 17 and `queries.<set>.reference.objective`, of any source) for an objective of the view,
 // each solved front's smallest value of that objective is checked against the query's optimum in
 // the declared units (reference_problem, "[reference]"); the source's name appears only in the
