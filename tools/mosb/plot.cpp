@@ -234,7 +234,8 @@ Command add_plot(CLI::App& app) {
   map->add_option("--solutions", map_paths->solutions,
                   "a solution file with paths: draw one query's paths (with --query)")
       ->check(CLI::ExistingFile);
-  map->add_option("--query", map_paths->query, "the query whose front's paths are drawn");
+  map->add_option("--query", map_paths->query, "the query whose front's paths are drawn")
+      ->check(unsigned_integer(std::numeric_limits<std::uint64_t>::max()));
   auto front_args = std::make_shared<FrontArgs>();
   auto* front = plot->add_subcommand(
       "front", "one query's front from a solution file on two objectives, against a reference");
@@ -244,11 +245,13 @@ Command add_plot(CLI::App& app) {
   front->add_option("--reference", front_args->reference, "a reference solution file to overlay")
       ->check(CLI::ExistingFile);
   front->add_option("--query", front_args->query, "the query (0-based position in the set)")
-      ->required();
+      ->required()
+      ->check(unsigned_integer(std::numeric_limits<std::uint64_t>::max()));
   front->add_option("--objectives", front_args->objectives,
                     "the two objectives drawn, names or 0-based positions (default: the first "
                     "two)");
-  front->add_option("--eps", front_args->epsilon, "draw each reference vector's ε-box");
+  front->add_option("--eps", front_args->epsilon, "draw each reference vector's ε-box")
+      ->check(epsilon_value());
   add_output_option(front, front_args->output, "the SVG file to write")->required();
   front->add_option("--title", front_args->title, "the figure's title");
   auto cardinality_args = std::make_shared<CardinalityArgs>();

@@ -12,6 +12,7 @@
 #include "mosb/converters/solution_import.hpp"
 #include "mosb/converters/text_input.hpp"
 #include "mosb/graph_reader.hpp"
+#include "mosb/pack.hpp"
 #include "mosb/solution_file.hpp"
 #include "mosb/solution_summary.hpp"
 #include "mosb/solution_verify.hpp"
@@ -35,7 +36,7 @@ int run_import(const ImportArgs& a) {
   const int inputs = !a.directory.empty() + !a.table.empty() + !a.json_log.empty();
   if (inputs != 1)
     throw Error(ErrorCode::invalid_argument, "give exactly one of --dir, --table, --json-log");
-  const auto instance = GraphReader::open(a.instance, VerifyLevel::checksums);
+  const auto instance = mosb::load(a.instance, VerifyLevel::checksums);
   SolutionWriter writer(instance, a.view, a.query_set);
   const auto set = a.query_set.empty() ? instance.view(a.view).query_set : a.query_set;
   converters::SolutionImportOptions options;
@@ -99,7 +100,7 @@ int run_export(const ExportArgs& a) {
   if (a.instance.empty())
     throw Error(ErrorCode::invalid_argument, "--json-log needs --instance (for the endpoints)");
   const auto records = converters::export_json_log(
-      r, GraphReader::open(a.instance, VerifyLevel::checksums), a.json_log, a.id_base);
+      r, mosb::load(a.instance, VerifyLevel::checksums), a.json_log, a.id_base);
   std::cout << "wrote " << a.json_log << ": " << records << " records\n";
   return 0;
 }
@@ -206,7 +207,7 @@ int run_verify(const VerifyArgs& a) {
       problem = r.verify_payload();
       if (problem) problem = a.file + ": " + *problem;
     } else {
-      problem = verify_solutions(r, GraphReader::open(a.instance, VerifyLevel::full));
+      problem = verify_solutions(r, mosb::load(a.instance, VerifyLevel::full));
       if (problem && !problem->starts_with(a.file)) problem = a.file + ": " + *problem;
     }
   } catch (const Error& e) {
@@ -262,10 +263,12 @@ Command add_solutions(CLI::App& app) {
       ->add_option("--columns", import_args->columns,
                    "0-based positions of the view's values in each input vector (or table "
                    "row), in the view's order")
-      ->delimiter(',');
+      ->delimiter(',')
+      ->check(unsigned_integer(std::numeric_limits<std::size_t>::max()));
   import->add_option("--solver", import_args->solver, "the solver's name");
   import->add_option("--solver-version", import_args->solver_version, "the solver's version");
-  import->add_option("--epsilon", import_args->epsilon, "the epsilon the solver used (0: exact)");
+  import->add_option("--epsilon", import_args->epsilon, "the epsilon the solver used (0: exact)")
+      ->check(epsilon_value());
   add_output_option(import, import_args->output, "the solution file")->required();
   add_json_flag(import, import_args->json);
   auto export_args = std::make_shared<ExportArgs>();
