@@ -65,6 +65,19 @@ CLI::Validator epsilon_value() {
       "EPS", "epsilon");
 }
 
+CLI::Validator printable_text() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        for (const char c : text)
+          if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+            return "control character " +
+                   std::to_string(static_cast<unsigned>(static_cast<unsigned char>(c))) +
+                   " in the text (no newline, tab or escape)";
+        return {};
+      },
+      "TEXT", "printable text");
+}
+
 void add_json_flag(CLI::App* subcommand, bool& json) {
   subcommand->add_flag("--json", json, "print the report as one JSON object on stdout");
 }

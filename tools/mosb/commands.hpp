@@ -56,6 +56,9 @@ CLI::Validator non_negative_real();
 // Every option that takes an ε: a non-negative decimal as parse_epsilon (mosb/eval.hpp) reads it,
 // the form spec/EVALUATION.md §2 allows and `solution.epsilon` stores.
 CLI::Validator epsilon_value();
+// Free text that ends up in text, JSON and SVG output (--solver, --title, ...): no control
+// character, so a newline cannot forge a line of text output and a NUL or escape cannot reach SVG.
+CLI::Validator printable_text();
 
 // Registers `--json` (the report as one JSON object on stdout) on a reporting command.
 void add_json_flag(CLI::App* subcommand, bool& json);

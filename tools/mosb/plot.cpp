@@ -30,7 +30,8 @@ void add_common(CLI::App* sub, PlotArgs& args) {
       ->required()
       ->check(CLI::ExistingFile);
   add_output_option(sub, args.output, "the SVG file to write")->required();
-  sub->add_option("--title", args.title, "the figure's title (default: the benchmark name)");
+  sub->add_option("--title", args.title, "the figure's title (default: the benchmark name)")
+      ->check(printable_text());
 }
 
 std::string default_title(const GraphReader& reader, const PlotArgs& args, const char* what) {
@@ -253,7 +254,7 @@ Command add_plot(CLI::App& app) {
   front->add_option("--eps", front_args->epsilon, "draw each reference vector's ε-box")
       ->check(epsilon_value());
   add_output_option(front, front_args->output, "the SVG file to write")->required();
-  front->add_option("--title", front_args->title, "the figure's title");
+  front->add_option("--title", front_args->title, "the figure's title")->check(printable_text());
   auto cardinality_args = std::make_shared<CardinalityArgs>();
   auto* cardinality = plot->add_subcommand(
       "cardinality", "front size per solved query of a solution file, sorted (query hardness)");
@@ -261,7 +262,8 @@ Command add_plot(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingFile);
   add_output_option(cardinality, cardinality_args->output, "the SVG file to write")->required();
-  cardinality->add_option("--title", cardinality_args->title, "the figure's title");
+  cardinality->add_option("--title", cardinality_args->title, "the figure's title")
+      ->check(printable_text());
   return group(
       plot,
       {{correlation, [correlation_args] { return run_correlation(*correlation_args); }},

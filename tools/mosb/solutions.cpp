@@ -265,8 +265,9 @@ Command add_solutions(CLI::App& app) {
                    "row), in the view's order")
       ->delimiter(',')
       ->check(unsigned_integer(std::numeric_limits<std::size_t>::max()));
-  import->add_option("--solver", import_args->solver, "the solver's name");
-  import->add_option("--solver-version", import_args->solver_version, "the solver's version");
+  import->add_option("--solver", import_args->solver, "the solver's name")->check(printable_text());
+  import->add_option("--solver-version", import_args->solver_version, "the solver's version")
+      ->check(printable_text());
   import->add_option("--epsilon", import_args->epsilon, "the epsilon the solver used (0: exact)")
       ->check(epsilon_value());
   add_output_option(import, import_args->output, "the solution file")->required();
