@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numeric>
 
 #include "mosb/report/svg.hpp"
 
@@ -154,8 +155,45 @@ std::vector<double> nice_ticks(double lo, double hi, int target) {
   return ticks;
 }
 
+std::vector<Point2> thin_points(const std::vector<Point2>& points, std::size_t limit) {
+  if (points.size() <= limit || limit == 0) return points;
+  std::vector<std::size_t> order(points.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  const auto by_xy = [&](std::size_t a, std::size_t b) {
+    const auto &p = points[a], &q = points[b];
+    return p.x != q.x ? p.x < q.x : p.y != q.y ? p.y < q.y : a < b;
+  };
+  std::sort(order.begin(), order.end(), by_xy);
+  const std::size_t step = (points.size() + limit - 1) / limit;
+  std::vector<bool> keep(points.size(), false);
+  for (std::size_t k = 0; k < order.size(); k += step) keep[order[k]] = true;
+  const auto by_y = [&](std::size_t a, std::size_t b) {
+    return points[a].y != points[b].y ? points[a].y < points[b].y : by_xy(a, b);
+  };
+  keep[order.front()] = keep[order.back()] = true;  // smallest and largest x
+  keep[*std::min_element(order.begin(), order.end(), by_y)] = true;
+  keep[*std::max_element(order.begin(), order.end(), by_y)] = true;
+  std::vector<Point2> drawn;
+  for (const std::size_t k : order)
+    if (keep[k]) drawn.push_back(points[k]);
+  return drawn;
+}
+
+namespace {
+
+std::string legend_count(const std::string& what, std::size_t drawn, std::size_t total) {
+  return what + " (" +
+         (drawn == total ? std::to_string(total)
+                         : "showing " + std::to_string(drawn) + " of " + std::to_string(total)) +
+         ")";
+}
+
+}  // namespace
+
 std::string plot_front(const FrontPlot& plot) {
   const double e = plot.epsilon.value_or(0);
+  const auto reference = thin_points(plot.reference, kMaxDrawnPoints);
+  const auto solution = thin_points(plot.solution, kMaxDrawnPoints);
   double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo, y_lo = x_lo, y_hi = -x_lo;
   auto extend = [&](const Point2& p) {
     x_lo = std::min(x_lo, p.x), x_hi = std::max(x_hi, p.x);
@@ -171,16 +209,17 @@ std::string plot_front(const FrontPlot& plot) {
   const Axis y{y_lo, y_hi, kHeight - kBottom, kTop};
   frame(svg, x, y, plot.title, plot.x_label, plot.y_label);
   if (e > 0)
-    for (const auto& q : plot.reference)
+    for (const auto& q : reference)
       svg.rect(x.map(q.x), y.map(q.y * (1 + e)), x.map(q.x * (1 + e)) - x.map(q.x),
                y.map(q.y) - y.map(q.y * (1 + e)), "#9ecae1", "#6baed6", 0.5, 0.35);
-  for (const auto& q : plot.reference) svg.circle(x.map(q.x), y.map(q.y), 4, "#08519c");
-  for (const auto& p : plot.solution) svg.circle(x.map(p.x), y.map(p.y), 2.5, "#e6550d");
+  for (const auto& q : reference) svg.circle(x.map(q.x), y.map(q.y), 4, "#08519c");
+  for (const auto& p : solution) svg.circle(x.map(p.x), y.map(p.y), 2.5, "#e6550d");
   std::vector<LegendEntry> entries;
   if (!plot.reference.empty())
     entries.push_back(
-        {'c', "#08519c", "reference (" + std::to_string(plot.reference.size()) + ")"});
-  entries.push_back({'c', "#e6550d", "solver (" + std::to_string(plot.solution.size()) + ")"});
+        {'c', "#08519c", legend_count("reference", reference.size(), plot.reference.size())});
+  entries.push_back(
+      {'c', "#e6550d", legend_count("solver", solution.size(), plot.solution.size())});
   if (e > 0) entries.push_back({'r', "#9ecae1", "ε-box, ε = " + tick_label(e)});
   legend(svg, entries);
   return svg.str();

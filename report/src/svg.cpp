@@ -37,7 +37,11 @@ std::string Svg::escape(std::string_view text) {
         out += "&apos;";
         break;
       default:
-        out += c;
+        // XML 1.0 allows no other C0 control, not even as a character reference: U+FFFD instead.
+        if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r')
+          out += "\xEF\xBF\xBD";
+        else
+          out += c;
     }
   }
   return out;

@@ -820,5 +820,50 @@ class AtomicOutput(GridTest):
         self.assertEqual(os.listdir(self.dir), ["rel.mosb"])
 
 
+class StrictOptions(CliTest):
+    """Issue 20 section 5: every unsigned-integer, real and epsilon option parsed strictly (exit
+    2, the option named); control characters refused in free-text options."""
+
+    def refused(self, args, *expected):
+        r = self.mosb(*args)
+        self.assert_one_line_error(r, *expected, code=2)
+        return r
+
+    def test_unsigned_options_neither_wrap_nor_saturate(self):
+        out = self.path("g.mosb")
+        grid = ("generate", "grid", "--width", "2", "--height", "2", "-o", out)
+        self.refused(grid + ("--seed", "-1"), "--seed", "'-1'", "not an unsigned integer")
+        self.refused(grid + ("--seed", "18446744073709551616"), "--seed", "largest allowed")
+        self.refused(grid + ("--seed", "+1"), "--seed")
+        self.refused(grid + ("--seed", " 1"), "--seed")
+        self.refused(("generate", "grid", "--width", "4294967298", "--height", "2", "-o", out),
+                     "--width", "largest allowed")
+        self.assertFalse(os.path.exists(out))
+        self.ok(*grid, "--seed", "18446744073709551615")
+        self.refused(("plot", "front", "--solutions", out, "--query", "-1", "-o",
+                      self.path("f.svg")), "--query", "not an unsigned integer")
+        self.refused(("pack", out, "-o", self.path("p.mosb"), "--level", "-3"), "--level")
+
+    def test_real_and_epsilon_options(self):
+        out = self.path("g.mosb")
+        self.ok("generate", "grid", "--width", "2", "--height", "2", "-o", out)
+        for bad in ("nan", "inf", "-0.5", "abc"):
+            self.refused(("plot", "front", "--solutions", out, "--query", "0", "--eps", bad, "-o",
+                          self.path("f.svg")), "--eps")
+
+    def test_control_characters_are_refused_in_free_text(self):
+        out = self.path("g.mosb")
+        self.ok("generate", "grid", "--width", "2", "--height", "2", "-o", out)
+        for bad in ("a\nb", "a\x1bb"):
+            self.refused(("plot", "correlation", out, "--title", bad, "-o", self.path("c.svg")),
+                         "--title", "control character")
+        self.assertFalse(os.path.exists(self.path("c.svg")))
+        # '<' is fine: escaped in the SVG.
+        self.ok("plot", "correlation", out, "--title", "a<b&c", "-o", self.path("c.svg"))
+        with open(self.path("c.svg")) as f:
+            svg = f.read()
+        self.assertIn("a&lt;b&amp;c", svg)
+        self.assertNotIn("a<b", svg)
+
 if __name__ == "__main__":
     unittest.main(verbosity=2)

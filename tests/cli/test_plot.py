@@ -208,7 +208,7 @@ class SolutionPlotTest(PlotCase):
                             "give two different objectives")
         self.assert_refused(front + ["--query", "0", "--eps", "0.1"], 2, "give --reference")
         self.assert_refused(front + ["--query", "0", "--reference", self.reference, "--eps",
-                                     "-1"], 2, "--eps: '-1'")
+                                     "-1"], 2, "--eps: invalid epsilon '-1'")
         # A reference of another instance: both files and both digests.
         run("generate", "grid", "--width", "5", "--height", "4", "--objectives", "3", "--seed",
             "9", "-o", self.path("bare9.mosb"))

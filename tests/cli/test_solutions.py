@@ -426,6 +426,46 @@ class SolutionsTest(CliTest):
         self.assertFalse(report["ok"])
         self.assertIn(self.digest(self.other), report["problem"])
 
+    # --- issue 20: strict ε, header counts, packed instances, large fronts, FIFOs ----------------
+
+    def test_import_refuses_an_epsilon_that_is_not_a_non_negative_decimal(self):
+        d = self.front_dir({"0.txt": "1 9\n"})
+        for bad in ("abc", "-1", "nan", "inf", "1e-3", ""):
+            r = self.import_("--dir", d, "--epsilon", bad, check=False, output="eps.sol")
+            self.assert_one_line_error(r, "--epsilon", "invalid epsilon", code=2)
+            self.assertFalse(os.path.exists(self.path("eps.sol")))
+        self.import_("--dir", d, "--epsilon", "0.05")
+        self.assertEqual(self.inspect()["epsilon"], "0.05")
+
+    def test_verify_refuses_header_counts_other_than_the_instance(self):
+        d = self.front_dir({"0.txt": "1 9\n"})
+        self.import_("--dir", d)
+        data = bytearray(mosbtest.read(self.path("out.sol")))
+        n = mosbtest.header(data)["vertex_count"]
+        mosbtest.set_header(data, vertex_count=n + 1)
+        mosbtest.reseal(data)
+        self.write("forged.sol", bytes(data))
+        r = run("solutions", "verify", self.path("forged.sol"), "--instance", self.grid, check=False)
+        line = self.assert_one_line_error(r, self.path("forged.sol"), self.grid,
+                                          "n = %d" % (n + 1), "n = %d" % n)
+        self.assertIn("header", line)
+        # eval: the same digest, other counts; the message names both files.
+        r = run("eval", "--reference", self.path("out.sol"), "--solutions", self.path("forged.sol"),
+                check=False)
+        self.assert_one_line_error(r, self.path("out.sol"), self.path("forged.sol"), "header")
+
+    def test_solutions_commands_read_packed_instances(self):
+        packed = self.path("grid.packed.mosb")
+        run("pack", self.grid, "-o", packed)
+        d = self.front_dir({"0.txt": "1 9\n2 7\n"})
+        run("solutions", "import", "--instance", packed, "--view", "Grid_2", "--queries", "s",
+            "--dir", d, "-o", self.path("p.sol"))
+        self.assertIn("OK", run("solutions", "verify", self.path("p.sol"), "--instance",
+                                packed).stdout)
+        run("solutions", "export", self.path("p.sol"), "--instance", packed, "--json-log",
+            self.path("p.json"))
+        self.assertTrue(os.path.exists(self.path("p.json")))
+
 
 if __name__ == "__main__":
     unittest.main()

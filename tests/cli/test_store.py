@@ -709,6 +709,20 @@ class Safety(Base):
 
 
 class Sources(Base):
+    def test_verify_sources_says_a_fifo_is_not_a_regular_file(self):
+        raw = self.path("raw")
+        os.mkdir(raw)
+        gr = os.path.join(raw, "tiny.gr")
+        with open(gr, "w") as f:
+            f.write(GR)
+        out = self.path("tiny.mosb")
+        self.ok("convert", "dimacs", "--gr", gr, "-o", out)
+        os.remove(gr)
+        os.mkfifo(gr)
+        r = run("verify", "--sources", raw, out, timeout=60)
+        self.assertEqual(r.returncode, 1)
+        self.assertEqual(r.stdout, "FAIL " + gr + ": not a regular file\n")
+
     def test_verify_sources_names_missing_and_changed_raw_files(self):
         raw = self.path("raw")
         os.mkdir(raw)

@@ -88,3 +88,26 @@ TEST_CASE("correlation heat map labels every cell, n/a when undefined") {
   CHECK(count(doc, ">1.00<") == 2);
   CHECK(count(doc, ">n/a<") == 2);
 }
+
+TEST_CASE("svg escape replaces the C0 controls XML 1.0 forbids") {
+  const std::string text = std::string("a<b") + '\0' + "\x1b[1m\tz";
+  CHECK(mosb::plots::Svg::escape(text) == "a&lt;b\xEF\xBF\xBD\xEF\xBF\xBD[1m\tz");
+}
+
+TEST_CASE("a large front is thinned, keeps its extreme points and says so") {
+  std::vector<mosb::plots::Point2> front;
+  for (int k = 0; k < 12345; ++k) front.push_back({double(k), double(12345 - k)});
+  const auto drawn = mosb::plots::thin_points(front, mosb::plots::kMaxDrawnPoints);
+  CHECK(drawn.size() <= mosb::plots::kMaxDrawnPoints + 4);
+  CHECK(drawn.size() >= mosb::plots::kMaxDrawnPoints / 2);
+  CHECK(drawn.front().x == 0);
+  CHECK(drawn.back().x == 12344);  // the largest x, and the smallest y
+  CHECK(mosb::plots::thin_points(front, mosb::plots::kMaxDrawnPoints).size() == drawn.size());
+  mosb::plots::FrontPlot plot;
+  plot.solution = front;
+  const auto svg = mosb::plots::plot_front(plot);
+  CHECK(svg.find("showing " + std::to_string(drawn.size()) + " of 12345") != std::string::npos);
+  CHECK(svg.size() < 2'000'000);
+  plot.solution.resize(100);
+  CHECK(mosb::plots::plot_front(plot).find("showing") == std::string::npos);
+}

@@ -106,6 +106,19 @@ TEST_CASE("parse_epsilon gives exact reduced ratios and rejects the rest") {
     CHECK_THROWS_AS(parse_epsilon(bad), Error);
 }
 
+TEST_CASE("parse_epsilon takes 18 significant digits on each side of the point, as specified") {
+  // 10 + 9 digits: refused before (18 in total), within spec/EVALUATION.md section 2.
+  CHECK(parse_epsilon("1234567890.123456789") == Ratio{1234567890123456789ULL, 1000000000});
+  CHECK(parse_epsilon("0.100000000000000000000000") == Ratio{1, 10});  // trailing zeros
+  CHECK(parse_epsilon("000000000000000000000.5") == Ratio{1, 2});      // leading zeros
+  CHECK(parse_epsilon("123456789012345678.5") == Ratio{246913578024691357ULL, 2});
+  CHECK(parse_epsilon("0.000000000000000001") == Ratio{1, 1000000000000000000ULL});
+  // Within 18 + 18 digits but no fraction of 64-bit integers: refused with a reason.
+  CHECK_THROWS_WITH_AS(parse_epsilon("999999999999999999.999999999999999999"),
+                       doctest::Contains("64-bit"), Error);
+  CHECK_THROWS_AS(parse_epsilon("1234567890123456789"), Error);  // 19 whole digits
+}
+
 TEST_CASE("Ratio to_decimal rounds up and is exact when the expansion ends") {
   CHECK(Ratio{1, 10}.to_decimal() == "0.1");
   CHECK(Ratio{1, 3}.to_decimal(4) == "0.3334");

@@ -1,11 +1,14 @@
 #include "commands.hpp"
 
 #include <CLI/CLI.hpp>
+#include <charconv>
+#include <cmath>
 #include <iostream>
 
 #include "json_writer.hpp"
 #include "mosb/converters/movingai.hpp"
 #include "mosb/converters/suite.hpp"
+#include "mosb/eval.hpp"
 #include "mosb/graph_reader.hpp"
 
 namespace mosb::cli {
@@ -17,6 +20,62 @@ Command group(CLI::App* parent, std::vector<Command> children) {
               if (child.subcommand->parsed()) return child.run();
             return 1;
           }};
+}
+
+CLI::Validator unsigned_integer(std::uint64_t max) {
+  return CLI::Validator(
+      [max](std::string& text) -> std::string {
+        const bool digits =
+            !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+        if (!digits) return "'" + text + "' is not an unsigned integer (decimal digits only)";
+        std::uint64_t value = 0;
+        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (error != std::errc{} || end != text.data() + text.size() || value > max)
+          return "'" + text + "' is above the largest allowed value " + std::to_string(max);
+        return {};
+      },
+      "UINT", "unsigned integer");
+}
+
+CLI::Validator non_negative_real() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        double value = 0;
+        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (text.empty() || error == std::errc::invalid_argument ||
+            end != text.data() + text.size())
+          return "'" + text + "' is not a number";
+        if (error != std::errc{} || !std::isfinite(value)) return "'" + text + "' is not finite";
+        if (value < 0 || text.front() == '-') return "'" + text + "' is negative";
+        return {};
+      },
+      "REAL", "non-negative real");
+}
+
+CLI::Validator epsilon_value() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        try {
+          parse_epsilon(text);
+        } catch (const Error& e) {
+          return e.what();
+        }
+        return {};
+      },
+      "EPS", "epsilon");
+}
+
+CLI::Validator printable_text() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        for (const char c : text)
+          if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+            return "control character " +
+                   std::to_string(static_cast<unsigned>(static_cast<unsigned char>(c))) +
+                   " in the text (no newline, tab or escape)";
+        return {};
+      },
+      "TEXT", "printable text");
 }
 
 void add_json_flag(CLI::App* subcommand, bool& json) {
@@ -38,6 +97,7 @@ CLI::Option* add_id_base_option(CLI::App* subcommand, unsigned& id_base,
       ->add_option(
           "--id-base", id_base,
           "0 or 1: the id of the first vertex in the text files (default: " + default_text + ")")
+      ->check(unsigned_integer(std::numeric_limits<unsigned>::max()))
       ->check(CLI::IsMember({0u, 1u}));
 }
 
@@ -62,7 +122,8 @@ std::optional<unsigned> InstanceIdBase::checked(const GraphReader& instance) con
 
 CLI::Option* add_seed_option(CLI::App* subcommand, std::uint64_t& seed, const std::string& what) {
   seed = 1;
-  return subcommand->add_option("--seed", seed, what + " (default 1)");
+  return subcommand->add_option("--seed", seed, what + " (default 1)")
+      ->check(unsigned_integer(std::numeric_limits<std::uint64_t>::max()));
 }
 
 CLI::Option* add_output_option(CLI::App* subcommand, std::string& output, const std::string& what) {

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -16,6 +17,7 @@
 namespace CLI {
 class App;
 class Option;
+class Validator;
 }  // namespace CLI
 
 namespace mosb::converters {
@@ -44,6 +46,21 @@ class UsageError : public Error {
  public:
   using Error::Error;
 };
+
+// The one parser of every option that takes an unsigned integer: the whole text is decimal digits
+// (no sign, space, exponent or hex) and the value is at most `max`, so nothing wraps or saturates.
+// The message names the option (CLI11 prefixes it) and says why; exit code 2.
+// `max` is usually the target's std::numeric_limits<T>::max().
+CLI::Validator unsigned_integer(std::uint64_t max);
+// The one parser of every option that takes a non-negative real (a double): the whole text is a
+// decimal number (exponent allowed), finite and >= 0.
+CLI::Validator non_negative_real();
+// Every option that takes an ε: a non-negative decimal as parse_epsilon (mosb/eval.hpp) reads it,
+// the form spec/EVALUATION.md §2 allows and `solution.epsilon` stores.
+CLI::Validator epsilon_value();
+// Free text that ends up in text, JSON and SVG output (--solver, --title, ...): no control
+// character, so a newline cannot forge a line of text output and a NUL or escape cannot reach SVG.
+CLI::Validator printable_text();
 
 // Registers `--json` (the report as one JSON object on stdout) on a reporting command.
 void add_json_flag(CLI::App* subcommand, bool& json);

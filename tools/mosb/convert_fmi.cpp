@@ -64,6 +64,7 @@ Command add_convert_fmi(CLI::App& convert) {
   args->costs_option = fmi->add_option("--costs", args->costs,
                                        "D cost fields per edge line: 'src trg c1 .. cD' (default: "
                                        "'src trg cost type [maxspeed]')")
+                           ->check(unsigned_integer(std::numeric_limits<unsigned>::max()))
                            ->check(CLI::Range(1u, 64u));
   fmi->add_flag("--ignore-extra-fields", args->ignore_extra_fields,
                 "with --costs: skip fields after the D costs (the same number on every edge line)")
@@ -73,9 +74,11 @@ Command add_convert_fmi(CLI::App& convert) {
                   "10, else c1..cd)");
   args->bfs_option =
       fmi->add_option("--extract-bfs", args->bfs_root,
-                      "keep the first --count vertices in BFS order from this vertex (0-based)");
+                      "keep the first --count vertices in BFS order from this vertex (0-based)")
+          ->check(unsigned_integer(std::numeric_limits<std::uint32_t>::max()));
   auto* count =
       fmi->add_option("--count", args->bfs_count, "number of vertices --extract-bfs keeps")
+          ->check(unsigned_integer(std::numeric_limits<std::uint64_t>::max()))
           ->check(CLI::Range(std::uint64_t{1}, format::kMaxCount));
   auto* undirected =
       fmi->add_flag("--bfs-undirected", args->bfs_undirected,

@@ -81,6 +81,7 @@ Command add_convert_roadmap(CLI::App& convert) {
       ->check(CLI::IsMember({"auto", "none", "aggregate", "per-link", "both"}))
       ->capture_default_str();
   roadmap->add_option("--delta", args->delta, "safety band of the clearance penalty U(d)")
+      ->check(non_negative_real())
       ->capture_default_str();
   roadmap->add_flag("--weight", args->weight,
                     "also store the GraphML edge attribute 'weight' as an objective");

@@ -48,12 +48,15 @@ Command add_generate_grid(CLI::App& generate) {
   p.height = 300;
   p.objectives = 3;
   auto* width = grid->add_option("--width", p.width, "K, the number of columns")
+                    ->check(unsigned_integer(std::numeric_limits<std::uint32_t>::max()))
                     ->check(CLI::Range(1u, 60000u))
                     ->capture_default_str();
   auto* height = grid->add_option("--height", p.height, "M, the number of rows")
+                     ->check(unsigned_integer(std::numeric_limits<std::uint32_t>::max()))
                      ->check(CLI::Range(1u, 60000u))
                      ->capture_default_str();
   auto* objectives = grid->add_option("--objectives", p.objectives, "number of cost columns")
+                         ->check(unsigned_integer(std::numeric_limits<std::uint32_t>::max()))
                          ->check(CLI::Range(1u, 16u))
                          ->capture_default_str();
   add_seed_option(grid, p.seed, "seed of the specified generator (with --suite: of the suite)");
@@ -66,9 +69,12 @@ Command add_generate_grid(CLI::App& generate) {
   // Hidden: a subset of widths/heights (tests), and the worker count.
   auto* sizes = grid->add_option("--sizes", args->sizes, "suite widths and heights")
                     ->delimiter(',')
+                    ->check(unsigned_integer(std::numeric_limits<std::uint32_t>::max()))
                     ->check(CLI::Range(1u, 60000u))
                     ->group("");
-  auto* threads = grid->add_option("--threads", args->threads, "suite worker threads")->group("");
+  auto* threads = grid->add_option("--threads", args->threads, "suite worker threads")
+                      ->check(unsigned_integer(std::numeric_limits<unsigned>::max()))
+                      ->group("");
   for (auto* single_only : {width, height, objectives, out, expect, views})
     directory->excludes(single_only);
   sizes->needs(directory);

@@ -49,26 +49,32 @@ Command add_generate_netmaker(CLI::App& generate) {
   auto args = std::make_shared<NetMakerArgs>();
   auto& p = args->params;
   netmaker->add_option("--vertices", p.vertices, "N, the number of vertices")
+      ->check(unsigned_integer(std::numeric_limits<std::uint32_t>::max()))
       ->check(CLI::Range(2u, 100000000u))
       ->capture_default_str();
   auto* amin =
       netmaker->add_option("--amin", p.amin, "out-degrees are drawn from {amin+1, ..., amax}")
+          ->check(unsigned_integer(std::numeric_limits<std::uint32_t>::max()))
           ->capture_default_str();
   auto* amax = netmaker->add_option("--amax", p.amax, "the largest out-degree, cycle arc included")
+                   ->check(unsigned_integer(std::numeric_limits<std::uint32_t>::max()))
                    ->check(CLI::Range(1u, 100000u))
                    ->capture_default_str();
   auto* locality = netmaker
                        ->add_option("--locality", p.locality,
                                     "I: locality arcs join u to ids within u +- floor(I/2)")
+                       ->check(unsigned_integer(std::numeric_limits<std::uint32_t>::max()))
                        ->capture_default_str();
   add_seed_option(netmaker, p.seed, "seed of the specified generator (with --suite: of the suite)");
   auto* queries =
       netmaker->add_option("--queries", p.queries, "number of distinct start-goal pairs")
+          ->check(unsigned_integer(std::numeric_limits<std::uint32_t>::max()))
           ->check(CLI::Range(1u, 1000000u))
           ->capture_default_str();
   auto* percent = netmaker
                       ->add_option("--query-percent", p.query_percent,
                                    "starts among the first, goals among the last P% of vertex ids")
+                      ->check(unsigned_integer(std::numeric_limits<std::uint32_t>::max()))
                       ->check(CLI::Range(1u, 50u))
                       ->capture_default_str();
   auto* name =
@@ -81,6 +87,7 @@ Command add_generate_netmaker(CLI::App& generate) {
       "write the paper's 12 NetMaker graphs and a MANIFEST into this directory");
   netmaker
       ->add_option("--threads", args->threads, "worker threads for --suite (default: all cores)")
+      ->check(unsigned_integer(std::numeric_limits<unsigned>::max()))
       ->group("");
   for (auto* single_only : {amin, amax, locality, queries, percent, name, output, expect, views})
     suite->excludes(single_only);

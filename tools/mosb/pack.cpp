@@ -92,10 +92,12 @@ Command add_pack_command(CLI::App& app, bool pack) {
       ->excludes(output);
   if (pack) {
     sub->add_option("--level", args->level, "zstd level (fixed, so the bytes are reproducible)")
+        ->check(unsigned_integer(std::numeric_limits<int>::max()))
         ->check(CLI::Range(1, 22))
         ->capture_default_str();
     sub->add_option("--threads", args->threads,
                     "sections compressed at once; the output is the same for any value")
+        ->check(unsigned_integer(std::numeric_limits<unsigned>::max()))
         ->check(CLI::Range(1U, 256U))
         ->capture_default_str();
     sub->add_flag("--keep-reverse", args->keep_reverse,

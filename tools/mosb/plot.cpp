@@ -31,7 +31,8 @@ void add_common(CLI::App* sub, PlotArgs& args) {
       ->required()
       ->check(CLI::ExistingFile);
   add_output_option(sub, args.output, "the SVG file to write")->required();
-  sub->add_option("--title", args.title, "the figure's title (default: the benchmark name)");
+  sub->add_option("--title", args.title, "the figure's title (default: the benchmark name)")
+      ->check(printable_text());
 }
 
 std::string default_title(const GraphReader& reader, const PlotArgs& args, const char* what) {
@@ -235,7 +236,8 @@ Command add_plot(CLI::App& app) {
   map->add_option("--solutions", map_paths->solutions,
                   "a solution file with paths: draw one query's paths (with --query)")
       ->check(CLI::ExistingFile);
-  map->add_option("--query", map_paths->query, "the query whose front's paths are drawn");
+  map->add_option("--query", map_paths->query, "the query whose front's paths are drawn")
+      ->check(unsigned_integer(std::numeric_limits<std::uint64_t>::max()));
   auto front_args = std::make_shared<FrontArgs>();
   auto* front = plot->add_subcommand(
       "front", "one query's front from a solution file on two objectives, against a reference");
@@ -245,13 +247,15 @@ Command add_plot(CLI::App& app) {
   front->add_option("--reference", front_args->reference, "a reference solution file to overlay")
       ->check(CLI::ExistingFile);
   front->add_option("--query", front_args->query, "the query (0-based position in the set)")
-      ->required();
+      ->required()
+      ->check(unsigned_integer(std::numeric_limits<std::uint64_t>::max()));
   front->add_option("--objectives", front_args->objectives,
                     "the two objectives drawn, names or 0-based positions (default: the first "
                     "two)");
-  front->add_option("--eps", front_args->epsilon, "draw each reference vector's ε-box");
+  front->add_option("--eps", front_args->epsilon, "draw each reference vector's ε-box")
+      ->check(epsilon_value());
   add_output_option(front, front_args->output, "the SVG file to write")->required();
-  front->add_option("--title", front_args->title, "the figure's title");
+  front->add_option("--title", front_args->title, "the figure's title")->check(printable_text());
   auto cardinality_args = std::make_shared<CardinalityArgs>();
   auto* cardinality = plot->add_subcommand(
       "cardinality", "front size per solved query of a solution file, sorted (query hardness)");
@@ -259,7 +263,8 @@ Command add_plot(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingFile);
   add_output_option(cardinality, cardinality_args->output, "the SVG file to write")->required();
-  cardinality->add_option("--title", cardinality_args->title, "the figure's title");
+  cardinality->add_option("--title", cardinality_args->title, "the figure's title")
+      ->check(printable_text());
   return group(
       plot,
       {{correlation, [correlation_args] { return run_correlation(*correlation_args); }},

@@ -130,6 +130,7 @@ Command add_queries_generate(CLI::App& queries) {
   auto a = std::make_shared<GenerateArgs>();
   add_target_options(generate, a->target);
   generate->add_option("--count", a->draw.count, "number of pairs")
+      ->check(unsigned_integer(std::numeric_limits<std::uint64_t>::max()))
       ->check(CLI::Range(std::uint64_t{1}, converters::kMaxDrawnQueries))
       ->capture_default_str();
   add_seed_option(generate, a->draw.seed, "seed of the specified random stream");

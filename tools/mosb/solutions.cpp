@@ -12,6 +12,7 @@
 #include "mosb/converters/solution_import.hpp"
 #include "mosb/converters/text_input.hpp"
 #include "mosb/graph_reader.hpp"
+#include "mosb/pack.hpp"
 #include "mosb/solution_file.hpp"
 #include "mosb/solution_summary.hpp"
 #include "mosb/solution_verify.hpp"
@@ -50,7 +51,7 @@ int run_import(const ImportArgs& a) {
     throw Error(ErrorCode::invalid_argument, "give exactly one of --dir, --table, --json-log");
   if (a.choice.view.empty() && a.choice.objectives.empty())
     throw UsageError("give --view V or --objectives A,B,... (the objectives the costs are)");
-  const auto instance = GraphReader::open(a.instance, VerifyLevel::checksums);
+  const auto instance = mosb::load(a.instance, VerifyLevel::checksums);
   const auto selected = select_view(instance, a.choice);
   // A solution file still records a view name (spec/SOLUTIONS.md §2): an objective list stands
   // for the instance's view with exactly those objectives.
@@ -120,7 +121,7 @@ int run_export(const ExportArgs& a) {
   if (a.instance.empty())
     throw Error(ErrorCode::invalid_argument, "--json-log needs --instance (for the endpoints)");
   const auto records = converters::export_json_log(
-      r, GraphReader::open(a.instance, VerifyLevel::checksums), a.json_log, a.id_base);
+      r, mosb::load(a.instance, VerifyLevel::checksums), a.json_log, a.id_base);
   std::cout << "wrote " << a.json_log << ": " << records << " records\n";
   return 0;
 }
@@ -227,7 +228,7 @@ int run_verify(const VerifyArgs& a) {
       problem = r.verify_payload();
       if (problem) problem = a.file + ": " + *problem;
     } else {
-      problem = verify_solutions(r, GraphReader::open(a.instance, VerifyLevel::full));
+      problem = verify_solutions(r, mosb::load(a.instance, VerifyLevel::full));
       if (problem && !problem->starts_with(a.file)) problem = a.file + ": " + *problem;
     }
   } catch (const Error& e) {
@@ -288,10 +289,13 @@ Command add_solutions(CLI::App& app) {
       ->add_option("--columns", import_args->columns,
                    "0-based positions of the view's values in each input vector (or table "
                    "row), in the view's order")
-      ->delimiter(',');
-  import->add_option("--solver", import_args->solver, "the solver's name");
-  import->add_option("--solver-version", import_args->solver_version, "the solver's version");
-  import->add_option("--epsilon", import_args->epsilon, "the epsilon the solver used (0: exact)");
+      ->delimiter(',')
+      ->check(unsigned_integer(std::numeric_limits<std::size_t>::max()));
+  import->add_option("--solver", import_args->solver, "the solver's name")->check(printable_text());
+  import->add_option("--solver-version", import_args->solver_version, "the solver's version")
+      ->check(printable_text());
+  import->add_option("--epsilon", import_args->epsilon, "the epsilon the solver used (0: exact)")
+      ->check(epsilon_value());
   add_output_option(import, import_args->output, "the solution file")->required();
   add_json_flag(import, import_args->json);
   auto export_args = std::make_shared<ExportArgs>();

@@ -209,6 +209,7 @@ Command add_store(CLI::App& app) {
   add->add_flag("--pack", args->pack, "store each unpacked file packed (as mosb pack does)");
   add->add_option("--level", args->level,
                   "zstd level for --pack (fixed, so the bytes are reproducible)")
+      ->check(unsigned_integer(std::numeric_limits<int>::max()))
       ->check(CLI::Range(1, 22))
       ->capture_default_str()
       ->needs(add->get_option("--pack"));
@@ -219,7 +220,9 @@ Command add_store(CLI::App& app) {
   auto* verify = store->add_subcommand(
       "verify", "Check every entry (size, SHA-256, digest, verify --level full) and extra files");
   directory(verify);
-  verify->add_option("--threads", args->threads, "worker threads (default: all cores)")->group("");
+  verify->add_option("--threads", args->threads, "worker threads (default: all cores)")
+      ->check(unsigned_integer(std::numeric_limits<unsigned>::max()))
+      ->group("");
   add_json_flag(verify, args->json);
   auto* instance = store->add_subcommand(
       "instance",

@@ -88,7 +88,9 @@ Command add_suite(CLI::App& app) {
   build->add_option("DIR", args->directory, "the suite directory (created if needed)")->required();
   build->add_option("--raw", args->raw,
                     "also build every raw-source benchmark whose input files are in RAWDIR");
-  build->add_option("--threads", args->threads, "worker threads (default: all cores)")->group("");
+  build->add_option("--threads", args->threads, "worker threads (default: all cores)")
+      ->check(unsigned_integer(std::numeric_limits<unsigned>::max()))
+      ->group("");
   // For tests: the raw part alone, without the minutes the generated instances take.
   build->add_flag("--no-generated", args->no_generated, "skip the Grid and NetMaker instances")
       ->group("");

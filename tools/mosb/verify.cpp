@@ -1,6 +1,7 @@
 #include "mosb/verify.hpp"
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -33,7 +34,15 @@ int run_verify_manifest(const VerifyArgs& a) {
 // `verify --sources DIR FILE`: the raw files in DIR against FILE's source.input.* provenance.
 int run_verify_sources(const VerifyArgs& a) {
   if (a.files.size() != 1) throw UsageError("--sources DIR takes exactly one instance FILE");
-  const auto checks = check_sources(GraphReader::open(a.files.front()), a.sources);
+  auto checks = check_sources(GraphReader::open(a.files.front()), a.sources);
+  // A FIFO, device or directory in place of a raw file: say so, not what reading it threw.
+  for (auto& c : checks) {
+    std::error_code error;
+    const auto status = std::filesystem::status(c.path, error);
+    if (!c.problem.empty() && !error && std::filesystem::exists(status) &&
+        !std::filesystem::is_regular_file(status))
+      c.problem = c.path.string() + ": not a regular file";
+  }
   std::size_t failures = 0;
   for (const auto& c : checks) failures += c.problem.empty() ? 0 : 1;
   if (a.json) {

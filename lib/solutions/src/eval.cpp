@@ -523,27 +523,38 @@ bool operator<(const Ratio& a, const Ratio& b) {
 }
 
 Ratio parse_epsilon(std::string_view text) {
-  const auto bad = [&](const char* why) {
+  const auto bad = [&](const std::string& why) {
     return Error(ErrorCode::invalid_argument,
                  "invalid epsilon '" + std::string(text) + "': " + why);
   };
   const std::size_t point = text.find('.');
-  const std::string_view whole = text.substr(0, point);
-  const std::string_view fraction =
+  std::string_view whole = text.substr(0, point);
+  std::string_view fraction =
       point == std::string_view::npos ? std::string_view{} : text.substr(point + 1);
   if (whole.empty() && fraction.empty()) throw bad("expected a decimal number such as 0.05");
   for (std::string_view part : {whole, fraction})
     for (char c : part)
       if (c < '0' || c > '9') throw bad("expected a non-negative decimal number such as 0.05");
-  if (whole.size() > 18 || fraction.size() > 18) throw bad("more than 18 digits");
-  std::uint64_t num = 0, den = 1;
-  for (char c : whole) num = num * 10 + static_cast<std::uint64_t>(c - '0');
+  // Leading zeros of the whole part and trailing zeros of the fraction carry no digit of the value.
+  while (!whole.empty() && whole.front() == '0') whole.remove_prefix(1);
+  while (!fraction.empty() && fraction.back() == '0') fraction.remove_suffix(1);
+  if (whole.size() > 18 || fraction.size() > 18)
+    throw bad("more than 18 significant digits on one side of the point");
+  // Up to 36 digits: exact in 128 bits, then reduced; the fraction must fit in 64 bits.
+  u128 num = 0, den = 1;
+  for (char c : whole) num = num * 10 + static_cast<u128>(c - '0');
   for (char c : fraction) {
-    num = num * 10 + static_cast<std::uint64_t>(c - '0');
+    num = num * 10 + static_cast<u128>(c - '0');
     den *= 10;
   }
-  if (whole.size() + fraction.size() > 18) throw bad("more than 18 digits");
-  return reduced(num, den);
+  for (const u128 prime : {u128{2}, u128{5}})
+    while (den % prime == 0 && num % prime == 0) {
+      num /= prime;
+      den /= prime;
+    }
+  if (num > std::numeric_limits<std::uint64_t>::max())
+    throw bad("not a fraction of two 64-bit integers (too many digits)");
+  return reduced(static_cast<std::uint64_t>(num), static_cast<std::uint64_t>(den));
 }
 
 FrontEvaluation evaluate_front(FrontView<std::uint64_t> solution,

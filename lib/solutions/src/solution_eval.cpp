@@ -44,6 +44,12 @@ void check_same_binding(const SolutionReader& ref, const SolutionReader& sol) {
   if (ref.query_set() != sol.query_set()) mismatch("query set", ref.query_set(), sol.query_set());
   if (ref.query_count() != sol.query_count())
     mismatch("query count", std::to_string(ref.query_count()), std::to_string(sol.query_count()));
+  // The same digest with other header counts: one file's n or m is not its instance's.
+  const auto counts = [](const SolutionReader& r) {
+    return "n = " + std::to_string(r.header().vertex_count) +
+           ", m = " + std::to_string(r.header().arc_count);
+  };
+  if (counts(ref) != counts(sol)) mismatch("header", counts(ref), counts(sol));
 }
 
 SolutionEvaluation evaluate_solutions(const SolutionReader& reference,

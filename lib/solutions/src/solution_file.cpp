@@ -210,6 +210,12 @@ void SolutionReader::check_bound_to(const GraphReader& instance) const {
     fail(ErrorCode::invalid_argument, "solutions of the instance with digest " + instance_digest_ +
                                           ", not of " + instance.display_name() + " (digest " +
                                           digest + ")");
+  if (header_.vertex_count != instance.vertex_count() || header_.arc_count != instance.arc_count())
+    fail(ErrorCode::invalid_argument, "header states n = " + std::to_string(header_.vertex_count) +
+                                          ", m = " + std::to_string(header_.arc_count) + ", but " +
+                                          instance.display_name() +
+                                          " has n = " + std::to_string(instance.vertex_count()) +
+                                          ", m = " + std::to_string(instance.arc_count()));
   const auto view = instance.find_view(view_);
   if (!view)
     fail(ErrorCode::invalid_argument, "view '" + view_ + "' is not in " + instance.display_name());

@@ -8,6 +8,8 @@
 #include <string>
 #include <string_view>
 
+#include "nondominance.hpp"
+
 namespace mosb {
 
 namespace {
@@ -24,13 +26,6 @@ std::string vector_text(const std::vector<double>& v) {
   return text + ")";
 }
 
-// a weakly dominates b: no worse in every objective (equal vectors included).
-bool weakly_dominates(const std::vector<double>& a, const std::vector<double>& b) {
-  for (std::size_t i = 0; i < a.size(); ++i)
-    if (a[i] > b[i]) return false;
-  return true;
-}
-
 // The front of query q, values as doubles: exact for every integer cost (the writer refuses
 // integers above 2^53) and for f32/f64 costs.
 std::vector<std::vector<double>> front_of(const SolutionReader& s, std::uint64_t begin,
@@ -42,35 +37,19 @@ std::vector<std::vector<double>> front_of(const SolutionReader& s, std::uint64_t
   return front;
 }
 
-// [duplicate] and [dominated]: sorted lexicographically, a vector can only be weakly dominated by
-// one before it; with two objectives, only when its second value is not below every earlier one.
+// [duplicate] and [dominated]: the pair the quadratic definition names, found in O(k log k) for
+// d <= 3 (nondominance.hpp).
 std::optional<std::string> dominance_problem(const std::vector<std::vector<double>>& front,
                                              std::size_t d, const std::string& label) {
-  std::vector<std::size_t> order(front.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(),
-            [&](std::size_t a, std::size_t b) { return front[a] < front[b]; });
-  double best_second = INFINITY;  // d = 2: the smallest second value so far
-  for (std::size_t j = 0; j < order.size(); ++j) {
-    const auto& v = front[order[j]];
-    auto report = [&](std::size_t by) {
-      const auto& w = front[by];
-      return label + (w == v ? "[duplicate] vector " + vector_text(v) + " appears twice"
-                             : "[dominated] vector " + vector_text(v) + " is dominated by " +
-                                   vector_text(w));
-    };
-    if (d == 2) {
-      if (j > 0 && v[1] >= best_second) {
-        for (std::size_t k = 0; k < j; ++k)
-          if (weakly_dominates(front[order[k]], v)) return report(order[k]);
-      }
-      best_second = std::min(best_second, v[1]);
-      continue;
-    }
-    for (std::size_t k = 0; k < j; ++k)
-      if (weakly_dominates(front[order[k]], v)) return report(order[k]);
-  }
-  return std::nullopt;
+  std::vector<double> rows;
+  rows.reserve(front.size() * d);
+  for (const auto& v : front) rows.insert(rows.end(), v.begin(), v.end());
+  const auto pair = solutions_internal::find_weakly_dominated<double>(rows, d);
+  if (!pair) return std::nullopt;
+  const auto &v = front[pair->dominated], &w = front[pair->by];
+  return label +
+         (w == v ? "[duplicate] vector " + vector_text(v) + " appears twice"
+                 : "[dominated] vector " + vector_text(v) + " is dominated by " + vector_text(w));
 }
 
 // A path's cost so far: integer objectives summed exactly in u64 (a file's integer sums are at most

@@ -28,7 +28,8 @@ struct Ratio {
 };
 
 // "0.05", "1", ".5", "0" → exact reduced ratio. Throws mosb::Error for anything else (a sign, an
-// exponent, more than 18 digits on either side of the point).
+// exponent, more than 18 significant digits on either side of the point, not counting leading zeros
+// of the whole part and trailing zeros of the fraction, or a reduced numerator above 2^64 - 1).
 Ratio parse_epsilon(std::string_view text);
 
 // n vectors of `dimension` values, row-major: vector k is values[k*dimension, (k+1)*dimension).

@@ -96,8 +96,9 @@ class SolutionReader : public ContainerReader {
   static SolutionReader from_memory(std::span<const std::byte> bytes, std::string display_name);
 
   // Throws ErrorCode::invalid_argument "FILE: solutions of instance DIGEST, not of INSTANCE
-  // (DIGEST)" unless the file's instance digest is the instance's; also checks that the view and
-  // query set exist in the instance with the file's objectives and query count.
+  // (DIGEST)" unless the file's instance digest is the instance's; also checks the header's n and m
+  // against the instance's, and that the view and query set exist in the instance with the file's
+  // objectives and query count.
   void check_bound_to(const GraphReader& instance) const;
 
   const Metadata& metadata() const { return metadata_; }

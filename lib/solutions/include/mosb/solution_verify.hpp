@@ -37,12 +37,12 @@ std::optional<std::string> reference_problem(double c_star, double l_star,
 
 // The first problem, as one line naming the query (and both vectors, or the path step), or
 // nullopt. `instance` must be opened with VerifyLevel::full (paths walk its CSR). Cost: the
-// payload, plus O(k log k + k·w) per front of k vectors where w is the number of vectors not
-// lexicographically after a vector (O(k log k) for d = 2, O(k^2) worst case for d > 2), plus the
-// path lengths times the out-degrees along them, plus O(n + m) per distinct start of the queries
-// claimed `disconnected` (one breadth-first search each over the forward CSR: a reachable goal is
-// "[disconnected] ... (a wrong answer)"). Integer path costs are summed exactly in u64 and compared
-// exactly with the stored sums. When the query set declares a reference (section
+// payload, plus O(k log k) per front of k vectors for d <= 3 (a lexicographic sort and a sweep;
+// for d >= 4 the sweep asks a k-d tree, src/nondominance.hpp), plus the path lengths times the
+// out-degrees along them, plus O(n + m) per distinct start of the queries claimed `disconnected`
+// (one breadth-first search each over the forward CSR: a reachable goal is "[disconnected] ... (a
+// wrong answer)"). Integer path costs are summed exactly in u64 and compared exactly with the
+// stored sums. When the query set declares a reference (section
 // kind 17 and `queries.<set>.reference.objective`, of any source) for an objective of the view,
 // each solved front's smallest value of that objective is checked against the query's optimum in
 // the declared units (reference_problem, "[reference]"); the source's name appears only in the

@@ -21,7 +21,14 @@ struct FrontPlot {
   std::vector<Point2> reference, solution;
   std::optional<double> epsilon;  // no boxes when absent or 0
 };
+// Past kMaxDrawnPoints vectors a set is thinned (thin_points) so a million-vector front stays a
+// figure of a few hundred kB; the legend then says "showing k of n".
 std::string plot_front(const FrontPlot& plot);
+inline constexpr std::size_t kMaxDrawnPoints = 5000;
+// The points drawn of a set: all of them up to `limit`; past it, in order of (x, y), every
+// ceil(n / limit)-th point plus both extreme points of each objective (smallest and largest x and
+// y), so the front's ends are always shown. Deterministic; at most limit + 4 points.
+std::vector<Point2> thin_points(const std::vector<Point2>& points, std::size_t limit);
 
 // Front size per query, sorted increasing (query hardness); a log scale when sizes span more than
 // two decades. Values of unsolved queries are left out by the caller.
