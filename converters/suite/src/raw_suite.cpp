@@ -118,13 +118,8 @@ RawRecipe fmi_recipe(const description::Json& d) {
   return r;
 }
 
-<<<<<<< HEAD
-// One GUARDS map: MAP.map with its guards MAP.guards (spec/families/games.md).
-RawRecipe guards_recipe(const description::Json& d, const std::string& map) {
-=======
 // One GUARDS map: MAP.map with its guards MAP.guards (spec/families/games.md), view Games-GUARDS_2.
-RawRecipe guards_recipe(const std::string& map) {
->>>>>>> views
+RawRecipe guards_recipe(const description::Json& d, const std::string& map) {
   RawRecipe r;
   const std::vector<std::pair<std::string, std::string>> values = {{"map", map}};
   r.name = description::expand(description::text(d, "name"), values);
