@@ -1,3 +1,5 @@
+#include "mosb/converters/dimacs_converter.hpp"
+
 #include <doctest/doctest.h>
 #include <xxhash.h>
 
@@ -8,7 +10,6 @@
 #include <string>
 
 #include "file_patch.hpp"
-#include "mosb/converters/dimacs_converter.hpp"
 #include "mosb/converters/text_input.hpp"
 #include "mosb/error.hpp"
 #include "mosb/graph_reader.hpp"

@@ -1,3 +1,5 @@
+#include "mosb/converters/fmi_converter.hpp"
+
 #include <doctest/doctest.h>
 
 #include <cstdlib>
@@ -6,7 +8,6 @@
 #include <map>
 #include <string>
 
-#include "mosb/converters/fmi_converter.hpp"
 #include "mosb/error.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/verify.hpp"

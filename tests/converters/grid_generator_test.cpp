@@ -1,10 +1,11 @@
+#include "mosb/converters/grid_generator.hpp"
+
 #include <doctest/doctest.h>
 
 #include <array>
 #include <cstdlib>
 
 #include "file_patch.hpp"
-#include "mosb/converters/grid_generator.hpp"
 #include "mosb/error.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/verify.hpp"

@@ -1,3 +1,5 @@
+#include "mosb/converters/netmaker_generator.hpp"
+
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -11,7 +13,6 @@
 
 #include "file_patch.hpp"
 #include "mosb/converters/grid_generator.hpp"
-#include "mosb/converters/netmaker_generator.hpp"
 #include "mosb/converters/suite.hpp"
 #include "mosb/error.hpp"
 #include "mosb/graph_reader.hpp"

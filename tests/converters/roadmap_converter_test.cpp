@@ -1,3 +1,5 @@
+#include "mosb/converters/roadmap_converter.hpp"
+
 #include <doctest/doctest.h>
 
 #include <filesystem>
@@ -6,7 +8,6 @@
 #include <vector>
 
 #include "mosb/converters/graphml_reader.hpp"
-#include "mosb/converters/roadmap_converter.hpp"
 #include "mosb/error.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/verify.hpp"

@@ -1,10 +1,11 @@
+#include "mosb/file_writer.hpp"
+
 #include <doctest/doctest.h>
 
 #include <algorithm>
 
 #include "file_patch.hpp"
 #include "mosb/error.hpp"
-#include "mosb/file_writer.hpp"
 #include "mosb/graph_builder.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/verify.hpp"

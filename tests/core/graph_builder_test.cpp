@@ -1,10 +1,11 @@
+#include "mosb/graph_builder.hpp"
+
 #include <doctest/doctest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 
-#include "mosb/graph_builder.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/verify.hpp"
 #include "temp_dir.hpp"

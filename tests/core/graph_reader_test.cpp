@@ -1,4 +1,6 @@
 // Hostile and damaged files: each must give a clear error at open or at the right verify level.
+#include "mosb/graph_reader.hpp"
+
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -8,7 +10,6 @@
 
 #include "file_patch.hpp"
 #include "mosb/converters/grid_generator.hpp"
-#include "mosb/graph_reader.hpp"
 #include "mosb/verify.hpp"
 #include "temp_dir.hpp"
 
