@@ -277,7 +277,7 @@ class SolutionsTest(CliTest):
         self.assert_refused(["--dir", d], "%s/0.txt:2: query 0, objective 'c1': path sum above "
                             "2^53, the largest integer a solution file stores exactly" % d)
         records = [self.record(1, 9, [[1, 1], [2, 1e300]])]
-        self.assert_refused(["--json-log", self.log(records), "--id-base", "1"],
+        self.assert_refused(["--json-log", self.log(records), "--id-base", "1", "--force-id-base"],
                             "%s: /0/finish_info/solutions/1/cost_until_now: query 0, objective 'c2': "
                             "path sum above 2^53, the largest integer a solution file stores exactly"
                             % self.path("log.json"))
@@ -369,7 +369,7 @@ class SolutionsTest(CliTest):
                                                  "total_runtime(ms)": 60000},
                    {"source": 9, "target": 1, "status": "failed", "exit_status": 134},
                    {"source": 2, "target": 6, "status": "memory-limit"}]
-        self.import_("--json-log", self.log(records), "--id-base", "1")
+        self.import_("--json-log", self.log(records), "--id-base", "1", "--force-id-base")
         info = self.inspect()
         self.assertEqual(info["statuses"], {"solved": 1, "timeout": 1, "memory-limit": 1,
                                             "disconnected": 0, "not-run": 0, "failed": 1})
@@ -381,7 +381,7 @@ class SolutionsTest(CliTest):
             self.assertEqual(json.load(f)[2], {"source": 9, "target": 1, "status": "failed",
                                                "exit_status": 134})
         records[1]["status"] = "finished"
-        self.assert_refused(["--json-log", self.log(records), "--id-base", "1"],
+        self.assert_refused(["--json-log", self.log(records), "--id-base", "1", "--force-id-base"],
                             "%s: /1/status: unknown status 'finished' (solved, timeout, "
                             "memory-limit, disconnected, failed)" % self.path("log.json"))
 
