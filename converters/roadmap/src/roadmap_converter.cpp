@@ -281,60 +281,73 @@ ClearanceKeys find_clearance_keys(const GraphmlGraph& g, const std::string& file
   return keys;
 }
 
-GraphInput convert_graphml_file(const RoadmapOptions& o) {
-  GraphInput out;
-  auto& m = out.metadata;
-  std::string file, base_name;
-  GraphmlGraph g;
-  {
-    // Streamed: the text is never held whole; the values the conversion needs are in `g`.
-    InputFile input(*o.graphml_file);
-    ReadProgress read(o.progress, {*o.graphml_file});
-    input.count_into(&read);
-    file = input.display_name();
-    base_name = input.facts().base_name;
-    g = parse_graphml(input, file);
-    record_input(m, 0, input.facts());
-  }
+// The configuration of every node (its `coords`, all with the same number of degrees of freedom),
+// row by row.
+struct Configurations {
+  std::vector<double> values;
+  std::size_t dof = 0;
+};
 
+Configurations read_configurations(const GraphmlGraph& g, const std::string& file) {
   const auto coords_key = g.node_key("coords");
   if (!coords_key)
     throw Error(file + ": no node key named 'coords' (the configurations the length needs)");
-  const std::size_t n = g.node_count();
-  std::vector<double> configs;
-  std::size_t dof = 0;
-  for (std::size_t v = 0; v < n; ++v) {
+  Configurations c;
+  for (std::size_t v = 0; v < g.node_count(); ++v) {
     const auto text = g.node_value(v, *coords_key);
     if (!text) throw Error(file + ": node " + quoted(g.node_id(v)) + " has no coords");
     const auto q = parse_coords(*text, file, g.node_id(v));
-    if (v == 0) dof = q.size();
-    if (q.size() != dof)
+    if (v == 0) c.dof = q.size();
+    if (q.size() != c.dof)
       throw Error(file + ": node " + quoted(g.node_id(v)) + " has " + std::to_string(q.size()) +
-                  " coordinates, node " + quoted(g.node_id(0)) + " has " + std::to_string(dof));
-    configs.insert(configs.end(), q.begin(), q.end());
+                  " coordinates, node " + quoted(g.node_id(0)) + " has " + std::to_string(c.dof));
+    c.values.insert(c.values.end(), q.begin(), q.end());
   }
+  return c;
+}
 
-  const auto keys = find_clearance_keys(g, file);
-  auto mode = o.clearance;
-  if (mode == ClearanceMode::automatic)
-    mode = keys.aggregate || !keys.links.empty() ? ClearanceMode::aggregate : ClearanceMode::none;
-  if (o.clearance == ClearanceMode::automatic && mode == ClearanceMode::none)
+// Which clearance objectives to write (--clearance, resolved against the keys the file has).
+struct ClearanceChoice {
+  ClearanceKeys keys;
+  ClearanceMode mode = ClearanceMode::none;
+  bool aggregate = false;  // write the aggregate penalty
+  bool links = false;      // write one penalty per link
+};
+
+ClearanceChoice choose_clearance(const GraphmlGraph& g, const RoadmapOptions& o,
+                                 const std::string& file, const std::string& base_name,
+                                 Metadata& m) {
+  ClearanceChoice c{find_clearance_keys(g, file)};
+  const auto& keys = c.keys;
+  c.mode = o.clearance;
+  if (c.mode == ClearanceMode::automatic)
+    c.mode = keys.aggregate || !keys.links.empty() ? ClearanceMode::aggregate : ClearanceMode::none;
+  if (o.clearance == ClearanceMode::automatic && c.mode == ClearanceMode::none)
     m.set("warning.clearance",
           "no edge key 'clearance' or 'clearance_0'.. in " + base_name +
               ": no clearance objective is written (--clearance none: no warning)");
-  const bool want_aggregate = mode == ClearanceMode::aggregate || mode == ClearanceMode::both;
-  const bool want_links = mode == ClearanceMode::per_link || mode == ClearanceMode::both;
-  if (want_aggregate && !keys.aggregate && keys.links.empty())
-    throw Error(file + ": --clearance " + clearance_mode_name(mode) +
+  c.aggregate = c.mode == ClearanceMode::aggregate || c.mode == ClearanceMode::both;
+  c.links = c.mode == ClearanceMode::per_link || c.mode == ClearanceMode::both;
+  if (c.aggregate && !keys.aggregate && keys.links.empty())
+    throw Error(file + ": --clearance " + clearance_mode_name(c.mode) +
                 ": no edge key 'clearance' or 'clearance_0'...");
-  if (want_links && keys.links.empty())
-    throw Error(file + ": --clearance " + clearance_mode_name(mode) +
+  if (c.links && keys.links.empty())
+    throw Error(file + ": --clearance " + clearance_mode_name(c.mode) +
                 ": no edge keys 'clearance_0' .. 'clearance_{L-1}'");
-  const auto weight_key = g.edge_key("weight");
-  if (o.weight && !weight_key) throw Error(file + ": --weight: no edge key named 'weight'");
-  if (!(o.delta > 0) || !std::isfinite(o.delta))
-    throw Error("convert roadmap: --delta must be a positive real");
+  return c;
+}
 
+// The cost columns of the arcs, in arc order (an undirected edge is two arcs).
+struct RoadmapColumns {
+  std::vector<double> length, aggregate, weight;
+  std::vector<std::vector<double>> per_link;
+};
+
+RoadmapColumns build_arcs(const GraphmlGraph& g, const Configurations& configs,
+                          const ClearanceChoice& clearance, const RoadmapOptions& o,
+                          const std::string& file, GraphInput& out) {
+  const auto& keys = clearance.keys;
+  const auto weight_key = g.edge_key("weight");  // present when o.weight (checked by the caller)
   const auto real_of = [&](std::size_t e, std::size_t key) {
     const auto text = g.edge_value(e, key);
     const auto& name = g.edge_keys[key].name;
@@ -353,36 +366,38 @@ GraphInput convert_graphml_file(const RoadmapOptions& o) {
     return d;
   };
 
-  const std::size_t links = want_links ? keys.links.size() : 0;
-  std::vector<double> length, aggregate, weight;
-  std::vector<std::vector<double>> per_link(links);
+  const std::size_t links = clearance.links ? keys.links.size() : 0;
+  RoadmapColumns c;
+  c.per_link.resize(links);
   // Sized once: growing nine columns by doubling would need up to twice their final memory.
   std::size_t arcs = 0;
   for (const auto& edge : g.edges) arcs += edge.directed || edge.source == edge.target ? 1 : 2;
   if (arcs <= kMaxCount) {
     out.tails.reserve(arcs);
     out.heads.reserve(arcs);
-    length.reserve(arcs);
-    if (want_aggregate) aggregate.reserve(arcs);
-    for (auto& column : per_link) column.reserve(arcs);
-    if (o.weight) weight.reserve(arcs);
+    c.length.reserve(arcs);
+    if (clearance.aggregate) c.aggregate.reserve(arcs);
+    for (auto& column : c.per_link) column.reserve(arcs);
+    if (o.weight) c.weight.reserve(arcs);
   }
+  const std::size_t dof = configs.dof;
   for (std::size_t e = 0; e < g.edges.size(); ++e) {
     const auto& edge = g.edges[e];
     double squared = 0;
     for (std::size_t k = 0; k < dof; ++k) {
-      const double diff = configs[edge.source * dof + k] - configs[edge.target * dof + k];
+      const double diff =
+          configs.values[edge.source * dof + k] - configs.values[edge.target * dof + k];
       squared += diff * diff;
     }
     const double len = std::sqrt(squared);
     if (!std::isfinite(len))
       throw Error(file + ": " + g.describe_edge(e) + ": the length overflows");
     std::vector<double> link_d(keys.links.size());
-    if (want_links || (want_aggregate && !keys.aggregate))
+    if (clearance.links || (clearance.aggregate && !keys.aggregate))
       for (std::size_t i = 0; i < keys.links.size(); ++i)
         link_d[i] = clearance_of(e, keys.links[i]);
     double d_min = 0;
-    if (want_aggregate)
+    if (clearance.aggregate)
       d_min = keys.aggregate ? clearance_of(e, *keys.aggregate)
                              : *std::min_element(link_d.begin(), link_d.end());
     double w = 0;
@@ -394,26 +409,55 @@ GraphInput convert_graphml_file(const RoadmapOptions& o) {
     }
     // An undirected edge is two opposite arcs with the same costs; an undirected loop is one arc.
     const int copies = edge.directed || edge.source == edge.target ? 1 : 2;
-    for (int c = 0; c < copies; ++c) {
+    for (int copy = 0; copy < copies; ++copy) {
       if (out.tails.size() >= kMaxCount)
         throw Error(file + ": more than " + std::to_string(kMaxCount) + " arcs");
-      out.tails.push_back(c == 0 ? edge.source : edge.target);
-      out.heads.push_back(c == 0 ? edge.target : edge.source);
-      length.push_back(len);
-      if (want_aggregate) aggregate.push_back(clearance_penalty(d_min, o.delta));
+      out.tails.push_back(copy == 0 ? edge.source : edge.target);
+      out.heads.push_back(copy == 0 ? edge.target : edge.source);
+      c.length.push_back(len);
+      if (clearance.aggregate) c.aggregate.push_back(clearance_penalty(d_min, o.delta));
       for (std::size_t i = 0; i < links; ++i)
-        per_link[i].push_back(clearance_penalty(link_d[i], o.delta));
-      if (o.weight) weight.push_back(w);
+        c.per_link[i].push_back(clearance_penalty(link_d[i], o.delta));
+      if (o.weight) c.weight.push_back(w);
     }
   }
+  return c;
+}
 
-  out.vertex_count = n;
-  out.costs.push_back({"length", "", std::move(length), std::nullopt});
-  if (want_aggregate) out.costs.push_back({"clearance", "", std::move(aggregate), std::nullopt});
+GraphInput convert_graphml_file(const RoadmapOptions& o) {
+  GraphInput out;
+  auto& m = out.metadata;
+  std::string file, base_name;
+  GraphmlGraph g;
+  {
+    // Streamed: the text is never held whole; the values the conversion needs are in `g`.
+    InputFile input(*o.graphml_file);
+    ReadProgress read(o.progress, {*o.graphml_file});
+    input.count_into(&read);
+    file = input.display_name();
+    base_name = input.facts().base_name;
+    g = parse_graphml(input, file);
+    record_input(m, 0, input.facts());
+  }
+  auto configs = read_configurations(g, file);
+  const auto clearance = choose_clearance(g, o, file, base_name, m);
+  if (o.weight && !g.edge_key("weight"))
+    throw Error(file + ": --weight: no edge key named 'weight'");
+  if (!(o.delta > 0) || !std::isfinite(o.delta))
+    throw Error("convert roadmap: --delta must be a positive real");
+  auto columns = build_arcs(g, configs, clearance, o, file, out);
+  const std::size_t links = columns.per_link.size();
+  const bool want_aggregate = clearance.aggregate;
+  const std::size_t dof = configs.dof;
+
+  out.vertex_count = g.node_count();
+  out.costs.push_back({"length", "", std::move(columns.length), std::nullopt});
+  if (want_aggregate)
+    out.costs.push_back({"clearance", "", std::move(columns.aggregate), std::nullopt});
   for (std::size_t i = 0; i < links; ++i)
     out.costs.push_back(
-        {"clearance_" + std::to_string(i), "", std::move(per_link[i]), std::nullopt});
-  if (o.weight) out.costs.push_back({"weight", "", std::move(weight), std::nullopt});
+        {"clearance_" + std::to_string(i), "", std::move(columns.per_link[i]), std::nullopt});
+  if (o.weight) out.costs.push_back({"weight", "", std::move(columns.weight), std::nullopt});
   name_objectives(out, o.objectives);
   // The paper's views: Panda-RRG_2 is (length, aggregate penalty), Panda-RRG_8 length and 7 links.
   if (want_aggregate)
@@ -425,15 +469,17 @@ GraphInput convert_graphml_file(const RoadmapOptions& o) {
     m.set("view.Panda-RRG_8.objectives", list);
   }
   if (dof > 0)
-    out.vertex_data.push_back(DataColumn::from("config", static_cast<std::uint32_t>(dof), configs));
+    out.vertex_data.push_back(
+        DataColumn::from("config", static_cast<std::uint32_t>(dof), configs.values));
   m.set("benchmark",
         o.name ? *o.name : benchmark_name_from(base_name, {".gr", ".xml", ".graphml"}));
   m.set("roadmap.dof", std::to_string(dof));
   m.set("roadmap.edgedefault", g.edge_default_directed ? "directed" : "undirected");
   m.set("roadmap.edges", std::to_string(g.edges.size()));
-  if (!keys.links.empty()) m.set("roadmap.clearance_links", std::to_string(keys.links.size()));
-  m.set("source.param.clearance", clearance_mode_name(mode));
-  if (want_aggregate || want_links) m.set("source.param.delta", real_text(o.delta));
+  if (!clearance.keys.links.empty())
+    m.set("roadmap.clearance_links", std::to_string(clearance.keys.links.size()));
+  m.set("source.param.clearance", clearance_mode_name(clearance.mode));
+  if (clearance.aggregate || clearance.links) m.set("source.param.delta", real_text(o.delta));
   m.set("source.param.weight", o.weight ? "true" : "false");
   return out;
 }
