@@ -480,30 +480,31 @@ std::vector<ImportedResult> parse_solution_table(std::string_view text, const st
   return sorted;
 }
 
-std::vector<ImportedResult> parse_solver_json_log(std::string_view text, const std::string& name,
-                                                  const SolutionImportOptions& o) {
-  check_options(o);
+namespace {
+
+// A 0-based byte offset of the text as FILE:LINE:COLUMN.
+[[noreturn]] void fail_at_offset(std::string_view text, const std::string& name, std::size_t at,
+                                 const std::string& message) {
+  at = std::min(at, text.size());
+  const auto before = text.substr(0, at);
+  const std::uint64_t line = 1 + std::count(before.begin(), before.end(), '\n');
+  const auto line_start = before.rfind('\n');
+  const std::uint64_t column = at - (line_start == std::string_view::npos ? 0 : line_start + 1) + 1;
+  fail(name, line, column, message);
+}
+
+// The JSON text parsed; a syntax error is FILE:LINE:COLUMN: invalid JSON: REASON.
+nlohmann::json parse_json_text(std::string_view text, const std::string& name) {
   using Json = nlohmann::json;
-  Json log;
-  // A 0-based byte offset of the text as FILE:LINE:COLUMN.
-  auto fail_at = [&](std::size_t at, const std::string& message) {
-    at = std::min(at, text.size());
-    const auto before = text.substr(0, at);
-    const std::uint64_t line = 1 + std::count(before.begin(), before.end(), '\n');
-    const auto line_start = before.rfind('\n');
-    const std::uint64_t column =
-        at - (line_start == std::string_view::npos ? 0 : line_start + 1) + 1;
-    fail(name, line, column, message);
-  };
   try {
-    log = Json::parse(text.begin(), text.end());
+    return Json::parse(text.begin(), text.end());
   } catch (const Json::parse_error& e) {
     std::string what = e.what();
     // nlohmann's message: "[json.exception.parse_error.101] parse error at ...: REASON"
     if (const auto reason = what.rfind(": "); reason != std::string::npos)
       what = what.substr(reason + 2);
     // e.byte is 1-based, at the offending character.
-    fail_at(e.byte == 0 ? 0 : e.byte - 1, "invalid JSON: " + what);
+    fail_at_offset(text, name, e.byte == 0 ? 0 : e.byte - 1, "invalid JSON: " + what);
   } catch (const Json::out_of_range& e) {
     // A number too large for any JSON number type: "... number overflow parsing 'DIGITS'". The
     // error carries no position, so the number's first occurrence locates it.
@@ -514,77 +515,101 @@ std::vector<ImportedResult> parse_solver_json_log(std::string_view text, const s
                             ? std::string()
                             : what.substr(quote + 1, what.rfind('\'') - quote - 1);
     const auto found = number.empty() ? std::string_view::npos : text.find(number);
-    fail_at(found == std::string_view::npos ? 0 : found, "invalid JSON: " + what);
+    fail_at_offset(text, name, found == std::string_view::npos ? 0 : found,
+                   "invalid JSON: " + what);
   }
+}
+
+using Endpoints = std::multimap<std::pair<std::uint64_t, std::uint64_t>, std::uint64_t>;
+
+// The query record `r` answers: by position, or by its endpoints (`by_endpoints`, each query
+// taken once, repeated endpoints in order).
+template <class Json, class At>
+std::uint64_t json_record_query(const Json& record, std::size_t r, const std::string& record_at,
+                                const SolutionImportOptions& o, Endpoints& by_endpoints,
+                                const At& at) {
+  auto endpoint = [&](const char* key) -> std::uint64_t {
+    const auto field = record.find(key);
+    if (field == record.end()) throw at(record_at, std::string("no '") + key + "'");
+    if (!field->is_number_unsigned())
+      throw at(record_at + "/" + key, "expected a vertex id, found " + field->dump());
+    const auto id = field->template get<std::uint64_t>();
+    if (id < o.id_base || id - o.id_base >= o.vertex_count)
+      throw at(record_at + "/" + key, "vertex id " + std::to_string(id) + " outside " +
+                                          std::to_string(o.id_base) + ".." +
+                                          std::to_string(o.vertex_count - 1 + o.id_base));
+    return id - o.id_base;
+  };
+  const auto source = endpoint("source"), target = endpoint("target");
+  if (o.match == RecordMatch::position) {
+    if (r >= o.queries.size())
+      throw at(record_at, "record " + std::to_string(r) + ", but the set has " +
+                              queries_text(o.queries.size()));
+    if (o.queries[r].start != source || o.queries[r].goal != target)
+      throw at(record_at, "source " + std::to_string(source + o.id_base) + " and target " +
+                              std::to_string(target + o.id_base) + ", but query " +
+                              std::to_string(r) + " runs from " +
+                              std::to_string(o.queries[r].start + o.id_base) + " to " +
+                              std::to_string(o.queries[r].goal + o.id_base));
+    return r;
+  }
+  auto [first, last] = by_endpoints.equal_range({source, target});
+  if (first == last)
+    throw at(record_at, "source " + std::to_string(source + o.id_base) + " and target " +
+                            std::to_string(target + o.id_base) +
+                            " are no query of the set (or every such query has a record)");
+  const auto query = first->second;
+  by_endpoints.erase(first);
+  return query;
+}
+
+// `total_runtime(ms)`, kept only for a finished query: an interrupted or failed run carries no
+// runtime (SOLUTIONS.md §4), so the log's is dropped.
+template <class Json, class At>
+void json_record_runtime(const Json& record, const std::string& record_at, const At& at,
+                         ImportedResult& result) {
+  const bool keeps_runtime =
+      result.status == QueryStatus::solved || result.status == QueryStatus::disconnected;
+  const auto runtime = record.find("total_runtime(ms)");
+  if (!keeps_runtime || runtime == record.end()) return;
+  const std::string runtime_at = record_at + "/total_runtime(ms)";
+  if (!runtime->is_number())
+    throw at(runtime_at, "expected milliseconds, found " + runtime->dump());
+  const double ms = runtime->template get<double>();
+  if (!std::isfinite(ms) || ms < 0) throw at(runtime_at, "invalid runtime " + runtime->dump());
+  result.statistics.runtime_seconds = ms / 1000.0;
+}
+
+}  // namespace
+
+std::vector<ImportedResult> parse_solver_json_log(std::string_view text, const std::string& name,
+                                                  const SolutionImportOptions& o) {
+  check_options(o);
+  const auto log = parse_json_text(text, name);
   auto at = [&](const std::string& pointer, const std::string& message) -> Error {
     return {ErrorCode::invalid_argument, name + ": " + pointer + ": " + message};
   };
   if (!log.is_array()) throw at("/", "expected an array of records");
-  const auto count = o.queries.size();
-  std::multimap<std::pair<std::uint64_t, std::uint64_t>, std::uint64_t> by_endpoints;
+  Endpoints by_endpoints;
   if (o.match == RecordMatch::endpoints)
-    for (std::uint64_t q = 0; q < count; ++q)
+    for (std::uint64_t q = 0; q < o.queries.size(); ++q)
       by_endpoints.emplace(
           std::pair<std::uint64_t, std::uint64_t>(o.queries[q].start, o.queries[q].goal), q);
   std::vector<ImportedResult> results;
   std::vector<std::string> where;
   for (std::size_t r = 0; r < log.size(); ++r) {
     const std::string record_at = "/" + std::to_string(r);
-    const Json& record = log[r];
+    const auto& record = log[r];
     if (!record.is_object()) throw at(record_at, "expected an object");
-    auto endpoint = [&](const char* key) -> std::uint64_t {
-      const auto field = record.find(key);
-      if (field == record.end()) throw at(record_at, std::string("no '") + key + "'");
-      if (!field->is_number_unsigned())
-        throw at(record_at + "/" + key, "expected a vertex id, found " + field->dump());
-      const auto id = field->get<std::uint64_t>();
-      if (id < o.id_base || id - o.id_base >= o.vertex_count)
-        throw at(record_at + "/" + key, "vertex id " + std::to_string(id) + " outside " +
-                                            std::to_string(o.id_base) + ".." +
-                                            std::to_string(o.vertex_count - 1 + o.id_base));
-      return id - o.id_base;
-    };
-    const auto source = endpoint("source"), target = endpoint("target");
     ImportedResult result;
-    if (o.match == RecordMatch::position) {
-      if (r >= count)
-        throw at(record_at,
-                 "record " + std::to_string(r) + ", but the set has " + queries_text(count));
-      if (o.queries[r].start != source || o.queries[r].goal != target)
-        throw at(record_at, "source " + std::to_string(source + o.id_base) + " and target " +
-                                std::to_string(target + o.id_base) + ", but query " +
-                                std::to_string(r) + " runs from " +
-                                std::to_string(o.queries[r].start + o.id_base) + " to " +
-                                std::to_string(o.queries[r].goal + o.id_base));
-      result.query = r;
-    } else {
-      // Repeated endpoints in the set take the records in order.
-      auto [first, last] = by_endpoints.equal_range({source, target});
-      if (first == last)
-        throw at(record_at, "source " + std::to_string(source + o.id_base) + " and target " +
-                                std::to_string(target + o.id_base) +
-                                " are no query of the set (or every such query has a record)");
-      result.query = first->second;
-      by_endpoints.erase(first);
-    }
+    result.query = json_record_query(record, r, record_at, o, by_endpoints, at);
     result.source = name + ": " + record_at;
     json_record_status(record, record_at, at, result);
     json_record_front(record, record_at, name, o, at, result);
     if (!result.status_stated && result.costs.empty()) result.status = QueryStatus::disconnected;
     if (const auto problem = stated_front_problem(result); !problem.empty())
       throw at(record_at, problem);
-    // An interrupted or failed run carries no runtime (SOLUTIONS.md §4): the log's is dropped.
-    const bool keeps_runtime =
-        result.status == QueryStatus::solved || result.status == QueryStatus::disconnected;
-    if (const auto runtime = record.find("total_runtime(ms)");
-        keeps_runtime && runtime != record.end()) {
-      const std::string runtime_at = record_at + "/total_runtime(ms)";
-      if (!runtime->is_number())
-        throw at(runtime_at, "expected milliseconds, found " + runtime->dump());
-      const double ms = runtime->get<double>();
-      if (!std::isfinite(ms) || ms < 0) throw at(runtime_at, "invalid runtime " + runtime->dump());
-      result.statistics.runtime_seconds = ms / 1000.0;
-    }
+    json_record_runtime(record, record_at, at, result);
     results.push_back(std::move(result));
     where.push_back(name + ": " + record_at);
   }
