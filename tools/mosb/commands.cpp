@@ -23,59 +23,58 @@ Command group(CLI::App* parent, std::vector<Command> children) {
 }
 
 CLI::Validator unsigned_integer(std::uint64_t max) {
-  return CLI::Validator(
-      [max](std::string& text) -> std::string {
-        const bool digits =
-            !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
-        if (!digits) return "'" + text + "' is not an unsigned integer (decimal digits only)";
-        std::uint64_t value = 0;
-        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-        if (error != std::errc{} || end != text.data() + text.size() || value > max)
-          return "'" + text + "' is above the largest allowed value " + std::to_string(max);
-        return {};
-      },
-      "UINT", "unsigned integer");
+  return {[max](std::string& text) -> std::string {
+            const bool digits =
+                !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+            if (!digits) return "'" + text + "' is not an unsigned integer (decimal digits only)";
+            std::uint64_t value = 0;
+            const auto [end, error] =
+                std::from_chars(text.data(), text.data() + text.size(), value);
+            if (error != std::errc{} || end != text.data() + text.size() || value > max)
+              return "'" + text + "' is above the largest allowed value " + std::to_string(max);
+            return {};
+          },
+          "UINT", "unsigned integer"};
 }
 
 CLI::Validator non_negative_real() {
-  return CLI::Validator(
-      [](std::string& text) -> std::string {
-        double value = 0;
-        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-        if (text.empty() || error == std::errc::invalid_argument ||
-            end != text.data() + text.size())
-          return "'" + text + "' is not a number";
-        if (error != std::errc{} || !std::isfinite(value)) return "'" + text + "' is not finite";
-        if (value < 0 || text.front() == '-') return "'" + text + "' is negative";
-        return {};
-      },
-      "REAL", "non-negative real");
+  return {[](std::string& text) -> std::string {
+            double value = 0;
+            const auto [end, error] =
+                std::from_chars(text.data(), text.data() + text.size(), value);
+            if (text.empty() || error == std::errc::invalid_argument ||
+                end != text.data() + text.size())
+              return "'" + text + "' is not a number";
+            if (error != std::errc{} || !std::isfinite(value))
+              return "'" + text + "' is not finite";
+            if (value < 0 || text.front() == '-') return "'" + text + "' is negative";
+            return {};
+          },
+          "REAL", "non-negative real"};
 }
 
 CLI::Validator epsilon_value() {
-  return CLI::Validator(
-      [](std::string& text) -> std::string {
-        try {
-          parse_epsilon(text);
-        } catch (const Error& e) {
-          return e.what();
-        }
-        return {};
-      },
-      "EPS", "epsilon");
+  return {[](std::string& text) -> std::string {
+            try {
+              parse_epsilon(text);
+            } catch (const Error& e) {
+              return e.what();
+            }
+            return {};
+          },
+          "EPS", "epsilon"};
 }
 
 CLI::Validator printable_text() {
-  return CLI::Validator(
-      [](std::string& text) -> std::string {
-        for (const char c : text)
-          if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
-            return "control character " +
-                   std::to_string(static_cast<unsigned>(static_cast<unsigned char>(c))) +
-                   " in the text (no newline, tab or escape)";
-        return {};
-      },
-      "TEXT", "printable text");
+  return {[](std::string& text) -> std::string {
+            for (const char c : text)
+              if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+                return "control character " +
+                       std::to_string(static_cast<unsigned>(static_cast<unsigned char>(c))) +
+                       " in the text (no newline, tab or escape)";
+            return {};
+          },
+          "TEXT", "printable text"};
 }
 
 void add_json_flag(CLI::App* subcommand, bool& json) {

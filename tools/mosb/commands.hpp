@@ -108,6 +108,7 @@ CLI::Option* add_view_spec_option(CLI::App* subcommand, std::vector<std::string>
 template <class Graph>
 Graph with_views(Graph graph, const std::vector<std::string>& specs) {
   std::vector<ViewSpec> views;
+  views.reserve(specs.size());
   for (const auto& text : specs) views.push_back(parse_view_spec(text));
   add_views(graph, views);
   return graph;

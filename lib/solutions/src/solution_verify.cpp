@@ -7,6 +7,7 @@
 #include <numeric>
 #include <string>
 #include <string_view>
+#include <tuple>
 
 #include "nondominance.hpp"
 
@@ -58,7 +59,11 @@ struct PartialSum {
   std::vector<std::uint64_t> integer;  // one per objective; 0 for a float objective
   std::vector<double> real;            // one per objective; 0 for an integer objective
   bool overflow = false;               // some integer sum passed 2^64 - 1
-  auto operator<=>(const PartialSum&) const = default;
+  // For sort and unique (not a defaulted <=>: clang-tidy 14 misreads it as a 0 literal).
+  bool operator<(const PartialSum& o) const {
+    return std::tie(integer, real, overflow) < std::tie(o.integer, o.real, o.overflow);
+  }
+  bool operator==(const PartialSum& o) const = default;
 };
 
 PartialSum extended(PartialSum sum, const GraphReader& g, const View& view,
