@@ -11,6 +11,7 @@
 
 #include "mosb.h"
 #include "mosb/graph_reader.hpp"
+#include "mosb/internal/utf8.hpp"
 #include "mosb/pack.hpp"
 #include "mosb/store.hpp"
 #include "mosb/verify.hpp"
@@ -63,28 +64,10 @@ struct CallError : mosb::Error {
       : mosb::Error(mosb::ErrorCode::invalid_argument, what) {}
 };
 
-// One line, whatever the message quotes from a file (metadata values, names): control bytes are
-// written as \xNN.
-std::string one_line(std::string_view message) {
-  static constexpr char kHex[] = "0123456789abcdef";
-  std::string out;
-  out.reserve(message.size());
-  for (const char c : message) {
-    const auto byte = static_cast<unsigned char>(c);
-    if (byte >= 0x20 && byte != 0x7f) {
-      out += c;
-    } else {
-      out += "\\x";
-      out += kHex[byte >> 4];
-      out += kHex[byte & 0xf];
-    }
-  }
-  return out;
-}
-
 mosb_status failed(mosb_status status, std::string_view what) {
   try {
-    last_error = one_line(what);
+    // One line, whatever the message quotes from a file (metadata values, names).
+    last_error = mosb::escape_for_terminal(what);
   } catch (...) {
     // Keep the previous message rather than throw out of a C function.
   }
