@@ -20,7 +20,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       }
     }
   try {
-    const auto view = mosb::mosb::parse_view_spec(text);
+    const auto view = mosb::parse_view_spec(text);
     if (view.name.empty() || view.objectives.empty() || view.queries.empty()) __builtin_trap();
   } catch (const mosb::Error&) {
   }
