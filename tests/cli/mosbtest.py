@@ -60,9 +60,9 @@ def run(*args, program=None, check=False, **options):
 WRITE_SOLUTION = os.environ.get("WRITE_SOLUTION", "mosb_test_write_solution")
 
 
-def write_solution(path, instance, view, spec, *extra):
+def write_solution(path, instance, view, spec, *extra, env=None):
     """Solution file `path` for `instance`'s `view`, from the helper's text `spec` on stdin."""
-    run(instance, view, path, *extra, program=WRITE_SOLUTION, input=spec, check=True)
+    run(instance, view, path, *extra, program=WRITE_SOLUTION, input=spec, check=True, env=env)
     return path
 
 

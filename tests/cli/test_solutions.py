@@ -466,6 +466,27 @@ class SolutionsTest(CliTest):
             self.path("p.json"))
         self.assertTrue(os.path.exists(self.path("p.json")))
 
+    def test_text_output_escapes_what_files_and_names_carry(self):
+        # A solver name from a forged file, and a file name, may hold a newline or an escape
+        # sequence: printed escaped, so that neither fakes a line nor drives the terminal.
+        name = "fake\nOK   forged.sol\x1b[2J"
+        out = self.path("odd\nname.sol")
+        mosbtest.write_solution(out, self.grid, "Grid_2", "0 solved 1,9\n", "0", "s",
+                                env=dict(os.environ, MOSB_TEST_SOLVER_NAME=name))
+        text = run("solutions", "inspect", out).stdout
+        self.assertNotIn("\x1b", text)
+        self.assertIn("solver fake\\nOK   forged.sol\\x1b[2J", text)
+        self.assertIn("odd\\nname.sol: solutions of instance", text)
+        self.assertEqual(len(text.splitlines()), 6, text)
+        verified = run("solutions", "verify", out).stdout
+        self.assertEqual(verified.count("\n"), 1, verified)
+        r = run("verify", self.path("missing\n\x1b[31mfile.mosb"), check=False)
+        self.assertEqual(r.returncode, 1)
+        self.assertEqual(r.stdout.count("\n"), 1, r.stdout)
+        self.assertIn("missing\\n\\x1b[31mfile.mosb: cannot open", r.stdout)
+        r = run("solutions", "inspect", self.path("missing\n\x1b[31mfile.sol"), check=False)
+        self.assert_one_line_error(r, "missing\\n\\x1b[31mfile.sol")
+
 
 if __name__ == "__main__":
     unittest.main()

@@ -1,9 +1,11 @@
 // Test helper for tests/cli/test_eval.py and test_plot.py: writes a solution file with
 // mosb::SolutionWriter. Usage: mosb_test_write_solution INSTANCE VIEW OUT [SOLVER_EPSILON
 // [QUERY_SET]] < SPEC, one query a line: "Q STATUS [a,b,... a,b,...]" (vectors of the view's
-// objectives, space-separated); a vector may carry its path as "a,b,...@v0/v1/...".
+// objectives, space-separated); a vector may carry its path as "a,b,...@v0/v1/...". The solver's
+// name is "test", or the environment's MOSB_TEST_SOLVER_NAME (any bytes: hostile names).
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -22,7 +24,8 @@ int main(int argc, char** argv) {
     mosb::SolutionWriter writer(instance, argv[2], argc == 6 ? argv[5] : "");
     if (argc >= 5) {
       mosb::SolverInfo solver;
-      solver.name = "test";
+      const char* name = std::getenv("MOSB_TEST_SOLVER_NAME");
+      solver.name = name != nullptr ? name : "test";
       solver.epsilon = argv[4];
       writer.set_solver(solver);
     }

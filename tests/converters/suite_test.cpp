@@ -38,7 +38,8 @@ TEST_CASE("the published generated suite is the description's 49 Grids then 12 N
 
 TEST_CASE("every generated benchmark carries the views the description lists") {
   testing::TempDir dir;
-  for (const auto& generated : description().at("generated")) {
+  const auto suite = description();  // a range-for over a temporary's member would dangle
+  for (const auto& generated : suite.at("generated")) {
     const auto generator = generated.at("generator").get<std::string>();
     CAPTURE(generator);
     const auto instances =

@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
-# Bounded fuzz runs: the binary reader for SECONDS (default 60), every text-parser target for a
-# third of that. Seeds: spec/golden for the reader, tests/fuzz/corpus/<target>/ for the others.
+# Bounded fuzz runs: the binary reader for SECONDS (default 30), every other target for a third of
+# that (at least 5 s). Seeds: spec/golden for the reader, tests/fuzz/corpus/<target>/ for the others.
 # Usage: tests/fuzz/run.sh [SECONDS] [BUILD_DIR]. BUILD_DIR (default build/sanitize, the build CI
 # tests) needs its fuzz targets built: cmake --preset sanitize && cmake --build --preset fuzz
 # (or the whole `sanitize` build). Any build configured with MOSB_FUZZ=ON will do.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
-seconds="${1:-60}"
+seconds="${1:-30}"
 build="${2:-$root/build/sanitize}"
 bin="$build/tests/fuzz"
 if [[ ! -x "$bin/mosb_fuzz_reader" ]]; then
@@ -34,11 +34,11 @@ run() {  # target seconds seed-files...
 }
 
 run mosb_fuzz_reader "$seconds" "$root"/spec/golden/*/valid/*.mosb "$root"/spec/golden/*/invalid/*.mosb
-run mosb_fuzz_solutions $((seconds / 3 > 5 ? seconds / 3 : 5)) "$root"/spec/golden/*/solutions/*/*.mosb
-run mosb_fuzz_unpack $((seconds / 3 > 5 ? seconds / 3 : 5)) "$root"/spec/golden/*/valid/*.mosb \
+run mosb_fuzz_solutions "$((seconds / 3 > 5 ? seconds / 3 : 5))" "$root"/spec/golden/*/solutions/*/*.mosb
+run mosb_fuzz_unpack "$((seconds / 3 > 5 ? seconds / 3 : 5))" "$root"/spec/golden/*/valid/*.mosb \
   "$root"/spec/golden/*/packed/*/*.mosb
 for fuzzer in "$bin"/mosb_fuzz_*; do
   target="$(basename "$fuzzer")"
   [[ "$target" == mosb_fuzz_reader || "$target" == mosb_fuzz_solutions || "$target" == mosb_fuzz_unpack ]] && continue
-  run "$target" $((seconds / 3 > 5 ? seconds / 3 : 5)) "$root"/tests/fuzz/corpus/"$target"/*
+  run "$target" "$((seconds / 3 > 5 ? seconds / 3 : 5))" "$root"/tests/fuzz/corpus/"$target"/*
 done

@@ -189,3 +189,26 @@ TEST_CASE("StoreLock excludes a second holder until released and refuses a symli
   CHECK_THROWS_WITH_AS(StoreLock(dir / "store"), doctest::Contains("is a symbolic link"), Error);
   CHECK(testing::read_bytes(dir / "outside").size() == 3);
 }
+
+TEST_CASE("an add removes an empty .cache left by an earlier version, not a fresh or full one") {
+  namespace fs = std::filesystem;
+  testing::TempDir dir;
+  write_graph(converters::grid_graph({4, 3, 3, 1}), dir / "a.mosb");
+  write_graph(converters::grid_graph({5, 3, 3, 2}), dir / "b.mosb");
+  auto store = Store::init(dir / "store");
+  const auto cache = dir / "store" / ".cache";
+  fs::create_directory(cache);
+  store.add({dir / "a.mosb"}, {});
+  CHECK(fs::is_directory(cache));  // just made: perhaps by a `store instance` about to fill it
+
+  fs::last_write_time(cache, fs::file_time_type::clock::now() - std::chrono::minutes(2));
+  store.add({dir / "b.mosb"}, {});
+  CHECK_FALSE(fs::exists(cache));
+
+  fs::create_directory(cache);
+  testing::write_bytes(cache / "kept", testing::Bytes(1));
+  fs::last_write_time(cache, fs::file_time_type::clock::now() - std::chrono::minutes(2));
+  write_graph(converters::grid_graph({6, 3, 3, 3}), dir / "c.mosb");
+  store.add({dir / "c.mosb"}, {});
+  CHECK(fs::exists(cache / "kept"));
+}

@@ -10,6 +10,7 @@
 #include "mosb/converters/suite.hpp"
 #include "mosb/eval.hpp"
 #include "mosb/graph_reader.hpp"
+#include "mosb/internal/utf8.hpp"
 
 namespace mosb::cli {
 
@@ -158,9 +159,9 @@ int report_written(const std::string& path, bool json) {
     out.end_object();
     return 0;
   }
-  std::cout << "wrote " << path << ": " << reader.vertex_count() << " vertices, "
-            << reader.arc_count() << " arcs, " << reader.objective_count() << " objectives, digest "
-            << reader.digest() << '\n';
+  std::cout << "wrote " << escape_for_terminal(path) << ": " << reader.vertex_count()
+            << " vertices, " << reader.arc_count() << " arcs, " << reader.objective_count()
+            << " objectives, digest " << reader.digest() << '\n';
   return 0;
 }
 
@@ -179,7 +180,7 @@ int report_suite(const std::string& directory, const std::string& family,
                  const std::function<void(JsonWriter&)>& more) {
   if (!json) {
     std::cout << "wrote " << entries.size() << ' ' << family << " instances and MANIFEST to "
-              << directory << '\n';
+              << escape_for_terminal(directory) << '\n';
     return 0;
   }
   JsonWriter out(std::cout);

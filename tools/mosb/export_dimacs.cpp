@@ -6,6 +6,7 @@
 #include "json_writer.hpp"
 #include "mosb/converters/dimacs_export.hpp"
 #include "mosb/graph_reader.hpp"
+#include "mosb/internal/utf8.hpp"
 #include "terminal_progress.hpp"
 
 namespace mosb::cli {
@@ -37,7 +38,8 @@ int run_export_dimacs(const ExportDimacsArgs& a) {
     json.end_array();
     json.end_object();
   } else {
-    for (const auto& path : written) std::cout << "wrote " << path.string() << '\n';
+    for (const auto& path : written)
+      std::cout << "wrote " << escape_for_terminal(path.string()) << '\n';
   }
   return 0;
 }

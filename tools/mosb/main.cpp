@@ -6,6 +6,7 @@
 #include "commands.hpp"
 #include "mosb/atomic_file.hpp"
 #include "mosb/error.hpp"
+#include "mosb/internal/utf8.hpp"
 #include "mosb/version.hpp"
 
 namespace {
@@ -28,8 +29,7 @@ std::string command_path(const CLI::App& app) {
 
 // A usage error is one line: what is wrong, and where to read how it should be.
 int usage_error(const CLI::App& app, std::string message) {
-  for (auto& c : message)
-    if (c == '\n' || c == '\r') c = ' ';
+  message = mosb::escape_for_terminal(message);
   const auto path = command_path(app);
   std::cerr << "mosb: " << (path.empty() ? "" : path + ": ") << message << " (see mosb "
             << (path.empty() ? "" : path + " ") << "--help)\n";
@@ -62,7 +62,8 @@ int run(int argc, char** argv) {
   mosb::remove_temporaries_on_signals();
   std::signal(SIGXFSZ, SIG_IGN);
   mosb::set_stale_temporary_handler([](const std::filesystem::path& path) {
-    std::cerr << "mosb: removed " << path.string() << ", left by an earlier run that was killed\n";
+    std::cerr << "mosb: removed " << mosb::escape_for_terminal(path.string())
+              << ", left by an earlier run that was killed\n";
   });
   try {
     for (const auto& command : commands)
@@ -70,10 +71,10 @@ int run(int argc, char** argv) {
   } catch (const mosb::cli::UsageError& e) {
     return usage_error(app, e.what());
   } catch (const mosb::Error& e) {
-    std::cerr << "mosb: " << e.what() << '\n';
+    std::cerr << "mosb: " << mosb::escape_for_terminal(e.what()) << '\n';
     return kRuntimeError;
   } catch (const std::exception& e) {
-    std::cerr << "mosb: internal error: " << e.what() << '\n';
+    std::cerr << "mosb: internal error: " << mosb::escape_for_terminal(e.what()) << '\n';
     return kRuntimeError;
   }
   return kRuntimeError;

@@ -11,6 +11,7 @@
 #include "mosb/converters/query_sets.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/instance_editor.hpp"
+#include "mosb/internal/utf8.hpp"
 
 namespace mosb::cli {
 
@@ -71,8 +72,8 @@ int write_and_report(const GraphReader& reader, converters::QuerySetEdit edit, c
     json.key("digest").value(written.digest());
     json.end_object();
   } else {
-    std::cout << "wrote " << path << ": query set " << name << ", " << count << " queries, digest "
-              << written.digest() << '\n';
+    std::cout << "wrote " << escape_for_terminal(path) << ": query set " << name << ", " << count
+              << " queries, digest " << written.digest() << '\n';
   }
   return 0;
 }

@@ -12,6 +12,7 @@
 #include "mosb/converters/solution_import.hpp"
 #include "mosb/converters/text_input.hpp"
 #include "mosb/graph_reader.hpp"
+#include "mosb/internal/utf8.hpp"
 #include "mosb/pack.hpp"
 #include "mosb/solution_file.hpp"
 #include "mosb/solution_summary.hpp"
@@ -97,9 +98,9 @@ int run_import(const ImportArgs& a) {
     json.key("digest").value(written.digest());
     json.end_object();
   } else {
-    std::cout << "wrote " << a.output << ": " << results.size() << " of " << written.query_count()
-              << " queries imported, " << written.vector_count() << " vectors, digest "
-              << written.digest() << "\n";
+    std::cout << "wrote " << escape_for_terminal(a.output) << ": " << results.size() << " of "
+              << written.query_count() << " queries imported, " << written.vector_count()
+              << " vectors, digest " << written.digest() << "\n";
   }
   return 0;
 }
@@ -115,14 +116,15 @@ int run_export(const ExportArgs& a) {
   const auto r = SolutionReader::open_verified(a.file);
   if (!a.directory.empty()) {
     const auto files = converters::export_front_directory(r, a.directory, a.id_base);
-    std::cout << "wrote " << files << " front files to " << a.directory << "\n";
+    std::cout << "wrote " << files << " front files to " << escape_for_terminal(a.directory)
+              << "\n";
     return 0;
   }
   if (a.instance.empty())
     throw Error(ErrorCode::invalid_argument, "--json-log needs --instance (for the endpoints)");
   const auto records = converters::export_json_log(
       r, mosb::load(a.instance, VerifyLevel::checksums), a.json_log, a.id_base);
-  std::cout << "wrote " << a.json_log << ": " << records << " records\n";
+  std::cout << "wrote " << escape_for_terminal(a.json_log) << ": " << records << " records\n";
   return 0;
 }
 
@@ -180,15 +182,17 @@ void print_inspect_json(const InspectArgs& a, const SolutionReader& r, const Sol
 
 void print_inspect_text(const InspectArgs& a, const SolutionReader& r, const SolutionSummary& t) {
   const auto solver = r.solver();
-  std::cout << a.file << ": solutions of instance " << r.instance_digest() << ", view "
-            << r.view_name() << ", query set " << r.query_set() << "\n";
+  // The solver's name, version and epsilon are free text from the file: escaped, as inspect escapes
+  // metadata values, so that a forged file cannot drive the terminal.
+  std::cout << escape_for_terminal(a.file) << ": solutions of instance " << r.instance_digest()
+            << ", view " << r.view_name() << ", query set " << r.query_set() << "\n";
   std::cout << "objectives";
   for (std::size_t i = 0; i < r.objective_count(); ++i)
     std::cout << ' ' << r.objective_name(i) << " (" << format::to_string(r.objective_type(i))
               << ')';
-  std::cout << "\nsolver " << (solver.name.empty() ? "-" : solver.name)
-            << (solver.version.empty() ? "" : " " + solver.version) << ", epsilon "
-            << solver.epsilon << "\n";
+  std::cout << "\nsolver " << (solver.name.empty() ? "-" : escape_for_terminal(solver.name))
+            << (solver.version.empty() ? "" : " " + escape_for_terminal(solver.version))
+            << ", epsilon " << escape_for_terminal(solver.epsilon) << "\n";
   std::cout << r.query_count() << " queries:";
   for (std::uint8_t s = 0; s <= kLastQueryStatus; ++s)
     std::cout << ' ' << t.status_counts[s] << ' ' << to_string(static_cast<QueryStatus>(s))
@@ -243,11 +247,11 @@ int run_verify(const VerifyArgs& a) {
     if (problem) json.key("problem").value(*problem);
     json.end_object();
   } else if (problem) {
-    std::cerr << "mosb: " << *problem << "\n";
+    std::cerr << "mosb: " << escape_for_terminal(*problem) << "\n";
   } else {
-    std::cout << "OK   " << a.file
+    std::cout << "OK   " << escape_for_terminal(a.file)
               << (a.instance.empty() ? " (payload; give --instance for fronts and paths)"
-                                     : " (against " + a.instance + ")")
+                                     : " (against " + escape_for_terminal(a.instance) + ")")
               << "\n";
   }
   return problem ? 1 : 0;

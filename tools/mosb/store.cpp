@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "json_writer.hpp"
 #include "mosb/error.hpp"
+#include "mosb/internal/utf8.hpp"
 #include "terminal_progress.hpp"
 
 namespace mosb::cli {
@@ -183,8 +184,9 @@ int report_checks(const std::vector<FileCheck>& checks, bool json) {
     out.end_object();
   } else {
     for (const auto& c : checks) {
-      if (c.ok()) std::cout << "OK   " << c.file << '\n';
-      for (const auto& p : c.problems) std::cout << "FAIL " << p.kind << ": " << p.detail << '\n';
+      if (c.ok()) std::cout << "OK   " << escape_for_terminal(c.file) << '\n';
+      for (const auto& p : c.problems)
+        std::cout << "FAIL " << p.kind << ": " << escape_for_terminal(p.detail) << '\n';
     }
     std::cout << checks.size() << (checks.size() == 1 ? " file, " : " files, ") << failures
               << " with problems\n";

@@ -7,6 +7,7 @@
 
 #include "commands.hpp"
 #include "json_writer.hpp"
+#include "mosb/internal/utf8.hpp"
 #include "mosb/pack.hpp"
 #include "mosb/store.hpp"
 #include "terminal_progress.hpp"
@@ -65,10 +66,10 @@ int run_verify_sources(const VerifyArgs& a) {
   } else {
     for (const auto& c : checks) {
       if (c.problem.empty())
-        std::cout << "OK   " << c.path.string() << " (" << c.expected.size << " bytes, XXH3 "
-                  << c.expected.xxh3 << ")\n";
+        std::cout << "OK   " << escape_for_terminal(c.path.string()) << " (" << c.expected.size
+                  << " bytes, XXH3 " << c.expected.xxh3 << ")\n";
       else
-        std::cout << "FAIL " << c.problem << '\n';
+        std::cout << "FAIL " << escape_for_terminal(c.problem) << '\n';
     }
   }
   return failures == 0 ? 0 : 1;
@@ -129,9 +130,10 @@ int run_verify(const VerifyArgs& a) {
   } else {
     for (const auto& o : outcomes) {
       if (o.problem)
-        std::cout << "FAIL " << *o.problem << '\n';
+        std::cout << "FAIL " << escape_for_terminal(*o.problem) << '\n';
       else
-        std::cout << "OK   " << o.file << " (" << a.level << ", digest " << o.digest << ")\n";
+        std::cout << "OK   " << escape_for_terminal(o.file) << " (" << a.level << ", digest "
+                  << o.digest << ")\n";
     }
   }
   return failures == 0 ? 0 : 1;

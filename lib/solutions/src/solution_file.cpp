@@ -403,6 +403,75 @@ std::optional<std::string> SolutionReader::verify_payload() const {
 
 // ---- SolutionWriter ----
 
+namespace {
+
+// One query as set_query recorded it.
+struct QueryResult {
+  QueryStatus status = QueryStatus::not_run;
+  std::vector<double> costs;
+  QueryStatistics statistics;
+  std::vector<std::vector<std::uint32_t>> paths;
+};
+
+// The statistic of SOLUTIONS.md §3 with index s (the order of kStatisticNames), if recorded.
+std::optional<std::uint64_t> count_statistic(const QueryStatistics& statistics, std::size_t s) {
+  switch (s) {
+    case 1:
+      return statistics.expanded;
+    case 2:
+      return statistics.generated;
+    case 3:
+      return statistics.peak_memory_bytes;
+    default:
+      return statistics.exit_status;
+  }
+}
+
+bool has_statistic(const QueryStatistics& statistics, std::size_t s) {
+  return s == 0 ? statistics.runtime_seconds.has_value()
+                : count_statistic(statistics, s).has_value();
+}
+
+// A statistic column for each statistic some query recorded; absent values are NaN (runtime) or
+// the reserved count 2^64-1.
+void add_statistic_sections(FileWriter& out, std::span<const QueryResult> results) {
+  for (std::size_t s = 0; s < kStatisticCount; ++s) {
+    if (std::none_of(results.begin(), results.end(),
+                     [s](const QueryResult& r) { return has_statistic(r.statistics, s); }))
+      continue;
+    if (s == 0) {
+      std::vector<double> column;
+      for (const auto& r : results)
+        column.push_back(
+            r.statistics.runtime_seconds.value_or(std::numeric_limits<double>::quiet_NaN()));
+      out.add_section<double>(SectionKind::solution_statistics, kStatisticNames[s], 1,
+                              std::span<const double>(column));
+    } else {
+      std::vector<std::uint64_t> column;
+      for (const auto& r : results)
+        column.push_back(count_statistic(r.statistics, s).value_or(kAbsentCount));
+      out.add_section<std::uint64_t>(SectionKind::solution_statistics, kStatisticNames[s], 1,
+                                     std::span<const std::uint64_t>(column));
+    }
+  }
+}
+
+void add_path_sections(FileWriter& out, std::span<const QueryResult> results) {
+  std::vector<std::uint64_t> path_offsets{0};
+  std::vector<std::uint32_t> vertices;
+  for (const auto& r : results)
+    for (const auto& path : r.paths) {
+      vertices.insert(vertices.end(), path.begin(), path.end());
+      path_offsets.push_back(vertices.size());
+    }
+  out.add_section<std::uint64_t>(SectionKind::path_offsets, "path_offsets", 1,
+                                 std::span<const std::uint64_t>(path_offsets));
+  out.add_section<std::uint32_t>(SectionKind::path_vertices, "path_vertices", 1,
+                                 std::span<const std::uint32_t>(vertices));
+}
+
+}  // namespace
+
 struct SolutionWriter::State {
   std::string instance_digest, view, query_set;
   std::uint64_t vertex_count = 0, arc_count = 0, query_count = 0;
@@ -410,14 +479,53 @@ struct SolutionWriter::State {
   std::vector<ElementType> objective_types;
   SolverInfo solver;
   std::string source_tool = std::string("mosb ") + version();
-  struct Result {
-    QueryStatus status = QueryStatus::not_run;
-    std::vector<double> costs;
-    QueryStatistics statistics;
-    std::vector<std::vector<std::uint32_t>> paths;
-  };
-  std::vector<Result> results;
+  std::vector<QueryResult> results;
+
+  Metadata metadata() const;
+  void add_front_sections(FileWriter& out) const;
 };
+
+Metadata SolutionWriter::State::metadata() const {
+  Metadata meta;
+  meta.set("solution.instance_digest", instance_digest);
+  meta.set("solution.view", view);
+  meta.set("solution.query_set", query_set);
+  meta.set("solution.epsilon", solver.epsilon.empty() ? "0" : solver.epsilon);
+  if (!solver.name.empty()) meta.set("solution.solver.name", solver.name);
+  if (!solver.version.empty()) meta.set("solution.solver.version", solver.version);
+  if (!solver.machine.empty()) meta.set("solution.machine", solver.machine);
+  for (const auto& [key, value] : solver.parameters)
+    meta.set("solution.solver.param." + key, value);
+  meta.set("source.tool", source_tool);
+  return meta;
+}
+
+// Statuses, front offsets and one path-sum column per objective.
+void SolutionWriter::State::add_front_sections(FileWriter& out) const {
+  const std::size_t d = objective_names.size();
+  std::vector<std::uint8_t> statuses;
+  std::vector<std::uint64_t> offsets{0};
+  for (const auto& r : results) {
+    statuses.push_back(static_cast<std::uint8_t>(r.status));
+    offsets.push_back(offsets.back() + r.costs.size() / d);
+  }
+  out.add_section<std::uint8_t>(SectionKind::solution_status, "solution_status", 1,
+                                std::span<const std::uint8_t>(statuses));
+  out.add_section<std::uint64_t>(SectionKind::front_offsets, "front_offsets", 1,
+                                 std::span<const std::uint64_t>(offsets));
+  for (std::size_t i = 0; i < d; ++i) {
+    format::visit_element_type(format::path_sum_type(objective_types[i]), [&](auto tag) {
+      using T = typename decltype(tag)::type;
+      std::vector<T> column;
+      column.reserve(offsets.back());
+      for (const auto& r : results)
+        for (std::size_t k = i; k < r.costs.size(); k += d)
+          column.push_back(static_cast<T>(r.costs[k]));
+      out.add_section<T>(SectionKind::front_cost, objective_names[i], 1,
+                         std::span<const T>(column));
+    });
+  }
+}
 
 SolutionWriter::SolutionWriter(const GraphReader& instance, std::string_view view_name,
                                std::string_view query_set)
@@ -525,104 +633,27 @@ void SolutionWriter::set_query(std::uint64_t q, QueryStatus status, std::span<co
 
 void SolutionWriter::write(const std::filesystem::path& target) const {
   const auto& st = *state_;
-  const std::size_t d = st.objective_names.size();
-  bool any_paths = false, all_paths = true;
-  bool stat_present[kStatisticCount] = {};
-  for (const auto& r : st.results) {
-    if (!r.costs.empty()) {
-      if (r.paths.empty())
-        all_paths = false;
-      else
-        any_paths = true;
-    }
-    stat_present[0] |= r.statistics.runtime_seconds.has_value();
-    stat_present[1] |= r.statistics.expanded.has_value();
-    stat_present[2] |= r.statistics.generated.has_value();
-    stat_present[3] |= r.statistics.peak_memory_bytes.has_value();
-    stat_present[4] |= r.statistics.exit_status.has_value();
-  }
+  const auto with_front = [](const QueryResult& r) { return !r.costs.empty(); };
+  const bool any_paths = std::any_of(st.results.begin(), st.results.end(), [&](const auto& r) {
+    return with_front(r) && !r.paths.empty();
+  });
+  const bool all_paths = std::all_of(st.results.begin(), st.results.end(), [&](const auto& r) {
+    return !with_front(r) || !r.paths.empty();
+  });
   if (any_paths && !all_paths)
     throw Error(ErrorCode::invalid_argument,
                 target.string() + ": some fronts come with paths and some without");
 
-  Metadata meta;
-  meta.set("solution.instance_digest", st.instance_digest);
-  meta.set("solution.view", st.view);
-  meta.set("solution.query_set", st.query_set);
-  meta.set("solution.epsilon", st.solver.epsilon.empty() ? "0" : st.solver.epsilon);
-  if (!st.solver.name.empty()) meta.set("solution.solver.name", st.solver.name);
-  if (!st.solver.version.empty()) meta.set("solution.solver.version", st.solver.version);
-  if (!st.solver.machine.empty()) meta.set("solution.machine", st.solver.machine);
-  for (const auto& [key, value] : st.solver.parameters)
-    meta.set("solution.solver.param." + key, value);
-  meta.set("source.tool", st.source_tool);
-
   FileWriter out(target);
   out.set_file_kind(format::FileKind::solutions);
   out.require_minor(format::kSolutionSumsMinor);
-  const auto text = meta.serialize();
+  const auto text = st.metadata().serialize();
   out.add_section<std::uint8_t>(
       SectionKind::metadata, "metadata", 1,
       std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
-
-  std::vector<std::uint8_t> statuses;
-  std::vector<std::uint64_t> offsets{0};
-  for (const auto& r : st.results) {
-    statuses.push_back(static_cast<std::uint8_t>(r.status));
-    offsets.push_back(offsets.back() + r.costs.size() / d);
-  }
-  out.add_section<std::uint8_t>(SectionKind::solution_status, "solution_status", 1,
-                                std::span<const std::uint8_t>(statuses));
-  out.add_section<std::uint64_t>(SectionKind::front_offsets, "front_offsets", 1,
-                                 std::span<const std::uint64_t>(offsets));
-  for (std::size_t i = 0; i < d; ++i) {
-    format::visit_element_type(format::path_sum_type(st.objective_types[i]), [&](auto tag) {
-      using T = typename decltype(tag)::type;
-      std::vector<T> column;
-      column.reserve(offsets.back());
-      for (const auto& r : st.results)
-        for (std::size_t k = i; k < r.costs.size(); k += d)
-          column.push_back(static_cast<T>(r.costs[k]));
-      out.add_section<T>(SectionKind::front_cost, st.objective_names[i], 1,
-                         std::span<const T>(column));
-    });
-  }
-  for (std::size_t s = 0; s < kStatisticCount; ++s) {
-    if (!stat_present[s]) continue;
-    const auto name = kStatisticNames[s];
-    if (s == 0) {
-      std::vector<double> column;
-      for (const auto& r : st.results)
-        column.push_back(
-            r.statistics.runtime_seconds.value_or(std::numeric_limits<double>::quiet_NaN()));
-      out.add_section<double>(SectionKind::solution_statistics, name, 1,
-                              std::span<const double>(column));
-    } else {
-      std::vector<std::uint64_t> column;
-      for (const auto& r : st.results) {
-        const std::optional<std::uint64_t>* counts[] = {
-            nullptr, &r.statistics.expanded, &r.statistics.generated,
-            &r.statistics.peak_memory_bytes, &r.statistics.exit_status};
-        const auto& v = *counts[s];
-        column.push_back(v.value_or(kAbsentCount));
-      }
-      out.add_section<std::uint64_t>(SectionKind::solution_statistics, name, 1,
-                                     std::span<const std::uint64_t>(column));
-    }
-  }
-  if (any_paths) {
-    std::vector<std::uint64_t> path_offsets{0};
-    std::vector<std::uint32_t> vertices;
-    for (const auto& r : st.results)
-      for (const auto& path : r.paths) {
-        vertices.insert(vertices.end(), path.begin(), path.end());
-        path_offsets.push_back(vertices.size());
-      }
-    out.add_section<std::uint64_t>(SectionKind::path_offsets, "path_offsets", 1,
-                                   std::span<const std::uint64_t>(path_offsets));
-    out.add_section<std::uint32_t>(SectionKind::path_vertices, "path_vertices", 1,
-                                   std::span<const std::uint32_t>(vertices));
-  }
+  st.add_front_sections(out);
+  add_statistic_sections(out, st.results);
+  if (any_paths) add_path_sections(out, st.results);
   out.commit(st.vertex_count, st.arc_count);
 }
 

@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cerrno>
 #include <cstring>
+#include <ctime>
 #include <mutex>
 #include <optional>
 #include <set>
@@ -157,6 +158,15 @@ void sweep_staging(const fs::path& staging) {
     if (pid != 0 && process_has_ended(pid)) fs::remove_all(it->path(), ignored);
   }
   ::rmdir(staging.c_str());  // fails, harmlessly, while it holds anything
+}
+
+// Removes DIR/.cache when it is empty and unchanged for a minute (earlier versions left it empty
+// after a refused entry). The minute spares a `store instance` that has just made it and is about
+// to unpack into it; rmdir removes neither a symlink nor a directory that holds anything.
+void sweep_empty_cache(const fs::path& cache) {
+  struct stat st {};
+  if (::lstat(cache.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) return;
+  if (std::time(nullptr) - st.st_mtime >= 60) ::rmdir(cache.c_str());
 }
 
 // This add's own directory in DIR/.staging: unique per process and call, so concurrent adds
@@ -467,6 +477,7 @@ std::vector<ManifestEntry> Store::add(const std::vector<fs::path>& files,
   // Everything is checked (and packed) before anything the manifest lists is written.
   check_names(files);
   sweep_staging(directory_ / kStagingDirectory);
+  sweep_empty_cache(directory_ / kCacheDirectory);
   Staging staging(directory_);  // removed, with anything not placed, on every way out
   std::vector<Placement> placements;
   for (std::size_t i = 0; i < files.size(); ++i) {
