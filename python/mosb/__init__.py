@@ -8,7 +8,7 @@
 The reading, the checks and the error messages are those of the C++ library (the same sources the
 `mosb` program is built from); every failure is a `mosb.Error` whose message names the file and
 whose `code` is the C++ ErrorCode's name ("io", "not_mosb", "version", "damaged", "not_found",
-"invalid_argument", "packed", "other"). Text in a file that is not UTF-8 is such an error
+"invalid_argument", "packed", "no_memory", "other"). Text in a file that is not UTF-8 is such an error
 ('damaged'), never a UnicodeDecodeError. An argument of the wrong type (a view that is
 neither a name nor a View) raises TypeError, and a negative index IndexError, as Python does.
 Paths may be str, bytes or os.PathLike; one with a NUL byte is refused.
@@ -76,10 +76,16 @@ def suite():
         return json.load(f)
 
 
-def load(path, verify=None):
+def load(path, verify=None, max_memory=None):
     """Like open(), but a packed file (`mosb pack`) is decoded into memory the instance owns (every
-    section's checksum checked) instead of being refused; an unpacked file is mapped as by open()."""
-    instance = Instance(_mosb.Reader.load(_os_path(path, "load")))
+    section's checksum checked) instead of being refused; an unpacked file is mapped as by open().
+    Decoding must fit in `max_memory` bytes (default: the memory available), checked against the
+    sizes the file declares before anything is allocated: past it, mosb.Error with code
+    'no_memory'."""
+    if max_memory is not None and (not isinstance(max_memory, int) or isinstance(max_memory, bool)
+                                   or not 0 < max_memory < 2**64):
+        raise TypeError("mosb.load: max_memory must be an int in [1, 2^64), not %r" % (max_memory,))
+    instance = Instance(_mosb.Reader.load(_os_path(path, "load"), max_memory or 0))
     if verify is not None:
         instance.verify(verify)
     return instance

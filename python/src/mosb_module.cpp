@@ -126,6 +126,8 @@ const char* code_name(mosb::ErrorCode code) {
       return "invalid_argument";
     case mosb::ErrorCode::packed:
       return "packed";
+    case mosb::ErrorCode::no_memory:
+      return "no_memory";
   }
   return "other";
 }
@@ -160,10 +162,10 @@ void bind_reader_data(py::class_<mosb::GraphReader, ReaderPtr>& reader) {
           py::arg("path"), py::call_guard<py::gil_scoped_release>())
       .def_static(
           "load",
-          [](const std::string& path) {
-            return std::make_shared<mosb::GraphReader>(mosb::load(path));
+          [](const std::string& path, std::uint64_t max_memory) {
+            return std::make_shared<mosb::GraphReader>(mosb::load(path, max_memory));
           },
-          py::arg("path"), py::call_guard<py::gil_scoped_release>())
+          py::arg("path"), py::arg("max_memory") = 0, py::call_guard<py::gil_scoped_release>())
       .def_property_readonly("display_name",
                              [](const mosb::GraphReader& r) { return path_text(r.display_name()); })
       .def_property_readonly("vertex_count", &mosb::GraphReader::vertex_count)

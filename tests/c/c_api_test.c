@@ -237,6 +237,15 @@ static void check_store(const char* store) {
   CHECK(mosb_load(golden(store, "small.mosb"), &g) == MOSB_OK);
   check_graph(g);
   mosb_close(g);
+  /* Within a cap: the declared sizes are checked against it before anything is allocated. */
+  g = NULL;
+  CHECK(mosb_load_within(golden(store, "small.mosb"), 64, &g) == MOSB_ERROR_NO_MEMORY);
+  CHECK(g == NULL && contains(mosb_last_error(), "small.mosb") &&
+        contains(mosb_last_error(), "cap of 64 bytes"));
+  CHECK(mosb_load_within(golden(store, "small.mosb"), 1u << 20, &g) == MOSB_OK);
+  check_graph(g);
+  mosb_close(g);
+  CHECK(mosb_load_within(NULL, 0, &g) == MOSB_ERROR_INVALID_ARGUMENT);
 }
 
 int main(int argc, char** argv) {

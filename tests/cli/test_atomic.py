@@ -254,6 +254,18 @@ class OutputIsAnInput(Base):
         self.assertEqual(run(*SMALL, "-o", inst).returncode, 0)
         self.refused(["queries", "import", "OUT", inst, "--in-place", "--set", "q"], inst)
 
+    def test_queries_generate_output_is_not_the_instance(self):
+        # -o is a new file; rewriting the instance takes --in-place.
+        inst = self.path("g.mosb")
+        self.assertEqual(run(*SMALL, "-o", inst).returncode, 0)
+        self.refused(["queries", "generate", inst, "--set", "x", "--count", "2", "-o", "OUT"], inst)
+
+    def test_queries_import_output_is_not_the_instance(self):
+        inst = self.path("g.mosb")
+        self.assertEqual(run(*SMALL, "-o", inst).returncode, 0)
+        q = self.write("q.txt", "0 1\n")
+        self.refused(["queries", "import", inst, q, "--set", "x", "-o", "OUT"], inst)
+
     def test_export_dimacs(self):
         os.mkdir(self.path("out"))
         inst = self.path("out/Grid-5x4-c1.gr")  # the name export gives objective c1 of this grid

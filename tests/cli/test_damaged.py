@@ -14,7 +14,7 @@ import json
 import os
 import unittest
 
-from mosbtest import entry, files_under, move_payload_to_end, write_payload
+from mosbtest import entry, files_under, move_payload_to_end, payload, write_payload
 from mosbtest import setUpModule  # noqa: F401
 from test_cli import GridTest
 
@@ -295,6 +295,31 @@ class HostileMetadata(GridTest):
         self.assertEqual(r.returncode, 1, r)
         self.assertIn("[metadata-values] metadata key 'id_base' is '7', not one of 0, 1", r.stdout)
         self.assertEqual(self.mosb("verify", "--level", "checksums", path).returncode, 0)
+
+
+
+class MalformedViews(GridTest):
+    """FORMAT.md §7: a view needs a name and objectives. Such metadata, checksums recomputed,
+    fails `verify` at structure level with the key named, and fails every command that reads views."""
+
+    def with_metadata(self, name, edit):
+        data = self.grid_bytes()
+        lines = [line for line in bytes(payload(data, "metadata")).decode().splitlines()]
+        lines = sorted(edit(lines))
+        body = ("\n".join(lines) + "\n").encode()
+        move_payload_to_end(data, "metadata", body, row_count=len(body))
+        self.write(name, data)
+        return self.path(name)
+
+    def test_a_view_with_only_a_query_set(self):
+        path = self.with_metadata("q.mosb", lambda lines: [
+            line for line in lines if not line.startswith("view.Grid_3.objectives=")])
+        self.assert_ok(path, "checksums")
+        self.assert_fail(path, "structure", "'view.Grid_3.queries' names a view without objectives")
+
+    def test_a_view_with_an_empty_name(self):
+        path = self.with_metadata("e.mosb", lambda lines: lines + ["view..objectives=c1"])
+        self.assert_fail(path, "full", "'view..objectives' names a view with an empty name")
 
 
 if __name__ == "__main__":

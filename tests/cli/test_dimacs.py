@@ -152,8 +152,10 @@ class Extended(DimacsCase):
         self.fails("bad.elev:3:5: expected an integer elevation, found 'x'", *self.convert_args("--elevation", "bad.elev"))
         self.fails("--view 'v': objective 'hop' is not a column (columns: c1)",
                    *self.convert_args("--view", "v=hop"))
-        self.fails("--view 'v': expected NAME=OBJ1,OBJ2,...[@QUERYSET]",
-                   *self.convert_args("--view", "v"))
+        # A malformed --view is a usage error (exit 2); a view of a missing column fails on input.
+        r = self.mosb(*self.convert_args("--view", "v"))
+        self.assert_one_line_error(r, "--view 'v': expected NAME=OBJ1,OBJ2,...[@QUERYSET]", code=2)
+        self.assertFalse(os.path.exists(self.path("g.mosb")))
         r = self.mosb(*self.convert_args("--derive", "elevation"))
         self.assertNotEqual(r.returncode, 0, r)
         self.ok("convert", "dimacs", "--gr", "g.gr", "-o", "g.mosb")

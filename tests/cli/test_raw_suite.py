@@ -177,6 +177,17 @@ class RawSuite(CliTest):
         self.assertRegex(r.stderr, r"^mosb: \S*GER_10\.txt:12:5: ")
         self.assertEqual(len(r.stderr.strip().splitlines()), 1, r.stderr)
         self.assertEqual(read(self.path("out", "MANIFEST")), before)
+        # Nor a file it added: a new directory stays without instances, and `store verify` finds no
+        # unlisted file in the old one.
+        # One thread: DIMACS-FLA, before GER_10 in the description, is built before the failure.
+        r = self.build("fresh", "--threads", "1")
+        self.assertEqual(r.returncode, 1, r)
+        self.assertEqual([f for f in os.listdir(self.path("fresh")) if f.endswith(".mosb")], [])
+        first = sorted(f for f in os.listdir(self.path("out")) if f.endswith(".mosb"))[0]
+        self.assertTrue(first.startswith("DIMACS-FLA"), first)
+        os.remove(self.path("out", first))
+        self.assertEqual(self.build("out", "--threads", "1").returncode, 1)
+        self.assertFalse(os.path.exists(self.path("out", first)))
 
     def test_queries_complete_the_views_meant_for_them(self):
         # convert dimacs keeps a view's intended set in source.param.view.NAME while the set is

@@ -2,6 +2,10 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <string>
+#include <vector>
+
 #include "mosb/error.hpp"
 
 using mosb::Metadata;
@@ -43,4 +47,34 @@ TEST_CASE("views must name existing objectives and query sets") {
         std::string::npos);
   CHECK(mosb::find_view_problem(m, {"a", "b"}, {}).value().find("names query set 'q'") !=
         std::string::npos);
+}
+
+TEST_CASE("a view needs a name and objectives") {
+  Metadata queries_only;
+  queries_only.set("view.V.queries", "q");
+  CHECK(mosb::find_view_problem(queries_only, {"a"}, {"q"}).value() ==
+        "metadata key 'view.V.queries' names a view without objectives (no "
+        "'view.V.objectives')");
+  Metadata unnamed;
+  unnamed.set("view..objectives", "a");
+  CHECK(mosb::find_view_problem(unnamed, {"a"}, {}).value() ==
+        "metadata key 'view..objectives' names a view with an empty name");
+}
+
+TEST_CASE("20,000 views are listed in sorted order in one pass") {
+  // view_keys was quadratic (a linear search per key), and the C ABI called it once per view.
+  Metadata m;
+  for (int i = 0; i < 20000; ++i) {
+    const auto name = "view.V" + std::to_string(i);
+    m.set(name + ".objectives", "a");
+    m.set(name + ".queries", "q");
+  }
+  const auto views = mosb::view_keys(m);
+  REQUIRE(views.size() == 20000);
+  CHECK(std::is_sorted(views.begin(), views.end(),
+                       [](const auto& x, const auto& y) { return x.name < y.name; }));
+  CHECK(views.front().name == "V0");
+  CHECK(views.front().query_set == "q");
+  CHECK(views.back().objectives == std::vector<std::string>{"a"});
+  CHECK_FALSE(mosb::find_view_problem(m, {"a"}, {"q"}).has_value());
 }

@@ -226,6 +226,15 @@ class ValuesTest(Temp):
         self.assertTrue((loaded.forward_targets == original.forward_targets).all())
         for o in original.objectives:
             self.assertTrue((loaded.cost(o) == original.cost(o)).all())
+        # A cap of the caller's: refused before anything is allocated, with its own code.
+        with self.assertRaises(mosb.Error) as caught:
+            mosb.load(packed, max_memory=1024)
+        self.assertEqual(caught.exception.code, "no_memory")
+        self.assertIn("cap of 1024 bytes", str(caught.exception))
+        self.assertEqual(mosb.load(packed, max_memory=1 << 30).digest, original.digest)
+        for bad in (0, -1, 2**64, 1.5, True, "1G"):
+            with self.assertRaises(TypeError):
+                mosb.load(packed, max_memory=bad)
 
     def test_store_resolves_a_packed_entry_through_its_cache(self):
         plain = self.generate_grid()

@@ -214,10 +214,22 @@ Command add_generate(CLI::App& app) {
 }
 
 CLI::Option* add_view_spec_option(CLI::App* subcommand, std::vector<std::string>& specs) {
-  return subcommand->add_option(
-      "--view", specs,
-      "NAME=OBJ1,OBJ2,...[@QUERYSET]: a benchmark over some columns, besides the family's default "
-      "views (repeatable; a default view's name replaces it)");
+  return subcommand
+      ->add_option("--view", specs,
+                   "NAME=OBJ1,OBJ2,...[@QUERYSET]: a benchmark over some columns, besides the "
+                   "family's default "
+                   "views (repeatable; a default view's name replaces it)")
+      // A malformed value is a usage error (exit 2), found before any input is read.
+      ->check(CLI::Validator(
+          [](const std::string& text) {
+            try {
+              parse_view_spec(text);
+              return std::string();
+            } catch (const Error& e) {
+              return std::string(e.what());
+            }
+          },
+          "NAME=OBJ1,OBJ2,...[@QUERYSET]"));
 }
 
 void add_view_choice_options(CLI::App* subcommand, ViewChoice& choice, const std::string& what) {

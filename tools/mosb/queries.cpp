@@ -48,6 +48,9 @@ void add_target_options(CLI::App* sub, Target& t) {
 
 const std::string& destination(const Target& t) {
   if (t.output.empty() && !t.in_place) throw UsageError("give -o OUT (a new file) or --in-place");
+  // -o names a new file: the instance itself (or a link to it) only with --in-place, as pack,
+  // unpack and convert refuse their input as output.
+  if (!t.in_place) check_output_is_not_input(t.output, {t.instance});
   return t.in_place ? t.instance : t.output;
 }
 
@@ -138,7 +141,7 @@ Command add_queries_generate(CLI::App& queries) {
   generate->add_flag("--allow-same", a->draw.allow_same,
                      "keep pairs with start = goal (redrawn otherwise)");
   return {generate, [a] {
-            destination(a->target);
+            destination(a->target);  // checks before any work
             const auto reader =
                 GraphReader::open(a->target.instance, VerifyLevel::full);  // its payload is copied
             auto draw = a->draw;

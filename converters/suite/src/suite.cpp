@@ -46,10 +46,16 @@ std::vector<SuiteEntry> run_suite(const std::filesystem::path& directory,
   std::size_t done = 0;
   report(options.progress, "suite", 0, instances.size());
 
+  // A failed build leaves DIR as it was: the MANIFEST untouched, and no file it added left there
+  // unlisted (a name that was there before is only ever replaced atomically, by the same bytes
+  // for the same options).
+  std::vector<char> added(instances.size(), 0);
   auto work = [&] {
     for (std::size_t i = next++; i < instances.size() && !failed; i = next++) {
       try {
         const auto file = instances[i].name + ".mosb";
+        std::error_code absent;
+        added[i] = !std::filesystem::exists(directory / file, absent);
         std::visit([&](const auto& graph) { write_graph(graph, directory / file); },
                    instances[i].build());
         if (instances[i].finish) instances[i].finish(directory / file);
@@ -75,8 +81,12 @@ std::vector<SuiteEntry> run_suite(const std::filesystem::path& directory,
     for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
     work();
   }
-  for (const auto& e : errors)
-    if (e) std::rethrow_exception(e);
+  if (failed) {
+    for (std::size_t i = 0; i < instances.size(); ++i)
+      if (added[i]) std::filesystem::remove(directory / (instances[i].name + ".mosb"), ec);
+    for (const auto& e : errors)
+      if (e) std::rethrow_exception(e);
+  }
 
   std::sort(entries.begin(), entries.end(),
             [](const SuiteEntry& a, const SuiteEntry& b) { return a.name < b.name; });

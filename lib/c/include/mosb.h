@@ -46,7 +46,7 @@ typedef enum mosb_status {
   MOSB_ERROR_NOT_FOUND = 6,        /* no objective, query set, view or metadata key of that name */
   MOSB_ERROR_INVALID_ARGUMENT = 7, /* NULL pointer, index out of range, buffer of the wrong size */
   MOSB_ERROR_PACKED = 8,           /* a zstd-packed section cannot be mapped zero-copy */
-  MOSB_ERROR_NO_MEMORY = 9
+  MOSB_ERROR_NO_MEMORY = 9         /* out of memory, or decoding needs more than the cap allows */
 } mosb_status;
 
 /* The element type of a column; the values are those of the file format (spec/FORMAT.md §5). Cost
@@ -92,6 +92,11 @@ mosb_status mosb_open_verified(const char* path, mosb_verify_level level, mosb_g
  * section's checksum checked, instead of being refused with MOSB_ERROR_PACKED; an unpacked file
  * is mapped as by mosb_open. */
 mosb_status mosb_load(const char* path, mosb_graph** graph);
+/* mosb_load with a memory cap: all that decoding a packed file takes must fit in `max_memory`
+ * bytes (0: the memory available), checked against the sizes the file declares before anything is
+ * allocated; past it, MOSB_ERROR_NO_MEMORY and nothing allocated. mosb_load's cap is the memory
+ * available. */
+mosb_status mosb_load_within(const char* path, uint64_t max_memory, mosb_graph** graph);
 /* Opens the instance that the store in `directory` (its MANIFEST, spec/MANIFEST.md) resolves `name`
  * to: "BENCHMARK/VIEW", a view name, or a benchmark name, as mosb::Store::instance does. The file
  * is verified in full and must have the content digest the manifest lists. A packed entry is

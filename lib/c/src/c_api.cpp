@@ -53,6 +53,8 @@ mosb_status status_of(mosb::ErrorCode code) {
       return MOSB_ERROR_INVALID_ARGUMENT;
     case mosb::ErrorCode::packed:
       return MOSB_ERROR_PACKED;
+    case mosb::ErrorCode::no_memory:
+      return MOSB_ERROR_NO_MEMORY;
   }
   return MOSB_ERROR_OTHER;
 }
@@ -114,10 +116,8 @@ mosb_graph& described(const mosb_graph* graph) {
       units.push_back(g.reader.metadata()
                           .get("objective." + g.reader.objective(i).name + ".unit")
                           .value_or(""));
-    std::vector<mosb::View> views;
-    for (const auto& name : g.reader.view_names()) views.push_back(g.reader.view(name));
+    g.views = g.reader.views();  // sorted by name
     g.units = std::move(units);
-    g.views = std::move(views);
   });
   return g;
 }
@@ -147,8 +147,10 @@ void verify(const mosb_graph& g, const mosb_verify_level& level) {
 
 const mosb::View& view_named(const mosb_graph& g, const char* name) {
   require(name, "the view name");
-  for (const auto& v : g.views)
-    if (v.name == name) return v;
+  const auto found =
+      std::lower_bound(g.views.begin(), g.views.end(), std::string_view(name),
+                       [](const mosb::View& v, std::string_view n) { return v.name < n; });
+  if (found != g.views.end() && found->name == name) return *found;
   g.reader.view(name);  // throws not_found with the list of views
   throw mosb::Error(mosb::ErrorCode::not_found, std::string("no view '") + name + "'");
 }
@@ -178,6 +180,14 @@ mosb_status mosb_load(const char* path, mosb_graph** graph) {
     require(path, "the path");
     require(graph, "the output handle");
     *graph = new mosb_graph(mosb::load(path));
+  });
+}
+
+mosb_status mosb_load_within(const char* path, uint64_t max_memory, mosb_graph** graph) {
+  return guarded(__func__, [&] {
+    require(path, "the path");
+    require(graph, "the output handle");
+    *graph = new mosb_graph(mosb::load(path, max_memory));
   });
 }
 

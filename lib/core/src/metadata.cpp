@@ -94,17 +94,20 @@ namespace mosb {
 
 std::vector<ViewKeys> view_keys(const Metadata& metadata) {
   constexpr std::string_view kPrefix = "view.", kObjectives = ".objectives", kQueries = ".queries";
-  std::vector<ViewKeys> views;
+  // By name: O(V log V) for V views (a file may hold tens of thousands).
+  std::map<std::string, ViewKeys, std::less<>> views;
   auto entry = [&](std::string_view name) -> ViewKeys& {
-    for (auto& v : views)
-      if (v.name == name) return v;
-    return views.emplace_back(ViewKeys{std::string(name), {}, {}});
+    auto it = views.find(name);
+    if (it == views.end())
+      it = views.emplace(std::string(name), ViewKeys{std::string(name), {}, {}}).first;
+    return it->second;
   };
   for (const auto& [key, value] : metadata.entries()) {
     std::string_view k = key;
     if (!k.starts_with(kPrefix)) continue;
     k.remove_prefix(kPrefix.size());
-    if (k.size() > kObjectives.size() && k.ends_with(kObjectives)) {
+    // `view..objectives` is a view with an empty name: kept, for find_view_problem to refuse.
+    if (k.ends_with(kObjectives)) {
       auto& view = entry(k.substr(0, k.size() - kObjectives.size()));
       for (std::string_view rest = value; !value.empty();) {
         const auto comma = rest.find(',');
@@ -112,12 +115,14 @@ std::vector<ViewKeys> view_keys(const Metadata& metadata) {
         if (comma == std::string_view::npos) break;
         rest.remove_prefix(comma + 1);
       }
-    } else if (k.size() > kQueries.size() && k.ends_with(kQueries)) {
+    } else if (k.ends_with(kQueries)) {
       entry(k.substr(0, k.size() - kQueries.size())).query_set = value;
     }
   }
-  std::sort(views.begin(), views.end(), [](auto& a, auto& b) { return a.name < b.name; });
-  return views;
+  std::vector<ViewKeys> sorted;
+  sorted.reserve(views.size());
+  for (auto& [name, view] : views) sorted.push_back(std::move(view));
+  return sorted;
 }
 
 std::optional<std::string> find_view_problem(const Metadata& metadata,
@@ -128,7 +133,15 @@ std::optional<std::string> find_view_problem(const Metadata& metadata,
   };
   for (const auto& view : view_keys(metadata)) {
     const std::string key = "view." + view.name;
-    if (metadata.get(key + ".objectives")) {
+    const bool has_objectives = metadata.get(key + ".objectives").has_value();
+    if (view.name.empty())
+      return "metadata key '" + key + (has_objectives ? ".objectives" : ".queries") +
+             "' names a view with an empty name";
+    // A view is an objective list first (FORMAT.md §7): a query set alone selects no costs.
+    if (!has_objectives)
+      return "metadata key '" + key + ".queries' names a view without objectives (no '" + key +
+             ".objectives')";
+    {
       if (view.objectives.empty())
         return "metadata key '" + key + ".objectives' lists no objective";
       for (const auto& name : view.objectives)

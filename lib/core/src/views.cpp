@@ -14,23 +14,34 @@ std::vector<std::string> GraphReader::view_names() const {
   return names;
 }
 
-std::optional<View> GraphReader::find_view(std::string_view name) const {
-  for (auto& keys : view_keys(metadata())) {
-    if (keys.name != name) continue;
-    View view{std::move(keys.name), {}, std::move(keys.query_set)};
-    for (const auto& objective : keys.objectives) {
-      const auto index = find_objective(objective);
-      if (!index)
-        fail("view '" + view.name + "' names objective '" + objective +
-             "', which is not a cost section");
-      view.objectives.push_back(*index);
-    }
-    if (!view.query_set.empty() && !find(format::SectionKind::queries, view.query_set))
-      fail("view '" + view.name + "' names query set '" + view.query_set +
-           "', which is not a queries section");
-    return view;
+View GraphReader::resolve(ViewKeys keys) const {
+  View view{std::move(keys.name), {}, std::move(keys.query_set)};
+  for (const auto& objective : keys.objectives) {
+    const auto index = find_objective(objective);
+    if (!index)
+      fail("view '" + view.name + "' names objective '" + objective +
+           "', which is not a cost section");
+    view.objectives.push_back(*index);
   }
-  return std::nullopt;
+  if (!view.query_set.empty() && !find(format::SectionKind::queries, view.query_set))
+    fail("view '" + view.name + "' names query set '" + view.query_set +
+         "', which is not a queries section");
+  return view;
+}
+
+std::vector<View> GraphReader::views() const {
+  std::vector<View> views;
+  for (auto& keys : view_keys(metadata())) views.push_back(resolve(std::move(keys)));
+  return views;
+}
+
+std::optional<View> GraphReader::find_view(std::string_view name) const {
+  auto keys = view_keys(metadata());
+  const auto found =
+      std::lower_bound(keys.begin(), keys.end(), name,
+                       [](const ViewKeys& k, std::string_view n) { return k.name < n; });
+  if (found == keys.end() || found->name != name) return std::nullopt;
+  return resolve(std::move(*found));
 }
 
 View GraphReader::view(std::string_view name) const {

@@ -390,7 +390,7 @@ void check_memory(const std::vector<Section>& sections, const std::optional<Tran
         overflows |= __builtin_add_overflow(total, sections[i].decoded_length, &total);
   const std::uint64_t cap = max_memory != 0 ? max_memory : available_memory();
   if (overflows || total > cap)
-    throw Error(ErrorCode::damaged,
+    throw Error(overflows ? ErrorCode::damaged : ErrorCode::no_memory,
                 std::string(display_name) + ": decoding needs " +
                     (overflows ? std::string("more than 2^64") : std::to_string(total)) +
                     " bytes of memory, more than the cap of " + std::to_string(cap) +
