@@ -2,7 +2,7 @@
 # Every test: installs what is missing, then the release build and its tests, the style and static
 # checks, and one clang build with AddressSanitizer and UndefinedBehaviorSanitizer (the `sanitize`
 # preset) that serves both a bounded fuzz run of every parser and the tests again.
-# MOSB_FUZZ_SECONDS sets the reader's fuzz time (default 30; tests/fuzz/run.sh).
+# MOSB_FUZZ_SECONDS sets the reader's fuzz time (default 20; tests/fuzz/run.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/install-deps.sh
@@ -20,8 +20,8 @@ echo "== AddressSanitizer + UndefinedBehaviorSanitizer build (clang; tests and f
 cmake --preset sanitize >/dev/null
 cmake --build --preset sanitize -j "$jobs"
 
-echo "== fuzz every parser (the reader for ${MOSB_FUZZ_SECONDS:-30}s)"
-bash tests/fuzz/run.sh "${MOSB_FUZZ_SECONDS:-30}" build/sanitize
+echo "== fuzz every parser (the reader for ${MOSB_FUZZ_SECONDS:-20}s)"
+bash tests/fuzz/run.sh "${MOSB_FUZZ_SECONDS:-20}" build/sanitize
 
 echo "== AddressSanitizer + UndefinedBehaviorSanitizer tests"
 ctest --preset sanitize -j "$jobs"

@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
-# Bounded fuzz runs: the binary reader for SECONDS (default 30), every other target for a third of
+# Bounded fuzz runs: the binary reader for SECONDS (default 20), every other target for a third of
 # that (at least 5 s). Seeds: spec/golden for the reader, tests/fuzz/corpus/<target>/ for the others.
 # Usage: tests/fuzz/run.sh [SECONDS] [BUILD_DIR]. BUILD_DIR (default build/sanitize, the build CI
 # tests) needs its fuzz targets built: cmake --preset sanitize && cmake --build --preset fuzz
 # (or the whole `sanitize` build). Any build configured with MOSB_FUZZ=ON will do.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
-seconds="${1:-30}"
+seconds="${1:-20}"
 build="${2:-$root/build/sanitize}"
 bin="$build/tests/fuzz"
 if [[ ! -x "$bin/mosb_fuzz_reader" ]]; then
