@@ -217,8 +217,7 @@ CLI::Option* add_view_spec_option(CLI::App* subcommand, std::vector<std::string>
   return subcommand
       ->add_option("--view", specs,
                    "NAME=OBJ1,OBJ2,...[@QUERYSET]: a benchmark over some columns, besides the "
-                   "family's default "
-                   "views (repeatable; a default view's name replaces it)")
+                   "family's default views (repeatable; a default view's name replaces it)")
       // A malformed value is a usage error (exit 2), found before any input is read.
       ->check(CLI::Validator(
           [](const std::string& text) {

@@ -29,7 +29,9 @@ std::string command_path(const CLI::App& app) {
 
 // A usage error is one line: what is wrong, and where to read how it should be.
 int usage_error(const CLI::App& app, std::string message) {
-  message = mosb::escape_for_terminal(message);
+  for (auto& c : message)  // CLI11 breaks some of its messages into lines
+    if (c == '\n' || c == '\r') c = ' ';
+  message = mosb::escape_for_terminal(message);  // what the user typed may hold other controls
   const auto path = command_path(app);
   std::cerr << "mosb: " << (path.empty() ? "" : path + ": ") << message << " (see mosb "
             << (path.empty() ? "" : path + " ") << "--help)\n";

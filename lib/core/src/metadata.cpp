@@ -141,14 +141,11 @@ std::optional<std::string> find_view_problem(const Metadata& metadata,
     if (!has_objectives)
       return "metadata key '" + key + ".queries' names a view without objectives (no '" + key +
              ".objectives')";
-    {
-      if (view.objectives.empty())
-        return "metadata key '" + key + ".objectives' lists no objective";
-      for (const auto& name : view.objectives)
-        if (!contains(objective_names, name))
-          return "metadata key '" + key + ".objectives' names objective '" + name +
-                 "', which is not a cost section";
-    }
+    if (view.objectives.empty()) return "metadata key '" + key + ".objectives' lists no objective";
+    for (const auto& name : view.objectives)
+      if (!contains(objective_names, name))
+        return "metadata key '" + key + ".objectives' names objective '" + name +
+               "', which is not a cost section";
     if (metadata.get(key + ".queries") && !contains(query_set_names, view.query_set))
       return "metadata key '" + key + ".queries' names query set '" + view.query_set +
              "', which is not a queries section";
