@@ -46,9 +46,9 @@ std::vector<SuiteEntry> run_suite(const std::filesystem::path& directory,
   std::size_t done = 0;
   report(options.progress, "suite", 0, instances.size());
 
-  // A failed build leaves DIR as it was: the MANIFEST untouched, and no file it added left there
-  // unlisted (a name that was there before is only ever replaced atomically, by the same bytes
-  // for the same options).
+  // A failed build leaves the MANIFEST untouched and removes the files it added. A file whose name
+  // was there before is replaced atomically (the same bytes, for the same options), except when
+  // its own recipe fails after writing it: then it stays, and `verify --manifest` reports it.
   std::vector<char> added(instances.size(), 0);
   auto work = [&] {
     for (std::size_t i = next++; i < instances.size() && !failed; i = next++) {
