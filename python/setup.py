@@ -1,7 +1,7 @@
 """Builds mosb._mosb against the repository's own library, as CMake builds it.
 
 The extension links the static libraries of the components it binds (lib/core, lib/pack,
-lib/store), which this script has CMake build first from ../CMakeLists.txt: the same targets, the
+lib/store, lib/solutions), which this script has CMake build first from ../CMakeLists.txt: the same targets, the
 same sources and flags the `mosb` program is built from, so validation and error messages are
 identical, and there is no second list of the library's sources to keep in step. It needs this
 checkout, CMake, a C++20 compiler, pybind11 and the components' libraries (libxxhash, libzstd,
@@ -20,7 +20,7 @@ from setuptools.command.build_py import build_py
 here = os.path.dirname(os.path.abspath(__file__))
 root = os.path.dirname(here)
 # The components the binding uses, each after those it depends on in link order.
-COMPONENTS = ("store", "pack", "core")
+COMPONENTS = ("store", "pack", "solutions", "core")
 
 
 def project_version():

@@ -28,9 +28,12 @@ from . import _mosb
 from ._mosb import Error
 
 __version__ = _mosb.__version__
-__all__ = ["Error", "Instance", "Store", "StoreInstance", "View", "VERIFY_LEVELS", "load", "open", "suite"]
+__all__ = ["Error", "Instance", "STATUSES", "Solutions", "Store", "StoreInstance", "View",
+           "VERIFY_LEVELS", "load", "open", "open_solutions", "suite"]
 
 VERIFY_LEVELS = ("header", "checksums", "structure", "full")
+# The query statuses of solution files (spec/SOLUTIONS.md §4), indexed by their stored code.
+STATUSES = _mosb.STATUSES
 
 # A view (spec/FORMAT.md §7 `view.NAME.*`): objective indices in view order, and the name of the
 # view's query set (None when the view names none).
@@ -258,16 +261,26 @@ class Instance:
                             % type(view).__name__)
         return list(view.objectives)
 
-    def to_scipy_csr(self, objective):
+    def to_scipy_csr(self, objective, parallel="keep"):
         """The graph as an n x n scipy.sparse.csr_matrix whose values are one objective's costs.
 
-        The cost data is not copied: the matrix's `data` is the mapped column (every cost type,
-        u8..u64, f32 and f64, is a scipy data type). The structure is the forward CSR; scipy
-        keeps one index type for indices and indptr, so forward_targets is reinterpreted as int32
-        without a copy when n < 2^31 and indptr (u64 on disk) becomes a new int32 array of n+1
-        entries. Parallel arcs stay separate entries (scipy sums them only if asked to).
+        `parallel` says what becomes of parallel arcs (several arcs u -> v):
+        - "keep" (the default): one entry per arc, and nothing is copied: the matrix's `data` is
+          the mapped column (every cost type, u8..u64, f32 and f64, is a scipy data type). The
+          structure is the forward CSR; scipy keeps one index type for indices and indptr, so
+          forward_targets is reinterpreted as int32 without a copy when n < 2^31 and indptr (u64
+          on disk) becomes a new int32 array of n+1 entries. Beware: scipy treats duplicate
+          entries as a sum (toarray(), arithmetic, sum_duplicates()), so arcs of cost 5 and 1
+          read as one entry of 6, which no path costs.
+        - "min" or "max": one entry per (u, v), the cheapest or dearest arc's cost, in the
+          column's type: what a shortest-path computation over the matrix needs ("min").
+        - "sum": one entry per (u, v), the costs added in uint64 (integer costs) or float64.
+        Reduced matrices are new arrays, with sorted indices.
         """
         sparse = _require("scipy.sparse", "scipy", "to_scipy_csr")
+        if parallel not in ("keep", "min", "max", "sum"):
+            raise ValueError("mosb: to_scipy_csr: parallel must be 'keep', 'min', 'max' or 'sum', "
+                             "not %r" % (parallel,))
         self._checked()
         data = self.cost(objective)
         n = self.vertex_count
@@ -277,7 +290,21 @@ class Instance:
         else:
             indices = self.forward_targets.astype(np.int64)
         indptr = self.forward_offsets.view(np.int64)
-        return sparse.csr_matrix((data, indices, indptr), shape=(n, n), copy=False)
+        if parallel == "keep":
+            return sparse.csr_matrix((data, indices, indptr), shape=(n, n), copy=False)
+        rows = self.arc_sources()
+        # Arcs grouped by (source, target), each group's costs increasing.
+        order = np.lexsort((data, indices, rows))
+        rows, cols, values = rows[order], indices[order], data[order]
+        starts = np.flatnonzero(np.r_[len(rows) > 0, (rows[1:] != rows[:-1]) | (cols[1:] != cols[:-1])])
+        if parallel == "min":
+            reduced = values[starts]
+        elif parallel == "max":
+            reduced = values[np.r_[starts[1:], len(values)] - 1]
+        else:
+            wide = np.float64 if values.dtype.kind == "f" else np.uint64
+            reduced = np.add.reduceat(values.astype(wide), starts) if len(starts) else values.astype(wide)
+        return sparse.csr_matrix((reduced, (rows[starts], cols[starts])), shape=(n, n))
 
     def to_networkx(self, view=None):
         """A networkx.MultiDiGraph: vertices 0..n-1, one edge per arc keyed by its arc id, with
@@ -319,3 +346,109 @@ class Instance:
         frame = pd.DataFrame(columns)
         frame.index.name = "arc"
         return frame
+
+
+def open_solutions(path):
+    """Maps the solution file at `path` (spec/SOLUTIONS.md) and checks its payload (checksums,
+    statuses, offsets, values), as every `mosb` command that reads fronts does: a damaged file is a
+    mosb.Error naming it, never numbers from corrupt data. Fronts are not checked against their
+    instance here (`mosb solutions verify --instance` does that)."""
+    return Solutions(_mosb.SolutionsReader.open(_os_path(path, "open_solutions")))
+
+
+class Solutions:
+    """An open solution file: a solver's fronts for one view and query set of one instance.
+    Obtain one with mosb.open_solutions(). Arrays are read-only views of the mapping, as for
+    Instance (the same SIGBUS caveat applies to a file rewritten in place)."""
+
+    def __init__(self, reader):
+        self._reader = reader
+        self.objectives = tuple(reader.objective_names())
+        self.metadata = reader.metadata()
+        self.front_offsets = reader.front_offsets()  # Q+1 entries: query q's rows of the columns
+
+    def __repr__(self):
+        return "<mosb.Solutions %r: view %s, %d queries, %d vectors>" % (
+            self.path, self.view, self.query_count, self.vector_count)
+
+    path = property(lambda self: self._reader.display_name)
+    instance_digest = property(lambda self: self._reader.instance_digest)
+    view = property(lambda self: self._reader.view)
+    query_set = property(lambda self: self._reader.query_set)
+    query_count = property(lambda self: self._reader.query_count)
+    vector_count = property(lambda self: self._reader.vector_count)
+
+    @property
+    def solver(self):
+        """solution.solver.name/version, solution.epsilon and solution.machine (None when absent)."""
+        get = self.metadata.get
+        return {"name": get("solution.solver.name"), "version": get("solution.solver.version"),
+                "epsilon": get("solution.epsilon", "0"), "machine": get("solution.machine")}
+
+    def statuses(self):
+        """Each query's status, as a numpy array of codes indexing STATUSES."""
+        return self._reader.statuses()
+
+    def status(self, query):
+        """Query `query`'s status by name ("solved", "timeout", ...)."""
+        return STATUSES[self.statuses()[self._query(query)]]
+
+    def column(self, objective):
+        """All fronts' values of one objective (name or index), zero-copy: uint64 (integer
+        objectives) or float64 path sums; files written before format 1.3 hold the arc type."""
+        if isinstance(objective, str):
+            if objective not in self.objectives:
+                raise _error("not_found", "%s: no objective %r in the view (objectives: %s)" % (
+                    self.path, objective, ", ".join(self.objectives)))
+            objective = self.objectives.index(objective)
+        objective = operator.index(objective)
+        if not 0 <= objective < len(self.objectives):
+            raise IndexError("objective index %d out of range (%d objectives)" % (
+                objective, len(self.objectives)))
+        return self._reader.column(objective)
+
+    def front(self, query):
+        """Query `query`'s front: one zero-copy array per objective (a slice of column()), in the
+        view's objective order. Empty arrays for a query with no front."""
+        q = self._query(query)
+        begin, end = int(self.front_offsets[q]), int(self.front_offsets[q + 1])
+        return tuple(self.column(i)[begin:end] for i in range(len(self.objectives)))
+
+    def statistic(self, name):
+        """One statistic per query as float64 (NaN where absent), or None when the file has no
+        such column: runtime_seconds, expanded, generated, peak_memory_bytes, exit_status."""
+        return self._reader.statistic(name)
+
+    def fronts_frame(self):
+        """A pandas.DataFrame with one row per front vector: query, status, then one column per
+        objective (pandas copies the columns)."""
+        pd = _require("pandas", "pandas", "fronts_frame")
+        sizes = np.diff(self.front_offsets)
+        queries = np.repeat(np.arange(self.query_count, dtype=np.uint64), sizes)
+        columns = {"query": queries,
+                   "status": pd.Categorical.from_codes(np.repeat(self.statuses(), sizes),
+                                                       categories=list(STATUSES))}
+        for i, name in enumerate(self.objectives):
+            columns[name] = self.column(i)
+        return pd.DataFrame(columns)
+
+    def queries_frame(self):
+        """A pandas.DataFrame with one row per query (index: query): status, front_size and every
+        statistic the file has (float64, NaN where absent)."""
+        pd = _require("pandas", "pandas", "queries_frame")
+        columns = {"status": pd.Categorical.from_codes(self.statuses(), categories=list(STATUSES)),
+                   "front_size": np.diff(self.front_offsets)}
+        for name in ("runtime_seconds", "expanded", "generated", "peak_memory_bytes",
+                     "exit_status"):
+            values = self.statistic(name)
+            if values is not None:
+                columns[name] = values
+        frame = pd.DataFrame(columns)
+        frame.index.name = "query"
+        return frame
+
+    def _query(self, query):
+        q = operator.index(query)
+        if not 0 <= q < self.query_count:
+            raise IndexError("query %d out of range (%d queries)" % (q, self.query_count))
+        return q

@@ -5,6 +5,8 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -14,6 +16,7 @@
 #include "mosb/error.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/pack.hpp"
+#include "mosb/solution_file.hpp"
 #include "mosb/store.hpp"
 #include "mosb/verify.hpp"
 #include "mosb/version.hpp"
@@ -23,21 +26,25 @@ namespace py = pybind11;
 namespace {
 
 using ReaderPtr = std::shared_ptr<mosb::GraphReader>;  // the holder type of Reader
+using SolutionsPtr = std::shared_ptr<mosb::SolutionReader>;  // the holder type of SolutionsReader
 
 // The base object of every array: a capsule holding one more owner of the reader.
-py::capsule owner_of(const ReaderPtr& reader) {
-  return py::capsule(new ReaderPtr(reader), [](void* p) { delete static_cast<ReaderPtr*>(p); });
+template <class Reader>
+py::capsule owner_of(const std::shared_ptr<Reader>& reader) {
+  using Owner = std::shared_ptr<Reader>;
+  return py::capsule(new Owner(reader), [](void* p) { delete static_cast<Owner*>(p); });
 }
 
-template <class T>
-py::array read_only_array(const ReaderPtr& reader, const T* data, std::vector<py::ssize_t> shape) {
+template <class T, class Reader>
+py::array read_only_array(const std::shared_ptr<Reader>& reader, const T* data,
+                          std::vector<py::ssize_t> shape) {
   py::array array(py::dtype::of<T>(), std::move(shape), data, owner_of(reader));
   py::detail::array_proxy(array.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
   return array;
 }
 
-template <class T>
-py::array column(const ReaderPtr& reader, std::span<const T> values) {
+template <class T, class Reader>
+py::array column(const std::shared_ptr<Reader>& reader, std::span<const T> values) {
   return read_only_array(reader, values.data(), {static_cast<py::ssize_t>(values.size())});
 }
 
@@ -77,7 +84,7 @@ py::array cost_column(const ReaderPtr& reader, std::size_t index) {
 
 // Text from the file (names, metadata) as str. The format requires UTF-8, but an unverified file
 // may break that: such text is a mosb.Error ('damaged') naming the file, never UnicodeDecodeError.
-py::str text_of(const mosb::GraphReader& reader, std::string_view text) {
+py::str text_of(const mosb::ContainerReader& reader, std::string_view text) {
   PyObject* decoded =
       PyUnicode_DecodeUTF8(text.data(), static_cast<py::ssize_t>(text.size()), "strict");
   if (!decoded) {
@@ -277,6 +284,86 @@ void bind_store(py::module_& m) {
       py::arg("directory"));
 }
 
+// Solution files (spec/SOLUTIONS.md), opened with their payload verified: the fronts' columns
+// zero-copy in their stored types (u64/f64 path sums; the arc types in files before 1.3).
+void bind_solutions(py::module_& m) {
+  py::class_<mosb::SolutionReader, SolutionsPtr>(m, "SolutionsReader")
+      .def_static(
+          "open",
+          [](const std::string& path) {
+            return std::make_shared<mosb::SolutionReader>(
+                mosb::SolutionReader::open_verified(path));
+          },
+          py::arg("path"), py::call_guard<py::gil_scoped_release>())
+      .def_property_readonly(
+          "display_name", [](const mosb::SolutionReader& r) { return path_text(r.display_name()); })
+      .def_property_readonly("instance_digest", &mosb::SolutionReader::instance_digest)
+      .def_property_readonly(
+          "view", [](const mosb::SolutionReader& r) { return text_of(r, r.view_name()); })
+      .def_property_readonly(
+          "query_set", [](const mosb::SolutionReader& r) { return text_of(r, r.query_set()); })
+      .def_property_readonly("query_count", &mosb::SolutionReader::query_count)
+      .def_property_readonly("vector_count", &mosb::SolutionReader::vector_count)
+      .def("objective_names",
+           [](const mosb::SolutionReader& r) {
+             py::list names;
+             for (std::size_t i = 0; i < r.objective_count(); ++i)
+               names.append(text_of(r, r.objective_name(i)));
+             return names;
+           })
+      .def("metadata",
+           [](const mosb::SolutionReader& r) {
+             py::dict entries;
+             for (const auto& [key, value] : r.metadata().entries())
+               entries[text_of(r, key)] = text_of(r, value);
+             return entries;
+           })
+      .def("statuses",
+           [](const mosb::SolutionReader& r) {
+             py::array_t<std::uint8_t> codes(static_cast<py::ssize_t>(r.query_count()));
+             auto out = codes.mutable_unchecked<1>();
+             for (std::uint64_t q = 0; q < r.query_count(); ++q)
+               out(static_cast<py::ssize_t>(q)) = static_cast<std::uint8_t>(r.status(q));
+             return codes;
+           })
+      .def("front_offsets",
+           [](const SolutionsPtr& r) { return column(r, r->front_offsets()); })
+      .def(
+          "column",
+          [](const SolutionsPtr& r, std::size_t i) {
+            return r->visit_column(i, [&](auto values) { return column(r, values); });
+          },
+          py::arg("index"))
+      .def(
+          "statistic",
+          [](const mosb::SolutionReader& r, const std::string& name) -> py::object {
+            const auto* found = std::find_if(
+                std::begin(mosb::kStatistics), std::end(mosb::kStatistics),
+                [&](mosb::Statistic s) { return mosb::to_string(s) == name; });
+            if (found == std::end(mosb::kStatistics))
+              throw py::value_error("statistic '" + name + "' is not one of runtime_seconds, "
+                                    "expanded, generated, peak_memory_bytes, exit_status");
+            if (!r.has_statistic(*found)) return py::none();
+            // float64 with NaN for an absent value: what pandas and numpy expect of a column.
+            py::array_t<double> values(static_cast<py::ssize_t>(r.query_count()));
+            auto out = values.mutable_unchecked<1>();
+            for (std::uint64_t q = 0; q < r.query_count(); ++q) {
+              std::optional<double> v;
+              if (*found == mosb::Statistic::runtime_seconds)
+                v = r.runtime_seconds(q);
+              else if (const auto count = r.count_statistic(*found, q))
+                v = static_cast<double>(*count);
+              out(static_cast<py::ssize_t>(q)) = v.value_or(std::nan(""));
+            }
+            return values;
+          },
+          py::arg("name"));
+  py::list statuses;
+  for (std::uint8_t s = 0; s <= mosb::kLastQueryStatus; ++s)
+    statuses.append(std::string(mosb::to_string(static_cast<mosb::QueryStatus>(s))));
+  m.attr("STATUSES") = py::tuple(statuses);
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_mosb, m) {
@@ -287,4 +374,5 @@ PYBIND11_MODULE(_mosb, m) {
   bind_reader_data(reader);
   bind_reader_checks(reader);
   bind_store(m);
+  bind_solutions(m);
 }

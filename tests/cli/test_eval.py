@@ -8,6 +8,8 @@ Reference and solver solution files are written with SolutionWriter (the helper 
 golden instance spec/golden/1.0/valid/small.mosb, view Small_2 (3 queries, 2 objectives).
 """
 
+import csv
+import io
 import json
 import os
 import unittest
@@ -33,15 +35,19 @@ class EvalTest(CliTest):
         return self.mosb("eval", "--reference", self.reference, "--solutions", solutions, *extra)
 
     def eval_json(self, solutions, *extra):
+        """The exit status and the one solver's part of the JSON report."""
         result = self.eval(solutions, "--json", *extra)
-        return result.returncode, json.loads(result.stdout)
+        report = json.loads(result.stdout)
+        self.assertEqual(len(report["solvers"]), 1)
+        self.assertEqual(report["ok"], report["solvers"][0]["ok"])
+        return result.returncode, report["solvers"][0]
 
     def test_exact_solution_passes_at_every_epsilon(self):
         rc, report = self.eval_json(self.solution("exact", "0 solved 40,10 20,20 10,40\n"
                                                "1 solved 30,30\n2 disconnected\n"), "--eps", "0,0.1")
         self.assertEqual(rc, 0, report)
         self.assertTrue(report["ok"])
-        self.assertEqual([s["covered"] for s in report["summary"]], [2, 2])
+        self.assertEqual([s["covered"] for s in report["epsilons"]], [2, 2])
         self.assertEqual(report["queries"][0]["achieved_epsilon"], "0")
         self.assertFalse(report["queries"][2]["failed"])
 
@@ -58,7 +64,7 @@ class EvalTest(CliTest):
         self.assertEqual(q0["worst_reference"], [20, 20])
         self.assertEqual([c["covered"] for c in q1["coverage"]], [False, True, True])
         self.assertAlmostEqual(q1["achieved_epsilon_value"], 1 / 30)
-        self.assertEqual([s["covered"] for s in report["summary"]], [0, 2, 2])
+        self.assertEqual([s["covered"] for s in report["epsilons"]], [0, 2, 2])
         self.assertEqual(q0["dominated_by_reference"], [1])
         rc, report = self.eval_json(self.solution("approx2", approx, solver_epsilon="0.05"),
                                     "--eps", "0.05,0.1")
@@ -83,7 +89,7 @@ class EvalTest(CliTest):
         rc, report = self.eval_json(sol, "--eps", "0.1")
         self.assertEqual(rc, 1)
         self.assertEqual(report["queries"][0]["dominated_by_reference"], [3])
-        text = self.eval(sol, "--eps", "0.1")
+        text = self.eval(sol, "--eps", "0.1", "--per-query")
         self.assertEqual(text.returncode, 1)
         self.assertIn("query 0: SOLVER BUG: 1 returned vector(s) strictly dominated", text.stdout)
 
@@ -105,8 +111,9 @@ class EvalTest(CliTest):
         self.assertEqual(q1["status"], "timeout")
         self.assertTrue(q1["failed"])
         self.assertNotIn("coverage", q1)
-        self.assertEqual([s["covered"] for s in report["summary"]], [1, 1, 1])
-        self.assertIn("query 1: timeout (not solved", self.eval(sol).stdout)
+        self.assertEqual([s["covered"] for s in report["epsilons"]], [1, 1, 1])
+        self.assertIn("query 1: timeout (not solved", self.eval(sol, "--per-query").stdout)
+        self.assertNotIn("query 1:", self.eval(sol).stdout)  # per solver only, by default
 
     def test_mismatched_view_names_both_files(self):
         # Same instance, another view (and query set): a one-line error naming both files.
@@ -142,7 +149,7 @@ class EvalTest(CliTest):
         self.assertEqual(q0["dominated_by_reference"], [0, 1])  # listed; ε = 0.15 allows them
         rc, report = self.eval_json(sol, "--eps", above)
         self.assertEqual(rc, 0, report)
-        text = self.eval(sol, "--eps", "0.1").stdout
+        text = self.eval(sol, "--eps", "0.1", "--per-query").stdout
         self.assertIn("query 0: solved, |S| 2, |R| 2, |S|/|R| 1, achieved ε 0.142857143, "
                       "ε=0.1 NOT covered (1 uncovered), worst reference vector (7, 30, 100) FAIL",
                       text)
@@ -151,6 +158,111 @@ class EvalTest(CliTest):
         result = self.eval(self.reference, "--eps", "0.1,-1")
         self.assertEqual(result.returncode, 2)
         self.assertIn("--eps", result.stderr)
+
+
+class SolverComparisonTest(CliTest):
+    """Several solvers against one reference in one run, the tables for a paper, and `solutions
+    compare` (spec/EVALUATION.md §4, §6)."""
+
+    def setUp(self):
+        super().setUp()
+        w = lambda name, spec, eps="0": write_solution(self.path(name), SMALL, "Small_2", spec, eps)
+        self.reference = w("ref.sol", REFERENCE)
+        env = dict(os.environ, MOSB_TEST_SOLVER_NAME="exact_solver")
+        self.exact = write_solution(self.path("exact.sol"), SMALL, "Small_2",
+                                    "0 solved 40,10 20,20 10,40 t=2\n1 solved 30,30 t=4\n"
+                                    "2 disconnected t=1\n", "0", env=env)
+        env = dict(os.environ, MOSB_TEST_SOLVER_NAME="approx & co")
+        # 10 % off on query 0, a timeout on query 1: only queries 0 and 2 are common.
+        self.approx = write_solution(self.path("approx.sol"), SMALL, "Small_2",
+                                     "0 solved 11,44 22,22 44,11 t=1\n1 timeout\n"
+                                     "2 disconnected t=0.5\n", "0.1", env=env)
+
+    def eval(self, *extra):
+        return self.mosb("eval", "--reference", self.reference, "--solutions", self.exact,
+                         self.approx, *extra)
+
+    def test_one_report_per_solver_with_runtimes_on_common_queries(self):
+        r = self.eval("--json", "--eps", "0,0.1")
+        self.assertEqual(r.returncode, 1)  # approx fails at ε = 0 and on the timeout
+        report = json.loads(r.stdout)
+        self.assertFalse(report["ok"])
+        self.assertEqual(report["common_queries"], 2)
+        exact, approx = report["solvers"]
+        self.assertEqual((exact["name"], approx["name"]), ("exact_solver", "approx & co"))
+        self.assertTrue(exact["ok"])
+        self.assertEqual([e["covered"] for e in exact["epsilons"]], [2, 2])
+        self.assertEqual(exact["runtime_seconds"]["count"], 2)  # queries 0 and 2, not 1
+        self.assertEqual(exact["runtime_seconds"]["median"], 1.5)
+        self.assertEqual(exact["runtime_seconds"]["max"], 2)
+        # exp(mean(ln(t + 1))) − 1 over t = 2, 1: sqrt(3·2) − 1
+        self.assertAlmostEqual(exact["runtime_seconds"]["shifted_geometric_mean"], 6 ** 0.5 - 1)
+        self.assertEqual(approx["statuses"]["timeout"], 1)
+        self.assertEqual(approx["not_solved"], 1)
+        self.assertEqual(approx["epsilons"], [{"epsilon": "0", "covered": 0, "not_covered": 1},
+                                              {"epsilon": "0.1", "covered": 1, "not_covered": 0}])
+        self.assertAlmostEqual(approx["achieved_epsilon"]["max"], 0.1)
+        self.assertEqual(approx["size_ratio"]["median"], 1)
+        self.assertEqual(approx["runtime_seconds"]["mean"], 0.75)
+        self.assertEqual(len(approx["queries"]), 3)
+        shifted = json.loads(self.eval("--json", "--runtime-shift", "0").stdout)
+        self.assertAlmostEqual(shifted["solvers"][0]["runtime_seconds"]["shifted_geometric_mean"],
+                               2 ** 0.5)
+
+    def test_text_csv_and_latex(self):
+        text = self.eval("--eps", "0.1").stdout
+        self.assertIn("solver exact_solver (%s)\n" % self.exact, text)
+        self.assertIn("  runtime over 2 queries every solver completed: median 1.5 s", text)
+        self.assertIn("  statuses: 1 solved, 1 timeout, 1 disconnected; 1 solved by the reference "
+                      "only\n", text)
+        self.assertTrue(text.endswith("FAIL\n"))
+        csv_text = self.eval("--csv", "--eps", "0.1").stdout
+        rows = list(csv.DictReader(io.StringIO(csv_text)))
+        self.assertEqual([row["solver"] for row in rows], ["exact_solver", "approx & co"])
+        self.assertEqual((rows[1]["timeout"], rows[1]["covered@0.1"], rows[1]["runtime_mean"]),
+                         ("1", "1", "0.75"))
+        per_query = list(csv.DictReader(io.StringIO(self.eval("--csv", "--per-query").stdout)))
+        self.assertEqual(len(per_query), 6)
+        self.assertEqual(per_query[4]["status"], "timeout")
+        self.assertEqual(per_query[4]["runtime_seconds"], "")
+        latex = self.eval("--latex", "--eps", "0.1").stdout
+        self.assertIn("\\begin{tabular}{l", latex)
+        self.assertIn("\\toprule", latex)
+        self.assertIn("\napprox \\& co & 1 & 1 & 0 & 0 & 1 & 0.1 & 0.1 & 1 & 0.75 & 1 & ", latex)
+        self.assertTrue(latex.endswith("\\bottomrule\n\\end{tabular}\n"))
+        usage = self.eval("--latex", "--per-query")
+        self.assertEqual(usage.returncode, 2)
+        self.assertEqual(self.eval("--json", "--csv").returncode, 2)
+
+    def test_a_file_of_another_binding_is_named(self):
+        grid = self.path("grid.mosb")
+        run("generate", "grid", "--width", "3", "--height", "3", "-o", grid, check=True)
+        other = write_solution(self.path("grid.sol"), grid, "Grid_2", "0 solved 1,2\n", "0")
+        r = self.mosb("eval", "--reference", self.reference, "--solutions", self.exact, other)
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("ref.sol has instance digest", r.stderr)
+        self.assertIn("grid.sol has ", r.stderr)
+        self.assertEqual(len(r.stderr.strip().splitlines()), 1)
+
+    def test_solutions_compare_cross_validates_two_solvers(self):
+        r = self.mosb("solutions", "compare", self.reference, self.exact)
+        self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+        self.assertIn("summary: 3 queries, 3 equal, 0 different", r.stdout)
+        r = self.mosb("solutions", "compare", self.exact, self.approx)
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("query 0: DIFFERENT fronts: (10, 40) only in %s, runtime ratio 0.5" % self.exact,
+                      r.stdout)
+        self.assertIn("query 1: DIFFERENT: solved in %s, timeout in %s" % (self.exact, self.approx),
+                      r.stdout)
+        self.assertNotIn("query 2", r.stdout)  # equal: listed only with --per-query
+        self.assertIn("query 2: equal (disconnected), runtime ratio 0.5",
+                      self.mosb("solutions", "compare", self.exact, self.approx, "--per-query").stdout)
+        report = json.loads(self.mosb("solutions", "compare", self.exact, self.approx,
+                                      "--json").stdout)
+        self.assertEqual((report["ok"], report["equal"], report["different"]), (False, 1, 2))
+        self.assertEqual(report["queries"][0]["first_difference"], [10, 40])
+        self.assertEqual(report["queries"][0]["only_in"], "a")
+        self.assertEqual(report["runtime_ratio"]["count"], 2)
 
 
 if __name__ == "__main__":

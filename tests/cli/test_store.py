@@ -137,6 +137,39 @@ class Manifest(Base):
         # Without paths: the files beside the manifest.
         self.ok("verify", "--manifest", manifest)
 
+    def test_verify_manifest_knows_the_other_form_of_a_listed_file(self):
+        store = self.store_with(3)  # g3.mosb listed unpacked
+        packed_store = self.path("packed")
+        self.ok("store", "init", packed_store)
+        self.ok("store", "add", "--pack", packed_store, os.path.join(store, "g3.mosb"))
+        unpacked, packed = self.path("unpacked"), self.path("repacked")
+        os.mkdir(unpacked)
+        os.mkdir(packed)
+        # The unpacked form of the listed packed file, and the packed form of the listed unpacked.
+        self.ok("unpack", os.path.join(packed_store, "g3.mosb"), "-o", os.path.join(unpacked, "g3.mosb"))
+        self.ok("pack", os.path.join(store, "g3.mosb"), "-o", os.path.join(packed, "g3.mosb"))
+        for manifest, copy, note in (
+                (os.path.join(packed_store, "MANIFEST"), os.path.join(unpacked, "g3.mosb"),
+                 "unpacked form of the listed packed file"),
+                (os.path.join(store, "MANIFEST"), os.path.join(packed, "g3.mosb"),
+                 "packed form of the listed unpacked file")):
+            r = run("verify", "--manifest", manifest, copy)
+            self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+            self.assertIn("OK   g3.mosb: " + note, r.stdout)
+            report = json.loads(run("verify", "--json", "--manifest", manifest, copy).stdout)
+            self.assertEqual(report["files"][0]["note"], note)
+        # Other content in the other form is still refused, by its digest.
+        grid(self.path("other.mosb"), 2)
+        self.ok("pack", self.path("other.mosb"), "-o", os.path.join(packed, "g3.mosb"))
+        r = run("verify", "--manifest", os.path.join(store, "MANIFEST"), os.path.join(packed, "g3.mosb"))
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("FAIL wrong-digest", r.stdout)
+        # A store holds the listed bytes themselves: there the other form is a failure.
+        os.replace(os.path.join(unpacked, "g3.mosb"), os.path.join(packed_store, "g3.mosb"))
+        r = run("store", "verify", packed_store)
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("FAIL wrong-sha256", r.stdout)
+
     def test_old_tsv_manifest_is_read_and_converted_on_the_next_write(self):
         store = self.path("store")
         os.mkdir(store)

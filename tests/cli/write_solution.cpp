@@ -1,7 +1,8 @@
 // Test helper for tests/cli/test_eval.py and test_plot.py: writes a solution file with
 // mosb::SolutionWriter. Usage: mosb_test_write_solution INSTANCE VIEW OUT [SOLVER_EPSILON
 // [QUERY_SET]] < SPEC, one query a line: "Q STATUS [a,b,... a,b,...]" (vectors of the view's
-// objectives, space-separated); a vector may carry its path as "a,b,...@v0/v1/...". The solver's
+// objectives, space-separated); a vector may carry its path as "a,b,...@v0/v1/...", and a token
+// "t=SECONDS" sets the query's runtime_seconds. The solver's
 // name is "test", or the environment's MOSB_TEST_SOLVER_NAME (any bytes: hostile names).
 #include <cstdint>
 #include <cstdio>
@@ -39,7 +40,12 @@ int main(int argc, char** argv) {
       if (!status) throw mosb::Error("unknown status " + status_text);
       std::vector<double> costs;
       std::vector<std::vector<std::uint32_t>> paths;
+      mosb::QueryStatistics statistics;
       while (in >> vector_text) {
+        if (vector_text.starts_with("t=")) {
+          statistics.runtime_seconds = std::stod(vector_text.substr(2));
+          continue;
+        }
         const auto at = vector_text.find('@');
         std::istringstream values(vector_text.substr(0, at));
         std::string value;
@@ -50,7 +56,7 @@ int main(int argc, char** argv) {
         while (std::getline(vertices, value, '/'))
           path.push_back(static_cast<std::uint32_t>(std::stoul(value)));
       }
-      writer.set_query(q, *status, costs, {}, paths);
+      writer.set_query(q, *status, costs, statistics, paths);
     }
     writer.write(argv[3]);
   } catch (const std::exception& e) {

@@ -567,5 +567,94 @@ class RealNetMakerTest(Temp):
             self.assertEqual(matrix[int(tail), int(head)], expected[int(tail), int(head)])
 
 
+class SolutionsTest(Temp):
+    """mosb.open_solutions: a solution file's fronts, statuses and statistics, zero-copy columns
+    and pandas frames, equal to what `mosb solutions export` writes."""
+
+    def setUp(self):
+        super().setUp()
+        self.grid = os.path.join(self.dir, "g.mosb")
+        done = run(MOSB, "generate", "grid", "--width", "6", "--height", "6", "--seed", "3",
+                   "-o", self.grid)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        # Query 0: two vectors, query 1: one; the rest of the set is not run.
+        table = os.path.join(self.dir, "t.csv")
+        with open(table, "w") as f:
+            f.write("query,c1,c2\n0,1000,2\n0,3,900\n1,70000,5\n")
+        self.sol = os.path.join(self.dir, "s.sol")
+        done = run(MOSB, "solutions", "import", "--instance", self.grid, "--view", "Grid_2",
+                   "--table", table, "--solver", "boa", "-o", self.sol)
+        self.assertEqual(done.returncode, 0, done.stderr)
+
+    def test_fronts_statuses_and_binding(self):
+        s = mosb.open_solutions(self.sol)
+        info = json.loads(run(MOSB, "solutions", "inspect", self.sol, "--json").stdout)
+        self.assertEqual((s.view, s.objectives, s.vector_count), ("Grid_2", ("c1", "c2"), 3))
+        self.assertEqual(s.instance_digest, mosb.open(self.grid).digest)
+        self.assertEqual(s.query_count, info["queries"])
+        self.assertEqual(s.solver["name"], "boa")
+        self.assertEqual((s.status(0), s.status(1), s.status(2)), ("solved", "solved", "not-run"))
+        c1, c2 = s.front(0)
+        self.assertEqual(sorted(zip(c1.tolist(), c2.tolist())), [(3, 900), (1000, 2)])
+        # Path sums beyond the grid's u8 arc type: the columns are u64.
+        self.assertEqual(s.front(1)[0].tolist(), [70000])
+        self.assertEqual(s.column("c1").dtype, np.uint64)
+        self.assertFalse(s.column(0).flags.writeable)
+        self.assertEqual(len(s.front(2)[0]), 0)
+        self.assertIsNone(s.statistic("expanded"))
+        with self.assertRaises(IndexError):
+            s.front(s.query_count)
+        with self.assertRaises(mosb.Error) as raised:
+            s.column("c9")
+        self.assertIn(self.sol, str(raised.exception))
+        with self.assertRaises(ValueError):
+            s.statistic("speed")
+
+    def test_pandas_frames(self):
+        s = mosb.open_solutions(self.sol)
+        vectors = s.fronts_frame()
+        self.assertEqual(list(vectors.columns), ["query", "status", "c1", "c2"])
+        self.assertEqual(len(vectors), 3)
+        self.assertEqual(set(vectors["status"]), {"solved"})
+        self.assertEqual(sorted(vectors[vectors["query"] == 0]["c2"].tolist()), [2, 900])
+        queries = s.queries_frame()
+        self.assertEqual(len(queries), s.query_count)
+        self.assertEqual(queries.loc[0, "front_size"], 2)
+        self.assertEqual(queries.loc[2, "status"], "not-run")
+
+    def test_a_damaged_file_is_a_mosb_error_naming_it(self):
+        with open(self.sol, "rb") as f:
+            data = bytearray(f.read())
+        data[-1] ^= 0xFF
+        bad = os.path.join(self.dir, "bad.sol")
+        with open(bad, "wb") as f:
+            f.write(data)
+        with self.assertRaises(mosb.Error) as raised:
+            mosb.open_solutions(bad)
+        self.assertIn(bad, str(raised.exception))
+
+
+class ParallelArcsTest(Temp):
+    def test_to_scipy_csr_reduces_parallel_arcs_as_asked(self):
+        gr = os.path.join(self.dir, "p.gr")
+        with open(gr, "w") as f:
+            f.write("p sp 3 4\na 1 2 5 1\na 1 2 1 7\na 2 3 2 250\na 1 2 3 250\n")
+        path = os.path.join(self.dir, "p.mosb")
+        done = run(MOSB, "convert", "dimacs", "--gr", gr, "-o", path)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        g = mosb.open(path)
+        keep = g.to_scipy_csr("c1")
+        self.assertEqual(keep.nnz, 4)
+        self.assertEqual(keep.toarray()[0, 1], 9)  # what scipy does with duplicates: a sum
+        self.assertEqual(g.to_scipy_csr("c1", parallel="min").toarray()[0, 1], 1)
+        self.assertEqual(g.to_scipy_csr("c1", parallel="max").toarray()[0, 1], 5)
+        wide = g.to_scipy_csr("c2", parallel="sum")  # 1 + 7 + 250 overflows c2's u8
+        self.assertEqual(wide.toarray()[0, 1], 258)
+        self.assertEqual(wide.nnz, 2)
+        self.assertEqual(g.to_scipy_csr("c2", parallel="min").dtype, g.cost("c2").dtype)
+        with self.assertRaises(ValueError):
+            g.to_scipy_csr("c1", parallel="mean")
+
+
 if __name__ == "__main__":
     unittest.main()

@@ -1,5 +1,6 @@
-// `mosb eval`: a solver's solution file against a reference solution file (spec/EVALUATION.md §4).
-// The evaluation is mosb::evaluate_solutions; this file parses options and prints.
+// `mosb eval`: solvers' solution files against a reference solution file (spec/EVALUATION.md §4).
+// The evaluation is mosb::compare_solvers, the tables mosb::tables; this file parses options and
+// prints.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
@@ -10,15 +11,20 @@
 
 #include "commands.hpp"
 #include "json_writer.hpp"
-#include "mosb/solution_eval.hpp"
+#include "mosb/internal/utf8.hpp"
+#include "mosb/report/tables.hpp"
+#include "mosb/solver_comparison.hpp"
 
 namespace mosb::cli {
 
 namespace {
 
 struct EvalArgs {
-  std::string reference, solutions, epsilons = "0.01,0.05,0.1";
-  bool strict = false, json = false;
+  std::string reference;
+  std::vector<std::string> solutions;
+  std::string epsilons = "0.01,0.05,0.1";
+  double runtime_shift = 1;
+  bool strict = false, json = false, csv = false, latex = false, per_query = false;
 };
 
 std::vector<Ratio> parse_epsilons(const std::string& list) {
@@ -44,8 +50,8 @@ std::string vector_text(const std::vector<double>& v) {
   return out.str();
 }
 
-void print_text(const SolutionEvaluation& result, const std::vector<Ratio>& eps,
-                const std::vector<std::string>& eps_text) {
+void print_query_lines(const SolutionEvaluation& result, const std::vector<Ratio>& eps,
+                       const std::vector<std::string>& eps_text) {
   for (const auto& q : result.queries) {
     std::cout << "query " << q.query << ": " << to_string(q.solution_status);
     if (!q.front) {
@@ -77,61 +83,138 @@ void print_text(const SolutionEvaluation& result, const std::vector<Ratio>& eps,
                 << " returned vector(s) strictly dominated by the reference (the solver claims "
                    "ε = 0)\n";
   }
-  std::cout << "summary: " << result.queries.size() << " queries\n";
-  for (std::size_t k = 0; k < eps.size(); ++k)
-    std::cout << "  ε=" << eps_text[k] << ": " << result.covered_per_epsilon[k] << " covered\n";
-  std::cout << (result.failed ? "FAIL" : "OK") << '\n';
 }
 
-void print_json(const SolutionEvaluation& result, const std::vector<std::string>& eps_text) {
-  JsonWriter j(std::cout);
-  j.begin_object().key("ok").value(!result.failed).key("queries").begin_array();
-  for (const auto& q : result.queries) {
-    j.begin_object()
-        .key("query")
-        .value(q.query)
-        .key("status")
-        .value(to_string(q.solution_status))
-        .key("reference_status")
-        .value(to_string(q.reference_status))
-        .key("failed")
-        .value(q.failed);
-    if (q.front) {
-      const auto& f = *q.front;
-      j.key("solution_size").value(std::uint64_t{f.solution_size});
-      j.key("reference_size").value(std::uint64_t{f.reference_size});
-      j.key("achieved_epsilon").value(achieved_epsilon_text(f, result.exact_arithmetic));
-      j.key("achieved_epsilon_value").value(f.achieved_value);
-      j.key("coverage").begin_array();
-      for (std::size_t k = 0; k < f.coverage.size(); ++k)
-        j.begin_object()
-            .key("epsilon")
-            .value(eps_text[k])
-            .key("covered")
-            .value(f.coverage[k].covered)
-            .key("uncovered")
-            .value(f.coverage[k].uncovered)
-            .end_object();
-      j.end_array();
-      j.key("worst_reference").begin_array();
-      for (double v : q.worst_reference_values) j.value(v);
-      j.end_array();
-      j.key("dominated_by_reference").begin_array();
-      for (auto i : f.dominated_by_reference) j.value(std::uint64_t{i});
-      j.end_array();
-    }
-    j.end_object();
+void json_query(JsonWriter& j, const QueryEvaluation& q, bool exact,
+                const std::vector<std::string>& eps_text) {
+  j.begin_object()
+      .key("query")
+      .value(q.query)
+      .key("status")
+      .value(to_string(q.solution_status))
+      .key("reference_status")
+      .value(to_string(q.reference_status))
+      .key("failed")
+      .value(q.failed);
+  if (q.front) {
+    const auto& f = *q.front;
+    j.key("solution_size").value(std::uint64_t{f.solution_size});
+    j.key("reference_size").value(std::uint64_t{f.reference_size});
+    j.key("achieved_epsilon").value(achieved_epsilon_text(f, exact));
+    j.key("achieved_epsilon_value").value(f.achieved_value);
+    j.key("coverage").begin_array();
+    for (std::size_t k = 0; k < f.coverage.size(); ++k)
+      j.begin_object()
+          .key("epsilon")
+          .value(eps_text[k])
+          .key("covered")
+          .value(f.coverage[k].covered)
+          .key("uncovered")
+          .value(f.coverage[k].uncovered)
+          .end_object();
+    j.end_array();
+    j.key("worst_reference").begin_array();
+    for (double v : q.worst_reference_values) j.value(v);
+    j.end_array();
+    j.key("dominated_by_reference").begin_array();
+    for (auto i : f.dominated_by_reference) j.value(std::uint64_t{i});
+    j.end_array();
   }
-  j.end_array().key("summary").begin_array();
-  for (std::size_t k = 0; k < eps_text.size(); ++k)
-    j.begin_object()
-        .key("epsilon")
-        .value(eps_text[k])
-        .key("covered")
-        .value(result.covered_per_epsilon[k])
-        .end_object();
+  j.end_object();
+}
+
+void json_distribution(JsonWriter& j, std::string_view key, const std::optional<Distribution>& d,
+                       bool runtime) {
+  j.key(key);
+  if (!d) {
+    j.null();
+    return;
+  }
+  j.begin_object().key("count").value(d->count).key("median").value(d->median);
+  j.key("mean").value(d->mean).key("max").value(d->max);
+  if (runtime) j.key("shifted_geometric_mean").value(d->shifted_geometric_mean);
+  j.end_object();
+}
+
+void print_json(const SolverComparison& result, const std::string& reference,
+                std::uint64_t query_count, const std::vector<std::string>& eps_text) {
+  JsonWriter j(std::cout);
+  j.begin_object().key("ok").value(!result.failed);
+  j.key("reference").value(reference).key("queries").value(query_count);
+  j.key("epsilons").begin_array();
+  for (const auto& e : eps_text) j.value(e);
+  j.end_array();
+  j.key("common_queries").value(std::uint64_t{result.common_queries.size()});
+  j.key("runtime_shift_seconds").value(result.runtime_shift_seconds);
+  j.key("solvers").begin_array();
+  for (const auto& s : result.solvers) {
+    j.begin_object().key("name").value(s.name).key("file").value(s.file);
+    j.key("ok").value(!s.evaluation.failed).key("statuses").begin_object();
+    for (std::uint8_t k = 0; k <= kLastQueryStatus; ++k)
+      j.key(to_string(static_cast<QueryStatus>(k))).value(s.status_counts[k]);
+    j.end_object().key("not_solved").value(s.not_solved).key("epsilons").begin_array();
+    for (std::size_t k = 0; k < eps_text.size(); ++k)
+      j.begin_object()
+          .key("epsilon")
+          .value(eps_text[k])
+          .key("covered")
+          .value(s.per_epsilon[k].covered)
+          .key("not_covered")
+          .value(s.per_epsilon[k].not_covered)
+          .end_object();
+    j.end_array();
+    json_distribution(j, "achieved_epsilon", s.achieved_epsilon, false);
+    json_distribution(j, "size_ratio", s.size_ratio, false);
+    json_distribution(j, "runtime_seconds", s.runtime, true);
+    j.key("queries").begin_array();
+    for (const auto& q : s.evaluation.queries)
+      json_query(j, q, s.evaluation.exact_arithmetic, eps_text);
+    j.end_array().end_object();
+  }
   j.end_array().end_object();
   std::cout << '\n';
+}
+
+std::string distribution_text(const std::optional<Distribution>& d, const char* unit) {
+  if (!d) return "none";
+  std::ostringstream out;
+  out << "median " << d->median << unit << ", mean " << d->mean << unit << ", max " << d->max
+      << unit;
+  return out.str();
+}
+
+void print_text(const SolverComparison& result, const std::vector<Ratio>& eps, const std::vector<std::string>& eps_text,
+                bool per_query) {
+  for (std::size_t i = 0; i < result.solvers.size(); ++i) {
+    const auto& s = result.solvers[i];
+    std::cout << "solver " << escape_for_terminal(s.name) << " ("
+              << escape_for_terminal(s.file) << ")\n";
+    if (per_query) print_query_lines(s.evaluation, eps, eps_text);
+    std::cout << "  statuses:";
+    const char* separator = " ";
+    for (std::uint8_t k = 0; k <= kLastQueryStatus; ++k) {
+      if (s.status_counts[k] == 0) continue;
+      std::cout << separator << s.status_counts[k] << ' ' << to_string(static_cast<QueryStatus>(k));
+      separator = ", ";
+    }
+    std::cout << "; " << s.not_solved << " solved by the reference only\n";
+    for (std::size_t k = 0; k < eps.size(); ++k)
+      std::cout << "  ε=" << eps_text[k] << ": " << s.per_epsilon[k].covered << " covered, "
+                << s.per_epsilon[k].not_covered << " not covered\n";
+    const auto count = [](const std::optional<Distribution>& d) { return d ? d->count : 0; };
+    std::cout << "  achieved ε over " << count(s.achieved_epsilon) << " queries: "
+              << distribution_text(s.achieved_epsilon, "") << '\n';
+    std::cout << "  |S|/|R| over " << count(s.size_ratio)
+              << " queries: " << distribution_text(s.size_ratio, "") << '\n';
+    std::cout << "  runtime over " << count(s.runtime) << " queries every solver completed: "
+              << distribution_text(s.runtime, " s");
+    if (s.runtime)
+      std::cout << ", shifted geometric mean (shift " << result.runtime_shift_seconds << " s) "
+                << s.runtime->shifted_geometric_mean << " s";
+    std::cout << '\n';
+    if (s.evaluation.failed) std::cout << "  FAIL\n";
+  }
+  std::cout << (result.failed ? "FAIL" : "OK") << '\n';
 }
 
 int run_eval(const EvalArgs& args) {
@@ -142,14 +225,29 @@ int run_eval(const EvalArgs& args) {
   // asked, never two ε rounded to the same 9-digit text.
   for (const auto& e : eps) eps_text.push_back(e.to_decimal(18));
   const auto reference = SolutionReader::open_verified(args.reference);
-  const auto solutions = SolutionReader::open_verified(args.solutions);
-  EvalOptions options;
-  options.strict_dominance = args.strict;
-  const auto result = evaluate_solutions(reference, solutions, eps, options);
-  if (args.json)
-    print_json(result, eps_text);
-  else
-    print_text(result, eps, eps_text);
+  std::vector<SolutionReader> solutions;
+  solutions.reserve(args.solutions.size());
+  for (const auto& file : args.solutions) solutions.push_back(SolutionReader::open_verified(file));
+  ComparisonOptions options;
+  options.eval.strict_dominance = args.strict;
+  options.runtime_shift_seconds = args.runtime_shift;
+  auto result = compare_solvers(reference, solutions, eps, options);
+  if (args.json) {
+    print_json(result, reference.display_name(), reference.query_count(), eps_text);
+  } else if (args.csv || args.latex) {
+    // Names come from the files: no control character may reach a terminal or a document.
+    for (auto& s : result.solvers) s.name = escape_for_terminal(s.name);
+    auto table = args.per_query ? tables::comparison_per_query(result, eps_text, solutions)
+                                : tables::comparison_summary(result, eps_text, args.latex);
+    table.caption = "mosb eval: reference " + escape_for_terminal(reference.display_name()) + ", " +
+                    std::to_string(reference.query_count()) + " queries";
+    if (args.csv)
+      tables::write_csv(std::cout, table);
+    else
+      tables::write_latex(std::cout, table);
+  } else {
+    print_text(result, eps, eps_text, args.per_query);
+  }
   return result.failed ? 1 : 0;
 }
 
@@ -157,17 +255,34 @@ int run_eval(const EvalArgs& args) {
 
 Command add_eval(CLI::App& app) {
   auto args = std::make_shared<EvalArgs>();
-  auto* sub = app.add_subcommand("eval", "Check a solver's solution file against reference fronts");
+  auto* sub = app.add_subcommand(
+      "eval", "Compare solvers' solution files with reference fronts: coverage at each ε, achieved "
+              "ε, front sizes, runtimes");
   sub->add_option("--reference", args->reference, "the reference solution file")
       ->required()
       ->check(CLI::ExistingFile);
-  sub->add_option("--solutions", args->solutions, "the solver's solution file")
+  sub->add_option("--solutions", args->solutions,
+                  "the solvers' solution files (one or more), each compared with the reference")
       ->required()
+      ->expected(1, -1)
       ->check(CLI::ExistingFile);
   sub->add_option("--eps", args->epsilons, "comma-separated ε values")->capture_default_str();
   sub->add_flag("--strict-dominance", args->strict,
                 "the paper's literal strict clause (spec/EVALUATION.md §1)");
+  sub->add_flag("--per-query", args->per_query,
+                "also each query's outcome (text), or one row per solver and query (--csv)");
+  sub->add_option("--runtime-shift", args->runtime_shift,
+                  "the shift s, in seconds, of the runtimes' shifted geometric mean")
+      ->check(non_negative_real())
+      ->capture_default_str();
   add_json_flag(sub, args->json);
+  auto* json = sub->get_option("--json");
+  auto* csv = sub->add_flag("--csv", args->csv, "print the summary table as CSV (RFC 4180)");
+  auto* latex = sub->add_flag("--latex", args->latex,
+                              "print the summary as a LaTeX booktabs tabular, for a paper");
+  json->excludes(csv)->excludes(latex);
+  csv->excludes(latex);
+  latex->excludes(sub->get_option("--per-query"));
   return {sub, [args] { return run_eval(*args); }};
 }
 

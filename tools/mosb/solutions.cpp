@@ -328,7 +328,8 @@ Command add_solutions(CLI::App& app) {
   return group(group_app, {{import, [import_args] { return run_import(*import_args); }},
                            {export_, [export_args] { return run_export(*export_args); }},
                            {inspect, [inspect_args] { return run_inspect(*inspect_args); }},
-                           {verify, [verify_args] { return run_verify(*verify_args); }}});
+                           {verify, [verify_args] { return run_verify(*verify_args); }},
+                           add_solutions_compare(group_app)});
 }
 
 }  // namespace mosb::cli

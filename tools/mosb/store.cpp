@@ -170,6 +170,7 @@ int report_checks(const std::vector<FileCheck>& checks, bool json) {
       out.begin_object();
       out.key("file").value(c.file);
       out.key("ok").value(c.ok());
+      if (!c.note.empty()) out.key("note").value(c.note);
       out.key("problems").begin_array();
       for (const auto& p : c.problems) {
         out.begin_object();
@@ -184,7 +185,9 @@ int report_checks(const std::vector<FileCheck>& checks, bool json) {
     out.end_object();
   } else {
     for (const auto& c : checks) {
-      if (c.ok()) std::cout << "OK   " << escape_for_terminal(c.file) << '\n';
+      if (c.ok())
+        std::cout << "OK   " << escape_for_terminal(c.file)
+                  << (c.note.empty() ? "" : ": " + c.note) << '\n';
       for (const auto& p : c.problems)
         std::cout << "FAIL " << p.kind << ": " << escape_for_terminal(p.detail) << '\n';
     }

@@ -34,9 +34,8 @@ std::vector<T> gather(const SolutionReader& r, std::uint64_t q) {
 
 void check_same_binding(const SolutionReader& ref, const SolutionReader& sol) {
   const auto mismatch = [&](const std::string& what, const std::string& a, const std::string& b) {
-    throw Error(ErrorCode::invalid_argument, "reference " + ref.display_name() + " has " + what +
-                                                 " " + a + ", solutions " + sol.display_name() +
-                                                 " have " + b);
+    throw Error(ErrorCode::invalid_argument, ref.display_name() + " has " + what + " " + a + ", " +
+                                                 sol.display_name() + " has " + b);
   };
   if (ref.instance_digest() != sol.instance_digest())
     mismatch("instance digest", ref.instance_digest(), sol.instance_digest());

@@ -58,8 +58,8 @@ struct InputFd {
   int fd;
 };
 
-FileCheck check_one(const ManifestEntry& e, const fs::path& path) {
-  FileCheck c{e.file, path, {}};
+FileCheck check_one(const ManifestEntry& e, const fs::path& path, bool accept_other_form) {
+  FileCheck c{e.file, path, {}, {}};
   auto problem = [&](std::string kind, std::string detail) {
     c.problems.push_back({std::move(kind), path.string() + ": " + std::move(detail)});
   };
@@ -93,8 +93,19 @@ FileCheck check_one(const ManifestEntry& e, const fs::path& path) {
       problem("wrong-digest", "content digest " + digest + ", the manifest says " + e.digest);
     // A packed file is checked as it will be used: unpacked (every frame decoded and checked
     // against its section checksum), then verified in full.
-    const auto checked = is_packed(reader.header()) ? mosb::load(path) : reader;
-    if (const auto found = verify(checked, VerifyLevel::full)) problem("damaged", *found);
+    const bool packed = is_packed(reader.header());
+    const auto checked = packed ? mosb::load(path) : reader;
+    if (const auto found = verify(checked, VerifyLevel::full)) {
+      problem("damaged", *found);
+    } else if (accept_other_form && digest == e.digest && packed != e.packed) {
+      // `mosb unpack` (or `pack`) of the listed file: other bytes, the same content, which the
+      // digest proves and the full verification has just checked.
+      std::erase_if(c.problems, [](const FileProblem& p) {
+        return p.kind == "wrong-size" || p.kind == "wrong-sha256";
+      });
+      c.note = packed ? "packed form of the listed unpacked file"
+                      : "unpacked form of the listed packed file";
+    }
   } catch (const Error& error) {
     c.problems.push_back({error.code() == ErrorCode::io ? "unreadable" : "damaged", error.what()});
   }
@@ -253,9 +264,9 @@ std::vector<FileCheck> check_files(const std::vector<std::pair<ManifestEntry, fs
   auto work = [&] {
     for (std::size_t i = next++; i < files.size(); i = next++) {
       try {
-        checks[i] = check_one(files[i].first, files[i].second);
+        checks[i] = check_one(files[i].first, files[i].second, options.accept_other_form);
       } catch (const std::exception& error) {  // bad_alloc, filesystem_error: a report, not a crash
-        checks[i] = {files[i].first.file, files[i].second, {{"unreadable", error.what()}}};
+        checks[i] = {files[i].first.file, files[i].second, {{"unreadable", error.what()}}, {}};
       }
       std::lock_guard lock(progress_mutex);
       report(options.progress, "verify", ++done, files.size());
@@ -286,7 +297,7 @@ std::vector<FileCheck> check_against_manifest(const fs::path& manifest_path,
         files.emplace_back(*e, path);
       else
         unlisted.push_back(
-            {name, path, {{"extra", path.string() + ": not listed in " + manifest_path.string()}}});
+            {name, path, {{"extra", path.string() + ": not listed in " + manifest_path.string()}}, {}});
     }
   }
   auto checks = check_files(files, options);
@@ -516,7 +527,8 @@ std::vector<FileCheck> Store::verify(const CheckOptions& options) const {
                        path,
                        {{"unreadable", path.string() + ": is a symbolic link, "
                                                        "which the store did not "
-                                                       "make; not followed"}}});
+                                                       "make; not followed"}},
+                       {}});
     else
       files.emplace_back(e, path);
   }
@@ -536,7 +548,8 @@ std::vector<FileCheck> Store::verify(const CheckOptions& options) const {
   for (const auto& name : extra)
     checks.push_back({name,
                       directory_ / name,
-                      {{"extra", (directory_ / name).string() + ": not listed in the manifest"}}});
+                      {{"extra", (directory_ / name).string() + ": not listed in the manifest"}},
+                      {}});
   return checks;
 }
 

@@ -35,7 +35,8 @@ struct SolutionEvaluation {
 };
 
 // Throws mosb::Error (ErrorCode::invalid_argument) naming both files and both values unless they
-// share instance digest, view, query set, query count and the header's n and m.
+// share instance digest, view, query set, query count and the header's n and m. Either file may be
+// the reference: the message names files, not roles.
 void check_same_binding(const SolutionReader& reference, const SolutionReader& solution);
 
 // Throws mosb::Error naming both files unless they share instance digest, view, query set,

@@ -29,12 +29,19 @@ struct FileCheck {
   std::string file;  // base name (the listed name; for an extra file, its name)
   std::filesystem::path path;
   std::vector<FileProblem> problems;  // empty: the file is what the manifest says
+  // Set when the file passes as the other form of the listed one (CheckOptions::accept_other_form).
+  std::string note;
   bool ok() const { return problems.empty(); }
 };
 
 struct CheckOptions {
   unsigned threads = 0;  // 0: std::thread::hardware_concurrency()
   Progress progress;     // stage "verify": 0 first, then once per checked file, serialized
+  // A file whose packedness differs from the listed entry's passes when its content digest is the
+  // listed one and it verifies in full (a download unpacked with `mosb unpack`, or the reverse);
+  // size and SHA-256 then describe the other form and are not compared. `verify --manifest`
+  // accepts it; a store (Store::verify) must hold the listed bytes themselves.
+  bool accept_other_form = false;
 };
 
 // Checks each (entry, path) pair: existence, size, SHA-256 (when listed), readability, that it is

@@ -1,0 +1,94 @@
+// Several solvers' solution files against one reference (spec/EVALUATION.md §4), summarised as a
+// paper's results section reports them, and the cross-validation of two solvers' fronts (§6).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "mosb/solution_eval.hpp"
+#include "mosb/solution_file.hpp"
+
+namespace mosb {
+
+// A distribution of non-negative values. The median of an even count is the mean of the two
+// middle values. The shifted geometric mean is exp(mean(ln(x + s))) − s, solver papers' usual
+// runtime average: one slow query does not dominate it, and the shift s keeps near-zero times
+// from doing so either.
+struct Distribution {
+  std::uint64_t count = 0;
+  double median = 0, mean = 0, max = 0;
+  double shifted_geometric_mean = 0;  // with a runtime_shift only
+};
+
+// Values may include +infinity (an achieved ε nothing reaches); the mean is then infinite too.
+// nullopt for no values.
+std::optional<Distribution> distribution_of(std::vector<double> values,
+                                            std::optional<double> runtime_shift = std::nullopt);
+
+struct ComparisonOptions {
+  EvalOptions eval;
+  double runtime_shift_seconds = 1;  // s of the shifted geometric mean
+};
+
+struct EpsilonOutcome {
+  std::uint64_t covered = 0;      // both solved, the solver's front covers the reference's at ε
+  std::uint64_t not_covered = 0;  // both solved, not covered
+};
+
+struct SolverSummary {
+  std::string name;  // solution.solver.name, else the file's name
+  std::string file;
+  SolutionEvaluation evaluation;
+  std::array<std::uint64_t, kLastQueryStatus + 1> status_counts{};  // indexed by QueryStatus
+  std::uint64_t not_solved = 0;  // the reference solved it, the solver did not
+  std::vector<EpsilonOutcome> per_epsilon;
+  // Over the queries both solved (the solver's achieved ε, as a double; |S|/|R|).
+  std::optional<Distribution> achieved_epsilon, size_ratio;
+  // Runtime over the common queries (SolverComparison::common_queries) that carry one.
+  std::optional<Distribution> runtime;
+};
+
+struct SolverComparison {
+  std::vector<SolverSummary> solvers;
+  // Queries that every solver completed (solved or disconnected): the only fair runtime sample.
+  std::vector<std::uint64_t> common_queries;
+  double runtime_shift_seconds = 1;
+  bool failed = false;  // some solver failed some query (SolutionEvaluation::failed)
+};
+
+// Every file must be bound as the reference is (check_same_binding, which names both files).
+// Throws ErrorCode::invalid_argument for an empty `solutions`.
+SolverComparison compare_solvers(const SolutionReader& reference,
+                                 std::span<const SolutionReader> solutions,
+                                 std::span<const Ratio> epsilons,
+                                 const ComparisonOptions& options = {});
+
+// Two solvers' fronts query by query: the paper's cross-validation of two exact solvers.
+struct QueryAgreement {
+  std::uint64_t query = 0;
+  QueryStatus a_status = QueryStatus::not_run, b_status = QueryStatus::not_run;
+  // Both solved: the fronts are equal as sets of vectors (duplicates ignored). Both carry no front
+  // (any other pair of statuses): equal when the statuses are.
+  bool equal = false;
+  // When both solved and the sets differ: the lexicographically smallest vector of the symmetric
+  // difference, and whether it is in A's front (else B's).
+  std::vector<double> first_difference;
+  bool difference_in_a = false;
+  std::optional<double> runtime_ratio;  // B's runtime / A's, when both have one and A's > 0
+};
+
+struct FrontAgreement {
+  std::vector<QueryAgreement> queries;
+  std::uint64_t equal = 0, different = 0;
+  std::optional<Distribution> runtime_ratio;  // over the queries that have one
+};
+
+// Throws as check_same_binding (naming both files) unless A and B share instance, view and query
+// set. O(F log F) for F vectors in all.
+FrontAgreement compare_fronts(const SolutionReader& a, const SolutionReader& b);
+
+}  // namespace mosb

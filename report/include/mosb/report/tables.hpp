@@ -1,0 +1,56 @@
+// Tables of numbers for a results section: one model, written as CSV (RFC 4180, every digit kept),
+// a LaTeX booktabs tabular (three significant digits, for a paper) or aligned text (a terminal).
+// `mosb eval --csv|--latex` and `mosb solutions compare` build theirs here.
+#pragma once
+
+#include <cstdint>
+#include <ostream>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "mosb/solver_comparison.hpp"
+
+namespace mosb::tables {
+
+struct Cell {
+  enum class Kind { absent, text, count, real } kind = Kind::absent;
+  std::string text;
+  std::uint64_t count = 0;
+  double real = 0;  // may be +infinity
+
+  static Cell of(std::string t) { return {Kind::text, std::move(t), 0, 0}; }
+  static Cell of(std::uint64_t n) { return {Kind::count, {}, n, 0}; }
+  static Cell of(double x) { return {Kind::real, {}, 0, x}; }
+};
+
+struct Column {
+  std::string key;    // CSV header and text heading: [a-z0-9_@.]
+  std::string latex;  // LaTeX heading (math allowed)
+};
+
+struct Table {
+  std::vector<Column> columns;
+  std::vector<std::vector<Cell>> rows;  // each as long as `columns`
+  std::string caption;                  // LaTeX comment line and text heading; may be empty
+};
+
+// Numbers: CSV the shortest text that reads back the same ("inf" for infinity), an empty field
+// when absent; LaTeX %.3g, $\infty$, "--" when absent, text escaped; text %.4g, "-" when absent.
+void write_csv(std::ostream& out, const Table& table);
+void write_latex(std::ostream& out, const Table& table);
+void write_text(std::ostream& out, const Table& table);
+
+// One row per solver: statuses, per ε covered and not covered, achieved ε (median, max), |S|/|R|
+// (median, mean), runtime over the common queries (count, median, mean, max, shifted geometric
+// mean). `epsilon_labels` names the ε in order, as the user gave them. `for_paper` keeps the
+// columns a paper's comparison table has (solved, timeout, memory-limit, failed, covered per ε,
+// ε median and max, |S|/|R| median, runtime median, max and shifted geometric mean).
+Table comparison_summary(const SolverComparison& comparison,
+                         std::span<const std::string> epsilon_labels, bool for_paper = false);
+// One row per solver and query: statuses, sizes, achieved ε, coverage per ε, runtime, failed.
+Table comparison_per_query(const SolverComparison& comparison,
+                           std::span<const std::string> epsilon_labels,
+                           std::span<const SolutionReader> solutions);
+
+}  // namespace mosb::tables

@@ -1,0 +1,229 @@
+#include "mosb/report/tables.hpp"
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+
+namespace mosb::tables {
+namespace {
+
+std::string shortest(double x) {
+  if (std::isinf(x)) return "inf";
+  std::array<char, 32> buffer{};
+  return {buffer.data(), std::to_chars(buffer.data(), buffer.data() + buffer.size(), x).ptr};
+}
+
+std::string significant(double x, int digits) {
+  std::array<char, 48> buffer{};
+  std::snprintf(buffer.data(), buffer.size(), "%.*g", digits, x);
+  return buffer.data();
+}
+
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  return out + '"';
+}
+
+std::string latex_escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '\\': out += "\\textbackslash{}"; break;
+      case '~': out += "\\textasciitilde{}"; break;
+      case '^': out += "\\textasciicircum{}"; break;
+      case '&': case '%': case '$': case '#': case '_': case '{': case '}':
+        out += '\\';
+        out += c;
+        break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+std::string csv_cell(const Cell& c) {
+  switch (c.kind) {
+    case Cell::Kind::text: return csv_field(c.text);
+    case Cell::Kind::count: return std::to_string(c.count);
+    case Cell::Kind::real: return shortest(c.real);
+    case Cell::Kind::absent: break;
+  }
+  return {};
+}
+
+std::string latex_cell(const Cell& c) {
+  switch (c.kind) {
+    case Cell::Kind::text: return latex_escape(c.text);
+    case Cell::Kind::count: return std::to_string(c.count);
+    case Cell::Kind::real: return std::isinf(c.real) ? "$\\infty$" : significant(c.real, 3);
+    case Cell::Kind::absent: break;
+  }
+  return "--";
+}
+
+std::string text_cell(const Cell& c) {
+  switch (c.kind) {
+    case Cell::Kind::text: return c.text;
+    case Cell::Kind::count: return std::to_string(c.count);
+    case Cell::Kind::real: return std::isinf(c.real) ? "inf" : significant(c.real, 4);
+    case Cell::Kind::absent: break;
+  }
+  return "-";
+}
+
+Cell optional_real(const std::optional<Distribution>& d, double Distribution::*field) {
+  return d ? Cell::of((*d).*field) : Cell{};
+}
+
+std::string status_key(QueryStatus s) {
+  std::string key(to_string(s));
+  std::replace(key.begin(), key.end(), '-', '_');
+  return key;
+}
+
+}  // namespace
+
+void write_csv(std::ostream& out, const Table& table) {
+  for (std::size_t i = 0; i < table.columns.size(); ++i)
+    out << (i ? "," : "") << csv_field(table.columns[i].key);
+  out << "\r\n";
+  for (const auto& row : table.rows) {
+    for (std::size_t i = 0; i < row.size(); ++i) out << (i ? "," : "") << csv_cell(row[i]);
+    out << "\r\n";
+  }
+}
+
+void write_latex(std::ostream& out, const Table& table) {
+  if (!table.caption.empty()) out << "% " << table.caption << '\n';
+  out << "\\begin{tabular}{l" << std::string(table.columns.size() - 1, 'r') << "}\n\\toprule\n";
+  for (std::size_t i = 0; i < table.columns.size(); ++i)
+    out << (i ? " & " : "") << table.columns[i].latex;
+  out << " \\\\\n\\midrule\n";
+  for (const auto& row : table.rows) {
+    for (std::size_t i = 0; i < row.size(); ++i) out << (i ? " & " : "") << latex_cell(row[i]);
+    out << " \\\\\n";
+  }
+  out << "\\bottomrule\n\\end{tabular}\n";
+}
+
+void write_text(std::ostream& out, const Table& table) {
+  std::vector<std::vector<std::string>> cells{{}};
+  for (const auto& c : table.columns) cells[0].push_back(c.key);
+  for (const auto& row : table.rows) {
+    cells.emplace_back();
+    for (const auto& c : row) cells.back().push_back(text_cell(c));
+  }
+  std::vector<std::size_t> width(table.columns.size(), 0);
+  for (const auto& row : cells)
+    for (std::size_t i = 0; i < row.size(); ++i) width[i] = std::max(width[i], row[i].size());
+  if (!table.caption.empty()) out << table.caption << '\n';
+  for (const auto& row : cells) {
+    std::string line;
+    for (std::size_t i = 0; i < row.size(); ++i) {
+      // The first column (a name) is left-aligned, numbers right-aligned.
+      const std::string pad(width[i] - row[i].size(), ' ');
+      line += (i ? "  " : "") + (i ? pad + row[i] : row[i] + pad);
+    }
+    line.erase(line.find_last_not_of(' ') + 1);
+    out << line << '\n';
+  }
+}
+
+Table comparison_summary(const SolverComparison& comparison,
+                         std::span<const std::string> epsilon_labels, bool for_paper) {
+  // A paper's table keeps what the paper's comparison table shows: outcomes, coverage, runtimes.
+  const auto shown = [for_paper](QueryStatus s) {
+    return !for_paper || (s != QueryStatus::disconnected && s != QueryStatus::not_run);
+  };
+  Table t;
+  t.columns = {{"solver", "Solver"}};
+  for (std::uint8_t s = 0; s <= kLastQueryStatus; ++s) {
+    const auto status = static_cast<QueryStatus>(s);
+    if (shown(status))
+      t.columns.push_back({status_key(status), latex_escape(std::string(to_string(status)))});
+  }
+  if (!for_paper) t.columns.push_back({"not_solved", "not solved"});
+  for (const auto& e : epsilon_labels) {
+    t.columns.push_back({"covered@" + e, "cov.\\ $\\varepsilon{=}" + e + "$"});
+    if (!for_paper) t.columns.push_back({"not_covered@" + e, "not cov.\\ $\\varepsilon{=}" + e + "$"});
+  }
+  t.columns.insert(t.columns.end(), {{"eps_median", "$\\tilde\\varepsilon$"},
+                                     {"eps_max", "$\\varepsilon_{\\max}$"},
+                                     {"size_ratio_median", "$|S|/|R|$"}});
+  if (!for_paper)
+    t.columns.insert(t.columns.end(), {{"size_ratio_mean", "$|S|/|R|$ mean"},
+                                       {"runtime_queries", "$n_t$"}});
+  t.columns.push_back({"runtime_median", "$\\tilde t$ [s]"});
+  if (!for_paper) t.columns.push_back({"runtime_mean", "$\\bar t$ [s]"});
+  t.columns.insert(t.columns.end(),
+                   {{"runtime_max", "$t_{\\max}$ [s]"}, {"runtime_sgm", "SGM [s]"}});
+  for (const auto& s : comparison.solvers) {
+    std::vector<Cell> row{Cell::of(s.name)};
+    for (std::uint8_t k = 0; k <= kLastQueryStatus; ++k)
+      if (shown(static_cast<QueryStatus>(k))) row.push_back(Cell::of(s.status_counts[k]));
+    if (!for_paper) row.push_back(Cell::of(s.not_solved));
+    for (const auto& e : s.per_epsilon) {
+      row.push_back(Cell::of(e.covered));
+      if (!for_paper) row.push_back(Cell::of(e.not_covered));
+    }
+    row.push_back(optional_real(s.achieved_epsilon, &Distribution::median));
+    row.push_back(optional_real(s.achieved_epsilon, &Distribution::max));
+    row.push_back(optional_real(s.size_ratio, &Distribution::median));
+    if (!for_paper) {
+      row.push_back(optional_real(s.size_ratio, &Distribution::mean));
+      row.push_back(Cell::of(std::uint64_t{s.runtime ? s.runtime->count : 0}));
+    }
+    row.push_back(optional_real(s.runtime, &Distribution::median));
+    if (!for_paper) row.push_back(optional_real(s.runtime, &Distribution::mean));
+    row.push_back(optional_real(s.runtime, &Distribution::max));
+    row.push_back(optional_real(s.runtime, &Distribution::shifted_geometric_mean));
+    t.rows.push_back(std::move(row));
+  }
+  return t;
+}
+
+Table comparison_per_query(const SolverComparison& comparison,
+                           std::span<const std::string> epsilon_labels,
+                           std::span<const SolutionReader> solutions) {
+  Table t;
+  t.columns = {{"solver", "Solver"},
+               {"query", "query"},
+               {"reference_status", "reference"},
+               {"status", "status"},
+               {"solution_size", "$|S|$"},
+               {"reference_size", "$|R|$"},
+               {"achieved_eps", "$\\varepsilon$"}};
+  for (const auto& e : epsilon_labels)
+    t.columns.push_back({"covered@" + e, "cov.\\ $\\varepsilon{=}" + e + "$"});
+  t.columns.insert(t.columns.end(), {{"runtime_seconds", "$t$ [s]"}, {"failed", "failed"}});
+  for (std::size_t i = 0; i < comparison.solvers.size(); ++i) {
+    const auto& s = comparison.solvers[i];
+    for (const auto& q : s.evaluation.queries) {
+      std::vector<Cell> row{Cell::of(s.name), Cell::of(q.query),
+                            Cell::of(std::string(to_string(q.reference_status))),
+                            Cell::of(std::string(to_string(q.solution_status)))};
+      if (q.front) {
+        row.push_back(Cell::of(std::uint64_t{q.front->solution_size}));
+        row.push_back(Cell::of(std::uint64_t{q.front->reference_size}));
+        row.push_back(Cell::of(q.front->achieved_value));
+        for (const auto& c : q.front->coverage) row.push_back(Cell::of(std::uint64_t{c.covered}));
+      } else {
+        row.resize(row.size() + 3 + epsilon_labels.size());
+      }
+      const auto runtime = solutions[i].runtime_seconds(q.query);
+      row.push_back(runtime ? Cell::of(*runtime) : Cell{});
+      row.push_back(Cell::of(std::uint64_t{q.failed}));
+      t.rows.push_back(std::move(row));
+    }
+  }
+  return t;
+}
+
+}  // namespace mosb::tables

@@ -1,0 +1,94 @@
+#include "mosb/report/tables.hpp"
+
+#include <doctest/doctest.h>
+
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace mosb;
+using namespace mosb::tables;
+
+namespace {
+
+// Two solvers as compare_solvers would summarise them, at ε = 0 and 0.1.
+SolverComparison two_solvers() {
+  SolverComparison c;
+  SolverSummary fast;
+  fast.name = "fast_1";
+  fast.status_counts = {2, 0, 0, 1, 0, 0};
+  fast.per_epsilon = {{1, 1}, {2, 0}};
+  fast.achieved_epsilon = Distribution{2, 0.05, 0.05, 0.1, 0};
+  fast.size_ratio = Distribution{2, 1, 1, 1, 0};
+  fast.runtime = Distribution{2, 0.75, 0.75, 1, 0.7};
+  SolverSummary slow;
+  slow.name = "slow & co";
+  slow.status_counts = {1, 1, 0, 1, 0, 0};
+  slow.not_solved = 1;
+  slow.per_epsilon = {{0, 1}, {0, 1}};
+  slow.achieved_epsilon =
+      Distribution{1, std::numeric_limits<double>::infinity(), 0, 0.125, 0};
+  c.solvers = {fast, slow};
+  return c;
+}
+
+const std::vector<std::string> kLabels{"0", "0.1"};
+
+}  // namespace
+
+TEST_CASE("write_csv: a header of keys, every digit, empty fields for absent values, CRLF") {
+  std::ostringstream out;
+  write_csv(out, comparison_summary(two_solvers(), kLabels));
+  const auto csv = out.str();
+  CHECK(csv.starts_with("solver,solved,timeout,memory_limit,disconnected,not_run,failed,not_solved,"
+                        "covered@0,not_covered@0,covered@0.1,not_covered@0.1,eps_median,eps_max,"
+                        "size_ratio_median,size_ratio_mean,runtime_queries,runtime_median,"
+                        "runtime_mean,runtime_max,runtime_sgm\r\n"));
+  CHECK(csv.find("\r\nfast_1,2,0,0,1,0,0,0,1,1,2,0,0.05,0.1,1,1,2,0.75,0.75,1,0.7\r\n") !=
+        std::string::npos);
+  // No runtime: empty fields; an infinite median: "inf".
+  CHECK(csv.find("\r\nslow & co,1,1,0,1,0,0,1,0,1,0,1,inf,0.125,,,0,,,,\r\n") != std::string::npos);
+}
+
+TEST_CASE("write_csv: a field with a comma, a quote or a line break is quoted") {
+  Table t;
+  t.columns = {{"name", "Name"}};
+  t.rows = {{Cell::of(std::string("a,b"))}, {Cell::of(std::string("say \"x\""))}};
+  std::ostringstream out;
+  write_csv(out, t);
+  CHECK(out.str() == "name\r\n\"a,b\"\r\n\"say \"\"x\"\"\"\r\n");
+}
+
+TEST_CASE("write_latex: a booktabs tabular of the paper's columns, escaped, three digits") {
+  std::ostringstream out;
+  auto table = comparison_summary(two_solvers(), kLabels, true);
+  table.caption = "mosb eval";
+  write_latex(out, table);
+  const auto tex = out.str();
+  CHECK(tex.starts_with("% mosb eval\n\\begin{tabular}{lrrrrrrrrrrrr}\n\\toprule\nSolver & solved & "
+                        "timeout & memory-limit & failed & cov.\\ $\\varepsilon{=}0$ & "));
+  CHECK(tex.find("\\midrule\nfast\\_1 & 2 & 0 & 0 & 0 & 1 & 2 & 0.05 & 0.1 & 1 & 0.75 & 1 & 0.7 "
+                 "\\\\\n") != std::string::npos);
+  CHECK(tex.find("slow \\& co & 1 & 1 & 0 & 0 & 0 & 0 & $\\infty$ & 0.125 & -- & -- & -- & -- "
+                 "\\\\\n") != std::string::npos);
+  CHECK(tex.ends_with("\\bottomrule\n\\end{tabular}\n"));
+}
+
+TEST_CASE("write_text: names left-aligned, numbers right-aligned under their headings") {
+  std::ostringstream out;
+  write_text(out, comparison_summary(two_solvers(), kLabels));
+  std::istringstream lines(out.str());
+  std::string header, line;
+  std::getline(lines, header);
+  CHECK(header.starts_with("solver     solved"));
+  std::vector<std::string> rows;
+  while (std::getline(lines, line)) rows.push_back(line);
+  REQUIRE(rows.size() == 2);
+  CHECK(rows[0].starts_with("fast_1          2"));
+  CHECK(rows[1].starts_with("slow & co       1"));
+  // The last column is right-aligned: every row ends where the header does, or earlier only by
+  // the absent values' dashes, which are right-aligned too.
+  CHECK(rows[0].size() == header.size());
+  CHECK(rows[1].size() == header.size());
+}

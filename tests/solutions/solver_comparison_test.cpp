@@ -1,0 +1,158 @@
+#include "mosb/solver_comparison.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "golden_input.hpp"
+#include "mosb/graph_builder.hpp"
+#include "mosb/graph_reader.hpp"
+#include "temp_dir.hpp"
+
+using namespace mosb;
+
+namespace {
+
+struct Outcome {
+  QueryStatus status;
+  std::vector<double> costs;
+  std::optional<double> runtime;
+};
+
+// A solution file of the golden instance's view Small_2 (3 queries, objectives c1 u32 and c2 f32).
+SolutionReader write_solutions(const testing::TempDir& dir, const GraphReader& instance,
+                               const std::string& name, const std::vector<Outcome>& queries) {
+  SolutionWriter w(instance, "Small_2");
+  w.set_solver({name, "1", {}, "0", ""});
+  for (std::size_t q = 0; q < queries.size(); ++q) {
+    QueryStatistics statistics;
+    statistics.runtime_seconds = queries[q].runtime;
+    w.set_query(q, queries[q].status, queries[q].costs, statistics);
+  }
+  w.write(dir / (name + ".sol"));
+  return SolutionReader::open_verified(dir / (name + ".sol"));
+}
+
+}  // namespace
+
+TEST_CASE("distribution_of: median of odd and even counts, mean, max, shifted geometric mean") {
+  CHECK_FALSE(distribution_of({}));
+  const auto odd = distribution_of({3, 1, 2});
+  REQUIRE(odd);
+  CHECK(odd->count == 3);
+  CHECK(odd->median == 2);
+  CHECK(odd->mean == 2);
+  CHECK(odd->max == 3);
+  const auto even = distribution_of({4, 1, 2, 10}, 1.0);
+  REQUIRE(even);
+  CHECK(even->median == 3);  // (2 + 4) / 2
+  CHECK(even->mean == doctest::Approx(4.25));
+  // exp(mean(ln(x + 1))) − 1 = (5·2·3·11)^(1/4) − 1
+  CHECK(even->shifted_geometric_mean == doctest::Approx(std::pow(330.0, 0.25) - 1));
+  const auto with_infinity = distribution_of({0, std::numeric_limits<double>::infinity()});
+  REQUIRE(with_infinity);
+  CHECK(std::isinf(with_infinity->max));
+}
+
+TEST_CASE("compare_solvers: per-solver statuses, coverage, ratios and runtimes on common queries") {
+  testing::TempDir dir;
+  write_graph(testing::golden_input(), dir / "g.mosb");
+  const auto instance = GraphReader::open(dir / "g.mosb", VerifyLevel::full);
+  const auto reference = write_solutions(
+      dir, instance, "ref",
+      {{QueryStatus::solved, {10, 40, 20, 20, 40, 10}, 9.0},
+       {QueryStatus::solved, {30, 30}, 9.0},
+       {QueryStatus::disconnected, {}, 1.0}});
+  std::vector<SolutionReader> solvers;
+  // Exact on query 0, 10 % off on query 1, disconnected agreed.
+  solvers.push_back(write_solutions(dir, instance, "fast",
+                                    {{QueryStatus::solved, {10, 40, 20, 20, 40, 10}, 1.0},
+                                     {QueryStatus::solved, {33, 30}, 3.0},
+                                     {QueryStatus::disconnected, {}, 0.5}}));
+  // Half of query 0's front, a timeout on query 1.
+  solvers.push_back(write_solutions(dir, instance, "slow",
+                                    {{QueryStatus::solved, {20, 20}, 4.0},
+                                     {QueryStatus::timeout, {}, std::nullopt},
+                                     {QueryStatus::disconnected, {}, 2.0}}));
+  const std::vector<Ratio> eps{parse_epsilon("0"), parse_epsilon("0.1")};
+  const auto result = compare_solvers(reference, solvers, eps);
+  REQUIRE(result.solvers.size() == 2);
+  // Both completed queries 0 and 2: the runtime sample of both solvers.
+  CHECK(result.common_queries == std::vector<std::uint64_t>{0, 2});
+  CHECK(result.failed);
+
+  const auto& fast = result.solvers[0];
+  CHECK(fast.name == "fast");
+  CHECK(fast.status_counts[static_cast<std::size_t>(QueryStatus::solved)] == 2);
+  CHECK(fast.not_solved == 0);
+  CHECK(fast.per_epsilon[0].covered == 1);  // ε = 0: query 0 only
+  CHECK(fast.per_epsilon[0].not_covered == 1);
+  CHECK(fast.per_epsilon[1].covered == 2);
+  REQUIRE(fast.achieved_epsilon);
+  CHECK(fast.achieved_epsilon->max == doctest::Approx(0.1));
+  CHECK(fast.achieved_epsilon->median == doctest::Approx(0.05));
+  REQUIRE(fast.runtime);
+  CHECK(fast.runtime->count == 2);  // queries 0 and 2; query 1 is not common
+  CHECK(fast.runtime->median == 0.75);
+  CHECK(fast.runtime->max == 1.0);
+
+  const auto& slow = result.solvers[1];
+  CHECK(slow.status_counts[static_cast<std::size_t>(QueryStatus::timeout)] == 1);
+  CHECK(slow.not_solved == 1);
+  CHECK(slow.per_epsilon[1].covered == 0);
+  CHECK(slow.per_epsilon[1].not_covered == 1);
+  REQUIRE(slow.size_ratio);
+  CHECK(slow.size_ratio->median == doctest::Approx(1.0 / 3));
+  CHECK(slow.achieved_epsilon->max == 1);  // (20, 20) covers (10, 40) and (40, 10) at ε = 1
+  REQUIRE(slow.runtime);
+  CHECK(slow.runtime->mean == 3.0);
+}
+
+TEST_CASE("compare_solvers: two files of one solver are told apart by their files") {
+  testing::TempDir dir;
+  write_graph(testing::golden_input(), dir / "g.mosb");
+  const auto instance = GraphReader::open(dir / "g.mosb", VerifyLevel::full);
+  const std::vector<Outcome> queries{{QueryStatus::solved, {30, 30}, 1.0},
+                                   {QueryStatus::solved, {30, 30}, 1.0},
+                                   {QueryStatus::disconnected, {}, 1.0}};
+  const auto reference = write_solutions(dir, instance, "ref", queries);
+  std::vector<SolutionReader> runs;
+  runs.push_back(SolutionReader::open_verified(dir / "ref.sol"));
+  runs.push_back(SolutionReader::open_verified(dir / "ref.sol"));
+  const std::vector<Ratio> eps{parse_epsilon("0")};
+  const auto result = compare_solvers(reference, runs, eps);
+  CHECK(result.solvers[0].name == "ref (" + (dir / "ref.sol").string() + ")");
+  CHECK(result.solvers[1].name == result.solvers[0].name);  // the same file twice: no better
+  CHECK_FALSE(result.failed);
+  CHECK_THROWS_AS(compare_solvers(reference, std::span<const SolutionReader>{}, eps), Error);
+}
+
+TEST_CASE("compare_fronts: equal sets, the first difference and its side, status differences") {
+  testing::TempDir dir;
+  write_graph(testing::golden_input(), dir / "g.mosb");
+  const auto instance = GraphReader::open(dir / "g.mosb", VerifyLevel::full);
+  const auto a = write_solutions(dir, instance, "a",
+                                 {{QueryStatus::solved, {10, 40, 20, 20}, 1.0},
+                                  {QueryStatus::solved, {30, 30}, 2.0},
+                                  {QueryStatus::timeout, {}, std::nullopt}});
+  const auto b = write_solutions(dir, instance, "b",
+                                 {{QueryStatus::solved, {20, 20, 10, 40}, 3.0},
+                                  {QueryStatus::solved, {30, 30, 25, 31}, 2.0},
+                                  {QueryStatus::disconnected, {}, 1.0}});
+  const auto r = compare_fronts(a, b);
+  REQUIRE(r.queries.size() == 3);
+  CHECK(r.queries[0].equal);  // the same set in another order
+  CHECK(*r.queries[0].runtime_ratio == 3.0);
+  CHECK_FALSE(r.queries[1].equal);
+  CHECK(r.queries[1].first_difference == std::vector<double>{25, 31});
+  CHECK_FALSE(r.queries[1].difference_in_a);
+  CHECK_FALSE(r.queries[2].equal);
+  CHECK(r.queries[2].first_difference.empty());
+  CHECK_FALSE(r.queries[2].runtime_ratio);
+  CHECK(r.equal == 1);
+  CHECK(r.different == 2);
+  REQUIRE(r.runtime_ratio);
+  CHECK(r.runtime_ratio->count == 2);
+}
