@@ -423,7 +423,7 @@ class Solutions:
         """A pandas.DataFrame with one row per front vector: query, status, then one column per
         objective (pandas copies the columns)."""
         pd = _require("pandas", "pandas", "fronts_frame")
-        sizes = np.diff(self.front_offsets)
+        sizes = np.diff(self.front_offsets).astype(np.int64)
         queries = np.repeat(np.arange(self.query_count, dtype=np.uint64), sizes)
         columns = {"query": queries,
                    "status": pd.Categorical.from_codes(np.repeat(self.statuses(), sizes),

@@ -309,5 +309,82 @@ class RealData(Base):
         self.assertTrue(all(int(r[2]) >= 1 for r in rows))
 
 
+class ResearchLoop(Base):
+    """Issue 19's acceptance: on a Grid benchmark, on GUARDS random512-20-1 and on a Moving AI map,
+    the example solvers' own output imports, verifies against the instance, and evaluates; BOA*
+    and NAMOA* agree exactly. No file is edited by hand: only the programs' output is used."""
+
+    def import_run(self, name, inst, view, query_set):
+        """Runs example solver `name` over the query set; returns its solution file."""
+        fronts = self.path("fronts-" + name)
+        r = run_solver(name, inst, "--view", view, "--queries", query_set, "--fronts", fronts)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        log = self.write(name + ".log", r.stdout)
+        out = self.path(name + ".sol")
+        self.ok("solutions", "import", "--instance", inst, "--view", view, "--queries", query_set,
+                "--dir", fronts, "--example-log", log, "--solver", name, "-o", out)
+        self.ok("solutions", "verify", out, "--instance", inst)
+        return out
+
+    def boa_agrees_with_namoa(self, inst, view, query_set):
+        reference = self.import_run("namoa", inst, view, query_set)
+        boa = self.import_run("boa_star", inst, view, query_set)
+        r = self.ok("eval", "--reference", reference, "--solutions", boa, "--eps", "0,0.01,0.05,0.1",
+                    "--json")
+        (solver,) = json.loads(r.stdout)["solvers"]
+        solved = solver["statuses"]["solved"]
+        self.assertGreater(solved, 0)
+        self.assertEqual([e["covered"] for e in solver["epsilons"]], [solved] * 4)
+        self.assertEqual(solver["achieved_epsilon"]["max"], 0)
+        self.ok("solutions", "compare", reference, boa)
+        return solver
+
+    def test_grid_benchmark(self):
+        inst = self.path("grid.mosb")
+        self.ok("generate", "grid", "--width", "30", "--height", "30", "--seed", "1", "-o", inst)
+        self.ok("queries", "generate", inst, "--in-place", "--set", "q", "--count", "6", "--seed", "2")
+        solver = self.boa_agrees_with_namoa(inst, "Grid_2", "q")
+        self.assertEqual(solver["statuses"]["solved"], 6)
+
+    def test_guards_random512(self):
+        m = os.path.join(DATA, "movingai", "random512-20-1.map")
+        self.skip_unless_present(m)
+        with open(m) as f:
+            rows = f.read().split("\n")[4:4 + 512]
+        guards = "".join("%d %d 40\n" % (rows[y].index("."), y) for y in (64, 192, 320, 448))
+        inst = self.path("guards.mosb")
+        self.ok("convert", "guards", "--map", m, "--guards", self.write("guards.txt", guards),
+                "--scen", m + ".scen", "-o", inst)
+        self.ok("queries", "generate", inst, "--in-place", "--set", "q", "--count", "4", "--seed", "3")
+        self.boa_agrees_with_namoa(inst, "Games-GUARDS_2", "q")
+
+    def test_movingai_dijkstra_lengths_verify_against_the_scenario(self):
+        m = os.path.join(DATA, "movingai", "arena2.map")
+        self.skip_unless_present(m)
+        inst = self.path("arena2.mosb")
+        self.ok("convert", "movingai", "--map", m, "--scen", m + ".scen", "-o", inst)
+        # The README's C solver: `start goal cost` per query of the view `length` (set `scen`).
+        r = run_solver("dijkstra", inst, "length")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        rows = [line.split() for line in r.stdout.splitlines()]
+        self.assertEqual(len(rows), 929)
+        table = self.write("lengths.csv", "query,length\n" + "".join(
+            "%d,%s\n" % (q, row[2]) for q, row in enumerate(rows)))
+        out = self.path("dijkstra.sol")
+        self.ok("solutions", "import", "--instance", inst, "--view", "length", "--table", table,
+                "--solver", "dijkstra", "-o", out)
+        # verify checks each length against the scenario's optimal length (spec/SOLUTIONS.md §6).
+        self.ok("solutions", "verify", out, "--instance", inst)
+        # One length off by one: verify names the query.
+        table = self.write("off.csv", "query,length\n" + "".join(
+            "%d,%s\n" % (q, float(row[2]) + (q == 5)) for q, row in enumerate(rows)))
+        off = self.path("off.sol")
+        self.ok("solutions", "import", "--instance", inst, "--view", "length", "--table", table,
+                "-o", off)
+        r = self.mosb("solutions", "verify", off, "--instance", inst)
+        self.assertEqual(r.returncode, 1)
+        self.assertIn("query 5", r.stderr)
+
+
 if __name__ == "__main__":
     unittest.main(verbosity=2)

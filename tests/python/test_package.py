@@ -577,13 +577,16 @@ class SolutionsTest(Temp):
         done = run(MOSB, "generate", "grid", "--width", "6", "--height", "6", "--seed", "3",
                    "-o", self.grid)
         self.assertEqual(done.returncode, 0, done.stderr)
-        # Query 0: two vectors, query 1: one; the rest of the set is not run.
+        done = run(MOSB, "queries", "generate", self.grid, "--set", "three", "--count", "3",
+                   "--in-place")
+        self.assertEqual(done.returncode, 0, done.stderr)
+        # Query 0: two vectors, query 1: one; query 2 is not run.
         table = os.path.join(self.dir, "t.csv")
         with open(table, "w") as f:
             f.write("query,c1,c2\n0,1000,2\n0,3,900\n1,70000,5\n")
         self.sol = os.path.join(self.dir, "s.sol")
         done = run(MOSB, "solutions", "import", "--instance", self.grid, "--view", "Grid_2",
-                   "--table", table, "--solver", "boa", "-o", self.sol)
+                   "--queries", "three", "--table", table, "--solver", "boa", "-o", self.sol)
         self.assertEqual(done.returncode, 0, done.stderr)
 
     def test_fronts_statuses_and_binding(self):
