@@ -829,6 +829,17 @@ class SuiteBuild(Base):
         self.assertEqual(read(self.path("a", "MANIFEST")), read(self.path("b", "MANIFEST")))
         self.ok("store", "verify", self.path("a"))
 
+    def test_benchmark_patterns_select_what_is_built(self):
+        r = self.ok("suite", "build", self.path("s"), "--benchmark", "Grid-300x30*", "--benchmark",
+                    "NetMaker-N10000-I20-1", "--json")
+        names = [i["name"] for i in json.loads(r.stdout)["instances"]]
+        self.assertEqual(names, ["Grid-300x300", "NetMaker-N10000-I20-1"])
+        self.ok("store", "verify", self.path("s"))
+        r = run("suite", "build", self.path("t"), "--benchmark", "Grid-9*")
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("'Grid-9*' matches no benchmark", r.stderr)
+        self.assertFalse(os.path.exists(self.path("t", "MANIFEST")))
+
     def test_a_packed_suite_is_a_store_of_packed_files(self):
         self.ok("generate", "grid", "--suite", self.path("p"), "--sizes", "20,30", "--pack")
         _, entries = self.records(self.path("p", "MANIFEST"))

@@ -17,6 +17,7 @@ namespace {
 struct SuiteBuildArgs {
   std::string directory;
   std::string raw;
+  std::vector<std::string> benchmarks;
   unsigned threads = 0;
   bool no_pack = false;
   bool no_generated = false;
@@ -39,6 +40,17 @@ int run_suite_build(const SuiteBuildArgs& a) {
     for (auto& instance : plan.instances) instances.push_back(std::move(instance));
     raw = std::move(plan.statuses);
   }
+  try {
+    instances = converters::select_suite_instances(std::move(instances), a.benchmarks);
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
+  // Raw recipes left out by --benchmark are not reported as built.
+  std::erase_if(raw, [&](const converters::RawStatus& s) {
+    return !a.benchmarks.empty() && s.missing.empty() &&
+           std::none_of(instances.begin(), instances.end(),
+                        [&](const converters::SuiteInstance& i) { return i.name == s.name; });
+  });
   TerminalProgress progress;
   const auto entries = converters::run_suite(
       a.directory, instances, {a.threads, progress.callback(), suite_pack(!a.no_pack)});
@@ -88,6 +100,9 @@ Command add_suite(CLI::App& app) {
   build->add_option("DIR", args->directory, "the suite directory (created if needed)")->required();
   build->add_option("--raw", args->raw,
                     "also build every raw-source benchmark whose input files are in RAWDIR");
+  build->add_option("--benchmark", args->benchmarks,
+                    "build only the benchmarks whose name matches this shell pattern, e.g. "
+                    "'Grid-300x*' (repeatable; default: all)");
   build->add_option("--threads", args->threads, "worker threads (default: all cores)")
       ->check(unsigned_integer(std::numeric_limits<unsigned>::max()))
       ->group("");

@@ -1,5 +1,7 @@
 #include "mosb/converters/suite.hpp"
 
+#include <fnmatch.h>
+
 #include <algorithm>
 #include <atomic>
 #include <exception>
@@ -28,6 +30,25 @@ std::vector<std::uint32_t> sorted_unique(std::vector<std::uint32_t> values) {
 }
 
 }  // namespace
+
+std::vector<SuiteInstance> select_suite_instances(std::vector<SuiteInstance> instances,
+                                                  const std::vector<std::string>& patterns) {
+  if (patterns.empty()) return instances;
+  const auto matches = [](const std::string& pattern, const SuiteInstance& i) {
+    return ::fnmatch(pattern.c_str(), i.name.c_str(), 0) == 0;
+  };
+  for (const auto& pattern : patterns)
+    if (std::none_of(instances.begin(), instances.end(),
+                     [&](const SuiteInstance& i) { return matches(pattern, i); }))
+      throw Error(ErrorCode::invalid_argument,
+                  "--benchmark '" + pattern + "' matches no benchmark to build (the generated ones, and the raw-source ones whose "
+                  "inputs are present)");
+  std::erase_if(instances, [&](const SuiteInstance& i) {
+    return std::none_of(patterns.begin(), patterns.end(),
+                        [&](const std::string& p) { return matches(p, i); });
+  });
+  return instances;
+}
 
 std::vector<SuiteEntry> run_suite(const std::filesystem::path& directory,
                                   const std::vector<SuiteInstance>& instances,

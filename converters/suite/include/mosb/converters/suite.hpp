@@ -27,6 +27,12 @@ struct SuiteInstance {
   std::function<void(const std::filesystem::path&)> finish = {};
 };
 
+// The instances whose name matches one of the shell patterns (fnmatch: *, ?, [...]), in their
+// order; all of them for no pattern. Throws mosb::Error (invalid_argument) naming a pattern that
+// matches none, so a typo never builds an empty suite silently.
+std::vector<SuiteInstance> select_suite_instances(std::vector<SuiteInstance> instances,
+                                                  const std::vector<std::string>& patterns);
+
 struct SuiteEntry {
   std::string name;
   std::string file;

@@ -1,0 +1,155 @@
+#!/usr/bin/python3
+"""Every ```sh block of README.md runs, in README order, in one scratch directory, so the
+documentation cannot drift from the program (issue 19 §5).
+
+    MOSB_BUILD_DIR=build/release MOSB_SOURCE_DIR=. /usr/bin/python3 tests/cli/test_readme.py
+
+A block runs under `bash -euo pipefail` with the build's `tools/` first on PATH (so `mosb` is the
+program under test) and `build/release` in the scratch directory pointing at the build tree (for
+the example solvers). What the README's commands read but a user would have downloaded is made
+here, in `downloads/`:
+
+* `USA-road-NY-queries`: the real query file of PPA*'s repository (shared/data);
+* `USA-road-d.NY.gr.gz`, `USA-road-t.NY.gr.gz`, `USA-road-d.NY.co.gz`: a synthetic stand-in for
+  the DIMACS NY road network with the real file's vertex count (264,346), so that the real queries
+  apply: a two-way ring plus random two-way chords, distances 1..1999, times about 3 x distance
+  (the real files are 100+ MB; the commands are the same).
+
+One placeholder is filled in: `DIGEST` in `--expect-digest DIGEST` becomes the digest of what the
+same command writes without that option (what a publisher's MANIFEST would list).
+
+Blocks in the sections of ELSEWHERE run in other tests or in CI itself; this test checks that each
+still names its commands there, so that a changed block is noticed.
+"""
+
+import gzip
+import json
+import os
+import random
+import re
+import shlex
+import shutil
+import subprocess
+import tempfile
+import unittest
+
+SOURCE = os.path.abspath(os.environ.get("MOSB_SOURCE_DIR", "."))
+BUILD = os.path.abspath(os.environ.get("MOSB_BUILD_DIR", os.path.join(SOURCE, "build", "release")))
+DATA = os.path.join(SOURCE, "..", "shared", "data")
+NY_QUERIES = os.path.join(DATA, "dimacs-queries", "USA-road-NY-queries")
+
+# Section heading → (file, text it must contain): where that section's commands run.
+ELSEWHERE = {
+    "Quick start": [("tests/run-all.sh", "bash tools/quickstart.sh"), (".ci/run", "tests/run-all.sh")],
+    "Python": [("tests/python/test_package.py", "'## Python' section")],
+    "Use mosb in your solver": [("tests/install/test_install.py", "pkg-config"),
+                                ("tests/install/test_install.py", "--libs")],
+    "Building and testing by hand": [("tests/run-all.sh", "cmake --preset sanitize"),
+                                     ("tests/run-all.sh", "ctest --preset release"),
+                                     ("tests/run-all.sh", "tests/fuzz/run.sh")],
+}
+
+
+def sh_blocks():
+    """(section heading, first line number, text) of every ```sh block, in order."""
+    blocks, heading, block, start = [], None, None, 0
+    with open(os.path.join(SOURCE, "README.md"), encoding="utf-8") as f:
+        for number, line in enumerate(f, 1):
+            if block is not None:
+                if line.startswith("```"):
+                    blocks.append((heading, start, "".join(block)))
+                    block = None
+                else:
+                    block.append(line)
+            elif line.startswith("```sh"):
+                block, start = [], number + 1
+            elif line.startswith("#"):
+                heading = line.lstrip("#").strip()
+    return blocks
+
+
+def write_synthetic_ny(directory):
+    n, rng = 264346, random.Random(1)
+    arcs = []
+    for v in range(n):
+        arcs += [(v, (v + 1) % n), ((v + 1) % n, v)]
+    for _ in range(20000):
+        a, b = rng.randrange(n), rng.randrange(n)
+        arcs += [(a, b), (b, a)]
+    distance = [rng.randrange(1, 2000) for _ in arcs]
+    time = [3 * d + rng.randrange(50) for d in distance]
+    for kind, costs in (("d", distance), ("t", time)):
+        with gzip.open(os.path.join(directory, "USA-road-%s.NY.gr.gz" % kind), "wt") as f:
+            f.write("c synthetic stand-in for USA-road-%s.NY\np sp %d %d\n" % (kind, n, len(arcs)))
+            f.write("".join("a %d %d %d\n" % (u + 1, v + 1, c) for (u, v), c in zip(arcs, costs)))
+    with gzip.open(os.path.join(directory, "USA-road-d.NY.co.gz"), "wt") as f:
+        f.write("p aux sp co %d\n" % n)
+        f.write("".join("v %d %d %d\n" % (v + 1, -74000000 + v, 40000000 + (v * 7919) % 1000000)
+                        for v in range(n)))
+
+
+class Readme(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="mosb-readme-")
+        self.env = dict(os.environ, PATH=os.path.join(BUILD, "tools") + os.pathsep + os.environ["PATH"])
+
+    def tearDown(self):
+        shutil.rmtree(self.dir, ignore_errors=True)
+
+    def bash(self, script, where):
+        done = subprocess.run(["bash", "-euo", "pipefail", "-c", script], cwd=self.dir, env=self.env,
+                              capture_output=True, text=True, errors="replace", timeout=900)
+        self.assertEqual(done.returncode, 0, "README.md:%s failed:\n%s\n--- stdout\n%s\n--- stderr\n%s"
+                         % (where, script, done.stdout[-3000:], done.stderr[-3000:]))
+        return done.stdout
+
+    def fill_placeholders(self, text, where):
+        def digest(match):
+            line = match.group(0)
+            probe = re.sub(r"\s*--expect-digest DIGEST", "", line)
+            probe = re.sub(r"-o \S+", "-o .digest-probe.mosb", probe)
+            self.bash(probe, where)
+            report = json.loads(self.bash("mosb inspect --json .digest-probe.mosb", where))
+            os.remove(os.path.join(self.dir, ".digest-probe.mosb"))
+            return line.replace("DIGEST", report["digest"])
+        # A command with its continuation lines, up to the one naming DIGEST.
+        return re.sub(r"(?:[^\n]*\\\n)*[^\n]*--expect-digest DIGEST", digest, text)
+
+    def test_every_sh_block_runs(self):
+        if not os.path.exists(NY_QUERIES):
+            self.skipTest("shared/data is absent")
+        downloads = os.path.join(self.dir, "downloads")
+        os.mkdir(downloads)
+        shutil.copy(NY_QUERIES, downloads)
+        write_synthetic_ny(downloads)
+        os.makedirs(os.path.join(self.dir, "build"))
+        os.symlink(BUILD, os.path.join(self.dir, "build", "release"))
+        ran = 0
+        for heading, line, text in sh_blocks():
+            if heading in ELSEWHERE:
+                continue
+            with self.subTest(block="README.md:%d (%s)" % (line, heading)):
+                self.bash(self.fill_placeholders(text, line), line)
+                ran += 1
+        self.assertGreaterEqual(ran, 5)
+        # What the blocks promise, checked once more from their files.
+        self.assertEqual(self.bash("cmp NY.mosb NY2.mosb && echo same", "cmp"), "same\n")
+        with open(os.path.join(self.dir, "comparison.tex")) as f:
+            self.assertIn("\\toprule", f.read())
+
+    def test_blocks_run_elsewhere_are_still_named_there(self):
+        headings = {heading for heading, _, _ in sh_blocks()}
+        for heading, places in ELSEWHERE.items():
+            self.assertIn(heading, headings, "ELSEWHERE names a section README.md no longer has")
+            for path, text in places:
+                with open(os.path.join(SOURCE, path), encoding="utf-8") as f:
+                    self.assertIn(text, f.read(), "%s no longer runs README's '%s'" % (path, heading))
+        for heading, line, text in sh_blocks():
+            if heading == "Quick start":
+                commands = [shlex.split(l, comments=True) for l in text.splitlines()]
+                self.assertEqual([c for c in commands if c],
+                                 [["bash", "tools/quickstart.sh"], ["bash", "tests/run-all.sh"]])
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=2)
