@@ -291,3 +291,35 @@ TEST_CASE("verify checks every disconnected claim by a search from its start") {
         "query 3: [disconnected] the goal 3 is reachable from the start 4 (a wrong "
         "answer)");
 }
+
+TEST_CASE("format 1.4: a solution file bound to its objectives alone, without a view") {
+  const auto instance = GraphReader::open(kSmall);
+  const auto golden = kGolden / "1.4" / "solutions" / "valid" / "objectives.sol.mosb";
+  testing::TempDir dir;
+  testing::write_golden_objective_solutions(instance, dir / "objectives.sol.mosb");
+  CHECK_MESSAGE(testing::read_bytes(dir / "objectives.sol.mosb") == testing::read_bytes(golden),
+                "the solution writer's output changed: if deliberate, update spec/SOLUTIONS.md "
+                "and regenerate with mosb_make_golden solutions");
+  const auto r = SolutionReader::open(golden, instance);
+  CHECK(r.header().version_minor == 4);
+  CHECK(r.view_name().empty());
+  CHECK_FALSE(r.metadata().get("solution.view").has_value());
+  CHECK(r.objective_name(0) == "time");
+  CHECK(r.instance_objectives(instance) ==
+        std::vector<std::size_t>{instance.objective_index("time"),
+                                 instance.objective_index("distance")});
+  CHECK_FALSE(verify_solutions(r, GraphReader::open(kSmall, VerifyLevel::full)).has_value());
+  // A file with a view stays 1.3: readable by 1.3 readers.
+  CHECK(SolutionReader::open(kSolutions / "valid" / "small.sol.mosb").header().version_minor == 3);
+
+  SUBCASE("before 1.4 a file without solution.view is refused") {
+    auto bytes = testing::read_bytes(golden);
+    auto header = testing::header_of(bytes);
+    header.version_minor = 3;
+    testing::set_header(bytes, header);
+    testing::reseal_header(bytes);
+    testing::write_bytes(dir / "old.sol.mosb", bytes);
+    CHECK_THROWS_WITH_AS(SolutionReader::open(dir / "old.sol.mosb"),
+                         doctest::Contains("metadata has no 'solution.view'"), Error);
+  }
+}

@@ -1,6 +1,8 @@
-// The solution file behind spec/golden/1.3/solutions/valid/small.sol.mosb: the exact fronts of view
-// Small_2 (distance u16, time f32) of the golden instance, worked out by hand from its 7 arcs.
-// Changing it changes the golden file, deliberately.
+// The solution files behind spec/golden/1.3/solutions/valid/small.sol.mosb (the exact fronts of
+// view Small_2: distance u16, time f32, of the golden instance, worked out by hand from its 7
+// arcs) and spec/golden/1.4/solutions/valid/objectives.sol.mosb (the same fronts for the objective
+// list time,distance, which no view of the instance has: a file bound to its objectives alone).
+// Changing either changes its golden file, deliberately.
 #pragma once
 
 #include <filesystem>
@@ -27,6 +29,17 @@ inline void write_golden_solutions(const GraphReader& small, const std::filesyst
   const std::vector<std::vector<std::uint32_t>> paths1 = {{1, 2, 3, 0}};
   w.set_query(1, QueryStatus::solved, std::vector<double>{120, 7.5}, {0.25, 5, 9, {}}, paths1);
   // 3 -> 3: timed out (no front, no statistics).
+  w.set_query(2, QueryStatus::timeout, {});
+  w.write(out);
+}
+
+inline void write_golden_objective_solutions(const GraphReader& small,
+                                             const std::filesystem::path& out) {
+  SolutionWriter w(small, View{"", {small.objective_index("time"), small.objective_index("distance")},
+                               "default"});
+  w.set_source_tool("mosb 0.2.0");
+  w.set_query(0, QueryStatus::solved, std::vector<double>{5.25, 60, 3.75, 80});
+  w.set_query(1, QueryStatus::solved, std::vector<double>{7.5, 120});
   w.set_query(2, QueryStatus::timeout, {});
   w.write(out);
 }

@@ -10,7 +10,8 @@
 //   references  1.1/references/: valid/references.mosb from golden_references_input(), faults in
 //               its query reference
 //   solutions   1.3/solutions/: valid/small.sol.mosb (golden_solutions.hpp, bound to
-//               1.0/valid/small.mosb), the faults of solution_faults.hpp
+//               1.0/valid/small.mosb), the faults of solution_faults.hpp; 1.4/solutions/:
+//               valid/objectives.sol.mosb (bound to an objective list alone)
 // packed and solutions read 1.0/valid/small.mosb from DIR.
 // Usage: mosb_make_golden instance|packed|references|solutions DIR (e.g. spec/golden)
 #include <algorithm>
@@ -315,6 +316,10 @@ void make_solutions(const fs::path& golden) {
   write_patched(root, "small.sol.mosb",
                 "# file\tstage at which it fails (open, payload)\texpected message fragment",
                 kSolutionFaults, stage_and_message);
+  // 1.4: bound to an objective list no view names (no solution.view).
+  fs::create_directories(golden / "1.4" / "solutions" / "valid");
+  write_golden_objective_solutions(instance,
+                                   golden / "1.4" / "solutions" / "valid" / "objectives.sol.mosb");
 }
 
 struct GoldenSet {

@@ -35,15 +35,20 @@ struct ImportArgs {
   bool json = false;
 };
 
-// The name of the instance's view whose objectives are `selected`'s, in order.
-std::string view_with_objectives(const GraphReader& instance, const View& selected) {
-  std::string list;
-  for (auto i : selected.objectives) list += (list.empty() ? "" : ",") + instance.objective(i).name;
+// `selected` (an objective list) as the instance's view with exactly those objectives when one
+// exists, so the file stays readable by format 1.3 readers; else without a view (format 1.4).
+View named_if_possible(const GraphReader& instance, View selected, const std::string& queries) {
   for (const auto& view : instance.views())
-    if (view.objectives == selected.objectives) return view.name;
-  throw UsageError("--objectives " + list + ": " + instance.display_name() +
-                   " has no view with these objectives, and a solution file records a view "
-                   "(spec/SOLUTIONS.md); name one with --view");
+    if (view.objectives == selected.objectives) {
+      selected.name = view.name;
+      selected.query_set = queries.empty() ? view.query_set : queries;
+      return selected;
+    }
+  if (selected.query_set.empty())
+    throw UsageError("--objectives: " + instance.display_name() +
+                     " has no view with these objectives to take a query set from; give "
+                     "--queries SET");
+  return selected;
 }
 
 int run_import(const ImportArgs& a) {
@@ -53,13 +58,10 @@ int run_import(const ImportArgs& a) {
   if (a.choice.view.empty() && a.choice.objectives.empty())
     throw UsageError("give --view V or --objectives A,B,... (the objectives the costs are)");
   const auto instance = mosb::load(a.instance, VerifyLevel::checksums);
-  const auto selected = select_view(instance, a.choice);
-  // A solution file still records a view name (spec/SOLUTIONS.md §2): an objective list stands
-  // for the instance's view with exactly those objectives.
-  const auto view =
-      a.choice.view.empty() ? view_with_objectives(instance, *selected) : a.choice.view;
-  SolutionWriter writer(instance, view, a.choice.queries);
-  const auto set = a.choice.queries.empty() ? instance.view(view).query_set : a.choice.queries;
+  auto selected = *select_view(instance, a.choice);
+  if (a.choice.view.empty()) selected = named_if_possible(instance, selected, a.choice.queries);
+  SolutionWriter writer(instance, selected);
+  const auto& set = selected.query_set;
   converters::SolutionImportOptions options;
   options.objective_count = writer.objective_count();
   options.columns = a.columns;
@@ -139,7 +141,11 @@ void print_inspect_json(const InspectArgs& a, const SolutionReader& r, const Sol
   json.begin_object();
   json.key("file").value(a.file);
   json.key("instance_digest").value(r.instance_digest());
-  json.key("view").value(r.view_name());
+  json.key("view");
+  if (r.view_name().empty())
+    json.null();
+  else
+    json.value(r.view_name());
   json.key("query_set").value(r.query_set());
   json.key("objectives").begin_array();
   for (std::size_t i = 0; i < r.objective_count(); ++i) {
@@ -185,7 +191,9 @@ void print_inspect_text(const InspectArgs& a, const SolutionReader& r, const Sol
   // The solver's name, version and epsilon are free text from the file: escaped, as inspect escapes
   // metadata values, so that a forged file cannot drive the terminal.
   std::cout << escape_for_terminal(a.file) << ": solutions of instance " << r.instance_digest()
-            << ", view " << r.view_name() << ", query set " << r.query_set() << "\n";
+            << (r.view_name().empty() ? std::string(", no view")
+                                      : ", view " + escape_for_terminal(r.view_name()))
+            << ", query set " << escape_for_terminal(r.query_set()) << "\n";
   std::cout << "objectives";
   for (std::size_t i = 0; i < r.objective_count(); ++i)
     std::cout << ' ' << r.objective_name(i) << " (" << format::to_string(r.objective_type(i))

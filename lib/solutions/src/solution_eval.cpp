@@ -39,7 +39,15 @@ void check_same_binding(const SolutionReader& ref, const SolutionReader& sol) {
   };
   if (ref.instance_digest() != sol.instance_digest())
     mismatch("instance digest", ref.instance_digest(), sol.instance_digest());
-  if (ref.view_name() != sol.view_name()) mismatch("view", ref.view_name(), sol.view_name());
+  // The binding is (digest, objective list, query set): a view is only a name for a list.
+  const auto objectives = [](const SolutionReader& r) {
+    std::string names;
+    for (std::size_t i = 0; i < r.objective_count(); ++i)
+      names += (i ? "," : "") + r.objective_name(i);
+    return names;
+  };
+  if (objectives(ref) != objectives(sol))
+    mismatch("objectives", objectives(ref), objectives(sol));
   if (ref.query_set() != sol.query_set()) mismatch("query set", ref.query_set(), sol.query_set());
   if (ref.query_count() != sol.query_count())
     mismatch("query count", std::to_string(ref.query_count()), std::to_string(sol.query_count()));

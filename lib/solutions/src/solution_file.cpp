@@ -200,8 +200,37 @@ void SolutionReader::validate() {
   instance_digest_ = required("solution.instance_digest");
   if (!is_digest(instance_digest_))
     fail("metadata 'solution.instance_digest' is not 32 lowercase hex digits");
-  view_ = required("solution.view");
+  // Before 1.4 every file names a view; from 1.4 a file may be bound to its objectives alone.
+  if (header_.version_minor < format::kSolutionObjectivesMinor)
+    view_ = required("solution.view");
+  else if (const auto view = metadata_.get("solution.view"); view && !view->empty())
+    view_ = *view;
   query_set_ = required("solution.query_set");
+}
+
+std::vector<std::size_t> SolutionReader::instance_objectives(const GraphReader& instance) const {
+  std::vector<std::size_t> indices;
+  if (!view_.empty()) {
+    const auto view = instance.find_view(view_);
+    if (!view)
+      fail(ErrorCode::invalid_argument,
+           "view '" + view_ + "' is not in " + instance.display_name());
+    bool same = view->objectives.size() == objective_count();
+    for (std::size_t i = 0; same && i < objective_count(); ++i)
+      same = instance.objective(view->objectives[i]).name == objective_name(i);
+    if (!same)
+      fail(ErrorCode::invalid_argument, "front_cost columns differ from the objectives of view '" +
+                                            view_ + "' in " + instance.display_name());
+    return view->objectives;
+  }
+  for (std::size_t i = 0; i < objective_count(); ++i) {
+    const auto found = instance.find_objective(objective_name(i));
+    if (!found)
+      fail(ErrorCode::invalid_argument, "front_cost column '" + objective_name(i) +
+                                            "' is no objective of " + instance.display_name());
+    indices.push_back(*found);
+  }
+  return indices;
 }
 
 void SolutionReader::check_bound_to(const GraphReader& instance) const {
@@ -216,19 +245,17 @@ void SolutionReader::check_bound_to(const GraphReader& instance) const {
                                           instance.display_name() +
                                           " has n = " + std::to_string(instance.vertex_count()) +
                                           ", m = " + std::to_string(instance.arc_count()));
-  const auto view = instance.find_view(view_);
-  if (!view)
-    fail(ErrorCode::invalid_argument, "view '" + view_ + "' is not in " + instance.display_name());
+  const auto objectives = instance_objectives(instance);
   // Format 1.3 stores path sums; 1.1 and 1.2 stored the arc cost type itself.
-  bool same = view->objectives.size() == objective_count();
-  for (std::size_t i = 0; same && i < objective_count(); ++i) {
-    const auto& arc = instance.objective(view->objectives[i]);
-    same = arc.name == objective_name(i) &&
-           (stores_path_sums() ? format::path_sum_type(arc.type) : arc.type) == objective_type(i);
+  for (std::size_t i = 0; i < objective_count(); ++i) {
+    const auto& arc = instance.objective(objectives[i]);
+    if ((stores_path_sums() ? format::path_sum_type(arc.type) : arc.type) != objective_type(i))
+      fail(ErrorCode::invalid_argument,
+           "front_cost column '" + objective_name(i) + "' is " +
+               std::string(format::to_string(objective_type(i))) + ", but objective '" + arc.name +
+               "' of " + instance.display_name() + " is " +
+               std::string(format::to_string(arc.type)));
   }
-  if (!same)
-    fail(ErrorCode::invalid_argument, "front_cost columns differ from the objectives of view '" +
-                                          view_ + "' in " + instance.display_name());
   const auto* queries = instance.find(SectionKind::queries, query_set_);
   if (!queries)
     fail(ErrorCode::invalid_argument,
@@ -488,7 +515,7 @@ struct SolutionWriter::State {
 Metadata SolutionWriter::State::metadata() const {
   Metadata meta;
   meta.set("solution.instance_digest", instance_digest);
-  meta.set("solution.view", view);
+  if (!view.empty()) meta.set("solution.view", view);
   meta.set("solution.query_set", query_set);
   meta.set("solution.epsilon", solver.epsilon.empty() ? "0" : solver.epsilon);
   if (!solver.name.empty()) meta.set("solution.solver.name", solver.name);
@@ -529,15 +556,26 @@ void SolutionWriter::State::add_front_sections(FileWriter& out) const {
 
 SolutionWriter::SolutionWriter(const GraphReader& instance, std::string_view view_name,
                                std::string_view query_set)
+    : SolutionWriter(instance, [&] {
+        auto view = instance.view(view_name);
+        if (!query_set.empty()) view.query_set = std::string(query_set);
+        return view;
+      }()) {}
+
+SolutionWriter::SolutionWriter(const GraphReader& instance, const View& selection)
     : state_(std::make_unique<State>()) {
-  const auto view = instance.view(view_name);
+  const auto& view = selection;
   auto& st = *state_;
   st.instance_digest = instance.digest();
   st.view = view.name;
-  st.query_set = query_set.empty() ? view.query_set : std::string(query_set);
+  st.query_set = view.query_set;
   if (st.query_set.empty())
-    throw Error(ErrorCode::invalid_argument, instance.display_name() + ": view '" + view.name +
-                                                 "' names no query set; give one");
+    throw Error(ErrorCode::invalid_argument,
+                instance.display_name() +
+                    (view.name.empty() ? std::string(": no query set given")
+                                       : ": view '" + view.name + "' names no query set; give one"));
+  if (view.objectives.empty())
+    throw Error(ErrorCode::invalid_argument, instance.display_name() + ": no objectives given");
   st.query_count = instance.queries(st.query_set).size();
   st.vertex_count = instance.vertex_count();
   st.arc_count = instance.arc_count();
@@ -646,7 +684,8 @@ void SolutionWriter::write(const std::filesystem::path& target) const {
 
   FileWriter out(target);
   out.set_file_kind(format::FileKind::solutions);
-  out.require_minor(format::kSolutionSumsMinor);
+  out.require_minor(st.view.empty() ? format::kSolutionObjectivesMinor
+                                    : format::kSolutionSumsMinor);
   const auto text = st.metadata().serialize();
   out.add_section<std::uint8_t>(
       SectionKind::metadata, "metadata", 1,

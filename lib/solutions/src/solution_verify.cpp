@@ -66,13 +66,13 @@ struct PartialSum {
   bool operator==(const PartialSum& o) const = default;
 };
 
-PartialSum extended(PartialSum sum, const GraphReader& g, const View& view,
+PartialSum extended(PartialSum sum, const GraphReader& g, std::span<const std::size_t> objectives,
                     const std::vector<bool>& is_float, std::uint64_t arc) {
   for (std::size_t i = 0; i < is_float.size(); ++i) {
     if (is_float[i]) {
-      sum.real[i] += g.cost_as<double>(view.objectives[i])[arc];
+      sum.real[i] += g.cost_as<double>(objectives[i])[arc];
     } else {
-      const auto cost = g.cost_as<std::uint64_t>(view.objectives[i])[arc];
+      const auto cost = g.cost_as<std::uint64_t>(objectives[i])[arc];
       sum.overflow = sum.overflow || __builtin_add_overflow(sum.integer[i], cost, &sum.integer[i]);
     }
   }
@@ -111,7 +111,8 @@ std::string sum_text(const PartialSum& sum, const std::vector<bool>& is_float) {
 // [path] and [path-cost]: the path runs from the query's start to its goal along arcs, and some
 // choice among parallel arcs sums to the stored vector (SOLUTIONS.md §5).
 std::optional<std::string> path_problem(const SolutionReader& s, const GraphReader& g,
-                                        const View& view, std::span<const std::uint64_t> offsets,
+                                        std::span<const std::size_t> objectives,
+                                        std::span<const std::uint64_t> offsets,
                                         std::span<const std::uint32_t> targets, const Query& query,
                                         std::span<const std::uint32_t> path,
                                         const std::vector<double>& vector,
@@ -131,7 +132,7 @@ std::optional<std::string> path_problem(const SolutionReader& s, const GraphRead
     std::vector<PartialSum> next;
     for (auto arc = offsets[path[step]]; arc < offsets[path[step] + 1]; ++arc) {
       if (targets[arc] != path[step + 1]) continue;
-      for (const auto& sum : sums) next.push_back(extended(sum, g, view, is_float, arc));
+      for (const auto& sum : sums) next.push_back(extended(sum, g, objectives, is_float, arc));
     }
     if (next.empty())
       return where + "[path] no arc from " + std::to_string(path[step]) + " to " +
@@ -232,7 +233,7 @@ std::optional<std::string> verify_solutions(const SolutionReader& s, const Graph
   g.require_verified(VerifyLevel::full, "solutions verify");
   const std::size_t d = s.objective_count();
   const auto queries = g.queries(s.query_set());
-  const auto view = g.view(s.view_name());
+  const auto objectives = s.instance_objectives(g);
   const auto offsets = g.forward_offsets();
   const auto targets = g.forward_targets();
   // The optima the query set declares (kind 17 and its metadata), checked as their declared units
@@ -259,7 +260,7 @@ std::optional<std::string> verify_solutions(const SolutionReader& s, const Graph
     if (!s.has_paths()) continue;
     for (std::uint64_t k = 0; k < size; ++k) {
       const std::string where = label + "path of vector " + vector_text(front[k]) + ": ";
-      if (auto problem = path_problem(s, g, view, offsets, targets, queries[q], s.path(begin + k),
+      if (auto problem = path_problem(s, g, objectives, offsets, targets, queries[q], s.path(begin + k),
                                       front[k], where))
         return problem;
     }

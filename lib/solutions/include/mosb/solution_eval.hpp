@@ -35,7 +35,9 @@ struct SolutionEvaluation {
 };
 
 // Throws mosb::Error (ErrorCode::invalid_argument) naming both files and both values unless they
-// share instance digest, view, query set, query count and the header's n and m. Either file may be
+// share instance digest, objectives (names, in order), query set, query count and the header's n
+// and m. A view is only a name for an objective list: files of two views with the same list
+// compare. Either file may be
 // the reference: the message names files, not roles.
 void check_same_binding(const SolutionReader& reference, const SolutionReader& solution);
 

@@ -30,6 +30,7 @@
 namespace mosb {
 
 class GraphReader;
+struct View;
 
 // Stored as u8 in the solution_status section.
 enum class QueryStatus : std::uint8_t {
@@ -97,13 +98,18 @@ class SolutionReader : public ContainerReader {
 
   // Throws ErrorCode::invalid_argument "FILE: solutions of instance DIGEST, not of INSTANCE
   // (DIGEST)" unless the file's instance digest is the instance's; also checks the header's n and m
-  // against the instance's, and that the view and query set exist in the instance with the file's
-  // objectives and query count.
+  // against the instance's, that the view (when the file names one) exists with the file's
+  // objectives, each front_cost column's objective with its type, and the query set with the
+  // file's query count.
   void check_bound_to(const GraphReader& instance) const;
+  // The instance's objective index of each front_cost column, in column order: the view's
+  // objectives (checked by name), or for a file without a view each column's objective by name.
+  std::vector<std::size_t> instance_objectives(const GraphReader& instance) const;
 
   const Metadata& metadata() const { return metadata_; }
 
   const std::string& instance_digest() const { return instance_digest_; }
+  // The view the fronts were written for; empty in a 1.4 file bound to its objectives alone.
   const std::string& view_name() const { return view_; }
   const std::string& query_set() const { return query_set_; }
   SolverInfo solver() const;
@@ -187,6 +193,9 @@ class SolutionWriter {
   // `query_set` empty: the view's query set (an error when the view names none).
   SolutionWriter(const GraphReader& instance, std::string_view view_name,
                  std::string_view query_set = {});
+  // A selection as mosb::select_view resolves one: with an empty name the file records no view and
+  // is bound to its objectives (format 1.4, spec/SOLUTIONS.md §2); a query set is required.
+  SolutionWriter(const GraphReader& instance, const View& selection);
   ~SolutionWriter();
   SolutionWriter(const SolutionWriter&) = delete;
   SolutionWriter& operator=(const SolutionWriter&) = delete;
