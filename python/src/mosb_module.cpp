@@ -25,7 +25,7 @@ namespace py = pybind11;
 
 namespace {
 
-using ReaderPtr = std::shared_ptr<mosb::GraphReader>;  // the holder type of Reader
+using ReaderPtr = std::shared_ptr<mosb::GraphReader>;        // the holder type of Reader
 using SolutionsPtr = std::shared_ptr<mosb::SolutionReader>;  // the holder type of SolutionsReader
 
 // The base object of every array: a capsule holding one more owner of the reader.
@@ -326,8 +326,7 @@ void bind_solutions(py::module_& m) {
                out(static_cast<py::ssize_t>(q)) = static_cast<std::uint8_t>(r.status(q));
              return codes;
            })
-      .def("front_offsets",
-           [](const SolutionsPtr& r) { return column(r, r->front_offsets()); })
+      .def("front_offsets", [](const SolutionsPtr& r) { return column(r, r->front_offsets()); })
       .def(
           "column",
           [](const SolutionsPtr& r, std::size_t i) {
@@ -337,11 +336,12 @@ void bind_solutions(py::module_& m) {
       .def(
           "statistic",
           [](const mosb::SolutionReader& r, const std::string& name) -> py::object {
-            const auto* found = std::find_if(
-                std::begin(mosb::kStatistics), std::end(mosb::kStatistics),
-                [&](mosb::Statistic s) { return mosb::to_string(s) == name; });
+            const auto* found =
+                std::find_if(std::begin(mosb::kStatistics), std::end(mosb::kStatistics),
+                             [&](mosb::Statistic s) { return mosb::to_string(s) == name; });
             if (found == std::end(mosb::kStatistics))
-              throw py::value_error("statistic '" + name + "' is not one of runtime_seconds, "
+              throw py::value_error("statistic '" + name +
+                                    "' is not one of runtime_seconds, "
                                     "expanded, generated, peak_memory_bytes, exit_status");
             if (!r.has_statistic(*found)) return py::none();
             // float64 with NaN for an absent value: what pandas and numpy expect of a column.

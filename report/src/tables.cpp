@@ -35,14 +35,27 @@ std::string latex_escape(const std::string& s) {
   std::string out;
   for (char c : s) {
     switch (c) {
-      case '\\': out += "\\textbackslash{}"; break;
-      case '~': out += "\\textasciitilde{}"; break;
-      case '^': out += "\\textasciicircum{}"; break;
-      case '&': case '%': case '$': case '#': case '_': case '{': case '}':
+      case '\\':
+        out += "\\textbackslash{}";
+        break;
+      case '~':
+        out += "\\textasciitilde{}";
+        break;
+      case '^':
+        out += "\\textasciicircum{}";
+        break;
+      case '&':
+      case '%':
+      case '$':
+      case '#':
+      case '_':
+      case '{':
+      case '}':
         out += '\\';
         out += c;
         break;
-      default: out += c;
+      default:
+        out += c;
     }
   }
   return out;
@@ -50,30 +63,42 @@ std::string latex_escape(const std::string& s) {
 
 std::string csv_cell(const Cell& c) {
   switch (c.kind) {
-    case Cell::Kind::text: return csv_field(c.text);
-    case Cell::Kind::count: return std::to_string(c.count);
-    case Cell::Kind::real: return shortest(c.real);
-    case Cell::Kind::absent: break;
+    case Cell::Kind::text:
+      return csv_field(c.text);
+    case Cell::Kind::count:
+      return std::to_string(c.count);
+    case Cell::Kind::real:
+      return shortest(c.real);
+    case Cell::Kind::absent:
+      break;
   }
   return {};
 }
 
 std::string latex_cell(const Cell& c) {
   switch (c.kind) {
-    case Cell::Kind::text: return latex_escape(c.text);
-    case Cell::Kind::count: return std::to_string(c.count);
-    case Cell::Kind::real: return std::isinf(c.real) ? "$\\infty$" : significant(c.real, 3);
-    case Cell::Kind::absent: break;
+    case Cell::Kind::text:
+      return latex_escape(c.text);
+    case Cell::Kind::count:
+      return std::to_string(c.count);
+    case Cell::Kind::real:
+      return std::isinf(c.real) ? "$\\infty$" : significant(c.real, 3);
+    case Cell::Kind::absent:
+      break;
   }
   return "--";
 }
 
 std::string text_cell(const Cell& c) {
   switch (c.kind) {
-    case Cell::Kind::text: return c.text;
-    case Cell::Kind::count: return std::to_string(c.count);
-    case Cell::Kind::real: return std::isinf(c.real) ? "inf" : significant(c.real, 4);
-    case Cell::Kind::absent: break;
+    case Cell::Kind::text:
+      return c.text;
+    case Cell::Kind::count:
+      return std::to_string(c.count);
+    case Cell::Kind::real:
+      return std::isinf(c.real) ? "inf" : significant(c.real, 4);
+    case Cell::Kind::absent:
+      break;
   }
   return "-";
 }
@@ -152,14 +177,15 @@ Table comparison_summary(const SolverComparison& comparison,
   if (!for_paper) t.columns.push_back({"not_solved", "not solved"});
   for (const auto& e : epsilon_labels) {
     t.columns.push_back({"covered@" + e, "cov.\\ $\\varepsilon{=}" + e + "$"});
-    if (!for_paper) t.columns.push_back({"not_covered@" + e, "not cov.\\ $\\varepsilon{=}" + e + "$"});
+    if (!for_paper)
+      t.columns.push_back({"not_covered@" + e, "not cov.\\ $\\varepsilon{=}" + e + "$"});
   }
   t.columns.insert(t.columns.end(), {{"eps_median", "$\\tilde\\varepsilon$"},
                                      {"eps_max", "$\\varepsilon_{\\max}$"},
                                      {"size_ratio_median", "$|S|/|R|$"}});
   if (!for_paper)
-    t.columns.insert(t.columns.end(), {{"size_ratio_mean", "$|S|/|R|$ mean"},
-                                       {"runtime_queries", "$n_t$"}});
+    t.columns.insert(t.columns.end(),
+                     {{"size_ratio_mean", "$|S|/|R|$ mean"}, {"runtime_queries", "$n_t$"}});
   t.columns.push_back({"runtime_median", "$\\tilde t$ [s]"});
   if (!for_paper) t.columns.push_back({"runtime_mean", "$\\bar t$ [s]"});
   t.columns.insert(t.columns.end(),

@@ -27,8 +27,7 @@ SolverComparison two_solvers() {
   slow.status_counts = {1, 1, 0, 1, 0, 0};
   slow.not_solved = 1;
   slow.per_epsilon = {{0, 1}, {0, 1}};
-  slow.achieved_epsilon =
-      Distribution{1, std::numeric_limits<double>::infinity(), 0, 0.125, 0};
+  slow.achieved_epsilon = Distribution{1, std::numeric_limits<double>::infinity(), 0, 0.125, 0};
   c.solvers = {fast, slow};
   return c;
 }
@@ -41,10 +40,11 @@ TEST_CASE("write_csv: a header of keys, every digit, empty fields for absent val
   std::ostringstream out;
   write_csv(out, comparison_summary(two_solvers(), kLabels));
   const auto csv = out.str();
-  CHECK(csv.starts_with("solver,solved,timeout,memory_limit,disconnected,not_run,failed,not_solved,"
-                        "covered@0,not_covered@0,covered@0.1,not_covered@0.1,eps_median,eps_max,"
-                        "size_ratio_median,size_ratio_mean,runtime_queries,runtime_median,"
-                        "runtime_mean,runtime_max,runtime_sgm\r\n"));
+  CHECK(
+      csv.starts_with("solver,solved,timeout,memory_limit,disconnected,not_run,failed,not_solved,"
+                      "covered@0,not_covered@0,covered@0.1,not_covered@0.1,eps_median,eps_max,"
+                      "size_ratio_median,size_ratio_mean,runtime_queries,runtime_median,"
+                      "runtime_mean,runtime_max,runtime_sgm\r\n"));
   CHECK(csv.find("\r\nfast_1,2,0,0,1,0,0,0,1,1,2,0,0.05,0.1,1,1,2,0.75,0.75,1,0.7\r\n") !=
         std::string::npos);
   // No runtime: empty fields; an infinite median: "inf".
@@ -66,8 +66,9 @@ TEST_CASE("write_latex: a booktabs tabular of the paper's columns, escaped, thre
   table.caption = "mosb eval";
   write_latex(out, table);
   const auto tex = out.str();
-  CHECK(tex.starts_with("% mosb eval\n\\begin{tabular}{lrrrrrrrrrrrr}\n\\toprule\nSolver & solved & "
-                        "timeout & memory-limit & failed & cov.\\ $\\varepsilon{=}0$ & "));
+  CHECK(
+      tex.starts_with("% mosb eval\n\\begin{tabular}{lrrrrrrrrrrrr}\n\\toprule\nSolver & solved & "
+                      "timeout & memory-limit & failed & cov.\\ $\\varepsilon{=}0$ & "));
   CHECK(tex.find("\\midrule\nfast\\_1 & 2 & 0 & 0 & 0 & 1 & 2 & 0.05 & 0.1 & 1 & 0.75 & 1 & 0.7 "
                  "\\\\\n") != std::string::npos);
   CHECK(tex.find("slow \\& co & 1 & 1 & 0 & 0 & 0 & 0 & $\\infty$ & 0.125 & -- & -- & -- & -- "

@@ -60,11 +60,10 @@ TEST_CASE("compare_solvers: per-solver statuses, coverage, ratios and runtimes o
   testing::TempDir dir;
   write_graph(testing::golden_input(), dir / "g.mosb");
   const auto instance = GraphReader::open(dir / "g.mosb", VerifyLevel::full);
-  const auto reference = write_solutions(
-      dir, instance, "ref",
-      {{QueryStatus::solved, {10, 40, 20, 20, 40, 10}, 9.0},
-       {QueryStatus::solved, {30, 30}, 9.0},
-       {QueryStatus::disconnected, {}, 1.0}});
+  const auto reference = write_solutions(dir, instance, "ref",
+                                         {{QueryStatus::solved, {10, 40, 20, 20, 40, 10}, 9.0},
+                                          {QueryStatus::solved, {30, 30}, 9.0},
+                                          {QueryStatus::disconnected, {}, 1.0}});
   std::vector<SolutionReader> solvers;
   // Exact on query 0, 10 % off on query 1, disconnected agreed.
   solvers.push_back(write_solutions(dir, instance, "fast",
@@ -115,8 +114,8 @@ TEST_CASE("compare_solvers: two files of one solver are told apart by their file
   write_graph(testing::golden_input(), dir / "g.mosb");
   const auto instance = GraphReader::open(dir / "g.mosb", VerifyLevel::full);
   const std::vector<Outcome> queries{{QueryStatus::solved, {30, 30}, 1.0},
-                                   {QueryStatus::solved, {30, 30}, 1.0},
-                                   {QueryStatus::disconnected, {}, 1.0}};
+                                     {QueryStatus::solved, {30, 30}, 1.0},
+                                     {QueryStatus::disconnected, {}, 1.0}};
   const auto reference = write_solutions(dir, instance, "ref", queries);
   std::vector<SolutionReader> runs;
   runs.push_back(SolutionReader::open_verified(dir / "ref.sol"));

@@ -35,8 +35,9 @@ inline void write_golden_solutions(const GraphReader& small, const std::filesyst
 
 inline void write_golden_objective_solutions(const GraphReader& small,
                                              const std::filesystem::path& out) {
-  SolutionWriter w(small, View{"", {small.objective_index("time"), small.objective_index("distance")},
-                               "default"});
+  SolutionWriter w(
+      small,
+      View{"", {small.objective_index("time"), small.objective_index("distance")}, "default"});
   w.set_source_tool("mosb 0.2.0");
   w.set_query(0, QueryStatus::solved, std::vector<double>{5.25, 60, 3.75, 80});
   w.set_query(1, QueryStatus::solved, std::vector<double>{7.5, 120});

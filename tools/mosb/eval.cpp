@@ -183,12 +183,12 @@ std::string distribution_text(const std::optional<Distribution>& d, const char* 
   return out.str();
 }
 
-void print_text(const SolverComparison& result, const std::vector<Ratio>& eps, const std::vector<std::string>& eps_text,
-                bool per_query) {
+void print_text(const SolverComparison& result, const std::vector<Ratio>& eps,
+                const std::vector<std::string>& eps_text, bool per_query) {
   for (std::size_t i = 0; i < result.solvers.size(); ++i) {
     const auto& s = result.solvers[i];
-    std::cout << "solver " << escape_for_terminal(s.name) << " ("
-              << escape_for_terminal(s.file) << ")\n";
+    std::cout << "solver " << escape_for_terminal(s.name) << " (" << escape_for_terminal(s.file)
+              << ")\n";
     if (per_query) print_query_lines(s.evaluation, eps, eps_text);
     std::cout << "  statuses:";
     const char* separator = " ";
@@ -202,12 +202,12 @@ void print_text(const SolverComparison& result, const std::vector<Ratio>& eps, c
       std::cout << "  ε=" << eps_text[k] << ": " << s.per_epsilon[k].covered << " covered, "
                 << s.per_epsilon[k].not_covered << " not covered\n";
     const auto count = [](const std::optional<Distribution>& d) { return d ? d->count : 0; };
-    std::cout << "  achieved ε over " << count(s.achieved_epsilon) << " queries: "
-              << distribution_text(s.achieved_epsilon, "") << '\n';
+    std::cout << "  achieved ε over " << count(s.achieved_epsilon)
+              << " queries: " << distribution_text(s.achieved_epsilon, "") << '\n';
     std::cout << "  |S|/|R| over " << count(s.size_ratio)
               << " queries: " << distribution_text(s.size_ratio, "") << '\n';
-    std::cout << "  runtime over " << count(s.runtime) << " queries every solver completed: "
-              << distribution_text(s.runtime, " s");
+    std::cout << "  runtime over " << count(s.runtime)
+              << " queries every solver completed: " << distribution_text(s.runtime, " s");
     if (s.runtime)
       std::cout << ", shifted geometric mean (shift " << result.runtime_shift_seconds << " s) "
                 << s.runtime->shifted_geometric_mean << " s";
@@ -256,8 +256,9 @@ int run_eval(const EvalArgs& args) {
 Command add_eval(CLI::App& app) {
   auto args = std::make_shared<EvalArgs>();
   auto* sub = app.add_subcommand(
-      "eval", "Compare solvers' solution files with reference fronts: coverage at each ε, achieved "
-              "ε, front sizes, runtimes");
+      "eval",
+      "Compare solvers' solution files with reference fronts: coverage at each ε, achieved "
+      "ε, front sizes, runtimes");
   sub->add_option("--reference", args->reference, "the reference solution file")
       ->required()
       ->check(CLI::ExistingFile);

@@ -106,8 +106,9 @@ int run_compare(const CompareArgs& args) {
 Command add_solutions_compare(CLI::App* solutions) {
   auto args = std::make_shared<CompareArgs>();
   auto* sub = solutions->add_subcommand(
-      "compare", "Compare two solvers' fronts query by query (equal as sets, or the first "
-                 "difference) and their runtimes; exit 1 when any query differs");
+      "compare",
+      "Compare two solvers' fronts query by query (equal as sets, or the first "
+      "difference) and their runtimes; exit 1 when any query differs");
   sub->add_option("A", args->a, "a solution file")->required()->check(CLI::ExistingFile);
   sub->add_option("B", args->b, "a solution file of the same instance, view and query set")
       ->required()

@@ -186,8 +186,8 @@ int report_checks(const std::vector<FileCheck>& checks, bool json) {
   } else {
     for (const auto& c : checks) {
       if (c.ok())
-        std::cout << "OK   " << escape_for_terminal(c.file)
-                  << (c.note.empty() ? "" : ": " + c.note) << '\n';
+        std::cout << "OK   " << escape_for_terminal(c.file) << (c.note.empty() ? "" : ": " + c.note)
+                  << '\n';
       for (const auto& p : c.problems)
         std::cout << "FAIL " << p.kind << ": " << escape_for_terminal(p.detail) << '\n';
     }

@@ -40,9 +40,11 @@ std::vector<SuiteInstance> select_suite_instances(std::vector<SuiteInstance> ins
   for (const auto& pattern : patterns)
     if (std::none_of(instances.begin(), instances.end(),
                      [&](const SuiteInstance& i) { return matches(pattern, i); }))
-      throw Error(ErrorCode::invalid_argument,
-                  "--benchmark '" + pattern + "' matches no benchmark to build (the generated ones, and the raw-source ones whose "
-                  "inputs are present)");
+      throw Error(
+          ErrorCode::invalid_argument,
+          "--benchmark '" + pattern +
+              "' matches no benchmark to build (the generated ones, and the raw-source ones whose "
+              "inputs are present)");
   std::erase_if(instances, [&](const SuiteInstance& i) {
     return std::none_of(patterns.begin(), patterns.end(),
                         [&](const std::string& p) { return matches(p, i); });

@@ -46,8 +46,7 @@ void check_same_binding(const SolutionReader& ref, const SolutionReader& sol) {
       names += (i ? "," : "") + r.objective_name(i);
     return names;
   };
-  if (objectives(ref) != objectives(sol))
-    mismatch("objectives", objectives(ref), objectives(sol));
+  if (objectives(ref) != objectives(sol)) mismatch("objectives", objectives(ref), objectives(sol));
   if (ref.query_set() != sol.query_set()) mismatch("query set", ref.query_set(), sol.query_set());
   if (ref.query_count() != sol.query_count())
     mismatch("query count", std::to_string(ref.query_count()), std::to_string(sol.query_count()));

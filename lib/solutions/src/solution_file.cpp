@@ -250,11 +250,11 @@ void SolutionReader::check_bound_to(const GraphReader& instance) const {
   for (std::size_t i = 0; i < objective_count(); ++i) {
     const auto& arc = instance.objective(objectives[i]);
     if ((stores_path_sums() ? format::path_sum_type(arc.type) : arc.type) != objective_type(i))
-      fail(ErrorCode::invalid_argument,
-           "front_cost column '" + objective_name(i) + "' is " +
-               std::string(format::to_string(objective_type(i))) + ", but objective '" + arc.name +
-               "' of " + instance.display_name() + " is " +
-               std::string(format::to_string(arc.type)));
+      fail(ErrorCode::invalid_argument, "front_cost column '" + objective_name(i) + "' is " +
+                                            std::string(format::to_string(objective_type(i))) +
+                                            ", but objective '" + arc.name + "' of " +
+                                            instance.display_name() + " is " +
+                                            std::string(format::to_string(arc.type)));
   }
   const auto* queries = instance.find(SectionKind::queries, query_set_);
   if (!queries)
@@ -570,10 +570,11 @@ SolutionWriter::SolutionWriter(const GraphReader& instance, const View& selectio
   st.view = view.name;
   st.query_set = view.query_set;
   if (st.query_set.empty())
-    throw Error(ErrorCode::invalid_argument,
-                instance.display_name() +
-                    (view.name.empty() ? std::string(": no query set given")
-                                       : ": view '" + view.name + "' names no query set; give one"));
+    throw Error(
+        ErrorCode::invalid_argument,
+        instance.display_name() +
+            (view.name.empty() ? std::string(": no query set given")
+                               : ": view '" + view.name + "' names no query set; give one"));
   if (view.objectives.empty())
     throw Error(ErrorCode::invalid_argument, instance.display_name() + ": no objectives given");
   st.query_count = instance.queries(st.query_set).size();

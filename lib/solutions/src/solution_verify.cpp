@@ -260,8 +260,8 @@ std::optional<std::string> verify_solutions(const SolutionReader& s, const Graph
     if (!s.has_paths()) continue;
     for (std::uint64_t k = 0; k < size; ++k) {
       const std::string where = label + "path of vector " + vector_text(front[k]) + ": ";
-      if (auto problem = path_problem(s, g, objectives, offsets, targets, queries[q], s.path(begin + k),
-                                      front[k], where))
+      if (auto problem = path_problem(s, g, objectives, offsets, targets, queries[q],
+                                      s.path(begin + k), front[k], where))
         return problem;
     }
   }

@@ -297,7 +297,10 @@ std::vector<FileCheck> check_against_manifest(const fs::path& manifest_path,
         files.emplace_back(*e, path);
       else
         unlisted.push_back(
-            {name, path, {{"extra", path.string() + ": not listed in " + manifest_path.string()}}, {}});
+            {name,
+             path,
+             {{"extra", path.string() + ": not listed in " + manifest_path.string()}},
+             {}});
     }
   }
   auto checks = check_files(files, options);
