@@ -13,10 +13,10 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdlib>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <functional>
@@ -39,13 +39,13 @@ int failures = 0;
 int files_tried = 0;
 std::string current;  // the damage being tried, for failure messages
 
-#define CHECK(cond)                                                                          \
-  do {                                                                                       \
-    if (!(cond)) {                                                                           \
-      if (++failures <= 40)                                                                  \
-        std::fprintf(stderr, "%s:%d: CHECK(%s) failed [%s] last error: %s\n", __FILE__,      \
-                     __LINE__, #cond, current.c_str(), mosb_last_error());                   \
-    }                                                                                        \
+#define CHECK(cond)                                                                               \
+  do {                                                                                            \
+    if (!(cond)) {                                                                                \
+      if (++failures <= 40)                                                                       \
+        std::fprintf(stderr, "%s:%d: CHECK(%s) failed [%s] last error: %s\n", __FILE__, __LINE__, \
+                     #cond, current.c_str(), mosb_last_error());                                  \
+    }                                                                                             \
   } while (0)
 
 // Everything the C ABI tells about an instance, to compare a damaged file's with the valid one's.
@@ -65,8 +65,8 @@ struct Snapshot {
   bool operator==(const Snapshot&) const = default;
 };
 
-const char* const kMetadataKeys[] = {"benchmark", "family", "note", "generator",
-                                     "view.Small_2.objectives", "view.Small_5.queries"};
+const char* const kMetadataKeys[] = {
+    "benchmark", "family", "note", "generator", "view.Small_2.objectives", "view.Small_5.queries"};
 
 // The file's name as messages quote it: the path given to the open call.
 std::string path_now;
@@ -89,8 +89,7 @@ void check_failure(mosb_status status, std::initializer_list<mosb_status> allowe
                           std::strstr(mosb_last_error(), "is not a graph instance") != nullptr;
   const bool documented =
       other_kind || std::find(allowed.begin(), allowed.end(), status) != allowed.end();
-  if (!documented)
-    std::fprintf(stderr, "%s returned %d\n", call, static_cast<int>(status));
+  if (!documented) std::fprintf(stderr, "%s returned %d\n", call, static_cast<int>(status));
   CHECK(documented);
   const char* message = mosb_last_error();
   CHECK(one_line(message));
@@ -164,9 +163,10 @@ std::optional<Snapshot> snapshot(const mosb_graph* g) {
       CHECK(values != nullptr);
       volatile unsigned char sink = 0;
       const auto* bytes = static_cast<const unsigned char*>(values);
-      const std::size_t width = type == MOSB_U8 ? 1 : type == MOSB_U16 ? 2
-                                                  : (type == MOSB_U32 || type == MOSB_F32) ? 4
-                                                                                          : 8;
+      const std::size_t width = type == MOSB_U8                          ? 1
+                                : type == MOSB_U16                       ? 2
+                                : (type == MOSB_U32 || type == MOSB_F32) ? 4
+                                                                         : 8;
       for (std::size_t b = 0; b < s.m * width; ++b) sink = sink ^ bytes[b];
     }
     if (ok(mosb_cost_copy_f64(g, i, copy.data(), copy.size()), "mosb_cost_copy_f64"))
@@ -514,7 +514,8 @@ void field_edits(const std::string& dir, const Bytes& valid, const Snapshot& ref
 // checksum level passes, the structure level must not let the value through.
 template <class T>
 void poke_and_attack(const std::string& path, const Bytes& valid, const std::string& section,
-                     std::size_t index, T value, const Snapshot& reference, bool valid_value = false) {
+                     std::size_t index, T value, const Snapshot& reference,
+                     bool valid_value = false) {
   Bytes edited = valid;
   const auto i = mosb::testing::find_entry(edited, section);
   mosb::testing::poke<T>(edited, i, index, value);
@@ -541,8 +542,8 @@ void structural_edits(const std::string& dir, const Bytes& valid, const Snapshot
   const auto m = reference.m;
   const auto big32 = std::uint32_t{0xFFFFFFFF};
   for (std::size_t a : {std::size_t{0}, static_cast<std::size_t>(m - 1)})
-    for (std::uint32_t t : {static_cast<std::uint32_t>(n), static_cast<std::uint32_t>(n + 1),
-                            big32, std::uint32_t{0x80000000}}) {
+    for (std::uint32_t t : {static_cast<std::uint32_t>(n), static_cast<std::uint32_t>(n + 1), big32,
+                            std::uint32_t{0x80000000}}) {
       poke_and_attack(path, valid, "forward_targets", a, t, reference);
       poke_and_attack(path, valid, "reverse_sources", a, t, reference);
       poke_and_attack(path, valid, "reverse_arcs", a, static_cast<std::uint32_t>(m + (t & 7)),
@@ -551,8 +552,8 @@ void structural_edits(const std::string& dir, const Bytes& valid, const Snapshot
   // A repeated forward arc in the reverse CSR (each arc must appear once).
   poke_and_attack(path, valid, "reverse_arcs", 0, reference.arcs[1], reference);
   for (const char* offsets : {"forward_offsets", "reverse_offsets"}) {
-    const auto& values = std::string(offsets) == "forward_offsets" ? reference.offsets
-                                                                   : reference.reverse_offsets;
+    const auto& values =
+        std::string(offsets) == "forward_offsets" ? reference.offsets : reference.reverse_offsets;
     poke_and_attack<std::uint64_t>(path, valid, offsets, 0, 1, reference);
     poke_and_attack<std::uint64_t>(path, valid, offsets, n, m + 1, reference);
     poke_and_attack<std::uint64_t>(path, valid, offsets, n, m - 1, reference);
@@ -579,8 +580,9 @@ Bytes with_metadata(const Bytes& valid, const std::string& text) {
   auto header = mosb::testing::header_of(valid);
   Bytes out(valid.begin(), valid.begin() + format::kHeaderSize);
   std::vector<format::SectionEntry> entries;
-  auto align = [&out] { out.resize((out.size() + format::kAlignment - 1) / format::kAlignment *
-                                   format::kAlignment); };
+  auto align = [&out] {
+    out.resize((out.size() + format::kAlignment - 1) / format::kAlignment * format::kAlignment);
+  };
   for (std::size_t i = 0; i < header.section_count; ++i) {
     auto e = mosb::testing::entry_of(valid, i);
     align();
@@ -661,7 +663,8 @@ void metadata_rewrites(const std::string& dir, const Bytes& valid, const Snapsho
       {"a repeated key", with({"benchmark=again"})},
       {"an empty key", with({"=value"})},
       {"no final newline", sorted_lines(lines).substr(0, sorted_lines(lines).size() - 1)},
-      {"keys out of order", [&] {
+      {"keys out of order",
+       [&] {
          auto text = sorted_lines(lines);
          return lines.back() + "\n" + text.substr(0, text.size() - lines.back().size() - 1);
        }()},
@@ -765,10 +768,10 @@ void many_views(const std::string& dir, const Bytes& valid) {
   CHECK(resolved == count);
   const auto done = std::chrono::steady_clock::now();
   const auto ms = [](auto d) { return std::chrono::duration<double, std::milli>(d).count(); };
-  std::printf("20,000 views (%zu bytes): counted in %.1f ms, all names and views resolved in "
-              "%.1f ms\n",
-              static_cast<std::size_t>(fs::file_size(path)), ms(listed - start),
-              ms(done - listed));
+  std::printf(
+      "20,000 views (%zu bytes): counted in %.1f ms, all names and views resolved in "
+      "%.1f ms\n",
+      static_cast<std::size_t>(fs::file_size(path)), ms(listed - start), ms(done - listed));
   mosb_close(g);
 }
 
@@ -829,8 +832,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "%d checks failed over %d damaged files\n", failures, files_tried);
     return 1;
   }
-  std::printf("all %d damaged files gave a documented error or sound data (%d handles used, %d "
-              "walked after verify structure, %d equal to the valid file after verify full)\n",
-              files_tried, handles_used, walks_checked, equal_to_valid);
+  std::printf(
+      "all %d damaged files gave a documented error or sound data (%d handles used, %d "
+      "walked after verify structure, %d equal to the valid file after verify full)\n",
+      files_tried, handles_used, walks_checked, equal_to_valid);
   return 0;
 }

@@ -209,9 +209,8 @@ static void check_failures(const char* dir) {
 static int starts_with(const char* text, const char* prefix) {
   return strncmp(text, prefix, strlen(prefix)) == 0;
 }
-#define CALL_ERROR(call, function)                                \
-  CHECK((call) == MOSB_ERROR_INVALID_ARGUMENT &&                  \
-        starts_with(mosb_last_error(), function ": ") &&          \
+#define CALL_ERROR(call, function)                                                                \
+  CHECK((call) == MOSB_ERROR_INVALID_ARGUMENT && starts_with(mosb_last_error(), function ": ") && \
         strchr(mosb_last_error(), '\n') == NULL)
 
 /* Misuse: NULL for every pointer argument, unknown verify levels, indices and counts far out of

@@ -152,7 +152,8 @@ const mosb::View& view_named(const mosb_graph& g, const char* name) {
                        [](const mosb::View& v, std::string_view n) { return v.name < n; });
   if (found != g.views.end() && found->name == name) return *found;
   g.reader.view(name);  // throws not_found with the list of views
-  throw mosb::Error(mosb::ErrorCode::not_found, std::string("no view '") + name + "'");
+  throw mosb::Error(mosb::ErrorCode::not_found,
+                    g.reader.display_name() + ": no view '" + name + "'");
 }
 
 }  // namespace
