@@ -352,6 +352,8 @@ const std::vector<NamedOpener>& openers() {
 
 // Every open call on `path`: a documented refusal that leaves the output alone, or a handle to use.
 // `packed`: the valid original is packed (the zero-copy opens refuse it).
+bool packed_base = false;  // the valid original is packed: mosb_load decodes it
+
 void attack(const std::string& path, const Snapshot& reference, Damage damage) {
   ++files_tried;
   path_now = path;
@@ -368,6 +370,9 @@ void attack(const std::string& path, const Snapshot& reference, Damage damage) {
       continue;
     }
     CHECK(g != nullptr && g != sentinel);
+    // mosb_load checks every section's checksum as it decodes a packed file (mosb.h).
+    if (packed_base && damage == Damage::unsealed && std::strncmp(opener.name, "mosb_load", 9) == 0)
+      CHECK(mosb_verify(g, MOSB_VERIFY_CHECKSUMS) == MOSB_OK);
     use(g, reference, damage);
     mosb_close(g);
   }
@@ -698,6 +703,29 @@ void metadata_rewrites(const std::string& dir, const Bytes& valid, const Snapsho
   }
 }
 
+// A message quoting a name from the file escapes what could fake a line or reorder the text: a
+// bidi override as \u{202e}, C0 controls as \xNN (mosb.h, C_API.md).
+void escaped_messages(const std::string& dir, const Bytes& valid) {
+  auto lines = lines_of(metadata_text(valid));
+  lines.emplace_back("view.B.objectives=\xE2\x80\xAEtime\x1B[31m\\nx");
+  const std::string path = dir + "/escaped.mosb";
+  current = "metadata: a view naming a bidi override, ESC and an escaped newline";
+  write_file(path, with_metadata(valid, sorted_lines(lines)));
+  path_now = path;
+  mosb_graph* g = nullptr;
+  CHECK(mosb_open(path.c_str(), &g) == MOSB_OK);
+  const auto status = mosb_verify(g, MOSB_VERIFY_STRUCTURE);
+  check_failure(status, {MOSB_ERROR_DAMAGED}, "verify");
+  CHECK(std::strstr(mosb_last_error(), "\\u{202e}") != nullptr);
+  CHECK(std::strstr(mosb_last_error(), "\xE2\x80\xAE") == nullptr);
+  const std::size_t* objectives = nullptr;
+  std::size_t count = 0;
+  const auto view = mosb_view(g, "B", &objectives, &count, nullptr);
+  check_failure(view, {MOSB_ERROR_DAMAGED}, "mosb_view");
+  CHECK(std::strstr(mosb_last_error(), "\\u{202e}") != nullptr);
+  mosb_close(g);
+}
+
 // Files that are not regular mosb files at all: each open call refuses them without hanging.
 void special_files(const std::string& dir, const Snapshot& reference) {
   const std::string fifo = dir + "/fifo.mosb";
@@ -815,6 +843,7 @@ int main(int argc, char** argv) {
     if (!reference) return 1;
     const Bytes valid = mosb::testing::read_bytes(base.path);
     const int before = files_tried;
+    packed_base = !base.unpacked;
     truncations(dir, valid, *reference);
     bit_flips(dir, valid, *reference);
     field_edits(dir, valid, *reference);
@@ -827,6 +856,7 @@ int main(int argc, char** argv) {
   }
   special_files(dir, *reference_of(bases[0].path));
   many_views(dir, mosb::testing::read_bytes(bases[0].path));
+  escaped_messages(dir, mosb::testing::read_bytes(bases[0].path));
   fs::remove_all(dir);
   if (failures) {
     std::fprintf(stderr, "%d checks failed over %d damaged files\n", failures, files_tried);

@@ -431,6 +431,24 @@ class DamagedFilesTest(Attack):
                 self.assertEqual(caught.exception.code, "damaged")
                 self.assertNotIn("\n", str(caught.exception))
 
+    def test_messages_escape_what_they_quote(self):
+        """A name from the file in a message: a bidi override as \\u{202e}, ESC as \\x1b, an
+        escaped newline as \\n; one line, as the C ABI and the CLI print it."""
+        data, _ = self.references[GOLDEN_SMALL]
+        lines = metadata_bytes(data).rstrip(b"\n").split(b"\n")
+        text = sorted_metadata(lines + [b"view.B.objectives=\xe2\x80\xaetime\x1b[31m\\nx"])
+        path = self.write("escaped.mosb", with_metadata(data, text))
+        g = mosb.open(path)
+        for call in (lambda: g.verify("structure"), lambda: g.view("B")):
+            with self.assertRaises(mosb.Error) as caught:
+                call()
+            message = str(caught.exception)
+            self.assertEqual(caught.exception.code, "damaged")
+            self.assertIn(path, message)
+            self.assertIn("\\u{202e}", message)
+            self.assertNotIn("\u202e", message)
+            self.assertFalse(any(ord(c) < 0x20 for c in message), message)
+
     def test_special_files(self):
         fifo = os.path.join(self.dir, "fifo.mosb")
         os.mkfifo(fifo)
