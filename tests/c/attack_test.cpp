@@ -354,8 +354,10 @@ const std::vector<NamedOpener>& openers() {
 // `packed`: the valid original is packed (the zero-copy opens refuse it).
 bool packed_base = false;  // the valid original is packed: mosb_load decodes it
 
-void attack(const std::string& path, const Snapshot& reference, Damage damage) {
+// Returns how many of the open calls returned a handle.
+int attack(const std::string& path, const Snapshot& reference, Damage damage) {
   ++files_tried;
+  int opened = 0;
   path_now = path;
   for (const auto& opener : openers()) {
     mosb_graph* sentinel = reinterpret_cast<mosb_graph*>(&failures);
@@ -375,7 +377,9 @@ void attack(const std::string& path, const Snapshot& reference, Damage damage) {
       CHECK(mosb_verify(g, MOSB_VERIFY_CHECKSUMS) == MOSB_OK);
     use(g, reference, damage);
     mosb_close(g);
+    ++opened;
   }
+  return opened;
 }
 
 void write_file(const std::string& path, const Bytes& bytes) {
@@ -394,14 +398,15 @@ void truncations(const std::string& dir, const Bytes& valid, const Snapshot& ref
   for (std::size_t length = 0; length < valid.size(); ++length) {
     current = "truncated to " + std::to_string(length) + " bytes";
     write_file(path, Bytes(valid.begin(), valid.begin() + static_cast<std::ptrdiff_t>(length)));
-    attack(path, reference, Damage::unsealed);
+    // README (Guarantees): truncation is caught at open, by every open call.
+    CHECK(attack(path, reference, Damage::unsealed) == 0);
   }
   // Longer than declared: trailing bytes after the table.
   Bytes longer = valid;
   longer.resize(valid.size() + 64);
   current = "64 zero bytes appended";
   write_file(path, longer);
-  attack(path, reference, Damage::unsealed);
+  CHECK(attack(path, reference, Damage::unsealed) == 0);  // the header's file size, checked
 }
 
 void flip_and_attack(const std::string& path, const Bytes& valid, std::size_t byte, unsigned bit,
