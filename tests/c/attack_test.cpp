@@ -708,6 +708,31 @@ void metadata_rewrites(const std::string& dir, const Bytes& valid, const Snapsho
   }
 }
 
+// Every invalid golden file (spec/golden/*/invalid, packed re-encodings included: frames that
+// declare another length, a bomb, truncated frames, unknown encodings, a stored transpose): through
+// every entry point; each is invalid, so no call may return a handle that passes verify full, and
+// the decoding loads must refuse each packed one.
+void golden_invalid(const std::string& golden, const Snapshot& reference) {
+  int files = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(golden)) {
+    const auto& path = entry.path();
+    if (path.extension() != ".mosb" || path.parent_path().filename() != "invalid") continue;
+    const bool packed = path.parent_path().parent_path().filename() == "packed";
+    current = "golden " + path.string();
+    attack(path.string(), reference, Damage::resealed);
+    ++files;
+    for (const auto& opener : openers()) {
+      mosb_graph* g = nullptr;
+      if (opener.open(path.c_str(), &g) != MOSB_OK) continue;
+      CHECK(mosb_verify(g, MOSB_VERIFY_FULL) == MOSB_ERROR_DAMAGED);
+      CHECK(!packed);  // a packed invalid file is refused by the zero-copy opens and by decoding
+      mosb_close(g);
+    }
+  }
+  CHECK(files >= 30);
+  std::printf("%d invalid golden files through every entry point\n", files);
+}
+
 // A message quoting a name from the file escapes what could fake a line or reorder the text: a
 // bidi override as \u{202e}, C0 controls as \xNN (mosb.h, C_API.md).
 void escaped_messages(const std::string& dir, const Bytes& valid) {
@@ -860,6 +885,7 @@ int main(int argc, char** argv) {
                 files_tried - before, openers().size());
   }
   special_files(dir, *reference_of(bases[0].path));
+  golden_invalid(golden, *reference_of(bases[0].path));
   many_views(dir, mosb::testing::read_bytes(bases[0].path));
   escaped_messages(dir, mosb::testing::read_bytes(bases[0].path));
   fs::remove_all(dir);
