@@ -324,6 +324,17 @@ static void check_misuse(const char* dir) {
   mosb_close(g);
 }
 
+/* Overwrites one byte of a file that no handle maps (a damaged download or copy). */
+static void flip_byte(const char* path, long offset) {
+  FILE* f = fopen(path, "r+b");
+  int c;
+  CHECK(f != NULL);
+  if (!f) return;
+  CHECK(fseek(f, offset, SEEK_SET) == 0 && (c = fgetc(f)) != EOF);
+  CHECK(fseek(f, offset, SEEK_SET) == 0 && fputc((c ^ 0x5a) & 0xff, f) != EOF);
+  fclose(f);
+}
+
 /* A packed store entry resolved by view name: the same graph as the golden file. */
 static void check_store(const char* store) {
   mosb_graph* g = NULL;
@@ -369,6 +380,18 @@ static void check_store(const char* store) {
   CHECK(mosb_load_within(golden(store, "small.mosb"), 0, &g) == MOSB_OK);
   check_graph(g);
   mosb_close(g);
+  /* "Verified in full": a damaged unpacked copy in the cache is made again from the packed entry;
+   * a damaged packed entry is refused with DAMAGED, naming it, and no handle. */
+  flip_byte(golden(store, ".cache/small.mosb"), 1000);
+  g = NULL;
+  CHECK(mosb_store_instance(store, "Small_2", &g, NULL) == MOSB_OK);
+  CHECK(g != NULL && mosb_verify(g, MOSB_VERIFY_FULL) == MOSB_OK);
+  mosb_close(g);
+  flip_byte(golden(store, "small.mosb"), 1000);
+  CHECK(remove(golden(store, ".cache/small.mosb")) == 0);
+  g = NULL;
+  CHECK(mosb_store_instance(store, "Small_2", &g, &view) == MOSB_ERROR_DAMAGED && g == NULL);
+  CHECK(contains(mosb_last_error(), "small.mosb") && strchr(mosb_last_error(), '\n') == NULL);
 }
 
 int main(int argc, char** argv) {
