@@ -140,8 +140,8 @@ class Instance:
 
     def _checked(self):
         """The reader, once its structure is verified (offsets, id ranges, the reverse CSR, the
-        metadata; O(m), once per instance; checksums are not recomputed): the adapters walk the arcs, and an unchecked file could send them out of
-        bounds or into huge allocations."""
+        metadata; O(m), once per instance; checksums are not recomputed): the adapters walk the
+        arcs, and an unchecked file could send them out of bounds or into huge allocations."""
         if not self._structure_checked:
             self._reader.verify("structure")
             self._structure_checked = True
