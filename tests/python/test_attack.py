@@ -576,6 +576,32 @@ class MappingTest(unittest.TestCase):
                          [str(int(expected.forward_targets.sum())), str(expected.arc_count)])
 
 
+class AddressSpaceTest(Attack):
+    def test_adapters_refuse_a_flipped_target_within_2_gb(self):
+        """Issue 25, done when: one flipped target bit (checksums untouched) and every adapter
+        raises mosb.Error, in a process limited to 2 GB of address space."""
+        data, _ = self.references[self.grid]
+        (targets,) = [e for e in entries(data) if e["name"] == "forward_targets"]
+        damaged = bytearray(data)
+        damaged[targets["offset"] + 3] ^= 0x80  # target 0 becomes >= 2^31
+        path = self.write("flip-target.mosb", bytes(damaged))
+        script = ("import resource, sys, mosb\n"
+                  "resource.setrlimit(resource.RLIMIT_AS, (2 << 30, 2 << 30))\n"
+                  "g = mosb.open(sys.argv[1])\n"
+                  "for name in sys.argv[2:]:\n"
+                  "    try:\n"
+                  "        getattr(g, name)(*((0,) if name == 'to_scipy_csr' else ()))\n"
+                  "        print(name, 'accepted')\n"
+                  "    except mosb.Error as e:\n"
+                  "        print(name, e.code)\n")
+        adapters = ADAPTERS + ["arc_sources"]
+        done = subprocess.run([sys.executable, "-c", script, path] + adapters,
+                              capture_output=True, text=True, env=dict(os.environ,
+                                                                       OPENBLAS_NUM_THREADS="1"))
+        self.assertEqual(done.returncode, 0, done.stderr)
+        self.assertEqual(done.stdout.split("\n")[:-1], [a + " damaged" for a in adapters])
+
+
 class ManyViewsTest(Attack):
     """20,000 views (a 1.3 MB valid file): listed and resolved through Python and the CLI. Not
     timed here (speed is measured by tests/bench, which prints figures); each must complete."""
