@@ -602,6 +602,34 @@ class AddressSpaceTest(Attack):
         self.assertEqual(done.stdout.split("\n")[:-1], [a + " damaged" for a in adapters])
 
 
+class OutOfMemoryTest(unittest.TestCase):
+    def test_running_out_of_memory_while_decoding_is_no_memory(self):
+        """Past the cap or out of memory, mosb.load says 'no_memory' (the docstring; it said 'io'
+        when the allocation itself failed). A 300x300 grid, packed, decodes to 6.8 MB; the
+        process may map 4 MB more than it has."""
+        directory = tempfile.mkdtemp(prefix="mosb-oom-")
+        self.addCleanup(shutil.rmtree, directory)
+        plain, packed = os.path.join(directory, "g.mosb"), os.path.join(directory, "p.mosb")
+        for args in (("generate", "grid", "--width", "300", "--height", "300", "--seed", "1",
+                      "-o", plain), ("pack", plain, "-o", packed)):
+            done = subprocess.run([MOSB] + list(args), capture_output=True, text=True)
+            self.assertEqual(done.returncode, 0, done.stderr)
+        script = ("import resource, sys, mosb\n"
+                  "size = [l for l in open('/proc/self/status') if l.startswith('VmSize')]\n"
+                  "limit = int(size[0].split()[1]) * 1024 + (4 << 20)\n"
+                  "resource.setrlimit(resource.RLIMIT_AS, (limit, limit))\n"
+                  "try:\n"
+                  "    mosb.load(sys.argv[1])\n"
+                  "    print('loaded')\n"
+                  "except mosb.Error as e:\n"
+                  "    print(e.code, e)\n")
+        done = subprocess.run([sys.executable, "-c", script, packed], capture_output=True,
+                              text=True, env=dict(os.environ, OPENBLAS_NUM_THREADS="1"))
+        self.assertEqual(done.returncode, 0, done.stderr)
+        self.assertTrue(done.stdout.startswith("no_memory " + packed + ": out of memory"),
+                        done.stdout)
+
+
 class ManyViewsTest(Attack):
     """20,000 views (a 1.3 MB valid file): listed and resolved through Python and the CLI. Not
     timed here (speed is measured by tests/bench, which prints figures); each must complete."""
