@@ -5,8 +5,9 @@
  *
  * Errors: every call that can fail returns a mosb_status; on anything but MOSB_OK it leaves its
  * outputs untouched and mosb_last_error() returns a one-line message naming the file (a call
- * error, such as a NULL pointer, names the function instead; control bytes quoted from a file are
- * escaped as `mosb inspect` escapes them: \n, \t, \xNN). No C++ exception crosses this interface.
+ * error, such as a NULL pointer, names the function instead, as does running out of memory outside
+ * the decoding of a file; control bytes quoted from a file are escaped as `mosb inspect` escapes
+ * them: \n, \t, \xNN). No C++ exception crosses this interface.
  *
  * Lifetime: every pointer a call hands out (arrays, names, metadata values, the digest) points into
  * the mapping or into the handle and stays valid until mosb_close() on that handle.

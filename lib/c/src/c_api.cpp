@@ -91,7 +91,12 @@ mosb_status guarded(const char* function, Body&& body) noexcept {
   } catch (const mosb::Error& e) {
     return failed(status_of(e.code()), e.what());
   } catch (const std::bad_alloc&) {
-    return failed(MOSB_ERROR_NO_MEMORY, "out of memory");
+    // No file to name here: the function, as for a call error.
+    try {
+      return failed(MOSB_ERROR_NO_MEMORY, std::string(function) + ": out of memory");
+    } catch (...) {
+      return failed(MOSB_ERROR_NO_MEMORY, "out of memory");
+    }
   } catch (const std::exception& e) {
     return failed(MOSB_ERROR_OTHER, e.what());
   } catch (...) {
