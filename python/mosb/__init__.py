@@ -8,9 +8,12 @@
 The reading, the checks and the error messages are those of the C++ library (the same sources the
 `mosb` program is built from); every failure is a `mosb.Error` whose message names the file and
 whose `code` is the C++ ErrorCode's name ("io", "not_mosb", "version", "damaged", "not_found",
-"invalid_argument", "packed", "no_memory", "other"). Text in a file that is not UTF-8 is such an error
-('damaged'), never a UnicodeDecodeError. An argument of the wrong type (a view that is
-neither a name nor a View) raises TypeError, and a negative index IndexError, as Python does.
+"invalid_argument", "packed", "no_memory", "other"); the message is one line, control characters
+quoted from the file escaped as `mosb inspect` escapes them. Text in a file that is not UTF-8 is
+such an error ('damaged'), never a UnicodeDecodeError. Running out of memory while decoding a file
+is 'no_memory'; elsewhere (numpy, an adapter's library) it stays Python's MemoryError. An argument
+of the wrong type (a view that is neither a name nor a View) raises TypeError, and a negative index
+IndexError, as Python does.
 Paths may be str, bytes or os.PathLike; one with a NUL byte is refused.
 Arrays are views into the memory-mapped file: they are read-only and each keeps the mapping alive,
 so they stay valid after the object that handed them out is gone. A mapped file truncated or
