@@ -56,6 +56,7 @@ class BuildWithCMake(build_ext):
         for ext in self.extensions:
             ext.include_dirs += [os.path.join(root, "lib", c, "include") for c in COMPONENTS]
             ext.include_dirs += [os.path.join(root, "format", "include"),
+                                 os.path.join(root, "lib", "core", "internal"),  # utf8.hpp
                                  os.path.join(build, "lib", "include")]  # version.hpp
             ext.extra_objects += archives
             # setuptools relinks when one of these is newer than the extension.

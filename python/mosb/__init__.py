@@ -8,12 +8,19 @@
 The reading, the checks and the error messages are those of the C++ library (the same sources the
 `mosb` program is built from); every failure is a `mosb.Error` whose message names the file and
 whose `code` is the C++ ErrorCode's name ("io", "not_mosb", "version", "damaged", "not_found",
-"invalid_argument", "packed", "no_memory", "other"). Text in a file that is not UTF-8 is such an error
-('damaged'), never a UnicodeDecodeError. An argument of the wrong type (a view that is
-neither a name nor a View) raises TypeError, and a negative index IndexError, as Python does.
+"invalid_argument", "packed", "no_memory", "other"); the message is one line, control characters
+quoted from the file escaped as `mosb inspect` escapes them. Text in a file that is not UTF-8 is
+such an error ('damaged'), never a UnicodeDecodeError. Running out of memory while decoding a file
+is 'no_memory'; elsewhere (numpy, an adapter's library) it stays Python's MemoryError. An argument
+of the wrong type (a view that is neither a name nor a View) raises TypeError, and a negative index
+IndexError, as Python does.
 Paths may be str, bytes or os.PathLike; one with a NUL byte is refused.
 Arrays are views into the memory-mapped file: they are read-only and each keeps the mapping alive,
-so they stay valid after the object that handed them out is gone.
+so they stay valid after the object that handed them out is gone. A mapped file truncated or
+rewritten in place meanwhile ends the process with SIGBUS (what mmap does, not an exception):
+replace a file by writing a new one and renaming it over the old, as mosb's own writers do.
+Opening checks the header and section table only; verify at "structure" before indexing arrays by
+ids read from the file (the adapters do so themselves).
 """
 import collections
 import importlib
@@ -84,7 +91,7 @@ def load(path, verify=None, max_memory=None):
     section's checksum checked) instead of being refused; an unpacked file is mapped as by open().
     Decoding must fit in `max_memory` bytes (default: the memory available), checked against the
     sizes the file declares before anything is allocated: past it, mosb.Error with code
-    'no_memory'."""
+    'no_memory'. An unpacked file stays mapped, with open()'s SIGBUS caveat."""
     if max_memory is not None and (not isinstance(max_memory, int) or isinstance(max_memory, bool)
                                    or not 0 < max_memory < 2**64):
         raise TypeError("mosb.load: max_memory must be an int in [1, 2^64), not %r" % (max_memory,))
@@ -104,8 +111,9 @@ class Store:
     """A store (`mosb store init|add`): a directory of instances and the MANIFEST listing them."""
 
     def __init__(self, directory):
-        self.directory = os.fspath(directory)
-        self.files = tuple(_mosb.store_files(self.directory))  # mosb.Error when not a store
+        self._directory = _os_path(directory, "Store")  # NUL refused, as for mosb.open
+        self.directory = os.fsdecode(self._directory)
+        self.files = tuple(_mosb.store_files(self._directory))  # mosb.Error when not a store
 
     def __repr__(self):
         return "<mosb.Store %r: %d files>" % (self.directory, len(self.files))
@@ -113,7 +121,7 @@ class Store:
     def instance(self, name):
         """Resolves "BENCHMARK/VIEW", a view name or a benchmark name as mosb::Store::instance
         does; a packed entry is unpacked into the store's cache on first use."""
-        reader, view, query_set, path, file = _mosb.store_instance(self.directory, name)
+        reader, view, query_set, path, file = _mosb.store_instance(self._directory, name)
         instance = Instance(reader)
         return StoreInstance(instance, instance.view(view) if view else None, query_set or None,
                              path, file)
@@ -134,11 +142,12 @@ class Instance:
     def __init__(self, reader):
         self._reader = reader
         self._structure_checked = False
+        self._views = None  # name -> View, all resolved at the first view() (None: not yet)
 
     def _checked(self):
-        """The reader, once its structure is verified (checksums, CSR and id ranges; O(m), once
-        per instance): the adapters walk the arcs, and an unchecked file could send them out of
-        bounds or into huge allocations."""
+        """The reader, once its structure is verified (offsets, id ranges, the reverse CSR, the
+        metadata; O(m), once per instance; checksums are not recomputed): the adapters walk the
+        arcs, and an unchecked file could send them out of bounds or into huge allocations."""
         if not self._structure_checked:
             self._reader.verify("structure")
             self._structure_checked = True
@@ -222,8 +231,20 @@ class Instance:
         return tuple(self._reader.view_names())
 
     def view(self, name):
-        """The view `name` as a View(name, objectives, query_set); mosb.Error when absent."""
-        name, objectives, query_set = self._reader.view(name)
+        """The view `name` as a View(name, objectives, query_set); mosb.Error when absent.
+        The first call resolves every view at once (one pass over the metadata), so resolving
+        all of a file's views costs O(V log V), not O(V^2)."""
+        if not isinstance(name, str):
+            raise TypeError("mosb: a view name is a str, not %s" % type(name).__name__)
+        if self._views is None:
+            try:
+                self._views = {v[0]: View(v[0], tuple(v[1]), v[2] or None)
+                               for v in self._reader.views()}
+            except Error:
+                self._views = False  # a bad view: resolve one at a time, each with its error
+        if self._views and name in self._views:
+            return self._views[name]
+        name, objectives, query_set = self._reader.view(name)  # absent: the error, with the list
         return View(name, tuple(objectives), query_set or None)
 
     @property

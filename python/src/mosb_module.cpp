@@ -15,6 +15,7 @@
 
 #include "mosb/error.hpp"
 #include "mosb/graph_reader.hpp"
+#include "mosb/internal/utf8.hpp"
 #include "mosb/pack.hpp"
 #include "mosb/solution_file.hpp"
 #include "mosb/store.hpp"
@@ -147,8 +148,9 @@ void bind_error(py::module_& m) {
     try {
       if (thrown) std::rethrow_exception(thrown);
     } catch (const mosb::Error& e) {
-      // Messages quote names from the file and paths, which need not be UTF-8.
-      const std::string_view what = e.what();
+      // One line, whatever the message quotes from a file (metadata values, names), as the C ABI
+      // and the CLI print it; names and paths need not be UTF-8.
+      const std::string what = mosb::escape_for_terminal(e.what());
       auto message = py::reinterpret_steal<py::str>(PyUnicode_DecodeUTF8(
           what.data(), static_cast<py::ssize_t>(what.size()), "backslashreplace"));
       py::object error = py::reinterpret_borrow<py::object>(error_type.ptr())(message);
@@ -215,6 +217,16 @@ void bind_reader_data(py::class_<mosb::GraphReader, ReaderPtr>& reader) {
           },
           py::arg("name"))
       .def("view_names", [](const mosb::GraphReader& r) { return texts_of(r, r.view_names()); })
+      // Every view resolved in one pass over the metadata (sorted by name): what a caller that
+      // resolves many views keeps, as the C ABI does; fails as the first bad view does.
+      .def("views",
+           [](const mosb::GraphReader& r) {
+             py::list out;
+             for (const auto& view : r.views())
+               out.append(py::make_tuple(text_of(r, view.name), view.objectives,
+                                         text_of(r, view.query_set)));
+             return out;
+           })
       .def(
           "view",
           [](const mosb::GraphReader& r, const std::string& name) {

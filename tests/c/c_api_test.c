@@ -205,6 +205,136 @@ static void check_failures(const char* dir) {
   mosb_close(NULL);
 }
 
+/* A call error: INVALID_ARGUMENT, and the message starts with the function's name. */
+static int starts_with(const char* text, const char* prefix) {
+  return strncmp(text, prefix, strlen(prefix)) == 0;
+}
+#define CALL_ERROR(call, function)                                                                \
+  CHECK((call) == MOSB_ERROR_INVALID_ARGUMENT && starts_with(mosb_last_error(), function ": ") && \
+        strchr(mosb_last_error(), '\n') == NULL)
+
+/* Misuse: NULL for every pointer argument, unknown verify levels, indices and counts far out of
+ * range. Each is a documented status, outputs untouched, and a message naming the function (call
+ * errors) or the file (ranges). */
+static void check_misuse(const char* dir) {
+  mosb_graph* g = NULL;
+  mosb_graph* const untouched = (mosb_graph*)&failures;
+  mosb_graph* out = untouched;
+  const char* path = golden(dir, "valid/small.mosb");
+  uint64_t n = 12345, buffer64[8];
+  double buffer[8];
+  const uint64_t* offsets = NULL;
+  const uint32_t *targets = NULL, *arcs = NULL, *pairs = NULL;
+  const size_t* objectives = NULL;
+  size_t count = 777, index = 777;
+  const char *text = NULL, *view = NULL;
+  mosb_element_type type = MOSB_U8;
+  const void* values = NULL;
+
+  CALL_ERROR(mosb_open(path, NULL), "mosb_open");
+  CALL_ERROR(mosb_open_verified(NULL, MOSB_VERIFY_FULL, &out), "mosb_open_verified");
+  CALL_ERROR(mosb_open_verified(path, MOSB_VERIFY_FULL, NULL), "mosb_open_verified");
+  CALL_ERROR(mosb_open_verified(path, (mosb_verify_level)7, &out), "mosb_open_verified");
+  CHECK(contains(mosb_last_error(), "unknown verify level 7"));
+  CALL_ERROR(mosb_open_verified(path, (mosb_verify_level)-1, &out), "mosb_open_verified");
+  CALL_ERROR(mosb_load(NULL, &out), "mosb_load");
+  CALL_ERROR(mosb_load(path, NULL), "mosb_load");
+  CALL_ERROR(mosb_load_within(path, 1u << 20, NULL), "mosb_load_within");
+  CALL_ERROR(mosb_store_instance(NULL, "x", &out, &view), "mosb_store_instance");
+  CALL_ERROR(mosb_store_instance(dir, "x", NULL, &view), "mosb_store_instance");
+  CHECK(out == untouched && view == NULL);
+
+  CHECK(mosb_open(path, &g) == MOSB_OK);
+  CALL_ERROR(mosb_verify(NULL, MOSB_VERIFY_HEADER), "mosb_verify");
+  CALL_ERROR(mosb_verify(g, (mosb_verify_level)-1), "mosb_verify");
+  CALL_ERROR(mosb_vertex_count(NULL, &n), "mosb_vertex_count");
+  CALL_ERROR(mosb_vertex_count(g, NULL), "mosb_vertex_count");
+  CALL_ERROR(mosb_arc_count(NULL, &n), "mosb_arc_count");
+  CALL_ERROR(mosb_arc_count(g, NULL), "mosb_arc_count");
+  CHECK(n == 12345);
+  CALL_ERROR(mosb_forward_csr(NULL, &offsets, &targets), "mosb_forward_csr");
+  CALL_ERROR(mosb_forward_csr(g, NULL, &targets), "mosb_forward_csr");
+  CALL_ERROR(mosb_forward_csr(g, &offsets, NULL), "mosb_forward_csr");
+  CALL_ERROR(mosb_reverse_csr(NULL, &offsets, &targets, &arcs), "mosb_reverse_csr");
+  CALL_ERROR(mosb_reverse_csr(g, NULL, &targets, &arcs), "mosb_reverse_csr");
+  CALL_ERROR(mosb_reverse_csr(g, &offsets, NULL, &arcs), "mosb_reverse_csr");
+  CALL_ERROR(mosb_reverse_csr(g, &offsets, &targets, NULL), "mosb_reverse_csr");
+  CHECK(offsets == NULL && targets == NULL && arcs == NULL);
+  CALL_ERROR(mosb_objective_count(NULL, &count), "mosb_objective_count");
+  CALL_ERROR(mosb_objective_count(g, NULL), "mosb_objective_count");
+  CALL_ERROR(mosb_objective_name(NULL, 0, &text), "mosb_objective_name");
+  CALL_ERROR(mosb_objective_name(g, 0, NULL), "mosb_objective_name");
+  CALL_ERROR(mosb_objective_unit(NULL, 0, &text), "mosb_objective_unit");
+  CALL_ERROR(mosb_objective_unit(g, 0, NULL), "mosb_objective_unit");
+  CALL_ERROR(mosb_objective_type(NULL, 0, &type), "mosb_objective_type");
+  CALL_ERROR(mosb_objective_type(g, 0, NULL), "mosb_objective_type");
+  CALL_ERROR(mosb_find_objective(g, NULL, &index), "mosb_find_objective");
+  CALL_ERROR(mosb_find_objective(g, "time", NULL), "mosb_find_objective");
+  CALL_ERROR(mosb_cost(NULL, 0, &type, &values), "mosb_cost");
+  CALL_ERROR(mosb_cost(g, 0, NULL, &values), "mosb_cost");
+  CALL_ERROR(mosb_cost(g, 0, &type, NULL), "mosb_cost");
+  CALL_ERROR(mosb_cost_copy_u64(NULL, 0, buffer64, 7), "mosb_cost_copy_u64");
+  CALL_ERROR(mosb_cost_copy_u64(g, 0, NULL, 7), "mosb_cost_copy_u64");
+  CALL_ERROR(mosb_cost_copy_f64(NULL, 0, buffer, 7), "mosb_cost_copy_f64");
+  CALL_ERROR(mosb_cost_copy_f64(g, 0, NULL, 7), "mosb_cost_copy_f64");
+  CALL_ERROR(mosb_view_count(NULL, &count), "mosb_view_count");
+  CALL_ERROR(mosb_view_name(NULL, 0, &text), "mosb_view_name");
+  CALL_ERROR(mosb_view_name(g, 0, NULL), "mosb_view_name");
+  CALL_ERROR(mosb_view(NULL, "Small_2", &objectives, &count, &text), "mosb_view");
+  CALL_ERROR(mosb_view(g, NULL, &objectives, &count, &text), "mosb_view");
+  CALL_ERROR(mosb_query_set_count(NULL, &count), "mosb_query_set_count");
+  CALL_ERROR(mosb_query_set_count(g, NULL), "mosb_query_set_count");
+  CALL_ERROR(mosb_query_set_name(NULL, 0, &text), "mosb_query_set_name");
+  CALL_ERROR(mosb_query_set_name(g, 0, NULL), "mosb_query_set_name");
+  CALL_ERROR(mosb_queries(NULL, "default", &pairs, &count), "mosb_queries");
+  CALL_ERROR(mosb_queries(g, NULL, &pairs, &count), "mosb_queries");
+  CALL_ERROR(mosb_queries(g, "default", NULL, &count), "mosb_queries");
+  CALL_ERROR(mosb_queries(g, "default", &pairs, NULL), "mosb_queries");
+  CALL_ERROR(mosb_metadata(NULL, "benchmark", &text, NULL), "mosb_metadata");
+  CALL_ERROR(mosb_metadata(g, NULL, &text, NULL), "mosb_metadata");
+  CALL_ERROR(mosb_metadata(g, "benchmark", NULL, NULL), "mosb_metadata");
+  CALL_ERROR(mosb_digest(NULL, &text), "mosb_digest");
+  CALL_ERROR(mosb_digest(g, NULL), "mosb_digest");
+  CHECK(count == 777 && index == 777 && text == NULL && objectives == NULL && pairs == NULL &&
+        values == NULL && type == MOSB_U8);
+
+  /* Indices and counts far out of range (what a negative int becomes as a size_t): refused with
+   * the file's name, nothing written. */
+  CHECK(mosb_objective_name(g, (size_t)-1, &text) == MOSB_ERROR_INVALID_ARGUMENT);
+  CHECK(contains(mosb_last_error(), "small.mosb") && text == NULL);
+  CHECK(mosb_objective_unit(g, (size_t)-1, &text) == MOSB_ERROR_INVALID_ARGUMENT && text == NULL);
+  CHECK(mosb_objective_type(g, (size_t)-1, &type) == MOSB_ERROR_INVALID_ARGUMENT);
+  CHECK(mosb_cost(g, (size_t)-1, &type, &values) == MOSB_ERROR_INVALID_ARGUMENT && !values);
+  CHECK(mosb_view_name(g, (size_t)-1, &text) == MOSB_ERROR_INVALID_ARGUMENT && text == NULL);
+  CHECK(contains(mosb_last_error(), "small.mosb: view index"));
+  CHECK(mosb_query_set_name(g, (size_t)-1, &text) == MOSB_ERROR_INVALID_ARGUMENT && !text);
+  CHECK(contains(mosb_last_error(), "small.mosb: query set index"));
+  /* A count larger than the buffer could ever be: refused before anything is written. */
+  buffer[0] = -1;
+  CHECK(mosb_cost_copy_f64(g, 0, buffer, (size_t)-1) == MOSB_ERROR_INVALID_ARGUMENT);
+  CHECK(contains(mosb_last_error(), "small.mosb") && buffer[0] == -1);
+  CHECK(mosb_cost_copy_u64(g, 0, buffer64, 0) == MOSB_ERROR_INVALID_ARGUMENT);
+  CHECK(mosb_find_objective(g, "", &index) == MOSB_ERROR_NOT_FOUND && index == 777);
+  CHECK(mosb_view(g, "", &objectives, &count, &text) == MOSB_ERROR_NOT_FOUND);
+  CHECK(mosb_queries(g, "", &pairs, &count) == MOSB_ERROR_NOT_FOUND && count == 777);
+  CHECK(mosb_metadata(g, "", &text, &count) == MOSB_ERROR_NOT_FOUND && text == NULL);
+  /* Every output of mosb_view may be NULL. */
+  CHECK(mosb_view(g, "Small_2", NULL, NULL, NULL) == MOSB_OK);
+  CHECK(mosb_view(g, "Small_2", NULL, &count, NULL) == MOSB_OK && count == 2);
+  mosb_close(g);
+}
+
+/* Overwrites one byte of a file that no handle maps (a damaged download or copy). */
+static void flip_byte(const char* path, long offset) {
+  FILE* f = fopen(path, "r+b");
+  int c;
+  CHECK(f != NULL);
+  if (!f) return;
+  CHECK(fseek(f, offset, SEEK_SET) == 0 && (c = fgetc(f)) != EOF);
+  CHECK(fseek(f, offset, SEEK_SET) == 0 && fputc((c ^ 0x5a) & 0xff, f) != EOF);
+  fclose(f);
+}
+
 /* A packed store entry resolved by view name: the same graph as the golden file. */
 static void check_store(const char* store) {
   mosb_graph* g = NULL;
@@ -246,6 +376,22 @@ static void check_store(const char* store) {
   check_graph(g);
   mosb_close(g);
   CHECK(mosb_load_within(NULL, 0, &g) == MOSB_ERROR_INVALID_ARGUMENT);
+  /* A cap of 0: the memory available, as mosb_load. */
+  CHECK(mosb_load_within(golden(store, "small.mosb"), 0, &g) == MOSB_OK);
+  check_graph(g);
+  mosb_close(g);
+  /* "Verified in full": a damaged unpacked copy in the cache is made again from the packed entry;
+   * a damaged packed entry is refused with DAMAGED, naming it, and no handle. */
+  flip_byte(golden(store, ".cache/small.mosb"), 1000);
+  g = NULL;
+  CHECK(mosb_store_instance(store, "Small_2", &g, NULL) == MOSB_OK);
+  CHECK(g != NULL && mosb_verify(g, MOSB_VERIFY_FULL) == MOSB_OK);
+  mosb_close(g);
+  flip_byte(golden(store, "small.mosb"), 1000);
+  CHECK(remove(golden(store, ".cache/small.mosb")) == 0);
+  g = NULL;
+  CHECK(mosb_store_instance(store, "Small_2", &g, &view) == MOSB_ERROR_DAMAGED && g == NULL);
+  CHECK(contains(mosb_last_error(), "small.mosb") && strchr(mosb_last_error(), '\n') == NULL);
 }
 
 int main(int argc, char** argv) {
@@ -264,6 +410,7 @@ int main(int argc, char** argv) {
   mosb_close(g);
   check_threads(argv[1]);
   check_failures(argv[1]);
+  check_misuse(argv[1]);
   if (argc == 4) check_store(argv[3]);
   if (failures)
     fprintf(stderr, "%d checks failed\n", failures);

@@ -5,8 +5,9 @@
  *
  * Errors: every call that can fail returns a mosb_status; on anything but MOSB_OK it leaves its
  * outputs untouched and mosb_last_error() returns a one-line message naming the file (a call
- * error, such as a NULL pointer, names the function instead; control bytes quoted from a file are
- * escaped as `mosb inspect` escapes them: \n, \t, \xNN). No C++ exception crosses this interface.
+ * error, such as a NULL pointer, names the function instead, as does running out of memory outside
+ * the decoding of a file; control bytes quoted from a file are escaped as `mosb inspect` escapes
+ * them: \n, \t, \xNN). No C++ exception crosses this interface.
  *
  * Lifetime: every pointer a call hands out (arrays, names, metadata values, the digest) points into
  * the mapping or into the handle and stays valid until mosb_close() on that handle.
@@ -44,7 +45,8 @@ typedef enum mosb_status {
   MOSB_ERROR_VERSION = 4,          /* a format version or feature this library does not read */
   MOSB_ERROR_DAMAGED = 5,          /* breaks a rule of the format (checksums, structure) */
   MOSB_ERROR_NOT_FOUND = 6,        /* no objective, query set, view or metadata key of that name */
-  MOSB_ERROR_INVALID_ARGUMENT = 7, /* NULL pointer, index out of range, buffer of the wrong size */
+  MOSB_ERROR_INVALID_ARGUMENT = 7, /* NULL pointer, index out of range, buffer of the wrong size,
+                                      a .mosb file of another kind (a solution file) */
   MOSB_ERROR_PACKED = 8,           /* a zstd-packed section cannot be mapped zero-copy */
   MOSB_ERROR_NO_MEMORY = 9         /* out of memory, or decoding needs more than the cap allows */
 } mosb_status;
@@ -65,8 +67,9 @@ typedef enum mosb_element_type {
   MOSB_F64 = 10
 } mosb_element_type;
 
-/* How much of the file mosb_verify (and mosb_open_verified) reads: the header only; every
- * checksum; the checksums and every structural rule; everything (spec/FORMAT.md §9). */
+/* How much of the file mosb_verify (and mosb_open_verified) checks (spec/FORMAT.md §9): the header
+ * only; every checksum; every structural rule (id ranges, offsets, the reverse CSR, metadata,
+ * padding; no checksum is recomputed); both, checksums and structure. */
 typedef enum mosb_verify_level {
   MOSB_VERIFY_HEADER = 0,
   MOSB_VERIFY_CHECKSUMS = 1,

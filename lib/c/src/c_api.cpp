@@ -91,7 +91,12 @@ mosb_status guarded(const char* function, Body&& body) noexcept {
   } catch (const mosb::Error& e) {
     return failed(status_of(e.code()), e.what());
   } catch (const std::bad_alloc&) {
-    return failed(MOSB_ERROR_NO_MEMORY, "out of memory");
+    // No file to name here: the function, as for a call error.
+    try {
+      return failed(MOSB_ERROR_NO_MEMORY, std::string(function) + ": out of memory");
+    } catch (...) {
+      return failed(MOSB_ERROR_NO_MEMORY, "out of memory");
+    }
   } catch (const std::exception& e) {
     return failed(MOSB_ERROR_OTHER, e.what());
   } catch (...) {
@@ -152,7 +157,8 @@ const mosb::View& view_named(const mosb_graph& g, const char* name) {
                        [](const mosb::View& v, std::string_view n) { return v.name < n; });
   if (found != g.views.end() && found->name == name) return *found;
   g.reader.view(name);  // throws not_found with the list of views
-  throw mosb::Error(mosb::ErrorCode::not_found, std::string("no view '") + name + "'");
+  throw mosb::Error(mosb::ErrorCode::not_found,
+                    g.reader.display_name() + ": no view '" + name + "'");
 }
 
 }  // namespace

@@ -199,7 +199,7 @@ MappedFile allocate_image(std::uint64_t size, std::uint64_t scratch, std::string
     if (length > SIZE_MAX) throw std::bad_alloc();
     memory = map_large(length, true);
   } catch (const std::bad_alloc&) {
-    throw Error(ErrorCode::io,
+    throw Error(ErrorCode::no_memory,
                 std::string(name) + ": out of memory unpacking " + std::to_string(size) + " bytes");
   }
   MappedFile image;
@@ -329,7 +329,7 @@ void check_and_mark_raw(Section& s, const std::byte* out, std::string_view displ
 void decode_stored(std::vector<Section>& sections, std::byte* out, std::byte* scratch,
                    std::string_view display_name) {
   ZSTD_DCtx* context = ZSTD_createDCtx();
-  if (!context) throw Error(ErrorCode::io, std::string(display_name) + ": out of memory");
+  if (!context) throw Error(ErrorCode::no_memory, std::string(display_name) + ": out of memory");
   try {
     for (auto& s : sections) {
       if (is_derived(s)) continue;  // once the forward CSR is decoded and checked
@@ -555,7 +555,7 @@ void encode_section(const Section& s, bool derived, int level, const std::string
   if (format::element_size(s.type) > 1) candidates.push_back(Encoding::shuffle_zstd);
   if (!format::is_float(s.type)) candidates.push_back(Encoding::delta_zstd);
   std::unique_ptr<ZSTD_CCtx, std::size_t (*)(ZSTD_CCtx*)> context(ZSTD_createCCtx(), ZSTD_freeCCtx);
-  if (!context) throw Error(ErrorCode::io, name + ": out of memory");
+  if (!context) throw Error(ErrorCode::no_memory, name + ": out of memory");
   for (const auto encoding : candidates) {
     const auto content = frame_content(s, encoding);
     std::vector<std::byte> frame(ZSTD_compressBound(content.size()));
@@ -576,7 +576,7 @@ void encode_section(const Section& s, bool derived, int level, const std::string
   std::vector<std::byte> check(s.stored.size()), scratch(s.stored.size());
   std::unique_ptr<ZSTD_DCtx, std::size_t (*)(ZSTD_DCtx*)> dcontext(ZSTD_createDCtx(),
                                                                    ZSTD_freeDCtx);
-  if (!dcontext) throw Error(ErrorCode::io, name + ": out of memory");
+  if (!dcontext) throw Error(ErrorCode::no_memory, name + ": out of memory");
   decode_frame(encoded, check.data(), dcontext.get(), name, scratch.data());
   if (std::memcmp(check.data(), s.stored.data(), check.size()) != 0)
     throw Error(name + ": section '" + s.name + "': zstd frame does not decode to its bytes");

@@ -107,7 +107,9 @@ FileCheck check_one(const ManifestEntry& e, const fs::path& path, bool accept_ot
                       : "unpacked form of the listed packed file";
     }
   } catch (const Error& error) {
-    c.problems.push_back({error.code() == ErrorCode::io ? "unreadable" : "damaged", error.what()});
+    // Out of memory (or past the memory available) is this machine's limit, not damage.
+    const bool unreadable = error.code() == ErrorCode::io || error.code() == ErrorCode::no_memory;
+    c.problems.push_back({unreadable ? "unreadable" : "damaged", error.what()});
   }
   return c;
 }
@@ -312,7 +314,7 @@ std::string xxh3_file(const fs::path& path) {
   InputFd in(path);
   std::unique_ptr<XXH3_state_t, decltype(&XXH3_freeState)> state(XXH3_createState(),
                                                                  &XXH3_freeState);
-  if (!state) throw Error(path.string() + ": out of memory");
+  if (!state) throw Error(ErrorCode::no_memory, path.string() + ": out of memory");
   XXH3_64bits_reset(state.get());
   in.read_all(path, [&](const char* data, std::size_t size) {
     XXH3_64bits_update(state.get(), data, size);

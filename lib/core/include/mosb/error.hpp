@@ -16,7 +16,7 @@ enum class ErrorCode {
   invalid_argument,  // a call the file cannot answer as asked: wrong element type, index out of
                      // range
   packed,            // a zstd-packed section, which cannot be mapped zero-copy
-  no_memory,         // decoding would need more memory than the cap (max_memory) allows
+  no_memory,         // out of memory, or decoding would need more than the cap (max_memory) allows
 };
 
 // Every failure mosb reports to a user: the message is one line and names the file it concerns.
