@@ -166,6 +166,7 @@ Command add_plot(CLI::App& app);       // plot.cpp: `plot correlation`, `plot ma
 Command add_solutions(CLI::App& app);  // solutions.cpp: `solutions import|export|inspect|verify`
 Command add_eval(CLI::App& app);       // eval.cpp: `eval`
 Command add_pack(CLI::App& app);       // pack.cpp: `pack`
+Command add_run(CLI::App& app);        // run.cpp: `run`
 Command add_unpack(CLI::App& app);     // pack.cpp: `unpack`
 
 // Children of `generate`.

@@ -39,8 +39,7 @@ struct ImportArgs {
 std::string view_with_objectives(const GraphReader& instance, const View& selected) {
   std::string list;
   for (auto i : selected.objectives) list += (list.empty() ? "" : ",") + instance.objective(i).name;
-  for (const auto& view : instance.views())
-    if (view.objectives == selected.objectives) return view.name;
+  if (auto name = mosb::view_with_objectives(instance, selected.objectives)) return *name;
   throw UsageError("--objectives " + list + ": " + instance.display_name() +
                    " has no view with these objectives, and a solution file records a view "
                    "(spec/SOLUTIONS.md); name one with --view");

@@ -177,4 +177,11 @@ std::optional<View> select_view(const GraphReader& reader, const ViewChoice& cho
   return selected;
 }
 
+std::optional<std::string> view_with_objectives(const GraphReader& reader,
+                                                const std::vector<std::size_t>& objectives) {
+  for (const auto& view : reader.views())
+    if (view.objectives == objectives) return view.name;
+  return std::nullopt;
+}
+
 }  // namespace mosb

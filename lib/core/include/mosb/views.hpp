@@ -58,4 +58,9 @@ struct ViewChoice {
 // invalid_argument for both a view and an objective list.
 std::optional<View> select_view(const GraphReader& reader, const ViewChoice& choice);
 
+// The name of the first of `reader`'s views whose objective list is exactly `objectives` (in
+// order), or nullopt: what a solution file records when a command was given --objectives.
+std::optional<std::string> view_with_objectives(const GraphReader& reader,
+                                                const std::vector<std::size_t>& objectives);
+
 }  // namespace mosb
