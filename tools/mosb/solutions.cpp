@@ -151,6 +151,10 @@ void print_inspect_json(const InspectArgs& a, const SolutionReader& r, const Sol
   json.key("solver").value(solver.name);
   json.key("solver_version").value(solver.version);
   json.key("epsilon").value(solver.epsilon);
+  json.key("machine").value(solver.machine);
+  json.key("parameters").begin_object();
+  for (const auto& [key, value] : solver.parameters) json.key(key).value(value);
+  json.end_object();
   json.key("queries").value(r.query_count());
   json.key("vectors").value(r.vector_count());
   json.key("statuses").begin_object();
@@ -192,6 +196,10 @@ void print_inspect_text(const InspectArgs& a, const SolutionReader& r, const Sol
   std::cout << "\nsolver " << (solver.name.empty() ? "-" : escape_for_terminal(solver.name))
             << (solver.version.empty() ? "" : " " + escape_for_terminal(solver.version))
             << ", epsilon " << escape_for_terminal(solver.epsilon) << "\n";
+  if (!solver.machine.empty())
+    std::cout << "machine " << escape_for_terminal(solver.machine) << "\n";
+  for (const auto& [key, value] : solver.parameters)
+    std::cout << "parameter " << key << " = " << escape_for_terminal(value) << "\n";
   std::cout << r.query_count() << " queries:";
   for (std::uint8_t s = 0; s <= kLastQueryStatus; ++s)
     std::cout << ' ' << t.status_counts[s] << ' ' << to_string(static_cast<QueryStatus>(s))
