@@ -234,6 +234,8 @@ struct Pipes {
 [[noreturn]] void start_child(const ProcessSpec& spec, const std::vector<char*>& argv, int out,
                               int err, int in, const Pipes& pipes, std::uint64_t rlimit_as) {
   ::setsid();
+  // A kill -9 of mosb run takes the solver with it (its descendants are left to their session).
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL, 0, 0, 0);
   sigset_t none;
   sigemptyset(&none);
   ::sigprocmask(SIG_SETMASK, &none, nullptr);
@@ -341,6 +343,13 @@ void kill_leftovers(pid_t sid, const MemoryGroup* group, ProcessOutcome& out) {
 
 namespace {
 
+// RLIMIT_AS under rlimit_poll: twice the limit, a backstop for allocations faster than the poll.
+// The address space of a process exceeds its resident memory (libraries, reserved arenas), so the
+// limit itself would refuse solvers well below it; the poll enforces the limit on resident memory.
+std::uint64_t rlimit_backstop(std::uint64_t memory) {
+  return memory == 0 ? 0 : memory > (UINT64_MAX / 2) ? memory : memory * 2;
+}
+
 // Starts the solver; returns its pid, or -1 with out.error set when the exec failed.
 pid_t start(const ProcessSpec& spec, Measurement m, std::uint64_t memory, const MemoryGroup* group,
             ProcessOutcome& out) {
@@ -355,7 +364,7 @@ pid_t start(const ProcessSpec& spec, Measurement m, std::uint64_t memory, const 
   const pid_t pid = ::fork();
   if (pid == 0)
     start_child(spec, argv, out_fd, err_fd, in_fd, pipes,
-                m == Measurement::rlimit_poll ? memory : 0);
+                m == Measurement::rlimit_poll ? rlimit_backstop(memory) : 0);
   const int fork_error = errno;
   for (int fd : {out_fd, err_fd, in_fd}) ::close(fd);
   if (pid < 0) {
