@@ -2,21 +2,21 @@
 
 #include <dirent.h>
 #include <fcntl.h>
-#include <poll.h>
 #include <sched.h>
 #include <signal.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
-#include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <chrono>
+#include <condition_variable>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <mutex>
 #include <sstream>
 #include <thread>
 
@@ -178,6 +178,7 @@ std::uint64_t session_rss(pid_t sid) {
 }
 
 // A memory cgroup for one solver, removed when the object ends.
+// A memory cgroup for one solver, removed when the object ends.
 class MemoryGroup {
  public:
   MemoryGroup(const std::string& name, std::uint64_t limit) {
@@ -189,8 +190,11 @@ class MemoryGroup {
       // With swap accounting, memory+swap gets the same limit: no escape into swap.
       write_file(dir_ + "/memory.memsw.limit_in_bytes", std::to_string(limit));
     }
+    procs_ = ::open((dir_ + "/cgroup.procs").c_str(), O_WRONLY | O_CLOEXEC);
+    if (procs_ < 0) fail(dir_ + "/cgroup.procs: cannot open");
   }
   ~MemoryGroup() {
+    ::close(procs_);
     kill_all();
     for (int i = 0; i < 200 && ::rmdir(dir_.c_str()) != 0 && errno == EBUSY; ++i) {
       kill_all();
@@ -200,10 +204,8 @@ class MemoryGroup {
   MemoryGroup(const MemoryGroup&) = delete;
   MemoryGroup& operator=(const MemoryGroup&) = delete;
 
-  void add(pid_t pid) const {
-    if (!write_file(dir_ + "/cgroup.procs", std::to_string(pid)))
-      fail(dir_ + "/cgroup.procs: cannot move the solver into its group");
-  }
+  // The child writes "0" here (itself) before it executes: no round trip through the parent.
+  int procs_fd() const { return procs_; }
   void kill_all() const {
     for (const pid_t pid : cgroup_members(dir_)) ::kill(pid, SIGKILL);
   }
@@ -219,20 +221,25 @@ class MemoryGroup {
 
  private:
   std::string dir_;
+  int procs_ = -1;
 };
 
-struct Pipes {
-  int sync[2] = {-1, -1};   // parent -> child: "you are in your group, exec"
-  int error[2] = {-1, -1};  // child -> parent: errno of a failed exec (EOF on success)
-  ~Pipes() {
-    for (int fd : {sync[0], sync[1], error[0], error[1]})
-      if (fd >= 0) ::close(fd);
-  }
+// What the child reports through its error pipe when it cannot execute.
+struct ChildError {
+  int stage = 0;  // 1: joining the cgroup, 2: execve
+  int error = 0;
 };
 
 // After fork, in the child: only async-signal-safe calls.
-[[noreturn]] void start_child(const ProcessSpec& spec, const std::vector<char*>& argv, int out,
-                              int err, int in, const Pipes& pipes, std::uint64_t rlimit_as) {
+[[noreturn]] void start_child(const ProcessSpec& spec, const std::vector<char*>& argv,
+                              const int fds[3], int procs_fd, int error_fd,
+                              std::uint64_t rlimit_as) {
+  ChildError report;
+  if (procs_fd >= 0 && ::write(procs_fd, "0", 1) != 1) {
+    report = {1, errno};
+    (void)!::write(error_fd, &report, sizeof report);
+    ::_exit(127);
+  }
   ::setsid();
   // A kill -9 of mosb run takes the solver with it (its descendants are left to their session).
   ::prctl(PR_SET_PDEATHSIG, SIGKILL, 0, 0, 0);
@@ -252,18 +259,10 @@ struct Pipes {
     const rlimit limit{rlimit_as, rlimit_as};
     ::setrlimit(RLIMIT_AS, &limit);
   }
-  ::dup2(in, 0);
-  ::dup2(out, 1);
-  ::dup2(err, 2);
-  // A byte, not EOF: a sibling forked by another job's thread holds copies of this pipe's ends
-  // until it executes, so EOF could wait on it.
-  char go = 0;
-  while (::read(pipes.sync[0], &go, 1) < 0 && errno == EINTR) {
-  }
-  if (go != 1) ::_exit(127);
+  for (int i = 0; i < 3; ++i) ::dup2(fds[i], i);
   ::execve(spec.executable.c_str(), argv.data(), environ);
-  const int error = errno;
-  (void)!::write(pipes.error[1], &error, sizeof error);
+  report = {2, errno};
+  (void)!::write(error_fd, &report, sizeof report);
   ::_exit(127);
 }
 
@@ -273,55 +272,9 @@ int open_output(const std::string& path) {
   return fd;
 }
 
-}  // namespace
-
-namespace {
-
 double seconds_of(const timeval& t) {
   return static_cast<double>(t.tv_sec) + t.tv_usec / 1e6;
 }
-
-// Waits for the solver's own process; what it costs is added to `out`.
-class Waiter {
- public:
-  explicit Waiter(pid_t pid) : pid_(pid) {
-    pidfd_ = static_cast<int>(::syscall(SYS_pidfd_open, pid, 0));
-  }
-  ~Waiter() {
-    if (pidfd_ >= 0) ::close(pidfd_);
-  }
-  Waiter(const Waiter&) = delete;
-  Waiter& operator=(const Waiter&) = delete;
-
-  // Waits up to `ms` milliseconds; true once the solver has been reaped (status in status()).
-  bool wait(int ms, ProcessOutcome& out) {
-    if (reaped_) return true;
-    if (pidfd_ >= 0) {
-      pollfd p{pidfd_, POLLIN, 0};
-      ::poll(&p, 1, ms);
-    }
-    rusage usage{};
-    const pid_t r = ::wait4(pid_, &status_, WNOHANG, &usage);
-    if (r == pid_) {
-      reaped_ = true;
-      max_rss_ = static_cast<std::uint64_t>(usage.ru_maxrss) * 1024;
-      out.cpu_seconds += seconds_of(usage.ru_utime) + seconds_of(usage.ru_stime);
-      return true;
-    }
-    if (pidfd_ < 0) std::this_thread::sleep_for(std::chrono::milliseconds(ms));
-    return false;
-  }
-  int status() const { return status_; }
-  // The largest resident set of the solver or a descendant it reaped (not their sum).
-  std::uint64_t max_rss() const { return max_rss_; }
-
- private:
-  pid_t pid_;
-  int pidfd_ = -1;
-  int status_ = 0;
-  bool reaped_ = false;
-  std::uint64_t max_rss_ = 0;
-};
 
 // Kills everything left of the solver's session and reaps what became ours (subreaper).
 void kill_leftovers(pid_t sid, const MemoryGroup* group, ProcessOutcome& out) {
@@ -339,10 +292,6 @@ void kill_leftovers(pid_t sid, const MemoryGroup* group, ProcessOutcome& out) {
   }
 }
 
-}  // namespace
-
-namespace {
-
 // RLIMIT_AS under rlimit_poll: twice the limit, a backstop for allocations faster than the poll.
 // The address space of a process exceeds its resident memory (libraries, reserved arenas), so the
 // limit itself would refuse solvers well below it; the poll enforces the limit on resident memory.
@@ -350,100 +299,120 @@ std::uint64_t rlimit_backstop(std::uint64_t memory) {
   return memory == 0 ? 0 : memory > (UINT64_MAX / 2) ? memory : memory * 2;
 }
 
-// Starts the solver; returns its pid, or -1 with out.error set when the exec failed.
-pid_t start(const ProcessSpec& spec, Measurement m, std::uint64_t memory, const MemoryGroup* group,
-            ProcessOutcome& out) {
+struct Spawned {
+  pid_t pid = -1;
+  int error_fd = -1;  // read end of the child's error pipe
+};
+
+// Forks the solver; it joins its group and executes by itself, so the parent never waits for it.
+Spawned spawn(const ProcessSpec& spec, Measurement m, std::uint64_t memory,
+              const MemoryGroup* group) {
   std::vector<char*> argv;
   for (const auto& word : spec.argv) argv.push_back(const_cast<char*>(word.c_str()));
   argv.push_back(nullptr);
-  const int out_fd = open_output(spec.stdout_path), err_fd = open_output(spec.stderr_path);
-  const int in_fd = ::open("/dev/null", O_RDONLY | O_CLOEXEC);
-  Pipes pipes;
-  if (::pipe2(pipes.sync, O_CLOEXEC) != 0 || ::pipe2(pipes.error, O_CLOEXEC) != 0)
-    fail("cannot create a pipe");
+  const int fds[3] = {::open("/dev/null", O_RDONLY | O_CLOEXEC), open_output(spec.stdout_path),
+                      open_output(spec.stderr_path)};
+  int error_pipe[2];
+  // Non-blocking: read after the child ended, when a sibling forked meanwhile may still hold the
+  // write end (until it executes).
+  if (::pipe2(error_pipe, O_CLOEXEC) != 0) fail("cannot create a pipe");
+  ::fcntl(error_pipe[0], F_SETFL, O_NONBLOCK);
   const pid_t pid = ::fork();
   if (pid == 0)
-    start_child(spec, argv, out_fd, err_fd, in_fd, pipes,
+    start_child(spec, argv, fds, group ? group->procs_fd() : -1, error_pipe[1],
                 m == Measurement::rlimit_poll ? rlimit_backstop(memory) : 0);
   const int fork_error = errno;
-  for (int fd : {out_fd, err_fd, in_fd}) ::close(fd);
+  for (int fd : fds) ::close(fd);
+  ::close(error_pipe[1]);
   if (pid < 0) {
+    ::close(error_pipe[0]);
     errno = fork_error;
     fail("cannot fork");
   }
-  ::close(pipes.sync[0]);
-  pipes.sync[0] = -1;
-  ::close(pipes.error[1]);
-  pipes.error[1] = -1;
-  if (group) group->add(pid);
-  const char go = 1;
-  if (::write(pipes.sync[1], &go, 1) != 1) fail("cannot start the solver");
-  int error = 0;
-  ssize_t got = 0;
-  while ((got = ::read(pipes.error[0], &error, sizeof error)) < 0 && errno == EINTR) {
-  }
-  if (got == sizeof error) {
-    ::waitpid(pid, nullptr, 0);
-    out.ending = Ending::not_started;
-    out.error = spec.executable + ": cannot run: " + errno_text(error);
-    return -1;
-  }
-  return pid;
+  return {pid, error_pipe[0]};
 }
 
-// SIGTERM to the tree, up to `grace` for the solver to end, then SIGKILL.
-void terminate(pid_t pid, double grace, const MemoryGroup* group, Waiter& waiter,
-               ProcessOutcome& out) {
-  ::kill(-pid, SIGTERM);
-  const auto until = Clock::now() + std::chrono::duration<double>(grace);
-  while (Clock::now() < until)
-    if (waiter.wait(kPollMilliseconds, out)) break;
-  ::kill(-pid, SIGKILL);
-  if (group) group->kill_all();
-  while (!waiter.wait(kPollMilliseconds, out)) {
-  }
+// The child's report of a failed start, read once it has ended (nothing: it executed).
+std::optional<ChildError> child_error(int fd) {
+  ChildError report;
+  const ssize_t got = ::read(fd, &report, sizeof report);
+  ::close(fd);
+  if (got != sizeof report) return std::nullopt;
+  return report;
 }
 
 }  // namespace
 
-ProcessOutcome run_process(const ProcessSpec& spec, const ProcessLimits& limits, Measurement m,
-                           const std::atomic<bool>& stop) {
-  ProcessOutcome out;
-  std::optional<MemoryGroup> group;
-  if (m == Measurement::cgroup_v1) group.emplace(spec.group_name, limits.memory_bytes);
-  const MemoryGroup* g = group ? &*group : nullptr;
-  const auto started = Clock::now();
-  const pid_t pid = start(spec, m, limits.memory_bytes, g, out);
-  if (pid < 0) return out;
-  Waiter waiter(pid);
-  const auto deadline = started + std::chrono::duration<double>(limits.wall_seconds);
+// The per-job watchdog thread: every 20 ms it checks the running solver against the stop flag,
+// the deadline and (rlimit_poll) the session's resident memory, and kills the tree when one is
+// passed; the job's thread meanwhile sits in a blocking wait4, so a solver's exit costs no more
+// wake-ups than in a shell.
+struct ProcessRunner::Watch {
+  std::mutex mutex;
+  std::condition_variable wake;
+  bool quit = false, active = false;
+  pid_t pid = -1;
+  Measurement m = Measurement::rlimit_poll;
+  ProcessLimits limits;
+  const MemoryGroup* group = nullptr;
+  Clock::time_point deadline, kill_at;
+  std::optional<Ending> reason;
   std::uint64_t peak = 0;
-  bool killed = false;
-  while (!waiter.wait(kPollMilliseconds, out)) {
-    std::optional<Ending> reason;
-    if (stop.load()) reason = Ending::interrupted;
-    if (limits.wall_seconds > 0 && Clock::now() >= deadline) reason = Ending::timeout;
-    if (m == Measurement::rlimit_poll) {
-      peak = std::max(peak, session_rss(pid));
+  std::thread thread;
+
+  // Under the lock: what to do now for the active solver.
+  void check(const std::atomic<bool>& stop, std::unique_lock<std::mutex>& lock) {
+    if (!reason && m == Measurement::rlimit_poll) {
+      const pid_t sid = pid;
+      lock.unlock();
+      const std::uint64_t rss = session_rss(sid);
+      lock.lock();
+      if (!active || pid != sid) return;
+      peak = std::max(peak, rss);
       if (limits.memory_bytes != 0 && peak > limits.memory_bytes) reason = Ending::memory_limit;
     }
-    if (reason) {
-      out.ending = *reason;
-      terminate(pid, *reason == Ending::memory_limit ? 0 : limits.grace_seconds, g, waiter, out);
-      killed = true;
-      break;
+    const auto now = Clock::now();
+    if (!reason && stop.load()) reason = Ending::interrupted;
+    if (!reason && limits.wall_seconds > 0 && now >= deadline) reason = Ending::timeout;
+    if (!reason) return;
+    if (kill_at == Clock::time_point{}) {
+      ::kill(-pid, SIGTERM);
+      const double grace = *reason == Ending::memory_limit ? 0 : limits.grace_seconds;
+      kill_at =
+          now + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(grace));
+    }
+    if (now >= kill_at) {
+      ::kill(-pid, SIGKILL);
+      if (group) group->kill_all();
     }
   }
-  out.wall_seconds = std::chrono::duration<double>(Clock::now() - started).count();
-  kill_leftovers(pid, g, out);
-  if (g) {
-    out.peak_memory_bytes = g->peak();
-    if (!killed && g->oom_killed()) out.ending = Ending::memory_limit, killed = true;
-  } else {
-    out.peak_memory_bytes = std::max(peak, waiter.max_rss());
+
+  void loop(const std::atomic<bool>& stop) {
+    std::unique_lock lock(mutex);
+    while (!quit) {
+      wake.wait_for(lock, std::chrono::milliseconds(kPollMilliseconds));
+      if (active) check(stop, lock);
+    }
   }
-  if (killed) return out;
-  const int status = waiter.status();
+};
+
+ProcessRunner::ProcessRunner(const std::atomic<bool>& stop)
+    : stop_(stop), watch_(std::make_unique<Watch>()) {
+  watch_->thread = std::thread([this] { watch_->loop(stop_); });
+}
+
+ProcessRunner::~ProcessRunner() {
+  {
+    std::lock_guard lock(watch_->mutex);
+    watch_->quit = true;
+  }
+  watch_->wake.notify_all();
+  watch_->thread.join();
+}
+
+namespace {
+
+void classify_exit(int status, const MemoryGroup* g, ProcessOutcome& out) {
   if (WIFSIGNALED(status)) {
     out.ending = Ending::signaled;
     out.signal = WTERMSIG(status);
@@ -451,9 +420,65 @@ ProcessOutcome run_process(const ProcessSpec& spec, const ProcessLimits& limits,
     out.ending = Ending::exited;
     out.exit_code = WEXITSTATUS(status);
   }
-  if (g && out.ending != Ending::exited && g->hit_limit()) out.ending = Ending::memory_limit;
-  if (g && out.ending == Ending::exited && out.exit_code != 0 && g->hit_limit())
+  // A solver (or its child) the kernel's OOM killer hit, or one that failed after its group hit
+  // the limit, ran out of memory.
+  if (g &&
+      (g->oom_killed() || ((out.ending != Ending::exited || out.exit_code != 0) && g->hit_limit())))
     out.ending = Ending::memory_limit;
+}
+
+}  // namespace
+
+ProcessOutcome ProcessRunner::run(const ProcessSpec& spec, const ProcessLimits& limits,
+                                  Measurement m) {
+  ProcessOutcome out;
+  std::optional<MemoryGroup> group;
+  if (m == Measurement::cgroup_v1) group.emplace(spec.group_name, limits.memory_bytes);
+  const MemoryGroup* g = group ? &*group : nullptr;
+  const auto started = Clock::now();
+  const Spawned child = spawn(spec, m, limits.memory_bytes, g);
+  {
+    std::lock_guard lock(watch_->mutex);
+    Watch& w = *watch_;
+    w.active = true;
+    w.pid = child.pid;
+    w.m = m;
+    w.limits = limits;
+    w.group = g;
+    w.deadline = started + std::chrono::duration_cast<Clock::duration>(
+                               std::chrono::duration<double>(limits.wall_seconds));
+    w.kill_at = {};
+    w.reason.reset();
+    w.peak = 0;
+  }
+  int status = 0;
+  rusage usage{};
+  while (::wait4(child.pid, &status, 0, &usage) < 0 && errno == EINTR) {
+  }
+  out.wall_seconds = std::chrono::duration<double>(Clock::now() - started).count();
+  out.cpu_seconds = seconds_of(usage.ru_utime) + seconds_of(usage.ru_stime);
+  std::optional<Ending> reason;
+  std::uint64_t peak = 0;
+  {
+    std::lock_guard lock(watch_->mutex);
+    watch_->active = false;
+    reason = watch_->reason;
+    peak = watch_->peak;
+  }
+  kill_leftovers(child.pid, g, out);
+  const auto failed_start = child_error(child.error_fd);
+  out.peak_memory_bytes =
+      g ? g->peak() : std::max(peak, static_cast<std::uint64_t>(usage.ru_maxrss) * 1024);
+  if (failed_start) {
+    out.ending = Ending::not_started;
+    out.error = (failed_start->stage == 1 ? "cannot join the memory cgroup: "
+                                          : spec.executable + ": cannot run: ") +
+                errno_text(failed_start->error);
+  } else if (reason) {
+    out.ending = *reason;
+  } else {
+    classify_exit(status, g, out);
+  }
   return out;
 }
 

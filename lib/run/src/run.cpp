@@ -141,7 +141,7 @@ struct Plan {
   std::vector<std::string> objective_names;
   std::vector<Query> queries;
   std::vector<std::string> words;
-  bool front_in_file = false;
+  bool front_in_file = false, fronts_used = false;
   std::string executable;
   Measurement measurement = Measurement::rlimit_poll;
   std::vector<int> cpus;  // --pin: the CPUs this process may use
@@ -168,6 +168,7 @@ Plan make_plan(const RunConfig& c, const SolutionWriter& writer) {
   p.words = split_command(c.solver_template);
   const auto used = template_placeholders(p.words, run_placeholders());
   p.front_in_file = std::find(used.begin(), used.end(), "front") != used.end();
+  p.fronts_used = std::find(used.begin(), used.end(), "fronts") != used.end();
   p.executable = resolve_executable(p.words.front());
   if (p.executable.empty())
     throw Error(ErrorCode::invalid_argument,
@@ -257,10 +258,11 @@ class Runner {
     try {
       const std::string dir = temp_.path() + "/job" + std::to_string(job);
       fs::create_directories(dir);
+      ProcessRunner runner(stop_);
       while (!stop_.load()) {
         const std::uint64_t i = next_.fetch_add(1);
         if (i >= todo_.size()) return;
-        run_query(todo_[i], job, dir);
+        run_query(runner, todo_[i], job, dir);
         std::lock_guard lock(mutex_);
         if (error_) return;
       }
@@ -285,7 +287,7 @@ class Runner {
             {"threads", std::to_string(c_.threads)}};
   }
 
-  void run_query(std::uint64_t q, unsigned job, const std::string& dir) {
+  void run_query(ProcessRunner& runner, std::uint64_t q, unsigned job, const std::string& dir) {
     SolverOutputFiles files;
     files.stdout_path = dir + "/stdout";
     files.stderr_path = dir + "/stderr";
@@ -294,9 +296,11 @@ class Runner {
     files.front_in_file = p_.front_in_file;
     files.query = p_.queries[q];
     files.objectives = p_.objective_names.size();
-    fs::remove(files.front_path);
-    fs::remove_all(files.fronts_dir);
-    fs::create_directories(files.fronts_dir);
+    if (p_.front_in_file) fs::remove(files.front_path);
+    if (p_.fronts_used) {
+      fs::remove_all(files.fronts_dir);
+      fs::create_directories(files.fronts_dir);
+    }
     ProcessSpec spec;
     spec.executable = p_.executable;
     spec.argv = expand_command(p_.words, values(q, files));
@@ -304,7 +308,7 @@ class Runner {
     spec.stderr_path = files.stderr_path;
     if (c_.pin && !p_.cpus.empty()) spec.cpu = p_.cpus[job % p_.cpus.size()];
     spec.group_name = "mosb-run-" + std::to_string(::getpid()) + "-" + std::to_string(job);
-    const ProcessOutcome outcome = run_process(spec, c_.limits, p_.measurement, stop_);
+    const ProcessOutcome outcome = runner.run(spec, c_.limits, p_.measurement);
     if (outcome.ending == Ending::interrupted) return;  // no record: --resume runs it again
     const QueryRecord record = classify(q, outcome, files, adapter_, writer_);
     journal_.append(record);

@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -67,14 +68,28 @@ struct ProcessOutcome {
 // name in $PATH (empty when none).
 std::string resolve_executable(const std::string& name);
 
-// Must be called once before run_process, from the main thread before other threads start: makes
-// this process the reaper of orphaned descendants (PR_SET_CHILD_SUBREAPER), so a solver's
+// Must be called once before ProcessRunner::run, from the main thread before other threads start:
+// makes this process the reaper of orphaned descendants (PR_SET_CHILD_SUBREAPER), so a solver's
 // children that outlive it are killed and reaped here, never left to init.
 void prepare_process_runner();
 
-// Runs `spec` to its end under `limits`, measured with `m`. `stop` is polled about every 20 ms.
-// Throws mosb::Error only when mosb itself cannot set up (files, cgroup, fork).
-ProcessOutcome run_process(const ProcessSpec& spec, const ProcessLimits& limits, Measurement m,
-                           const std::atomic<bool>& stop);
+// Runs solvers one after the other (one per job of `mosb run`), each to its end under its
+// limits. A watchdog thread of its own checks the running solver every 20 ms against `stop`, the
+// deadline and, under rlimit_poll, the memory limit.
+class ProcessRunner {
+ public:
+  explicit ProcessRunner(const std::atomic<bool>& stop);
+  ~ProcessRunner();
+  ProcessRunner(const ProcessRunner&) = delete;
+  ProcessRunner& operator=(const ProcessRunner&) = delete;
+
+  // Throws mosb::Error only when mosb itself cannot set up (files, cgroup, fork).
+  ProcessOutcome run(const ProcessSpec& spec, const ProcessLimits& limits, Measurement m);
+
+ private:
+  struct Watch;
+  const std::atomic<bool>& stop_;
+  std::unique_ptr<Watch> watch_;
+};
 
 }  // namespace mosb
