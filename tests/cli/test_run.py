@@ -28,6 +28,17 @@ ALLOCATE = ("import time\nchunks = []\nfor i in range(128):\n"
             "    chunks.append(b'x' * (8 << 20))\n    time.sleep(0.005)\n")
 
 
+def memory_cgroup():
+    """This process's cgroup v1 memory directory (mosb run's groups are made in it), or None."""
+    with open("/proc/self/cgroup") as f:
+        for line in f:
+            _, controllers, path = line.rstrip("\n").split(":", 2)
+            if "memory" in controllers.split(","):
+                d = "/sys/fs/cgroup/memory" + ("" if path == "/" else path)
+                return d if os.path.isdir(d) else None
+    return None
+
+
 def alive(pid):
     """Whether process `pid` exists and is not a zombie."""
     try:
@@ -223,6 +234,9 @@ class RunTest(CliTest):
         r = self.run_solver(template + " --extra", "--resume", code=1)
         self.assertIn("the journal is of another run (solver", r.stderr)
         self.run_solver(template, "--resume")
+        group = memory_cgroup()
+        if group:  # the killed run's group is removed by the next run once empty
+            self.assertFalse(os.path.exists(os.path.join(group, "mosb-run-%d-0" % p.pid)))
         for q in done_before:
             self.assertEqual(mosbtest.read(os.path.join(markers, str(q)), "r"), "x\n", q)
         self.assertEqual(sorted(os.listdir(markers)), [str(q) for q in range(6)])
@@ -267,7 +281,7 @@ class RunTest(CliTest):
         boa = os.path.join(EXAMPLES, "boa_star")
         namoa = os.path.join(EXAMPLES, "namoa")
         self.run_solver(boa + " {instance} --view {view} --query {source} {target} --protocol",
-                        "--time-limit", "60s", "--memory-limit", "1G", "--jobs", "2",
+                        "--time-limit", "60s", "--memory-limit", "1G", "--jobs", "2", "--pin",
                         output="boa.sol")
         self.ok("solutions", "verify", "--instance", self.grid, self.path("boa.sol"))
         self.run_solver(namoa + " {instance} --view {view} --query {source} {target} --fronts "
@@ -281,6 +295,8 @@ class RunTest(CliTest):
         self.assertEqual(info["parameters"]["run.measurement"] in ("cgroup-v1", "rlimit-poll"),
                          True)
         self.assertEqual(len(info["parameters"]["run.executable_sha256"]), 64)
+        self.assertEqual(info["parameters"]["run.pin"], "yes")
+        self.assertEqual(info["parameters"]["run.jobs"], "2")
         self.assertEqual(info["statistics"]["expanded"]["queries"], 8)
         self.assertEqual(info["statistics"]["peak_memory_bytes"]["queries"], 8)
 

@@ -145,7 +145,34 @@ std::string resolve_executable(const std::string& name) {
   return {};
 }
 
+namespace {
+
+// Groups `mosb-run-PID-JOB` left by a mosb run that was killed (kill -9 leaves its groups and the
+// solver's descendants behind): when PID no longer runs, what is left in the group is killed and
+// the group removed.
+void remove_stale_groups() {
+  const std::string base = own_memory_cgroup();
+  if (base.empty()) return;
+  DIR* dir = ::opendir(base.c_str());
+  if (!dir) return;
+  while (const dirent* entry = ::readdir(dir)) {
+    const std::string name = entry->d_name;
+    if (!name.starts_with("mosb-run-")) continue;
+    const long pid = std::atol(name.c_str() + 9);
+    if (pid <= 0 || pid == ::getpid() || ::kill(static_cast<pid_t>(pid), 0) == 0) continue;
+    const std::string group = base + "/" + name;
+    for (int i = 0; i < 100 && ::rmdir(group.c_str()) != 0 && errno == EBUSY; ++i) {
+      for (const pid_t member : cgroup_members(group)) ::kill(member, SIGKILL);
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+  }
+  ::closedir(dir);
+}
+
+}  // namespace
+
 void prepare_process_runner() {
+  remove_stale_groups();
   ::prctl(PR_SET_CHILD_SUBREAPER, 1, 0, 0, 0);
 }
 
