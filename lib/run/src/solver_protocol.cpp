@@ -19,7 +19,7 @@ std::string shown(const char* begin, const char* end) {
   const std::size_t length = std::min<std::size_t>(static_cast<std::size_t>(end - begin), 24);
   std::string text;
   for (std::size_t i = 0; i < length; ++i) {
-    const unsigned char c = static_cast<unsigned char>(begin[i]);
+    const auto c = static_cast<unsigned char>(begin[i]);
     text += c >= 0x20 && c < 0x7f ? static_cast<char>(c) : '?';
   }
   return text;
