@@ -166,6 +166,35 @@ class RunTest(CliTest):
         self.assertEqual(info["statistics"]["generated"]["total"], 11)
         self.assert_no_process_left()
 
+    def test_a_program_that_cannot_execute_is_failed_with_127(self):
+        self.ok("queries", "generate", self.grid, "--set", "one", "--count", "1", "--in-place")
+        solver = self.write("noshebang", "echo 1 2\n")  # executable, but no #! line: ENOEXEC
+        os.chmod(solver, 0o755)
+        r = self.run_solver(solver, queries="one")
+        info = self.inspect()
+        self.assert_status(info, "failed")
+        self.assertEqual(info["statistics"]["exit_status"]["max"], 127)
+        self.assertIn("cannot run: Exec format error", r.stderr)
+
+    def test_objectives_instead_of_a_view(self):
+        self.ok("queries", "generate", self.grid, "--set", "one", "--count", "1", "--in-place")
+        solver = self.script("solver", "echo $$ >> %s\necho \"$1\" > %s\necho 0 7\n" %
+                             (self.pids, self.path("objectives")))
+        r = self.mosb("run", self.grid, "--objectives", "c1,c2", "--queries", "one", "--solver",
+                      solver + " {objectives}", "-o", self.path("out.sol"))
+        self.assertEqual(r.returncode, 0, r)
+        info = self.inspect()
+        self.assertEqual(info["view"], "Grid_2")
+        self.assertEqual(info["vectors"], 1)
+        self.assertEqual(mosbtest.read(self.path("objectives"), "r"), "c1,c2\n")
+        r = self.mosb("run", self.grid, "--objectives", "c2,c1", "--queries", "one", "--solver",
+                      solver, "-o", self.path("other.sol"))
+        self.assert_one_line_error(r, "grid.mosb: no view has these objectives")
+        r = self.mosb("run", self.grid, "--view", "Grid_2", "--queries", "one", "--solver",
+                      "no-such-solver-anywhere {query}", "-o", self.path("other.sol"))
+        self.assert_one_line_error(r, "no-such-solver-anywhere: no such executable in PATH")
+        self.assertFalse(os.path.exists(self.path("other.sol.journal")))
+
     # --- templates --------------------------------------------------------------------------
 
     def test_template_quoting_passes_one_argument(self):

@@ -147,20 +147,23 @@ struct Plan {
   std::vector<int> cpus;  // --pin: the CPUs this process may use
 };
 
-Plan make_plan(const RunConfig& c, const SolutionWriter& writer) {
-  Plan p;
+// The view the solution file records: --view, or the instance's view with the --objectives list.
+std::string resolve_view(const RunConfig& c) {
   const auto selected = select_view(*c.instance, c.choice);
   if (!selected) throw Error(ErrorCode::invalid_argument, "give --view V or --objectives A,B,...");
-  p.view = c.choice.view;
-  if (p.view.empty()) {
-    auto name = view_with_objectives(*c.instance, selected->objectives);
-    if (!name)
-      throw Error(ErrorCode::invalid_argument,
-                  c.instance->display_name() +
-                      ": no view has these objectives, and a solution file records a view; name "
-                      "one with --view");
-    p.view = *name;
-  }
+  if (!c.choice.view.empty()) return c.choice.view;
+  auto name = view_with_objectives(*c.instance, selected->objectives);
+  if (!name)
+    throw Error(ErrorCode::invalid_argument,
+                c.instance->display_name() +
+                    ": no view has these objectives, and a solution file records a view; name "
+                    "one with --view");
+  return *name;
+}
+
+Plan make_plan(const RunConfig& c, const SolutionWriter& writer) {
+  Plan p;
+  p.view = resolve_view(c);
   p.query_set = c.choice.queries.empty() ? c.instance->view(p.view).query_set : c.choice.queries;
   const auto stored = c.instance->queries(p.query_set);
   p.queries.assign(stored.begin(), stored.end());
@@ -378,15 +381,7 @@ RunResult run_solver(const RunConfig& c, const RunCallbacks& callbacks,
                      const std::atomic<bool>& stop) {
   if (!c.instance) throw Error(ErrorCode::invalid_argument, "run_solver: no instance");
   const unsigned jobs = std::max(1u, c.jobs);
-  const std::string view_for_writer = [&] {
-    const auto selected = select_view(*c.instance, c.choice);
-    if (!c.choice.view.empty() || !selected) return c.choice.view;
-    return view_with_objectives(*c.instance, selected->objectives).value_or(std::string());
-  }();
-  if (view_for_writer.empty())
-    throw Error(ErrorCode::invalid_argument,
-                "give --view V, or --objectives A,B,... of one of the instance's views");
-  SolutionWriter writer(*c.instance, view_for_writer, c.choice.queries);
+  SolutionWriter writer(*c.instance, resolve_view(c), c.choice.queries);
   const Plan plan = make_plan(c, writer);
   prepare_process_runner();
   RunResult result;
