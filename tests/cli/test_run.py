@@ -293,6 +293,12 @@ class RunTest(CliTest):
         self.assertTrue(os.path.exists(self.path("out.sol.journal")))
         self.assertFalse(os.path.exists(self.path("out.sol")))
         self.assert_no_process_left()
+        lines = mosbtest.read(self.path("out.sol.journal"), "r").count("\n")
+        with open(self.path("out.sol.journal"), "a") as f:  # a whole line, not a torn one
+            f.write("not json\n")
+        r = self.mosb("run", self.grid, "--view", "Grid_2", "--queries", "q", "--solver", solver,
+                      "--jobs", "2", "-o", self.path("out.sol"), "--resume")
+        self.assert_one_line_error(r, "out.sol.journal:%d: not a journal record" % (lines + 1))
 
     # --- the example solvers ----------------------------------------------------------------
 
