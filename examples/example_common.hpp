@@ -57,6 +57,7 @@ struct Options {
   std::string program, instance, view, query_set, fronts_dir;
   std::vector<std::string> objectives;  // --objectives: names overriding the view's list
   std::vector<mosb::Query> queries;     // --query S T ...
+  bool protocol = false;                // --protocol: speak mosb run's solver protocol
 };
 
 // An instance ready to solve; `owner` keeps whatever the spans point into alive.
@@ -71,7 +72,8 @@ using Front = std::vector<std::vector<double>>;
 [[noreturn]] inline void usage_error(const std::string& program, const std::string& message) {
   std::fprintf(stderr,
                "%s: %s\nusage: %s INSTANCE [--view V] [--objectives A,B,...] "
-               "[--queries SET | --query S T ...] [--fronts DIR]\n",
+               "[--queries SET | --query S T ...] [--fronts DIR] "
+               "[--protocol]\n",
                program.c_str(), message.c_str(), program.c_str());
   std::exit(2);
 }
@@ -100,6 +102,8 @@ inline Options parse_args(int argc, char** argv) {
       o.query_set = value(i);
     } else if (arg == "--fronts") {
       o.fronts_dir = value(i);
+    } else if (arg == "--protocol") {
+      o.protocol = true;
     } else if (arg == "--objectives") {
       const std::string list = value(i);
       for (std::size_t pos = 0; pos <= list.size();) {
@@ -123,6 +127,8 @@ inline Options parse_args(int argc, char** argv) {
   if (o.instance.empty()) usage_error(o.program, "no instance given");
   if (!o.query_set.empty() && !o.queries.empty())
     usage_error(o.program, "--queries and --query exclude each other");
+  if (o.protocol && (o.queries.size() != 1 || !o.fronts_dir.empty()))
+    usage_error(o.program, "--protocol needs exactly one --query S T and no --fronts");
   return o;
 }
 
@@ -233,6 +239,24 @@ inline void write_front(const std::string& dir, std::size_t index, Front front) 
   std::filesystem::rename(partial, path);
 }
 
+// The solver protocol of `mosb run` (spec/RUN.md): the front on stdout, one vector per line in
+// the shortest %.17g form, lines sorted as in front files; the statistics on stderr.
+inline void print_protocol(Front front, double seconds, std::uint64_t expansions) {
+  std::sort(front.begin(), front.end());
+  char number[32];
+  for (const auto& costs : front) {
+    for (std::size_t k = 0; k < costs.size(); ++k) {
+      std::snprintf(number, sizeof number, "%.17g", costs[k]);
+      std::fputs(k ? " " : "", stdout);
+      std::fputs(number, stdout);
+    }
+    std::fputc('\n', stdout);
+  }
+  std::fflush(stdout);
+  std::fprintf(stderr, "mosb: expanded=%llu\nmosb: runtime_seconds=%.6f\n",
+               static_cast<unsigned long long>(expansions), seconds);
+}
+
 // The whole program around a solver: Front solve(const Graph&, Query, uint64_t& expansions).
 template <class Open, class Solve>
 int run(int argc, char** argv, Open open, Solve solve, std::size_t needed_objectives = 0) {
@@ -250,6 +274,10 @@ int run(int argc, char** argv, Open open, Solve solve, std::size_t needed_object
       std::uint64_t expansions = 0;
       Front front = solve(in.graph, in.queries[i], expansions);
       const std::chrono::duration<double> took = std::chrono::steady_clock::now() - started;
+      if (o.protocol) {
+        print_protocol(std::move(front), took.count(), expansions);
+        continue;
+      }
       std::printf("%u %u %zu %.6f %llu\n", in.queries[i].start, in.queries[i].goal, front.size(),
                   took.count(), static_cast<unsigned long long>(expansions));
       std::fflush(stdout);

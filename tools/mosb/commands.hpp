@@ -167,6 +167,7 @@ Command add_solutions(CLI::App& app);  // solutions.cpp: `solutions import|expor
 Command add_solutions_compare(CLI::App* solutions);  // solutions_compare.cpp: `solutions compare`
 Command add_eval(CLI::App& app);                     // eval.cpp: `eval`
 Command add_pack(CLI::App& app);                     // pack.cpp: `pack`
+Command add_run(CLI::App& app);                      // run.cpp: `run`
 Command add_unpack(CLI::App& app);                   // pack.cpp: `unpack`
 
 // Children of `generate`.

@@ -50,7 +50,7 @@ int run(int argc, char** argv) {
       mosb::cli::add_convert(app),   mosb::cli::add_queries(app), mosb::cli::add_stats(app),
       mosb::cli::add_export(app),    mosb::cli::add_store(app),   mosb::cli::add_suite(app),
       mosb::cli::add_plot(app),      mosb::cli::add_pack(app),    mosb::cli::add_unpack(app),
-      mosb::cli::add_solutions(app), mosb::cli::add_eval(app),
+      mosb::cli::add_solutions(app), mosb::cli::add_eval(app),    mosb::cli::add_run(app),
   };
   try {
     app.parse(argc, argv);

@@ -35,21 +35,6 @@ struct ImportArgs {
   bool json = false;
 };
 
-// `selected` (an objective list) as the instance's view with exactly those objectives when one
-// exists, so the file stays readable by format 1.3 readers; else without a view (format 1.4).
-View named_if_possible(const GraphReader& instance, View selected, const std::string& queries) {
-  for (const auto& view : instance.views())
-    if (view.objectives == selected.objectives) {
-      selected.name = view.name;
-      selected.query_set = queries.empty() ? view.query_set : queries;
-      return selected;
-    }
-  if (selected.query_set.empty())
-    throw UsageError("--objectives: " + instance.display_name() +
-                     " has no view with these objectives to take a query set from; give "
-                     "--queries SET");
-  return selected;
-}
 
 int run_import(const ImportArgs& a) {
   const int inputs = !a.directory.empty() + !a.table.empty() + !a.json_log.empty();
@@ -58,8 +43,13 @@ int run_import(const ImportArgs& a) {
   if (a.choice.view.empty() && a.choice.objectives.empty())
     throw UsageError("give --view V or --objectives A,B,... (the objectives the costs are)");
   const auto instance = mosb::load(a.instance, VerifyLevel::checksums);
-  auto selected = *select_view(instance, a.choice);
-  if (a.choice.view.empty()) selected = named_if_possible(instance, selected, a.choice.queries);
+  View selected;
+  try {
+    selected = solution_selection(instance, a.choice);
+  } catch (const Error& e) {
+    if (e.code() != ErrorCode::invalid_argument) throw;
+    throw UsageError(e.what());
+  }
   SolutionWriter writer(instance, selected);
   const auto& set = selected.query_set;
   converters::SolutionImportOptions options;
@@ -158,6 +148,10 @@ void print_inspect_json(const InspectArgs& a, const SolutionReader& r, const Sol
   json.key("solver").value(solver.name);
   json.key("solver_version").value(solver.version);
   json.key("epsilon").value(solver.epsilon);
+  json.key("machine").value(solver.machine);
+  json.key("parameters").begin_object();
+  for (const auto& [key, value] : solver.parameters) json.key(key).value(value);
+  json.end_object();
   json.key("queries").value(r.query_count());
   json.key("vectors").value(r.vector_count());
   json.key("statuses").begin_object();
@@ -201,6 +195,10 @@ void print_inspect_text(const InspectArgs& a, const SolutionReader& r, const Sol
   std::cout << "\nsolver " << (solver.name.empty() ? "-" : escape_for_terminal(solver.name))
             << (solver.version.empty() ? "" : " " + escape_for_terminal(solver.version))
             << ", epsilon " << escape_for_terminal(solver.epsilon) << "\n";
+  if (!solver.machine.empty())
+    std::cout << "machine " << escape_for_terminal(solver.machine) << "\n";
+  for (const auto& [key, value] : solver.parameters)
+    std::cout << "parameter " << key << " = " << escape_for_terminal(value) << "\n";
   std::cout << r.query_count() << " queries:";
   for (std::uint8_t s = 0; s <= kLastQueryStatus; ++s)
     std::cout << ' ' << t.status_counts[s] << ' ' << to_string(static_cast<QueryStatus>(s))

@@ -177,4 +177,27 @@ std::optional<View> select_view(const GraphReader& reader, const ViewChoice& cho
   return selected;
 }
 
+View solution_selection(const GraphReader& reader, const ViewChoice& choice) {
+  auto selected = select_view(reader, choice);
+  if (!selected || (choice.view.empty() && choice.objectives.empty()))
+    throw Error(ErrorCode::invalid_argument,
+                reader.display_name() + ": give a view or an objective list (--view V or "
+                                        "--objectives A,B,...)");
+  if (choice.view.empty()) {
+    for (const auto& view : reader.views())
+      if (view.objectives == selected->objectives) {
+        selected->name = view.name;
+        if (selected->query_set.empty()) selected->query_set = view.query_set;
+        break;
+      }
+  }
+  if (selected->query_set.empty())
+    throw Error(ErrorCode::invalid_argument,
+                reader.display_name() + ": no query set for these objectives (" +
+                    (selected->name.empty() ? std::string("no view has them")
+                                            : "view '" + selected->name + "' names none") +
+                    "); give --queries SET");
+  return *selected;
+}
+
 }  // namespace mosb

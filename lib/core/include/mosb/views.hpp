@@ -58,4 +58,11 @@ struct ViewChoice {
 // invalid_argument for both a view and an objective list.
 std::optional<View> select_view(const GraphReader& reader, const ViewChoice& choice);
 
+// What a solution file is bound to for `choice` (spec/SOLUTIONS.md §2): select_view's result,
+// where an objective list given without a view is named after the first of `reader`'s views with
+// exactly that list, in order (so the file says format 1.3), and takes that view's query set
+// unless `choice.queries` names one; without such a view it stays unnamed (format 1.4). Throws as
+// select_view, and invalid_argument naming the file for an empty choice or no query set.
+View solution_selection(const GraphReader& reader, const ViewChoice& choice);
+
 }  // namespace mosb

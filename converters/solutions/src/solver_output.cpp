@@ -1,0 +1,34 @@
+#include "mosb/converters/solver_output.hpp"
+
+#include "mosb/converters/solution_import.hpp"
+#include "mosb/converters/text_input.hpp"
+#include "mosb/error.hpp"
+
+namespace mosb::converters {
+
+ParsedOutput read_example_log_output(const SolverOutputFiles& files) {
+  SolutionImportOptions options;
+  options.objective_count = files.objectives;
+  options.vertex_count = std::uint64_t{1} << 32;  // the endpoints are checked against the query
+  options.queries = std::span<const Query>(&files.query, 1);
+  options.status_for_empty = QueryStatus::failed;
+  auto results = import_front_directory(files.fronts_dir, options);
+  const auto log = read_text_input(files.stdout_path);
+  apply_example_run_log(log.text, files.stdout_path, options, results);
+  if (results.size() != 1 || results.front().status == QueryStatus::failed)
+    throw Error(files.fronts_dir + ": no front file 0.txt");
+  ParsedOutput out;
+  out.vectors = results.front().costs.size() / files.objectives;
+  out.costs = std::move(results.front().costs);
+  out.statistics.expanded = results.front().statistics.expanded;
+  out.statistics.runtime_seconds = results.front().statistics.runtime_seconds;
+  return out;
+}
+
+std::optional<OutputAdapter> solver_output_adapter(std::string_view format) {
+  if (format == "protocol") return OutputAdapter(read_protocol_output);
+  if (format == "example-log") return OutputAdapter(read_example_log_output);
+  return std::nullopt;
+}
+
+}  // namespace mosb::converters

@@ -1,0 +1,113 @@
+// `mosb run` (spec/RUN.md): one solver process per query of a query set, each limited and measured
+// (process.hpp), its output read by an adapter (the solver protocol by default), every finished
+// query appended to a journal beside the output, and at the end one solution file written
+// atomically through SolutionWriter. Queries are indexed 0..Q-1 in the query set's order; the
+// journal holds one record per query, so a run may be resumed, or (later) split into shards.
+#pragma once
+
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mosb/graph_reader.hpp"
+#include "mosb/process.hpp"
+#include "mosb/query.hpp"
+#include "mosb/solution_file.hpp"
+#include "mosb/solver_protocol.hpp"
+#include "mosb/views.hpp"
+
+namespace mosb {
+
+// "CPU MODEL, N cores, memory M kB, Linux RELEASE ARCH" from /proc and uname.
+std::string describe_machine();
+
+// What one solver process left behind for one query.
+struct SolverOutputFiles {
+  std::string stdout_path, stderr_path;
+  std::string front_path;  // the {front} file (read instead of stdout when front_in_file)
+  std::string fronts_dir;  // the {fronts} directory (example-log)
+  bool front_in_file = false;
+  Query query;
+  std::size_t objectives = 0;
+};
+
+struct ParsedOutput {
+  std::vector<double> costs;  // vector after vector
+  std::uint64_t vectors = 0;
+  ReportedStatistics statistics;
+};
+
+// Reads a solver's output; throws mosb::Error (naming the file) when it is unreadable, which makes
+// the query `failed`.
+using OutputAdapter = std::function<ParsedOutput(const SolverOutputFiles&)>;
+// The solver protocol (spec/RUN.md §3): the front from stdout or {front}, statistics from stderr.
+ParsedOutput read_protocol_output(const SolverOutputFiles& files);
+
+// The result of one query as the journal keeps it.
+struct QueryRecord {
+  std::uint64_t query = 0;
+  QueryStatus status = QueryStatus::not_run;
+  std::vector<double> costs;
+  QueryStatistics statistics;  // as the solution file takes them for `status`
+  double wall_seconds = 0, cpu_seconds = 0;
+  std::optional<std::uint64_t> peak_memory_bytes;
+  std::optional<double> reported_runtime_seconds;
+  std::string message;                   // why a failed query failed
+  std::vector<std::string> stderr_tail;  // the solver's last lines of stderr (failed queries)
+};
+
+struct RunConfig {
+  const GraphReader* instance = nullptr;  // opened by the caller (checksums verified)
+  std::string instance_path;              // what {instance} becomes
+  ViewChoice choice;
+  std::string solver_template;
+  std::string output_format = "protocol";  // recorded; `adapter` reads it
+  OutputAdapter adapter;                   // empty: read_protocol_output
+  ProcessLimits limits;
+  unsigned jobs = 1;
+  bool pin = false;
+  unsigned threads = 1;                    // what {threads} becomes
+  std::optional<Measurement> measurement;  // nullopt: detect_measurement()
+  bool resume = false;
+  std::string solver_name, solver_version;  // name empty: the executable's file name
+  std::string output;                       // the solution file; the journal is OUTPUT.journal
+  // SHA-256 (hex) of a file: the executable's digest for the metadata.
+  std::function<std::string(const std::string&)> sha256_file;
+};
+
+struct RunProgress {
+  std::uint64_t done = 0, total = 0;
+  std::array<std::uint64_t, kLastQueryStatus + 1> counts{};
+  double elapsed_seconds = 0;   // of this invocation
+  std::uint64_t done_here = 0;  // queries finished by this invocation (for an ETA)
+};
+
+struct RunCallbacks {
+  std::function<void(const RunProgress&)> progress;
+  std::function<void(const QueryRecord&, const Query&)> failed;
+};
+
+struct RunResult {
+  bool interrupted = false;
+  std::uint64_t total = 0, from_journal = 0, ran = 0;
+  std::array<std::uint64_t, kLastQueryStatus + 1> counts{};
+  double wall_seconds = 0, cpu_seconds = 0;  // of the solvers run by this invocation
+  Measurement measurement = Measurement::rlimit_poll;
+  std::string journal;
+};
+
+// The journal of `output`.
+std::string journal_path(const std::string& output);
+
+// Runs the queries `config` selects (those the journal lacks, with resume). Throws mosb::Error
+// (invalid_argument for a bad template or a journal of another run, io for the file system) before
+// any solver starts; after that, a solver's problems are query statuses. With `stop` set, the
+// running solvers are killed, the journal kept, nothing written, and interrupted is true.
+RunResult run_solver(const RunConfig& config, const RunCallbacks& callbacks,
+                     const std::atomic<bool>& stop);
+
+}  // namespace mosb

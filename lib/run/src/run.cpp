@@ -1,0 +1,399 @@
+#include "mosb/run.hpp"
+
+#include <sched.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+#include "journal.hpp"
+#include "mosb/command_template.hpp"
+#include "mosb/error.hpp"
+#include "mosb/version.hpp"
+
+namespace mosb {
+
+namespace fs = std::filesystem;
+using run_internal::Journal;
+
+namespace {
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(ErrorCode::io, path + ": cannot read the solver's output");
+  std::string text;
+  in.seekg(0, std::ios::end);
+  text.resize(static_cast<std::size_t>(in.tellg()));
+  in.seekg(0);
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  return text;
+}
+
+// The last `count` non-blank lines of a file (at most 4 KiB read), control characters as '?'.
+std::vector<std::string> tail_lines(const std::string& path, std::size_t count) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in) return {};
+  const auto size = static_cast<std::int64_t>(in.tellg());
+  const std::int64_t start = std::max<std::int64_t>(0, size - 4096);
+  in.seekg(start);
+  std::string text(static_cast<std::size_t>(size - start), '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  std::vector<std::string> lines;
+  std::stringstream stream(text);
+  for (std::string line; std::getline(stream, line);) {
+    for (char& c : line)
+      if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f) c = '?';
+    if (line.find_first_not_of(" ?") != std::string::npos) lines.push_back(line.substr(0, 200));
+  }
+  if (lines.size() > count) lines.erase(lines.begin(), lines.end() - static_cast<long>(count));
+  return lines;
+}
+
+}  // namespace
+
+ParsedOutput read_protocol_output(const SolverOutputFiles& files) {
+  ParsedOutput out;
+  const std::string& front_file = files.front_in_file ? files.front_path : files.stdout_path;
+  const std::string name = files.front_in_file ? "{front}" : "stdout";
+  auto front = parse_protocol_front(read_file(front_file), files.objectives, name);
+  out.costs = std::move(front.costs);
+  out.vectors = front.vectors;
+  out.statistics = parse_protocol_statistics(read_file(files.stderr_path), "stderr");
+  return out;
+}
+
+std::string journal_path(const std::string& output) {
+  return output + ".journal";
+}
+
+namespace {
+
+// The status and statistics of a finished solver (spec/RUN.md §4).
+QueryRecord classify(std::uint64_t q, const ProcessOutcome& o, const SolverOutputFiles& files,
+                     const OutputAdapter& adapter, const SolutionWriter& writer) {
+  QueryRecord r;
+  r.query = q;
+  r.wall_seconds = o.wall_seconds;
+  r.cpu_seconds = o.cpu_seconds;
+  r.peak_memory_bytes = o.peak_memory_bytes;
+  const auto failed = [&](std::uint64_t exit_status, std::string message) {
+    r.status = QueryStatus::failed;
+    r.statistics.exit_status = exit_status;
+    r.message = std::move(message);
+    r.stderr_tail = tail_lines(files.stderr_path, 5);
+    return r;
+  };
+  switch (o.ending) {
+    case Ending::timeout:
+      r.status = QueryStatus::timeout;
+      return r;
+    case Ending::memory_limit:
+      r.status = QueryStatus::memory_limit;
+      return r;
+    case Ending::not_started:
+      return failed(127, o.error);
+    case Ending::signaled:
+      return failed(128 + static_cast<std::uint64_t>(o.signal),
+                    "killed by signal " + std::to_string(o.signal));
+    case Ending::interrupted:
+      return r;
+    case Ending::exited:
+      break;
+  }
+  if (o.exit_code != 0)
+    return failed(static_cast<std::uint64_t>(o.exit_code),
+                  "exit status " + std::to_string(o.exit_code));
+  ParsedOutput parsed;
+  try {
+    parsed = adapter(files);
+  } catch (const Error& e) {
+    return failed(0, std::string("unreadable output: ") + e.what());
+  }
+  for (std::size_t i = 0; i < parsed.costs.size(); ++i)
+    if (auto problem = writer.cost_problem(i % files.objectives, parsed.costs[i]))
+      return failed(0, "unreadable output: vector " + std::to_string(i / files.objectives + 1) +
+                           ": " + *problem);
+  r.status = parsed.vectors == 0 ? QueryStatus::disconnected : QueryStatus::solved;
+  r.costs = std::move(parsed.costs);
+  r.reported_runtime_seconds = parsed.statistics.runtime_seconds;
+  r.statistics.runtime_seconds = o.wall_seconds;
+  r.statistics.peak_memory_bytes = o.peak_memory_bytes;
+  r.statistics.expanded = parsed.statistics.expanded;
+  r.statistics.generated = parsed.statistics.generated;
+  return r;
+}
+
+std::string format_seconds(double s) {
+  std::ostringstream out;
+  out << s;
+  return out.str();
+}
+
+// Everything fixed for the whole run.
+struct Plan {
+  std::string view, query_set;
+  std::vector<std::string> objective_names;
+  std::vector<Query> queries;
+  std::vector<std::string> words;
+  bool front_in_file = false, fronts_used = false;
+  std::string executable;
+  Measurement measurement = Measurement::rlimit_poll;
+  std::vector<int> cpus;  // --pin: the CPUs this process may use
+};
+
+Plan make_plan(const RunConfig& c, const View& selection, const SolutionWriter& writer) {
+  Plan p;
+  p.view = selection.name;  // empty: bound to the objectives alone (spec/SOLUTIONS.md §2)
+  p.query_set = selection.query_set;
+  const auto stored = c.instance->queries(p.query_set);
+  p.queries.assign(stored.begin(), stored.end());
+  p.objective_names = writer.objective_names();
+  p.words = split_command(c.solver_template);
+  const auto used = template_placeholders(p.words, run_placeholders());
+  p.front_in_file = std::find(used.begin(), used.end(), "front") != used.end();
+  p.fronts_used = std::find(used.begin(), used.end(), "fronts") != used.end();
+  p.executable = resolve_executable(p.words.front());
+  if (p.executable.empty())
+    throw Error(ErrorCode::invalid_argument,
+                "--solver: " + p.words.front() + ": no such executable in PATH");
+  if (::access(p.executable.c_str(), X_OK) != 0)
+    throw Error(ErrorCode::invalid_argument,
+                "--solver: " + p.executable + ": not an executable file");
+  p.measurement = c.measurement ? *c.measurement : detect_measurement();
+  cpu_set_t set;
+  if (::sched_getaffinity(0, sizeof set, &set) == 0)
+    for (int cpu = 0; cpu < CPU_SETSIZE; ++cpu)
+      if (CPU_ISSET(cpu, &set)) p.cpus.push_back(cpu);
+  return p;
+}
+
+nlohmann::json binding_of(const RunConfig& c, const Plan& p) {
+  return {{"instance_digest", c.instance->digest()},
+          {"view", p.view},
+          {"objectives", p.objective_names},
+          {"query_set", p.query_set},
+          {"queries", p.queries.size()},
+          {"solver", c.solver_template},
+          {"output_format", c.output_format},
+          {"time_limit_seconds", c.limits.wall_seconds},
+          {"memory_limit_bytes", c.limits.memory_bytes},
+          {"threads", c.threads}};
+}
+
+}  // namespace
+
+namespace {
+
+// A per-run temporary directory, removed with everything in it.
+class TempDir {
+ public:
+  TempDir() {
+    const char* base = std::getenv("TMPDIR");
+    std::string pattern = std::string(base && *base ? base : "/tmp") + "/mosb-run-XXXXXX";
+    if (!::mkdtemp(pattern.data()))
+      throw Error(ErrorCode::io, pattern + ": cannot create a temporary directory");
+    path_ = pattern;
+  }
+  ~TempDir() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+class Runner {
+ public:
+  Runner(const RunConfig& c, const RunCallbacks& cb, const Plan& p, const SolutionWriter& w,
+         Journal& j, const std::atomic<bool>& stop)
+      : c_(c), cb_(cb), p_(p), writer_(w), journal_(j), stop_(stop) {
+    adapter_ = c.adapter ? c.adapter : OutputAdapter(read_protocol_output);
+    for (std::uint64_t q = 0; q < p.queries.size(); ++q) {
+      const auto it = j.records().find(q);
+      if (it == j.records().end())
+        todo_.push_back(q);
+      else
+        ++progress_.counts[static_cast<std::size_t>(it->second.status)];
+    }
+    progress_.total = p.queries.size();
+    progress_.done = p.queries.size() - todo_.size();
+  }
+
+  std::uint64_t pending() const { return todo_.size(); }
+
+  void run(unsigned jobs, RunResult& result) {
+    started_ = std::chrono::steady_clock::now();
+    std::vector<std::thread> workers;
+    for (unsigned j = 0; j < jobs; ++j) workers.emplace_back([this, j] { work(j); });
+    for (auto& w : workers) w.join();
+    if (error_) std::rethrow_exception(error_);
+    result.ran = ran_;
+    result.wall_seconds = wall_;
+    result.cpu_seconds = cpu_;
+  }
+
+ private:
+  void work(unsigned job) {
+    try {
+      const std::string dir = temp_.path() + "/job" + std::to_string(job);
+      fs::create_directories(dir);
+      ProcessRunner runner(stop_);
+      while (!stop_.load()) {
+        const std::uint64_t i = next_.fetch_add(1);
+        if (i >= todo_.size()) return;
+        run_query(runner, todo_[i], job, dir);
+        std::lock_guard lock(mutex_);
+        if (error_) return;
+      }
+    } catch (...) {
+      std::lock_guard lock(mutex_);
+      if (!error_) error_ = std::current_exception();
+    }
+  }
+
+  std::map<std::string, std::string> values(std::uint64_t q, const SolverOutputFiles& f) const {
+    std::string objectives;
+    for (const auto& name : p_.objective_names)
+      objectives += (objectives.empty() ? "" : ",") + name;
+    return {{"instance", c_.instance_path},
+            {"view", p_.view},
+            {"objectives", objectives},
+            {"query", std::to_string(q)},
+            {"source", std::to_string(p_.queries[q].start)},
+            {"target", std::to_string(p_.queries[q].goal)},
+            {"front", f.front_path},
+            {"fronts", f.fronts_dir},
+            {"threads", std::to_string(c_.threads)}};
+  }
+
+  void run_query(ProcessRunner& runner, std::uint64_t q, unsigned job, const std::string& dir) {
+    SolverOutputFiles files;
+    files.stdout_path = dir + "/stdout";
+    files.stderr_path = dir + "/stderr";
+    files.front_path = dir + "/front.txt";
+    files.fronts_dir = dir + "/fronts";
+    files.front_in_file = p_.front_in_file;
+    files.query = p_.queries[q];
+    files.objectives = p_.objective_names.size();
+    if (p_.front_in_file) fs::remove(files.front_path);
+    if (p_.fronts_used) {
+      fs::remove_all(files.fronts_dir);
+      fs::create_directories(files.fronts_dir);
+    }
+    ProcessSpec spec;
+    spec.executable = p_.executable;
+    spec.argv = expand_command(p_.words, values(q, files));
+    spec.stdout_path = files.stdout_path;
+    spec.stderr_path = files.stderr_path;
+    if (c_.pin && !p_.cpus.empty()) spec.cpu = p_.cpus[job % p_.cpus.size()];
+    spec.group_name = "mosb-run-" + std::to_string(::getpid()) + "-" + std::to_string(job);
+    const ProcessOutcome outcome = runner.run(spec, c_.limits, p_.measurement);
+    if (outcome.ending == Ending::interrupted) return;  // no record: --resume runs it again
+    const QueryRecord record = classify(q, outcome, files, adapter_, writer_);
+    journal_.append(record);
+    std::lock_guard lock(mutex_);
+    ++ran_;
+    wall_ += outcome.wall_seconds;
+    cpu_ += outcome.cpu_seconds;
+    ++progress_.done;
+    ++progress_.done_here;
+    ++progress_.counts[static_cast<std::size_t>(record.status)];
+    progress_.elapsed_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+    if (record.status == QueryStatus::failed && cb_.failed) cb_.failed(record, p_.queries[q]);
+    if (cb_.progress) cb_.progress(progress_);
+  }
+
+  const RunConfig& c_;
+  const RunCallbacks& cb_;
+  const Plan& p_;
+  const SolutionWriter& writer_;
+  Journal& journal_;
+  const std::atomic<bool>& stop_;
+  OutputAdapter adapter_;
+  TempDir temp_;
+  std::vector<std::uint64_t> todo_;
+  std::atomic<std::uint64_t> next_{0};
+  std::mutex mutex_;
+  std::exception_ptr error_;
+  RunProgress progress_;
+  std::chrono::steady_clock::time_point started_;
+  std::uint64_t ran_ = 0;
+  double wall_ = 0, cpu_ = 0;
+};
+
+SolverInfo solver_info(const RunConfig& c, const Plan& p, unsigned jobs) {
+  SolverInfo info;
+  info.name = c.solver_name.empty() ? fs::path(p.words.front()).filename().string() : c.solver_name;
+  info.version = c.solver_version;
+  info.machine = describe_machine();
+  auto& m = info.parameters;
+  m["run.template"] = c.solver_template;
+  m["run.executable"] = p.executable;
+  if (c.sha256_file) m["run.executable_sha256"] = c.sha256_file(p.executable);
+  m["run.output_format"] = c.output_format;
+  m["run.time_limit_seconds"] = format_seconds(c.limits.wall_seconds);
+  m["run.memory_limit_bytes"] = std::to_string(c.limits.memory_bytes);
+  m["run.grace_seconds"] = format_seconds(c.limits.grace_seconds);
+  m["run.jobs"] = std::to_string(jobs);
+  m["run.pin"] = c.pin ? "yes" : "no";
+  m["run.threads"] = std::to_string(c.threads);
+  m["run.measurement"] = std::string(to_string(p.measurement));
+  m["run.measurement.detail"] = describe_measurement(p.measurement);
+  m["run.runtime_seconds"] = "wall-clock seconds measured by mosb, not the solver's own report";
+  m["run.mosb_version"] = std::string(kVersion);
+  return info;
+}
+
+// Reaps any descendant still a zombie of this process (after every solver has ended).
+void reap_all() {
+  while (::waitpid(-1, nullptr, WNOHANG) > 0) {
+  }
+}
+
+}  // namespace
+
+RunResult run_solver(const RunConfig& c, const RunCallbacks& callbacks,
+                     const std::atomic<bool>& stop) {
+  if (!c.instance) throw Error(ErrorCode::invalid_argument, "run_solver: no instance");
+  const unsigned jobs = std::max(1u, c.jobs);
+  const auto selection = solution_selection(*c.instance, c.choice);
+  SolutionWriter writer(*c.instance, selection);
+  const Plan plan = make_plan(c, selection, writer);
+  prepare_process_runner();
+  RunResult result;
+  result.measurement = plan.measurement;
+  result.total = plan.queries.size();
+  result.journal = journal_path(c.output);
+  Journal journal(result.journal, binding_of(c, plan), c.resume);
+  Runner runner(c, callbacks, plan, writer, journal, stop);
+  result.from_journal = result.total - runner.pending();
+  runner.run(jobs, result);
+  reap_all();
+  for (const auto& [q, record] : journal.records())
+    ++result.counts[static_cast<std::size_t>(record.status)];
+  result.counts[static_cast<std::size_t>(QueryStatus::not_run)] +=
+      result.total - journal.records().size();
+  if (stop.load()) {
+    result.interrupted = true;
+    return result;
+  }
+  for (const auto& [q, record] : journal.records())
+    writer.set_query(q, record.status, record.costs, record.statistics);
+  writer.set_solver(solver_info(c, plan, jobs));
+  writer.write(c.output);
+  journal.remove();
+  return result;
+}
+
+}  // namespace mosb
