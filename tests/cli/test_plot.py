@@ -320,6 +320,16 @@ class MapPathsTest(PlotCase):
         self.assertIn(">path 2<", text)
         self.assertGreater(self.screenshot(svg, 900, 560), 0.05)
 
+    def test_front_axes_carry_the_instance_units(self):
+        sol = self.solutions("units.sol", "0 solved 44,2 50,1\n")
+        svg = self.path("front.svg")
+        run("plot", "front", "--solutions", sol, "--query", "0", "--instance", self.map, "-o", svg)
+        texts = re.findall(r"<text[^>]*>([^<]*)</text>", read(svg, "r"))
+        self.assertIn("exposure [guards]", texts)  # objective.exposure.unit of --guards
+        self.assertFalse(any(t.startswith("projection") for t in texts), texts)  # d = 2
+        run("plot", "front", "--solutions", sol, "--query", "0", "-o", svg)
+        self.assertIn("exposure", re.findall(r"<text[^>]*>([^<]*)</text>", read(svg, "r")))
+
     def test_map_paths_errors(self):
         without = self.solutions("nopaths.sol", "0 solved 44,2\n")
         svg = self.path("m.svg")
