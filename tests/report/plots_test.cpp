@@ -190,7 +190,9 @@ TEST_CASE("front legend says what it counts, and coincident vectors are both vis
   CHECK(count(doc, R"(r="5" fill="none" stroke="#0072B2" stroke-width="1.5")") == 3 + 1);
   CHECK(count(doc,
               R"(r="3" fill="#D55E00" stroke="#fff" stroke-width="0.5" fill-opacity="0.75")") == 3);
-  CHECK(doc.rfind("fill=\"none\" stroke=\"#0072B2\"") < doc.find("fill=\"#D55E00\""));
+  // Rings first, dots over them: every reference ring precedes the first solver dot.
+  CHECK(count(doc.substr(0, doc.find(R"(fill="#D55E00")")), R"(fill="none" stroke="#0072B2")") ==
+        3);
   p.solution = {{10, 40}};
   CHECK(has(plot_front(p), ">boa (1 vector)<"));
 }
