@@ -12,8 +12,8 @@ namespace mosb::plots {
 
 namespace {
 
-constexpr double kWidth = 720, kHeight = 480;
-constexpr double kLeft = 90, kRight = 180, kTop = 60, kBottom = 70;  // plot-area margins
+constexpr double kWidth = 800, kHeight = 480;
+constexpr double kLeft = 90, kRight = 250, kTop = 60, kBottom = 70;  // plot-area margins
 constexpr double kTickFont = kMinFontSize, kLegendFont = kMinFontSize, kLabelFont = 15;
 constexpr double kTitleFont = 17;
 constexpr const char* kReferenceColour = kOkabeIto[4];  // blue
@@ -202,12 +202,16 @@ std::vector<Point2> thin_points(const std::vector<Point2>& points, std::size_t l
 
 namespace {
 
-// "NAME (n vectors)"; when thinned, a second line "showing k of n".
+// "NAME (n vectors)"; when thinned, a second line "showing k of n". A name too long for the
+// legend's column on one line puts "(n vectors)" on the second line instead.
 LegendEntry front_entry(char kind, const char* colour, const std::string& name, std::size_t drawn,
                         std::size_t total) {
-  LegendEntry e{kind, colour,
-                name + " (" + std::to_string(total) + (total == 1 ? " vector)" : " vectors)"), ""};
-  if (drawn != total) e.note = "showing " + std::to_string(drawn) + " of " + std::to_string(total);
+  const std::string count = "(" + std::to_string(total) + (total == 1 ? " vector)" : " vectors)");
+  LegendEntry e{kind, colour, name + " " + count, ""};
+  if (drawn != total)
+    e.note = "showing " + std::to_string(drawn) + " of " + std::to_string(total);
+  else if (e.label.size() > 30)
+    e.label = name, e.note = count;
   return e;
 }
 

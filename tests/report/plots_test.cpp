@@ -195,6 +195,9 @@ TEST_CASE("front legend says what it counts, and coincident vectors are both vis
         3);
   p.solution = {{10, 40}};
   CHECK(has(plot_front(p), ">boa (1 vector)<"));
+  p.solver_name = "boa-with-a-rather-long-configuration";  // the count on a line of its own
+  CHECK(has(plot_front(p), ">boa-with-a-rather-long-configuration<"));
+  CHECK(has(plot_front(p), ">(1 vector)<"));
 }
 
 TEST_CASE("two plots of one query share the origin: value axes start at 0") {
