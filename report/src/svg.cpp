@@ -63,9 +63,13 @@ void Svg::line(double x1, double y1, double x2, double y2, std::string_view stro
            number(stroke_width) + "\"/>\n";
 }
 
-void Svg::circle(double cx, double cy, double r, std::string_view fill, std::string_view stroke) {
+void Svg::circle(double cx, double cy, double r, std::string_view fill, std::string_view stroke,
+                 double stroke_width, double opacity) {
   body_ += "<circle cx=\"" + number(cx) + "\" cy=\"" + number(cy) + "\" r=\"" + number(r) +
-           "\" fill=\"" + escape(fill) + "\" stroke=\"" + escape(stroke) + "\"/>\n";
+           "\" fill=\"" + escape(fill) + "\" stroke=\"" + escape(stroke) + "\"";
+  if (stroke != "none") body_ += " stroke-width=\"" + number(stroke_width) + "\"";
+  if (opacity < 1) body_ += " fill-opacity=\"" + number(opacity) + "\"";
+  body_ += "/>\n";
 }
 
 void Svg::text(double x, double y, std::string_view content, std::string_view anchor, double size,

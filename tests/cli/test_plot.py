@@ -117,6 +117,7 @@ class PlotTest(PlotCase):
         self.assertIn("blocked cell", text)
         self.assertIn("#252525", text)    # blocked cells drawn
         self.assertIn("exposure 1", text)  # the legend's highest exposure
+        self.assertIn(">exposure [guards]<", text)  # the objective's unit
         share = self.screenshot(svg, 900, 560)
         self.assertGreater(share, 0.3)  # arena2 is mostly blocked
         self.assertLess(share, 0.95)
@@ -175,10 +176,11 @@ class SolutionPlotTest(PlotCase):
         run(*args, "-o", svg)
         texts = self.texts(svg)
         self.assertEqual(texts[0], "query 0 of s: approx vs reference")
-        for label in ("c1", "c2", "reference (3)", "solver (3)", "ε-box, ε = 0.05"):
+        for label in ("c1", "c2", "reference exact (3 vectors)", "approx (3 vectors)",
+                      "ε-box, ε = 0.05"):
             self.assertIn(label, texts)
         text = read(svg, "r")
-        self.assertEqual(text.count('fill="#9ecae1"'), 3 + 1)  # a box per reference vector, legend
+        self.assertEqual(text.count('fill="#56B4E9"'), 3 + 1)  # a box per reference vector, legend
         run(*args, "-o", self.path("again.svg"))
         self.assertEqual(read(self.path("again.svg"), "r"), text)
         self.assertGreater(self.screenshot(svg, 720, 480), 0.01)
@@ -191,11 +193,42 @@ class SolutionPlotTest(PlotCase):
         self.assertIn("c3", texts)  # x axis
         self.assertIn("c2", texts)  # y axis, by position
         self.assertNotIn("c1", texts)
-        self.assertIn("solver (3)", texts)
+        self.assertIn("approx (3 vectors)", texts)
         self.assertFalse(any(t.startswith("reference") for t in texts), texts)
-        # The c3 values 5, 8, 9 set the x range: no tick beyond 10.
-        self.assertIn("9", texts)
+        # The c3 values 5, 8, 9 set the x range, from 0: no tick beyond 10.
+        self.assertIn("10", texts)
         self.assertNotIn("40", texts[:texts.index("c3")][:7])
+
+    def test_front_legend_axes_and_projection(self):
+        """Issue 22 §2: the legend says what it counts, both plots of a query start at 0, a
+        3-objective front says it is a projection, units label the axes."""
+        with_reference = self.path("with.svg")
+        run("plot", "front", "--solutions", self.solutions, "--reference", self.reference,
+            "--query", "0", "--eps", "0.5", "-o", with_reference)
+        alone = self.path("alone.svg")
+        run("plot", "front", "--solutions", self.solutions, "--query", "0", "--instance",
+            self.grid, "-o", alone)
+        for svg in (with_reference, alone):
+            texts = self.texts(svg)
+            self.assertIn("projection on c1, c2 of 3 objectives", texts)
+            self.assertIn("approx (3 vectors)", texts)
+            self.assertNotIn("solver (3)", texts)
+            text = read(svg, "r")
+            # The x axis's first tick, 0, at the plot area's left edge; the y axis's at its foot.
+            self.assertIn('<text x="90" y="431" text-anchor="middle" font-size="13" '
+                          'fill="#000">0</text>', text)
+            self.assertIn('<text x="82" y="415" text-anchor="end" font-size="13" '
+                          'fill="#000">0</text>', text)
+            sizes = [float(v) for v in re.findall(r'font-size="([0-9.]+)"', text)]
+            self.assertGreaterEqual(min(sizes), 13)
+        self.assertIn("reference exact (3 vectors)", self.texts(with_reference))
+        # The grid's objectives have no unit: the names alone.
+        self.assertIn("c1", self.texts(alone))
+        other = self.path("other.mosb")
+        run("generate", "grid", "--width", "5", "--height", "4", "--objectives", "3", "--seed",
+            "9", "-o", other)
+        self.assert_refused(["plot", "front", "--solutions", self.solutions, "--query", "0",
+                             "--instance", other], 1, "sol.sol")
 
     def test_front_errors(self):
         front = ["plot", "front", "--solutions", self.solutions]
@@ -286,6 +319,16 @@ class MapPathsTest(PlotCase):
         self.assertIn(">path 1<", text)
         self.assertIn(">path 2<", text)
         self.assertGreater(self.screenshot(svg, 900, 560), 0.05)
+
+    def test_front_axes_carry_the_instance_units(self):
+        sol = self.solutions("units.sol", "0 solved 44,2 50,1\n")
+        svg = self.path("front.svg")
+        run("plot", "front", "--solutions", sol, "--query", "0", "--instance", self.map, "-o", svg)
+        texts = re.findall(r"<text[^>]*>([^<]*)</text>", read(svg, "r"))
+        self.assertIn("exposure [guards]", texts)  # objective.exposure.unit of --guards
+        self.assertFalse(any(t.startswith("projection") for t in texts), texts)  # d = 2
+        run("plot", "front", "--solutions", sol, "--query", "0", "-o", svg)
+        self.assertIn("exposure", re.findall(r"<text[^>]*>([^<]*)</text>", read(svg, "r")))
 
     def test_map_paths_errors(self):
         without = self.solutions("nopaths.sol", "0 solved 44,2\n")

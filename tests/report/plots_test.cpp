@@ -2,6 +2,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <string>
@@ -16,6 +17,39 @@ std::size_t count(const std::string& text, const std::string& what) {
   std::size_t n = 0;
   for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
   return n;
+}
+
+// The contents of every <text> element, in document order.
+std::vector<std::string> texts(const std::string& doc) {
+  std::vector<std::string> out;
+  for (auto at = doc.find("<text"); at != std::string::npos; at = doc.find("<text", at + 1)) {
+    const auto open = doc.find('>', at) + 1;
+    out.push_back(doc.substr(open, doc.find("</text>", open) - open));
+  }
+  return out;
+}
+
+bool has(const std::string& doc, const std::string& what) {
+  return doc.find(what) != std::string::npos;
+}
+
+// The fill of the legend swatch (the <rect> just before the text `label`).
+std::string swatch_of(const std::string& doc, const std::string& label) {
+  const auto text = doc.find(">" + label + "<");
+  if (text == std::string::npos) return "";
+  const auto rect = doc.rfind("<rect", text);
+  const auto fill = doc.find("fill=\"", rect) + 6;
+  return doc.substr(fill, doc.find('"', fill) - fill);
+}
+
+FrontPlot small_front() {
+  FrontPlot p;
+  p.title = "q";
+  p.x_label = "c1";
+  p.y_label = "c2";
+  p.reference = {{10, 40}, {20, 20}, {40, 10}};
+  p.solution = {{10, 40}, {21, 21}, {40, 10}};
+  return p;
 }
 
 }  // namespace
@@ -51,10 +85,10 @@ TEST_CASE("front plot draws every vector, the epsilon boxes and a legend") {
   p.solution = {{1.05, 10.2}, {5, 5.1}, {10, 1}};
   p.epsilon = 0.1;
   const auto doc = plot_front(p);
-  CHECK(count(doc, "<circle") == 4 + 3 + 2);   // + two legend dots
-  CHECK(count(doc, "fill-opacity") == 4 + 1);  // boxes + legend box
-  CHECK(doc.find("reference (4)") != std::string::npos);
-  CHECK(doc.find("solver (3)") != std::string::npos);
+  CHECK(count(doc, "<circle") == 4 + 3 + 2);    // + two legend dots
+  CHECK(count(doc, "<rect") == 1 + 1 + 4 + 1);  // background, frame, boxes, legend box
+  CHECK(doc.find("reference (4 vectors)") != std::string::npos);
+  CHECK(doc.find("solver (3 vectors)") != std::string::npos);
   CHECK(doc.find("ε-box, ε = 0.1") != std::string::npos);
   CHECK(doc.find(">length<") != std::string::npos);
   CHECK(plot_front(p) == doc);  // deterministic
@@ -107,7 +141,140 @@ TEST_CASE("a large front is thinned, keeps its extreme points and says so") {
   plot.solution = front;
   const auto svg = mosb::plots::plot_front(plot);
   CHECK(svg.find("showing " + std::to_string(drawn.size()) + " of 12345") != std::string::npos);
+  CHECK(svg.find(">solver (12345 vectors)<") != std::string::npos);
   CHECK(svg.size() < 2'000'000);
   plot.solution.resize(100);
   CHECK(mosb::plots::plot_front(plot).find("showing") == std::string::npos);
+}
+
+// Issue 22 §2: each defect found by a new user, one test each.
+
+TEST_CASE("map legend gives the lowest exposure a colour, and cells of it are shaded") {
+  MapPlot p;
+  p.width = 3;
+  p.height = 2;
+  p.passable = {true, true, true, true, false, true};
+  p.exposure = {1, 2, 3, 1, NAN, 3};
+  p.exposure_unit = "guards";
+  const auto doc = plot_map(p);
+  const auto lowest = swatch_of(doc, "exposure 1");
+  REQUIRE(!lowest.empty());
+  CHECK(lowest != "#ffffff");      // not the background: a colour of its own
+  CHECK(count(doc, lowest) >= 3);  // the swatch and the two cells of value 1
+  CHECK(swatch_of(doc, "exposure 2") != lowest);
+  CHECK(swatch_of(doc, "exposure 3") == viridis(0));  // highest: dark end of viridis
+  CHECK(lowest == viridis(1));
+  CHECK(has(doc, ">exposure [guards]<"));  // the unit, from the instance's metadata
+  CHECK(plot_map(p) == doc);
+  // Many distinct values: five legend steps from the lowest to the highest.
+  p.width = 9;
+  p.height = 1;
+  p.passable.assign(9, true);
+  p.exposure = {0, 1.5, 3, 4.5, 6, 7.5, 11, 12, 13};
+  p.exposure_unit.clear();
+  const auto many = plot_map(p);
+  CHECK(count(many, ">exposure ") == 5);
+  for (const char* v : {"0", "3.25", "6.5", "9.75", "13"})
+    CHECK(has(many, ">exposure " + std::string(v) + "<"));
+}
+
+TEST_CASE("front legend says what it counts, and coincident vectors are both visible") {
+  auto p = small_front();
+  p.solver_name = "boa";
+  p.reference_name = "reference namoa";
+  const auto doc = plot_front(p);
+  CHECK(has(doc, ">boa (3 vectors)<"));
+  CHECK(has(doc, ">reference namoa (3 vectors)<"));
+  CHECK(!has(doc, "(3)<"));
+  // Reference vectors are rings (no fill), solver vectors smaller translucent dots on top.
+  CHECK(count(doc, R"(r="5" fill="none" stroke="#0072B2" stroke-width="1.5")") == 3 + 1);
+  CHECK(count(doc,
+              R"(r="3" fill="#D55E00" stroke="#fff" stroke-width="0.5" fill-opacity="0.75")") == 3);
+  // Rings first, dots over them: every reference ring precedes the first solver dot.
+  CHECK(count(doc.substr(0, doc.find(R"(fill="#D55E00")")), R"(fill="none" stroke="#0072B2")") ==
+        3);
+  p.solution = {{10, 40}};
+  CHECK(has(plot_front(p), ">boa (1 vector)<"));
+  p.solver_name = "boa-with-a-rather-long-configuration";  // the count on a line of its own
+  CHECK(has(plot_front(p), ">boa-with-a-rather-long-configuration<"));
+  CHECK(has(plot_front(p), ">(1 vector)<"));
+}
+
+TEST_CASE("two plots of one query share the origin: value axes start at 0") {
+  auto with_reference = small_front();
+  with_reference.epsilon = 0.5;
+  auto alone = small_front();
+  alone.reference.clear();
+  for (const auto& doc : {plot_front(with_reference), plot_front(alone)}) {
+    // The first x tick sits on the left edge of the plot area and the first y tick on its
+    // bottom, both labelled 0.
+    CHECK(has(doc, R"(<text x="90" y="431" text-anchor="middle" font-size="13" fill="#000">0<)"));
+    CHECK(has(doc, R"(<text x="82" y="415" text-anchor="end" font-size="13" fill="#000">0<)"));
+  }
+  CardinalityPlot c;
+  c.sizes = {5, 9, 7};
+  CHECK(has(plot_cardinality(c), R"(font-size="13" fill="#000">0<)"));
+  // Negative values (not costs, but possible input) still fit: the axis starts below them.
+  alone.solution = {{-3, 4}, {5, -2}};
+  const auto negative = texts(plot_front(alone));
+  CHECK(std::find(negative.begin(), negative.end(), "-4") != negative.end());
+}
+
+TEST_CASE("a front of more than two objectives says it is a projection") {
+  auto p = small_front();
+  CHECK(!has(plot_front(p), "projection"));
+  p.objective_count = 3;
+  CHECK(has(plot_front(p), ">projection on c1, c2 of 3 objectives<"));
+}
+
+TEST_CASE("no text is smaller than the minimum font size") {
+  auto check_fonts = [](const std::string& doc) {
+    std::size_t n = 0;
+    for (auto at = doc.find("font-size=\""); at != std::string::npos;
+         at = doc.find("font-size=\"", at + 1), ++n)
+      CHECK(std::stod(doc.substr(at + 11)) >= kMinFontSize);
+    CHECK(n > 3);
+  };
+  auto front = small_front();
+  front.epsilon = 0.1;
+  check_fonts(plot_front(front));
+  CardinalityPlot c;
+  c.sizes = {1, 50, 3000};
+  check_fonts(plot_cardinality(c));
+  CorrelationPlot r;
+  r.names = {"a", "b", "c", "d", "e", "f", "g", "h", "i", "j"};
+  r.rho.assign(10, std::vector<std::optional<double>>(10, -0.44));
+  check_fonts(plot_correlation(r));
+  MapPlot m;
+  m.width = m.height = 2;
+  m.passable = {true, false, true, true};
+  m.exposure = {0, NAN, 1, 2};
+  check_fonts(plot_map(m));
+  CHECK(kMinFontSize >= 13);
+}
+
+TEST_CASE("colour-blind-safe colours and axis labels with units") {
+  auto p = small_front();
+  p.x_unit = "s";
+  p.epsilon = 0.1;
+  const auto doc = plot_front(p);
+  CHECK(has(doc, ">c1 [s]<"));
+  CHECK(has(doc, ">c2<"));  // no unit: the name alone
+  // Okabe–Ito: reference blue, solver vermillion, ε-boxes sky blue; nothing else coloured.
+  for (const char* old : {"#08519c", "#e6550d", "#9ecae1", "#6baed6"}) CHECK(!has(doc, old));
+  CHECK(has(doc, "#0072B2"));
+  CHECK(has(doc, "#D55E00"));
+  CHECK(has(doc, R"(fill="#56B4E9")"));
+  CHECK(viridis(0) == "#440154");
+  CHECK(viridis(1) == "#fde725");
+  CHECK(viridis(0.5) == "#21918c");
+  MapPlot m;
+  m.width = 4;
+  m.height = 1;
+  m.passable.assign(4, true);
+  m.paths = {{{0, 0}, {1, 0}}, {{0, 0}, {3, 0}}};
+  const auto map = plot_map(m);
+  CHECK(has(map, R"(stroke="#E69F00")"));
+  CHECK(has(map, R"(stroke="#56B4E9")"));
+  for (const char* old : {"#1f77b4", "#2ca02c"}) CHECK(!has(map, old));
 }

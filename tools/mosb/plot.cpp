@@ -93,6 +93,8 @@ int run_map(const PlotArgs& args, const std::string& exposure_objective, const M
   if (!paths.solutions.empty()) solutions.emplace(SolutionReader::open_verified(paths.solutions));
   auto plot = plots::map_of(reader, exposure_objective);
   plot.title = default_title(reader, args, "map");
+  plot.exposure_unit =
+      reader.metadata().get("objective." + exposure_objective + ".unit").value_or("");
   if (solutions) {
     require_query(*solutions, *paths.query);
     plots::add_front_paths(plot, reader, *solutions, *paths.query);
@@ -105,7 +107,7 @@ int run_map(const PlotArgs& args, const std::string& exposure_objective, const M
 }
 
 struct FrontArgs {
-  std::string solutions, reference, objectives, epsilon, output, title;
+  std::string solutions, reference, instance, objectives, epsilon, output, title;
   std::uint64_t query = 0;
 };
 
@@ -173,18 +175,34 @@ int run_front(const FrontArgs& args) {
   }
   const auto axes = chosen_objectives(solutions, args.objectives);
   plots::FrontPlot plot;
+  if (!args.instance.empty()) {  // the objectives' units, from the instance the files belong to
+    const auto instance = GraphReader::open(args.instance);
+    solutions.check_bound_to(instance);
+    const auto unit = [&](std::size_t i) {
+      return instance.metadata()
+          .get("objective." + solutions.objective_name(i) + ".unit")
+          .value_or("");
+    };
+    plot.x_unit = unit(axes.first);
+    plot.y_unit = unit(axes.second);
+  }
   plot.solution = front_points(solutions, args.query, axes);
   if (reference) plot.reference = front_points(*reference, args.query, axes);
   if (epsilon) plot.epsilon = epsilon->to_double();
   plot.x_label = solutions.objective_name(axes.first);
   plot.y_label = solutions.objective_name(axes.second);
   const auto solver = solutions.solver().name;
+  plot.objective_count = solutions.objective_count();
+  if (!solver.empty()) plot.solver_name = solver;
+  if (reference && !reference->solver().name.empty())
+    plot.reference_name = "reference " + reference->solver().name;
   plot.title = !args.title.empty()
                    ? args.title
                    : "query " + std::to_string(args.query) + " of " + solutions.query_set() + ": " +
                          (solver.empty() ? "solver" : solver) + (reference ? " vs reference" : "");
   std::vector<std::filesystem::path> inputs = {args.solutions};
   if (reference) inputs.emplace_back(args.reference);
+  if (!args.instance.empty()) inputs.emplace_back(args.instance);
   check_output_is_not_input(args.output, inputs);
   write_file_atomically(args.output, plots::plot_front(plot));
   return 0;
@@ -249,6 +267,10 @@ Command add_plot(CLI::App& app) {
   front->add_option("--query", front_args->query, "the query (0-based position in the set)")
       ->required()
       ->check(unsigned_integer(std::numeric_limits<std::uint64_t>::max()));
+  front
+      ->add_option("--instance", front_args->instance,
+                   "the instance the files belong to: axis labels with the objectives' units")
+      ->check(CLI::ExistingFile);
   front->add_option("--objectives", front_args->objectives,
                     "the two objectives drawn, names or 0-based positions (default: the first "
                     "two)");

@@ -1,5 +1,7 @@
-// The figures of `mosb plot` (spec/EVALUATION.md): each returns a complete SVG document.
-// Axes have ticks at 1-2-5 steps, labels and a legend; the same input gives the same bytes.
+// The figures of `mosb plot` (spec/EVALUATION.md §5): each returns a complete SVG document.
+// Axes have ticks at 1-2-5 steps, labels and a legend; the same input gives the same bytes. No text
+// is smaller than kMinFontSize px; categories take Okabe–Ito colours (kOkabeIto), continuous scales
+// viridis; a linear value axis starts at 0 (at the data minimum only when that is negative).
 #pragma once
 
 #include <cstdint>
@@ -13,16 +15,31 @@ struct Point2 {
   double x = 0, y = 0;
 };
 
+inline constexpr double kMinFontSize = 13;
+// Okabe & Ito's colour-blind-safe categorical palette: orange, sky blue, bluish green, yellow,
+// blue, vermillion, reddish purple, black.
+inline constexpr const char* kOkabeIto[] = {"#E69F00", "#56B4E9", "#009E73", "#F0E442",
+                                            "#0072B2", "#D55E00", "#CC79A7", "#000000"};
+// Viridis at t in [0, 1] (0 dark purple, 1 yellow), as "#rrggbb".
+std::string viridis(double t);
+// "name [unit]", or the name alone when the unit is empty.
+std::string axis_label(const std::string& name, const std::string& unit);
+
 // A 2-D front: reference and solver vectors of two objectives, and the ε-box of each reference
 // vector q (the rectangle from q to (1+ε)·q: a solver vector inside it or below-left of q covers
-// q).
+// q). Reference vectors are hollow blue rings, solver vectors smaller filled vermillion dots at 75%
+// opacity, so coincident vectors stay visible. The legend says "NAME (n vectors)". With
+// objective_count > 2 a subtitle says the figure is a projection on the two drawn objectives.
 struct FrontPlot {
-  std::string title, x_label, y_label;
+  std::string title, x_label, y_label;  // axis labels: the objective names
+  std::string x_unit, y_unit;           // shown as "name [unit]" when not empty
+  std::string solver_name = "solver", reference_name = "reference";
+  std::size_t objective_count = 2;
   std::vector<Point2> reference, solution;
   std::optional<double> epsilon;  // no boxes when absent or 0
 };
 // Past kMaxDrawnPoints vectors a set is thinned (thin_points) so a million-vector front stays a
-// figure of a few hundred kB; the legend then says "showing k of n".
+// figure of a few hundred kB; the legend then says "showing k of n" under the entry.
 std::string plot_front(const FrontPlot& plot);
 inline constexpr std::size_t kMaxDrawnPoints = 5000;
 // The points drawn of a set: all of them up to `limit`; past it, in order of (x, y), every
@@ -38,8 +55,9 @@ struct CardinalityPlot {
 };
 std::string plot_cardinality(const CardinalityPlot& plot);
 
-// Pearson correlation matrix of the objectives as a heat map, −1 blue, 0 white, +1 red, each cell
-// labelled with its value ("n/a" when undefined). rho[i][j], symmetric, diagonal 1.
+// Pearson correlation matrix of the objectives as a heat map, −1 blue, 0 white, +1 red (ColorBrewer
+// RdBu ends, readable with the common colour-vision deficiencies), each cell labelled with its
+// value ("n/a" when undefined). rho[i][j], symmetric, diagonal 1.
 struct CorrelationPlot {
   std::string title;
   std::vector<std::string> names;
@@ -47,10 +65,13 @@ struct CorrelationPlot {
 };
 std::string plot_correlation(const CorrelationPlot& plot);
 
-// A grid map: blocked cells dark, passable cells shaded by exposure (white = lowest, deep orange
-// = highest; light grey when unknown), and paths as cell sequences.
+// A grid map: blocked cells dark grey, passable cells shaded by exposure on reversed viridis
+// (lowest yellow, highest dark purple; light grey when unknown; white when there is no exposure),
+// and paths as cell sequences in Okabe–Ito colours. The legend gives the colour of every exposure
+// value when there are at most 8 distinct values, else of 5 evenly spaced values lowest to highest.
 struct MapPlot {
   std::string title;
+  std::string exposure_unit;  // the legend's heading "exposure [unit]" when not empty
   std::uint32_t width = 0, height = 0;
   std::vector<bool> passable;              // row-major, width * height
   std::vector<double> exposure;            // row-major; NaN = unknown; empty = no shading

@@ -15,8 +15,9 @@ class Svg {
             std::string_view stroke = "none", double stroke_width = 1, double opacity = 1);
   void line(double x1, double y1, double x2, double y2, std::string_view stroke,
             double stroke_width = 1);
+  // stroke-width is written only with a stroke, fill-opacity only below 1.
   void circle(double cx, double cy, double r, std::string_view fill,
-              std::string_view stroke = "none");
+              std::string_view stroke = "none", double stroke_width = 1, double opacity = 1);
   // anchor: start, middle or end; rotate: degrees about (x, y).
   void text(double x, double y, std::string_view content, std::string_view anchor = "start",
             double size = 12, double rotate = 0, std::string_view fill = "#000");
