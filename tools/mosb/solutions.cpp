@@ -35,7 +35,6 @@ struct ImportArgs {
   bool json = false;
 };
 
-
 int run_import(const ImportArgs& a) {
   const int inputs = !a.directory.empty() + !a.table.empty() + !a.json_log.empty();
   if (inputs != 1)

@@ -180,9 +180,9 @@ std::optional<View> select_view(const GraphReader& reader, const ViewChoice& cho
 View solution_selection(const GraphReader& reader, const ViewChoice& choice) {
   auto selected = select_view(reader, choice);
   if (!selected || (choice.view.empty() && choice.objectives.empty()))
-    throw Error(ErrorCode::invalid_argument,
-                reader.display_name() + ": give a view or an objective list (--view V or "
-                                        "--objectives A,B,...)");
+    throw Error(ErrorCode::invalid_argument, reader.display_name() +
+                                                 ": give a view or an objective list (--view V or "
+                                                 "--objectives A,B,...)");
   if (choice.view.empty()) {
     for (const auto& view : reader.views())
       if (view.objectives == selected->objectives) {
