@@ -102,6 +102,15 @@ py::list texts_of(const mosb::GraphReader& reader, const std::vector<std::string
   return out;
 }
 
+// A file's metadata as a dict of str; text that is not UTF-8 is a mosb.Error (text_of).
+template <class Reader>
+py::dict metadata_of(const Reader& r) {
+  py::dict entries;
+  for (const auto& [key, value] : r.metadata().entries())
+    entries[text_of(r, key)] = text_of(r, value);
+  return entries;
+}
+
 std::vector<std::string> names_of(const std::vector<const mosb::Section*>& sections) {
   std::vector<std::string> names;
   for (const auto* s : sections) names.push_back(s->name);
@@ -239,14 +248,7 @@ void bind_reader_data(py::class_<mosb::GraphReader, ReaderPtr>& reader) {
 
 // Metadata, verification and the mapping's address range (for the tests of zero-copy views).
 void bind_reader_checks(py::class_<mosb::GraphReader, ReaderPtr>& reader) {
-  reader
-      .def("metadata",
-           [](const mosb::GraphReader& r) {
-             py::dict entries;
-             for (const auto& [key, value] : r.metadata().entries())
-               entries[text_of(r, key)] = text_of(r, value);
-             return entries;
-           })
+  reader.def("metadata", &metadata_of<mosb::GraphReader>)
       .def(
           "verify",
           [](const mosb::GraphReader& r, const std::string& level) {
@@ -323,13 +325,7 @@ void bind_solutions(py::module_& m) {
                names.append(text_of(r, r.objective_name(i)));
              return names;
            })
-      .def("metadata",
-           [](const mosb::SolutionReader& r) {
-             py::dict entries;
-             for (const auto& [key, value] : r.metadata().entries())
-               entries[text_of(r, key)] = text_of(r, value);
-             return entries;
-           })
+      .def("metadata", &metadata_of<mosb::SolutionReader>)
       .def("statuses",
            [](const mosb::SolutionReader& r) {
              py::array_t<std::uint8_t> codes(static_cast<py::ssize_t>(r.query_count()));

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <iostream>
+#include <sstream>
 
 #include "json_writer.hpp"
 #include "mosb/converters/movingai.hpp"
@@ -263,6 +264,14 @@ void add_terrain_options(CLI::App* subcommand, TerrainOptions& terrain) {
   subcommand->add_option("--water", terrain.water, "terrain 'W'")
       ->check(CLI::IsMember({"passable", "blocked"}))
       ->capture_default_str();
+}
+
+std::string vector_text(const std::vector<double>& v) {
+  std::ostringstream out;
+  out << '(';
+  for (std::size_t i = 0; i < v.size(); ++i) out << (i ? ", " : "") << v[i];
+  out << ')';
+  return out.str();
 }
 
 }  // namespace mosb::cli

@@ -62,6 +62,9 @@ CLI::Validator epsilon_value();
 // character, so a newline cannot forge a line of text output and a NUL or escape cannot reach SVG.
 CLI::Validator printable_text();
 
+// A cost vector as the text reports print it: "(a, b, c)", each value as an ostream prints it.
+std::string vector_text(const std::vector<double>& v);
+
 // Registers `--json` (the report as one JSON object on stdout) on a reporting command.
 void add_json_flag(CLI::App* subcommand, bool& json);
 

@@ -42,14 +42,6 @@ std::vector<Ratio> parse_epsilons(const std::string& list) {
   return result;
 }
 
-std::string vector_text(const std::vector<double>& v) {
-  std::ostringstream out;
-  out << '(';
-  for (std::size_t i = 0; i < v.size(); ++i) out << (i ? ", " : "") << v[i];
-  out << ')';
-  return out.str();
-}
-
 void print_query_lines(const SolutionEvaluation& result, const std::vector<Ratio>& eps,
                        const std::vector<std::string>& eps_text) {
   for (const auto& q : result.queries) {

@@ -18,14 +18,6 @@ struct CompareArgs {
   bool per_query = false, json = false;
 };
 
-std::string vector_text(const std::vector<double>& v) {
-  std::ostringstream out;
-  out << '(';
-  for (std::size_t i = 0; i < v.size(); ++i) out << (i ? ", " : "") << v[i];
-  out << ')';
-  return out.str();
-}
-
 std::string query_line(const QueryAgreement& q, const std::string& a, const std::string& b) {
   std::ostringstream out;
   out << "query " << q.query << ": ";
