@@ -102,7 +102,7 @@ Command add_solutions_compare(CLI::App* solutions) {
       "Compare two solvers' fronts query by query (equal as sets, or the first "
       "difference) and their runtimes; exit 1 when any query differs");
   sub->add_option("A", args->a, "a solution file")->required()->check(CLI::ExistingFile);
-  sub->add_option("B", args->b, "a solution file of the same instance, view and query set")
+  sub->add_option("B", args->b, "a solution file of the same instance, objectives and query set")
       ->required()
       ->check(CLI::ExistingFile);
   sub->add_flag("--per-query", args->per_query, "a line for every query, not only the differing");

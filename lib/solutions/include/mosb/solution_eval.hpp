@@ -41,9 +41,8 @@ struct SolutionEvaluation {
 // the reference: the message names files, not roles.
 void check_same_binding(const SolutionReader& reference, const SolutionReader& solution);
 
-// Throws mosb::Error naming both files unless they share instance digest, view, query set,
-// query count and objectives. Integer objectives are compared exactly, a view with any
-// floating-point objective in double arithmetic.
+// Throws as check_same_binding (naming both files) unless they share the binding. Integer
+// objectives are compared exactly, a view with any floating-point objective in double arithmetic.
 SolutionEvaluation evaluate_solutions(const SolutionReader& reference,
                                       const SolutionReader& solution,
                                       std::span<const Ratio> epsilons,

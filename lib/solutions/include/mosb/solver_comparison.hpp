@@ -87,8 +87,8 @@ struct FrontAgreement {
   std::optional<Distribution> runtime_ratio;  // over the queries that have one
 };
 
-// Throws as check_same_binding (naming both files) unless A and B share instance, view and query
-// set. O(F log F) for F vectors in all.
+// Throws as check_same_binding (naming both files) unless A and B share instance, objectives and
+// query set. O(F log F) for F vectors in all.
 FrontAgreement compare_fronts(const SolutionReader& a, const SolutionReader& b);
 
 }  // namespace mosb
