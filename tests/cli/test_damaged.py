@@ -183,6 +183,9 @@ class SolutionCommandsBadInput(GridTest):
                          "--dir", "fronts", "-o", "out"]),
             (bad_sol, ["eval", "--reference", bad_sol, "--solutions", good]),
             (bad_sol, ["eval", "--reference", good, "--solutions", bad_sol]),
+            (bad_sol, ["eval", "--reference", good, "--solutions", good, bad_sol, "--csv"]),
+            (bad_sol, ["solutions", "compare", bad_sol, good]),
+            (bad_sol, ["solutions", "compare", good, bad_sol, "--json"]),
             (bad_sol, ["plot", "front", "--solutions", bad_sol, "--query", "0", "-o", "out"]),
             (bad_sol, ["plot", "front", "--solutions", good, "--reference", bad_sol, "--query",
                        "0", "-o", "out"]),
@@ -243,6 +246,7 @@ class SolutionCommandsBadInput(GridTest):
         for args in (["solutions", "inspect", self.solutions],
                      ["solutions", "verify", self.solutions],
                      ["eval", "--reference", self.solutions, "--solutions", self.solutions],
+                     ["solutions", "compare", self.solutions, self.solutions],
                      ["plot", "cardinality", "--solutions", self.solutions, "-o", "c.svg"],
                      ["plot", "front", "--solutions", self.solutions, "--query", "0", "-o",
                       "f.svg"]):
