@@ -103,6 +103,19 @@ class RunTest(CliTest):
         self.assertNotIn("runtime_seconds", info["statistics"])
         self.assert_no_process_left()
 
+    def test_a_descendant_that_leaves_the_session_is_killed_under_a_cgroup(self):
+        # setsid takes the child out of the solver's session: only the memory group still holds
+        # it, so only cgroup-v1 can promise this (spec/RUN.md §4).
+        info, _ = self.one_query("setsid sh -c 'echo $$ >> %s; exec sleep 30' &\n"
+                                 "while [ ! -s %s ]; do sleep 0.01; done\necho 1 1\n" %
+                                 (self.pids, self.pids))
+        if info["parameters"]["run.measurement"] != "cgroup-v1":
+            for pid in mosbtest.read(self.pids, "r").split():
+                os.kill(int(pid), signal.SIGKILL)
+            self.skipTest("no writable memory cgroup here")
+        self.assert_status(info, "solved")
+        self.assert_no_process_left()
+
     def test_memory_limit_in_the_solver_and_in_a_forked_child(self):
         for measurement in MEASUREMENTS:
             for forked in (False, True):

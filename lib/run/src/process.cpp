@@ -2,9 +2,11 @@
 
 #include <dirent.h>
 #include <fcntl.h>
+#include <poll.h>
 #include <sched.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
+#include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -13,6 +15,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <csignal>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -176,25 +179,33 @@ void prepare_process_runner() {
 
 namespace {
 
-// The resident memory, in bytes, of every process in session `sid`.
+// The resident memory, in bytes, of every process in session `sid`. Called every 20 ms while a
+// solver runs, so it reads each /proc/PID/stat with one read into a stack buffer.
 std::uint64_t session_rss(pid_t sid) {
   static const long page = ::sysconf(_SC_PAGESIZE);
   std::uint64_t total = 0;
   DIR* proc = ::opendir("/proc");
   if (!proc) return 0;
+  char path[300];
+  char text[1024];
   while (const dirent* entry = ::readdir(proc)) {
     if (entry->d_name[0] < '0' || entry->d_name[0] > '9') continue;
-    const std::string text = read_small_file(std::string("/proc/") + entry->d_name + "/stat");
-    const auto close = text.rfind(')');
-    if (close == std::string::npos) continue;
+    std::snprintf(path, sizeof path, "/proc/%s/stat", entry->d_name);
+    const int fd = ::open(path, O_RDONLY | O_CLOEXEC);
+    if (fd < 0) continue;
+    const ssize_t size = ::read(fd, text, sizeof text - 1);
+    ::close(fd);
+    if (size <= 0) continue;
+    text[size] = '\0';
     // After "pid (comm)": state ppid pgrp session ... field 24 is rss (in pages).
-    std::stringstream fields(text.substr(close + 2));
-    std::string field;
-    long session = -1;
-    long rss = 0;
-    for (int i = 3; i <= 24 && fields >> field; ++i) {
-      if (i == 6) session = std::atol(field.c_str());
-      if (i == 24) rss = std::atol(field.c_str());
+    const char* field = std::strrchr(text, ')');
+    if (!field) continue;
+    long session = -1, rss = 0;
+    for (int i = 3; i <= 24; ++i) {
+      field = std::strchr(field + 1, ' ');
+      if (!field) break;
+      if (i == 6) session = std::strtol(field + 1, nullptr, 10);
+      if (i == 24) rss = std::strtol(field + 1, nullptr, 10);
     }
     if (session == sid && rss > 0) total += static_cast<std::uint64_t>(rss) * page;
   }
@@ -202,7 +213,6 @@ std::uint64_t session_rss(pid_t sid) {
   return total;
 }
 
-// A memory cgroup for one solver, removed when the object ends.
 // A memory cgroup for one solver, removed when the object ends.
 class MemoryGroup {
  public:
@@ -218,9 +228,10 @@ class MemoryGroup {
     procs_ = ::open((dir_ + "/cgroup.procs").c_str(), O_WRONLY | O_CLOEXEC);
     if (procs_ < 0) fail(dir_ + "/cgroup.procs: cannot open");
   }
+  // Removing the group is also the test that nothing is left in it (EBUSY): its member list is
+  // read only when something is, since every read of a v1 group's list costs milliseconds.
   ~MemoryGroup() {
     ::close(procs_);
-    kill_all();
     for (int i = 0; i < 200 && ::rmdir(dir_.c_str()) != 0 && errno == EBUSY; ++i) {
       kill_all();
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
@@ -234,7 +245,6 @@ class MemoryGroup {
   void kill_all() const {
     for (const pid_t pid : cgroup_members(dir_)) ::kill(pid, SIGKILL);
   }
-  bool empty() const { return cgroup_members(dir_).empty(); }
   std::optional<std::uint64_t> peak() const {
     return read_number(dir_ + "/memory.max_usage_in_bytes");
   }
@@ -251,67 +261,114 @@ class MemoryGroup {
 
 // What the child reports through its error pipe when it cannot execute.
 struct ChildError {
-  int stage = 0;  // 1: joining the cgroup, 2: execve
+  int stage = 0;  // 1: joining the cgroup, 2: execve, 3: creating stdout or stderr
   int error = 0;
 };
 
-// After fork, in the child: only async-signal-safe calls.
-[[noreturn]] void start_child(const ProcessSpec& spec, const std::vector<char*>& argv,
-                              const int fds[3], int procs_fd, int error_fd,
-                              std::uint64_t rlimit_as) {
-  ChildError report;
-  if (procs_fd >= 0 && ::write(procs_fd, "0", 1) != 1) {
-    report = {1, errno};
-    (void)!::write(error_fd, &report, sizeof report);
-    ::_exit(127);
+// The fixed part of the command a parked child receives; `size` bytes follow: the executable,
+// the stdout path, the stderr path and then every argument, each ending in NUL.
+struct LaunchHeader {
+  std::uint32_t size = 0;
+  std::int32_t cpu = -1;
+  std::uint64_t rlimit_as = 0;
+};
+
+// Where a parked child receives its command: allocated before the fork, since the child of a
+// threaded process must not allocate. A command that does not fit is started unparked.
+struct LaunchBuffer {
+  static constexpr std::size_t kBytes = 256 * 1024, kWords = 16 * 1024;
+  std::vector<char> bytes = std::vector<char>(kBytes);
+  std::vector<char*> words = std::vector<char*>(kWords);
+};
+
+bool read_exactly(int fd, void* data, std::size_t size) {
+  auto* at = static_cast<char*>(data);
+  while (size > 0) {
+    const ssize_t got = ::read(fd, at, size);
+    if (got < 0 && errno == EINTR) continue;
+    if (got <= 0) return false;
+    at += got;
+    size -= static_cast<std::size_t>(got);
   }
+  return true;
+}
+
+[[noreturn]] void report_and_exit(int error_fd, int stage) {
+  const ChildError report{stage, errno};
+  (void)!::write(error_fd, &report, sizeof report);
+  ::_exit(127);
+}
+
+// After fork, in the child: only async-signal-safe calls. The child leaves mosb's session (so a
+// Ctrl-C on the terminal reaches mosb alone), joins its memory group, says it is ready, and waits
+// for its command; the group join, which takes milliseconds under cgroup v1, happens while the
+// previous solver still runs.
+[[noreturn]] void parked_child(int command_fd, int error_fd, int procs_fd, LaunchBuffer& buffer) {
   ::setsid();
   // A kill -9 of mosb run takes the solver with it (its descendants are left to their session).
   ::prctl(PR_SET_PDEATHSIG, SIGKILL, 0, 0, 0);
+  if (procs_fd >= 0 && ::write(procs_fd, "0", 1) != 1) report_and_exit(error_fd, 1);
+  const char ready = 1;
+  if (::send(command_fd, &ready, 1, MSG_NOSIGNAL) != 1) ::_exit(127);
+  LaunchHeader header;
+  if (!read_exactly(command_fd, &header, sizeof header) || header.size > buffer.bytes.size() ||
+      !read_exactly(command_fd, buffer.bytes.data(), header.size))
+    ::_exit(127);  // mosb gave up on this child
+  char* text = buffer.bytes.data();
+  char* const end = text + header.size;
+  std::size_t count = 0;
+  while (text < end && count + 1 < buffer.words.size()) {
+    buffer.words[count++] = text;
+    while (text < end && *text != '\0') ++text;
+    ++text;
+  }
+  if (count < 4) ::_exit(127);
+  const char* executable = buffer.words[0];
+  char** argv = buffer.words.data() + 3;
+  buffer.words[count] = nullptr;
+
   sigset_t none;
   sigemptyset(&none);
   ::sigprocmask(SIG_SETMASK, &none, nullptr);
   ::signal(SIGINT, SIG_DFL);
   ::signal(SIGTERM, SIG_DFL);
   ::signal(SIGPIPE, SIG_DFL);
-  if (spec.cpu >= 0) {
+  if (header.cpu >= 0) {
     cpu_set_t set;
     CPU_ZERO(&set);
-    CPU_SET(spec.cpu, &set);
+    CPU_SET(header.cpu, &set);
     ::sched_setaffinity(0, sizeof set, &set);
   }
-  if (rlimit_as != 0) {
-    const rlimit limit{rlimit_as, rlimit_as};
+  if (header.rlimit_as != 0) {
+    const rlimit limit{header.rlimit_as, header.rlimit_as};
     ::setrlimit(RLIMIT_AS, &limit);
   }
-  for (int i = 0; i < 3; ++i) ::dup2(fds[i], i);
-  ::execve(spec.executable.c_str(), argv.data(), environ);
-  report = {2, errno};
-  (void)!::write(error_fd, &report, sizeof report);
-  ::_exit(127);
-}
-
-int open_output(const std::string& path) {
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
-  if (fd < 0) fail(path + ": cannot create");
-  return fd;
+  const int input = ::open("/dev/null", O_RDONLY);
+  const int output = ::open(buffer.words[1], O_WRONLY | O_CREAT | O_TRUNC, 0600);
+  const int errors = ::open(buffer.words[2], O_WRONLY | O_CREAT | O_TRUNC, 0600);
+  if (input < 0 || output < 0 || errors < 0) report_and_exit(error_fd, 3);
+  ::dup2(input, 0);
+  ::dup2(output, 1);
+  ::dup2(errors, 2);
+  ::execve(executable, argv, environ);
+  report_and_exit(error_fd, 2);
 }
 
 double seconds_of(const timeval& t) {
   return static_cast<double>(t.tv_sec) + t.tv_usec / 1e6;
 }
 
-// Kills everything left of the solver's session and reaps what became ours (subreaper).
-void kill_leftovers(pid_t sid, const MemoryGroup* group, ProcessOutcome& out) {
+// Kills everything left of the solver's session and reaps what became ours (subreaper). What
+// left the session but not the group is killed when the group is removed.
+void kill_leftovers(pid_t sid, ProcessOutcome& out) {
   const auto until = Clock::now() + std::chrono::seconds(5);
   while (true) {
     ::kill(-sid, SIGKILL);
-    if (group) group->kill_all();
     int status = 0;
     rusage usage{};
     while (::wait4(-sid, &status, WNOHANG, &usage) > 0)
       out.cpu_seconds += seconds_of(usage.ru_utime) + seconds_of(usage.ru_stime);
-    if (::kill(-sid, 0) != 0 && errno == ESRCH && (!group || group->empty())) return;
+    if (::kill(-sid, 0) != 0 && errno == ESRCH) return;
     if (Clock::now() > until) return;
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
@@ -324,49 +381,118 @@ std::uint64_t rlimit_backstop(std::uint64_t memory) {
   return memory == 0 ? 0 : memory > (UINT64_MAX / 2) ? memory : memory * 2;
 }
 
-struct Spawned {
-  pid_t pid = -1;
-  int error_fd = -1;  // read end of the child's error pipe
-};
-
-// Forks the solver; it joins its group and executes by itself, so the parent never waits for it.
-Spawned spawn(const ProcessSpec& spec, Measurement m, std::uint64_t memory,
-              const MemoryGroup* group) {
-  std::vector<char*> argv;
-  for (const auto& word : spec.argv) argv.push_back(const_cast<char*>(word.c_str()));
-  argv.push_back(nullptr);
-  const int fds[3] = {::open("/dev/null", O_RDONLY | O_CLOEXEC), open_output(spec.stdout_path),
-                      open_output(spec.stderr_path)};
-  int error_pipe[2];
-  // Non-blocking: read after the child ended, when a sibling forked meanwhile may still hold the
-  // write end (until it executes).
-  if (::pipe2(error_pipe, O_CLOEXEC) != 0) fail("cannot create a pipe");
-  ::fcntl(error_pipe[0], F_SETFL, O_NONBLOCK);
-  const pid_t pid = ::fork();
-  if (pid == 0)
-    start_child(spec, argv, fds, group ? group->procs_fd() : -1, error_pipe[1],
-                m == Measurement::rlimit_poll ? rlimit_backstop(memory) : 0);
-  const int fork_error = errno;
-  for (int fd : fds) ::close(fd);
-  ::close(error_pipe[1]);
-  if (pid < 0) {
-    ::close(error_pipe[0]);
-    errno = fork_error;
-    fail("cannot fork");
-  }
-  return {pid, error_pipe[0]};
-}
-
 // The child's report of a failed start, read once it has ended (nothing: it executed).
 std::optional<ChildError> child_error(int fd) {
   ChildError report;
   const ssize_t got = ::read(fd, &report, sizeof report);
-  ::close(fd);
   if (got != sizeof report) return std::nullopt;
   return report;
 }
 
 }  // namespace
+
+// A forked child waiting in its memory group for the command of the next query (parked_child).
+struct ProcessRunner::Parked {
+  pid_t pid = -1;
+  int command_fd = -1;  // mosb's end of the socket pair: ready byte in, command out
+  int error_fd = -1;    // read end of the child's error pipe
+  std::unique_ptr<MemoryGroup> group;
+  Measurement m = Measurement::rlimit_poll;
+  std::uint64_t memory = 0;
+  std::string group_prefix;
+  LaunchBuffer buffer;
+
+  Parked(Measurement measurement, std::uint64_t memory_bytes, const std::string& prefix,
+         std::uint64_t sequence)
+      : m(measurement), memory(memory_bytes), group_prefix(prefix) {
+    if (m == Measurement::cgroup_v1)
+      group = std::make_unique<MemoryGroup>(prefix + "-" + std::to_string(sequence), memory);
+    int command[2], error[2];
+    if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, command) != 0)
+      fail("cannot create a socket pair");
+    // Non-blocking: read after the child ended, when a sibling forked meanwhile may still hold the
+    // write end (until it executes).
+    if (::pipe2(error, O_CLOEXEC) != 0) {
+      ::close(command[0]);
+      ::close(command[1]);
+      fail("cannot create a pipe");
+    }
+    ::fcntl(error[0], F_SETFL, O_NONBLOCK);
+    pid = ::fork();
+    if (pid == 0) parked_child(command[0], error[1], group ? group->procs_fd() : -1, buffer);
+    const int fork_error = errno;
+    ::close(command[0]);
+    ::close(error[1]);
+    command_fd = command[1];
+    error_fd = error[0];
+    if (pid < 0) {
+      errno = fork_error;
+      fail("cannot fork");
+    }
+  }
+  // A child never launched is killed and reaped; a launched one is reaped by run().
+  ~Parked() {
+    if (command_fd >= 0) {
+      ::kill(pid, SIGKILL);
+      while (::waitpid(pid, nullptr, 0) < 0 && errno == EINTR) {
+      }
+      ::close(command_fd);
+    }
+    ::close(error_fd);
+  }
+  Parked(const Parked&) = delete;
+  Parked& operator=(const Parked&) = delete;
+
+  bool suits(Measurement measurement, std::uint64_t memory_bytes, const std::string& prefix) const {
+    return m == measurement && memory == memory_bytes && group_prefix == prefix;
+  }
+
+  static bool fits(const ProcessSpec& spec) {
+    std::size_t size =
+        spec.executable.size() + spec.stdout_path.size() + spec.stderr_path.size() + 3;
+    for (const auto& word : spec.argv) size += word.size() + 1;
+    return size <= LaunchBuffer::kBytes && spec.argv.size() + 4 <= LaunchBuffer::kWords;
+  }
+
+  // Returns once the child is in its group and waits for its command, or has ended (a failed group
+  // join: its error pipe says so). A sibling may hold the child's end of the socket pair, so an
+  // ended child is noticed by polling for it, not by end of file.
+  void wait_ready() const {
+    pollfd ready{command_fd, POLLIN, 0};
+    while (true) {
+      char byte = 0;
+      if (::poll(&ready, 1, 10) > 0 && ::recv(command_fd, &byte, 1, MSG_DONTWAIT) == 1) return;
+      siginfo_t info{};
+      if (::waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOHANG | WNOWAIT) == 0 &&
+          info.si_pid == pid)
+        return;
+    }
+  }
+
+  // Sends the command (fits(spec) holds); a child that has ended meanwhile is reaped as usual.
+  void launch(const ProcessSpec& spec) {
+    std::string text = spec.executable + '\0' + spec.stdout_path + '\0' + spec.stderr_path + '\0';
+    for (const auto& word : spec.argv) text += word + '\0';
+    LaunchHeader header;
+    header.size = static_cast<std::uint32_t>(text.size());
+    header.cpu = spec.cpu;
+    header.rlimit_as = m == Measurement::rlimit_poll ? rlimit_backstop(memory) : 0;
+    text.insert(0, reinterpret_cast<const char*>(&header), sizeof header);
+    const char* at = text.data();
+    std::size_t left = text.size();
+    while (left > 0) {
+      const ssize_t put = ::send(command_fd, at, left, MSG_NOSIGNAL);
+      if (put < 0 && errno == EINTR) continue;
+      if (put <= 0) break;
+      at += put;
+      left -= static_cast<std::size_t>(put);
+    }
+    ::close(command_fd);
+    command_fd = -1;
+  }
+};
+
+namespace {}  // namespace
 
 // The per-job watchdog thread: every 20 ms it checks the running solver against the stop flag,
 // the deadline and (rlimit_poll) the session's resident memory, and kills the tree when one is
@@ -427,6 +553,7 @@ ProcessRunner::ProcessRunner(const std::atomic<bool>& stop)
 }
 
 ProcessRunner::~ProcessRunner() {
+  parked_.reset();
   {
     std::lock_guard lock(watch_->mutex);
     watch_->quit = true;
@@ -457,16 +584,24 @@ void classify_exit(int status, const MemoryGroup* g, ProcessOutcome& out) {
 ProcessOutcome ProcessRunner::run(const ProcessSpec& spec, const ProcessLimits& limits,
                                   Measurement m) {
   ProcessOutcome out;
-  std::optional<MemoryGroup> group;
-  if (m == Measurement::cgroup_v1) group.emplace(spec.group_name, limits.memory_bytes);
-  const MemoryGroup* g = group ? &*group : nullptr;
+  if (!parked_ || !parked_->suits(m, limits.memory_bytes, spec.group_name))
+    parked_ = std::make_unique<Parked>(m, limits.memory_bytes, spec.group_name, sequence_++);
+  std::unique_ptr<Parked> child = std::move(parked_);
+  if (!Parked::fits(spec)) {
+    out.ending = Ending::not_started;
+    out.error = spec.executable + ": cannot run: the command line is longer than " +
+                std::to_string(LaunchBuffer::kBytes) + " bytes";
+    return out;
+  }
+  child->wait_ready();
   const auto started = Clock::now();
-  const Spawned child = spawn(spec, m, limits.memory_bytes, g);
+  child->launch(spec);
+  const MemoryGroup* g = child->group.get();
   {
     std::lock_guard lock(watch_->mutex);
     Watch& w = *watch_;
     w.active = true;
-    w.pid = child.pid;
+    w.pid = child->pid;
     w.m = m;
     w.limits = limits;
     w.group = g;
@@ -476,9 +611,16 @@ ProcessOutcome ProcessRunner::run(const ProcessSpec& spec, const ProcessLimits& 
     w.reason.reset();
     w.peak = 0;
   }
+  // The next query's child joins its group while this solver runs. Should that fail, the next
+  // run() tries again and reports it; this solver is reaped first.
+  if (!stop_.load()) try {
+      parked_ = std::make_unique<Parked>(m, limits.memory_bytes, spec.group_name, sequence_++);
+    } catch (const Error&) {
+      parked_.reset();
+    }
   int status = 0;
   rusage usage{};
-  while (::wait4(child.pid, &status, 0, &usage) < 0 && errno == EINTR) {
+  while (::wait4(child->pid, &status, 0, &usage) < 0 && errno == EINTR) {
   }
   out.wall_seconds = std::chrono::duration<double>(Clock::now() - started).count();
   out.cpu_seconds = seconds_of(usage.ru_utime) + seconds_of(usage.ru_stime);
@@ -490,8 +632,12 @@ ProcessOutcome ProcessRunner::run(const ProcessSpec& spec, const ProcessLimits& 
     reason = watch_->reason;
     peak = watch_->peak;
   }
-  kill_leftovers(child.pid, g, out);
-  const auto failed_start = child_error(child.error_fd);
+  kill_leftovers(child->pid, out);
+  const auto failed_start = child_error(child->error_fd);
+  if (failed_start && failed_start->stage == 3) {
+    errno = failed_start->error;
+    fail(spec.stdout_path + " or " + spec.stderr_path + ": cannot create");
+  }
   out.peak_memory_bytes =
       g ? g->peak() : std::max(peak, static_cast<std::uint64_t>(usage.ru_maxrss) * 1024);
   if (failed_start) {

@@ -88,8 +88,11 @@ class ProcessRunner {
 
  private:
   struct Watch;
+  struct Parked;
   const std::atomic<bool>& stop_;
   std::unique_ptr<Watch> watch_;
+  std::unique_ptr<Parked> parked_;  // the next solver's process, forked ahead of its command
+  std::uint64_t sequence_ = 0;      // numbers the memory groups of this runner
 };
 
 }  // namespace mosb
