@@ -83,7 +83,8 @@ class RunTest(CliTest):
 
     def one_query(self, body, *extra, interpreter="/bin/sh", code=0):
         """Runs a one-query set with the solver `body`; returns (inspect, stderr)."""
-        self.ok("queries", "generate", self.grid, "--set", "one", "--count", "1", "--in-place")
+        self.ok("queries", "generate", self.grid, "--set", "one", "--count", "1", "--in-place",
+                "--replace")
         solver = self.script("solver", body, interpreter)
         r = self.run_solver(solver + " {source} {target}", *extra, queries="one", code=code)
         return self.inspect(), r
@@ -115,6 +116,21 @@ class RunTest(CliTest):
             self.skipTest("no writable memory cgroup here")
         self.assert_status(info, "solved")
         self.assert_no_process_left()
+
+    def test_cpu_limit_counts_the_whole_tree(self):
+        # Two busy processes: 1.5 s of CPU time in about 0.75 s on two cores, far below the
+        # wall-clock limit; a sleeping solver passes the same CPU limit untouched.
+        started = time.monotonic()
+        info, _ = self.one_query("echo $$ >> %s\n(while :; do :; done) &\necho $! >> %s\n"
+                                 "while :; do :; done\n" % (self.pids, self.pids),
+                                 "--cpu-limit", "1500ms", "--time-limit", "60s", "--grace", "0.2")
+        self.assertLess(time.monotonic() - started, 30)
+        self.assert_status(info, "timeout")
+        self.assertEqual(info["parameters"]["run.cpu_limit_seconds"], "1.5")
+        self.assert_no_process_left()
+        info, _ = self.one_query("echo $$ >> %s\nsleep 2\necho 1 1\n" % self.pids,
+                                 "--cpu-limit", "1s")
+        self.assert_status(info, "solved")
 
     def test_memory_limit_in_the_solver_and_in_a_forked_child(self):
         for measurement in MEASUREMENTS:
@@ -170,7 +186,8 @@ class RunTest(CliTest):
     def test_front_in_a_file_and_statistics(self):
         body = ("echo $$ >> %s\nprintf '3 4\\n1 9\\n' > \"$3\"\necho noise\n"
                 "echo 'mosb: generated=11' >&2\n" % self.pids)
-        self.ok("queries", "generate", self.grid, "--set", "one", "--count", "1", "--in-place")
+        self.ok("queries", "generate", self.grid, "--set", "one", "--count", "1", "--in-place",
+                "--replace")
         solver = self.script("solver", body)
         self.run_solver(solver + " {source} {target} {front}", queries="one")
         info = self.inspect()
@@ -180,7 +197,8 @@ class RunTest(CliTest):
         self.assert_no_process_left()
 
     def test_a_program_that_cannot_execute_is_failed_with_127(self):
-        self.ok("queries", "generate", self.grid, "--set", "one", "--count", "1", "--in-place")
+        self.ok("queries", "generate", self.grid, "--set", "one", "--count", "1", "--in-place",
+                "--replace")
         solver = self.write("noshebang", "echo 1 2\n")  # executable, but no #! line: ENOEXEC
         os.chmod(solver, 0o755)
         r = self.run_solver(solver, queries="one")
@@ -190,7 +208,8 @@ class RunTest(CliTest):
         self.assertIn("cannot run: Exec format error", r.stderr)
 
     def test_objectives_instead_of_a_view(self):
-        self.ok("queries", "generate", self.grid, "--set", "one", "--count", "1", "--in-place")
+        self.ok("queries", "generate", self.grid, "--set", "one", "--count", "1", "--in-place",
+                "--replace")
         solver = self.script("solver", "echo $$ >> %s\necho \"$1\" > %s\necho 0 7\n" %
                              (self.pids, self.path("objectives")))
         r = self.mosb("run", self.grid, "--objectives", "c1,c2", "--queries", "one", "--solver",
@@ -231,7 +250,8 @@ class RunTest(CliTest):
         os.chmod(solver, 0o755)
         os.rename(self.grid, self.path("g $x;y.mosb"))
         self.grid = self.path("g $x;y.mosb")
-        self.ok("queries", "generate", self.grid, "--set", "one", "--count", "1", "--in-place")
+        self.ok("queries", "generate", self.grid, "--set", "one", "--count", "1", "--in-place",
+                "--replace")
         quoted = "'" + solver + "'"
         self.run_solver(quoted + ' {instance} "a b" c\\ d {{x}}', queries="one")
         self.assertEqual(mosbtest.read(args, "r"), "4|%s|a b|c d|{x}|" % self.grid)

@@ -24,7 +24,8 @@ namespace mosb::cli {
 namespace {
 
 struct RunArgs {
-  std::string instance, output, solver, time_limit = "0", output_format = "protocol";
+  std::string instance, output, solver, time_limit = "0", cpu_limit = "0",
+                                        output_format = "protocol";
   std::string measurement = "auto", solver_name, solver_version;
   ViewChoice choice;
   std::uint64_t memory_limit = 0;
@@ -160,7 +161,8 @@ int run_run(const RunArgs& a) {
   config.solver_template = a.solver;
   config.output_format = a.output_format;
   config.adapter = *converters::solver_output_adapter(a.output_format);  // checked by CLI11
-  config.limits = {*parse_duration(a.time_limit), a.memory_limit, a.grace};
+  config.limits = {*parse_duration(a.time_limit), a.memory_limit, a.grace,
+                   *parse_duration(a.cpu_limit)};
   config.jobs = a.jobs;
   config.pin = a.pin;
   config.threads = a.threads;
@@ -208,6 +210,10 @@ Command add_run(CLI::App& app) {
       ->required();
   sub->add_option("--time-limit", a->time_limit,
                   "wall-clock limit per query (60, 60s, 500ms, 2m, 1h; 0: none)")
+      ->check(duration());
+  sub->add_option("--cpu-limit", a->cpu_limit,
+                  "CPU-time limit per query, user + system of the whole process tree (as "
+                  "--time-limit; 0: none); a query over it is a timeout")
       ->check(duration());
   sub->add_option("--memory-limit", a->memory_limit,
                   "memory limit per query for the whole process tree (bytes, or 512M, 4G: "

@@ -179,13 +179,21 @@ void prepare_process_runner() {
 
 namespace {
 
-// The resident memory, in bytes, of every process in session `sid`. Called every 20 ms while a
-// solver runs, so it reads each /proc/PID/stat with one read into a stack buffer.
-std::uint64_t session_rss(pid_t sid) {
+// What the processes of one session use now: the resident set summed, and the CPU time summed
+// with that of the children each has reaped.
+struct SessionUsage {
+  std::uint64_t rss_bytes = 0;
+  double cpu_seconds = 0;
+};
+
+// Called every 20 ms while a solver runs, so it reads each /proc/PID/stat with one read into a
+// stack buffer.
+SessionUsage session_usage(pid_t sid) {
   static const long page = ::sysconf(_SC_PAGESIZE);
-  std::uint64_t total = 0;
+  static const double tick = 1.0 / static_cast<double>(::sysconf(_SC_CLK_TCK));
+  SessionUsage usage;
   DIR* proc = ::opendir("/proc");
-  if (!proc) return 0;
+  if (!proc) return usage;
   char path[300];
   char text[1024];
   while (const dirent* entry = ::readdir(proc)) {
@@ -197,20 +205,24 @@ std::uint64_t session_rss(pid_t sid) {
     ::close(fd);
     if (size <= 0) continue;
     text[size] = '\0';
-    // After "pid (comm)": state ppid pgrp session ... field 24 is rss (in pages).
+    // After "pid (comm)": field 3 is the state, 6 the session, 14-17 utime stime cutime cstime
+    // (clock ticks), 24 rss (pages).
     const char* field = std::strrchr(text, ')');
     if (!field) continue;
-    long session = -1, rss = 0;
+    long session = -1, rss = 0, ticks = 0;
     for (int i = 3; i <= 24; ++i) {
       field = std::strchr(field + 1, ' ');
       if (!field) break;
       if (i == 6) session = std::strtol(field + 1, nullptr, 10);
+      if (i >= 14 && i <= 17) ticks += std::strtol(field + 1, nullptr, 10);
       if (i == 24) rss = std::strtol(field + 1, nullptr, 10);
     }
-    if (session == sid && rss > 0) total += static_cast<std::uint64_t>(rss) * page;
+    if (session != sid) continue;
+    if (rss > 0) usage.rss_bytes += static_cast<std::uint64_t>(rss) * page;
+    if (ticks > 0) usage.cpu_seconds += static_cast<double>(ticks) * tick;
   }
   ::closedir(proc);
-  return total;
+  return usage;
 }
 
 // A memory cgroup for one solver, removed when the object ends.
@@ -513,14 +525,18 @@ struct ProcessRunner::Watch {
 
   // Under the lock: what to do now for the active solver.
   void check(const std::atomic<bool>& stop, std::unique_lock<std::mutex>& lock) {
-    if (!reason && m == Measurement::rlimit_poll) {
+    if (!reason && (m == Measurement::rlimit_poll || limits.cpu_seconds > 0)) {
       const pid_t sid = pid;
       lock.unlock();
-      const std::uint64_t rss = session_rss(sid);
+      const SessionUsage usage = session_usage(sid);
       lock.lock();
       if (!active || pid != sid) return;
-      peak = std::max(peak, rss);
-      if (limits.memory_bytes != 0 && peak > limits.memory_bytes) reason = Ending::memory_limit;
+      if (m == Measurement::rlimit_poll) {
+        peak = std::max(peak, usage.rss_bytes);
+        if (limits.memory_bytes != 0 && peak > limits.memory_bytes) reason = Ending::memory_limit;
+      }
+      if (!reason && limits.cpu_seconds > 0 && usage.cpu_seconds > limits.cpu_seconds)
+        reason = Ending::cpu_limit;
     }
     const auto now = Clock::now();
     if (!reason && stop.load()) reason = Ending::interrupted;

@@ -93,6 +93,10 @@ QueryRecord classify(std::uint64_t q, const ProcessOutcome& o, const SolverOutpu
     case Ending::timeout:
       r.status = QueryStatus::timeout;
       return r;
+    case Ending::cpu_limit:
+      r.status = QueryStatus::timeout;
+      r.message = "CPU time limit";
+      return r;
     case Ending::memory_limit:
       r.status = QueryStatus::memory_limit;
       return r;
@@ -182,6 +186,7 @@ nlohmann::json binding_of(const RunConfig& c, const Plan& p) {
           {"solver", c.solver_template},
           {"output_format", c.output_format},
           {"time_limit_seconds", c.limits.wall_seconds},
+          {"cpu_limit_seconds", c.limits.cpu_seconds},
           {"memory_limit_bytes", c.limits.memory_bytes},
           {"threads", c.threads}};
 }
@@ -343,6 +348,7 @@ SolverInfo solver_info(const RunConfig& c, const Plan& p, unsigned jobs) {
   if (c.sha256_file) m["run.executable_sha256"] = c.sha256_file(p.executable);
   m["run.output_format"] = c.output_format;
   m["run.time_limit_seconds"] = format_seconds(c.limits.wall_seconds);
+  m["run.cpu_limit_seconds"] = format_seconds(c.limits.cpu_seconds);
   m["run.memory_limit_bytes"] = std::to_string(c.limits.memory_bytes);
   m["run.grace_seconds"] = format_seconds(c.limits.grace_seconds);
   m["run.jobs"] = std::to_string(jobs);

@@ -36,6 +36,9 @@ struct ProcessLimits {
   double wall_seconds = 0;         // 0: none
   std::uint64_t memory_bytes = 0;  // 0: none (still measured)
   double grace_seconds = 1;        // between SIGTERM and SIGKILL on a timeout
+  // 0: none. User + system time of the solver's session (its live processes and the children
+  // they reaped), polled every 20 ms.
+  double cpu_seconds = 0;
 };
 
 struct ProcessSpec {
@@ -50,6 +53,7 @@ enum class Ending {
   exited,        // exit_code holds the status
   signaled,      // signal holds the signal
   timeout,       // killed at the wall-clock limit
+  cpu_limit,     // killed at the CPU-time limit
   memory_limit,  // killed (or failed) at the memory limit
   interrupted,   // killed because `stop` was set
   not_started,   // the executable could not be run: error says why
@@ -75,7 +79,7 @@ void prepare_process_runner();
 
 // Runs solvers one after the other (one per job of `mosb run`), each to its end under its
 // limits. A watchdog thread of its own checks the running solver every 20 ms against `stop`, the
-// deadline and, under rlimit_poll, the memory limit.
+// deadline, the CPU-time limit and, under rlimit_poll, the memory limit.
 class ProcessRunner {
  public:
   explicit ProcessRunner(const std::atomic<bool>& stop);
