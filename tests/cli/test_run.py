@@ -196,6 +196,26 @@ class RunTest(CliTest):
         self.assertEqual(info["statistics"]["generated"]["total"], 11)
         self.assert_no_process_left()
 
+    def test_json_log_adapter_reads_ppa_style_logs(self):
+        # The record shape of PPA*'s Logger: the front under finish_info, runtime in ms.
+        body = ("echo $$ >> %s\nprintf '[{\"source\": %%s, \"target\": %%s, \"finish_info\": "
+                "{\"solutions\": [{\"cost_until_now\": [3, 4]}, {\"cost_until_now\": [1, 9]}]},"
+                " \"total_runtime(ms)\": 2.5}]' \"$1\" \"$%s\" > \"$3\"\n")
+        solver = self.script("solver", body % (self.pids, 2))
+        self.ok("queries", "generate", self.grid, "--set", "one", "--count", "1", "--in-place",
+                "--replace")
+        self.run_solver(solver + " {source} {target} {front}", "--output-format", "json-log",
+                        queries="one")
+        info = self.inspect()
+        self.assert_status(info, "solved")
+        self.assertEqual(info["vectors"], 2)
+        # A record for other endpoints (source in place of the target) is not this query's.
+        solver = self.script("solver", body % (self.pids, 1))
+        self.run_solver(solver + " {source} {target} {front}", "--output-format", "json-log",
+                        queries="one", output="wrong.sol")
+        self.assert_status(self.inspect("wrong.sol"), "failed")
+        self.assert_no_process_left()
+
     def test_a_program_that_cannot_execute_is_failed_with_127(self):
         self.ok("queries", "generate", self.grid, "--set", "one", "--count", "1", "--in-place",
                 "--replace")

@@ -228,8 +228,9 @@ Command add_run(CLI::App& app) {
   sub->add_option("--threads", a->threads, "what {threads} becomes (default 1)")
       ->check(unsigned_integer(4096));
   sub->add_option("--output-format", a->output_format,
-                  "how the solver reports: protocol (spec/RUN.md, default) or example-log")
-      ->check(CLI::IsMember({"protocol", "example-log"}));
+                  "how the solver reports: protocol (spec/RUN.md, default), example-log or "
+                  "json-log (PPA*'s log)")
+      ->check(CLI::IsMember({"protocol", "example-log", "json-log"}));
   sub->add_option("--measurement", a->measurement,
                   "auto (default), cgroup-v1 or rlimit-poll: how memory is limited and measured")
       ->check(CLI::IsMember({"auto", "cgroup-v1", "rlimit-poll"}));

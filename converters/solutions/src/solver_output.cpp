@@ -25,9 +25,32 @@ ParsedOutput read_example_log_output(const SolverOutputFiles& files) {
   return out;
 }
 
+ParsedOutput read_json_log_output(const SolverOutputFiles& files) {
+  SolutionImportOptions options;
+  options.objective_count = files.objectives;
+  options.vertex_count = std::uint64_t{1} << 32;  // the endpoints are checked against the query
+  options.queries = std::span<const Query>(&files.query, 1);
+  options.match = RecordMatch::endpoints;
+  const std::string& path = files.front_in_file ? files.front_path : files.stdout_path;
+  const auto log = read_text_input(path);
+  auto results = parse_solver_json_log(log.text, path, options);
+  if (results.size() != 1)
+    throw Error(path + ": expected one record for the query, found " +
+                std::to_string(results.size()));
+  const auto& result = results.front();
+  if (result.status != QueryStatus::solved && result.status != QueryStatus::disconnected)
+    throw Error(path + ": the record states status " + std::string(to_string(result.status)));
+  ParsedOutput out;
+  out.vectors = result.costs.size() / files.objectives;
+  out.costs = result.costs;
+  out.statistics.runtime_seconds = result.statistics.runtime_seconds;
+  return out;
+}
+
 std::optional<OutputAdapter> solver_output_adapter(std::string_view format) {
   if (format == "protocol") return OutputAdapter(read_protocol_output);
   if (format == "example-log") return OutputAdapter(read_example_log_output);
+  if (format == "json-log") return OutputAdapter(read_json_log_output);
   return std::nullopt;
 }
 
