@@ -6,11 +6,21 @@
 
 namespace mosb::converters {
 
-ParsedOutput read_example_log_output(const SolverOutputFiles& files) {
+namespace {
+
+// The importers' options for the one query a solver process ran.
+SolutionImportOptions one_query_options(const SolverOutputFiles& files) {
   SolutionImportOptions options;
   options.objective_count = files.objectives;
   options.vertex_count = std::uint64_t{1} << 32;  // the endpoints are checked against the query
   options.queries = std::span<const Query>(&files.query, 1);
+  return options;
+}
+
+}  // namespace
+
+ParsedOutput read_example_log_output(const SolverOutputFiles& files) {
+  SolutionImportOptions options = one_query_options(files);
   options.status_for_empty = QueryStatus::failed;
   auto results = import_front_directory(files.fronts_dir, options);
   const auto log = read_text_input(files.stdout_path);
@@ -26,10 +36,7 @@ ParsedOutput read_example_log_output(const SolverOutputFiles& files) {
 }
 
 ParsedOutput read_json_log_output(const SolverOutputFiles& files) {
-  SolutionImportOptions options;
-  options.objective_count = files.objectives;
-  options.vertex_count = std::uint64_t{1} << 32;  // the endpoints are checked against the query
-  options.queries = std::span<const Query>(&files.query, 1);
+  SolutionImportOptions options = one_query_options(files);
   options.match = RecordMatch::endpoints;
   const std::string& path = files.front_in_file ? files.front_path : files.stdout_path;
   const auto log = read_text_input(path);

@@ -273,7 +273,7 @@ class MemoryGroup {
 
 // What the child reports through its error pipe when it cannot execute.
 struct ChildError {
-  int stage = 0;  // 1: joining the cgroup, 2: execve, 3: creating stdout or stderr
+  int stage = 0;  // 1: joining the cgroup, 2: execve, 3: opening /dev/null, stdout or stderr
   int error = 0;
 };
 
@@ -315,10 +315,19 @@ bool read_exactly(int fd, void* data, std::size_t size) {
 // Ctrl-C on the terminal reaches mosb alone), joins its memory group, says it is ready, and waits
 // for its command; the group join, which takes milliseconds under cgroup v1, happens while the
 // previous solver still runs.
-[[noreturn]] void parked_child(int command_fd, int error_fd, int procs_fd, LaunchBuffer& buffer) {
+[[noreturn]] void parked_child(int command_fd, int mosb_end, int error_fd, int procs_fd, pid_t mosb,
+                               LaunchBuffer& buffer) {
+  ::close(mosb_end);  // mosb's end closes when mosb ends: an end of file here
   ::setsid();
-  // A kill -9 of mosb run takes the solver with it (its descendants are left to their session).
+  // A kill -9 of mosb run takes the solver with it (its descendants are left to their session);
+  // a mosb that ended before the signal was asked for has left this child to another parent.
   ::prctl(PR_SET_PDEATHSIG, SIGKILL, 0, 0, 0);
+  if (::getppid() != mosb) ::_exit(127);
+  // mosb's standard streams are not the solver's: a waiting child holds none of them open.
+  const int null = ::open("/dev/null", O_RDWR);
+  if (null < 0) report_and_exit(error_fd, 3);
+  for (int fd = 0; fd < 3; ++fd) ::dup2(null, fd);
+  if (null > 2) ::close(null);
   if (procs_fd >= 0 && ::write(procs_fd, "0", 1) != 1) report_and_exit(error_fd, 1);
   const char ready = 1;
   if (::send(command_fd, &ready, 1, MSG_NOSIGNAL) != 1) ::_exit(127);
@@ -355,11 +364,9 @@ bool read_exactly(int fd, void* data, std::size_t size) {
     const rlimit limit{header.rlimit_as, header.rlimit_as};
     ::setrlimit(RLIMIT_AS, &limit);
   }
-  const int input = ::open("/dev/null", O_RDONLY);
   const int output = ::open(buffer.words[1], O_WRONLY | O_CREAT | O_TRUNC, 0600);
   const int errors = ::open(buffer.words[2], O_WRONLY | O_CREAT | O_TRUNC, 0600);
-  if (input < 0 || output < 0 || errors < 0) report_and_exit(error_fd, 3);
-  ::dup2(input, 0);
+  if (output < 0 || errors < 0) report_and_exit(error_fd, 3);
   ::dup2(output, 1);
   ::dup2(errors, 2);
   ::execve(executable, argv, environ);
@@ -430,8 +437,10 @@ struct ProcessRunner::Parked {
       fail("cannot create a pipe");
     }
     ::fcntl(error[0], F_SETFL, O_NONBLOCK);
+    const pid_t mosb = ::getpid();
     pid = ::fork();
-    if (pid == 0) parked_child(command[0], error[1], group ? group->procs_fd() : -1, buffer);
+    if (pid == 0)
+      parked_child(command[0], command[1], error[1], group ? group->procs_fd() : -1, mosb, buffer);
     const int fork_error = errno;
     ::close(command[0]);
     ::close(error[1]);
