@@ -288,7 +288,7 @@ struct LaunchHeader {
 // Where a parked child receives its command: allocated before the fork, since the child of a
 // threaded process must not allocate. A command that does not fit is started unparked.
 struct LaunchBuffer {
-  static constexpr std::size_t kBytes = 256 * 1024, kWords = 16 * 1024;
+  static constexpr std::size_t kBytes = std::size_t{256} * 1024, kWords = std::size_t{16} * 1024;
   std::vector<char> bytes = std::vector<char>(kBytes);
   std::vector<char*> words = std::vector<char*>(kWords);
 };
