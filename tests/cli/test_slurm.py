@@ -202,6 +202,12 @@ class ShardsAndMerge(CliTest):
         self.assert_one_line_error(r, "--time-limit: not with --slurm DIR --resume", code=2)
         r = self.mosb("run", "--slurm", self.path("nothing"), "--status")
         self.assert_one_line_error(r, "run.json: no such file")
+        # No sbatch: the directory is kept, and the message says how to submit it later.
+        r = self.mosb(*base, "--slurm", self.path("later"), "--shards", "2", "--submit",
+                      env=dict(os.environ, PATH=self.path("no-such-dir")))
+        self.assert_one_line_error(r, "sbatch: no such program in PATH", "is written: submit it "
+                                   "with mosb run --slurm %s --resume --submit" % self.path("later"))
+        self.assertTrue(os.path.exists(self.path("later", "run.sbatch")))
 
 
 # --- the cluster ----------------------------------------------------------------------------

@@ -320,7 +320,15 @@ int run_slurm_new(const RunArgs& a) {
   const auto time = slurm_time_seconds(run);
   const auto mib = slurm_memory_mib(run);
   std::optional<std::string> job;
-  if (a.submit) job = submit_shards(run, all);
+  if (a.submit) {
+    try {
+      job = submit_shards(run, all);
+    } catch (const Error& e) {
+      throw Error(e.code(), std::string(e.what()) + "; " + run.directory +
+                                " is written: submit it with mosb run --slurm " + run.directory +
+                                " --resume --submit");
+    }
+  }
   if (a.json) {
     JsonWriter json(std::cout);
     json.begin_object();

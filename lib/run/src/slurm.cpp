@@ -490,7 +490,11 @@ std::string sbatch_command_text(const SlurmRun& run, const std::vector<std::uint
 std::string submit_shards(const SlurmRun& run, const std::vector<std::uint64_t>& shards) {
   const auto done = capture(sbatch_arguments(run, shards));
   if (!done) throw Error(ErrorCode::io, "sbatch: no such program in PATH (is SLURM installed?)");
-  if (done->status != 0) throw Error(ErrorCode::io, "sbatch: " + last_line(done->err));
+  if (done->status != 0) {
+    std::string message = last_line(done->err);
+    if (message.starts_with("sbatch: ")) message.erase(0, 8);  // sbatch names itself
+    throw Error(ErrorCode::io, "sbatch: " + message);
+  }
   const auto lines = lines_of(done->out);
   std::string id = lines.empty() ? "" : lines.back().substr(0, lines.back().find(';'));
   if (!all_digits(id))
