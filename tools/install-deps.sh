@@ -16,6 +16,7 @@ packages=(
   python3-scipy python3-pandas python3-networkx python3-igraph  # python/'s adapters (optional)
   clang libclang-rt-14-dev                  # libFuzzer
   chromium                                  # renders mosb plot's SVG in its test
+  slurm-wlm munge                           # a one-node SLURM cluster (tools/slurm-cluster.sh) for mosb run --slurm's test
   clang-format clang-tidy                   # style and static checks (tools/lint.sh)
 )
 missing=()

@@ -44,6 +44,8 @@ ELSEWHERE = {
     "Python": [("tests/python/test_package.py", "'## Python' section")],
     "Use mosb in your solver": [("tests/install/test_install.py", "pkg-config"),
                                 ("tests/install/test_install.py", "--libs")],
+    "The same on SLURM": [("tests/cli/test_slurm.py", 'README_SECTION = "The same on SLURM"'),
+                          ("tests/cli/CMakeLists.txt", "test_slurm.py")],
     "Building and testing by hand": [("tests/run-all.sh", "cmake --preset sanitize"),
                                      ("tests/run-all.sh", "ctest --preset release"),
                                      ("tests/run-all.sh", "tests/fuzz/run.sh")],

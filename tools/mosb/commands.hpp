@@ -168,6 +168,7 @@ Command add_suite(CLI::App& app);      // suite_build.cpp: `suite build`
 Command add_plot(CLI::App& app);       // plot.cpp: `plot correlation`, `plot map`
 Command add_solutions(CLI::App& app);  // solutions.cpp: `solutions import|export|inspect|verify`
 Command add_solutions_compare(CLI::App* solutions);  // solutions_compare.cpp: `solutions compare`
+Command add_solutions_merge(CLI::App* solutions);    // solutions_merge.cpp: `solutions merge`
 Command add_eval(CLI::App& app);                     // eval.cpp: `eval`
 Command add_pack(CLI::App& app);                     // pack.cpp: `pack`
 Command add_run(CLI::App& app);                      // run.cpp: `run`

@@ -1,13 +1,16 @@
 // `mosb run`: a solver over a query set, one limited and measured process per query, into a
-// solution file (spec/RUN.md). The CLI parses options, opens the instance, calls mosb::run_solver
-// and prints; the run itself is lib/run.
+// solution file (spec/RUN.md); with --shard only one shard's queries, and with --slurm DIR a SLURM
+// job array of shards (§8). The CLI parses options, opens the instance, calls mosb::run_solver or
+// the mosb/slurm.hpp functions and prints; the run itself is lib/run.
 #include "mosb/run.hpp"
 
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <charconv>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -18,6 +21,7 @@
 #include "mosb/internal/utf8.hpp"
 #include "mosb/pack.hpp"
 #include "mosb/sha256.hpp"
+#include "mosb/slurm.hpp"
 
 namespace mosb::cli {
 
@@ -32,6 +36,13 @@ struct RunArgs {
   double grace = 1;
   unsigned jobs = 1, threads = 1;
   bool pin = false, resume = false, json = false;
+  std::string shard;  // --shard i/N
+  // --slurm DIR and its options
+  std::string slurm, account, partition;
+  std::optional<std::uint64_t> shards, queries_per_task;
+  unsigned throttle = 0;
+  bool submit = false, status = false;
+  CLI::App* app = nullptr;  // for which options were given
 };
 
 std::atomic<bool> g_stop{false};
@@ -110,6 +121,7 @@ void print_summary(const RunArgs& a, const RunResult& r) {
     json.begin_object();
     json.key("file").value(a.output);
     json.key("queries").value(r.total);
+    if (!a.shard.empty()) json.key("shard").value(a.shard);
     json.key("ran").value(r.ran);
     json.key("from_journal").value(r.from_journal);
     json.key("statuses").begin_object();
@@ -122,8 +134,12 @@ void print_summary(const RunArgs& a, const RunResult& r) {
     json.end_object();
     return;
   }
-  std::cout << "wrote " << escape_for_terminal(a.output) << ": " << r.total << " queries (" << r.ran
-            << " run, " << r.from_journal << " from the journal):";
+  std::cout << "wrote " << escape_for_terminal(a.output) << ": "
+            << (a.shard.empty() ? std::string()
+                                : "shard " + a.shard + ", " + std::to_string(r.total) + " of the " +
+                                      std::to_string(r.query_set_size) + " queries")
+            << (a.shard.empty() ? std::to_string(r.total) + " queries" : std::string()) << " ("
+            << r.ran << " run, " << r.from_journal << " from the journal):";
   for (std::uint8_t s = 0; s <= kLastQueryStatus; ++s)
     std::cout << ' ' << r.counts[s] << ' ' << to_string(static_cast<QueryStatus>(s))
               << (s < kLastQueryStatus ? "," : "");
@@ -139,7 +155,31 @@ void report_failed(const QueryRecord& record, const Query& q) {
   std::cerr << escape_for_terminal(line) << "\n";
 }
 
-int run_run(const RunArgs& a) {
+// The options that define a run (refused where run.json defines it, or where they mean nothing).
+constexpr const char* kRunOptions[] = {
+    "INSTANCE",      "--view",        "--objectives",       "--queries",
+    "--solver",      "--time-limit",  "--memory-limit",     "--grace",
+    "--jobs",        "--pin",         "--threads",          "--output-format",
+    "--measurement", "--solver-name", "--solver-version",   "--output",
+    "--shard",       "--shards",      "--queries-per-task", "--throttle",
+    "--account",     "--partition"};
+constexpr const char* kSlurmOptions[] = {"--shards",  "--queries-per-task", "--throttle",
+                                         "--account", "--partition",        "--submit",
+                                         "--status"};
+
+bool given(const RunArgs& a, const char* name) {
+  return a.app->get_option_no_throw(name) && a.app->count(name) > 0;
+}
+
+void refuse(const RunArgs& a, std::span<const char* const> names, const std::string& why) {
+  for (const char* name : names)
+    if (given(a, name)) throw UsageError(std::string(name) + ": " + why);
+}
+
+// What the options of a run require, before the instance is opened.
+void check_run_options(const RunArgs& a) {
+  if (a.instance.empty()) throw UsageError("INSTANCE is required");
+  if (a.solver.empty()) throw UsageError("--solver is required");
   if (a.choice.view.empty() && a.choice.objectives.empty())
     throw UsageError("give --view V or --objectives A,B,... (the objectives the solver optimizes)");
   try {
@@ -147,13 +187,29 @@ int run_run(const RunArgs& a) {
   } catch (const Error& e) {
     throw UsageError(e.what());
   }
-  const auto instance = mosb::load(a.instance, VerifyLevel::checksums);
+}
+
+// The instance's selection: a usage error when the choice does not fit it.
+View checked_selection(const GraphReader& instance, const ViewChoice& choice) {
   try {
-    solution_selection(instance, a.choice);  // what the file binds to: a usage error, if any
+    return solution_selection(instance, choice);  // what the file binds to
   } catch (const Error& e) {
     if (e.code() != ErrorCode::invalid_argument) throw;
     throw UsageError(e.what());
   }
+}
+
+int run_run(const RunArgs& a) {
+  refuse(a, kSlurmOptions, "only with --slurm DIR");
+  check_run_options(a);
+  if (a.output.empty()) throw UsageError("--output is required (or --slurm DIR)");
+  std::optional<Shard> shard;
+  if (!a.shard.empty()) {
+    shard = parse_shard(a.shard);
+    if (!shard) throw UsageError("--shard " + a.shard + ": not i/N with 1 <= i <= N");
+  }
+  const auto instance = mosb::load(a.instance, VerifyLevel::checksums);
+  checked_selection(instance, a.choice);
   RunConfig config;
   config.instance = &instance;
   config.instance_path = a.instance;
@@ -168,6 +224,7 @@ int run_run(const RunArgs& a) {
   config.threads = a.threads;
   if (a.measurement != "auto") config.measurement = parse_measurement(a.measurement);
   config.resume = a.resume;
+  config.shard = shard;
   config.solver_name = a.solver_name;
   config.solver_version = a.solver_version;
   config.output = a.output;
@@ -195,19 +252,298 @@ int run_run(const RunArgs& a) {
   return 0;
 }
 
+// The shortest text that reads back as `value` (std::to_chars).
+std::string number_text(double value) {
+  char text[64];
+  const auto end = std::to_chars(text, text + sizeof text, value).ptr;
+  return {text, end};
+}
+
+// `mosb run ... --slurm DIR`: writes DIR (run.json, run.sbatch), then submits or prints sbatch.
+int run_slurm_new(const RunArgs& a) {
+  refuse(a, std::array{"--output", "--shard"},
+         "not with --slurm DIR (task i writes DIR/shard-i.sol)");
+  check_run_options(a);
+  const auto instance = mosb::load(a.instance, VerifyLevel::checksums);
+  const View selection = checked_selection(instance, a.choice);
+  const auto words = split_command(a.solver);
+  const std::string executable = resolve_executable(words.front());
+  if (executable.empty() || ::access(executable.c_str(), X_OK) != 0)
+    throw Error(ErrorCode::invalid_argument,
+                "--solver: " + words.front() + ": no such executable" +
+                    (words.front().find('/') == std::string::npos ? " in PATH" : ""));
+  namespace fs = std::filesystem;
+  SlurmRun run;
+  run.directory = fs::absolute(a.slurm).lexically_normal().string();
+  while (run.directory.size() > 1 && run.directory.back() == '/') run.directory.pop_back();
+  std::error_code ec;
+  run.mosb = fs::read_symlink("/proc/self/exe", ec).string();
+  if (ec) throw Error(ErrorCode::io, "/proc/self/exe: cannot read: " + ec.message());
+  run.working_directory = fs::current_path().string();
+  run.instance = fs::absolute(a.instance).lexically_normal().string();
+  run.instance_digest = instance.digest();
+  run.view = selection.name;
+  run.query_set = selection.query_set;
+  for (const auto i : selection.objectives) run.objectives.push_back(instance.objective(i).name);
+  run.queries = instance.queries(selection.query_set).size();
+  try {
+    run.shards = slurm_shard_count(run.queries, a.shards, a.queries_per_task);
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
+  run.time_limit_seconds = *parse_duration(a.time_limit);
+  run.grace_seconds = a.grace;
+  run.memory_limit_bytes = a.memory_limit;
+  run.jobs = a.jobs;
+  run.threads = a.threads;
+  run.throttle = a.throttle;
+  run.account = a.account;
+  run.partition = a.partition;
+  auto& args = run.run_arguments;
+  args.push_back(run.instance);
+  if (!a.choice.view.empty()) args.insert(args.end(), {"--view", a.choice.view});
+  if (!a.choice.objectives.empty()) {
+    std::string list;
+    for (const auto& name : a.choice.objectives) list += (list.empty() ? "" : ",") + name;
+    args.insert(args.end(), {"--objectives", list});
+  }
+  if (!a.choice.queries.empty()) args.insert(args.end(), {"--queries", a.choice.queries});
+  args.insert(args.end(), {"--solver", a.solver, "--time-limit", a.time_limit, "--cpu-limit",
+                           a.cpu_limit, "--memory-limit", std::to_string(a.memory_limit), "--grace",
+                           number_text(a.grace), "--jobs", std::to_string(a.jobs)});
+  if (a.pin) args.emplace_back("--pin");
+  args.insert(args.end(), {"--threads", std::to_string(a.threads), "--output-format",
+                           a.output_format, "--measurement", a.measurement});
+  if (!a.solver_name.empty()) args.insert(args.end(), {"--solver-name", a.solver_name});
+  if (!a.solver_version.empty()) args.insert(args.end(), {"--solver-version", a.solver_version});
+  create_slurm_directory(run);
+  std::vector<std::uint64_t> all(run.shards);
+  for (std::uint64_t i = 0; i < run.shards; ++i) all[i] = i + 1;
+  const auto time = slurm_time_seconds(run);
+  const auto mib = slurm_memory_mib(run);
+  std::optional<std::string> job;
+  if (a.submit) {
+    try {
+      job = submit_shards(run, all);
+    } catch (const Error& e) {
+      throw Error(e.code(), std::string(e.what()) + "; " + run.directory +
+                                " is written: submit it with mosb run --slurm " + run.directory +
+                                " --resume --submit");
+    }
+  }
+  if (a.json) {
+    JsonWriter json(std::cout);
+    json.begin_object();
+    json.key("directory").value(run.directory);
+    json.key("script").value(run.directory + "/run.sbatch");
+    json.key("queries").value(run.queries);
+    json.key("shards").value(run.shards);
+    json.key("time");
+    if (time)
+      json.value(slurm_time_text(*time));
+    else
+      json.null();
+    json.key("mem_mib");
+    if (mib)
+      json.value(*mib);
+    else
+      json.null();
+    json.key("sbatch").value(sbatch_command_text(run, all));
+    json.key("job");
+    if (job)
+      json.value(*job);
+    else
+      json.null();
+    json.end_object();
+    return 0;
+  }
+  std::cout << "wrote " << escape_for_terminal(run.directory) << "/run.sbatch: " << run.shards
+            << " shards of the " << run.queries << " queries (at most "
+            << (run.queries + run.shards - 1) / run.shards << " a task), --time "
+            << (time ? slurm_time_text(*time) : std::string("(the partition's default)"))
+            << ", --mem " << (mib ? std::to_string(*mib) + "M" : std::string("(the default)"))
+            << "\n";
+  if (job)
+    std::cout << "submitted array job " << *job << " (" << run.shards << " tasks)\n";
+  else
+    std::cout << "submit with: " << escape_for_terminal(sbatch_command_text(run, all)) << "\n";
+  return 0;
+}
+
+std::string counts_text(const std::array<std::uint64_t, kLastQueryStatus + 1>& counts) {
+  std::string text;
+  for (std::uint8_t s = 0; s <= kLastQueryStatus; ++s)
+    if (counts[s] != 0)
+      text += (text.empty() ? "" : ", ") + std::to_string(counts[s]) + " " +
+              std::string(to_string(static_cast<QueryStatus>(s)));
+  return text;
+}
+
+void print_status_json(const SlurmRun& run, const SlurmStatus& status,
+                       const std::vector<std::uint64_t>* resubmitted,
+                       const std::optional<std::string>& job) {
+  JsonWriter json(std::cout);
+  json.begin_object();
+  json.key("directory").value(run.directory);
+  json.key("queries").value(run.queries);
+  json.key("shards").value(run.shards);
+  std::uint64_t done = 0;
+  for (const auto& s : status.shards) done += s.file == ShardFile::done;
+  json.key("done").value(done);
+  json.key("complete").value(done == run.shards);
+  json.key("jobs").begin_array();
+  for (const auto& j : status.jobs) json.value(j);
+  json.end_array();
+  json.key("scheduler").begin_array();
+  for (const auto& source : status.sources) json.value(source);
+  json.end_array();
+  json.key("shard_states").begin_array();
+  for (const auto& s : status.shards) {
+    json.begin_object();
+    json.key("shard").value(s.index);
+    json.key("queries").value(s.queries);
+    json.key("file").value(std::string(to_string(s.file)));
+    json.key("recorded").value(s.recorded);
+    if (!s.problem.empty()) json.key("problem").value(s.problem);
+    if (s.file == ShardFile::done) {
+      json.key("statuses").begin_object();
+      for (std::uint8_t k = 0; k <= kLastQueryStatus; ++k)
+        json.key(to_string(static_cast<QueryStatus>(k))).value(s.counts[k]);
+      json.end_object();
+    }
+    json.key("job");
+    if (s.job.empty())
+      json.null();
+    else
+      json.value(s.job);
+    json.key("state");
+    if (s.state.empty())
+      json.null();
+    else
+      json.value(s.state);
+    json.end_object();
+  }
+  json.end_array();
+  if (resubmitted) {
+    json.key("resubmit").begin_array();
+    for (const auto i : *resubmitted) json.value(i);
+    json.end_array();
+    json.key("sbatch");
+    if (resubmitted->empty())
+      json.null();
+    else
+      json.value(sbatch_command_text(run, *resubmitted));
+    json.key("job");
+    if (job)
+      json.value(*job);
+    else
+      json.null();
+  }
+  json.end_object();
+}
+
+void print_status_text(const SlurmRun& run, const SlurmStatus& status) {
+  std::cout << escape_for_terminal(run.directory) << ": " << run.shards << " shards of the "
+            << run.queries << " queries of query set " << escape_for_terminal(run.query_set)
+            << " of " << escape_for_terminal(run.instance);
+  if (!status.jobs.empty()) {
+    std::cout << "; array job" << (status.jobs.size() > 1 ? "s" : "");
+    for (const auto& j : status.jobs) std::cout << ' ' << j;
+  }
+  std::cout << "\n";
+  std::array<std::uint64_t, 4> files{};
+  for (const auto& s : status.shards) {
+    ++files[static_cast<std::size_t>(s.file)];
+    std::cout << "shard " << s.index << "/" << run.shards << ": " << to_string(s.file);
+    switch (s.file) {
+      case ShardFile::done:
+        std::cout << " (" << counts_text(s.counts) << ")";
+        break;
+      case ShardFile::partial:
+        std::cout << " (" << s.recorded << " of " << s.queries << " queries in the journal)";
+        break;
+      case ShardFile::missing:
+        std::cout << " (" << s.queries << " queries)";
+        break;
+      case ShardFile::damaged:
+        std::cout << " (" << escape_for_terminal(s.problem) << ")";
+        break;
+    }
+    if (!s.state.empty()) std::cout << ", task " << s.job << " " << s.state;
+    std::cout << "\n";
+  }
+  std::cout << "summary: " << files[0] << " done, " << files[1] << " partial, " << files[2]
+            << " missing, " << files[3] << " damaged";
+  if (status.sources.empty() && !status.jobs.empty())
+    std::cout << " (no scheduler state: squeue and sacct are absent or did not answer)";
+  std::cout << "\n";
+  if (files[0] == run.shards)
+    std::cout << "merge with: mosb solutions merge "
+              << escape_for_terminal(shell_quote(run.directory)) << "/shard-*.sol -o all.sol\n";
+}
+
+// `mosb run --slurm DIR --status` and `--resume`.
+int run_slurm_existing(const RunArgs& a) {
+  refuse(a, kRunOptions, "not with --slurm DIR --resume or --status (DIR/run.json has the run)");
+  if (a.status && a.resume) throw UsageError("--status: not with --resume");
+  if (a.status && a.submit) throw UsageError("--submit: not with --status");
+  const SlurmRun run = read_slurm_directory(a.slurm);
+  const SlurmStatus status = slurm_status(run);
+  if (a.status) {
+    if (a.json)
+      print_status_json(run, status, nullptr, std::nullopt);
+    else
+      print_status_text(run, status);
+    return 0;
+  }
+  std::vector<std::uint64_t> resubmit, queued;
+  for (const auto& s : status.shards) {
+    if (s.file == ShardFile::done) continue;
+    (s.queued() ? queued : resubmit).push_back(s.index);
+  }
+  std::optional<std::string> job;
+  if (a.submit && !resubmit.empty()) job = submit_shards(run, resubmit);
+  if (a.json) {
+    print_status_json(run, status, &resubmit, job);
+    return 0;
+  }
+  if (!queued.empty())
+    std::cout << "still in the queue, not resubmitted: shard" << (queued.size() > 1 ? "s " : " ")
+              << slurm_array_list(queued) << "\n";
+  if (resubmit.empty()) {
+    std::cout << "nothing to resubmit: " << run.shards - queued.size() << " of " << run.shards
+              << " shards are done\n";
+  } else if (job) {
+    std::cout << "resubmitted shard" << (resubmit.size() > 1 ? "s " : " ")
+              << slurm_array_list(resubmit) << " of " << run.shards << " as array job " << *job
+              << "\n";
+  } else {
+    std::cout << "resubmit shard" << (resubmit.size() > 1 ? "s " : " ")
+              << slurm_array_list(resubmit) << " of " << run.shards
+              << " with: " << escape_for_terminal(sbatch_command_text(run, resubmit)) << "\n";
+  }
+  return 0;
+}
+
+int run_command(const RunArgs& a) {
+  if (a.slurm.empty()) return run_run(a);
+  if (a.resume || a.status) return run_slurm_existing(a);
+  return run_slurm_new(a);
+}
+
 }  // namespace
 
 Command add_run(CLI::App& app) {
   auto a = std::make_shared<RunArgs>();
   auto* sub = app.add_subcommand(
       "run", "Run a solver over a query set, one limited process per query, into a solution file");
-  sub->add_option("INSTANCE", a->instance, "the instance (.mosb)")->required();
+  a->app = sub;
+  sub->add_option("INSTANCE", a->instance, "the instance (.mosb)");
   add_view_choice_options(sub, a->choice, "the objectives the solver optimizes");
   sub->add_option("--solver", a->solver,
                   "the solver's command line, split like a shell but run without one; "
                   "placeholders {instance} {view} {objectives} {query} {source} {target} {front} "
-                  "{fronts} {threads} (spec/RUN.md)")
-      ->required();
+                  "{fronts} {threads} (spec/RUN.md)");
   sub->add_option("--time-limit", a->time_limit,
                   "wall-clock limit per query (60, 60s, 500ms, 2m, 1h; 0: none)")
       ->check(duration());
@@ -234,14 +570,41 @@ Command add_run(CLI::App& app) {
   sub->add_option("--measurement", a->measurement,
                   "auto (default), cgroup-v1 or rlimit-poll: how memory is limited and measured")
       ->check(CLI::IsMember({"auto", "cgroup-v1", "rlimit-poll"}));
-  sub->add_flag("--resume", a->resume, "continue the run the journal OUTPUT.journal records");
+  sub->add_flag("--resume", a->resume,
+                "continue the run the journal OUTPUT.journal records; with --slurm DIR, resubmit "
+                "the shards whose file is missing or incomplete");
   sub->add_option("--solver-name", a->solver_name, "the solver's name (default: the program's)")
       ->check(printable_text());
   sub->add_option("--solver-version", a->solver_version, "the solver's version")
       ->check(printable_text());
-  add_output_option(sub, a->output, "the solution file")->required();
+  sub->add_option("--shard", a->shard,
+                  "run only shard i of N (query k is in shard k mod N + 1); the other queries "
+                  "stay not-run, and solutions merge joins the shards")
+      ->option_text("i/N");
+  add_output_option(sub, a->output, "the solution file (required without --slurm)");
+  sub->add_option("--slurm", a->slurm,
+                  "write a SLURM job array to DIR instead of running: one task per shard, each "
+                  "writing DIR/shard-i.sol (spec/RUN.md section 8)")
+      ->option_text("DIR");
+  auto* shards = sub->add_option("--shards", a->shards, "with --slurm: N shards, one task each")
+                     ->check(unsigned_integer(1000000));
+  sub->add_option("--queries-per-task", a->queries_per_task,
+                  "with --slurm: shards of at most K queries (ceil(Q / K) shards)")
+      ->check(unsigned_integer(std::numeric_limits<std::uint32_t>::max()))
+      ->excludes(shards);
+  sub->add_option("--throttle", a->throttle,
+                  "with --slurm: at most K tasks at once (the array's %K; default no limit)")
+      ->check(unsigned_integer(1000000));
+  sub->add_option("--account", a->account, "with --slurm: sbatch --account")
+      ->check(printable_text());
+  sub->add_option("--partition", a->partition, "with --slurm: sbatch --partition")
+      ->check(printable_text());
+  sub->add_flag("--submit", a->submit,
+                "with --slurm: submit with sbatch (else the sbatch command is printed)");
+  sub->add_flag("--status", a->status,
+                "with --slurm DIR: the shards' files and the array's state (squeue, sacct)");
   add_json_flag(sub, a->json);
-  return {sub, [a] { return run_run(*a); }};
+  return {sub, [a] { return run_command(*a); }};
 }
 
 }  // namespace mosb::cli

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -66,6 +67,23 @@ ParsedOutput read_protocol_output(const SolverOutputFiles& files) {
   out.vectors = front.vectors;
   out.statistics = parse_protocol_statistics(read_file(files.stderr_path), "stderr");
   return out;
+}
+
+std::optional<Shard> parse_shard(std::string_view text) {
+  const auto slash = text.find('/');
+  if (slash == std::string_view::npos) return std::nullopt;
+  const auto number = [](std::string_view digits) -> std::optional<std::uint64_t> {
+    if (digits.empty() || digits.size() > 9) return std::nullopt;
+    std::uint64_t value = 0;
+    for (const char c : digits) {
+      if (c < '0' || c > '9') return std::nullopt;
+      value = value * 10 + static_cast<std::uint64_t>(c - '0');
+    }
+    return value;
+  };
+  const auto index = number(text.substr(0, slash)), count = number(text.substr(slash + 1));
+  if (!index || !count || *index < 1 || *index > *count) return std::nullopt;
+  return Shard{*index, *count};
 }
 
 std::string journal_path(const std::string& output) {
@@ -178,17 +196,19 @@ Plan make_plan(const RunConfig& c, const View& selection, const SolutionWriter& 
 }
 
 nlohmann::json binding_of(const RunConfig& c, const Plan& p) {
-  return {{"instance_digest", c.instance->digest()},
-          {"view", p.view},
-          {"objectives", p.objective_names},
-          {"query_set", p.query_set},
-          {"queries", p.queries.size()},
-          {"solver", c.solver_template},
-          {"output_format", c.output_format},
-          {"time_limit_seconds", c.limits.wall_seconds},
-          {"cpu_limit_seconds", c.limits.cpu_seconds},
-          {"memory_limit_bytes", c.limits.memory_bytes},
-          {"threads", c.threads}};
+  nlohmann::json binding = {{"instance_digest", c.instance->digest()},
+                            {"view", p.view},
+                            {"objectives", p.objective_names},
+                            {"query_set", p.query_set},
+                            {"queries", p.queries.size()},
+                            {"solver", c.solver_template},
+                            {"output_format", c.output_format},
+                            {"time_limit_seconds", c.limits.wall_seconds},
+                            {"cpu_limit_seconds", c.limits.cpu_seconds},
+                            {"memory_limit_bytes", c.limits.memory_bytes},
+                            {"threads", c.threads}};
+  if (c.shard) binding["shard"] = c.shard->text();
+  return binding;
 }
 
 }  // namespace
@@ -224,14 +244,15 @@ class Runner {
       : c_(c), cb_(cb), p_(p), writer_(w), journal_(j), stop_(stop) {
     adapter_ = c.adapter ? c.adapter : OutputAdapter(read_protocol_output);
     for (std::uint64_t q = 0; q < p.queries.size(); ++q) {
+      if (c.shard && !c.shard->contains(q)) continue;
+      ++progress_.total;
       const auto it = j.records().find(q);
       if (it == j.records().end())
         todo_.push_back(q);
       else
         ++progress_.counts[static_cast<std::size_t>(it->second.status)];
     }
-    progress_.total = p.queries.size();
-    progress_.done = p.queries.size() - todo_.size();
+    progress_.done = progress_.total - todo_.size();
   }
 
   std::uint64_t pending() const { return todo_.size(); }
@@ -304,6 +325,7 @@ class Runner {
     spec.group_name = "mosb-run-" + std::to_string(::getpid()) + "-" + std::to_string(job);
     const ProcessOutcome outcome = runner.run(spec, c_.limits, p_.measurement);
     if (outcome.ending == Ending::interrupted) return;  // no record: --resume runs it again
+    if (stopped_with_mosb(outcome)) return;
     const QueryRecord record = classify(q, outcome, files, adapter_, writer_);
     journal_.append(record);
     std::lock_guard lock(mutex_);
@@ -317,6 +339,25 @@ class Runner {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
     if (record.status == QueryStatus::failed && cb_.failed) cb_.failed(record, p_.queries[q]);
     if (cb_.progress) cb_.progress(progress_);
+  }
+
+  // Whether a solver that a stop signal killed from outside (SIGTERM, SIGINT, SIGHUP or SIGKILL,
+  // or a wrapper's exit status 128 + one of them) died with this run: a scheduler cancelling,
+  // preempting or timing out a job signals every process of it, the solver possibly before
+  // mosb run. Such a query is recorded only when no stop request follows within half a second;
+  // else it stays unrecorded, like an interrupted one, and --resume runs it again.
+  bool stopped_with_mosb(const ProcessOutcome& o) const {
+    const auto stop_signal = [](int n) {
+      return n == SIGTERM || n == SIGINT || n == SIGHUP || n == SIGKILL;
+    };
+    const bool killed =
+        (o.ending == Ending::signaled && stop_signal(o.signal)) ||
+        (o.ending == Ending::exited && o.exit_code > 128 && stop_signal(o.exit_code - 128));
+    if (!killed) return false;
+    const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(500);
+    while (!stop_.load() && std::chrono::steady_clock::now() < until)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    return stop_.load();
   }
 
   const RunConfig& c_;
@@ -358,6 +399,7 @@ SolverInfo solver_info(const RunConfig& c, const Plan& p, unsigned jobs) {
   m["run.measurement.detail"] = describe_measurement(p.measurement);
   m["run.runtime_seconds"] = "wall-clock seconds measured by mosb, not the solver's own report";
   m["run.mosb_version"] = std::string(kVersion);
+  if (c.shard) m["run.shard"] = c.shard->text();
   return info;
 }
 
@@ -379,7 +421,9 @@ RunResult run_solver(const RunConfig& c, const RunCallbacks& callbacks,
   prepare_process_runner();
   RunResult result;
   result.measurement = plan.measurement;
-  result.total = plan.queries.size();
+  result.query_set_size = plan.queries.size();
+  if (c.shard && c.shard->count == 0) throw Error(ErrorCode::invalid_argument, "--shard: 0 shards");
+  result.total = c.shard ? c.shard->size(result.query_set_size) : result.query_set_size;
   result.journal = journal_path(c.output);
   Journal journal(result.journal, binding_of(c, plan), c.resume);
   Runner runner(c, callbacks, plan, writer, journal, stop);

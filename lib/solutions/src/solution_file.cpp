@@ -587,6 +587,21 @@ SolutionWriter::SolutionWriter(const GraphReader& instance, const View& selectio
   st.results.resize(st.query_count);
 }
 
+SolutionWriter::SolutionWriter(const SolutionReader& like) : state_(std::make_unique<State>()) {
+  auto& st = *state_;
+  st.instance_digest = like.instance_digest();
+  st.view = like.view_name();
+  st.query_set = like.query_set();
+  st.query_count = like.query_count();
+  st.vertex_count = like.header().vertex_count;
+  st.arc_count = like.header().arc_count;
+  for (std::size_t i = 0; i < like.objective_count(); ++i) {
+    st.objective_names.push_back(like.objective_name(i));
+    st.objective_types.push_back(like.objective_type(i));  // path_sum_type keeps a sum's type
+  }
+  st.results.resize(st.query_count);
+}
+
 SolutionWriter::~SolutionWriter() = default;
 
 void SolutionWriter::set_solver(SolverInfo info) {

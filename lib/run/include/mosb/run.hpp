@@ -2,7 +2,8 @@
 // (process.hpp), its output read by an adapter (the solver protocol by default), every finished
 // query appended to a journal beside the output, and at the end one solution file written
 // atomically through SolutionWriter. Queries are indexed 0..Q-1 in the query set's order; the
-// journal holds one record per query, so a run may be resumed, or (later) split into shards.
+// journal holds one record per query, so a run may be resumed, or split into shards (run only the
+// queries of shard i of N; the other queries stay not-run, and `solutions merge` joins the shards).
 #pragma once
 
 #include <array>
@@ -60,6 +61,19 @@ struct QueryRecord {
   std::vector<std::string> stderr_tail;  // the solver's last lines of stderr (failed queries)
 };
 
+// Shard i of N (1 <= i <= N): query k of the set belongs to shard (k mod N) + 1 (spec/RUN.md §7).
+struct Shard {
+  std::uint64_t index = 1, count = 1;
+  bool contains(std::uint64_t query) const { return query % count == index - 1; }
+  // The number of queries of a set of `queries` this shard holds.
+  std::uint64_t size(std::uint64_t queries) const {
+    return queries / count + (index - 1 < queries % count ? 1 : 0);
+  }
+  std::string text() const { return std::to_string(index) + "/" + std::to_string(count); }
+};
+// "i/N" with 1 <= i <= N (decimal digits only); nullopt when malformed.
+std::optional<Shard> parse_shard(std::string_view text);
+
 struct RunConfig {
   const GraphReader* instance = nullptr;  // opened by the caller (checksums verified)
   std::string instance_path;              // what {instance} becomes
@@ -73,6 +87,7 @@ struct RunConfig {
   unsigned threads = 1;                    // what {threads} becomes
   std::optional<Measurement> measurement;  // nullopt: detect_measurement()
   bool resume = false;
+  std::optional<Shard> shard;  // run only this shard's queries; the file records it (run.shard)
   std::string solver_name, solver_version;  // name empty: the executable's file name
   std::string output;                       // the solution file; the journal is OUTPUT.journal
   // SHA-256 (hex) of a file: the executable's digest for the metadata.
@@ -93,7 +108,9 @@ struct RunCallbacks {
 
 struct RunResult {
   bool interrupted = false;
+  // total: the queries this run is for (all of the set, or the shard's); `counts` are theirs.
   std::uint64_t total = 0, from_journal = 0, ran = 0;
+  std::uint64_t query_set_size = 0;
   std::array<std::uint64_t, kLastQueryStatus + 1> counts{};
   double wall_seconds = 0, cpu_seconds = 0;  // of the solvers run by this invocation
   Measurement measurement = Measurement::rlimit_poll;

@@ -196,6 +196,9 @@ class SolutionWriter {
   // A selection as mosb::select_view resolves one: with an empty name the file records no view and
   // is bound to its objectives (format 1.4, spec/SOLUTIONS.md §2); a query set is required.
   SolutionWriter(const GraphReader& instance, const View& selection);
+  // The binding of an existing file (instance digest, n and m, view, objective names and types,
+  // query set and its size), for tools that join solution files without their instance.
+  explicit SolutionWriter(const SolutionReader& like);
   ~SolutionWriter();
   SolutionWriter(const SolutionWriter&) = delete;
   SolutionWriter& operator=(const SolutionWriter&) = delete;

@@ -1,0 +1,110 @@
+// `mosb run --slurm DIR` (spec/RUN.md §8): a run split into shards (run.hpp's Shard), one SLURM
+// job-array task per shard, each task `mosb run ... --shard i/N --resume -o DIR/shard-i.sol`
+// against the same instance path. DIR holds run.json (what the run is), run.sbatch (the array
+// script, deterministic text), jobs (the array job ids submitted, one a line), and per shard its
+// solution file, its journal while it runs, and SLURM's log shard-i.log.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mosb/solution_file.hpp"
+
+namespace mosb {
+
+// What DIR/run.json records: enough to write the script again, to recognise the shard files, and
+// to resubmit.
+struct SlurmRun {
+  std::string directory;          // absolute
+  std::string mosb;               // absolute path of the mosb program every task runs
+  std::string working_directory;  // absolute; the tasks run there (the template's relative paths)
+  // The `mosb run` arguments every task passes, from the instance on (absolute instance path),
+  // without --shard, --resume and -o.
+  std::vector<std::string> run_arguments;
+  // The binding every shard file has (SolutionReader's view of it).
+  std::string instance, instance_digest, view, query_set;
+  std::vector<std::string> objectives;
+  std::uint64_t queries = 0, shards = 1;
+  // Per-query limits and per-task resources, for --time, --mem and --cpus-per-task.
+  double time_limit_seconds = 0, grace_seconds = 1;
+  std::uint64_t memory_limit_bytes = 0;
+  unsigned jobs = 1, threads = 1;
+  unsigned throttle = 0;  // at most this many tasks at once (%K); 0: no limit
+  std::string account, partition;
+};
+
+// N for `--shards N` or `--queries-per-task K` (ceil(Q / K)) over Q queries; throws mosb::Error
+// (invalid_argument) for 0, for more shards than queries, or both or neither given.
+std::uint64_t slurm_shard_count(std::uint64_t queries, std::optional<std::uint64_t> shards,
+                                std::optional<std::uint64_t> queries_per_task);
+
+// The time limit of one task, in seconds (whole minutes): with S = ceil(Q / N) queries in the
+// largest shard run J at a time, ceil(S / J) · (time limit + grace + 10 s) + 5 min; nullopt
+// without a time limit (the partition's default applies).
+std::optional<std::uint64_t> slurm_time_seconds(const SlurmRun& run);
+// "D-HH:MM:SS", SLURM's --time form.
+std::string slurm_time_text(std::uint64_t seconds);
+// The memory of one task in MiB: J · memory limit + 512 MiB for mosb run itself, rounded up;
+// nullopt without a memory limit (the partition's default per CPU applies).
+std::optional<std::uint64_t> slurm_memory_mib(const SlurmRun& run);
+
+// The job-array script: the same text for the same SlurmRun.
+std::string slurm_script(const SlurmRun& run);
+// "1-4", "3,5-7": the shards (ascending, distinct) as an array index list.
+std::string slurm_array_list(const std::vector<std::uint64_t>& shards);
+
+// Creates DIR (or uses it when empty) with run.json and run.sbatch. Throws mosb::Error
+// (invalid_argument) when DIR already holds a run or its path is no SLURM can take (blanks,
+// quotes, backslashes or '%'), io on the file system.
+void create_slurm_directory(const SlurmRun& run);
+// Reads DIR/run.json; throws mosb::Error naming the file.
+SlurmRun read_slurm_directory(const std::string& directory);
+
+std::string shard_output(const SlurmRun& run, std::uint64_t shard);  // DIR/shard-i.sol
+
+enum class ShardFile {
+  done,     // DIR/shard-i.sol of this run, every query of the shard with a status
+  partial,  // no file yet, a journal with some of the shard's queries (running, or killed)
+  missing,  // neither
+  damaged,  // a file that is unreadable, of another run, or incomplete
+};
+std::string_view to_string(ShardFile state);
+
+struct ShardState {
+  std::uint64_t index = 0;  // i of i/N
+  std::uint64_t queries = 0;
+  ShardFile file = ShardFile::missing;
+  std::uint64_t recorded = 0;  // done: the shard's queries; partial: the journal's records
+  std::string problem;         // damaged: why
+  std::array<std::uint64_t, kLastQueryStatus + 1> counts{};  // done: the shard's statuses
+  // The scheduler's view of the shard's latest array task, when squeue or sacct knows it.
+  std::string job;      // "JOBID_i"
+  std::string state;    // PENDING, RUNNING, COMPLETED, FAILED, TIMEOUT, OUT_OF_MEMORY, ...
+  bool queued() const;  // pending, running or about to run again: not to be resubmitted
+};
+
+struct SlurmStatus {
+  std::vector<ShardState> shards;
+  std::vector<std::string> jobs;     // the array jobs submitted (DIR/jobs), oldest first
+  std::vector<std::string> sources;  // the scheduler commands that answered: "squeue", "sacct"
+};
+
+// The shard files' states, and the scheduler's (squeue, sacct) when those programs exist.
+SlurmStatus slurm_status(const SlurmRun& run);
+
+// The sbatch command for `shards` (all: the script's own --array), as argv and as shell text that
+// also appends the job id to DIR/jobs (what --submit does).
+std::vector<std::string> sbatch_arguments(const SlurmRun& run,
+                                          const std::vector<std::uint64_t>& shards);
+std::string sbatch_command_text(const SlurmRun& run, const std::vector<std::uint64_t>& shards);
+// Runs sbatch for `shards` and appends the job id to DIR/jobs; returns the job id. Throws
+// mosb::Error with sbatch's message when sbatch is missing or fails.
+std::string submit_shards(const SlurmRun& run, const std::vector<std::uint64_t>& shards);
+
+// A word quoted for sh: as is when it is made of safe characters only, else in single quotes.
+std::string shell_quote(const std::string& word);
+
+}  // namespace mosb
