@@ -636,7 +636,7 @@ std::filesystem::path Store::unpack(std::string_view file) const {
     throw Error(ErrorCode::not_found, directory_.string() + ": '" + std::string(file) +
                                           "' is not a packed entry of the store");
   refuse_symlink(directory_ / e->file);
-  const auto copy = directory_ / kCacheDirectory / e->file;
+  auto copy = directory_ / kCacheDirectory / e->file;
   if (open_packed(directory_, *e).second != copy)
     throw Error(ErrorCode::io, copy.string() +
                                    ": cannot unpack there (the store cannot be written, or "
