@@ -378,6 +378,12 @@ class AgainstFaults(Published):
         self.assertEqual([g[0] for g in got], ["200", "206"])
         self.assertTrue(got[1][1].startswith('"bytes=20000-"'), got)
 
+    def test_an_absent_manifest_is_one_line_and_writes_nothing(self):
+        url = self.serve({})
+        r = self.pull(url + "/elsewhere/")
+        self.assert_one_line_error(r, url + "/elsewhere/MANIFEST: HTTP 404")
+        self.assertFalse(os.path.exists(self.store))
+
     def test_an_html_error_page_with_200_is_refused(self):
         url = self.serve({"g3.mosb": ["html"]})
         r = self.pull(url)

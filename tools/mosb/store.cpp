@@ -196,7 +196,7 @@ int run_pull(const StoreArgs& a) {
   options.stall_timeout_seconds = a.stall_timeout;
   const auto result = [&] {
     TerminalProgress progress;  // its line ends before the report is printed
-    options.progress = progress.callback();
+    options.progress = progress.bytes_callback();
     return pull(a.directory, a.url, options);
   }();
   std::uint64_t planned_bytes = 0;

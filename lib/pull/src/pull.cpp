@@ -839,7 +839,7 @@ PullResult pull(const fs::path& store, std::string_view url, const PullOptions& 
     }
   }
 
-  report(options.progress, "pull", 0, puller.total);
+  if (puller.total > 0) report(options.progress, "pull", 0, puller.total);
   std::atomic<std::size_t> next{0};
   auto work = [&] {
     std::unique_ptr<Http> http;
