@@ -411,6 +411,21 @@ class FromADirectory(Published):
         r = self.pull("ftp://example.org/store")
         self.assert_one_line_error(r, "ftp://example.org/store: not a place mosb pulls from")
 
+    def test_an_entry_the_store_lists_with_other_bytes_is_refused_without_a_transfer(self):
+        self.publish()
+        other = self.path("other", "g3.mosb")
+        os.makedirs(os.path.dirname(other))
+        self.ok("generate", "grid", "--width", "3", "--height", "4", "--seed", "7", "-o", other)
+        self.ok("store", "init", self.store)
+        self.ok("store", "add", self.store, other)
+        r = self.pull(self.www)
+        self.assertEqual(r.returncode, 1, r)
+        self.assertEqual(len(r.stderr.splitlines()), 1, r.stderr)
+        self.assertIn("refused g3.mosb: the store already lists a different g3.mosb", r.stderr)
+        self.assertEqual(read(os.path.join(self.store, "g3.mosb")), read(other))
+        self.assertEqual(self.listed(), self.names)
+        self.assert_verifies()
+
 
 if __name__ == "__main__":
     unittest.main()
