@@ -141,15 +141,14 @@ std::string_view trimmed(std::string_view text) {
   return text;
 }
 
-std::size_t on_header(char* data, std::size_t size, std::size_t count, void* user) {
-  auto& response = *static_cast<Response*>(user);
-  const std::string_view line = trimmed({data, size * count});
+void read_header(Response& response, std::string_view text) {
+  const std::string_view line = trimmed(text);
   if (line.starts_with("HTTP/")) {
     response = {};  // a new response: after a redirect, or a 100 Continue
-    return size * count;
+    return;
   }
   const auto colon = line.find(':');
-  if (colon == std::string_view::npos) return size * count;
+  if (colon == std::string_view::npos) return;
   const auto name = line.substr(0, colon);
   const auto value = std::string(trimmed(line.substr(colon + 1)));
   if (starts_with_nocase(name, "etag") && name.size() == 4) {
@@ -165,7 +164,14 @@ std::size_t on_header(char* data, std::size_t size, std::size_t count, void* use
       response.retry_after = std::max(0.0, std::difftime(when, std::time(nullptr)));
     }
   }
+}
+
+// libcurl's callbacks are C: nothing may be thrown through them.
+std::size_t on_header(char* data, std::size_t size, std::size_t count, void* user) try {
+  read_header(*static_cast<Response*>(user), {data, size * count});
   return size * count;
+} catch (...) {
+  return 0;
 }
 
 // What a transfer's body goes to.
@@ -245,7 +251,7 @@ class Http {
     bool began;
   };
 
-  static std::size_t on_data(char* data, std::size_t size, std::size_t count, void* user) {
+  static std::size_t on_data(char* data, std::size_t size, std::size_t count, void* user) try {
     auto& t = *static_cast<Transfer*>(user);
     const std::size_t bytes = size * count;
     long status = 0;
@@ -257,6 +263,8 @@ class Http {
       if (!t.sink->begin(status, t.response)) return 0;
     }
     return t.sink->data(data, bytes) ? bytes : 0;
+  } catch (...) {
+    return 0;  // libcurl's callbacks are C: nothing may be thrown through them
   }
 
   CURL* curl_;
