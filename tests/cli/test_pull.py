@@ -342,11 +342,12 @@ class AgainstFaults(Published):
         self.assertEqual([g[0] for g in got], ["200", "206"])
         self.assertTrue(got[1][1].startswith('"bytes=50000-" ""'), got)
 
-    def test_503_then_200_is_retried(self):
-        url = self.serve({"g3.mosb": ["503-once"]})
+    def test_503_or_429_then_200_is_retried_after_retry_after(self):
+        url = self.serve({"g3.mosb": ["503-once"], "g4.mosb": ["429-once"]})
         started = time.time()
         self.pulled_all(url)
         self.assertEqual([g[0] for g in self.requests("g3.mosb")], ["503", "200"])
+        self.assertEqual([g[0] for g in self.requests("g4.mosb")], ["429", "200"])
         self.assertGreaterEqual(time.time() - started, 1, "Retry-After: 1 is honoured")
 
     def test_404_for_one_entry_refuses_it_and_places_the_others(self):

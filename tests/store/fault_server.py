@@ -13,6 +13,7 @@ from DIRECTORY/.faults (JSON, read at each request so a test can change it): {"N
                    connection closed
   "stall-after:N"  the first request: N bytes, then nothing for 30 s
   "503-once"       the first request: 503 with Retry-After: 1
+  "429-once"       the first request: 429 (Too Many Requests) with Retry-After: 1
   "404"            every request: 404
   "ignore-range"   every request: the whole file with 200, whatever Range says
   "html"           every request: 200 with an HTML error page, as a misconfigured host answers
@@ -69,8 +70,9 @@ class Handler(http.server.BaseHTTPRequestHandler):
         path = os.path.join(DIRECTORY, name)
         if "/" in name or name.startswith(".") or not os.path.isfile(path) or "404" in faults:
             return self.answer(404, b"not found\n")
-        if "503-once" in faults and first:
-            return self.answer(503, b"busy\n", [("Retry-After", "1")])
+        for status in (503, 429):
+            if "%d-once" % status in faults and first:
+                return self.answer(status, b"busy\n", [("Retry-After", "1")])
         if "html" in faults:
             return self.answer(200, b"<html><body>Quota exceeded</body></html>\n",
                                [("Content-Type", "text/html")])
