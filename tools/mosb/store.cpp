@@ -197,6 +197,16 @@ int run_pull(const StoreArgs& a) {
   const auto result = [&] {
     TerminalProgress progress;  // its line ends before the report is printed
     options.progress = progress.bytes_callback();
+    std::size_t counts[4] = {};
+    if (options.progress)
+      options.settled = [&](const PulledEntry& entry, std::size_t settled, std::size_t selected) {
+        ++counts[static_cast<int>(entry.status)];
+        progress.set_suffix(
+            "; entries " + std::to_string(settled) + "/" + std::to_string(selected) + " (" +
+            std::to_string(counts[static_cast<int>(PullStatus::fetched)]) + " fetched, " +
+            std::to_string(counts[static_cast<int>(PullStatus::present)]) + " present, " +
+            std::to_string(counts[static_cast<int>(PullStatus::refused)]) + " refused)");
+      };
     return pull(a.directory, a.url, options);
   }();
   std::uint64_t planned_bytes = 0;

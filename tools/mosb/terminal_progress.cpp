@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <utility>
 
 namespace mosb::cli {
 
@@ -22,6 +23,11 @@ Progress TerminalProgress::callback() {
 Progress TerminalProgress::bytes_callback() {
   bytes_ = true;
   return callback();
+}
+
+void TerminalProgress::set_suffix(std::string suffix) {
+  std::lock_guard lock(mutex_);
+  suffix_ = std::move(suffix);
 }
 
 void TerminalProgress::update(std::string_view stage, std::uint64_t done, std::uint64_t total) {
@@ -45,6 +51,7 @@ void TerminalProgress::update(std::string_view stage, std::uint64_t done, std::u
                  rate / 1e6);
     if (rate > 0 && total > done)
       std::fprintf(stderr, ", %.0f s left", static_cast<double>(total - done) / rate);
+    std::fputs(suffix_.c_str(), stderr);
   } else if (total != 0)
     std::fprintf(stderr, "\r\033[Kmosb: %.*s %llu/%llu (%.0f%%)", static_cast<int>(stage.size()),
                  stage.data(), static_cast<unsigned long long>(done),

@@ -522,11 +522,21 @@ struct Puller {
   std::uint64_t total = 0;
   std::mutex progress_mutex;
 
+  std::size_t settled_count = 0;
+  std::size_t selected = 0;
+
+  void settled(const PulledEntry& entry) {
+    if (!options.settled) return;
+    std::lock_guard lock(progress_mutex);
+    options.settled(entry, ++settled_count, selected);
+  }
+
   void moved(std::int64_t delta) {
     const auto now = staged += static_cast<std::uint64_t>(delta);
     if (!options.progress) return;
     std::lock_guard lock(progress_mutex);
-    report(options.progress, "pull", std::min(now, total), total);
+    // The last byte is reported once every entry is settled (placed or refused), at the end.
+    report(options.progress, "pull", std::min(now, total - 1), total);
   }
 };
 
@@ -847,6 +857,9 @@ PullResult pull(const fs::path& store, std::string_view url, const PullOptions& 
     }
   }
 
+  puller.selected = result.entries.size();
+  for (const auto& pulled : result.entries)
+    if (pulled.status != PullStatus::planned) puller.settled(pulled);
   if (puller.total > 0) report(options.progress, "pull", 0, puller.total);
   std::atomic<std::size_t> next{0};
   auto work = [&] {
@@ -859,6 +872,7 @@ PullResult pull(const fs::path& store, std::string_view url, const PullOptions& 
         to_fetch[i]->status = PullStatus::refused;
         to_fetch[i]->reason = error.what();
       }
+      puller.settled(*to_fetch[i]);
     }
   };
   {
@@ -867,6 +881,7 @@ PullResult pull(const fs::path& store, std::string_view url, const PullOptions& 
     for (std::size_t t = 1; t < jobs; ++t) pool.emplace_back(work);
     work();
   }
+  if (puller.total > 0) report(options.progress, "pull", puller.total, puller.total);
   ::rmdir((store / kStagingDirectory / kPullDirectory).c_str());  // when empty
   ::rmdir((store / kStagingDirectory).c_str());
 

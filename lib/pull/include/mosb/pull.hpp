@@ -6,8 +6,10 @@
 // store, the C ABI and the reader link no network library.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -16,6 +18,21 @@
 #include "mosb/progress.hpp"
 
 namespace mosb {
+
+enum class PullStatus {
+  fetched,  // transferred, verified, placed and listed by this pull
+  present,  // the store already lists it with the published SHA-256: not transferred
+  refused,  // not placed: `reason` says why
+  planned,  // dry run: would be fetched
+};
+
+struct PulledEntry {
+  ManifestEntry entry;  // as the published MANIFEST lists it
+  PullStatus status = PullStatus::planned;
+  std::string reason;              // refused: one line, what differs or what failed
+  std::uint64_t received = 0;      // bytes received for it by this pull (retries included)
+  std::uint64_t resumed_from = 0;  // the offset of a transfer continued from a partial file, or 0
+};
 
 struct PullOptions {
   // fnmatch(3) patterns; when a list is not empty an entry is pulled only if one of them matches
@@ -36,21 +53,9 @@ struct PullOptions {
   unsigned attempts = 6;
   double first_backoff_seconds = 0.5;  // before the first retry; doubled each time, at most 30 s
   Progress progress;  // stage "pull": bytes in the staging area out of the bytes to fetch
-};
-
-enum class PullStatus {
-  fetched,  // transferred, verified, placed and listed by this pull
-  present,  // the store already lists it with the published SHA-256: not transferred
-  refused,  // not placed: `reason` says why
-  planned,  // dry run: would be fetched
-};
-
-struct PulledEntry {
-  ManifestEntry entry;  // as the published MANIFEST lists it
-  PullStatus status = PullStatus::planned;
-  std::string reason;              // refused: one line, what differs or what failed
-  std::uint64_t received = 0;      // bytes received for it by this pull (retries included)
-  std::uint64_t resumed_from = 0;  // the offset of a transfer continued from a partial file, or 0
+  // Called as each selected entry is settled (fetched, present or refused), one call at a time,
+  // with how many are settled and how many were selected. Not called by a dry run.
+  std::function<void(const PulledEntry& entry, std::size_t settled, std::size_t selected)> settled;
 };
 
 struct PullResult {
