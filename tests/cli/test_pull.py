@@ -194,7 +194,8 @@ class AgainstNginx(Published):
         self.assertEqual(sorted(n for n in os.listdir(self.store) if n.startswith(".")),
                          [".cache", ".lock"])
 
-    def test_kill_9_midway_then_the_next_pull_continues_with_a_range_request(self):
+    def killed_midway(self):
+        """Kills (SIGKILL) a rate-limited pull of big.mosb midway; returns the bytes it kept."""
         p = subprocess.Popen([MOSB, "store", "pull", self.store, self.slow, "--file", "big.mosb"],
                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         partial = self.partial("big.mosb")
@@ -209,6 +210,11 @@ class AgainstNginx(Published):
         size = os.path.getsize(os.path.join(self.www, "big.mosb"))
         self.assertTrue(100000 < reached < size, (reached, size))
         self.assertNotIn("big.mosb", self.listed())
+        return reached
+
+    def test_kill_9_midway_then_the_next_pull_continues_with_a_range_request(self):
+        reached = self.killed_midway()
+        size = os.path.getsize(os.path.join(self.www, "big.mosb"))
         report = self.pull_json(self.slow, "--file", "big.mosb")
         self.assertEqual(report["fetched"], [{"file": "big.mosb", "size": size,
                                               "received": size - reached,
@@ -221,6 +227,29 @@ class AgainstNginx(Published):
         self.assertEqual(self.listed(), ["big.mosb"])
         self.assert_verifies()
         self.assert_no_staging()
+
+    def test_a_file_changed_on_the_server_after_a_kill_is_read_again_from_zero(self):
+        self.killed_midway()
+        target = os.path.join(self.www, "big.mosb")
+        original = read(target)
+        changed = bytearray(original)
+        changed[-1] ^= 1
+        with open(target, "wb") as f:
+            f.write(changed)
+        os.utime(target, (time.time() + 5, time.time() + 5))  # a new Last-Modified and ETag
+        # If-Range no longer matches: nginx sends the whole file, the pull starts from zero, and
+        # the changed bytes are refused against the MANIFEST.
+        report = self.pull_json(self.slow, "--file", "big.mosb", code=1)
+        self.assertIn("SHA-256 ", report["refused"][0]["reason"])
+        last = [r for r in self.requests() if r[1] == "/slow/big.mosb"][-1]
+        self.assertEqual(last[2], 200)
+        self.assertTrue(last[3].startswith("bytes="), last)
+        self.assertFalse(os.path.exists(self.partial("big.mosb")), "wrong bytes are not kept")
+        with open(target, "wb") as f:
+            f.write(original)
+        report = self.pull_json(self.slow, "--file", "big.mosb")
+        self.assertEqual(report["fetched"][0]["resumed_from"], 0)
+        self.assert_identical(["big.mosb"])
 
     def test_a_file_altered_on_the_server_is_refused_and_the_others_placed(self):
         target = os.path.join(self.www, "g4.mosb")
