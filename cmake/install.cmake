@@ -1,11 +1,14 @@
 # cmake --install: the components' libraries and public headers (lib/*/include, format/include,
 # the generated version.hpp; never lib/core/internal), libmosb.so with the C ABI, the mosb program
 # (when built), the CMake package (mosbConfig.cmake: mosb::core, ::pack, ::store, ::solutions,
-# ::stats, ::run, the umbrella mosb::mosb, the C ABI mosb::c and mosb::c_static) and pkg-config files.
+# ::stats, ::run, ::pull, the umbrella mosb::mosb, the C ABI mosb::c and mosb::c_static) and pkg-config files.
 include(CMakePackageConfigHelpers)
 
 set(mosb_cmake_dir ${CMAKE_INSTALL_LIBDIR}/cmake/mosb)
 set(mosb_components core pack store solutions stats run)
+if(TARGET mosb_pull)  # built when libcurl is there (lib/pull/CMakeLists.txt)
+  list(APPEND mosb_components pull)
+endif()
 list(TRANSFORM mosb_components PREPEND mosb_ OUTPUT_VARIABLE mosb_component_targets)
 install(TARGETS ${mosb_component_targets} mosb_cxx mosb_c_shared mosb_c mosb_c_compat
         EXPORT mosbTargets

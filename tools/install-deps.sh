@@ -7,6 +7,8 @@ packages=(
   libcli11-dev                              # the mosb command line
   nlohmann-json3-dev                        # JSON: --json output, solver logs, manifests
   libssl-dev                                # SHA-256 (libcrypto) for manifests and stores
+  libcurl4-openssl-dev                      # HTTP(S) transfers of mosb store pull (mosb::pull)
+  nginx-light                               # the web server the store pull tests publish with
   libexpat1-dev                             # streaming XML parser: GraphML roadmaps
   zlib1g-dev libbz2-dev liblzma-dev libzstd-dev  # compressed inputs
   gzip bzip2 xz-utils zstd                  # compressed test fixtures

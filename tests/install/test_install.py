@@ -6,7 +6,7 @@ find_package and once through pkg-config, and runs them on a generated grid, che
 against values computed independently with the reference reader (spec/reference). A second,
 library-only shared build shows the package needs neither CLI11, Boost nor doctest, and carries a
 SONAME. A reader-only consumer (find_package COMPONENTS core, pkg-config mosb-core) links xxHash and
-nothing else; ctypes loads libmosb.so, which exports the C ABI alone. Environment: MOSB_BUILD_DIR, MOSB_SOURCE_DIR, MOSB_VERSION, CMAKE.
+nothing else; one asking for COMPONENTS pull gets libcurl, which no other target names; ctypes loads libmosb.so, which exports the C ABI alone. Environment: MOSB_BUILD_DIR, MOSB_SOURCE_DIR, MOSB_VERSION, CMAKE.
 """
 import ctypes
 import heapq
@@ -277,6 +277,41 @@ class InstalledPackage(unittest.TestCase):
         env = dict(os.environ, PKG_CONFIG_PATH=os.path.join(libdir(self.prefix), "pkgconfig"))
         flags = run("pkg-config", "--libs", "mosb-core", env=env).split()
         self.assertEqual([x for x in flags if x.startswith("-l")], ["-lmosb_core", "-lxxhash"])
+
+    def test_pull_component_alone_brings_libcurl(self):
+        # mosb::pull is the one component that links libcurl (find_package finds it for that
+        # component); the umbrella mosb::mosb and the store do not name it.
+        project = os.path.join(self.tmp, "pull-only")
+        os.makedirs(project, exist_ok=True)
+        with open(os.path.join(project, "CMakeLists.txt"), "w") as f:
+            f.write("cmake_minimum_required(VERSION 3.16)\nproject(pull_only CXX)\n"
+                    "find_package(mosb 0.2 REQUIRED COMPONENTS pull)\n"
+                    "add_executable(plan plan.cpp)\n"
+                    "target_link_libraries(plan PRIVATE mosb::pull)\n")
+        with open(os.path.join(project, "plan.cpp"), "w") as f:
+            f.write('#include <iostream>\n#include <mosb/pull.hpp>\n'
+                    'int main(int, char** argv) {\n'
+                    '  mosb::PullOptions options;\n  options.dry_run = true;\n'
+                    '  const auto result = mosb::pull(argv[1], argv[2], options);\n'
+                    '  for (const auto& e : result.entries) std::cout << e.entry.file << "\\n";\n}\n')
+        build = os.path.join(self.tmp, "pull-only-build")
+        run(CMAKE, "-S", project, "-B", build, "-DCMAKE_PREFIX_PATH=" + self.prefix)
+        run(CMAKE, "--build", build)
+        with open(os.path.join(build, "CMakeFiles", "plan.dir", "link.txt")) as f:
+            self.assertIn("libcurl", f.read())
+        published = os.path.join(self.tmp, "published")
+        mosb = os.path.join(self.prefix, "bin", "mosb")
+        run(mosb, "store", "init", published)
+        run(mosb, "store", "add", published, self.grid)
+        self.assertEqual(run(os.path.join(build, "plan"), os.path.join(self.tmp, "pulled"),
+                             published).split(), ["grid.mosb"])
+        self.assertFalse(os.path.exists(os.path.join(self.tmp, "pulled")), "a dry run writes nothing")
+        with open(os.path.join(libdir(self.prefix), "cmake", "mosb", "mosbTargets.cmake")) as f:
+            targets = f.read()
+        for target in ("mosb::store", "mosb::mosb", "mosb::core"):
+            block = targets.split("set_target_properties(%s " % target, 1)[1].split(")\n", 1)[0]
+            self.assertNotIn("CURL", block, target)
+            self.assertNotIn("mosb::pull", block, target)
 
     def test_ctypes_reads_an_instance_through_libmosb_so(self):
         # The shared C ABI loads without a build, as Julia ccall or R .Call would load it, and

@@ -45,6 +45,13 @@ TEST_CASE("sha256 gives the FIPS 180-2 test vectors") {
   testing::write_bytes(dir / "big", bytes);
   CHECK(sha256_file(dir / "big") == sha256_hex(bytes_of(big)));
   CHECK_THROWS_AS(sha256_file(dir / "absent"), Error);
+  // Fed in uneven pieces (as a download arrives), the same hash; hex() starts it again.
+  Sha256 streamed;
+  for (std::size_t at = 0, piece = 1; at < big.size(); at += piece, piece = piece * 3 + 1)
+    streamed.update(big.data() + at, std::min(piece, big.size() - at));
+  CHECK(streamed.hex() == sha256_hex(bytes_of(big)));
+  streamed.update("abc", 3);
+  CHECK(streamed.hex() == "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
 }
 
 TEST_CASE("a manifest serializes deterministically and parses back to the same entries") {
@@ -211,4 +218,46 @@ TEST_CASE("an add removes an empty .cache left by an earlier version, not a fres
   write_graph(converters::grid_graph({6, 3, 3, 3}), dir / "c.mosb");
   store.add({dir / "c.mosb"}, {});
   CHECK(fs::exists(cache / "kept"));
+}
+
+TEST_CASE("an add with expected entries places only files that are exactly those entries") {
+  testing::TempDir dir;
+  write_graph(converters::grid_graph({4, 3, 3, 1}), dir / "g.mosb");
+  auto expected = describe_file(dir / "g.mosb");
+  auto store = Store::init(dir / "store");
+  Store::AddOptions options;
+  for (const auto& [field, problem] : std::vector<std::pair<int, std::string>>{
+           {0, "bytes, the manifest says"}, {1, "SHA-256 "}, {2, "content digest "}}) {
+    auto wrong = expected;
+    if (field == 0) wrong.size += 1;
+    if (field == 1) wrong.sha256 = std::string(64, '0');
+    if (field == 2) wrong.digest = std::string(32, '0');
+    options.expect = {wrong};
+    CHECK_THROWS_WITH_AS(store.add({dir / "g.mosb"}, options), doctest::Contains(problem.c_str()),
+                         Error);
+    CHECK(Store::open(dir / "store").manifest().entries.empty());
+    CHECK_FALSE(std::filesystem::exists(dir / "store" / "g.mosb"));
+  }
+  options.expect = {expected, expected};
+  CHECK_THROWS_AS(store.add({dir / "g.mosb"}, options), Error);  // one per file
+  options.expect = {expected};
+  store.add({dir / "g.mosb"}, options);
+  CHECK(Store::open(dir / "store").manifest().entries.at(0) == expected);
+}
+
+TEST_CASE("Store::unpack makes the cache copy of a packed entry and refuses others") {
+  testing::TempDir dir;
+  write_graph(converters::grid_graph({4, 3, 3, 1}), dir / "g.mosb");
+  write_graph(converters::grid_graph({5, 3, 3, 1}), dir / "p.mosb");
+  auto store = Store::init(dir / "store");
+  store.add({dir / "g.mosb"}, {});
+  Store::AddOptions pack;
+  pack.pack = PackOptions{};
+  store.add({dir / "p.mosb"}, pack);
+  const auto copy = store.unpack("p.mosb");
+  CHECK(copy == dir / "store" / kCacheDirectory / "p.mosb");
+  CHECK(testing::read_bytes(copy) == testing::read_bytes(dir / "p.mosb"));
+  CHECK(store.instance("Grid-5x3/Grid_2").path == copy);
+  CHECK_THROWS_WITH_AS(store.unpack("g.mosb"), doctest::Contains("not a packed entry"), Error);
+  CHECK_THROWS_AS(store.unpack("absent.mosb"), Error);
 }

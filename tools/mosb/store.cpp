@@ -1,4 +1,5 @@
-// `mosb store init|add|list|verify DIR`: the CLI of mosb::Store (lib/store/include/mosb/store.hpp).
+// `mosb store init|add|list|verify|instance|pull DIR`: the CLI of mosb::Store
+// (lib/store/include/mosb/store.hpp) and of mosb::pull (lib/pull/include/mosb/pull.hpp).
 #include "mosb/store.hpp"
 
 #include <CLI/CLI.hpp>
@@ -11,6 +12,7 @@
 #include "json_writer.hpp"
 #include "mosb/error.hpp"
 #include "mosb/internal/utf8.hpp"
+#include "mosb/pull.hpp"
 #include "terminal_progress.hpp"
 
 namespace mosb::cli {
@@ -26,6 +28,15 @@ struct StoreArgs {
   int level = PackOptions{}.level;
   unsigned threads = 0;
   bool json = false;
+  // pull
+  std::string url;
+  std::vector<std::string> benchmarks;
+  std::vector<std::string> views;
+  std::vector<std::string> globs;
+  unsigned jobs = PullOptions{}.jobs;
+  bool unpack = false;
+  bool dry_run = false;
+  unsigned stall_timeout = PullOptions{}.stall_timeout_seconds;
 };
 
 void write_entry(JsonWriter& json, const ManifestEntry& e) {
@@ -71,7 +82,9 @@ int run_add(const StoreArgs& a) {
   auto store = Store::open(a.directory);
   TerminalProgress progress;
   std::vector<std::filesystem::path> files(a.files.begin(), a.files.end());
-  Store::AddOptions options{a.move, std::nullopt, progress.callback()};
+  Store::AddOptions options;
+  options.move = a.move;
+  options.progress = progress.callback();
   if (a.pack)
     options.pack = PackOptions{a.level, std::max(1U, std::thread::hardware_concurrency())};
   const auto added = store.add(files, options);
@@ -156,6 +169,118 @@ int run_instance(const StoreArgs& a) {
   return 0;
 }
 
+const char* status_name(PullStatus status) {
+  switch (status) {
+    case PullStatus::fetched:
+      return "fetched";
+    case PullStatus::present:
+      return "present";
+    case PullStatus::refused:
+      return "refused";
+    case PullStatus::planned:
+      break;
+  }
+  return "planned";
+}
+
+// Fetches what the store lacks; one line per entry on stdout (`fetched`, `present`, or with
+// --dry-run `would fetch`), one line per refused entry on stderr, exit 1 when any was refused.
+int run_pull(const StoreArgs& a) {
+  PullOptions options;
+  options.benchmarks = a.benchmarks;
+  options.views = a.views;
+  options.files = a.globs;
+  options.jobs = a.jobs;
+  options.unpack = a.unpack;
+  options.dry_run = a.dry_run;
+  options.stall_timeout_seconds = a.stall_timeout;
+  const auto result = [&] {
+    TerminalProgress progress;  // its line ends before the report is printed
+    options.progress = progress.bytes_callback();
+    std::size_t counts[4] = {};
+    if (options.progress)
+      options.settled = [&](const PulledEntry& entry, std::size_t settled, std::size_t selected) {
+        ++counts[static_cast<int>(entry.status)];
+        progress.set_suffix(
+            "; entries " + std::to_string(settled) + "/" + std::to_string(selected) + " (" +
+            std::to_string(counts[static_cast<int>(PullStatus::fetched)]) + " fetched, " +
+            std::to_string(counts[static_cast<int>(PullStatus::present)]) + " present, " +
+            std::to_string(counts[static_cast<int>(PullStatus::refused)]) + " refused)");
+      };
+    return pull(a.directory, a.url, options);
+  }();
+  std::uint64_t planned_bytes = 0;
+  std::size_t counts[4] = {};
+  for (const auto& p : result.entries) {
+    ++counts[static_cast<int>(p.status)];
+    if (p.status == PullStatus::planned) planned_bytes += p.entry.size;
+  }
+  for (const auto& p : result.entries)
+    if (p.status == PullStatus::refused)
+      std::cerr << "mosb: refused " << escape_for_terminal(p.entry.file) << ": "
+                << escape_for_terminal(p.reason) << '\n';
+  if (a.json) {
+    JsonWriter json(std::cout);
+    json.begin_object();
+    json.key("store").value(a.directory);
+    json.key("manifest").value(result.manifest_url);
+    json.key("dry_run").value(a.dry_run);
+    json.key("ok").value(result.ok());
+    for (const auto status : {PullStatus::fetched, PullStatus::present, PullStatus::planned}) {
+      if ((a.dry_run && status == PullStatus::fetched) ||
+          (!a.dry_run && status == PullStatus::planned))
+        continue;
+      json.key(status == PullStatus::planned ? "would_fetch" : status_name(status)).begin_array();
+      for (const auto& p : result.entries) {
+        if (p.status != status) continue;
+        json.begin_object();
+        json.key("file").value(p.entry.file);
+        json.key("size").value(p.entry.size);
+        if (status == PullStatus::fetched) {
+          json.key("received").value(p.received);
+          json.key("resumed_from").value(p.resumed_from);
+        }
+        json.end_object();
+      }
+      json.end_array();
+    }
+    json.key("refused").begin_array();
+    for (const auto& p : result.entries) {
+      if (p.status != PullStatus::refused) continue;
+      json.begin_object();
+      json.key("file").value(p.entry.file);
+      json.key("reason").value(p.reason);
+      json.end_object();
+    }
+    json.end_array();
+    json.key("bytes").value(result.bytes);
+    json.key("seconds").value(result.seconds);
+    json.end_object();
+  } else {
+    for (const auto& p : result.entries) {
+      const auto file = escape_for_terminal(p.entry.file);
+      if (p.status == PullStatus::fetched)
+        std::cout << "fetched " << file << " (" << p.entry.size << " bytes"
+                  << (p.resumed_from ? ", resumed at byte " + std::to_string(p.resumed_from) : "")
+                  << ")\n";
+      else if (p.status == PullStatus::present)
+        std::cout << "present " << file << '\n';
+      else if (p.status == PullStatus::planned)
+        std::cout << "would fetch " << file << " (" << p.entry.size << " bytes)\n";
+    }
+    if (a.dry_run)
+      std::cout << counts[static_cast<int>(PullStatus::planned)] << " to fetch (" << planned_bytes
+                << " bytes), " << counts[static_cast<int>(PullStatus::present)] << " present, "
+                << counts[static_cast<int>(PullStatus::refused)] << " refused\n";
+    else
+      std::cout << counts[static_cast<int>(PullStatus::fetched)] << " fetched, "
+                << counts[static_cast<int>(PullStatus::present)] << " present, "
+                << counts[static_cast<int>(PullStatus::refused)] << " refused; " << result.bytes
+                << " bytes received in " << result.seconds << " s\n";
+  }
+  return result.ok() ? 0 : 1;
+}
+
 }  // namespace
 
 int report_checks(const std::vector<FileCheck>& checks, bool json) {
@@ -236,7 +361,37 @@ Command add_store(CLI::App& app) {
   directory(instance);
   instance->add_option("NAME", args->name, "a benchmark, a view, or BENCHMARK/VIEW")->required();
   add_json_flag(instance, args->json);
+  auto* pull_command = store->add_subcommand(
+      "pull",
+      "Fetch the store published at URL (http, https, file:// or a directory) into DIR: each "
+      "entry checked (size, SHA-256, then as store add checks it) before it is placed and listed; "
+      "interrupted transfers continue where they stopped");
+  directory(pull_command);
+  pull_command->add_option("URL", args->url, "where the store is published (URL/MANIFEST)")
+      ->required();
+  pull_command->add_option("--benchmark", args->benchmarks,
+                           "only entries of this benchmark (a glob; repeatable)");
+  pull_command->add_option("--view", args->views,
+                           "only entries serving this view (a glob; repeatable)");
+  pull_command->add_option("--file", args->globs,
+                           "only entries of this file name (a glob; repeatable)");
+  pull_command->add_option("--jobs", args->jobs, "transfers at once")
+      ->check(unsigned_integer(256))
+      ->check(CLI::Range(1, 256))
+      ->capture_default_str();
+  pull_command->add_flag("--unpack", args->unpack,
+                         "unpack packed entries into DIR/.cache once they are listed");
+  pull_command->add_flag("--dry-run", args->dry_run,
+                         "say what would be fetched and what is present; write nothing");
+  pull_command
+      ->add_option("--stall-timeout", args->stall_timeout,
+                   "seconds without a byte before a transfer is retried")
+      ->check(unsigned_integer(86400))
+      ->check(CLI::Range(1, 86400))
+      ->capture_default_str();
+  add_json_flag(pull_command, args->json);
   return group(store, {{init, [args] { return run_init(*args); }},
+                       {pull_command, [args] { return run_pull(*args); }},
                        {instance, [args] { return run_instance(*args); }},
                        {add, [args] { return run_add(*args); }},
                        {list, [args] { return run_list(*args); }},

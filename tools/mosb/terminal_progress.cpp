@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <utility>
 
 namespace mosb::cli {
 
@@ -19,6 +20,16 @@ Progress TerminalProgress::callback() {
   };
 }
 
+Progress TerminalProgress::bytes_callback() {
+  bytes_ = true;
+  return callback();
+}
+
+void TerminalProgress::set_suffix(std::string suffix) {
+  std::lock_guard lock(mutex_);
+  suffix_ = std::move(suffix);
+}
+
 void TerminalProgress::update(std::string_view stage, std::uint64_t done, std::uint64_t total) {
   std::lock_guard lock(mutex_);
   const auto now = std::chrono::steady_clock::now();
@@ -26,10 +37,22 @@ void TerminalProgress::update(std::string_view stage, std::uint64_t done, std::u
   const bool finished = total != 0 && done >= total;
   if (!new_stage && !finished && now - last_draw_ < std::chrono::milliseconds(100)) return;
   if (new_stage && line_open_) std::fputc('\n', stderr);
+  if (new_stage) stage_start_ = now;
   stage_ = stage;
   last_draw_ = now;
   // "\r" and erase-to-end-of-line redraw the same line.
-  if (total != 0)
+  if (bytes_) {
+    const double seconds = std::chrono::duration<double>(now - stage_start_).count();
+    const double rate = seconds > 0 ? static_cast<double>(done) / seconds : 0;
+    std::fprintf(stderr, "\r\033[Kmosb: %.*s %.1f/%.1f MB (%.0f%%), %.1f MB/s",
+                 static_cast<int>(stage.size()), stage.data(), static_cast<double>(done) / 1e6,
+                 static_cast<double>(total) / 1e6,
+                 total != 0 ? 100.0 * static_cast<double>(done) / static_cast<double>(total) : 0.0,
+                 rate / 1e6);
+    if (rate > 0 && total > done)
+      std::fprintf(stderr, ", %.0f s left", static_cast<double>(total - done) / rate);
+    std::fputs(suffix_.c_str(), stderr);
+  } else if (total != 0)
     std::fprintf(stderr, "\r\033[Kmosb: %.*s %llu/%llu (%.0f%%)", static_cast<int>(stage.size()),
                  stage.data(), static_cast<unsigned long long>(done),
                  static_cast<unsigned long long>(total),

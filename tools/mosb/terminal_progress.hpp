@@ -21,12 +21,20 @@ class TerminalProgress {
 
   // Empty when stderr is not a terminal, so the library does not even count.
   Progress callback();
+  // The same for stages that count bytes: megabytes, the rate since the stage began and the time
+  // left at that rate.
+  Progress bytes_callback();
+  // Text drawn after the figures of a bytes stage from its next update on (say, files done).
+  void set_suffix(std::string suffix);
 
  private:
   void update(std::string_view stage, std::uint64_t done, std::uint64_t total);
   void end_line();
 
   bool enabled_;
+  bool bytes_ = false;
+  std::chrono::steady_clock::time_point stage_start_{};
+  std::string suffix_;
   std::mutex mutex_;
   std::string stage_;
   bool line_open_ = false;

@@ -13,42 +13,44 @@
 
 namespace mosb {
 
-namespace {
-
-struct ContextDeleter {
-  void operator()(EVP_MD_CTX* context) const { EVP_MD_CTX_free(context); }
-};
-
-class Sha256 {
- public:
-  Sha256() : context_(EVP_MD_CTX_new()) {
-    if (!context_ || EVP_DigestInit_ex(context_.get(), EVP_sha256(), nullptr) != 1)
+struct Sha256::Context {
+  struct Deleter {
+    void operator()(EVP_MD_CTX* context) const { EVP_MD_CTX_free(context); }
+  };
+  std::unique_ptr<EVP_MD_CTX, Deleter> evp{EVP_MD_CTX_new()};
+  void start() {
+    if (!evp || EVP_DigestInit_ex(evp.get(), EVP_sha256(), nullptr) != 1)
       throw Error("SHA-256: libcrypto cannot start a digest");
   }
-  void update(const void* data, std::size_t size) {
-    if (EVP_DigestUpdate(context_.get(), data, size) != 1)
-      throw Error("SHA-256: libcrypto digest update failed");
-  }
-  std::string hex() {
-    unsigned char digest[EVP_MAX_MD_SIZE];
-    unsigned int length = 0;
-    if (EVP_DigestFinal_ex(context_.get(), digest, &length) != 1)
-      throw Error("SHA-256: libcrypto digest failed");
-    static constexpr char kDigits[] = "0123456789abcdef";
-    std::string out;
-    out.reserve(std::size_t{2} * length);
-    for (unsigned int i = 0; i < length; ++i) {
-      out += kDigits[digest[i] >> 4];
-      out += kDigits[digest[i] & 0xF];
-    }
-    return out;
-  }
-
- private:
-  std::unique_ptr<EVP_MD_CTX, ContextDeleter> context_;
 };
 
-}  // namespace
+Sha256::Sha256() : context_(std::make_unique<Context>()) {
+  context_->start();
+}
+Sha256::~Sha256() = default;
+Sha256::Sha256(Sha256&&) noexcept = default;
+Sha256& Sha256::operator=(Sha256&&) noexcept = default;
+
+void Sha256::update(const void* data, std::size_t size) {
+  if (EVP_DigestUpdate(context_->evp.get(), data, size) != 1)
+    throw Error("SHA-256: libcrypto digest update failed");
+}
+
+std::string Sha256::hex() {
+  unsigned char digest[EVP_MAX_MD_SIZE];
+  unsigned int length = 0;
+  if (EVP_DigestFinal_ex(context_->evp.get(), digest, &length) != 1)
+    throw Error("SHA-256: libcrypto digest failed");
+  context_->start();
+  static constexpr char kDigits[] = "0123456789abcdef";
+  std::string out;
+  out.reserve(std::size_t{2} * length);
+  for (unsigned int i = 0; i < length; ++i) {
+    out += kDigits[digest[i] >> 4];
+    out += kDigits[digest[i] & 0xF];
+  }
+  return out;
+}
 
 std::string sha256_hex(std::span<const std::byte> bytes) {
   Sha256 hash;

@@ -394,8 +394,24 @@ struct Placement {
   bool staged = false;
 };
 
-Placement prepare(const fs::path& source, const Store::AddOptions& options, Staging& staging) {
+// Throws when the file described as `found` is not the entry `expected`, naming what differs.
+void check_expected(const fs::path& source, const ManifestEntry& found,
+                    const ManifestEntry& expected) {
+  std::string differs;
+  if (found.size != expected.size)
+    differs =
+        std::to_string(found.size) + " bytes, the manifest says " + std::to_string(expected.size);
+  else if (found.sha256 != expected.sha256)
+    differs = "SHA-256 " + found.sha256 + ", the manifest says " + expected.sha256;
+  else if (found.digest != expected.digest)
+    differs = "content digest " + found.digest + ", the manifest says " + expected.digest;
+  if (!differs.empty()) throw Error(ErrorCode::damaged, source.string() + ": " + differs);
+}
+
+Placement prepare(const fs::path& source, const Store::AddOptions& options,
+                  const ManifestEntry* expected, Staging& staging) {
   Placement p{describe_file(source), source, source, false};
+  if (expected != nullptr) check_expected(source, p.entry, *expected);
   // A packed file is decoded (every frame checked) and verified like any other.
   const auto reader = p.entry.packed ? mosb::load(source) : GraphReader::open(source);
   if (const auto problem = mosb::verify(reader, VerifyLevel::full))
@@ -492,13 +508,16 @@ std::vector<ManifestEntry> Store::add(const std::vector<fs::path>& files,
                                       const AddOptions& options) {
   // Everything is checked (and packed) before anything the manifest lists is written.
   check_names(files);
+  if (!options.expect.empty() && options.expect.size() != files.size())
+    throw Error(ErrorCode::invalid_argument, "Store::add: one expected entry per file, or none");
   sweep_staging(directory_ / kStagingDirectory);
   sweep_empty_cache(directory_ / kCacheDirectory);
   Staging staging(directory_);  // removed, with anything not placed, on every way out
   std::vector<Placement> placements;
   for (std::size_t i = 0; i < files.size(); ++i) {
     if (options.pack) report(options.progress, "pack", i, files.size());
-    placements.push_back(prepare(files[i], options, staging));
+    placements.push_back(
+        prepare(files[i], options, options.expect.empty() ? nullptr : &options.expect[i], staging));
   }
   if (options.pack) report(options.progress, "pack", files.size(), files.size());
   check_conflicts(manifest_, placements);  // refused at once, without waiting for the lock
@@ -609,6 +628,20 @@ StoreInstance Store::instance(std::string_view name) const {
     out.query_set = out.view->query_set;
   }
   return out;
+}
+
+std::filesystem::path Store::unpack(std::string_view file) const {
+  const auto* e = manifest_.find(file);
+  if (e == nullptr || !e->packed)
+    throw Error(ErrorCode::not_found, directory_.string() + ": '" + std::string(file) +
+                                          "' is not a packed entry of the store");
+  refuse_symlink(directory_ / e->file);
+  auto copy = directory_ / kCacheDirectory / e->file;
+  if (open_packed(directory_, *e).second != copy)
+    throw Error(ErrorCode::io, copy.string() +
+                                   ": cannot unpack there (the store cannot be written, or "
+                                   "something else is in the way)");
+  return copy;
 }
 
 }  // namespace mosb

@@ -2,11 +2,29 @@
 // detects tampering (spec/FORMAT.md §8). Computed by OpenSSL's libcrypto, never by hand.
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
+#include <memory>
 #include <span>
 #include <string>
 
 namespace mosb {
+
+// SHA-256 fed piece by piece, for bytes as they arrive (a download) instead of a second pass.
+class Sha256 {
+ public:
+  Sha256();
+  ~Sha256();
+  Sha256(Sha256&&) noexcept;
+  Sha256& operator=(Sha256&&) noexcept;
+  void update(const void* data, std::size_t size);
+  // 64 lowercase hex digits of everything fed so far; the hash then starts again, empty.
+  std::string hex();
+
+ private:
+  struct Context;
+  std::unique_ptr<Context> context_;
+};
 
 // 64 lowercase hex digits.
 std::string sha256_hex(std::span<const std::byte> bytes);

@@ -114,6 +114,10 @@ class Store {
     // written to DIR/.staging first, so a name conflict is found before anything is replaced.
     std::optional<PackOptions> pack;
     Progress progress;  // stage "pack" (when packing) and stage "add": once per file
+    // Empty, or one entry per file, in order: each file must then be exactly that entry (size,
+    // SHA-256 and content digest, as a published MANIFEST lists it; `store pull`), else the add
+    // is refused before anything is placed. Compared before packing.
+    std::vector<ManifestEntry> expect;
   };
   // Copies (or moves, or packs) each file in under its base name, each through mosb::AtomicFile,
   // then rewrites the manifest atomically, last. Refused before anything is written: a reserved
@@ -142,6 +146,12 @@ class Store {
   // refused (mosb::Error naming it), never followed; a .cache this call made and could not fill is
   // removed again.
   StoreInstance instance(std::string_view name) const;
+
+  // The unpacked copy DIR/.cache/FILE of the packed entry `file`, made as instance() makes it
+  // (verified in full against the entry's digest, made again when it does not match), so the
+  // first instance() maps it at once. Throws mosb::Error when `file` is not a listed packed entry
+  // or the copy cannot be written (a read-only store).
+  std::filesystem::path unpack(std::string_view file) const;
 
  private:
   Store(std::filesystem::path directory, Manifest manifest)

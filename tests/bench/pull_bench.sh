@@ -1,0 +1,83 @@
+#!/usr/bin/env bash
+# `mosb store pull` of a published suite against `curl` (the same files, the same parallelism)
+# followed by `sha256sum -c` against the MANIFEST's sums, both from nginx on loopback
+# (tests/store/nginx.conf). Prints the wall time, throughput and peak memory of each, in
+# alternating rounds. Figures: BENCHMARKS.md.
+#
+#   tests/bench/pull_bench.sh [SUITE_DIR]
+#
+# SUITE_DIR: a published store; default $WORK/suite, made by `mosb suite build` (packed) when
+# absent. Environment: MOSB (default build/release/tools/mosb), WORK (default /tmp/mosb-pull-bench),
+# JOBS (transfers at once, default 4), ROUNDS (default 3).
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+mosb=${MOSB:-$here/../../build/release/tools/mosb}
+work=${WORK:-/tmp/mosb-pull-bench}
+suite=$(realpath -m "${1:-$work/suite}")
+jobs=${JOBS:-4}
+rounds=${ROUNDS:-3}
+mkdir -p "$work"
+[[ -f $suite/MANIFEST ]] || "$mosb" suite build "$suite" >/dev/null
+
+server=$work/nginx
+rm -rf "$server"
+mkdir -p "$server/tmp"
+ln -s "$suite" "$server/www"
+port=$(/usr/bin/python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+user=""
+if [[ $(id -u) -eq 0 ]]; then user="user root;"; fi
+sed -e "s|@DIR@|$server|g" -e "s|@PORT@|$port|g" -e "s|@USER@|$user|" \
+  "$here/../store/nginx.conf" >"$server/nginx.conf"
+nginx -p "$server" -e "$server/error.log" -c "$server/nginx.conf" &
+nginx_pid=$!
+trap 'kill $nginx_pid; wait $nginx_pid 2>/dev/null || true' EXIT
+url=http://127.0.0.1:$port/pub
+until curl -sf -o /dev/null "$url/MANIFEST"; do sleep 0.05; done
+
+# The file names and the "SHA-256  NAME" lines sha256sum -c reads, from the MANIFEST.
+/usr/bin/python3 - "$suite/MANIFEST" "$work" <<'EOF'
+import json, os, sys
+entries = [json.loads(line) for line in open(sys.argv[1]).read().splitlines()[1:]]
+with open(os.path.join(sys.argv[2], "names"), "w") as f:
+    f.writelines(e["file"] + "\n" for e in entries)
+with open(os.path.join(sys.argv[2], "sums"), "w") as f:
+    f.writelines("%s  %s\n" % (e["sha256"], e["file"]) for e in entries)
+EOF
+files=$(wc -l <"$work/names")
+bytes=$(cd "$suite" && xargs -a "$work/names" stat -c %s | paste -sd+ | bc)
+echo "suite: $files files, $bytes bytes; $jobs transfers at once; $(nproc) cores; load $(cut -d' ' -f1-3 /proc/loadavg)"
+
+figure() {  # label seconds peak_kib
+  awk -v l="$1" -v s="$2" -v m="$3" -v b="$bytes" \
+    'BEGIN { printf "%-28s %7.2f s  %8.1f MB/s  peak RSS %7.1f MB\n", l, s, b / s / 1e6, m / 1024 }'
+}
+
+for round in $(seq "$rounds"); do
+  rm -rf "$work/store"
+  read -r seconds peak < <(/usr/bin/time -f "%e %M" "$mosb" store pull "$work/store" "$url" \
+    --jobs "$jobs" 2>&1 >/dev/null | tail -1)
+  "$mosb" store verify "$work/store" >/dev/null
+  figure "mosb store pull" "$seconds" "$peak"
+
+  rm -rf "$work/curl" && mkdir "$work/curl"
+  start=$(date +%s.%N)
+  (cd "$work/curl" && xargs -a "$work/names" -P "$jobs" -I{} curl -sfS -o {} "$url/{}" &&
+    sha256sum --quiet -c "$work/sums")
+  end=$(date +%s.%N)
+  figure "curl -P $jobs, then sha256sum -c" "$(echo "$end - $start" | bc)" 0
+
+  # The check a pull makes beyond SHA-256 (content digest, verify --level full, packed files
+  # decoded), on curl's download: what a user without `store pull` runs by hand.
+  start=$(date +%s.%N)
+  cp "$suite/MANIFEST" "$work/curl/"
+  read -r seconds peak < <(/usr/bin/time -f "%e %M" "$mosb" verify --manifest "$work/curl/MANIFEST" \
+    2>&1 >/dev/null | tail -1)
+  end=$(date +%s.%N)
+  figure "  mosb verify --manifest alone" "$(echo "$end - $start" | bc)" "$peak"
+
+  rm -rf "$work/curl" && mkdir "$work/curl"
+  start=$(date +%s.%N)
+  (cd "$work/curl" && xargs -a "$work/names" -P "$jobs" -I{} curl -sfS -o {} "$url/{}")
+  end=$(date +%s.%N)
+  figure "curl -P $jobs alone" "$(echo "$end - $start" | bc)" 0
+done
