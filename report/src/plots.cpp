@@ -220,6 +220,7 @@ LegendEntry front_entry(char kind, const char* colour, const std::string& name, 
 void value_range(double& lo, double& hi) {
   if (!std::isfinite(lo)) lo = 0, hi = 1;
   lo = std::min(lo, 0.0);
+  if (lo == 0 && hi <= 0) hi = 1;  // all zero: 0 to 1, not −1 to 1
   widen(lo, hi);
 }
 
@@ -262,8 +263,9 @@ std::string plot_front(const FrontPlot& plot) {
   if (!plot.reference.empty())
     entries.push_back(front_entry('o', kReferenceColour, plot.reference_name, reference.size(),
                                   plot.reference.size()));
-  entries.push_back(
-      front_entry('c', kSolverColour, plot.solver_name, solution.size(), plot.solution.size()));
+  if (!plot.solution.empty() || plot.reference.empty())
+    entries.push_back(
+        front_entry('c', kSolverColour, plot.solver_name, solution.size(), plot.solution.size()));
   if (e > 0) entries.push_back({'r', kBoxColour, "ε-box, ε = " + tick_label(e), ""});
   legend(svg, entries);
   return svg.str();

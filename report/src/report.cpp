@@ -172,7 +172,8 @@ table{border-collapse:collapse;margin:1em 0;font-size:.9em}caption{text-align:le
 th,td{border-bottom:1px solid #ccc;padding:.25em .6em}th{background:#eef3f8;cursor:pointer;text-align:left}
 td.n{text-align:right;font-variant-numeric:tabular-nums}
 th[aria-sort=ascending]::after{content:" \25B2"}th[aria-sort=descending]::after{content:" \25BC"}
-figure{margin:1em 0;display:inline-block;vertical-align:top;max-width:100%}figure svg{max-width:100%;height:auto;border:1px solid #ddd}
+figure{margin:.5em;display:inline-block;vertical-align:top;width:calc(50% - 1.2em);min-width:360px}
+figure svg{width:100%;height:auto;border:1px solid #ddd}.scroll{overflow-x:auto}
 figcaption{font-size:.85em;color:#333;max-width:800px}nav li{display:inline;margin-right:1em}
 .note{color:#555;font-size:.9em}
 )";
@@ -229,11 +230,8 @@ std::vector<Point2> pair_points(const std::vector<std::vector<double>>& rows, st
   return out;
 }
 
-}  // namespace
-
-Report make_report(std::span<const GraphReader> instances,
-                   std::span<const SolutionReader> solutions,
-                   std::span<const SolutionReader> references, const ReportOptions& options) {
+Report draw(std::span<const GraphReader> instances, std::span<const SolutionReader> solutions,
+            std::span<const SolutionReader> references, const ReportOptions& options) {
   if (instances.empty()) throw Error(ErrorCode::invalid_argument, "a report needs an instance");
   auto benchmarks = benchmarks_of(instances);
   // Binding: every file to its benchmark; one file per solver and binding.
@@ -275,7 +273,10 @@ Report make_report(std::span<const GraphReader> instances,
                  std::to_string(solutions.size()) + " solution file" +
                  (solutions.size() == 1 ? "" : "s") + ", " + std::to_string(references.size()) +
                  " reference file" + (references.size() == 1 ? "" : "s") + "; written by mosb " +
-                 kVersion + ". Click a column heading to sort a table.");
+                 kVersion + ". Fronts are drawn with at most " +
+                 std::to_string(options.max_points) + " vectors per set (thinned past it, the "
+                 "extremes kept), so the page stays under " + std::to_string(options.max_bytes / 1000) +
+                 " kB. Click a column heading to sort a table.");
   page.out << "<nav><ul><li><a href=\"#suite\">Suite</a></li><li><a href=\"#instance-space\">"
               "Instance space</a></li>";
   for (const auto& b : benchmarks)
@@ -389,7 +390,9 @@ Report make_report(std::span<const GraphReader> instances,
       t.rows.push_back(std::move(row));
     }
     page.out << "<section id=\"suite\">\n<h2>Suite</h2>\n";
+    page.out << "<div class=\"scroll\">\n";
     tables::write_html(page.out, t, "suite-table");
+    page.out << "</div>\n";
     page.out << "</section>\n";
   }
 
@@ -440,7 +443,9 @@ Report make_report(std::span<const GraphReader> instances,
                 "largest pairwise ρ (ends marked), each faint dot is one pair of one instance. "
                 "Benchmarks with arc kinds (NetMaker: kind 0 the Hamiltonian cycle, kind 1 the "
                 "locality arcs) also have a series per kind.");
+    page.out << "<div class=\"scroll\">\n";
     tables::write_html(page.out, t, "instance-space-table");
+    page.out << "</div>\n";
     page.out << "</section>\n";
   }
 
@@ -486,9 +491,10 @@ Report make_report(std::span<const GraphReader> instances,
     if (!bm.references.empty()) {
       shown = &references[bm.references.front().file];
       shown_instance = bm.references.front().instance;
+      // The first other solver's (the reference is often one of the solvers' files too).
       for (const auto& name : bm.solver_order)
         for (const auto& f : bm.solvers.at(name))
-          if (!overlay && f.instance == shown_instance &&
+          if (!overlay && name != solver_name(*shown) && f.instance == shown_instance &&
               solutions[f.file].query_set() == shown->query_set())
             overlay = &solutions[f.file];
     } else if (!bm.solver_order.empty()) {
@@ -607,7 +613,7 @@ Report make_report(std::span<const GraphReader> instances,
     page.out << "<section id=\"comparison\">\n<h2>Solver comparison</h2>\n";
     Table& t = report.comparison;
     t.caption = "Solvers per benchmark: timeouts and memory limits over each solver's queries; "
-                "median and max runtime over the queries every solver completed";
+                "median and max runtime over the queries every solver of the benchmark completed";
     t.columns = {{"family", "Family", "family"},
                  {"benchmark", "Benchmark", "benchmark"},
                  {"queries", "Queries", "queries"},
@@ -629,7 +635,7 @@ Report make_report(std::span<const GraphReader> instances,
       for (const auto& [key, by_solver] : outcomes) {
         if (key.benchmark != b) continue;
         ++queries;
-        bool all = by_solver.size() == solver_names.size();
+        bool all = by_solver.size() == benchmarks[b].solvers.size();
         for (const auto& [name, o] : by_solver) {
           timeouts[name] += o.status == QueryStatus::timeout;
           memory[name] += o.status == QueryStatus::memory_limit;
@@ -654,7 +660,9 @@ Report make_report(std::span<const GraphReader> instances,
       }
       t.rows.push_back(std::move(row));
     }
+    page.out << "<div class=\"scroll\">\n";
     tables::write_html(page.out, t, "comparison-table");
+    page.out << "</div>\n";
 
     // Cactus plot: each solver's solved queries by runtime.
     plots::LinePlot cactus;
@@ -802,7 +810,9 @@ Report make_report(std::span<const GraphReader> instances,
         page.figure("coverage", plots::plot_bars(bars),
                     "Per solver and ε, the share of the queries it and the reference solved whose "
                     "reference front it ε-covers (spec/EVALUATION.md §1).");
+        page.out << "<div class=\"scroll\">\n";
         tables::write_html(page.out, c, "coverage-table");
+        page.out << "</div>\n";
       }
     }
     page.out << "</section>\n";
@@ -810,6 +820,26 @@ Report make_report(std::span<const GraphReader> instances,
   page.out << "<script>\n" << kScript << "</script>\n</body>\n</html>\n";
   report.html = page.out.str();
   return report;
+}
+
+}  // namespace
+
+Report make_report(std::span<const GraphReader> instances,
+                   std::span<const SolutionReader> solutions,
+                   std::span<const SolutionReader> references, const ReportOptions& options) {
+  constexpr std::size_t kFewestPoints = 50;
+  auto current = options;
+  for (;;) {
+    auto report = draw(instances, solutions, references, current);
+    if (report.html.size() <= options.max_bytes) return report;
+    if (current.max_points <= kFewestPoints)
+      throw Error(ErrorCode::invalid_argument,
+                  "the report would be " + std::to_string(report.html.size()) +
+                      " bytes even with fronts thinned to " + std::to_string(current.max_points) +
+                      " points, over the limit of " + std::to_string(options.max_bytes) +
+                      " bytes: give a larger --max-size, or fewer instances or --queries");
+    current.max_points = std::max(kFewestPoints, current.max_points / 2);
+  }
 }
 
 }  // namespace mosb::pages

@@ -312,6 +312,17 @@ class ReportTest(unittest.TestCase):
         thin = self.path("thin.html")
         run("report", *self.report_args, "--max-points", "2", "-o", thin)
         self.assertRegex(read(thin, "r"), r">showing [0-9]+ of [0-9]+<")
+        # A size limit thins the fronts until the page fits, and refuses a page that cannot.
+        limit = len(self.text) * 3 // 4
+        small = self.path("small.html")
+        run("report", *self.report_args, "--max-size", str(limit), "-o", small)
+        self.assertLessEqual(len(read(small)), limit)
+        self.assertRegex(read(small, "r"), r">showing [0-9]+ of [0-9]+<")
+        r = mosbtest.run("report", *self.report_args, "--max-size", "1000", "-o", small + "2")
+        self.assertEqual(r.returncode, 1, r.stderr)
+        self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+        self.assertIn("over the limit of 1000 bytes", r.stderr)
+        self.assertFalse(os.path.exists(small + "2"))
 
     def test_latex_and_csv_tables(self):
         tex = read(self.path("latex/suite.tex"), "r")

@@ -2,6 +2,7 @@
 // (spec/EVALUATION.md §7). The page is mosb::pages::make_report's; this file opens the inputs
 // and writes the outputs.
 #include <CLI/CLI.hpp>
+#include <limits>
 #include <memory>
 #include <sstream>
 
@@ -20,7 +21,7 @@ namespace {
 struct ReportArgs {
   std::vector<std::string> instances, solutions, references;
   std::string queries, epsilons = "0,0.01,0.05,0.1", output, title = "mosb report", latex, csv;
-  std::size_t max_points = 1000;
+  std::size_t max_points = 1000, max_size = 5'000'000;
 };
 
 std::vector<std::uint64_t> parse_queries(const std::string& list) {
@@ -61,6 +62,7 @@ int run_report(const ReportArgs& args) {
   options.title = args.title;
   if (args.max_points == 0) throw UsageError("--max-points: at least 1");
   options.max_points = args.max_points;
+  options.max_bytes = args.max_size;
   if (!args.queries.empty()) options.queries = parse_queries(args.queries);
   options.epsilons = parse_epsilons(args.epsilons);
   for (const auto& e : options.epsilons) options.epsilon_labels.push_back(e.to_decimal(18));
@@ -116,6 +118,10 @@ Command add_report(CLI::App& app) {
   sub->add_option("--max-points", args->max_points,
                   "vectors drawn per front and set, past which it is thinned (extremes kept)")
       ->check(unsigned_integer(1000000))
+      ->capture_default_str();
+  sub->add_option("--max-size", args->max_size,
+                  "the page's largest size in bytes: fronts are thinned further to stay under it")
+      ->check(unsigned_integer(std::numeric_limits<std::size_t>::max()))
       ->capture_default_str();
   add_output_option(sub, args->output, "the HTML file to write")->required();
   sub->add_option("--latex", args->latex,

@@ -23,6 +23,9 @@ struct ReportOptions {
   std::vector<Ratio> epsilons;              // the ε-coverage's ε values, with a reference
   std::vector<std::string> epsilon_labels;  // as the user wrote them, one per ε
   std::size_t max_points = 1000;            // per front set drawn, past which it is thinned
+  // The page's largest size: past it, fronts are drawn with half as many points, down to 50,
+  // and past it then make_report throws (ErrorCode::invalid_argument).
+  std::size_t max_bytes = 5'000'000;
   std::uint32_t max_map_side = 160;         // squares per map side (plots::coarsen_map)
 };
 
