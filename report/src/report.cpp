@@ -158,12 +158,17 @@ std::string inline_svg(const std::string& document) {
 
 class Page {
  public:
+  explicit Page(std::vector<Figure>& figures) : figures_(figures) {}
   std::ostringstream out;
   void figure(const std::string& kind, const std::string& svg, const std::string& caption) {
+    figures_.push_back({kind, svg});
     out << "<figure data-figure=\"" << Svg::escape(kind) << "\">\n"
         << inline_svg(svg) << "<figcaption>" << Svg::escape(caption) << "</figcaption>\n</figure>\n";
   }
   void paragraph(const std::string& text) { out << "<p>" << Svg::escape(text) << "</p>\n"; }
+
+ private:
+  std::vector<Figure>& figures_;
 };
 
 constexpr const char* kStyle = R"(body{font-family:"DejaVu Sans",Arial,sans-serif;margin:1.5em auto;max-width:1100px;padding:0 1em;color:#111}
@@ -261,7 +266,7 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
   }
 
   Report report;
-  Page page;
+  Page page(report.figures);
   page.out << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
            << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
            << "<meta name=\"generator\" content=\"mosb " << kVersion << "\">\n<title>"

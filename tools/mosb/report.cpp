@@ -2,6 +2,7 @@
 // (spec/EVALUATION.md §7). The page is mosb::pages::make_report's; this file opens the inputs
 // and writes the outputs.
 #include <CLI/CLI.hpp>
+#include <cstdio>
 #include <limits>
 #include <memory>
 #include <sstream>
@@ -11,6 +12,7 @@
 #include "mosb/graph_reader.hpp"
 #include "mosb/internal/utf8.hpp"
 #include "mosb/pack.hpp"
+#include "mosb/report/render.hpp"
 #include "mosb/report/report.hpp"
 #include "mosb/solution_file.hpp"
 
@@ -21,6 +23,7 @@ namespace {
 struct ReportArgs {
   std::vector<std::string> instances, solutions, references;
   std::string queries, epsilons = "0,0.01,0.05,0.1", output, title = "mosb report", latex, csv;
+  std::string figures, figure_format = "svg";
   std::size_t max_points = 1000, max_size = 5'000'000;
 };
 
@@ -86,6 +89,18 @@ int run_report(const ReportArgs& args) {
   check_output_is_not_input(args.output, inputs);
   if (!args.latex.empty()) write_tables(args.latex, result, true);
   if (!args.csv.empty()) write_tables(args.csv, result, false);
+  if (!args.figures.empty()) {
+    // DIR/NN-KIND.EXT in page order.
+    std::filesystem::create_directories(args.figures);
+    const auto format = *plots::image_format_of("x." + args.figure_format);
+    for (std::size_t k = 0; k < result.figures.size(); ++k) {
+      char number[32];
+      std::snprintf(number, sizeof number, "%02zu-", k + 1);
+      write_file_atomically(std::filesystem::path(args.figures) /
+                                (number + result.figures[k].kind + "." + args.figure_format),
+                            plots::render_svg(result.figures[k].svg, format, {}));
+    }
+  }
   write_file_atomically(args.output, result.html);
   return 0;
 }
@@ -127,6 +142,11 @@ Command add_report(CLI::App& app) {
   sub->add_option("--latex", args->latex,
                   "also write the tables as LaTeX booktabs tabulars into this directory");
   sub->add_option("--csv", args->csv, "also write the tables as CSV into this directory");
+  sub->add_option("--figures", args->figures,
+                  "also write every figure alone into this directory (NN-KIND.svg|pdf|png)");
+  sub->add_option("--figure-format", args->figure_format, "the format of --figures' files")
+      ->check(CLI::IsMember({"svg", "pdf", "png"}))
+      ->capture_default_str();
   return {sub, [args] { return run_report(*args); }};
 }
 

@@ -29,8 +29,14 @@ struct ReportOptions {
   std::uint32_t max_map_side = 160;         // squares per map side (plots::coarsen_map)
 };
 
+// A figure of the page as a document of its own, named by its kind ("front", "cactus", ...).
+struct Figure {
+  std::string kind, svg;
+};
+
 struct Report {
   std::string html;
+  std::vector<Figure> figures;  // in page order
   // The page's tables, for --latex and --csv: the suite summary (the paper's Table 1 shape), the
   // instance space (ρ per benchmark), the solvers' comparison (the paper's two-solver table,
   // empty without two solvers) and the ε-coverage per solver (empty without a reference).
