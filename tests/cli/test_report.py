@@ -324,6 +324,19 @@ class ReportTest(unittest.TestCase):
         self.assertIn("over the limit of 1000 bytes", r.stderr)
         self.assertFalse(os.path.exists(small + "2"))
 
+    def test_every_figure_alone_as_pdf(self):
+        figures = self.path("figures")
+        run("report", *self.report_args, "-o", self.path("with-figures.html"), "--figures",
+            figures, "--figure-format", "pdf")
+        files = sorted(os.listdir(figures))
+        self.assertEqual(len(files), len(parse(self.text).figures))
+        self.assertEqual(files[0], "01-instance-space.pdf")
+        if shutil.which("pdfinfo"):
+            info = subprocess.run(["pdfinfo", os.path.join(figures, files[-1])],
+                                  capture_output=True, text=True)
+            self.assertEqual(info.returncode, 0, info.stderr)
+            self.assertIn("Pages:           1", info.stdout)
+
     def test_latex_and_csv_tables(self):
         tex = read(self.path("latex/suite.tex"), "r")
         self.assertIn("\\toprule", tex)
