@@ -38,5 +38,5 @@ done
 "$mosb" report "${instances[@]}" --solutions "${solutions[@]}" --reference "${references[@]}" \
   --title "mosb report: example suite" -o report.html
 chromium --headless --no-sandbox --disable-gpu --hide-scrollbars --screenshot="$PWD/report.png" \
-  --window-size=1100,900 "file://$PWD/report.html" 2>/dev/null
+  --window-size=1100,1300 "file://$PWD/report.html" 2>/dev/null
 echo "wrote $out/report.html and $out/report.png"

@@ -173,12 +173,13 @@ class Page {
 
 constexpr const char* kStyle = R"(body{font-family:"DejaVu Sans",Arial,sans-serif;margin:1.5em auto;max-width:1100px;padding:0 1em;color:#111}
 h1{font-size:1.7em}h2{border-bottom:2px solid #0072B2;padding-bottom:.2em;margin-top:2em}
-table{border-collapse:collapse;margin:1em 0;font-size:.9em}caption{text-align:left;font-weight:bold;padding:.3em 0}
+table{border-collapse:collapse;margin:1em 0;font-size:.85em}caption{text-align:left;font-weight:bold;padding:.3em 0}
 th,td{border-bottom:1px solid #ccc;padding:.25em .6em}th{background:#eef3f8;cursor:pointer;text-align:left}
 td.n{text-align:right;font-variant-numeric:tabular-nums}
 th[aria-sort=ascending]::after{content:" \25B2"}th[aria-sort=descending]::after{content:" \25BC"}
 figure{margin:.5em;display:inline-block;vertical-align:top;width:calc(50% - 1.2em);min-width:360px}
 figure svg{width:100%;height:auto;border:1px solid #ddd}.scroll{overflow-x:auto}
+figure[data-figure=instance-space]{width:calc(100% - 1.2em);max-width:900px}
 figcaption{font-size:.85em;color:#333;max-width:800px}nav li{display:inline;margin-right:1em}
 .note{color:#555;font-size:.9em}
 )";
