@@ -447,8 +447,10 @@ std::string plot_map(const MapPlot& plot) {
     entries.push_back({'r', kOkabeIto[5], "goal", ""});
   }
   if (plot.block > 1)
-    entries.push_back({'-', "", "1 square: " + std::to_string(plot.block) + "x" +
-                                    std::to_string(plot.block) + " cells", ""});
+    entries.push_back(
+        {'-', "",
+         "1 square: " + std::to_string(plot.block) + "x" + std::to_string(plot.block) + " cells",
+         ""});
   // The legend sits right of the map; '-' is a heading without a swatch.
   double ly = y0 + 10;
   for (const auto& e : entries) {
@@ -482,14 +484,13 @@ MapPlot coarsen_map(const MapPlot& plot, std::uint32_t max_side) {
           !(out.exposure[to] >= plot.exposure[from]))
         out.exposure[to] = plot.exposure[from];
     }
-  const auto scale = [k](Point2 p) {
-    return Point2{std::floor(p.x / k), std::floor(p.y / k)};
-  };
+  const auto scale = [k](Point2 p) { return Point2{std::floor(p.x / k), std::floor(p.y / k)}; };
   for (const auto& path : plot.paths) {
     auto& scaled = out.paths.emplace_back();
     for (const auto& p : path) scaled.push_back(scale(p));
   }
-  for (const auto& q : plot.queries) out.queries.push_back({q.query, scale(q.start), scale(q.goal)});
+  for (const auto& q : plot.queries)
+    out.queries.push_back({q.query, scale(q.start), scale(q.goal)});
   return out;
 }
 
@@ -497,9 +498,8 @@ namespace {
 
 const char* category_colour(std::size_t k) {
   // Okabe–Ito without yellow, which white backgrounds swallow.
-  static constexpr const char* kColours[] = {kOkabeIto[4], kOkabeIto[5], kOkabeIto[2],
-                                             kOkabeIto[0], kOkabeIto[6], kOkabeIto[1],
-                                             kOkabeIto[7]};
+  static constexpr const char* kColours[] = {kOkabeIto[4], kOkabeIto[5], kOkabeIto[2], kOkabeIto[0],
+                                             kOkabeIto[6], kOkabeIto[1], kOkabeIto[7]};
   return kColours[k % std::size(kColours)];
 }
 
@@ -544,14 +544,18 @@ std::string rho_list(const std::vector<double>& rho) {
 
 std::string plot_instance_space(const InstanceSpacePlot& plot) {
   std::size_t d_lo = SIZE_MAX, d_hi = 0;
-  for (const auto& s : plot.series) d_lo = std::min(d_lo, s.objectives), d_hi = std::max(d_hi, s.objectives);
+  for (const auto& s : plot.series)
+    d_lo = std::min(d_lo, s.objectives), d_hi = std::max(d_hi, s.objectives);
   if (d_lo > d_hi) d_lo = d_hi = 2;
   Svg svg(kWidth, kHeight);
   const Axis x{-1, 1, kLeft, kWidth - kRight};
-  const Axis y{static_cast<double>(d_lo) - 0.5, static_cast<double>(d_hi) + 0.5, kHeight - kBottom,
-               kTop, false, true};
-  frame(svg, x, y, plot.title, "pairwise Pearson correlation ρ of the objectives",
-        "objectives d");
+  const Axis y{static_cast<double>(d_lo) - 0.5,
+               static_cast<double>(d_hi) + 0.5,
+               kHeight - kBottom,
+               kTop,
+               false,
+               true};
+  frame(svg, x, y, plot.title, "pairwise Pearson correlation ρ of the objectives", "objectives d");
   svg.line(x.map(0), y.p0, x.map(0), y.p1, "#999");
   std::vector<LegendEntry> entries;
   for (std::size_t k = 0; k < plot.series.size(); ++k) {
@@ -603,9 +607,16 @@ std::string plot_lines(const LinePlot& plot) {
       if (!plot.y_log || p.y > 0) y_lo = std::min(y_lo, p.y), y_hi = std::max(y_hi, p.y);
     }
   if (plot.x_min) x_lo = std::min(x_lo, *plot.x_min);
-  if (plot.x_log) log_range(x_lo, x_hi); else value_range(x_lo, x_hi);
-  if (plot.y_max && !plot.y_log) y_lo = 0, y_hi = *plot.y_max;
-  else if (plot.y_log) log_range(y_lo, y_hi); else value_range(y_lo, y_hi);
+  if (plot.x_log)
+    log_range(x_lo, x_hi);
+  else
+    value_range(x_lo, x_hi);
+  if (plot.y_max && !plot.y_log)
+    y_lo = 0, y_hi = *plot.y_max;
+  else if (plot.y_log)
+    log_range(y_lo, y_hi);
+  else
+    value_range(y_lo, y_hi);
   if (plot.x_min && plot.x_log) x_lo = *plot.x_min;
   Svg svg(kWidth, kHeight);
   const Axis x{x_lo, x_hi, kLeft, kWidth - kRight, plot.x_log};
@@ -674,7 +685,8 @@ std::string plot_bars(const BarPlot& plot) {
     svg.text(x.p0 - 8, y.map(t) + 5, tick_label(t), "end", kTickFont);
   }
   const double group = (x.p1 - x.p0) / n;
-  const double bar = group * 0.8 / static_cast<double>(std::max<std::size_t>(plot.series.size(), 1));
+  const double bar =
+      group * 0.8 / static_cast<double>(std::max<std::size_t>(plot.series.size(), 1));
   std::vector<LegendEntry> entries;
   for (std::size_t c = 0; c < plot.categories.size(); ++c)
     svg.text(x.p0 + group * (static_cast<double>(c) + 0.5), y.p0 + 21, plot.categories[c], "middle",
@@ -683,7 +695,8 @@ std::string plot_bars(const BarPlot& plot) {
     const char* colour = category_colour(k);
     for (std::size_t c = 0; c < plot.series[k].values.size() && c < plot.categories.size(); ++c) {
       const double v = std::clamp(plot.series[k].values[c], 0.0, plot.y_max);
-      const double left = x.p0 + group * (static_cast<double>(c) + 0.1) + bar * static_cast<double>(k);
+      const double left =
+          x.p0 + group * (static_cast<double>(c) + 0.1) + bar * static_cast<double>(k);
       svg.rect(left, y.map(v), bar, y.map(0) - y.map(v), colour);
     }
     entries.push_back({'r', colour, plot.series[k].name, ""});
@@ -700,8 +713,9 @@ std::vector<std::vector<double>> thin_rows(const std::vector<std::vector<double>
   if (rows.size() <= limit || limit == 0) return rows;
   std::vector<std::size_t> order(rows.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
-  std::sort(order.begin(), order.end(),
-            [&](std::size_t a, std::size_t b) { return rows[a] != rows[b] ? rows[a] < rows[b] : a < b; });
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return rows[a] != rows[b] ? rows[a] < rows[b] : a < b;
+  });
   const std::size_t step = (rows.size() + limit - 1) / limit;
   std::vector<bool> keep(rows.size(), false);
   for (std::size_t k = 0; k < order.size(); k += step) keep[order[k]] = true;
@@ -730,14 +744,17 @@ std::string plot_parallel(const ParallelPlot& plot) {
   const double top = kTop + 10, bottom = kHeight - kBottom;
   const auto axis_x = [&](std::size_t i) {
     return d < 2 ? kLeft
-                 : kLeft + (kWidth - kRight - kLeft) * static_cast<double>(i) / static_cast<double>(d - 1);
+                 : kLeft + (kWidth - kRight - kLeft) * static_cast<double>(i) /
+                               static_cast<double>(d - 1);
   };
   const auto axis_y = [&](std::size_t i, double v) {
-    return hi[i] > lo[i] ? bottom - (v - lo[i]) / (hi[i] - lo[i]) * (bottom - top) : (top + bottom) / 2;
+    return hi[i] > lo[i] ? bottom - (v - lo[i]) / (hi[i] - lo[i]) * (bottom - top)
+                         : (top + bottom) / 2;
   };
   svg.text(kWidth / 2 - (kRight - kLeft) / 2, 28, plot.title, "middle", kTitleFont);
   if (!plot.subtitle.empty())
-    svg.text(kWidth / 2 - (kRight - kLeft) / 2, 48, plot.subtitle, "middle", kMinFontSize, 0, "#333");
+    svg.text(kWidth / 2 - (kRight - kLeft) / 2, 48, plot.subtitle, "middle", kMinFontSize, 0,
+             "#333");
   const auto draw = [&](const std::vector<std::vector<double>>& rows, const char* colour,
                         double width, double opacity) {
     for (const auto& row : rows) {

@@ -98,8 +98,8 @@ PageSize page_size(double svg_width_px, double svg_height_px, const RenderSize& 
 std::string render_svg(const std::string& svg, ImageFormat format, const RenderSize& size) {
   if (format == ImageFormat::svg) return svg;
   GError* error = nullptr;
-  std::unique_ptr<RsvgHandle, HandleDeleter> handle(rsvg_handle_new_from_data(
-      reinterpret_cast<const guint8*>(svg.data()), svg.size(), &error));
+  std::unique_ptr<RsvgHandle, HandleDeleter> handle(
+      rsvg_handle_new_from_data(reinterpret_cast<const guint8*>(svg.data()), svg.size(), &error));
   if (!handle) {
     const std::string message = error ? error->message : "unknown error";
     if (error) g_error_free(error);

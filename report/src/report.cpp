@@ -57,7 +57,9 @@ std::string key_of(const std::string& name) {
   return key;
 }
 
-std::string anchor(const std::string& name) { return "b-" + key_of(name); }
+std::string anchor(const std::string& name) {
+  return "b-" + key_of(name);
+}
 
 std::string objective_names(const GraphReader& g, const View& v) {
   std::string out;
@@ -96,7 +98,7 @@ std::vector<Benchmark> benchmarks_of(std::span<const GraphReader> instances) {
 // The benchmark and instance a solution file belongs to; throws naming the file when none.
 std::pair<std::size_t, std::size_t> bind_file(const SolutionReader& file,
                                               std::span<const GraphReader> instances,
-                                         const std::vector<Benchmark>& benchmarks) {
+                                              const std::vector<Benchmark>& benchmarks) {
   for (std::size_t i = 0; i < instances.size(); ++i) {
     if (instances[i].digest() != file.instance_digest()) continue;
     file.check_bound_to(instances[i]);
@@ -107,9 +109,9 @@ std::pair<std::size_t, std::size_t> bind_file(const SolutionReader& file,
             (file.view_name().empty() ? benchmarks[b].views[k].objectives == columns
                                       : benchmarks[b].views[k].name == file.view_name()))
           return {b, i};
-    throw Error(ErrorCode::invalid_argument,
-                file.display_name() + ": its objectives are no view of " +
-                    instances[i].display_name());
+    throw Error(
+        ErrorCode::invalid_argument,
+        file.display_name() + ": its objectives are no view of " + instances[i].display_name());
   }
   std::string names;
   for (const auto& g : instances) names += (names.empty() ? "" : ", ") + g.display_name();
@@ -144,7 +146,9 @@ std::optional<double> median_of(std::vector<double> v) {
   return n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
 }
 
-Cell optional_cell(std::optional<double> v) { return v ? Cell::of(*v) : Cell{}; }
+Cell optional_cell(std::optional<double> v) {
+  return v ? Cell::of(*v) : Cell{};
+}
 
 // "a" or "a-b" over the instances of a benchmark.
 Cell range_cell(std::uint64_t lo, std::uint64_t hi) {
@@ -163,7 +167,8 @@ class Page {
   void figure(const std::string& kind, const std::string& svg, const std::string& caption) {
     figures_.push_back({kind, svg});
     out << "<figure data-figure=\"" << Svg::escape(kind) << "\">\n"
-        << inline_svg(svg) << "<figcaption>" << Svg::escape(caption) << "</figcaption>\n</figure>\n";
+        << inline_svg(svg) << "<figcaption>" << Svg::escape(caption)
+        << "</figcaption>\n</figure>\n";
   }
   void paragraph(const std::string& text) { out << "<p>" << Svg::escape(text) << "</p>\n"; }
 
@@ -171,7 +176,8 @@ class Page {
   std::vector<Figure>& figures_;
 };
 
-constexpr const char* kStyle = R"(body{font-family:"DejaVu Sans",Arial,sans-serif;margin:1.5em auto;max-width:1100px;padding:0 1em;color:#111}
+constexpr const char* kStyle =
+    R"(body{font-family:"DejaVu Sans",Arial,sans-serif;margin:1.5em auto;max-width:1100px;padding:0 1em;color:#111}
 h1{font-size:1.7em}h2{border-bottom:2px solid #0072B2;padding-bottom:.2em;margin-top:2em}
 table{border-collapse:collapse;margin:1em 0;font-size:.85em}caption{text-align:left;font-weight:bold;padding:.3em 0}
 th,td{border-bottom:1px solid #ccc;padding:.25em .6em}th{background:#eef3f8;cursor:pointer;text-align:left}
@@ -272,22 +278,24 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
            << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
            << "<meta name=\"generator\" content=\"mosb " << kVersion << "\">\n<title>"
            << Svg::escape(options.title) << "</title>\n<style>\n"
-           << kStyle << "</style>\n</head>\n<body>\n<h1>" << Svg::escape(options.title) << "</h1>\n";
-  page.paragraph(std::to_string(instances.size()) + " instance" +
-                 (instances.size() == 1 ? "" : "s") + ", " + std::to_string(benchmarks.size()) +
-                 " benchmark" + (benchmarks.size() == 1 ? "" : "s") + ", " +
-                 std::to_string(solutions.size()) + " solution file" +
-                 (solutions.size() == 1 ? "" : "s") + ", " + std::to_string(references.size()) +
-                 " reference file" + (references.size() == 1 ? "" : "s") + "; written by mosb " +
-                 kVersion + ". Fronts are drawn with at most " +
-                 std::to_string(options.max_points) + " vectors per set (thinned past it, the "
-                 "extremes kept), so the page stays under " + std::to_string(options.max_bytes / 1000) +
-                 " kB. Click a column heading to sort a table.");
+           << kStyle << "</style>\n</head>\n<body>\n<h1>" << Svg::escape(options.title)
+           << "</h1>\n";
+  page.paragraph(
+      std::to_string(instances.size()) + " instance" + (instances.size() == 1 ? "" : "s") + ", " +
+      std::to_string(benchmarks.size()) + " benchmark" + (benchmarks.size() == 1 ? "" : "s") +
+      ", " + std::to_string(solutions.size()) + " solution file" +
+      (solutions.size() == 1 ? "" : "s") + ", " + std::to_string(references.size()) +
+      " reference file" + (references.size() == 1 ? "" : "s") + "; written by mosb " + kVersion +
+      ". Fronts are drawn with at most " + std::to_string(options.max_points) +
+      " vectors per set (thinned past it, the "
+      "extremes kept), so the page stays under " +
+      std::to_string(options.max_bytes / 1000) + " kB. Click a column heading to sort a table.");
   page.out << "<nav><ul><li><a href=\"#suite\">Suite</a></li><li><a href=\"#instance-space\">"
               "Instance space</a></li>";
   for (const auto& b : benchmarks)
     page.out << "<li><a href=\"#" << anchor(b.name) << "\">" << Svg::escape(b.name) << "</a></li>";
-  if (solver_names.size() >= 2) page.out << "<li><a href=\"#comparison\">Solver comparison</a></li>";
+  if (solver_names.size() >= 2)
+    page.out << "<li><a href=\"#comparison\">Solver comparison</a></li>";
   page.out << "</ul></nav>\n";
 
   // Per instance: the ρ of every view's pairs (all arcs and, with a `kind` section, per kind).
@@ -311,8 +319,9 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
   Outcomes outcomes;
   {
     Table& t = report.suite;
-    t.caption = "Benchmarks: size, and the fronts and runtimes of the reference (else the first "
-                "solver); front sizes and runtimes over completed queries";
+    t.caption =
+        "Benchmarks: size, and the fronts and runtimes of the reference (else the first "
+        "solver); front sizes and runtimes over completed queries";
     t.columns = {{"family", "Family", "family"},
                  {"benchmark", "Benchmark", "benchmark"},
                  {"instances", "Inst.", "instances"},
@@ -336,7 +345,8 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
         const auto& g = instances[bm.instances[k]];
         n_lo = std::min(n_lo, g.vertex_count()), n_hi = std::max(n_hi, g.vertex_count());
         m_lo = std::min(m_lo, g.arc_count()), m_hi = std::max(m_hi, g.arc_count());
-        if (!bm.views[k].query_set.empty() && g.find(format::SectionKind::queries, bm.views[k].query_set))
+        if (!bm.views[k].query_set.empty() &&
+            g.find(format::SectionKind::queries, bm.views[k].query_set))
           set_queries += g.queries(bm.views[k].query_set).size();
       }
       std::vector<Cell> row{Cell::of(bm.family),
@@ -407,11 +417,15 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
     plots::InstanceSpacePlot plot;
     plot.title = "Instance space: objective correlation against d";
     Table& t = report.instance_space;
-    t.caption = "Pairwise Pearson correlation of the objectives over the arcs of each benchmark's "
-                "instances (and over the arcs of each kind where an instance has arc kinds)";
-    t.columns = {{"series", "Benchmark", "benchmark"}, {"objectives", "$d$", "d"},
-                 {"pairs", "Pairs", "pairs"},         {"rho_min", "$\\rho$ min", "ρ min"},
-                 {"rho_mean", "$\\rho$ mean", "ρ mean"}, {"rho_max", "$\\rho$ max", "ρ max"}};
+    t.caption =
+        "Pairwise Pearson correlation of the objectives over the arcs of each benchmark's "
+        "instances (and over the arcs of each kind where an instance has arc kinds)";
+    t.columns = {{"series", "Benchmark", "benchmark"},
+                 {"objectives", "$d$", "d"},
+                 {"pairs", "Pairs", "pairs"},
+                 {"rho_min", "$\\rho$ min", "ρ min"},
+                 {"rho_mean", "$\\rho$ mean", "ρ mean"},
+                 {"rho_max", "$\\rho$ max", "ρ max"}};
     for (std::size_t b = 0; b < benchmarks.size(); ++b) {
       const std::size_t d = benchmarks[b].views.front().objectives.size();
       std::vector<double> all;
@@ -465,9 +479,9 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
     page.paragraph("family " + (bm.family.empty() ? std::string("unknown") : bm.family) + "; " +
                    std::to_string(bm.instances.size()) + " instance" +
                    (bm.instances.size() == 1 ? "" : "s") + "; objectives " +
-                   objective_names(g, view) + (bm.instances.size() > 1
-                                                   ? "; the figures below are of " + g.display_name()
-                                                   : std::string()));
+                   objective_names(g, view) +
+                   (bm.instances.size() > 1 ? "; the figures below are of " + g.display_name()
+                                            : std::string()));
     plots::CorrelationPlot rho;
     rho.title = bm.name + ": objective correlation";
     const std::size_t d = view.objectives.size();
@@ -508,18 +522,18 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
       shown = &solutions[f.file];
       shown_instance = f.instance;
     }
-    const auto queries = shown ? chosen_queries(*shown, options.queries)
-                               : std::vector<std::uint64_t>{};
+    const auto queries =
+        shown ? chosen_queries(*shown, options.queries) : std::vector<std::uint64_t>{};
 
     if (g.metadata().get("map.width") && g.find(format::SectionKind::vertex_data, "cell")) {
       auto map = plots::map_of(g, "exposure");
       map.title = bm.name + ": map of " + g.display_name();
       map.exposure_unit = g.metadata().get("objective.exposure.unit").value_or("");
       // Start and goal of the drawn queries (else the set's first three).
-      std::string set = shown && shown_instance == bm.instances.front() ? shown->query_set()
-                                                                        : view.query_set;
-      std::vector<std::uint64_t> marked = shown_instance == bm.instances.front() ? queries
-                                                                                 : std::vector<std::uint64_t>{};
+      std::string set =
+          shown && shown_instance == bm.instances.front() ? shown->query_set() : view.query_set;
+      std::vector<std::uint64_t> marked =
+          shown_instance == bm.instances.front() ? queries : std::vector<std::uint64_t>{};
       if (!set.empty() && g.find(format::SectionKind::queries, set)) {
         const auto qs = g.queries(set);
         if (marked.empty())
@@ -556,12 +570,12 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
       if (overlay && q < overlay->query_count() && overlay->status(q) == QueryStatus::solved)
         other = front_rows(*overlay, q);
       const bool is_reference = !bm.references.empty();
-      const std::string what = "query " + std::to_string(q) + " of " + shown->query_set() +
-                               " on " + instances[shown_instance].display_name();
-      const std::string counts = std::to_string(rows.size()) + " vectors" +
-                                 (overlay ? ", " + solver_name(*overlay) + " " +
-                                                std::to_string(other.size())
-                                          : std::string());
+      const std::string what = "query " + std::to_string(q) + " of " + shown->query_set() + " on " +
+                               instances[shown_instance].display_name();
+      const std::string counts =
+          std::to_string(rows.size()) + " vectors" +
+          (overlay ? ", " + solver_name(*overlay) + " " + std::to_string(other.size())
+                   : std::string());
       if (d <= 3) {
         std::vector<std::pair<std::size_t, std::size_t>> pairs = {{0, 1}};
         if (d == 3) pairs = {{0, 1}, {0, 2}, {1, 2}};
@@ -618,8 +632,9 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
   if (solver_names.size() >= 2) {
     page.out << "<section id=\"comparison\">\n<h2>Solver comparison</h2>\n";
     Table& t = report.comparison;
-    t.caption = "Solvers per benchmark: timeouts and memory limits over each solver's queries; "
-                "median and max runtime over the queries every solver of the benchmark completed";
+    t.caption =
+        "Solvers per benchmark: timeouts and memory limits over each solver's queries; "
+        "median and max runtime over the queries every solver of the benchmark completed";
     t.columns = {{"family", "Family", "family"},
                  {"benchmark", "Benchmark", "benchmark"},
                  {"queries", "Queries", "queries"},
@@ -627,7 +642,9 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
     for (const auto& s : solver_names) {
       const auto k = key_of(s);
       std::string latex;
-      for (char c : s) latex += (c == '_' || c == '&' || c == '%' || c == '#') ? std::string("\\") + c : std::string(1, c);
+      for (char c : s)
+        latex += (c == '_' || c == '&' || c == '%' || c == '#') ? std::string("\\") + c
+                                                                : std::string(1, c);
       t.columns.push_back({"timeout@" + k, latex + " Timeout", s + " timeout"});
       t.columns.push_back({"memory_limit@" + k, latex + " Mem-limit", s + " memory limit"});
       t.columns.push_back({"runtime_median@" + k, latex + " Med.\\ (s)", s + " median [s]"});
@@ -689,9 +706,10 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
         series.points.push_back({static_cast<double>(k + 1), times[k]});
       cactus.series.push_back(std::move(series));
     }
-    page.figure("cactus", plots::plot_lines(cactus),
-                "Each solver's solved queries sorted by runtime: a point (k, t) says k queries were "
-                "solved within t seconds each. Lower and further right is better.");
+    page.figure(
+        "cactus", plots::plot_lines(cactus),
+        "Each solver's solved queries sorted by runtime: a point (k, t) says k queries were "
+        "solved within t seconds each. Lower and further right is better.");
 
     // Performance profile over the queries every solver has a file for and some solver solved.
     plots::LinePlot profile;
@@ -761,9 +779,9 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
       if (one_only > 0)
         scatter.note = std::to_string(one_only) + " quer" + (one_only == 1 ? "y" : "ies") +
                        " completed by one of the two only, not drawn";
-      page.figure("scatter", plots::plot_runtime_scatter(scatter),
-                  "One dot per query both completed, log–log; above the diagonal " + a +
-                      " was faster.");
+      page.figure(
+          "scatter", plots::plot_runtime_scatter(scatter),
+          "One dot per query both completed, log–log; above the diagonal " + a + " was faster.");
     }
 
     // ε-coverage per solver, against each binding's reference.
@@ -775,7 +793,8 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
           std::vector<SolutionReader> group;
           for (const auto& name : bm.solver_order)
             for (const auto& f : bm.solvers.at(name))
-              if (f.instance == ref.instance && solutions[f.file].query_set() == reference.query_set())
+              if (f.instance == ref.instance &&
+                  solutions[f.file].query_set() == reference.query_set())
                 group.push_back(solutions[f.file]);
           if (group.empty()) continue;
           const auto result = compare_solvers(reference, group, options.epsilons);
@@ -790,11 +809,13 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
         }
       if (!coverage.empty()) {
         Table& c = report.coverage;
-        c.caption = "ε-coverage: queries both the solver and the reference solved whose reference "
-                    "front the solver's covers at ε";
+        c.caption =
+            "ε-coverage: queries both the solver and the reference solved whose reference "
+            "front the solver's covers at ε";
         c.columns = {{"solver", "Solver", "solver"}, {"evaluated", "Queries", "queries"}};
         for (const auto& e : options.epsilon_labels)
-          c.columns.push_back({"covered@" + e, "cov.\\ $\\varepsilon{=}" + e + "$", "covered at ε = " + e});
+          c.columns.push_back(
+              {"covered@" + e, "cov.\\ $\\varepsilon{=}" + e + "$", "covered at ε = " + e});
         plots::BarPlot bars;
         bars.title = "ε-coverage per solver";
         bars.x_label = "ε";
@@ -808,7 +829,8 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
           plots::BarSeries series{s, {}};
           for (const auto& o : it->second) {
             row.push_back(Cell::of(o.covered));
-            series.values.push_back(evaluated ? static_cast<double>(o.covered) / static_cast<double>(evaluated) : 0);
+            series.values.push_back(
+                evaluated ? static_cast<double>(o.covered) / static_cast<double>(evaluated) : 0);
           }
           c.rows.push_back(std::move(row));
           bars.series.push_back(std::move(series));

@@ -165,7 +165,8 @@ void write_text(std::ostream& out, const Table& table) {
 
 void write_html(std::ostream& out, const Table& table, const std::string& id) {
   out << "<table class=\"sortable\" id=\"" << plots::Svg::escape(id) << "\">\n";
-  if (!table.caption.empty()) out << "<caption>" << plots::Svg::escape(table.caption) << "</caption>\n";
+  if (!table.caption.empty())
+    out << "<caption>" << plots::Svg::escape(table.caption) << "</caption>\n";
   out << "<thead><tr>";
   for (const auto& c : table.columns)
     out << "<th scope=\"col\" data-key=\"" << plots::Svg::escape(c.key) << "\">"

@@ -40,8 +40,7 @@ void add_figure_options(CLI::App* sub, FigureOutput& f) {
 // The figure as -o's extension says: .svg as drawn, .pdf and .png rendered by librsvg and cairo.
 void write_figure(const std::string& output, const std::string& svg, const FigureOutput& f) {
   const auto format = plots::image_format_of(output);
-  if (!format)
-    throw UsageError("-o " + output + ": write a figure as .svg, .pdf or .png");
+  if (!format) throw UsageError("-o " + output + ": write a figure as .svg, .pdf or .png");
   plots::RenderSize size;
   size.dpi = f.dpi;
   const auto length = [](const std::string& option, const std::string& text) {

@@ -1,6 +1,8 @@
 // `mosb report`: instances and solution files as one HTML page, and its tables as LaTeX and CSV
 // (spec/EVALUATION.md §7). The page is mosb::pages::make_report's; this file opens the inputs
 // and writes the outputs.
+#include "mosb/report/report.hpp"
+
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <limits>
@@ -13,7 +15,6 @@
 #include "mosb/internal/utf8.hpp"
 #include "mosb/pack.hpp"
 #include "mosb/report/render.hpp"
-#include "mosb/report/report.hpp"
 #include "mosb/solution_file.hpp"
 
 namespace mosb::cli {
@@ -54,9 +55,9 @@ void write_tables(const std::string& directory, const pages::Report& r, bool lat
       tables::write_latex(out, *table);
     else
       tables::write_csv(out, *table);
-    write_file_atomically(std::filesystem::path(directory) / (std::string(name) +
-                                                              (latex ? ".tex" : ".csv")),
-                          out.str());
+    write_file_atomically(
+        std::filesystem::path(directory) / (std::string(name) + (latex ? ".tex" : ".csv")),
+        out.str());
   }
 }
 

@@ -26,7 +26,7 @@ struct ReportOptions {
   // The page's largest size: past it, fronts are drawn with half as many points, down to 50,
   // and past it then make_report throws (ErrorCode::invalid_argument).
   std::size_t max_bytes = 5'000'000;
-  std::uint32_t max_map_side = 160;         // squares per map side (plots::coarsen_map)
+  std::uint32_t max_map_side = 160;  // squares per map side (plots::coarsen_map)
 };
 
 // A figure of the page as a document of its own, named by its kind ("front", "cactus", ...).

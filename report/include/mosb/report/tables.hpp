@@ -25,8 +25,8 @@ struct Cell {
 };
 
 struct Column {
-  std::string key;    // CSV header and text heading: [a-z0-9_@.]
-  std::string latex;  // LaTeX heading (math allowed)
+  std::string key;        // CSV header and text heading: [a-z0-9_@.]
+  std::string latex;      // LaTeX heading (math allowed)
   std::string html = {};  // HTML heading (plain text, escaped on writing); the key when empty
 };
 
