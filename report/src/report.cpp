@@ -564,7 +564,10 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
                << ": no solved query with a non-empty front to draw.</p>\n";
     }
     const auto shown_name = shown ? solver_name(*shown) : std::string();
-    for (const auto q : queries) {
+    if (d < 2 && !queries.empty())
+      page.out << "<p class=\"note\">One objective: each front is a single value, not drawn."
+               << "</p>\n";
+    for (const auto q : d < 2 ? std::vector<std::uint64_t>{} : queries) {
       const auto rows = front_rows(*shown, q);
       std::vector<std::vector<double>> other;
       if (overlay && q < overlay->query_count() && overlay->status(q) == QueryStatus::solved)
