@@ -8,6 +8,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include "mosb/error.hpp"
 #include "mosb/report/figures.hpp"
@@ -125,7 +126,10 @@ struct QueryKey {
   std::size_t benchmark = 0, instance = 0;
   std::string query_set;
   std::uint64_t query = 0;
-  auto operator<=>(const QueryKey&) const = default;
+  bool operator<(const QueryKey& o) const {
+    return std::tie(benchmark, instance, query_set, query) <
+           std::tie(o.benchmark, o.instance, o.query_set, o.query);
+  }
 };
 
 struct Outcome {
@@ -274,10 +278,13 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
 
   Report report;
   Page page(report.figures);
-  page.out << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-           << "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
-           << "<meta name=\"generator\" content=\"mosb " << kVersion << "\">\n<title>"
-           << Svg::escape(options.title) << "</title>\n<style>\n"
+  page.out << R"(<!DOCTYPE html>
+<html lang="en">
+<head>
+<meta charset="utf-8">
+<meta name="viewport" content="width=device-width, initial-scale=1">
+<meta name="generator" content="mosb )"
+           << kVersion << "\">\n<title>" << Svg::escape(options.title) << "</title>\n<style>\n"
            << kStyle << "</style>\n</head>\n<body>\n<h1>" << Svg::escape(options.title)
            << "</h1>\n";
   page.paragraph(
@@ -338,8 +345,7 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
                  {"front_median", "$|\\Pi^*|$ med.", "front median"},
                  {"runtime_median", "Med.\\ (s)", "median runtime [s]"},
                  {"runtime_max", "Max (s)", "max runtime [s]"}};
-    for (std::size_t b = 0; b < benchmarks.size(); ++b) {
-      const auto& bm = benchmarks[b];
+    for (const auto& bm : benchmarks) {
       std::uint64_t n_lo = UINT64_MAX, n_hi = 0, m_lo = UINT64_MAX, m_hi = 0, set_queries = 0;
       for (std::size_t k = 0; k < bm.instances.size(); ++k) {
         const auto& g = instances[bm.instances[k]];
@@ -538,17 +544,7 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
         const auto qs = g.queries(set);
         if (marked.empty())
           for (std::uint64_t q = 0; q < qs.size() && q < 3; ++q) marked.push_back(q);
-        const auto* cells = g.find(format::SectionKind::vertex_data, "cell");
-        const auto cell = [&](std::uint32_t v) -> Point2 {
-          if (cells->type == format::ElementType::u16) {
-            const auto c = g.values<std::uint16_t>(*cells);
-            return {static_cast<double>(c[2 * v]), static_cast<double>(c[2 * v + 1])};
-          }
-          const auto c = g.values<std::uint32_t>(*cells);
-          return {static_cast<double>(c[2 * v]), static_cast<double>(c[2 * v + 1])};
-        };
-        for (auto q : marked)
-          if (q < qs.size()) map.queries.push_back({q, cell(qs[q].start), cell(qs[q].goal)});
+        plots::add_query_markers(map, g, set, marked);
       }
       map = plots::coarsen_map(map, options.max_map_side);
       page.figure("map", plots::plot_map(map),

@@ -164,12 +164,12 @@ void write_text(std::ostream& out, const Table& table) {
 }
 
 void write_html(std::ostream& out, const Table& table, const std::string& id) {
-  out << "<table class=\"sortable\" id=\"" << plots::Svg::escape(id) << "\">\n";
+  out << R"(<table class="sortable" id=")" << plots::Svg::escape(id) << "\">\n";
   if (!table.caption.empty())
     out << "<caption>" << plots::Svg::escape(table.caption) << "</caption>\n";
   out << "<thead><tr>";
   for (const auto& c : table.columns)
-    out << "<th scope=\"col\" data-key=\"" << plots::Svg::escape(c.key) << "\">"
+    out << R"(<th scope="col" data-key=")" << plots::Svg::escape(c.key) << "\">"
         << plots::Svg::escape(c.html.empty() ? c.key : c.html) << "</th>";
   out << "</tr></thead>\n<tbody>\n";
   for (const auto& row : table.rows) {
@@ -180,7 +180,7 @@ void write_html(std::ostream& out, const Table& table, const std::string& id) {
         continue;
       }
       const std::string exact = c.kind == Cell::Kind::absent ? std::string() : csv_cell(c);
-      out << "<td class=\"n\" data-v=\"" << exact << "\">" << plots::Svg::escape(text_cell(c))
+      out << R"(<td class="n" data-v=")" << exact << "\">" << plots::Svg::escape(text_cell(c))
           << "</td>";
     }
     out << "</tr>\n";

@@ -220,7 +220,12 @@ class ReportTest(unittest.TestCase):
                      "scatter", "coverage"):
             self.assertIn(kind, kinds)
         if self.has_arena:
-            self.assertIn("map", kinds)
+            (game_map,) = [f for f in page.figures if f["kind"] == "map"]
+            self.assertIn("start (query number)", game_map["texts"])
+            self.assertIn("1 square: 2x2 cells", game_map["texts"])  # 281 x 209 cells
+            # Each drawn query's start and goal labelled with its number.
+            numbers = [t for t in game_map["texts"] if t.isdigit()]
+            self.assertEqual(len(numbers), 6, game_map["texts"])
         for f in page.figures:
             self.assertTrue(f["svg"], f["kind"])
             self.assertTrue(any(t.strip() for t in f["texts"]), f["kind"])
