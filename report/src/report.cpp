@@ -559,6 +559,11 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
       page.out << "<p class=\"note\">" << Svg::escape(shown->display_name())
                << ": no solved query with a non-empty front to draw.</p>\n";
     }
+    if (shown)
+      for (const auto q : options.queries)
+        if (std::find(queries.begin(), queries.end(), q) == queries.end())
+          page.out << "<p class=\"note\">Query " << q << ": not a solved query with a front in "
+                   << Svg::escape(shown->display_name()) << ", not drawn.</p>\n";
     const auto shown_name = shown ? solver_name(*shown) : std::string();
     if (d < 2 && !queries.empty())
       page.out << "<p class=\"note\">One objective: each front is a single value, not drawn."

@@ -342,6 +342,18 @@ class ReportTest(unittest.TestCase):
             self.assertEqual(info.returncode, 0, info.stderr)
             self.assertIn("Pages:           1", info.stdout)
 
+    def test_chosen_queries(self):
+        chosen = self.path("chosen.html")
+        run("report", *self.report_args, "--queries", "1,99", "-o", chosen)
+        page = parse(read(chosen, "r"))
+        titles = {t for f in page.figures if f["kind"] == "front" for t in f["texts"][:1]}
+        self.assertIn("Grid_2, query 1 of q on %s" % self.instances[0], titles)
+        self.assertFalse(any("query 0 of" in t or "query 99" in t for t in titles), titles)
+        self.assertIn("Query 99: not a solved query with a front in", read(chosen, "r"))
+        r = mosbtest.run("report", *self.report_args, "--queries", "1,x", "-o", chosen + "2")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("--queries: 'x' is not a query number", r.stderr)
+
     def test_latex_and_csv_tables(self):
         tex = read(self.path("latex/suite.tex"), "r")
         self.assertIn("\\toprule", tex)
