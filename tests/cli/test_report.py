@@ -372,8 +372,14 @@ class ReportTest(unittest.TestCase):
             f.write(data)
         other = self.path("other.mosb")
         run("generate", "grid", "--width", "5", "--height", "5", "-o", other)
+        damaged_sol = self.path("damaged.sol")
+        data = bytearray(read(self.namoa[0]))
+        data[-1] ^= 0xFF
+        with open(damaged_sol, "wb") as f:
+            f.write(data)
         for args, message in (
                 ([damaged], "damaged.mosb"),
+                ([self.instances[0], "--solutions", damaged_sol], "damaged.sol: header checksum mismatch"),
                 ([other, "--solutions", self.namoa[0]], "none of the report's instances"),
                 ([self.instances[0], "--solutions", self.namoa[0], self.namoa[0]],
                  "a second file of solver")):
