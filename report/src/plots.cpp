@@ -472,18 +472,21 @@ MapPlot coarsen_map(const MapPlot& plot, std::uint32_t max_side) {
   out.height = (plot.height + k - 1) / k;
   out.block = plot.block * k;
   const std::size_t area = std::size_t{out.width} * out.height;
-  out.passable.assign(area, false);
+  std::vector<std::uint32_t> cells(area, 0), open(area, 0);
   if (!plot.exposure.empty()) out.exposure.assign(area, std::numeric_limits<double>::quiet_NaN());
   for (std::uint32_t y = 0; y < plot.height; ++y)
     for (std::uint32_t x = 0; x < plot.width; ++x) {
       const std::size_t from = std::size_t{y} * plot.width + x;
-      if (from >= plot.passable.size() || !plot.passable[from]) continue;
       const std::size_t to = std::size_t{y / k} * out.width + x / k;
-      out.passable[to] = true;
+      ++cells[to];
+      if (from >= plot.passable.size() || !plot.passable[from]) continue;
+      ++open[to];
       if (!plot.exposure.empty() && !std::isnan(plot.exposure[from]) &&
           !(out.exposure[to] >= plot.exposure[from]))
         out.exposure[to] = plot.exposure[from];
     }
+  out.passable.resize(area);
+  for (std::size_t i = 0; i < area; ++i) out.passable[i] = 2 * open[i] >= cells[i];
   const auto scale = [k](Point2 p) { return Point2{std::floor(p.x / k), std::floor(p.y / k)}; };
   for (const auto& path : plot.paths) {
     auto& scaled = out.paths.emplace_back();
