@@ -535,9 +535,12 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
       auto map = plots::map_of(g, "exposure");
       map.title = bm.name + ": map of " + g.display_name();
       map.exposure_unit = g.metadata().get("objective.exposure.unit").value_or("");
-      // Start and goal of the drawn queries (else the set's first three).
+      // Start and goal of the drawn queries, else the first three of the view's query set (of
+      // the instance's first set when the view names none).
       std::string set =
           shown && shown_instance == bm.instances.front() ? shown->query_set() : view.query_set;
+      if (const auto sets = g.all(format::SectionKind::queries); set.empty() && !sets.empty())
+        set = sets.front()->name;
       std::vector<std::uint64_t> marked =
           shown_instance == bm.instances.front() ? queries : std::vector<std::uint64_t>{};
       if (!set.empty() && g.find(format::SectionKind::queries, set)) {
