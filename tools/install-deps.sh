@@ -17,8 +17,11 @@ packages=(
   python3-dev python3-pybind11 pybind11-dev python3-setuptools python3-pip python3-venv  # python/
   python3-scipy python3-pandas python3-networkx python3-igraph  # python/'s adapters (optional)
   clang libclang-rt-14-dev                  # libFuzzer
-  chromium                                  # renders mosb plot's SVG in its test
+  chromium                                  # renders mosb plot's SVG and mosb report in their tests
   slurm-wlm munge                           # a one-node SLURM cluster (tools/slurm-cluster.sh) for mosb run --slurm's test
+  librsvg2-dev libcairo2-dev                # mosb plot -o fig.pdf|fig.png (the program only)
+  poppler-utils                             # pdfinfo, pdftotext: the PDF figures' tests
+  python3-matplotlib                        # mosb.plot (python/), optional
   clang-format clang-tidy                   # style and static checks (tools/lint.sh)
 )
 missing=()

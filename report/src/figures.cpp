@@ -106,4 +106,13 @@ void add_front_paths(MapPlot& map, const GraphReader& instance, const SolutionRe
   }
 }
 
+void add_query_markers(MapPlot& map, const GraphReader& instance, std::string_view query_set,
+                       std::span<const std::uint64_t> queries) {
+  const Grid grid = grid_of(instance);
+  const auto set = instance.queries(query_set);
+  for (const auto q : queries)
+    if (q < set.size() && set[q].start < grid.cell.size() && set[q].goal < grid.cell.size())
+      map.queries.push_back({q, grid.cell[set[q].start], grid.cell[set[q].goal]});
+}
+
 }  // namespace mosb::plots

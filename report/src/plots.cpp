@@ -93,7 +93,7 @@ void frame(Svg& svg, const Axis& x, const Axis& y, const std::string& title,
 }
 
 // Legend entries at the right of the plot area: (kind, colour, label, an optional second line);
-// kind 'c' filled dot, 'o' ring, 'r' box.
+// kind 'c' filled dot, 'o' ring, 'r' box, '-' text alone.
 struct LegendEntry {
   char kind;
   std::string colour, label, note;
@@ -106,9 +106,9 @@ void legend(Svg& svg, const std::vector<LegendEntry>& entries) {
       svg.circle(x + 6, y - 5, 3.5, e.colour, "#fff", 0.75, 0.75);
     else if (e.kind == 'o')
       svg.circle(x + 6, y - 5, 5, "none", e.colour, 1.5);
-    else
+    else if (e.kind == 'r')
       svg.rect(x, y - 11, 12, 12, e.colour, "#555", 1, 0.5);
-    svg.text(x + 18, y, e.label, "start", kLegendFont);
+    svg.text(e.kind == '-' ? x : x + 18, y, e.label, "start", kLegendFont);
     if (!e.note.empty()) svg.text(x + 18, y += 18, e.note, "start", kLegendFont);
     y += 22;
   }
@@ -220,6 +220,7 @@ LegendEntry front_entry(char kind, const char* colour, const std::string& name, 
 void value_range(double& lo, double& hi) {
   if (!std::isfinite(lo)) lo = 0, hi = 1;
   lo = std::min(lo, 0.0);
+  if (lo == 0 && hi <= 0) hi = 1;  // all zero: 0 to 1, not −1 to 1
   widen(lo, hi);
 }
 
@@ -227,8 +228,8 @@ void value_range(double& lo, double& hi) {
 
 std::string plot_front(const FrontPlot& plot) {
   const double e = plot.epsilon.value_or(0);
-  const auto reference = thin_points(plot.reference, kMaxDrawnPoints);
-  const auto solution = thin_points(plot.solution, kMaxDrawnPoints);
+  const auto reference = thin_points(plot.reference, plot.max_points);
+  const auto solution = thin_points(plot.solution, plot.max_points);
   double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo, y_lo = x_lo, y_hi = -x_lo;
   auto extend = [&](const Point2& p) {
     x_lo = std::min(x_lo, p.x), x_hi = std::max(x_hi, p.x);
@@ -262,8 +263,9 @@ std::string plot_front(const FrontPlot& plot) {
   if (!plot.reference.empty())
     entries.push_back(front_entry('o', kReferenceColour, plot.reference_name, reference.size(),
                                   plot.reference.size()));
-  entries.push_back(
-      front_entry('c', kSolverColour, plot.solver_name, solution.size(), plot.solution.size()));
+  if (!plot.solution.empty() || plot.reference.empty())
+    entries.push_back(
+        front_entry('c', kSolverColour, plot.solver_name, solution.size(), plot.solution.size()));
   if (e > 0) entries.push_back({'r', kBoxColour, "ε-box, ε = " + tick_label(e), ""});
   legend(svg, entries);
   return svg.str();
@@ -431,6 +433,24 @@ std::string plot_map(const MapPlot& plot) {
     svg.polyline(points, colours[k % 7], std::max(1.5, cell / 3));
     if (k < 8) entries.push_back({'r', colours[k % 7], "path " + std::to_string(k + 1), ""});
   }
+  const double marker = std::max(4.0, cell * 0.6);
+  for (const auto& q : plot.queries) {
+    const double sx = x0 + cell * (q.start.x + 0.5), sy = y0 + cell * (q.start.y + 0.5);
+    const double gx = x0 + cell * (q.goal.x + 0.5), gy = y0 + cell * (q.goal.y + 0.5);
+    svg.circle(sx, sy, marker, kOkabeIto[2], "#fff", 1.5);
+    svg.rect(gx - marker, gy - marker, 2 * marker, 2 * marker, kOkabeIto[5], "#fff", 1.5);
+    svg.text(sx + marker + 2, sy - marker, std::to_string(q.query), "start", kMinFontSize);
+    svg.text(gx + marker + 2, gy - marker, std::to_string(q.query), "start", kMinFontSize);
+  }
+  if (!plot.queries.empty()) {
+    entries.push_back({'r', kOkabeIto[2], "start (query number)", ""});
+    entries.push_back({'r', kOkabeIto[5], "goal", ""});
+  }
+  if (plot.block > 1)
+    entries.push_back(
+        {'-', "",
+         "1 square: " + std::to_string(plot.block) + "x" + std::to_string(plot.block) + " cells",
+         ""});
   // The legend sits right of the map; '-' is a heading without a swatch.
   double ly = y0 + 10;
   for (const auto& e : entries) {
@@ -438,6 +458,336 @@ std::string plot_map(const MapPlot& plot) {
     svg.text(x0 + cell * w + (e.kind == '-' ? 20 : 38), ly, e.label, "start", kLegendFont);
     ly += 20;
   }
+  return svg.str();
+}
+
+MapPlot coarsen_map(const MapPlot& plot, std::uint32_t max_side) {
+  const std::uint32_t side = std::max(plot.width, plot.height);
+  if (max_side == 0 || side <= max_side) return plot;
+  const std::uint32_t k = (side + max_side - 1) / max_side;
+  MapPlot out;
+  out.title = plot.title;
+  out.exposure_unit = plot.exposure_unit;
+  out.width = (plot.width + k - 1) / k;
+  out.height = (plot.height + k - 1) / k;
+  out.block = plot.block * k;
+  const std::size_t area = std::size_t{out.width} * out.height;
+  std::vector<std::uint32_t> cells(area, 0), open(area, 0);
+  if (!plot.exposure.empty()) out.exposure.assign(area, std::numeric_limits<double>::quiet_NaN());
+  for (std::uint32_t y = 0; y < plot.height; ++y)
+    for (std::uint32_t x = 0; x < plot.width; ++x) {
+      const std::size_t from = std::size_t{y} * plot.width + x;
+      const std::size_t to = std::size_t{y / k} * out.width + x / k;
+      ++cells[to];
+      if (from >= plot.passable.size() || !plot.passable[from]) continue;
+      ++open[to];
+      if (!plot.exposure.empty() && !std::isnan(plot.exposure[from]) &&
+          !(out.exposure[to] >= plot.exposure[from]))
+        out.exposure[to] = plot.exposure[from];
+    }
+  out.passable.resize(area);
+  for (std::size_t i = 0; i < area; ++i) out.passable[i] = 2 * open[i] >= cells[i];
+  const auto scale = [k](Point2 p) { return Point2{std::floor(p.x / k), std::floor(p.y / k)}; };
+  for (const auto& path : plot.paths) {
+    auto& scaled = out.paths.emplace_back();
+    for (const auto& p : path) scaled.push_back(scale(p));
+  }
+  for (const auto& q : plot.queries)
+    out.queries.push_back({q.query, scale(q.start), scale(q.goal)});
+  return out;
+}
+
+namespace {
+
+const char* category_colour(std::size_t k) {
+  // Okabe–Ito without yellow, which white backgrounds swallow.
+  static constexpr const char* kColours[] = {kOkabeIto[4], kOkabeIto[5], kOkabeIto[2], kOkabeIto[0],
+                                             kOkabeIto[6], kOkabeIto[1], kOkabeIto[7]};
+  return kColours[k % std::size(kColours)];
+}
+
+// Legend entries past what fits beside the plot area are summed up in one last line.
+void capped_legend(Svg& svg, std::vector<LegendEntry> entries) {
+  constexpr std::size_t kFit = 15;
+  if (entries.size() > kFit) {
+    const auto more = entries.size() - (kFit - 1);
+    entries.resize(kFit - 1);
+    entries.push_back({'-', "", "... and " + std::to_string(more) + " more", ""});
+  }
+  legend(svg, entries);
+}
+
+// Log axis bounds: powers of ten around the positive values (1 when there are none).
+void log_range(double& lo, double& hi) {
+  if (!(lo > 0) || !std::isfinite(lo)) lo = hi > 0 ? hi : 1;
+  if (!(hi > 0) || !std::isfinite(hi)) hi = lo;
+  lo = std::pow(10, std::floor(std::log10(lo)));
+  hi = std::pow(10, std::ceil(std::log10(hi)));
+  if (hi <= lo) hi = lo * 10;
+}
+
+std::string polyline_points(const Axis& x, const Axis& y, const std::vector<Point2>& points) {
+  std::string out;
+  for (const auto& p : points) out += Svg::number(x.map(p.x)) + "," + Svg::number(y.map(p.y)) + " ";
+  if (!out.empty()) out.pop_back();
+  return out;
+}
+
+std::string rho_list(const std::vector<double>& rho) {
+  std::string out;
+  char buffer[32];
+  for (double r : rho) {
+    std::snprintf(buffer, sizeof buffer, "%.4f", r);
+    out += (out.empty() ? "" : ",") + std::string(buffer);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string plot_instance_space(const InstanceSpacePlot& plot) {
+  std::size_t d_lo = SIZE_MAX, d_hi = 0;
+  for (const auto& s : plot.series)
+    d_lo = std::min(d_lo, s.objectives), d_hi = std::max(d_hi, s.objectives);
+  if (d_lo > d_hi) d_lo = d_hi = 2;
+  Svg svg(kWidth, kHeight);
+  const Axis x{-1, 1, kLeft, kWidth - kRight};
+  const Axis y{static_cast<double>(d_lo) - 0.5,
+               static_cast<double>(d_hi) + 0.5,
+               kHeight - kBottom,
+               kTop,
+               false,
+               true};
+  frame(svg, x, y, plot.title, "pairwise Pearson correlation ρ of the objectives", "objectives d");
+  svg.line(x.map(0), y.p0, x.map(0), y.p1, "#999");
+  std::vector<LegendEntry> entries;
+  for (std::size_t k = 0; k < plot.series.size(); ++k) {
+    const auto& s = plot.series[k];
+    const char* colour = category_colour(k);
+    svg.begin_group("data-series=\"" + Svg::escape(s.name) + "\" data-d=\"" +
+                    std::to_string(s.objectives) + "\" data-rho=\"" + rho_list(s.rho) + "\"");
+    const double py = y.map(static_cast<double>(s.objectives));
+    if (!s.rho.empty()) {
+      const auto [lo, hi] = std::minmax_element(s.rho.begin(), s.rho.end());
+      svg.line(x.map(*lo), py, x.map(*hi), py, colour, 2);
+      for (double r : s.rho) svg.circle(x.map(r), py, 3, colour, "none", 1, 0.3);
+      svg.circle(x.map(*lo), py, 5, "#fff", colour, 2);
+      svg.circle(x.map(*hi), py, 5, "#fff", colour, 2);
+    }
+    svg.end_group();
+    entries.push_back({'c', colour, s.name, ""});
+  }
+  capped_legend(svg, entries);
+  return svg.str();
+}
+
+std::string plot_degrees(const DegreePlot& plot) {
+  const auto& v = plot.vertices_by_degree;
+  double y_lo = 0, y_hi = 1;
+  for (auto c : v) y_hi = std::max(y_hi, static_cast<double>(c));
+  widen(y_lo, y_hi);
+  double x_lo = -0.5, x_hi = static_cast<double>(std::max<std::size_t>(v.size(), 1)) - 0.5;
+  Svg svg(kWidth, kHeight);
+  const Axis x{x_lo, x_hi, kLeft, kWidth - kRight, false, true};
+  const Axis y{y_lo, y_hi, kHeight - kBottom, kTop, false, true};
+  frame(svg, x, y, plot.title, "out-degree", "vertices");
+  const double w = std::max(1.0, (x.p1 - x.p0) / std::max<std::size_t>(v.size(), 1) * 0.8);
+  for (std::size_t d = 0; d < v.size(); ++d)
+    if (v[d] > 0)
+      svg.rect(x.map(static_cast<double>(d)) - w / 2, y.map(static_cast<double>(v[d])), w,
+               y.map(0) - y.map(static_cast<double>(v[d])), kReferenceColour);
+  std::uint64_t n = 0;
+  for (auto c : v) n += c;
+  legend(svg, {{'r', kReferenceColour, std::to_string(n) + " vertices", ""}});
+  return svg.str();
+}
+
+std::string plot_lines(const LinePlot& plot) {
+  double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo, y_lo = x_lo, y_hi = -x_lo;
+  for (const auto& s : plot.series)
+    for (const auto& p : s.points) {
+      if (!plot.x_log || p.x > 0) x_lo = std::min(x_lo, p.x), x_hi = std::max(x_hi, p.x);
+      if (!plot.y_log || p.y > 0) y_lo = std::min(y_lo, p.y), y_hi = std::max(y_hi, p.y);
+    }
+  if (plot.x_min) x_lo = std::min(x_lo, *plot.x_min);
+  if (plot.x_log)
+    log_range(x_lo, x_hi);
+  else
+    value_range(x_lo, x_hi);
+  if (plot.y_max && !plot.y_log)
+    y_lo = 0, y_hi = *plot.y_max;
+  else if (plot.y_log)
+    log_range(y_lo, y_hi);
+  else
+    value_range(y_lo, y_hi);
+  if (plot.x_min && plot.x_log) x_lo = *plot.x_min;
+  Svg svg(kWidth, kHeight);
+  const Axis x{x_lo, x_hi, kLeft, kWidth - kRight, plot.x_log};
+  const Axis y{y_lo, y_hi, kHeight - kBottom, kTop, plot.y_log};
+  frame(svg, x, y, plot.title, plot.x_label, plot.y_label);
+  std::vector<LegendEntry> entries;
+  for (std::size_t k = 0; k < plot.series.size(); ++k) {
+    const auto& s = plot.series[k];
+    const char* colour = category_colour(k);
+    std::vector<Point2> points = s.points;
+    if (plot.steps) {  // horizontal, then vertical, and on to the right edge
+      std::vector<Point2> stepped;
+      for (std::size_t i = 0; i < s.points.size(); ++i) {
+        if (i > 0) stepped.push_back({s.points[i].x, s.points[i - 1].y});
+        stepped.push_back(s.points[i]);
+      }
+      if (!stepped.empty()) stepped.push_back({x_hi, stepped.back().y});
+      points = std::move(stepped);
+    }
+    svg.polyline(polyline_points(x, y, points), colour, 2);
+    if (!plot.steps)
+      for (const auto& p : s.points) svg.circle(x.map(p.x), y.map(p.y), 2.5, colour);
+    entries.push_back({'r', colour, s.name, ""});
+  }
+  capped_legend(svg, entries);
+  return svg.str();
+}
+
+std::string plot_runtime_scatter(const ScatterPlot& plot) {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const auto& g : plot.groups)
+    for (const auto& p : g.points)
+      for (double v : {p.x, p.y})
+        if (v > 0) lo = std::min(lo, v), hi = std::max(hi, v);
+  log_range(lo, hi);
+  // A square plot area: the diagonal at 45 degrees.
+  const double side = std::min(kWidth - kRight - kLeft, kHeight - kBottom - kTop);
+  Svg svg(kWidth, kHeight);
+  const Axis x{lo, hi, kLeft, kLeft + side, true};
+  const Axis y{lo, hi, kTop + side, kTop, true};
+  frame(svg, x, y, plot.title, plot.x_label, plot.y_label);
+  if (!plot.note.empty())
+    svg.text(kWidth / 2 - (kRight - kLeft) / 2, 48, plot.note, "middle", kMinFontSize, 0, "#333");
+  svg.line(x.map(lo), y.map(lo), x.map(hi), y.map(hi), "#555", 1);
+  std::vector<LegendEntry> entries;
+  for (std::size_t k = 0; k < plot.groups.size(); ++k) {
+    const char* colour = category_colour(k);
+    for (const auto& p : plot.groups[k].points)
+      svg.circle(x.map(p.x), y.map(p.y), 3.5, colour, "#fff", 0.5, 0.75);
+    entries.push_back({'c', colour, plot.groups[k].name, ""});
+  }
+  entries.push_back({'-', "", "line: equal runtime", ""});
+  capped_legend(svg, entries);
+  return svg.str();
+}
+
+std::string plot_bars(const BarPlot& plot) {
+  Svg svg(kWidth, kHeight);
+  const double n = static_cast<double>(std::max<std::size_t>(plot.categories.size(), 1));
+  const Axis x{0, n, kLeft, kWidth - kRight};
+  const Axis y{0, plot.y_max, kHeight - kBottom, kTop};
+  svg.text(kWidth / 2 - (kRight - kLeft) / 2, 28, plot.title, "middle", kTitleFont);
+  for (double t : y.ticks()) {
+    svg.line(x.p0, y.map(t), x.p1, y.map(t), "#e4e4e4");
+    svg.line(x.p0 - 5, y.map(t), x.p0, y.map(t), "#000");
+    svg.text(x.p0 - 8, y.map(t) + 5, tick_label(t), "end", kTickFont);
+  }
+  const double group = (x.p1 - x.p0) / n;
+  const double bar =
+      group * 0.8 / static_cast<double>(std::max<std::size_t>(plot.series.size(), 1));
+  std::vector<LegendEntry> entries;
+  for (std::size_t c = 0; c < plot.categories.size(); ++c)
+    svg.text(x.p0 + group * (static_cast<double>(c) + 0.5), y.p0 + 21, plot.categories[c], "middle",
+             kTickFont);
+  for (std::size_t k = 0; k < plot.series.size(); ++k) {
+    const char* colour = category_colour(k);
+    for (std::size_t c = 0; c < plot.series[k].values.size() && c < plot.categories.size(); ++c) {
+      const double v = std::clamp(plot.series[k].values[c], 0.0, plot.y_max);
+      const double left =
+          x.p0 + group * (static_cast<double>(c) + 0.1) + bar * static_cast<double>(k);
+      svg.rect(left, y.map(v), bar, y.map(0) - y.map(v), colour);
+    }
+    entries.push_back({'r', colour, plot.series[k].name, ""});
+  }
+  svg.rect(x.p0, y.p1, x.p1 - x.p0, y.p0 - y.p1, "none", "#000");
+  svg.text((x.p0 + x.p1) / 2, kHeight - 22, plot.x_label, "middle", kLabelFont);
+  svg.text(24, (y.p0 + y.p1) / 2, plot.y_label, "middle", kLabelFont, -90);
+  capped_legend(svg, entries);
+  return svg.str();
+}
+
+std::vector<std::vector<double>> thin_rows(const std::vector<std::vector<double>>& rows,
+                                           std::size_t limit) {
+  if (rows.size() <= limit || limit == 0) return rows;
+  std::vector<std::size_t> order(rows.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return rows[a] != rows[b] ? rows[a] < rows[b] : a < b;
+  });
+  const std::size_t step = (rows.size() + limit - 1) / limit;
+  std::vector<bool> keep(rows.size(), false);
+  for (std::size_t k = 0; k < order.size(); k += step) keep[order[k]] = true;
+  const std::size_t d = rows.front().size();
+  for (std::size_t i = 0; i < d; ++i) {
+    const auto by = [&](std::size_t a, std::size_t b) { return rows[a][i] < rows[b][i]; };
+    keep[*std::min_element(order.begin(), order.end(), by)] = true;
+    keep[*std::max_element(order.begin(), order.end(), by)] = true;
+  }
+  std::vector<std::vector<double>> kept;
+  for (const std::size_t k : order)
+    if (keep[k]) kept.push_back(rows[k]);
+  return kept;
+}
+
+std::string plot_parallel(const ParallelPlot& plot) {
+  const std::size_t d = plot.axes.size();
+  const auto reference = thin_rows(plot.reference, kMaxDrawnLines);
+  const auto solution = thin_rows(plot.solution, kMaxDrawnLines);
+  std::vector<double> lo(d, std::numeric_limits<double>::infinity()), hi(d, -lo[0]);
+  for (const auto* set : {&plot.reference, &plot.solution})
+    for (const auto& row : *set)
+      for (std::size_t i = 0; i < d && i < row.size(); ++i)
+        lo[i] = std::min(lo[i], row[i]), hi[i] = std::max(hi[i], row[i]);
+  Svg svg(kWidth, kHeight);
+  const double top = kTop + 10, bottom = kHeight - kBottom;
+  const auto axis_x = [&](std::size_t i) {
+    return d < 2 ? kLeft
+                 : kLeft + (kWidth - kRight - kLeft) * static_cast<double>(i) /
+                               static_cast<double>(d - 1);
+  };
+  const auto axis_y = [&](std::size_t i, double v) {
+    return hi[i] > lo[i] ? bottom - (v - lo[i]) / (hi[i] - lo[i]) * (bottom - top)
+                         : (top + bottom) / 2;
+  };
+  svg.text(kWidth / 2 - (kRight - kLeft) / 2, 28, plot.title, "middle", kTitleFont);
+  if (!plot.subtitle.empty())
+    svg.text(kWidth / 2 - (kRight - kLeft) / 2, 48, plot.subtitle, "middle", kMinFontSize, 0,
+             "#333");
+  const auto draw = [&](const std::vector<std::vector<double>>& rows, const char* colour,
+                        double width, double opacity) {
+    for (const auto& row : rows) {
+      std::string points;
+      for (std::size_t i = 0; i < d && i < row.size(); ++i)
+        points += Svg::number(axis_x(i)) + "," + Svg::number(axis_y(i, row[i])) + " ";
+      if (!points.empty()) points.pop_back();
+      svg.begin_group("stroke-opacity=\"" + Svg::number(opacity) + "\"");
+      svg.polyline(points, colour, width);
+      svg.end_group();
+    }
+  };
+  draw(reference, kReferenceColour, 2.5, 0.5);
+  draw(solution, kSolverColour, 1.2, 0.6);
+  for (std::size_t i = 0; i < d; ++i) {
+    svg.line(axis_x(i), top, axis_x(i), bottom, "#000", 1.5);
+    svg.text(axis_x(i), bottom + 38, plot.axes[i], "middle", kLabelFont);
+    if (std::isfinite(lo[i])) {
+      svg.text(axis_x(i), bottom + 18, tick_label(lo[i]), "middle", kTickFont);
+      svg.text(axis_x(i), top - 6, tick_label(hi[i]), "middle", kTickFont);
+    }
+  }
+  std::vector<LegendEntry> entries;
+  if (!plot.reference.empty())
+    entries.push_back(front_entry('r', kReferenceColour, plot.reference_name, reference.size(),
+                                  plot.reference.size()));
+  if (!plot.solution.empty())
+    entries.push_back(
+        front_entry('r', kSolverColour, plot.solver_name, solution.size(), plot.solution.size()));
+  legend(svg, entries);
   return svg.str();
 }
 

@@ -86,11 +86,22 @@ void Svg::polyline(std::string_view points, std::string_view stroke, double stro
            R"(" stroke-width=")" + number(stroke_width) + "\"/>\n";
 }
 
+void Svg::begin_group(std::string_view attributes) {
+  body_ += "<g " + std::string(attributes) + ">\n";
+}
+
+void Svg::end_group() {
+  body_ += "</g>\n";
+}
+
 std::string Svg::str() const {
-  return std::string(R"(<?xml version="1.0" encoding="UTF-8"?>)") + "\n" +
-         R"(<svg xmlns="http://www.w3.org/2000/svg" width=")" + number(width_) + "\" height=\"" +
-         number(height_) + "\" viewBox=\"0 0 " + number(width_) + " " + number(height_) +
-         R"(" font-family="DejaVu Sans, Arial, sans-serif")" +
+  return std::string(R"(<?xml version="1.0" encoding="UTF-8"?>)") + "\n" + element();
+}
+
+std::string Svg::element() const {
+  return std::string(R"(<svg xmlns="http://www.w3.org/2000/svg" width=")") + number(width_) +
+         "\" height=\"" + number(height_) + "\" viewBox=\"0 0 " + number(width_) + " " +
+         number(height_) + R"(" font-family="DejaVu Sans, Arial, sans-serif")" +
          (crisp_ ? std::string(R"( shape-rendering="crispEdges")") : std::string()) + ">\n" +
          R"(<rect width="100%" height="100%" fill="#fff"/>)" + "\n" + body_ + "</svg>\n";
 }

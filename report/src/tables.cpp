@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "mosb/report/svg.hpp"
+
 namespace mosb::tables {
 namespace {
 
@@ -159,6 +161,31 @@ void write_text(std::ostream& out, const Table& table) {
     line.erase(line.find_last_not_of(' ') + 1);
     out << line << '\n';
   }
+}
+
+void write_html(std::ostream& out, const Table& table, const std::string& id) {
+  out << R"(<table class="sortable" id=")" << plots::Svg::escape(id) << "\">\n";
+  if (!table.caption.empty())
+    out << "<caption>" << plots::Svg::escape(table.caption) << "</caption>\n";
+  out << "<thead><tr>";
+  for (const auto& c : table.columns)
+    out << R"(<th scope="col" data-key=")" << plots::Svg::escape(c.key) << "\">"
+        << plots::Svg::escape(c.html.empty() ? c.key : c.html) << "</th>";
+  out << "</tr></thead>\n<tbody>\n";
+  for (const auto& row : table.rows) {
+    out << "<tr>";
+    for (const auto& c : row) {
+      if (c.kind == Cell::Kind::text) {
+        out << "<td>" << plots::Svg::escape(c.text) << "</td>";
+        continue;
+      }
+      const std::string exact = c.kind == Cell::Kind::absent ? std::string() : csv_cell(c);
+      out << R"(<td class="n" data-v=")" << exact << "\">" << plots::Svg::escape(text_cell(c))
+          << "</td>";
+    }
+    out << "</tr>\n";
+  }
+  out << "</tbody>\n</table>\n";
 }
 
 Table comparison_summary(const SolverComparison& comparison,

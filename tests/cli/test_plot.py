@@ -132,6 +132,58 @@ class PlotTest(PlotCase):
         self.assertFalse(os.path.exists(self.path("m.svg")))
 
 
+class PaperFigureTest(PlotCase):
+    """Issue 22 §3: `-o fig.pdf|fig.png` rendered by librsvg and cairo, sized for a paper."""
+
+    def setUp(self):
+        super().setUp()
+        self.grid = self.path("g.mosb")
+        run("generate", "grid", "--width", "20", "--height", "20", "--objectives", "3", "-o",
+            self.grid)
+
+    def test_pdf_opens_at_the_asked_size_and_is_the_same_twice(self):
+        if shutil.which("pdfinfo") is None:
+            self.skipTest("pdfinfo (poppler-utils) is not installed")
+        pdf = self.path("rho.pdf")
+        run("plot", "correlation", self.grid, "-o", pdf, "--width", "3.5in")
+        info = subprocess.run(["pdfinfo", pdf], capture_output=True, text=True, check=True).stdout
+        self.assertIn("Pages:           1", info)
+        width, height = map(float, re.search(r"Page size:\s+([0-9.]+) x ([0-9.]+) pts",
+                                             info).groups())
+        self.assertAlmostEqual(width, 252, delta=0.5)  # 3.5 in
+        self.assertGreater(height, 100)
+        text = subprocess.run(["pdftotext", pdf, "-"], capture_output=True, text=True).stdout
+        self.assertIn("Pearson", text)  # text stays text
+        again = self.path("again.pdf")
+        run("plot", "correlation", self.grid, "-o", again, "--width", "3.5in")
+        self.assertEqual(read(again), read(pdf))
+        run("plot", "correlation", self.grid, "-o", pdf, "--width", "8cm", "--height", "6cm")
+        info = subprocess.run(["pdfinfo", pdf], capture_output=True, text=True, check=True).stdout
+        self.assertIn("226.772 x 170.079 pts", info)  # 8 cm x 6 cm
+
+    def test_png_has_the_size_and_is_not_blank(self):
+        png = self.path("rho.png")
+        run("plot", "correlation", self.grid, "-o", png, "--width", "3.5in", "--dpi", "200")
+        w, h, channels, rows = read_png(png)
+        self.assertEqual(w, 700)
+        coloured = sum(1 for row in rows for x in range(0, w * channels, channels)
+                       if min(row[x:x + 3]) < 235)
+        self.assertGreater(coloured / (w * h), 0.05)
+        self.assertLess(coloured / (w * h), 0.9)
+
+    def test_bad_format_and_size_are_usage_errors(self):
+        for args, message in ((["-o", self.path("f.jpg")], "write a figure as .svg, .pdf or .png"),
+                              (["-o", self.path("f.pdf"), "--width", "3.5"],
+                               "--width: '3.5' is not a length"),
+                              (["-o", self.path("f.png"), "--height", "0in"], "--height:"),
+                              (["-o", self.path("f.svg"), "--width", "3in"], "an SVG keeps")):
+            r = run("plot", "correlation", self.grid, *args, check=False)
+            self.assertEqual(r.returncode, 2, r.stderr)
+            self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+            self.assertIn(message, r.stderr)
+            self.assertFalse(os.path.exists(args[1]))
+
+
 class SolutionPlotTest(PlotCase):
     """`plot front` and `plot cardinality` on solution files imported from per-query front files
     of a generated 3-objective grid with a 3-query set (query 2 is left unsolved)."""

@@ -280,12 +280,13 @@ class InstalledPackage(unittest.TestCase):
 
     def test_pull_component_alone_brings_libcurl(self):
         # mosb::pull is the one component that links libcurl (find_package finds it for that
-        # component); the umbrella mosb::mosb and the store do not name it.
+        # component); the umbrella mosb::mosb and the store do not name it. `run` is asked for
+        # too: every installed component is one find_package knows.
         project = os.path.join(self.tmp, "pull-only")
         os.makedirs(project, exist_ok=True)
         with open(os.path.join(project, "CMakeLists.txt"), "w") as f:
             f.write("cmake_minimum_required(VERSION 3.16)\nproject(pull_only CXX)\n"
-                    "find_package(mosb 0.2 REQUIRED COMPONENTS pull)\n"
+                    "find_package(mosb 0.2 REQUIRED COMPONENTS pull run)\n"
                     "add_executable(plan plan.cpp)\n"
                     "target_link_libraries(plan PRIVATE mosb::pull)\n")
         with open(os.path.join(project, "plan.cpp"), "w") as f:

@@ -637,6 +637,84 @@ class SolutionsTest(Temp):
         self.assertIn(bad, str(raised.exception))
 
 
+class PlotTest(Temp):
+    """mosb.plot (issue 22 §3): matplotlib figures of a front and of two solvers' comparison, from
+    solution files imported from JSON logs with runtimes (a 3-objective grid, three queries)."""
+
+    def setUp(self):
+        super().setUp()
+        try:
+            import matplotlib  # noqa: F401
+        except ImportError:
+            self.skipTest("python3-matplotlib is not installed")
+        import mosb.plot
+        self.plot = mosb.plot
+        self.grid = self.generate_grid("g.mosb")
+        done = run(MOSB, "queries", "generate", self.grid, "--set", "three", "--count", "3",
+                   "--in-place")
+        self.assertEqual(done.returncode, 0, done.stderr)
+        self.queries = mosb.open(self.grid).queries("three").tolist()
+        # exact: every query, 2 s each; fast: queries 0 and 1 only, 1 s and 4 s.
+        self.exact = self.solutions("exact", [[(10, 40, 5), (20, 20, 7)], [(30, 30, 30)],
+                                              [(1, 2, 3)]], [2000, 2000, 2000])
+        self.fast = self.solutions("fast", [[(10, 40, 5), (21, 21, 8)], [(30, 30, 30)], None],
+                                   [1000, 4000, None])
+
+    def solutions(self, solver, fronts, milliseconds):
+        records = []
+        for (start, goal), front, ms in zip(self.queries, fronts, milliseconds):
+            if front is None:
+                records.append({"source": start, "target": goal, "status": "timeout"})
+            else:
+                records.append({"source": start, "target": goal, "total_runtime(ms)": ms,
+                                "finish_info": {"solutions": [{"cost_until_now": list(v)}
+                                                              for v in front]}})
+        log = os.path.join(self.dir, solver + ".json")
+        with open(log, "w") as f:
+            json.dump(records, f)
+        out = os.path.join(self.dir, solver + ".sol")
+        done = run(MOSB, "solutions", "import", "--instance", self.grid, "--view", "Grid_3",
+                   "--queries", "three", "--json-log", log, "--solver", solver, "-o", out)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        return out
+
+    def test_front_is_a_labelled_projection(self):
+        fig = self.plot.front(self.fast, 0, reference=self.exact)
+        (ax,) = fig.axes
+        rings, dots = ax.collections
+        self.assertEqual(sorted(map(tuple, rings.get_offsets().tolist())), [(10, 40), (20, 20)])
+        self.assertEqual(sorted(map(tuple, dots.get_offsets().tolist())), [(10, 40), (21, 21)])
+        self.assertIn("projection on c1, c2 of 3 objectives", ax.get_title())
+        self.assertEqual([t.get_text() for t in ax.get_legend().get_texts()],
+                         ["reference exact (2 vectors)", "fast (2 vectors)"])
+        self.assertEqual((ax.get_xlim()[0], ax.get_ylim()[0]), (0, 0))
+        fig = self.plot.front(self.fast, 0, objectives=("c3", "c1"))
+        self.assertEqual(fig.axes[0].get_xlabel(), "c3")
+        png = os.path.join(self.dir, "front.png")
+        fig.savefig(png)
+        with open(png, "rb") as f:
+            self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
+
+    def test_comparison_figures(self):
+        (ax,) = self.plot.cactus([self.exact, self.fast]).axes
+        exact, fast = ax.get_lines()
+        self.assertEqual(exact.get_ydata().tolist(), [2, 2, 2])
+        self.assertEqual(fast.get_ydata().tolist(), [1, 4])
+        self.assertEqual(fast.get_label(), "fast (2 solved)")
+        self.assertEqual(ax.get_yscale(), "log")
+        (ax,) = self.plot.performance_profile([self.exact, self.fast]).axes
+        exact, fast = ax.get_lines()
+        # exact is best on queries 1 and 2 and twice the best on query 0; fast best on query 0,
+        # twice the best on query 1 and never solves query 2.
+        self.assertEqual(exact.get_xdata().tolist(), [1, 1, 1, 2])
+        self.assertEqual(exact.get_ydata().tolist()[-1], 1)
+        self.assertAlmostEqual(fast.get_ydata().tolist()[-1], 2 / 3)
+        (ax,) = self.plot.runtime_scatter(self.exact, self.fast).axes
+        self.assertEqual(sorted(map(tuple, ax.collections[0].get_offsets().tolist())),
+                         [(2, 1), (2, 4)])
+        self.assertEqual(ax.get_title(), "Runtime per query (2 both solved)")
+
+
 class ParallelArcsTest(Temp):
     def test_to_scipy_csr_reduces_parallel_arcs_as_asked(self):
         gr = os.path.join(self.dir, "p.gr")

@@ -278,3 +278,126 @@ TEST_CASE("colour-blind-safe colours and axis labels with units") {
   CHECK(has(map, R"(stroke="#56B4E9")"));
   for (const char* old : {"#1f77b4", "#2ca02c"}) CHECK(!has(map, old));
 }
+
+TEST_CASE("front plot of a reference alone has no solver entry, and an all-zero axis is 0 to 1") {
+  FrontPlot p;
+  p.x_label = "length";
+  p.y_label = "exposure";
+  p.reference = {{5, 0}};
+  const auto doc = plot_front(p);
+  CHECK(has(doc, ">reference (1 vector)<"));
+  CHECK_FALSE(has(doc, "solver ("));
+  const auto t = texts(doc);
+  CHECK(std::find(t.begin(), t.end(), "-1") == t.end());  // the y axis does not go below 0
+  CHECK(std::find(t.begin(), t.end(), "1") != t.end());
+}
+
+TEST_CASE("thin_rows keeps every objective's extremes and at most limit + 2d rows") {
+  std::vector<std::vector<double>> rows;
+  for (int k = 0; k < 1000; ++k)
+    rows.push_back({static_cast<double>(k), static_cast<double>((k * 37) % 1000),
+                    static_cast<double>(1000 - k), static_cast<double>((k * 91) % 997)});
+  const auto kept = thin_rows(rows, 50);
+  CHECK(kept.size() >= 50);
+  CHECK(kept.size() <= 50 + 8);
+  for (std::size_t i = 0; i < 4; ++i) {
+    double lo = 1e9, hi = -1e9, klo = 1e9, khi = -1e9;
+    for (const auto& r : rows) lo = std::min(lo, r[i]), hi = std::max(hi, r[i]);
+    for (const auto& r : kept) klo = std::min(klo, r[i]), khi = std::max(khi, r[i]);
+    CHECK(lo == klo);
+    CHECK(hi == khi);
+  }
+  CHECK(thin_rows(rows, 50) == kept);
+  CHECK(thin_rows(rows, 5000).size() == 1000);
+}
+
+TEST_CASE("parallel coordinates: an axis per objective, a polyline per vector, thinning said") {
+  ParallelPlot p;
+  p.title = "front";
+  p.axes = {"a", "b", "c", "d"};
+  p.reference = {{1, 2, 3, 4}, {4, 3, 2, 1}};
+  p.solution = {{1, 2, 3, 4}};
+  auto doc = plot_parallel(p);
+  CHECK(count(doc, "<polyline") == 3);
+  for (const char* axis : {">a<", ">b<", ">c<", ">d<"}) CHECK(has(doc, axis));
+  CHECK(has(doc, "reference (2 vectors)"));
+  for (int k = 0; k < 2000; ++k)
+    p.solution.push_back({1.0 * k, 2000.0 - k, 1.0 * (k % 7), 1.0 * (k % 13)});
+  doc = plot_parallel(p);
+  CHECK(has(doc, ">showing "));
+  CHECK(count(doc, "<polyline") < 2 + kMaxDrawnLines + 9);
+}
+
+TEST_CASE("instance space: a line per series at its d, the values as data attributes") {
+  InstanceSpacePlot p;
+  p.title = "space";
+  p.series = {{"NetMaker", 3, {-0.44, -0.45, -0.43}}, {"Grid_2", 2, {0.01}}};
+  const auto doc = plot_instance_space(p);
+  CHECK(has(doc, R"(data-series="NetMaker" data-d="3" data-rho="-0.4400,-0.4500,-0.4300")"));
+  CHECK(has(doc, R"(data-series="Grid_2" data-d="2" data-rho="0.0100")"));
+  CHECK(has(doc, ">NetMaker<"));
+  CHECK(has(doc, ">objectives d<"));
+  // Per series: a range line, a faint dot per pair, two ends.
+  CHECK(count(doc, "fill-opacity=\"0.3\"") == 4);
+}
+
+TEST_CASE("lines, scatter and bars: log axes, a diagonal, one bar per series and category") {
+  LinePlot cactus;
+  cactus.title = "cactus";
+  cactus.y_log = true;
+  cactus.series = {{"A", {{1, 0.01}, {2, 0.5}, {3, 20}}}, {"B", {{1, 0.02}}}};
+  auto doc = plot_lines(cactus);
+  CHECK(count(doc, "<polyline") == 2);
+  CHECK(has(doc, ">0.01<"));
+  CHECK(has(doc, ">100<"));  // the log axis ends at the power of ten above 20
+  LinePlot profile = cactus;
+  profile.steps = true;
+  profile.x_log = true;
+  profile.y_log = false;
+  profile.y_max = 1;
+  profile.x_min = 1;
+  profile.series = {{"A", {{1, 0.5}, {2, 1}}}};
+  doc = plot_lines(profile);
+  // Steps: (1, .5), (2, .5), (2, 1) and on to the right edge.
+  CHECK(count(doc, "<polyline") == 1);
+  const auto points = doc.substr(doc.find("<polyline points=\"") + 18);
+  CHECK(std::count(points.begin(), points.begin() + static_cast<long>(points.find('"')), ',') == 4);
+
+  ScatterPlot scatter;
+  scatter.groups = {{"Grid", {{0.1, 0.2}, {1, 0.5}}}};
+  scatter.note = "1 query not drawn";
+  doc = plot_runtime_scatter(scatter);
+  CHECK(count(doc, "<circle") == 2 + 1);
+  CHECK(has(doc, ">1 query not drawn<"));
+  CHECK(has(doc, ">line: equal runtime<"));
+
+  BarPlot bars;
+  bars.categories = {"ε = 0", "ε = 0.1"};
+  bars.series = {{"A", {1, 1}}, {"B", {0.5, 0.75}}};
+  doc = plot_bars(bars);
+  CHECK(count(doc, "<rect") == 1 + 4 + 1 + 2);  // background, bars, frame, legend
+  CHECK(has(doc, ">ε = 0.1<"));
+}
+
+TEST_CASE("coarsen_map: blocks of k x k cells, passable when half are, the highest exposure") {
+  MapPlot m;
+  m.width = 4;
+  m.height = 2;
+  m.passable = {true, false, false, false, false, false, true, true};
+  m.exposure = {1, NAN, NAN, NAN, NAN, NAN, 2, 5};
+  m.queries = {{7, {3, 1}, {0, 0}}};
+  const auto c = coarsen_map(m, 2);
+  CHECK(c.width == 2);
+  CHECK(c.height == 1);
+  CHECK(c.block == 2);
+  CHECK(c.passable == std::vector<bool>{false, true});  // 1 of 4 cells, 2 of 4
+  CHECK(c.exposure[1] == 5);
+  REQUIRE(c.queries.size() == 1);
+  CHECK(c.queries[0].start.x == 1);
+  CHECK(c.queries[0].goal.x == 0);
+  CHECK(coarsen_map(m, 4).width == 4);  // small enough: unchanged
+  const auto doc = plot_map(c);
+  CHECK(has(doc, ">1 square: 2x2 cells<"));
+  CHECK(has(doc, ">start (query number)<"));
+  CHECK(count(doc, ">7<") == 2);  // start and goal labelled
+}

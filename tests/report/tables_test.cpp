@@ -93,3 +93,22 @@ TEST_CASE("write_text: names left-aligned, numbers right-aligned under their hea
   CHECK(rows[0].size() == header.size());
   CHECK(rows[1].size() == header.size());
 }
+
+TEST_CASE("write_html: a sortable table, headings, exact values in data-v, text escaped") {
+  Table t;
+  t.caption = "a <caption>";
+  t.columns = {{"name", "Name", "solver name"}, {"n", "$n$"}, {"t", "$t$"}};
+  t.rows = {{Cell::of(std::string("a&b")), Cell::of(std::uint64_t{12}), Cell::of(0.125)},
+            {Cell::of(std::string("c")), Cell{}, Cell::of(1.0 / 3)}};
+  std::ostringstream out;
+  write_html(out, t, "tab");
+  const auto html = out.str();
+  CHECK(html.find(R"(<table class="sortable" id="tab">)") != std::string::npos);
+  CHECK(html.find("<caption>a &lt;caption&gt;</caption>") != std::string::npos);
+  CHECK(html.find(R"(<th scope="col" data-key="name">solver name</th>)") != std::string::npos);
+  CHECK(html.find(R"(<th scope="col" data-key="n">n</th>)") != std::string::npos);
+  CHECK(html.find("<td>a&amp;b</td>") != std::string::npos);
+  CHECK(html.find(R"(<td class="n" data-v="12">12</td>)") != std::string::npos);
+  CHECK(html.find(R"(<td class="n" data-v="">-</td>)") != std::string::npos);
+  CHECK(html.find(R"(data-v="0.3333333333333333">0.3333</td>)") != std::string::npos);
+}

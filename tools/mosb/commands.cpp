@@ -274,4 +274,19 @@ std::string vector_text(const std::vector<double>& v) {
   return out.str();
 }
 
+std::vector<Ratio> parse_epsilons(const std::string& list) {
+  std::vector<Ratio> result;
+  std::stringstream in(list);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    try {
+      result.push_back(parse_epsilon(item));
+    } catch (const Error& e) {
+      throw UsageError("--eps: '" + item + "': " + e.what());
+    }
+  }
+  if (result.empty()) throw UsageError("--eps: no ε given");
+  return result;
+}
+
 }  // namespace mosb::cli

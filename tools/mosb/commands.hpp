@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "mosb/error.hpp"
+#include "mosb/eval.hpp"
 #include "mosb/pack.hpp"
 #include "mosb/views.hpp"
 
@@ -58,6 +59,9 @@ CLI::Validator non_negative_real();
 // Every option that takes an ε: a non-negative decimal as parse_epsilon (mosb/eval.hpp) reads it,
 // the form spec/EVALUATION.md §2 allows and `solution.epsilon` stores.
 CLI::Validator epsilon_value();
+// A comma-separated list of ε (`--eps` of eval and report), each as epsilon_value takes one;
+// throws UsageError naming the item.
+std::vector<Ratio> parse_epsilons(const std::string& list);
 // Free text that ends up in text, JSON and SVG output (--solver, --title, ...): no control
 // character, so a newline cannot forge a line of text output and a NUL or escape cannot reach SVG.
 CLI::Validator printable_text();
@@ -172,6 +176,7 @@ Command add_solutions_merge(CLI::App* solutions);    // solutions_merge.cpp: `so
 Command add_eval(CLI::App& app);                     // eval.cpp: `eval`
 Command add_pack(CLI::App& app);                     // pack.cpp: `pack`
 Command add_run(CLI::App& app);                      // run.cpp: `run`
+Command add_report(CLI::App& app);                   // report.cpp: `report`
 Command add_unpack(CLI::App& app);                   // pack.cpp: `unpack`
 
 // Children of `generate`.

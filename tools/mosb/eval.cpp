@@ -27,21 +27,6 @@ struct EvalArgs {
   bool strict = false, json = false, csv = false, latex = false, per_query = false;
 };
 
-std::vector<Ratio> parse_epsilons(const std::string& list) {
-  std::vector<Ratio> result;
-  std::stringstream in(list);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    try {
-      result.push_back(parse_epsilon(item));
-    } catch (const Error& e) {
-      throw UsageError("--eps: '" + item + "': " + e.what());
-    }
-  }
-  if (result.empty()) throw UsageError("--eps: no ε given");
-  return result;
-}
-
 void print_query_lines(const SolutionEvaluation& result, const std::vector<Ratio>& eps,
                        const std::vector<std::string>& eps_text) {
   for (const auto& q : result.queries) {

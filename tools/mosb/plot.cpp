@@ -13,6 +13,7 @@
 #include "mosb/graph_reader.hpp"
 #include "mosb/report/figures.hpp"
 #include "mosb/report/plots.hpp"
+#include "mosb/report/render.hpp"
 #include "mosb/solution_eval.hpp"
 #include "mosb/solution_file.hpp"
 #include "mosb/stats.hpp"
@@ -21,16 +22,53 @@ namespace mosb::cli {
 
 namespace {
 
+// -o's format (by extension) and the printed size of a PDF or PNG.
+struct FigureOutput {
+  std::string width, height;
+  double dpi = 150;
+};
+
+void add_figure_options(CLI::App* sub, FigureOutput& f) {
+  sub->add_option("--width", f.width,
+                  "the PDF's or PNG's width: a number and a unit, in, pt, cm, mm or px (3.5in)");
+  sub->add_option("--height", f.height, "its height (either alone keeps the aspect ratio)");
+  sub->add_option("--dpi", f.dpi, "a PNG's resolution in dots per inch")
+      ->check(CLI::Range(10.0, 2400.0))
+      ->capture_default_str();
+}
+
+// The figure as -o's extension says: .svg as drawn, .pdf and .png rendered by librsvg and cairo.
+void write_figure(const std::string& output, const std::string& svg, const FigureOutput& f) {
+  const auto format = plots::image_format_of(output);
+  if (!format) throw UsageError("-o " + output + ": write a figure as .svg, .pdf or .png");
+  plots::RenderSize size;
+  size.dpi = f.dpi;
+  const auto length = [](const std::string& option, const std::string& text) {
+    try {
+      return plots::parse_length(text);
+    } catch (const Error& e) {
+      throw UsageError(option + ": " + e.what());
+    }
+  };
+  if (!f.width.empty()) size.width_pt = length("--width", f.width);
+  if (!f.height.empty()) size.height_pt = length("--height", f.height);
+  if (*format == plots::ImageFormat::svg && (size.width_pt || size.height_pt))
+    throw UsageError("--width and --height size a .pdf or .png; an SVG keeps its own size");
+  write_file_atomically(output, plots::render_svg(svg, *format, size));
+}
+
 struct PlotArgs {
   std::string instance, output, title;
   ViewChoice choice;
+  FigureOutput figure;
 };
 
 void add_common(CLI::App* sub, PlotArgs& args) {
   sub->add_option("INSTANCE", args.instance, "a .mosb instance")
       ->required()
       ->check(CLI::ExistingFile);
-  add_output_option(sub, args.output, "the SVG file to write")->required();
+  add_output_option(sub, args.output, "the figure to write: .svg, .pdf or .png")->required();
+  add_figure_options(sub, args.figure);
   sub->add_option("--title", args.title, "the figure's title (default: the benchmark name)")
       ->check(printable_text());
 }
@@ -42,7 +80,7 @@ std::string default_title(const GraphReader& reader, const PlotArgs& args, const
 
 void write_svg(const PlotArgs& args, const std::string& svg) {
   check_output_is_not_input(args.output, {args.instance});
-  write_file_atomically(args.output, svg);
+  write_figure(args.output, svg, args.figure);
 }
 
 int run_correlation(const PlotArgs& args) {
@@ -102,13 +140,14 @@ int run_map(const PlotArgs& args, const std::string& exposure_objective, const M
   std::vector<std::filesystem::path> inputs = {args.instance};
   if (!paths.solutions.empty()) inputs.emplace_back(paths.solutions);
   check_output_is_not_input(args.output, inputs);
-  write_file_atomically(args.output, plots::plot_map(plot));
+  write_figure(args.output, plots::plot_map(plot), args.figure);
   return 0;
 }
 
 struct FrontArgs {
   std::string solutions, reference, instance, objectives, epsilon, output, title;
   std::uint64_t query = 0;
+  FigureOutput figure;
 };
 
 // The two objectives to draw: names of the file's objectives or 0-based positions in its view,
@@ -204,12 +243,13 @@ int run_front(const FrontArgs& args) {
   if (reference) inputs.emplace_back(args.reference);
   if (!args.instance.empty()) inputs.emplace_back(args.instance);
   check_output_is_not_input(args.output, inputs);
-  write_file_atomically(args.output, plots::plot_front(plot));
+  write_figure(args.output, plots::plot_front(plot), args.figure);
   return 0;
 }
 
 struct CardinalityArgs {
   std::string solutions, output, title;
+  FigureOutput figure;
 };
 
 int run_cardinality(const CardinalityArgs& args) {
@@ -230,14 +270,14 @@ int run_cardinality(const CardinalityArgs& args) {
     plot.title += " (" + std::to_string(unsolved) + " unsolved quer" +
                   (unsolved == 1 ? "y" : "ies") + " left out)";
   check_output_is_not_input(args.output, {args.solutions});
-  write_file_atomically(args.output, plots::plot_cardinality(plot));
+  write_figure(args.output, plots::plot_cardinality(plot), args.figure);
   return 0;
 }
 
 }  // namespace
 
 Command add_plot(CLI::App& app) {
-  auto* plot = app.add_subcommand("plot", "Draw a figure as SVG");
+  auto* plot = app.add_subcommand("plot", "Draw a figure as SVG, PDF or PNG");
   auto correlation_args = std::make_shared<PlotArgs>();
   auto* correlation =
       plot->add_subcommand("correlation", "the objective-correlation matrix as a heat map");
@@ -276,7 +316,9 @@ Command add_plot(CLI::App& app) {
                     "two)");
   front->add_option("--eps", front_args->epsilon, "draw each reference vector's ε-box")
       ->check(epsilon_value());
-  add_output_option(front, front_args->output, "the SVG file to write")->required();
+  add_output_option(front, front_args->output, "the figure to write: .svg, .pdf or .png")
+      ->required();
+  add_figure_options(front, front_args->figure);
   front->add_option("--title", front_args->title, "the figure's title")->check(printable_text());
   auto cardinality_args = std::make_shared<CardinalityArgs>();
   auto* cardinality = plot->add_subcommand(
@@ -284,7 +326,10 @@ Command add_plot(CLI::App& app) {
   cardinality->add_option("--solutions", cardinality_args->solutions, "a solution file")
       ->required()
       ->check(CLI::ExistingFile);
-  add_output_option(cardinality, cardinality_args->output, "the SVG file to write")->required();
+  add_output_option(cardinality, cardinality_args->output,
+                    "the figure to write: .svg, .pdf or .png")
+      ->required();
+  add_figure_options(cardinality, cardinality_args->figure);
   cardinality->add_option("--title", cardinality_args->title, "the figure's title")
       ->check(printable_text());
   return group(

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string_view>
 
 #include "mosb/graph_reader.hpp"
@@ -22,5 +23,10 @@ MapPlot map_of(const GraphReader& instance, std::string_view exposure_objective)
 // vertex is not one of the instance's.
 void add_front_paths(MapPlot& map, const GraphReader& instance, const SolutionReader& solutions,
                      std::uint64_t query);
+
+// Adds the start and goal cells of the given queries of set `query_set` (positions past its end
+// are skipped) to `map` as markers. Throws as map_of when `instance` is not a grid.
+void add_query_markers(MapPlot& map, const GraphReader& instance, std::string_view query_set,
+                       std::span<const std::uint64_t> queries);
 
 }  // namespace mosb::plots

@@ -37,6 +37,7 @@ struct FrontPlot {
   std::size_t objective_count = 2;
   std::vector<Point2> reference, solution;
   std::optional<double> epsilon;  // no boxes when absent or 0
+  std::size_t max_points = 5000;  // per set, past which it is thinned (kMaxDrawnPoints)
 };
 // Past kMaxDrawnPoints vectors a set is thinned (thin_points) so a million-vector front stays a
 // figure of a few hundred kB; the legend then says "showing k of n" under the entry.
@@ -65,6 +66,13 @@ struct CorrelationPlot {
 };
 std::string plot_correlation(const CorrelationPlot& plot);
 
+// A start/goal pair drawn on a map: the start a bluish-green dot, the goal a vermillion square,
+// labelled with the query's number.
+struct MapQuery {
+  std::uint64_t query = 0;
+  Point2 start, goal;  // cell coordinates
+};
+
 // A grid map: blocked cells dark grey, passable cells shaded by exposure on reversed viridis
 // (lowest yellow, highest dark purple; light grey when unknown; white when there is no exposure),
 // and paths as cell sequences in Okabe–Ito colours. The legend gives the colour of every exposure
@@ -76,8 +84,90 @@ struct MapPlot {
   std::vector<bool> passable;              // row-major, width * height
   std::vector<double> exposure;            // row-major; NaN = unknown; empty = no shading
   std::vector<std::vector<Point2>> paths;  // cell coordinates (x, y)
+  std::vector<MapQuery> queries;           // start and goal markers
+  std::uint32_t block = 1;  // cells per drawn square per side (coarsen_map), said in the legend
 };
 std::string plot_map(const MapPlot& plot);
+// The map drawn with squares of k x k cells so no side has more than `max_side` squares (k = 1:
+// unchanged): a square is passable when at least half of its cells are (a randomly blocked map
+// keeps its texture), its exposure the highest of its passable cells; paths and markers are scaled with it. Keeps a 1024 x 1024 map a figure of tens,
+// not thousands, of kB.
+MapPlot coarsen_map(const MapPlot& plot, std::uint32_t max_side);
+
+// The paper's instance-space figure: one series per benchmark at its number of objectives d
+// (y axis), a line from its smallest to its largest pairwise ρ (x axis, −1 to 1) with the ends
+// marked and every pair a faint dot on it. Each series group carries data-series, data-d and
+// data-rho (the values, comma-separated) attributes, so a page's reader can check the numbers.
+struct InstanceSpaceSeries {
+  std::string name;
+  std::size_t objectives = 0;
+  std::vector<double> rho;  // every defined pairwise ρ (of every instance of the benchmark)
+};
+struct InstanceSpacePlot {
+  std::string title;
+  std::vector<InstanceSpaceSeries> series;
+};
+std::string plot_instance_space(const InstanceSpacePlot& plot);
+
+// Vertices per out-degree as bars (index = degree).
+struct DegreePlot {
+  std::string title;
+  std::vector<std::uint64_t> vertices_by_degree;
+};
+std::string plot_degrees(const DegreePlot& plot);
+
+// Lines of several series (Okabe–Ito colours, a legend entry each): the cactus plot (queries
+// solved against runtime) and the Dolan–Moré performance profile (steps). A log axis where asked;
+// `y_max` fixes the top of a linear y axis (a fraction: 1).
+struct LineSeries {
+  std::string name;
+  std::vector<Point2> points;  // in drawing order
+};
+struct LinePlot {
+  std::string title, x_label, y_label;
+  bool x_log = false, y_log = false, steps = false;
+  std::optional<double> x_min, y_max;
+  std::vector<LineSeries> series;
+};
+std::string plot_lines(const LinePlot& plot);
+
+// Per-query runtimes of solver A (x) against solver B (y) on log–log axes with the same range and
+// the diagonal drawn; points grouped (coloured) by benchmark; `note` is a line under the title.
+struct ScatterPlot {
+  std::string title, x_label, y_label, note;
+  std::vector<LineSeries> groups;
+};
+std::string plot_runtime_scatter(const ScatterPlot& plot);
+
+// Grouped bars: per category (an ε) one bar per series (a solver), values in [0, y_max].
+struct BarSeries {
+  std::string name;
+  std::vector<double> values;  // one per category
+};
+struct BarPlot {
+  std::string title, x_label, y_label;
+  std::vector<std::string> categories;
+  std::vector<BarSeries> series;
+  double y_max = 1;
+};
+std::string plot_bars(const BarPlot& plot);
+
+// Parallel coordinates of a front of d > 3 objectives: one polyline per vector across d vertical
+// axes, each axis scaled from its smallest to its largest value (both written at its ends).
+// Reference vectors blue, solver vectors vermillion; past kMaxDrawnLines a set is thinned
+// (thin_rows) and the legend says "showing k of n".
+struct ParallelPlot {
+  std::string title, subtitle;
+  std::vector<std::string> axes;
+  std::vector<std::vector<double>> reference, solution;
+  std::string solver_name = "solver", reference_name = "reference";
+};
+std::string plot_parallel(const ParallelPlot& plot);
+inline constexpr std::size_t kMaxDrawnLines = 400;
+// Rows kept: all up to `limit`; past it, in lexicographic order every ceil(n / limit)-th row plus,
+// per objective, a row with its smallest and one with its largest value. Deterministic.
+std::vector<std::vector<double>> thin_rows(const std::vector<std::vector<double>>& rows,
+                                           std::size_t limit);
 
 // Ticks at 1, 2 or 5 times a power of ten covering [lo, hi], about `target` of them.
 std::vector<double> nice_ticks(double lo, double hi, int target = 6);

@@ -24,11 +24,17 @@ class Svg {
   // An open path through the points "x,y x,y ...".
   void polyline(std::string_view points, std::string_view stroke, double stroke_width = 1.5);
 
+  // <g ATTRIBUTES> ... </g>; the attributes are written as given (the caller escapes values).
+  void begin_group(std::string_view attributes);
+  void end_group();
+
   // Pixel-aligned shapes (maps: adjacent cells without anti-aliased seams).
   void set_crisp_edges() { crisp_ = true; }
 
   // The whole document, closed.
   std::string str() const;
+  // The <svg> element alone, for inclusion in an HTML page.
+  std::string element() const;
 
   static std::string number(double v);  // at most 2 decimals, no trailing zeros
   static std::string escape(std::string_view text);

@@ -25,8 +25,9 @@ struct Cell {
 };
 
 struct Column {
-  std::string key;    // CSV header and text heading: [a-z0-9_@.]
-  std::string latex;  // LaTeX heading (math allowed)
+  std::string key;        // CSV header and text heading: [a-z0-9_@.]
+  std::string latex;      // LaTeX heading (math allowed)
+  std::string html = {};  // HTML heading (plain text, escaped on writing); the key when empty
 };
 
 struct Table {
@@ -40,6 +41,10 @@ struct Table {
 void write_csv(std::ostream& out, const Table& table);
 void write_latex(std::ostream& out, const Table& table);
 void write_text(std::ostream& out, const Table& table);
+// An HTML <table class="sortable"> with the caption, a header row and one row per table row:
+// numbers as text writes them, each cell also carrying its exact value in data-v (what a sorting
+// script compares; empty when absent), text escaped. Readable without any script.
+void write_html(std::ostream& out, const Table& table, const std::string& id);
 
 // One row per solver: statuses, per ε covered and not covered, achieved ε (median, max), |S|/|R|
 // (median, mean), runtime over the common queries (count, median, mean, max, shifted geometric

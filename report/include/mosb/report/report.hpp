@@ -1,0 +1,56 @@
+// `mosb report`: a suite of instances, and the solvers' solution files for them, as one
+// self-contained HTML page (inline SVG and CSS, a short sorting script, no network access) and
+// as tables for a paper (spec/EVALUATION.md §7).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "mosb/eval.hpp"
+#include "mosb/graph_reader.hpp"
+#include "mosb/report/tables.hpp"
+#include "mosb/solution_file.hpp"
+
+namespace mosb::pages {
+
+struct ReportOptions {
+  std::string title = "mosb report";
+  // The queries (0-based positions in each benchmark's query set) whose fronts are drawn; empty:
+  // the smallest, the median and the largest solved front of each benchmark.
+  std::vector<std::uint64_t> queries;
+  std::vector<Ratio> epsilons;              // the ε-coverage's ε values, with a reference
+  std::vector<std::string> epsilon_labels;  // as the user wrote them, one per ε
+  std::size_t max_points = 1000;            // per front set drawn, past which it is thinned
+  // The page's largest size: past it, fronts are drawn with half as many points, down to 50,
+  // and past it then make_report throws (ErrorCode::invalid_argument).
+  std::size_t max_bytes = 5'000'000;
+  std::uint32_t max_map_side = 160;  // squares per map side (plots::coarsen_map)
+};
+
+// A figure of the page as a document of its own, named by its kind ("front", "cactus", ...).
+struct Figure {
+  std::string kind, svg;
+};
+
+struct Report {
+  std::string html;
+  std::vector<Figure> figures;  // in page order
+  // The page's tables, for --latex and --csv: the suite summary (the paper's Table 1 shape), the
+  // instance space (ρ per benchmark), the solvers' comparison (the paper's two-solver table,
+  // empty without two solvers) and the ε-coverage per solver (empty without a reference).
+  tables::Table suite, instance_space, comparison, coverage;
+};
+
+// A benchmark is a view (its objectives and query set) over every instance that has it; an
+// instance without views is one benchmark of all its objectives. Instances must be verified in
+// full, solution files with SolutionReader::open_verified. Every solution and reference file must
+// be bound to one of the instances (throws ErrorCode::invalid_argument naming the file and its
+// instance digest otherwise, or check_bound_to's error), and a solver (or the reference) may have
+// one file per instance, view and query set.
+Report make_report(std::span<const GraphReader> instances,
+                   std::span<const SolutionReader> solutions,
+                   std::span<const SolutionReader> references, const ReportOptions& options);
+
+}  // namespace mosb::pages

@@ -1,0 +1,394 @@
+#!/usr/bin/python3
+"""End-to-end tests of `mosb report` (spec/EVALUATION.md §7), in a real browser.
+
+    MOSB=build/release/tools/mosb EXAMPLES=build/release/examples /usr/bin/python3 tests/cli/test_report.py
+
+A small suite is built once: a generated Grid (30x30, 3 objectives), a generated NetMaker (1000
+vertices) and, when shared/data holds it, the Moving AI map arena2 converted with a guard; each
+gets a query set of a few queries, solved by the example NAMOA* (every view) and BOA* (the
+bi-objective ones) through `mosb run`. The report of it is opened in headless chromium: with
+script the DOM must show the sorting script ran and no console message may be an error; without
+its script the tables must still be there; every figure, drawn alone as an image, must render
+non-blank. Skipped without chromium or the example solvers.
+"""
+
+import functools
+import os
+import re
+import shutil
+import subprocess
+import tempfile
+import unittest
+from html.parser import HTMLParser
+
+import mosbtest
+from mosbtest import DATA, read, setUpModule  # noqa: F401
+from test_plot import read_png
+
+CHROMIUM = shutil.which("chromium")
+EXAMPLES = os.path.abspath(os.environ.get("EXAMPLES", ""))
+ARENA = os.path.join(DATA, "movingai", "arena2.map")
+
+run = functools.partial(mosbtest.run, check=True)
+
+
+def chromium(*args, timeout=120):
+    return subprocess.run([CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu",
+                           "--hide-scrollbars", "--no-first-run", "--disable-extensions",
+                           *args], capture_output=True, text=True, errors="replace",
+                          timeout=timeout)
+
+
+def console_errors(stderr):
+    """Console messages of level error and uncaught exceptions in chromium's log on stderr."""
+    return [line for line in stderr.splitlines()
+            if "Uncaught" in line or ("CONSOLE" in line and ":ERROR:" in line)
+            or "console.error" in line]
+
+
+class Tables(HTMLParser):
+    """Each <table>'s id and rows of cell texts and data-v values; each <figure>'s kind, its
+    <text> contents and whether it holds an <svg>."""
+
+    def __init__(self):
+        super().__init__()
+        self.tables, self.figures, self.sortable_headings = {}, [], 0
+        self._table = self._row = self._cell = None
+        self._figure = None
+        self._in_text = False
+
+    def handle_starttag(self, tag, attrs):
+        attrs = dict(attrs)
+        if tag == "table":
+            self._table = self.tables.setdefault(attrs.get("id"), [])
+        elif tag == "tr" and self._table is not None:
+            self._row = []
+            self._table.append(self._row)
+        elif tag in ("td", "th") and self._row is not None:
+            self._cell = [attrs.get("data-v"), ""]
+            self._row.append(self._cell)
+            if tag == "th" and attrs.get("tabindex") == "0":
+                self.sortable_headings += 1
+        elif tag == "figure":
+            self._figure = {"kind": attrs.get("data-figure"), "texts": [], "svg": False,
+                            "groups": []}
+            self.figures.append(self._figure)
+        elif tag == "svg" and self._figure is not None:
+            self._figure["svg"] = True
+        elif tag == "text" and self._figure is not None:
+            self._in_text = True
+            self._figure["texts"].append("")
+        elif tag == "g" and self._figure is not None and "data-series" in attrs:
+            self._figure["groups"].append(attrs)
+
+    def handle_endtag(self, tag):
+        if tag == "table":
+            self._table = None
+        elif tag == "tr":
+            self._row = None
+        elif tag in ("td", "th"):
+            self._cell = None
+        elif tag == "figure":
+            self._figure = None
+        elif tag == "text":
+            self._in_text = False
+
+    def handle_data(self, data):
+        if self._cell is not None:
+            self._cell[1] += data
+        if self._in_text and self._figure is not None:
+            self._figure["texts"][-1] += data
+
+
+def parse(html):
+    p = Tables()
+    p.feed(html)
+    return p
+
+
+class ReportTest(unittest.TestCase):
+    """One suite, solution files and report for the whole class (the solver runs are the slow
+    part); each test reads what it needs."""
+
+    @classmethod
+    def setUpClass(cls):
+        if CHROMIUM is None:
+            raise unittest.SkipTest("chromium is not installed")
+        if not os.path.isfile(os.path.join(EXAMPLES, "boa_star")):
+            raise unittest.SkipTest("EXAMPLES (the example solvers' directory) is not set")
+        cls.dir = tempfile.mkdtemp(prefix="mosb-report-")
+        d = cls.dir
+        path = functools.partial(os.path.join, d)
+        run("generate", "grid", "--width", "30", "--height", "30", "--objectives", "3", "-o",
+            path("grid.mosb"))
+        run("generate", "netmaker", "--vertices", "1000", "--amin", "1", "--amax", "10",
+            "--locality", "20", "-o", path("netmaker.mosb"))
+        cls.instances = [path("grid.mosb"), path("netmaker.mosb")]
+        runs = [("grid.mosb", "Grid_2", True)]
+        runs.append(("netmaker.mosb", "NetMaker_3", False))
+        cls.has_arena = os.path.exists(ARENA)
+        if cls.has_arena:
+            with open(path("guards.txt"), "w") as f:
+                f.write("120 100 25\n")  # a passable cell of arena2: exposure within 25 cells
+            run("convert", "guards", "--map", ARENA, "--guards", path("guards.txt"), "-o",
+                path("arena.mosb"))
+            cls.instances.append(path("arena.mosb"))
+            runs.append(("arena.mosb", "Games-GUARDS_2", True))
+        for instance in cls.instances:
+            run("queries", "generate", instance, "--set", "q", "--count", "5", "--seed", "3",
+                "--in-place")
+        cls.boa, cls.namoa = [], []
+        for instance, view, bi_objective in runs:
+            solvers = [("namoa", cls.namoa)] + ([("boa_star", cls.boa)] if bi_objective else [])
+            for solver, files in solvers:
+                out = path("%s-%s.sol" % (solver, instance.split(".")[0]))
+                run("run", path(instance), "--view", view, "--queries", "q", "--solver",
+                    os.path.join(EXAMPLES, solver) +
+                    " {instance} --view {view} --query {source} {target} --protocol",
+                    "--time-limit", "60s", "--memory-limit", "2G", "-o", out)
+                files.append(out)
+        cls.html = path("report.html")
+        cls.report_args = [*cls.instances, "--solutions", *cls.boa, *cls.namoa, "--reference",
+                           *cls.namoa, "--title", "mosb report <test>"]
+        run("report", *cls.report_args, "-o", cls.html, "--latex", path("latex"), "--csv",
+            path("csv"))
+        cls.text = read(cls.html, "r")
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.dir, ignore_errors=True)
+
+    def path(self, name):
+        return os.path.join(self.dir, name)
+
+    # --- the page in the browser ------------------------------------------------------------
+
+    def test_console_error_detection_works(self):
+        """The check below would see an error: a page that throws is caught."""
+        bad = self.path("throws.html")
+        with open(bad, "w") as f:
+            f.write("<!DOCTYPE html><p>x</p><script>throw new Error('boom')</script>")
+        r = chromium("--enable-logging=stderr", "--v=0", "--dump-dom", "file://" + bad)
+        self.assertTrue(console_errors(r.stderr), r.stderr[-2000:])
+
+    def test_page_loads_without_console_errors_and_the_script_runs(self):
+        r = chromium("--enable-logging=stderr", "--v=0", "--dump-dom", "file://" + self.html)
+        self.assertEqual(r.returncode, 0, r.stderr[-2000:])
+        self.assertEqual(console_errors(r.stderr), [])
+        page = parse(r.stdout)
+        # The sorting script made every heading a keyboard-focusable button.
+        headings = sum(len(t[0]) for t in page.tables.values())
+        self.assertGreater(headings, 10)
+        self.assertEqual(page.sortable_headings, headings)
+        self.assertIn("mosb report &lt;test&gt;", r.stdout)
+
+    def test_tables_are_there_without_script(self):
+        # Headless chromium's --dump-dom and --screenshot run script of their own, so they return
+        # nothing with scriptEnabled=false: the page is loaded without its <script> instead, which
+        # is what a browser with script off shows.
+        self.assertEqual(self.text.count("<script>"), 1)
+        copy = self.path("noscript.html")
+        with open(copy, "w", encoding="utf-8") as f:
+            f.write(re.sub(r"<script>.*?</script>", "", self.text, flags=re.S))
+        r = chromium("--dump-dom", "file://" + copy)
+        self.assertEqual(r.returncode, 0, r.stderr[-2000:])
+        page = parse(r.stdout)
+        self.assertEqual(page.sortable_headings, 0)  # the script did not run
+        for table in ("suite-table", "instance-space-table", "comparison-table",
+                      "coverage-table"):
+            self.assertIn(table, page.tables)
+            self.assertGreater(len(page.tables[table]), 1, table)
+        suite = page.tables["suite-table"]
+        headings = [c[1] for c in suite[0]]
+        for column in ("family", "benchmark", "vertices", "arcs", "queries", "timeout",
+                       "front min", "front max", "front mean", "front median",
+                       "median runtime [s]", "max runtime [s]"):
+            self.assertIn(column, headings)
+        rows = {row[1][1]: dict(zip(headings, (c[1] for c in row))) for row in suite[1:]}
+        self.assertEqual(rows["Grid_2"]["vertices"], "902")
+        self.assertEqual(rows["Grid_2"]["queries"], "5")
+        self.assertEqual(rows["Grid_2"]["timeout"], "0")
+        self.assertEqual(rows["NetMaker_3"]["vertices"], "1000")
+        self.assertEqual(rows["Grid_3"]["fronts of"], "-")  # no solver ran Grid_3
+        comparison = page.tables["comparison-table"]
+        self.assertIn("boa_star timeout", [c[1] for c in comparison[0]])
+
+    def test_every_figure_renders(self):
+        page = parse(self.text)
+        kinds = [f["kind"] for f in page.figures]
+        for kind in ("instance-space", "correlation", "degrees", "front", "cactus", "profile",
+                     "scatter", "coverage"):
+            self.assertIn(kind, kinds)
+        if self.has_arena:
+            (game_map,) = [f for f in page.figures if f["kind"] == "map"]
+            self.assertIn("start (query number)", game_map["texts"])
+            self.assertIn("1 square: 2x2 cells", game_map["texts"])  # 281 x 209 cells
+            # Each drawn query's start and goal labelled with its number.
+            numbers = [t for t in game_map["texts"] if t.isdigit()]
+            self.assertEqual(len(numbers), 6, game_map["texts"])
+        for f in page.figures:
+            self.assertTrue(f["svg"], f["kind"])
+            self.assertTrue(any(t.strip() for t in f["texts"]), f["kind"])
+        # Each figure alone, as an image (an XML error leaves it blank), on one page of tiles.
+        svgs = re.findall(r"<svg .*?</svg>", self.text, re.S)
+        self.assertEqual(len(svgs), len(page.figures))
+        tile_w, tile_h, columns = 240, 150, 6
+        rows = (len(svgs) + columns - 1) // columns
+        tiles = self.path("tiles.html")
+        import base64
+        with open(tiles, "w") as out:
+            out.write("<!DOCTYPE html><html><body style='margin:0;background:#fff'>")
+            for k, svg in enumerate(svgs):
+                data = base64.b64encode(svg.encode()).decode()
+                out.write("<img style='position:absolute;left:%dpx;top:%dpx;width:%dpx;height:%dpx;"
+                          "object-fit:contain' src='data:image/svg+xml;base64,%s'>"
+                          % ((k % columns) * tile_w, (k // columns) * tile_h, tile_w - 10,
+                             tile_h - 10, data))
+            out.write("</body></html>")
+        png = self.path("tiles.png")
+        r = chromium("--screenshot=" + png, "--window-size=%d,%d" % (columns * tile_w,
+                                                                      rows * tile_h),
+                     "file://" + tiles)
+        self.assertEqual(r.returncode, 0, r.stderr[-2000:])
+        w, h, channels, pixels = read_png(png)
+        self.assertEqual((w, h), (columns * tile_w, rows * tile_h))
+        for k in range(len(svgs)):
+            x0, y0 = (k % columns) * tile_w, (k // columns) * tile_h
+            coloured = 0
+            for y in range(y0, y0 + tile_h - 10):
+                row = pixels[y]
+                for x in range(x0, x0 + tile_w - 10):
+                    if min(row[x * channels:x * channels + 3]) < 200:
+                        coloured += 1
+            # A blank tile (white: the SVG failed to render) has none; a figure has its frame,
+            # text and marks.
+            self.assertGreater(coloured / ((tile_w - 10) * (tile_h - 10)), 0.02,
+                               "figure %d (%s) rendered blank" % (k, page.figures[k]["kind"]))
+
+    def test_screenshot_of_the_page_is_not_blank(self):
+        png = self.path("page.png")
+        r = chromium("--screenshot=" + png, "--window-size=900,700", "file://" + self.html)
+        self.assertEqual(r.returncode, 0, r.stderr[-2000:])
+        w, h, channels, pixels = read_png(png)
+        dark = sum(1 for row in pixels for x in range(0, w * channels, channels * 4)
+                   if min(row[x:x + 3]) < 128)
+        self.assertGreater(dark, 200)
+
+    # --- what the page says -----------------------------------------------------------------
+
+    def test_instance_space_carries_the_papers_correlations(self):
+        page = parse(self.text)
+        table = page.tables["instance-space-table"]
+        headings = [c[1] for c in table[0]]
+        rows = {row[0][1]: {h: c[0] for h, c in zip(headings, row)} for row in table[1:]}
+        netmaker = [name for name in rows if name.startswith("NetMaker_3, arcs of kind 0")]
+        self.assertEqual(len(netmaker), 1, list(rows))
+        # The Hamiltonian cycle's arcs: the paper's ρ ≈ −0.44 (spec/GENERATORS.md: −0.444).
+        self.assertAlmostEqual(float(rows[netmaker[0]]["ρ mean"]), -0.444, delta=0.06)
+        self.assertAlmostEqual(float(rows[netmaker[0]]["ρ max"]), -0.444, delta=0.08)
+        for grid in ("Grid_2", "Grid_3"):
+            for column in ("ρ min", "ρ max"):
+                self.assertLess(abs(float(rows[grid][column])), 0.08, (grid, rows[grid]))
+        # The figure's own numbers are the table's.
+        (space,) = [f for f in page.figures if f["kind"] == "instance-space"]
+        groups = {g["data-series"]: [float(v) for v in g["data-rho"].split(",")]
+                  for g in space["groups"]}
+        self.assertEqual(len(groups[netmaker[0]]), 3)
+        for rho in groups[netmaker[0]]:
+            self.assertAlmostEqual(rho, -0.444, delta=0.08)
+        self.assertEqual(len(groups["Grid_3"]), 3)
+
+    def test_fronts_are_projections_and_self_contained(self):
+        page = parse(self.text)
+        fronts = [f for f in page.figures if f["kind"] == "front"]
+        texts = [t for f in fronts for t in f["texts"]]
+        self.assertIn("projection on c1, c3 of 3 objectives", texts)  # NetMaker_3
+        # No network: the only URL is the SVG namespace.
+        self.assertEqual(set(re.findall(r"https?://[^\"' )]*", self.text)),
+                         {"http://www.w3.org/2000/svg"})
+        self.assertNotIn("<link", self.text)
+        self.assertNotIn(" src=", self.text)
+        self.assertLess(len(self.text), 2_000_000)
+
+    def test_same_inputs_same_bytes_and_thinning(self):
+        again = self.path("again.html")
+        run("report", *self.report_args, "-o", again)
+        self.assertEqual(read(again), read(self.html))
+        thin = self.path("thin.html")
+        run("report", *self.report_args, "--max-points", "2", "-o", thin)
+        self.assertRegex(read(thin, "r"), r">showing [0-9]+ of [0-9]+<")
+        # A size limit thins the fronts until the page fits, and refuses a page that cannot.
+        limit = len(self.text) * 3 // 4
+        small = self.path("small.html")
+        run("report", *self.report_args, "--max-size", str(limit), "-o", small)
+        self.assertLessEqual(len(read(small)), limit)
+        self.assertRegex(read(small, "r"), r">showing [0-9]+ of [0-9]+<")
+        r = mosbtest.run("report", *self.report_args, "--max-size", "1000", "-o", small + "2")
+        self.assertEqual(r.returncode, 1, r.stderr)
+        self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+        self.assertIn("over the limit of 1000 bytes", r.stderr)
+        self.assertFalse(os.path.exists(small + "2"))
+
+    def test_every_figure_alone_as_pdf(self):
+        figures = self.path("figures")
+        run("report", *self.report_args, "-o", self.path("with-figures.html"), "--figures",
+            figures, "--figure-format", "pdf")
+        files = sorted(os.listdir(figures))
+        self.assertEqual(len(files), len(parse(self.text).figures))
+        self.assertEqual(files[0], "01-instance-space.pdf")
+        if shutil.which("pdfinfo"):
+            info = subprocess.run(["pdfinfo", os.path.join(figures, files[-1])],
+                                  capture_output=True, text=True)
+            self.assertEqual(info.returncode, 0, info.stderr)
+            self.assertIn("Pages:           1", info.stdout)
+
+    def test_chosen_queries(self):
+        chosen = self.path("chosen.html")
+        run("report", *self.report_args, "--queries", "1,99", "-o", chosen)
+        page = parse(read(chosen, "r"))
+        titles = {t for f in page.figures if f["kind"] == "front" for t in f["texts"][:1]}
+        self.assertIn("Grid_2, query 1 of q on %s" % self.instances[0], titles)
+        self.assertFalse(any("query 0 of" in t or "query 99" in t for t in titles), titles)
+        self.assertIn("Query 99: not a solved query with a front in", read(chosen, "r"))
+        r = mosbtest.run("report", *self.report_args, "--queries", "1,x", "-o", chosen + "2")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("--queries: 'x' is not a query number", r.stderr)
+
+    def test_latex_and_csv_tables(self):
+        tex = read(self.path("latex/suite.tex"), "r")
+        self.assertIn("\\toprule", tex)
+        self.assertIn("Grid\\_2", tex)
+        self.assertIn("\\toprule", read(self.path("latex/comparison.tex"), "r"))
+        csv = read(self.path("csv/suite.csv"), "r")
+        self.assertTrue(csv.startswith("family,benchmark,instances,vertices,arcs"), csv[:80])
+        self.assertIn("covered@0.05", read(self.path("csv/coverage.csv"), "r"))
+
+    def test_bad_inputs_one_line_no_output(self):
+        out = self.path("bad.html")
+        damaged = self.path("damaged.mosb")
+        data = bytearray(read(self.instances[0]))
+        data[len(data) // 2] ^= 0xFF
+        with open(damaged, "wb") as f:
+            f.write(data)
+        other = self.path("other.mosb")
+        run("generate", "grid", "--width", "5", "--height", "5", "-o", other)
+        damaged_sol = self.path("damaged.sol")
+        data = bytearray(read(self.namoa[0]))
+        data[-1] ^= 0xFF
+        with open(damaged_sol, "wb") as f:
+            f.write(data)
+        for args, message in (
+                ([damaged], "damaged.mosb"),
+                ([self.instances[0], "--solutions", damaged_sol], "damaged.sol: header checksum mismatch"),
+                ([other, "--solutions", self.namoa[0]], "none of the report's instances"),
+                ([self.instances[0], "--solutions", self.namoa[0], self.namoa[0]],
+                 "a second file of solver")):
+            r = mosbtest.run("report", *args, "-o", out)
+            self.assertEqual(r.returncode, 1, r.stderr)
+            self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+            self.assertIn(message, r.stderr)
+            self.assertFalse(os.path.exists(out))
+
+
+if __name__ == "__main__":
+    unittest.main()

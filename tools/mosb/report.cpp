@@ -1,0 +1,154 @@
+// `mosb report`: instances and solution files as one HTML page, and its tables as LaTeX and CSV
+// (spec/EVALUATION.md §7). The page is mosb::pages::make_report's; this file opens the inputs
+// and writes the outputs.
+#include "mosb/report/report.hpp"
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <limits>
+#include <memory>
+#include <sstream>
+
+#include "commands.hpp"
+#include "mosb/atomic_file.hpp"
+#include "mosb/graph_reader.hpp"
+#include "mosb/internal/utf8.hpp"
+#include "mosb/pack.hpp"
+#include "mosb/report/render.hpp"
+#include "mosb/solution_file.hpp"
+
+namespace mosb::cli {
+
+namespace {
+
+struct ReportArgs {
+  std::vector<std::string> instances, solutions, references;
+  std::string queries, epsilons = "0,0.01,0.05,0.1", output, title = "mosb report", latex, csv;
+  std::string figures, figure_format = "svg";
+  std::size_t max_points = 1000, max_size = 5'000'000;
+};
+
+std::vector<std::uint64_t> parse_queries(const std::string& list) {
+  std::vector<std::uint64_t> out;
+  std::stringstream in(list);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    if (item.empty() || item.size() > 19 ||
+        item.find_first_not_of("0123456789") != std::string::npos)
+      throw UsageError("--queries: '" + item + "' is not a query number (0-based)");
+    out.push_back(std::stoull(item));
+  }
+  return out;
+}
+
+// The tables as DIR/NAME.EXT, each written atomically; the directory is made when missing.
+void write_tables(const std::string& directory, const pages::Report& r, bool latex) {
+  std::filesystem::create_directories(directory);
+  const std::pair<const char*, const tables::Table*> all[] = {{"suite", &r.suite},
+                                                              {"instance-space", &r.instance_space},
+                                                              {"comparison", &r.comparison},
+                                                              {"coverage", &r.coverage}};
+  for (const auto& [name, table] : all) {
+    if (table->rows.empty()) continue;
+    std::ostringstream out;
+    if (latex)
+      tables::write_latex(out, *table);
+    else
+      tables::write_csv(out, *table);
+    write_file_atomically(
+        std::filesystem::path(directory) / (std::string(name) + (latex ? ".tex" : ".csv")),
+        out.str());
+  }
+}
+
+int run_report(const ReportArgs& args) {
+  pages::ReportOptions options;
+  options.title = args.title;
+  if (args.max_points == 0) throw UsageError("--max-points: at least 1");
+  options.max_points = args.max_points;
+  options.max_bytes = args.max_size;
+  if (!args.queries.empty()) options.queries = parse_queries(args.queries);
+  options.epsilons = parse_epsilons(args.epsilons);
+  for (const auto& e : options.epsilons) options.epsilon_labels.push_back(e.to_decimal(18));
+  std::vector<std::filesystem::path> inputs;
+  // Every input is opened and checked before anything is written.
+  std::vector<GraphReader> instances;
+  for (const auto& path : args.instances) {
+    instances.push_back(load(path, VerifyLevel::full));
+    inputs.emplace_back(path);
+  }
+  std::vector<SolutionReader> solutions, references;
+  for (const auto& path : args.solutions) {
+    solutions.push_back(SolutionReader::open_verified(path));
+    inputs.emplace_back(path);
+  }
+  for (const auto& path : args.references) {
+    references.push_back(SolutionReader::open_verified(path));
+    inputs.emplace_back(path);
+  }
+  auto result = pages::make_report(instances, solutions, references, options);
+  check_output_is_not_input(args.output, inputs);
+  if (!args.latex.empty()) write_tables(args.latex, result, true);
+  if (!args.csv.empty()) write_tables(args.csv, result, false);
+  if (!args.figures.empty()) {
+    // DIR/NN-KIND.EXT in page order.
+    std::filesystem::create_directories(args.figures);
+    const auto format = *plots::image_format_of("x." + args.figure_format);
+    for (std::size_t k = 0; k < result.figures.size(); ++k) {
+      char number[32];
+      std::snprintf(number, sizeof number, "%02zu-", k + 1);
+      write_file_atomically(std::filesystem::path(args.figures) /
+                                (number + result.figures[k].kind + "." + args.figure_format),
+                            plots::render_svg(result.figures[k].svg, format, {}));
+    }
+  }
+  write_file_atomically(args.output, result.html);
+  return 0;
+}
+
+}  // namespace
+
+Command add_report(CLI::App& app) {
+  auto args = std::make_shared<ReportArgs>();
+  auto* sub = app.add_subcommand(
+      "report",
+      "Write instances and solvers' solution files as one self-contained HTML page: the suite "
+      "table, the instance space, per benchmark its figures and fronts, the solvers' comparison");
+  sub->add_option("INSTANCES", args->instances, "the instances (.mosb, packed or not)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  sub->add_option("--solutions", args->solutions,
+                  "solvers' solution files, each bound to one of the instances")
+      ->check(CLI::ExistingFile);
+  sub->add_option("--reference", args->references,
+                  "reference solution files (at most one per instance, view and query set)")
+      ->check(CLI::ExistingFile);
+  sub->add_option("--queries", args->queries,
+                  "comma-separated query numbers whose fronts are drawn (default: the smallest, "
+                  "median and largest solved front of each benchmark)");
+  sub->add_option("--eps", args->epsilons, "comma-separated ε of the ε-coverage (with --reference)")
+      ->capture_default_str();
+  sub->add_option("--title", args->title, "the page's title")
+      ->check(printable_text())
+      ->capture_default_str();
+  sub->add_option("--max-points", args->max_points,
+                  "vectors drawn per front and set, past which it is thinned (extremes kept)")
+      ->check(unsigned_integer(1000000))
+      ->capture_default_str();
+  sub->add_option("--max-size", args->max_size,
+                  "the page's largest size in bytes: fronts are thinned further to stay under it")
+      ->check(unsigned_integer(std::numeric_limits<std::size_t>::max()))
+      ->capture_default_str();
+  add_output_option(sub, args->output, "the HTML file to write")->required();
+  sub->add_option("--latex", args->latex,
+                  "also write the tables as LaTeX booktabs tabulars into this directory");
+  sub->add_option("--csv", args->csv, "also write the tables as CSV into this directory");
+  sub->add_option("--figures", args->figures,
+                  "also write every figure alone into this directory (NN-KIND.svg|pdf|png)");
+  sub->add_option("--figure-format", args->figure_format, "the format of --figures' files")
+      ->check(CLI::IsMember({"svg", "pdf", "png"}))
+      ->capture_default_str();
+  return {sub, [args] { return run_report(*args); }};
+}
+
+}  // namespace mosb::cli
