@@ -90,8 +90,8 @@ struct MapPlot {
 std::string plot_map(const MapPlot& plot);
 // The map drawn with squares of k x k cells so no side has more than `max_side` squares (k = 1:
 // unchanged): a square is passable when at least half of its cells are (a randomly blocked map
-// keeps its texture), its exposure the highest of its passable cells; paths and markers are scaled with it. Keeps a 1024 x 1024 map a figure of tens,
-// not thousands, of kB.
+// keeps its texture), its exposure the highest of its passable cells; paths and markers are scaled
+// with it. Keeps a 1024 x 1024 map a figure of tens, not thousands, of kB.
 MapPlot coarsen_map(const MapPlot& plot, std::uint32_t max_side);
 
 // The paper's instance-space figure: one series per benchmark at its number of objectives d
