@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <string_view>
@@ -34,6 +35,11 @@ class JsonWriter {
   // JSON has no NaN or infinity: null.
   JsonWriter& value(double v) { return scalar(std::isfinite(v) ? Json(v) : Json(nullptr)); }
   JsonWriter& null() { return scalar(Json(nullptr)); }
+  // An absent value is null.
+  template <class T>
+  JsonWriter& value(const std::optional<T>& v) {
+    return v ? value(*v) : null();
+  }
 
  private:
   // Places v inside the innermost open container (under the pending key of an object) and returns

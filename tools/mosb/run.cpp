@@ -338,22 +338,10 @@ int run_slurm_new(const RunArgs& a) {
     json.key("script").value(run.directory + "/run.sbatch");
     json.key("queries").value(run.queries);
     json.key("shards").value(run.shards);
-    json.key("time");
-    if (time)
-      json.value(slurm_time_text(*time));
-    else
-      json.null();
-    json.key("mem_mib");
-    if (mib)
-      json.value(*mib);
-    else
-      json.null();
+    json.key("time").value(time ? std::optional(slurm_time_text(*time)) : std::nullopt);
+    json.key("mem_mib").value(mib);
     json.key("sbatch").value(sbatch_command_text(run, all));
-    json.key("job");
-    if (job)
-      json.value(*job);
-    else
-      json.null();
+    json.key("job").value(job);
     json.end_object();
     return 0;
   }
@@ -433,11 +421,7 @@ void print_status_json(const SlurmRun& run, const SlurmStatus& status,
       json.null();
     else
       json.value(sbatch_command_text(run, *resubmitted));
-    json.key("job");
-    if (job)
-      json.value(*job);
-    else
-      json.null();
+    json.key("job").value(job);
   }
   json.end_object();
 }

@@ -69,23 +69,6 @@ ParsedOutput read_protocol_output(const SolverOutputFiles& files) {
   return out;
 }
 
-std::optional<Shard> parse_shard(std::string_view text) {
-  const auto slash = text.find('/');
-  if (slash == std::string_view::npos) return std::nullopt;
-  const auto number = [](std::string_view digits) -> std::optional<std::uint64_t> {
-    if (digits.empty() || digits.size() > 9) return std::nullopt;
-    std::uint64_t value = 0;
-    for (const char c : digits) {
-      if (c < '0' || c > '9') return std::nullopt;
-      value = value * 10 + static_cast<std::uint64_t>(c - '0');
-    }
-    return value;
-  };
-  const auto index = number(text.substr(0, slash)), count = number(text.substr(slash + 1));
-  if (!index || !count || *index < 1 || *index > *count) return std::nullopt;
-  return Shard{*index, *count};
-}
-
 std::string journal_path(const std::string& output) {
   return output + ".journal";
 }

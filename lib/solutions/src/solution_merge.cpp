@@ -31,31 +31,15 @@ std::string objectives_of(const SolutionReader& r) {
   return text;
 }
 
-// A decimal number of at most 9 digits, or nullopt.
-std::optional<std::uint64_t> small_number(std::string_view digits) {
-  if (digits.empty() || digits.size() > 9) return std::nullopt;
-  std::uint64_t value = 0;
-  for (const char c : digits) {
-    if (c < '0' || c > '9') return std::nullopt;
-    value = value * 10 + static_cast<std::uint64_t>(c - '0');
-  }
-  return value;
-}
-
-// (i, N) of the metadata's run.shard "i/N", nullopt without one; throws when it is malformed.
-std::optional<std::pair<std::uint64_t, std::uint64_t>> shard_of(const SolutionReader& r,
-                                                                const std::string& name) {
+// The metadata's run.shard, nullopt without one; throws when it is malformed.
+std::optional<Shard> shard_of(const SolutionReader& r, const std::string& name) {
   const auto text = r.metadata().get("solution.solver.param." + std::string(kShardKey));
   if (!text) return std::nullopt;
-  const auto slash = text->find('/');
-  const auto i = small_number(std::string_view(*text).substr(0, slash));
-  const auto n = slash == std::string::npos
-                     ? std::nullopt
-                     : small_number(std::string_view(*text).substr(slash + 1));
-  if (!i || !n || *i < 1 || *i > *n)
+  const auto shard = parse_shard(*text);
+  if (!shard)
     throw SolutionMergeConflict(name + ": solution.solver.param.run.shard '" + *text +
                                 "' is not i/N with 1 <= i <= N");
-  return std::make_pair(*i, *n);
+  return shard;
 }
 
 // Every distinct value, sorted, joined by " | ".
@@ -66,6 +50,23 @@ std::string joined(const std::set<std::string>& values) {
 }
 
 }  // namespace
+
+std::optional<Shard> parse_shard(std::string_view text) {
+  const auto slash = text.find('/');
+  if (slash == std::string_view::npos) return std::nullopt;
+  const auto number = [](std::string_view digits) -> std::optional<std::uint64_t> {
+    if (digits.empty() || digits.size() > 9) return std::nullopt;
+    std::uint64_t value = 0;
+    for (const char c : digits) {
+      if (c < '0' || c > '9') return std::nullopt;
+      value = value * 10 + static_cast<std::uint64_t>(c - '0');
+    }
+    return value;
+  };
+  const auto index = number(text.substr(0, slash)), count = number(text.substr(slash + 1));
+  if (!index || !count || *index < 1 || *index > *count) return std::nullopt;
+  return Shard{*index, *count};
+}
 
 std::span<const std::string_view> merge_lenient_parameters() {
   return kLenient;
@@ -150,24 +151,24 @@ SolutionMerge::SolutionMerge(std::span<const std::filesystem::path> paths)
         throw SolutionMergeConflict(name + ": differs from " + first_name + " in " + *why);
       if (shard.has_value() != st.shards.has_value())
         throw SolutionMergeConflict(
-            shard ? name + ": is shard " + std::to_string(shard->first) + "/" +
-                        std::to_string(shard->second) + ", but " + first_name + " is no shard"
+            shard ? name + ": is shard " + std::to_string(shard->index) + "/" +
+                        std::to_string(shard->count) + ", but " + first_name + " is no shard"
                   : name + ": is no shard (no run.shard), but " + first_name + " is one of " +
                         std::to_string(*st.shards));
-      if (shard && shard->second != *st.shards)
-        throw SolutionMergeConflict(name + ": is shard " + std::to_string(shard->first) + "/" +
-                                    std::to_string(shard->second) + ", but " + first_name +
+      if (shard && shard->count != *st.shards)
+        throw SolutionMergeConflict(name + ": is shard " + std::to_string(shard->index) + "/" +
+                                    std::to_string(shard->count) + ", but " + first_name +
                                     " is one of " + std::to_string(*st.shards) + " shards");
     } else {
       st.owner.assign(r.query_count(), -1);
-      if (shard) st.shards = shard->second;
+      if (shard) st.shards = shard->count;
     }
     if (shard) {
-      input.shard = shard->first;
-      const auto [it, fresh] = shard_files.emplace(shard->first, k);
+      input.shard = shard->index;
+      const auto [it, fresh] = shard_files.emplace(shard->index, k);
       if (!fresh)
-        throw SolutionMergeConflict(name + ": is shard " + std::to_string(shard->first) + "/" +
-                                    std::to_string(shard->second) + ", as " +
+        throw SolutionMergeConflict(name + ": is shard " + std::to_string(shard->index) + "/" +
+                                    std::to_string(shard->count) + ", as " +
                                     st.inputs[it->second].file.string() + " is");
     }
     for (std::uint64_t q = 0; q < r.query_count(); ++q) {

@@ -18,6 +18,7 @@
 #include "mosb/process.hpp"
 #include "mosb/query.hpp"
 #include "mosb/solution_file.hpp"
+#include "mosb/solution_merge.hpp"
 #include "mosb/solver_protocol.hpp"
 #include "mosb/views.hpp"
 
@@ -60,19 +61,6 @@ struct QueryRecord {
   std::string message;                   // why a failed query failed
   std::vector<std::string> stderr_tail;  // the solver's last lines of stderr (failed queries)
 };
-
-// Shard i of N (1 <= i <= N): query k of the set belongs to shard (k mod N) + 1 (spec/RUN.md §7).
-struct Shard {
-  std::uint64_t index = 1, count = 1;
-  bool contains(std::uint64_t query) const { return query % count == index - 1; }
-  // The number of queries of a set of `queries` this shard holds.
-  std::uint64_t size(std::uint64_t queries) const {
-    return queries / count + (index - 1 < queries % count ? 1 : 0);
-  }
-  std::string text() const { return std::to_string(index) + "/" + std::to_string(count); }
-};
-// "i/N" with 1 <= i <= N (decimal digits only); nullopt when malformed.
-std::optional<Shard> parse_shard(std::string_view text);
 
 struct RunConfig {
   const GraphReader* instance = nullptr;  // opened by the caller (checksums verified)

@@ -13,12 +13,26 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "mosb/error.hpp"
 #include "mosb/solution_file.hpp"
 
 namespace mosb {
+
+// Shard i of N (1 <= i <= N): query k of the set belongs to shard (k mod N) + 1 (spec/RUN.md §7).
+struct Shard {
+  std::uint64_t index = 1, count = 1;
+  bool contains(std::uint64_t query) const { return query % count == index - 1; }
+  // The number of queries of a set of `queries` this shard holds.
+  std::uint64_t size(std::uint64_t queries) const {
+    return queries / count + (index - 1 < queries % count ? 1 : 0);
+  }
+  std::string text() const { return std::to_string(index) + "/" + std::to_string(count); }
+};
+// "i/N" with 1 <= i <= N (decimal digits only); nullopt when malformed.
+std::optional<Shard> parse_shard(std::string_view text);
 
 // Inputs that do not belong together (another binding, solver or setting; a query in two inputs;
 // a shard twice). The message names the file and what differs.
