@@ -104,8 +104,8 @@ class RunTest(CliTest):
         self.assertNotIn("runtime_seconds", info["statistics"])
         self.assert_no_process_left()
 
-    def test_a_descendant_that_leaves_the_session_is_killed_under_a_cgroup(self):
-        # setsid takes the child out of the solver's session: only the memory group still holds
+    def test_a_descendant_that_leaves_the_process_group_is_killed_under_a_cgroup(self):
+        # setsid takes the child out of the solver's process group: only the memory group holds
         # it, so only cgroup-v1 can promise this (spec/RUN.md §4).
         info, _ = self.one_query("setsid sh -c 'echo $$ >> %s; exec sleep 30' &\n"
                                  "while [ ! -s %s ]; do sleep 0.01; done\necho 1 1\n" %

@@ -129,7 +129,8 @@ std::string describe_measurement(Measurement m) {
            "page cache included; an OOM kill in the group is memory-limit)";
   return time +
          "; memory: RLIMIT_AS per process, and the resident set summed over the solver's "
-         "session polled every 20 ms (peak = largest sum; a sum over the limit is memory-limit)";
+         "process group polled every 20 ms (peak = largest sum; a sum over the limit is "
+         "memory-limit)";
 }
 
 std::string resolve_executable(const std::string& name) {
@@ -179,19 +180,19 @@ void prepare_process_runner() {
 
 namespace {
 
-// What the processes of one session use now: the resident set summed, and the CPU time summed
+// What the processes of one process group use now: the resident set summed, and the CPU time summed
 // with that of the children each has reaped.
-struct SessionUsage {
+struct GroupUsage {
   std::uint64_t rss_bytes = 0;
   double cpu_seconds = 0;
 };
 
 // Called every 20 ms while a solver runs, so it reads each /proc/PID/stat with one read into a
 // stack buffer.
-SessionUsage session_usage(pid_t sid) {
+GroupUsage group_usage(pid_t leader) {
   static const long page = ::sysconf(_SC_PAGESIZE);
   static const double tick = 1.0 / static_cast<double>(::sysconf(_SC_CLK_TCK));
-  SessionUsage usage;
+  GroupUsage usage;
   DIR* proc = ::opendir("/proc");
   if (!proc) return usage;
   char path[300];
@@ -205,19 +206,19 @@ SessionUsage session_usage(pid_t sid) {
     ::close(fd);
     if (size <= 0) continue;
     text[size] = '\0';
-    // After "pid (comm)": field 3 is the state, 6 the session, 14-17 utime stime cutime cstime
-    // (clock ticks), 24 rss (pages).
+    // After "pid (comm)": field 3 is the state, 5 the process group, 14-17 utime stime cutime
+    // cstime (clock ticks), 24 rss (pages).
     const char* field = std::strrchr(text, ')');
     if (!field) continue;
-    long session = -1, rss = 0, ticks = 0;
+    long pgrp = -1, rss = 0, ticks = 0;
     for (int i = 3; i <= 24; ++i) {
       field = std::strchr(field + 1, ' ');
       if (!field) break;
-      if (i == 6) session = std::strtol(field + 1, nullptr, 10);
+      if (i == 5) pgrp = std::strtol(field + 1, nullptr, 10);
       if (i >= 14 && i <= 17) ticks += std::strtol(field + 1, nullptr, 10);
       if (i == 24) rss = std::strtol(field + 1, nullptr, 10);
     }
-    if (session != sid) continue;
+    if (pgrp != leader) continue;
     if (rss > 0) usage.rss_bytes += static_cast<std::uint64_t>(rss) * page;
     if (ticks > 0) usage.cpu_seconds += static_cast<double>(ticks) * tick;
   }
@@ -287,10 +288,12 @@ struct LaunchHeader {
 
 // Where a parked child receives its command: allocated before the fork, since the child of a
 // threaded process must not allocate. A command that does not fit is started unparked.
+// Left uninitialized: only the child writes it, so the parent never touches (or pays for) its
+// pages.
 struct LaunchBuffer {
   static constexpr std::size_t kBytes = std::size_t{256} * 1024, kWords = std::size_t{16} * 1024;
-  std::vector<char> bytes = std::vector<char>(kBytes);
-  std::vector<char*> words = std::vector<char*>(kWords);
+  std::unique_ptr<char[]> bytes{new char[kBytes]};
+  std::unique_ptr<char* []> words { new char*[kWords] };
 };
 
 bool read_exactly(int fd, void* data, std::size_t size) {
@@ -311,15 +314,17 @@ bool read_exactly(int fd, void* data, std::size_t size) {
   ::_exit(127);
 }
 
-// After fork, in the child: only async-signal-safe calls. The child leaves mosb's session (so a
-// Ctrl-C on the terminal reaches mosb alone), joins its memory group, says it is ready, and waits
-// for its command; the group join, which takes milliseconds under cgroup v1, happens while the
-// previous solver still runs.
+// After fork, in the child: only async-signal-safe calls. The child leaves mosb's process group
+// (so a Ctrl-C on the terminal reaches mosb alone, and the tree is killed by its own group), joins
+// its memory group, says it is ready, and waits for its command; the group join, which takes
+// milliseconds under cgroup v1 on a loaded machine, happens while the previous solver still runs.
 [[noreturn]] void parked_child(int command_fd, int mosb_end, int error_fd, int procs_fd, pid_t mosb,
                                LaunchBuffer& buffer) {
   ::close(mosb_end);  // mosb's end closes when mosb ends: an end of file here
-  ::setsid();
-  // A kill -9 of mosb run takes the solver with it (its descendants are left to their session);
+  // A process group, not a session: on Linux a new session is a new scheduler autogroup, which
+  // costs time per query and gives the solver another CPU share than a shell loop gives it.
+  ::setpgid(0, 0);
+  // A kill -9 of mosb run takes the solver with it (its descendants are left to their group);
   // a mosb that ended before the signal was asked for has left this child to another parent.
   ::prctl(PR_SET_PDEATHSIG, SIGKILL, 0, 0, 0);
   if (::getppid() != mosb) ::_exit(127);
@@ -332,20 +337,20 @@ bool read_exactly(int fd, void* data, std::size_t size) {
   const char ready = 1;
   if (::send(command_fd, &ready, 1, MSG_NOSIGNAL) != 1) ::_exit(127);
   LaunchHeader header;
-  if (!read_exactly(command_fd, &header, sizeof header) || header.size > buffer.bytes.size() ||
-      !read_exactly(command_fd, buffer.bytes.data(), header.size))
+  if (!read_exactly(command_fd, &header, sizeof header) || header.size > LaunchBuffer::kBytes ||
+      !read_exactly(command_fd, buffer.bytes.get(), header.size))
     ::_exit(127);  // mosb gave up on this child
-  char* text = buffer.bytes.data();
+  char* text = buffer.bytes.get();
   char* const end = text + header.size;
   std::size_t count = 0;
-  while (text < end && count + 1 < buffer.words.size()) {
+  while (text < end && count + 1 < LaunchBuffer::kWords) {
     buffer.words[count++] = text;
     while (text < end && *text != '\0') ++text;
     ++text;
   }
   if (count < 4) ::_exit(127);
   const char* executable = buffer.words[0];
-  char** argv = buffer.words.data() + 3;
+  char** argv = buffer.words.get() + 3;
   buffer.words[count] = nullptr;
 
   sigset_t none;
@@ -377,17 +382,17 @@ double seconds_of(const timeval& t) {
   return static_cast<double>(t.tv_sec) + t.tv_usec / 1e6;
 }
 
-// Kills everything left of the solver's session and reaps what became ours (subreaper). What
-// left the session but not the group is killed when the group is removed.
-void kill_leftovers(pid_t sid, ProcessOutcome& out) {
+// Kills everything left of the solver's process group and reaps what became ours (subreaper).
+// What left the process group but not the memory group is killed when that group is removed.
+void kill_leftovers(pid_t pgid, ProcessOutcome& out) {
   const auto until = Clock::now() + std::chrono::seconds(5);
   while (true) {
-    ::kill(-sid, SIGKILL);
+    ::kill(-pgid, SIGKILL);
     int status = 0;
     rusage usage{};
-    while (::wait4(-sid, &status, WNOHANG, &usage) > 0)
+    while (::wait4(-pgid, &status, WNOHANG, &usage) > 0)
       out.cpu_seconds += seconds_of(usage.ru_utime) + seconds_of(usage.ru_stime);
-    if (::kill(-sid, 0) != 0 && errno == ESRCH) return;
+    if (::kill(-pgid, 0) != 0 && errno == ESRCH) return;
     if (Clock::now() > until) return;
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
@@ -516,8 +521,8 @@ struct ProcessRunner::Parked {
 namespace {}  // namespace
 
 // The per-job watchdog thread: every 20 ms it checks the running solver against the stop flag,
-// the deadline and (rlimit_poll) the session's resident memory, and kills the tree when one is
-// passed; the job's thread meanwhile sits in a blocking wait4, so a solver's exit costs no more
+// the deadline and (rlimit_poll) the process group's resident memory, and kills the tree when one
+// is passed; the job's thread meanwhile sits in a blocking wait4, so a solver's exit costs no more
 // wake-ups than in a shell.
 struct ProcessRunner::Watch {
   std::mutex mutex;
@@ -535,11 +540,11 @@ struct ProcessRunner::Watch {
   // Under the lock: what to do now for the active solver.
   void check(const std::atomic<bool>& stop, std::unique_lock<std::mutex>& lock) {
     if (!reason && (m == Measurement::rlimit_poll || limits.cpu_seconds > 0)) {
-      const pid_t sid = pid;
+      const pid_t leader = pid;
       lock.unlock();
-      const SessionUsage usage = session_usage(sid);
+      const GroupUsage usage = group_usage(leader);
       lock.lock();
-      if (!active || pid != sid) return;
+      if (!active || pid != leader) return;
       if (m == Measurement::rlimit_poll) {
         peak = std::max(peak, usage.rss_bytes);
         if (limits.memory_bytes != 0 && peak > limits.memory_bytes) reason = Ending::memory_limit;

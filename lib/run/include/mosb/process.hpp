@@ -1,6 +1,6 @@
 // One solver process tree of `mosb run`, limited and measured (spec/RUN.md §4). The solver starts
-// in a session of its own (setsid), so its process group holds the whole tree unless a descendant
-// leaves it; the tree is killed by group (and, under a cgroup, by the cgroup's member list), on a
+// in a process group of its own (setpgid), which holds the whole tree unless a descendant leaves
+// it; the tree is killed by group (and, under a cgroup, by the cgroup's member list), on a
 // limit, on an interrupt and after the solver exits, so nothing it started outlives it.
 #pragma once
 
@@ -21,7 +21,8 @@ enum class Measurement {
   // with a failing solver) is a memory-limit.
   cgroup_v1,
   // RLIMIT_AS per process plus the tree's resident set (/proc/PID/stat of every process of the
-  // solver's session) polled every 20 ms: its largest sum is the peak, a sum over the limit kills.
+  // solver's process group) polled every 20 ms: its largest sum is the peak, a sum over the limit
+  // kills.
   rlimit_poll,
 };
 std::string_view to_string(Measurement m);  // "cgroup-v1", "rlimit-poll"
@@ -36,7 +37,7 @@ struct ProcessLimits {
   double wall_seconds = 0;         // 0: none
   std::uint64_t memory_bytes = 0;  // 0: none (still measured)
   double grace_seconds = 1;        // between SIGTERM and SIGKILL on a timeout
-  // 0: none. User + system time of the solver's session (its live processes and the children
+  // 0: none. User + system time of the solver's process group (its live processes and the children
   // they reaped), polled every 20 ms.
   double cpu_seconds = 0;
 };
