@@ -15,8 +15,11 @@ here, in `downloads/`:
   apply: a two-way ring plus random two-way chords, distances 1..1999, times about 3 x distance
   (the real files are 100+ MB; the commands are the same).
 
-One placeholder is filled in: `DIGEST` in `--expect-digest DIGEST` becomes the digest of what the
-same command writes without that option (what a publisher's MANIFEST would list).
+Two placeholders are filled in: `DIGEST` in `--expect-digest DIGEST` becomes the digest of what the
+same command writes without that option (what a publisher's MANIFEST would list), and the URL
+`https://mosb.example.org/suite/` becomes that of Debian's nginx on 127.0.0.1 (tests/store/nginx.conf,
+a free port, stopped by its PID), serving the scratch directory's `published/`: the README's pull
+goes over HTTP as a user's would.
 
 Blocks in the sections of ELSEWHERE run in other tests or in CI itself; this test checks that each
 still names its commands there, so that a changed block is noticed.
@@ -29,14 +32,18 @@ import random
 import re
 import shlex
 import shutil
+import socket
 import subprocess
 import tempfile
+import time
 import unittest
 
 SOURCE = os.path.abspath(os.environ.get("MOSB_SOURCE_DIR", "."))
 BUILD = os.path.abspath(os.environ.get("MOSB_BUILD_DIR", os.path.join(SOURCE, "build", "release")))
 DATA = os.path.join(SOURCE, "..", "shared", "data")
 NY_QUERIES = os.path.join(DATA, "dimacs-queries", "USA-road-NY-queries")
+NGINX_CONF = os.path.join(SOURCE, "tests", "store", "nginx.conf")
+PUBLISHED_URL = "https://mosb.example.org/suite/"
 
 # Section heading → (file, text it must contain): where that section's commands run.
 ELSEWHERE = {
@@ -105,7 +112,36 @@ class Readme(unittest.TestCase):
                          % (where, script, done.stdout[-3000:], done.stderr[-3000:]))
         return done.stdout
 
+    def serve_published(self):
+        """nginx on a free loopback port serving DIR/published/ at /pub/; returns its URL."""
+        nginx = shutil.which("nginx") or shutil.which("nginx", path="/usr/sbin:/sbin")
+        self.assertIsNotNone(nginx, "nginx is not installed (tools/install-deps.sh installs it)")
+        server = os.path.join(self.dir, ".nginx")
+        os.makedirs(os.path.join(server, "tmp"))
+        os.symlink(os.path.join(self.dir, "published"), os.path.join(server, "www"))
+        with socket.socket() as s:
+            s.bind(("127.0.0.1", 0))
+            port = s.getsockname()[1]
+        with open(NGINX_CONF) as f:
+            conf = f.read().replace("@DIR@", server).replace("@PORT@", str(port))
+        conf = conf.replace("@USER@", "user root;" if os.geteuid() == 0 else "")
+        with open(os.path.join(server, "nginx.conf"), "w") as f:
+            f.write(conf)
+        nginx = subprocess.Popen([nginx, "-p", server, "-e", os.path.join(server, "error.log"),
+                                  "-c", os.path.join(server, "nginx.conf")],
+                                 stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        self.addCleanup(lambda: (nginx.kill(), nginx.wait()))
+        for _ in range(500):
+            self.assertIsNone(nginx.poll(), "nginx ended at its start")
+            try:
+                socket.create_connection(("127.0.0.1", port), timeout=1).close()
+                break
+            except OSError:
+                time.sleep(0.01)
+        return "http://127.0.0.1:%d/pub/" % port
+
     def fill_placeholders(self, text, where):
+        text = text.replace(PUBLISHED_URL, self.url)
         def digest(match):
             line = match.group(0)
             probe = re.sub(r"\s*--expect-digest DIGEST", "", line)
@@ -126,6 +162,7 @@ class Readme(unittest.TestCase):
         write_synthetic_ny(downloads)
         os.makedirs(os.path.join(self.dir, "build"))
         os.symlink(BUILD, os.path.join(self.dir, "build", "release"))
+        self.url = self.serve_published()
         ran = 0
         for heading, line, text in sh_blocks():
             if heading in ELSEWHERE:
