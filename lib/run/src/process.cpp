@@ -287,9 +287,8 @@ struct LaunchHeader {
 };
 
 // Where a parked child receives its command: allocated before the fork, since the child of a
-// threaded process must not allocate. A command that does not fit is started unparked.
-// Left uninitialized: only the child writes it, so the parent never touches (or pays for) its
-// pages.
+// threaded process must not allocate (a command that does not fit is not started), and left
+// uninitialized: only the child writes it, so the parent never touches (or pays for) its pages.
 struct LaunchBuffer {
   static constexpr std::size_t kBytes = std::size_t{256} * 1024, kWords = std::size_t{16} * 1024;
   std::unique_ptr<char[]> bytes{new char[kBytes]};
@@ -449,12 +448,14 @@ struct ProcessRunner::Parked {
     const int fork_error = errno;
     ::close(command[0]);
     ::close(error[1]);
-    command_fd = command[1];
-    error_fd = error[0];
     if (pid < 0) {
+      ::close(command[1]);
+      ::close(error[0]);
       errno = fork_error;
       fail("cannot fork");
     }
+    command_fd = command[1];
+    error_fd = error[0];
   }
   // A child never launched is killed and reaped; a launched one is reaped by run().
   ~Parked() {
