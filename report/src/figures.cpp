@@ -1,5 +1,6 @@
 #include "mosb/report/figures.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -55,6 +56,31 @@ std::size_t index_of(const Point2& cell, std::uint32_t width) {
 
 }  // namespace
 
+std::vector<Point2> parse_guard_cells(std::string_view text, std::uint32_t width,
+                                      std::uint32_t height, const std::string& name) {
+  std::vector<Point2> guards;
+  const auto bad = [&](const std::string& why) {
+    return Error(name + ": metadata map.guards: " + why);
+  };
+  std::size_t at = 0;
+  while (at <= text.size()) {
+    const auto end = std::min(text.find(';', at), text.size());
+    const std::string item(text.substr(at, end - at));
+    // Two runs of 1 to 9 digits around one comma.
+    const auto comma = item.find_first_not_of("0123456789");
+    if (comma == 0 || comma > 9 || comma == std::string::npos || item[comma] != ',' ||
+        item.size() - comma - 1 < 1 || item.size() - comma - 1 > 9 ||
+        item.find_first_not_of("0123456789", comma + 1) != std::string::npos)
+      throw bad("'" + item + "' is not x,y");
+    const unsigned long x = std::stoul(item.substr(0, comma));
+    const unsigned long y = std::stoul(item.substr(comma + 1));
+    if (x >= width || y >= height) throw bad("'" + item + "' lies outside the map");
+    guards.push_back({static_cast<double>(x), static_cast<double>(y)});
+    at = end + 1;
+  }
+  return guards;
+}
+
 MapPlot map_of(const GraphReader& reader, std::string_view exposure_objective) {
   reader.require_verified(VerifyLevel::full, "a map");
   const Grid grid = grid_of(reader);
@@ -64,6 +90,8 @@ MapPlot map_of(const GraphReader& reader, std::string_view exposure_objective) {
   const std::size_t area = std::size_t{plot.width} * plot.height;
   plot.passable.assign(area, false);
   for (const auto& cell : grid.cell) plot.passable[index_of(cell, plot.width)] = true;
+  if (const auto guards = reader.metadata().get("map.guards"))
+    plot.guards = parse_guard_cells(*guards, grid.width, grid.height, reader.display_name());
   const auto objective = reader.find_objective(exposure_objective);
   if (!objective) return plot;
   plot.exposure.assign(area, std::numeric_limits<double>::quiet_NaN());

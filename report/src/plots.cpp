@@ -442,10 +442,18 @@ std::string plot_map(const MapPlot& plot) {
     svg.text(sx + marker + 2, sy - marker, std::to_string(q.query), "start", kMinFontSize);
     svg.text(gx + marker + 2, gy - marker, std::to_string(q.query), "start", kMinFontSize);
   }
+  if (!plot.guards.empty()) {
+    svg.begin_group(R"(class="guards" data-count=")" + std::to_string(plot.guards.size()) + "\"");
+    for (const auto& g : plot.guards)
+      svg.circle(x0 + cell * (g.x + 0.5), y0 + cell * (g.y + 0.5), marker * 0.8, "#000", "#fff",
+                 1.5);
+    svg.end_group();
+  }
   if (!plot.queries.empty()) {
     entries.push_back({'r', kOkabeIto[2], "start (query number)", ""});
     entries.push_back({'r', kOkabeIto[5], "goal", ""});
   }
+  if (!plot.guards.empty()) entries.push_back({'r', "#000", "guard", ""});
   if (plot.block > 1)
     entries.push_back(
         {'-', "",
@@ -494,6 +502,7 @@ MapPlot coarsen_map(const MapPlot& plot, std::uint32_t max_side) {
   }
   for (const auto& q : plot.queries)
     out.queries.push_back({q.query, scale(q.start), scale(q.goal)});
+  for (const auto& g : plot.guards) out.guards.push_back(scale(g));
   return out;
 }
 

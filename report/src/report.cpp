@@ -551,9 +551,13 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
       }
       map = plots::coarsen_map(map, options.max_map_side);
       page.figure("map", plots::plot_map(map),
-                  "Blocked cells dark grey, passable cells shaded by exposure; starts and goals of "
-                  "the queries drawn below. Guard positions are not marked: an instance records "
-                  "each cell's exposure, not where the guards stand.");
+                  map.guards.empty()
+                      ? "Blocked cells dark grey, passable cells shaded by exposure; starts and "
+                        "goals of the queries drawn below. No guard is marked: the instance "
+                        "records each cell's exposure, not where guards stand (converted from an "
+                        "exposure grid, or before mosb 0.2.0 wrote map.guards)."
+                      : "Blocked cells dark grey, passable cells shaded by exposure, guards black "
+                        "dots; starts and goals of the queries drawn below.");
     }
 
     if (!shown) {

@@ -143,6 +143,9 @@ class GuardsCli(CliTest):
         run("convert", "guards", "--map", m, "--guards", g, "-o", out3)
         with open(out, "rb") as f1, open(out3, "rb") as f3:
             self.assertEqual(f1.read(), f3.read())
+        # Where the guards stand, for plots (games.md §5); an exposure grid does not say.
+        self.assertEqual(a.metadata["map.guards"], "0,0;3,2")
+        self.assertNotIn("map.guards", b.metadata)
         # The paper's view name; its query set is the first one added (the paper's random pairs).
         self.assertNotIn("view.Games-GUARDS_2.queries", a.metadata)
         self.assertNotIn("source.param.view.Games-GUARDS_2", a.metadata)

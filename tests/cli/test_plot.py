@@ -118,6 +118,9 @@ class PlotTest(PlotCase):
         self.assertIn("#252525", text)    # blocked cells drawn
         self.assertIn("exposure 1", text)  # the legend's highest exposure
         self.assertIn(">exposure [guards]<", text)  # the objective's unit
+        # The guard is marked where it stands (metadata map.guards), and the legend says so.
+        self.assertIn('class="guards" data-count="1"', text)
+        self.assertIn(">guard<", text)
         share = self.screenshot(svg, 900, 560)
         self.assertGreater(share, 0.3)  # arena2 is mostly blocked
         self.assertLess(share, 0.95)

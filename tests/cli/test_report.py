@@ -298,6 +298,13 @@ class ReportTest(unittest.TestCase):
             self.assertAlmostEqual(rho, -0.444, delta=0.08)
         self.assertEqual(len(groups["Grid_3"]), 3)
 
+    def test_the_guards_map_marks_the_guard(self):
+        if not self.has_arena:
+            self.skipTest("shared/data is absent")
+        # arena2's one guard (guards.txt), from the instance's metadata map.guards.
+        self.assertEqual(self.text.count('class="guards" data-count="1"'), 1)
+        self.assertIn("guards black dots", self.text)
+
     def test_fronts_are_projections_and_self_contained(self):
         page = parse(self.text)
         fronts = [f for f in page.figures if f["kind"] == "front"]

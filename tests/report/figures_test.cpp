@@ -41,4 +41,28 @@ TEST_CASE("map_of: cells, walls and exposure of a GUARDS instance") {
 
   // A reader not verified in full is refused: the map walks the CSR.
   CHECK_THROWS_AS(plots::map_of(GraphReader::open(dir / "g.mosb"), "exposure"), Error);
+  CHECK(plot.guards.empty());  // an exposure grid says nothing of where guards stand
+}
+
+TEST_CASE("map_of: the guards of metadata map.guards, refused when malformed or off the map") {
+  testing::TempDir dir;
+  testing::write_text(dir / "small.map", "type octile\nheight 3\nwidth 4\nmap\n....\n.@..\n....\n");
+  testing::write_text(dir / "g.txt", "0 0\n3 2 1.5\n");
+  converters::GuardsOptions o;
+  o.map_file = (dir / "small.map").string();
+  o.guards_file = (dir / "g.txt").string();
+  auto converted = converters::convert_guards(o);
+  write_graph(converted.graph, dir / "g.mosb");
+  const auto plot = plots::map_of(GraphReader::open(dir / "g.mosb", VerifyLevel::full), "exposure");
+  REQUIRE(plot.guards.size() == 2);
+  CHECK((plot.guards[0].x == 0 && plot.guards[0].y == 0));
+  CHECK((plot.guards[1].x == 3 && plot.guards[1].y == 2));
+  for (const char* bad : {"4,0", "0,3", "1", "1,2,3", "a,1", "1,1;", ",1", "1,"}) {
+    CAPTURE(bad);
+    converted.graph.metadata.set("map.guards", bad);
+    write_graph(converted.graph, dir / "bad.mosb");
+    const auto reader = GraphReader::open(dir / "bad.mosb", VerifyLevel::full);
+    CHECK_THROWS_WITH_AS(plots::map_of(reader, "exposure"),
+                         doctest::Contains("metadata map.guards"), Error);
+  }
 }

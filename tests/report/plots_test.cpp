@@ -178,6 +178,21 @@ TEST_CASE("map legend gives the lowest exposure a colour, and cells of it are sh
     CHECK(has(many, ">exposure " + std::string(v) + "<"));
 }
 
+TEST_CASE("map marks the guards where they stand, also on a coarsened map") {
+  MapPlot p;
+  p.width = 4;
+  p.height = 2;
+  p.passable.assign(8, true);
+  CHECK(!has(plot_map(p), "guards"));
+  p.guards = {{0, 0}, {3, 1}};
+  const auto doc = plot_map(p);
+  CHECK(has(doc, R"(class="guards" data-count="2")"));
+  CHECK(has(doc, ">guard<"));
+  const auto coarse = coarsen_map(p, 2);
+  REQUIRE(coarse.guards.size() == 2);
+  CHECK((coarse.guards[1].x == 1 && coarse.guards[1].y == 0));
+}
+
 TEST_CASE("front legend says what it counts, and coincident vectors are both visible") {
   auto p = small_front();
   p.solver_name = "boa";

@@ -212,17 +212,22 @@ GuardsResult convert_guards(const GuardsOptions& o) {
   auto map = octile::read_map(o.map_file, o.terrain, inputs, 0);
   const auto cells_input = read_text_input(o.exposure_file ? *o.exposure_file : *o.guards_file);
   record_input(inputs, 1, cells_input);
+  std::string guard_cells;  // map.guards: where the guards stand, for plots (games.md §5)
   if (o.exposure_file) {
     r.exposure = parse_exposure(cells_input.text, cells_input.display_name, map.map);
   } else {
-    r.exposure = compute_exposure(
-        map.map, parse_guards(cells_input.text, cells_input.display_name, map.map));
+    const auto guards = parse_guards(cells_input.text, cells_input.display_name, map.map);
+    r.exposure = compute_exposure(map.map, guards);
+    for (const auto& g : guards)
+      guard_cells +=
+          (guard_cells.empty() ? "" : ";") + std::to_string(g.x) + "," + std::to_string(g.y);
   }
   r.graph = build_guards_graph(map.map, r.exposure);
   if (o.exposure_file) r.graph.costs[1].unit = "";
   if (o.scen_file) octile::add_scenario(r.graph, *o.scen_file, map, inputs, 2);
   octile::set_metadata(r.graph.metadata, inputs, map, o.name, "convert guards", o.terrain);
   r.graph.metadata.set("source.param.exposure", o.exposure_file ? "file" : "guards");
+  if (!guard_cells.empty()) r.graph.metadata.set("map.guards", guard_cells);
   r.map = std::move(map.map);
   return r;
 }

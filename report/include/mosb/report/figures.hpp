@@ -18,6 +18,11 @@ namespace mosb::plots {
 // full (its cells and CSR are walked). Throws mosb::Error naming the file when it is not a grid.
 MapPlot map_of(const GraphReader& instance, std::string_view exposure_objective);
 
+// The cells of a metadata value map.guards, "x,y;x,y;..." (spec/families/games.md §5), each on a
+// width x height map; throws mosb::Error "NAME: metadata map.guards: ..." when malformed.
+std::vector<Point2> parse_guard_cells(std::string_view text, std::uint32_t width,
+                                      std::uint32_t height, const std::string& name);
+
 // Adds the paths of query `query`'s front in `solutions` (bound to `instance`, verified) to `map`,
 // as cell sequences. Throws when the file holds no paths, the query is not solved, or a path
 // vertex is not one of the instance's.

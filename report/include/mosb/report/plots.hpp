@@ -85,6 +85,7 @@ struct MapPlot {
   std::vector<double> exposure;            // row-major; NaN = unknown; empty = no shading
   std::vector<std::vector<Point2>> paths;  // cell coordinates (x, y)
   std::vector<MapQuery> queries;           // start and goal markers
+  std::vector<Point2> guards;              // cells where guards stand (metadata map.guards)
   std::uint32_t block = 1;  // cells per drawn square per side (coarsen_map), said in the legend
 };
 std::string plot_map(const MapPlot& plot);
