@@ -130,7 +130,7 @@ class Readme(unittest.TestCase):
         nginx = subprocess.Popen([nginx, "-p", server, "-e", os.path.join(server, "error.log"),
                                   "-c", os.path.join(server, "nginx.conf")],
                                  stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        self.addCleanup(lambda: (nginx.kill(), nginx.wait()))
+        self.addCleanup(self.stop_nginx, nginx)
         for _ in range(500):
             self.assertIsNone(nginx.poll(), "nginx ended at its start")
             try:
@@ -139,6 +139,16 @@ class Readme(unittest.TestCase):
             except OSError:
                 time.sleep(0.01)
         return "http://127.0.0.1:%d/pub/" % port
+
+    @staticmethod
+    def stop_nginx(nginx):
+        """SIGTERM: the master stops its workers (a SIGKILL would leave them running)."""
+        nginx.terminate()
+        try:
+            nginx.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            nginx.kill()
+            nginx.wait()
 
     def fill_placeholders(self, text, where):
         text = text.replace(PUBLISHED_URL, self.url)
