@@ -114,7 +114,8 @@ class NotARegularFile(GridTest):
 
 
 class SolutionCommandsBadInput(GridTest):
-    """Every input of `solutions import|export|inspect|verify`, `eval` and `plot *` given as a
+    """Every input of `solutions import|export|inspect|verify|compare|merge`, `eval`, `plot *` and
+    `report` given as a
     damaged (one flipped bit in a section payload), truncated, directory or FIFO file: one line
     naming the file, exit 1 (2 when the option parser refuses it), nothing on stdout, no output
     file, and no blocking on a FIFO."""
@@ -193,6 +194,11 @@ class SolutionCommandsBadInput(GridTest):
             (bad_graph, ["plot", "correlation", bad_graph, "-o", "out"]),
             (bad_graph, ["plot", "map", bad_graph, "-o", "out"]),
             (bad_sol, ["plot", "map", g, "--solutions", bad_sol, "--query", "0", "-o", "out"]),
+            (bad_graph, ["report", bad_graph, "-o", "out"]),
+            (bad_sol, ["report", g, "--solutions", bad_sol, "-o", "out"]),
+            (bad_sol, ["report", g, "--reference", bad_sol, "--solutions", good, "-o", "out"]),
+            (bad_sol, ["solutions", "merge", bad_sol, "-o", "out"]),
+            (bad_sol, ["solutions", "merge", good, bad_sol, "--allow-missing", "-o", "out"]),
         ]
         for path, args in commands:
             with self.subTest(kind=kind, command=" ".join(args)):
