@@ -114,11 +114,10 @@ class NotARegularFile(GridTest):
 
 
 class SolutionCommandsBadInput(GridTest):
-    """Every input of `solutions import|export|inspect|verify|compare|merge`, `eval`, `plot *` and
-    `report` given as a
-    damaged (one flipped bit in a section payload), truncated, directory or FIFO file: one line
-    naming the file, exit 1 (2 when the option parser refuses it), nothing on stdout, no output
-    file, and no blocking on a FIFO."""
+    """Every input of `solutions import|export|inspect|verify|compare|merge`, `eval`, `plot *`
+    and `report` given as a damaged (one flipped bit in a section payload), truncated, directory
+    or FIFO file: one line naming the file, exit 1 (2 when the option parser refuses it), nothing
+    on stdout, no output file, and no blocking on a FIFO."""
 
     def setUp(self):
         super().setUp()
