@@ -6,10 +6,12 @@
 #include <algorithm>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <set>
 #include <string>
 
+#include "file_patch.hpp"
 #include "golden_input.hpp"
 #include "mosb/file_writer.hpp"
 #include "mosb/graph_builder.hpp"
@@ -303,4 +305,127 @@ TEST_CASE("a derived reverse CSR needs a forward CSR that is one") {
                        doctest::Contains("the forward CSR is not one"), Error);
   CHECK_THROWS_AS(unpack_file(dir / "broken.mosb", dir / "out.mosb"), Error);
   CHECK_FALSE(std::filesystem::exists(dir / "out.mosb"));
+}
+
+namespace {
+
+// "ok", or what refused the file: a problem or an Error (its message).
+std::string outcome_of(const std::function<FileVerification()>& check) {
+  try {
+    const auto found = check();
+    return found.problem ? "problem: " + *found.problem : "ok " + found.digest;
+  } catch (const Error& error) {
+    return std::string("error: ") + error.what();
+  }
+}
+
+// verify_file_streaming agrees with verify_file at level full: both pass (with one digest) or both
+// refuse. `budget` small enough spills every large frame and sorts the transpose in many runs.
+void check_streaming_agrees(const std::filesystem::path& file, std::uint64_t budget,
+                            const std::filesystem::path& scratch) {
+  CAPTURE(file);
+  CAPTURE(budget);
+  const auto expected = outcome_of([&] { return verify_file(file, VerifyLevel::full); });
+  const auto streamed = outcome_of(
+      [&] { return verify_file_streaming(file, StreamingVerifyOptions{budget, scratch}); });
+  CAPTURE(expected);
+  CAPTURE(streamed);
+  CHECK(expected.starts_with("ok") == streamed.starts_with("ok"));
+  if (expected.starts_with("ok")) CHECK(expected == streamed);
+  // A refusal names the file, or (a problem, which callers prefix with it) the section or padding.
+  const bool named = streamed.find(file.string()) != std::string::npos ||
+                     streamed.starts_with("problem: section '") ||
+                     streamed.starts_with("problem: [padding]");
+  if (!streamed.starts_with("ok")) CHECK(named);
+}
+
+// A random graph of `n` vertices and `m` arcs with an integer, a float and a fractional cost.
+GraphInput random_graph(std::uint32_t n, std::uint32_t m, std::uint64_t seed) {
+  GraphInput g;
+  g.vertex_count = n;
+  std::uint64_t state = seed;
+  auto next = [&state] {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<std::uint32_t>(state >> 33);
+  };
+  std::vector<std::uint64_t> distance;
+  std::vector<double> time;
+  for (std::uint32_t a = 0; a < m; ++a) {
+    g.tails.push_back(next() % n);
+    // A few heads take many arcs, as hubs do.
+    g.heads.push_back(a % 7 == 0 ? next() % 5 : next() % n);
+    distance.push_back(next() % 100000);
+    time.push_back((next() % 1000) / 8.0);
+  }
+  g.costs.push_back({"distance", "m", distance, {}});
+  g.costs.push_back({"time", "s", time, {}});
+  g.queries.push_back({"default", {{0, n - 1}, {1, 2}}});
+  return g;
+}
+
+}  // namespace
+
+TEST_CASE("verify_file_streaming finds what verify_file finds, in any memory budget") {
+  testing::TempDir dir;
+  std::vector<std::filesystem::path> files;
+  for (const auto& folder :
+       {kGolden / "1.0" / "valid", kGolden / "1.0" / "invalid", kPackedGolden / "valid",
+        kPackedGolden / "invalid", kGolden / "1.2" / "packed" / "valid",
+        kGolden / "1.2" / "packed" / "invalid"})
+    for (const auto& entry : std::filesystem::directory_iterator(folder))
+      if (entry.path().extension() == ".mosb") files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  CHECK(files.size() >= 30);
+  // Large enough that frames stream and spill and the transpose merges many runs at 4 KiB.
+  write_graph(random_graph(30000, 120000, 7), dir / "random.mosb");
+  pack_file(dir / "random.mosb", dir / "random.packed.mosb", PackOptions{3, 1});
+  pack_file(dir / "random.mosb", dir / "random.keep.mosb", [] {
+    auto options = keeping_reverse();
+    options.level = 3;
+    return options;
+  }());
+  for (const auto* name : {"random.mosb", "random.packed.mosb", "random.keep.mosb"})
+    files.push_back(dir / name);
+  for (const auto& file : files)
+    for (const std::uint64_t budget : {std::uint64_t{4096}, std::uint64_t{32} << 20})
+      check_streaming_agrees(file, budget, dir.path());
+  // The budget bounds the work, not the outcome: the same digest at every size.
+  const auto digest = GraphReader::open(dir / "random.mosb").digest();
+  for (const auto* name : {"random.mosb", "random.packed.mosb", "random.keep.mosb"})
+    CHECK(verify_file_streaming(dir / name, {65536, dir.path()}).digest == digest);
+}
+
+TEST_CASE("verify_file_streaming finds a reverse CSR that is not the transpose in every budget") {
+  testing::TempDir dir;
+  write_graph(random_graph(3000, 20000, 11), dir / "plain.mosb");
+  // Two entries of one in-list swapped, every checksum resealed: only the transpose rule fails.
+  auto bytes = testing::read_bytes(dir / "plain.mosb");
+  const auto reader = GraphReader::open(dir / "plain.mosb");
+  const auto roff = reader.reverse_offsets();
+  std::uint64_t v = 0;
+  while (roff[v + 1] - roff[v] < 2) ++v;
+  const auto arcs = testing::find_entry(bytes, "reverse_arcs");
+  const auto sources = testing::find_entry(bytes, "reverse_sources");
+  const auto j = roff[v];
+  const auto ra = reader.reverse_arcs();
+  const auto rs = reader.reverse_sources();
+  testing::poke<std::uint32_t>(bytes, arcs, j, ra[j + 1]);
+  testing::poke<std::uint32_t>(bytes, arcs, j + 1, ra[j]);
+  testing::poke<std::uint32_t>(bytes, sources, j, rs[j + 1]);
+  testing::poke<std::uint32_t>(bytes, sources, j + 1, rs[j]);
+  testing::reseal_section(bytes, arcs);
+  testing::reseal_section(bytes, sources);
+  testing::write_bytes(dir / "swapped.mosb", bytes);
+  const auto found = verify_file(dir / "swapped.mosb", VerifyLevel::full);
+  REQUIRE(found.problem);
+  CHECK(found.problem->find("reverse-transpose") != std::string::npos);
+  pack_file(dir / "plain.mosb", dir / "keep.mosb", keeping_reverse());
+  for (const std::uint64_t budget : {std::uint64_t{4096}, std::uint64_t{65536}, std::uint64_t{32} << 20}) {
+    CAPTURE(budget);
+    const auto streamed = verify_file_streaming(dir / "swapped.mosb", {budget, dir.path()});
+    REQUIRE(streamed.problem);
+    CHECK(streamed.problem->find("[reverse-transpose] entry " + std::to_string(j)) !=
+          std::string::npos);
+    CHECK_FALSE(verify_file_streaming(dir / "keep.mosb", {budget, dir.path()}).problem);
+  }
 }

@@ -92,6 +92,16 @@ CLI::Option* add_max_memory_option(CLI::App* subcommand, std::uint64_t& max_memo
       ->capture_default_str();
 }
 
+CLI::Option* add_check_memory_option(CLI::App* subcommand, std::uint64_t& check_memory) {
+  return subcommand
+      ->add_option("--check-memory", check_memory,
+                   "the working memory of each file's check (bytes, or 16M: powers of 1024), "
+                   "whatever the file's size: more spills to a temporary file in the store")
+      ->transform(CLI::AsSizeValue(false))
+      ->check(CLI::Range(std::uint64_t{4096}, UINT64_MAX))
+      ->capture_default_str();
+}
+
 CLI::Option* add_id_base_option(CLI::App* subcommand, unsigned& id_base,
                                 const std::string& default_text) {
   return subcommand

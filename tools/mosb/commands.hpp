@@ -77,6 +77,8 @@ void add_json_flag(CLI::App* subcommand, bool& json);
 // memory the system reports available. A file that would need more is refused before anything
 // is allocated (mosb::unpack_bytes).
 CLI::Option* add_max_memory_option(CLI::App* subcommand, std::uint64_t& max_memory);
+// --check-memory: the working memory of each file's check as a store takes it in.
+CLI::Option* add_check_memory_option(CLI::App* subcommand, std::uint64_t& check_memory);
 
 // `--id-base 0|1`, the same everywhere: the id of the first vertex in the text files a command
 // reads or writes (the instance itself is always 0-based). `default_text` says what applies

@@ -37,6 +37,7 @@ struct StoreArgs {
   bool unpack = false;
   bool dry_run = false;
   unsigned stall_timeout = PullOptions{}.stall_timeout_seconds;
+  std::uint64_t check_memory = StreamingVerifyOptions{}.memory;
 };
 
 void write_entry(JsonWriter& json, const ManifestEntry& e) {
@@ -84,6 +85,7 @@ int run_add(const StoreArgs& a) {
   std::vector<std::filesystem::path> files(a.files.begin(), a.files.end());
   Store::AddOptions options;
   options.move = a.move;
+  options.check_memory = a.check_memory;
   options.progress = progress.callback();
   if (a.pack)
     options.pack = PackOptions{a.level, std::max(1U, std::thread::hardware_concurrency())};
@@ -194,6 +196,7 @@ int run_pull(const StoreArgs& a) {
   options.unpack = a.unpack;
   options.dry_run = a.dry_run;
   options.stall_timeout_seconds = a.stall_timeout;
+  options.check_memory = a.check_memory;
   const auto result = [&] {
     TerminalProgress progress;  // its line ends before the report is printed
     options.progress = progress.bytes_callback();
@@ -336,6 +339,7 @@ Command add_store(CLI::App& app) {
   directory(add);
   add->add_option("FILE", args->files, "the .mosb files to add")->required();
   add->add_flag("--move", args->move, "move the files instead of copying them");
+  add_check_memory_option(add, args->check_memory);
   add->add_flag("--pack", args->pack, "store each unpacked file packed (as mosb pack does)");
   add->add_option("--level", args->level,
                   "zstd level for --pack (fixed, so the bytes are reproducible)")
@@ -389,6 +393,7 @@ Command add_store(CLI::App& app) {
       ->check(unsigned_integer(86400))
       ->check(CLI::Range(1, 86400))
       ->capture_default_str();
+  add_check_memory_option(pull_command, args->check_memory);
   add_json_flag(pull_command, args->json);
   return group(store, {{init, [args] { return run_init(*args); }},
                        {pull_command, [args] { return run_pull(*args); }},

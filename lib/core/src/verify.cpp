@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "mosb/internal/hex.hpp"
+#include "mosb/internal/verify_rules.hpp"
 #include "mosb/internal/xxh3.hpp"
 
 namespace mosb {
@@ -25,43 +26,14 @@ std::optional<VerifyLevel> parse_verify_level(std::string_view text) {
   return std::nullopt;
 }
 
-namespace {
+namespace rules {
 
-using Problem = std::optional<std::string>;
-
-// The sequential scans below vectorize; on x86-64 each is also built for AVX2 and picked at run
-// time (twice the width of the baseline's SSE2: the FLA-size file's structure pass, 2.0 -> 1.4 ms
-// before the transpose).
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#define MOSB_SCAN_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define MOSB_SCAN_CLONES
-#endif
-
-std::string in_section(const Section& s, std::string_view rule, const std::string& detail) {
-  return "section '" + s.name + "': [" + std::string(rule) + "] " + detail;
-}
-
-Problem checksum_problem(const Section& s, std::uint64_t computed) {
-  if (computed != s.entry.checksum)
-    return in_section(
-        s, "checksum",
-        "mismatch (stored " + hex64(s.entry.checksum) + ", computed " + hex64(computed) + ")");
-  return std::nullopt;
-}
-
-Problem check_checksum(const Section& s) {
-  return checksum_problem(s, XXH3_64bits(s.stored.data(), s.stored.size()));
-}
-
-// Branch-free scans, without a message: they vectorize.
 MOSB_SCAN_CLONES bool offsets_ascend(std::span<const std::uint64_t> offsets) {
   bool decreases = false;
   for (std::size_t v = 0; v + 1 < offsets.size(); ++v) decreases |= offsets[v] > offsets[v + 1];
   return !decreases;
 }
 
-// An OR of comparisons, not an unsigned maximum, which plain x86-64 cannot vectorize.
 MOSB_SCAN_CLONES bool ids_below(std::span<const std::uint32_t> ids, std::uint64_t n) {
   if (n > UINT32_MAX) return true;
   const auto limit = static_cast<std::uint32_t>(n);
@@ -70,26 +42,37 @@ MOSB_SCAN_CLONES bool ids_below(std::span<const std::uint32_t> ids, std::uint64_
   return out_of_range == 0;
 }
 
-Problem check_offsets(const Section& s, std::span<const std::uint64_t> offsets) {
+Problem check_offsets(const Section& s, std::span<const std::uint64_t> offsets,
+                      std::uint64_t first) {
   if (offsets_ascend(offsets)) return std::nullopt;
   for (std::size_t v = 0; v + 1 < offsets.size(); ++v)
     if (offsets[v] > offsets[v + 1])
       return in_section(s, "offsets-monotonic",
-                        "offsets decrease at vertex " + std::to_string(v) + " (" +
+                        "offsets decrease at vertex " + std::to_string(first + v) + " (" +
                             std::to_string(offsets[v]) + " > " + std::to_string(offsets[v + 1]) +
                             ")");
   return std::nullopt;
 }
 
 Problem check_ids(const Section& s, std::span<const std::uint32_t> ids, std::uint64_t n,
-                  std::string_view rule, std::string_view what) {
+                  std::string_view rule, std::string_view what, std::uint64_t first) {
   if (ids_below(ids, n)) return std::nullopt;
   for (std::size_t i = 0; i < ids.size(); ++i)
     if (ids[i] >= n)
       return in_section(s, rule,
-                        std::string(what) + " " + std::to_string(i) + " is vertex " +
+                        std::string(what) + " " + std::to_string(first + i) + " is vertex " +
                             std::to_string(ids[i]) + ", not below n = " + std::to_string(n));
   return std::nullopt;
+}
+
+}  // namespace rules
+
+namespace {
+
+using namespace rules;
+
+Problem check_checksum(const Section& s) {
+  return checksum_problem(s, XXH3_64bits(s.stored.data(), s.stored.size()));
 }
 
 // A section's checksum and a rule over its elements in one pass, 64 KiB at a time, so the rule
@@ -200,24 +183,6 @@ Problem check_transpose(const Csr& c, std::uint64_t first, std::uint64_t last) {
   return std::nullopt;
 }
 
-// Float costs (rules cost-*, "arc 3 costs ...") and query references (reference-*, "query 3 has
-// ...") are finite and >= 0.
-template <class T>
-Problem check_float_values(const Section& s, std::span<const T> values, std::string_view rule,
-                           std::string_view row, std::string_view verb) {
-  bool all_good = true;
-  for (const T value : values) all_good &= std::isfinite(value) & (value >= 0);
-  if (all_good) return std::nullopt;
-  for (std::size_t a = 0; a < values.size(); ++a) {
-    const bool finite = std::isfinite(values[a]);
-    if (!finite || values[a] < 0)
-      return in_section(s, std::string(rule) + (finite ? "-nonnegative" : "-finite"),
-                        std::string(row) + " " + std::to_string(a) + " " + std::string(verb) + " " +
-                            std::to_string(values[a]));
-  }
-  return std::nullopt;
-}
-
 // Every query set carrying a reference names, in `queries.<set>.reference.objective`, the cost
 // section its values refer to (spec/SOLUTIONS.md §6).
 std::optional<std::string> find_reference_problem(const GraphReader& reader,
@@ -248,16 +213,7 @@ Problem check_metadata(const GraphReader& reader) {
     if (what.starts_with(prefix)) what = what.substr(prefix.size());
     return in_section(metadata_section, "metadata", what);
   }
-  std::vector<std::string> objectives, query_sets;
-  for (const auto* s : reader.all(SectionKind::cost)) objectives.push_back(s->name);
-  for (const auto* s : reader.all(SectionKind::queries)) query_sets.push_back(s->name);
-  if (auto problem = find_view_problem(*metadata, objectives, query_sets))
-    return in_section(metadata_section, "metadata-views", *problem);
-  if (auto problem = find_value_problem(*metadata))
-    return in_section(metadata_section, "metadata-values", *problem);
-  if (auto problem = find_reference_problem(reader, *metadata))
-    return in_section(metadata_section, "metadata-reference", *problem);
-  return std::nullopt;
+  return metadata_problem(reader, *metadata);
 }
 
 // Runs every task on up to `threads` threads; results stay in task order, so the first problem
@@ -462,6 +418,20 @@ Problem first_problem(const Plan& plan, const std::vector<Problem>& results, std
 }
 
 }  // namespace
+
+Problem rules::metadata_problem(const GraphReader& reader, const Metadata& metadata) {
+  const Section& metadata_section = *reader.all(SectionKind::metadata).front();
+  std::vector<std::string> objectives, query_sets;
+  for (const auto* s : reader.all(SectionKind::cost)) objectives.push_back(s->name);
+  for (const auto* s : reader.all(SectionKind::queries)) query_sets.push_back(s->name);
+  if (auto problem = find_view_problem(metadata, objectives, query_sets))
+    return in_section(metadata_section, "metadata-views", *problem);
+  if (auto problem = find_value_problem(metadata))
+    return in_section(metadata_section, "metadata-values", *problem);
+  if (auto problem = find_reference_problem(reader, metadata))
+    return in_section(metadata_section, "metadata-reference", *problem);
+  return std::nullopt;
+}
 
 std::optional<std::string> find_padding_problem(const ContainerReader& reader) {
   std::vector<const Section*> by_offset;

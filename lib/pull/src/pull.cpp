@@ -773,14 +773,16 @@ void fetch_entry(Puller& p, Http* http, PulledEntry& pulled) {
   if (r.have() != e.size)
     return refuse(bytes_text(r.have()) + " received, the MANIFEST says " + bytes_text(e.size),
                   false);
-  if (const auto sha = r.sha256(); sha != e.sha256)
-    return refuse("SHA-256 " + sha + ", the MANIFEST says " + e.sha256, false);
+  const auto sha = r.sha256();
+  if (sha != e.sha256) return refuse("SHA-256 " + sha + ", the MANIFEST says " + e.sha256, false);
   r.sync_and_close();
   try {
     Store store = Store::open(p.store);
     Store::AddOptions add;
     add.move = true;
     add.expect = {e};
+    add.sha256 = {sha};  // computed as the bytes arrived: not read again
+    add.check_memory = p.options.check_memory;
     store.add({r.data_path()}, add);
   } catch (const Error& error) {
     return refuse(error.what(), false);

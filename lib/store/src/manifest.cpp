@@ -255,12 +255,12 @@ std::vector<SourceInput> source_inputs(const Metadata& metadata, const std::stri
   return inputs;
 }
 
-ManifestEntry describe_file(const std::filesystem::path& path) {
+ManifestEntry describe_file(const std::filesystem::path& path, std::optional<std::string> sha256) {
   const auto reader = GraphReader::open(path);
   ManifestEntry e;
   e.file = path.filename().string();
   e.size = reader.bytes().size();
-  e.sha256 = sha256_hex(reader.bytes());
+  e.sha256 = sha256 ? std::move(*sha256) : sha256_file(path);
   e.digest = reader.digest();
   e.format_version = std::to_string(reader.header().version_major) + "." +
                      std::to_string(reader.header().version_minor);

@@ -196,6 +196,13 @@ class Staging {
   Staging(const Staging&) = delete;
   Staging& operator=(const Staging&) = delete;
 
+  // Where a check's spill file goes (an unnamed O_TMPFILE: nothing to clean up): DIR/.staging
+  // when it exists, else the store itself; the same file system as the entries.
+  fs::path scratch_directory() const {
+    std::error_code ec;
+    return fs::is_directory(parent_, ec) ? parent_ : parent_.parent_path();
+  }
+
   fs::path file(const std::string& name) {
     // A concurrent add's sweep may remove an empty .staging between its creation and mkdtemp.
     for (int attempt = 0; path_.empty(); ++attempt) {
@@ -392,6 +399,7 @@ struct Placement {
   fs::path source;  // as given
   fs::path from;    // the source, or its packed form in the staging directory
   bool staged = false;
+  bool hashed = false;  // entry.sha256 was computed by the caller as it wrote `from`
 };
 
 // Throws when the file described as `found` is not the entry `expected`, naming what differs.
@@ -409,17 +417,20 @@ void check_expected(const fs::path& source, const ManifestEntry& found,
 }
 
 Placement prepare(const fs::path& source, const Store::AddOptions& options,
-                  const ManifestEntry* expected, Staging& staging) {
-  Placement p{describe_file(source), source, source, false};
+                  const ManifestEntry* expected, const std::string* sha256, Staging& staging) {
+  Placement p{describe_file(source, sha256 ? std::optional(*sha256) : std::nullopt), source, source,
+              false, sha256 != nullptr};
   if (expected != nullptr) check_expected(source, p.entry, *expected);
-  // A packed file is decoded (every frame checked) and verified like any other.
-  const auto reader = p.entry.packed ? mosb::load(source) : GraphReader::open(source);
-  if (const auto problem = mosb::verify(reader, VerifyLevel::full))
-    throw Error(ErrorCode::damaged, source.string() + ": file is damaged: " + *problem);
+  // Packed or not, in working memory that does not grow with the file.
+  const auto found =
+      verify_file_streaming(source, {options.check_memory, staging.scratch_directory()});
+  if (found.problem)
+    throw Error(ErrorCode::damaged, source.string() + ": file is damaged: " + *found.problem);
   if (options.pack && !p.entry.packed) {
     p.from = staging.file(p.entry.file);
     pack_file(source, p.from, *options.pack);
     p.staged = true;
+    p.hashed = false;
     p.entry = describe_file(p.from);
   }
   return p;
@@ -433,7 +444,8 @@ void check_conflicts(const Manifest& manifest, const std::vector<Placement>& pla
                   "'");
 }
 
-void place(const fs::path& directory, const Placement& p, bool move) {
+// True when the file was renamed into place (the bytes checked are the bytes placed).
+bool place(const fs::path& directory, const Placement& p, bool move) {
   const auto target = directory / p.entry.file;
   refuse_symlink(target);
   std::error_code ec;
@@ -441,14 +453,15 @@ void place(const fs::path& directory, const Placement& p, bool move) {
   // by itself (a symlinked source is copied: moving the link would make the entry a link);
   // anything else is copied through a temporary, and a --move source stays until the manifest
   // lists its copy.
-  if (!p.staged && fs::exists(target, ec) && fs::equivalent(target, p.source, ec)) return;
+  if (!p.staged && fs::exists(target, ec) && fs::equivalent(target, p.source, ec)) return false;
   if (p.staged || (move && !fs::is_symlink(fs::symlink_status(p.from, ec)))) {
     fs::rename(p.from, target, ec);
-    if (!ec) return;
+    if (!ec) return true;
   }
   AtomicFile out(target);
   copy_into(p.from, out);
   out.commit();
+  return false;
 }
 
 // Places every file, checks the placed bytes, then replaces the manifest. The caller holds the
@@ -456,15 +469,20 @@ void place(const fs::path& directory, const Placement& p, bool move) {
 Manifest place_all(const fs::path& directory, const Manifest& manifest,
                    const std::vector<Placement>& placements, const Store::AddOptions& options) {
   report(options.progress, "add", 0, placements.size());
+  std::vector<bool> renamed(placements.size());
   for (std::size_t i = 0; i < placements.size(); ++i) {
-    place(directory, placements[i], options.move);
+    renamed[i] = place(directory, placements[i], options.move);
     report(options.progress, "add", i + 1, placements.size());
   }
   // The bytes just placed are the bytes described: a source changed between the check and the
-  // copy is caught here, before the manifest names it.
-  for (const auto& p : placements)
+  // copy is caught here, before the manifest names it. A file the caller hashed as it wrote it and
+  // the store renamed (store pull's own staging) is the inode checked, and needs no second pass.
+  for (std::size_t i = 0; i < placements.size(); ++i) {
+    const auto& p = placements[i];
+    if (p.hashed && renamed[i]) continue;
     if (sha256_file(directory / p.entry.file) != p.entry.sha256)
       throw Error(p.source.string() + ": changed while it was being added");
+  }
   Manifest next = manifest;
   next.legacy = false;
   for (const auto& p : placements) {
@@ -510,6 +528,8 @@ std::vector<ManifestEntry> Store::add(const std::vector<fs::path>& files,
   check_names(files);
   if (!options.expect.empty() && options.expect.size() != files.size())
     throw Error(ErrorCode::invalid_argument, "Store::add: one expected entry per file, or none");
+  if (!options.sha256.empty() && options.sha256.size() != files.size())
+    throw Error(ErrorCode::invalid_argument, "Store::add: one SHA-256 per file, or none");
   sweep_staging(directory_ / kStagingDirectory);
   sweep_empty_cache(directory_ / kCacheDirectory);
   Staging staging(directory_);  // removed, with anything not placed, on every way out
@@ -517,7 +537,8 @@ std::vector<ManifestEntry> Store::add(const std::vector<fs::path>& files,
   for (std::size_t i = 0; i < files.size(); ++i) {
     if (options.pack) report(options.progress, "pack", i, files.size());
     placements.push_back(
-        prepare(files[i], options, options.expect.empty() ? nullptr : &options.expect[i], staging));
+        prepare(files[i], options, options.expect.empty() ? nullptr : &options.expect[i],
+                options.sha256.empty() ? nullptr : &options.sha256[i], staging));
   }
   if (options.pack) report(options.progress, "pack", files.size(), files.size());
   check_conflicts(manifest_, placements);  // refused at once, without waiting for the lock

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "mosb/manifest.hpp"
+#include "mosb/pack.hpp"
 #include "mosb/progress.hpp"
 
 namespace mosb {
@@ -52,6 +53,8 @@ struct PullOptions {
   // timeout, HTTP 5xx, 408, 429). A transfer that moved a resumable file forward does not count.
   unsigned attempts = 6;
   double first_backoff_seconds = 0.5;  // before the first retry; doubled each time, at most 30 s
+  // The working memory of each entry's check (Store::AddOptions::check_memory).
+  std::uint64_t check_memory = StreamingVerifyOptions{}.memory;
   Progress progress;  // stage "pull": bytes in the staging area out of the bytes to fetch
   // Called as each selected entry is settled (fetched, present or refused), one call at a time,
   // with how many are settled and how many were selected. Not called by a dry run.

@@ -59,8 +59,12 @@ void write_manifest(const std::filesystem::path& path, const Manifest& manifest)
 
 // The entry for one mosb file, read from its bytes: opens it (header level), hashes it, and reads
 // its metadata (for a packed file whose metadata cannot be read without unpacking, the
-// metadata-derived fields stay empty). `file` in the entry is the path's base name.
-ManifestEntry describe_file(const std::filesystem::path& path);
+// metadata-derived fields stay empty). `file` in the entry is the path's base name. `sha256`: the
+// file's SHA-256 when the caller already has it (store pull computes it as the bytes arrive);
+// otherwise it is computed from a read of the file, not its mapping, so that hashing a large file
+// takes no memory of its size.
+ManifestEntry describe_file(const std::filesystem::path& path,
+                            std::optional<std::string> sha256 = std::nullopt);
 
 class Metadata;
 // The §7 `source.input.<i>.*` records of an instance, in input order (i = 0, 1, ... until a name

@@ -118,11 +118,18 @@ class Store {
     // SHA-256 and content digest, as a published MANIFEST lists it; `store pull`), else the add
     // is refused before anything is placed. Compared before packing.
     std::vector<ManifestEntry> expect;
+    // Empty, or one SHA-256 per file, in order, that the caller computed over the very bytes it
+    // wrote (store pull, as they arrived): not computed again, and a file the store then renames
+    // into place is not hashed again once placed.
+    std::vector<std::string> sha256;
+    // The working memory of each file's check (verify_file_streaming), whatever the file's size.
+    std::uint64_t check_memory = StreamingVerifyOptions{}.memory;
   };
   // Copies (or moves, or packs) each file in under its base name, each through mosb::AtomicFile,
   // then rewrites the manifest atomically, last. Refused before anything is written: a reserved
   // or invalid base name, two files of one name, a file that does not open as a mosb file or fails
-  // verify --level full (a packed one once decoded), a name already listed with other bytes (the
+  // verify --level full (a packed one decoded; checked by verify_file_streaming, in
+  // `check_memory`, its spill file in DIR/.staging), a name already listed with other bytes (the
   // same bytes again are accepted: a retry after an interrupted add). Files are checked (and
   // packed) first; then, holding the store's StoreLock, the manifest is read again, each file
   // placed and the manifest rewritten, so concurrent adds each see the others' entries. A symlink
