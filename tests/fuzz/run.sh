@@ -37,10 +37,13 @@ run mosb_fuzz_reader "$seconds" "$root"/spec/golden/*/valid/*.mosb "$root"/spec/
 run mosb_fuzz_solutions "$((seconds / 3 > 5 ? seconds / 3 : 5))" "$root"/spec/golden/*/solutions/*/*.mosb
 run mosb_fuzz_unpack "$((seconds / 3 > 5 ? seconds / 3 : 5))" "$root"/spec/golden/*/valid/*.mosb \
   "$root"/spec/golden/*/packed/*/*.mosb
+run mosb_fuzz_streaming_verify "$((seconds / 3 > 5 ? seconds / 3 : 5))" \
+  "$root"/spec/golden/*/valid/*.mosb "$root"/spec/golden/*/invalid/*.mosb \
+  "$root"/spec/golden/*/packed/*/*.mosb
 run mosb_fuzz_c_api "$((seconds / 3 > 5 ? seconds / 3 : 5))" "$root"/spec/golden/*/valid/*.mosb \
   "$root"/spec/golden/*/invalid/*.mosb "$root"/spec/golden/*/packed/*/*.mosb
 for fuzzer in "$bin"/mosb_fuzz_*; do
   target="$(basename "$fuzzer")"
-  [[ "$target" =~ ^mosb_fuzz_(reader|solutions|unpack|c_api)$ ]] && continue
+  [[ "$target" =~ ^mosb_fuzz_(reader|solutions|unpack|streaming_verify|c_api)$ ]] && continue
   run "$target" "$((seconds / 3 > 5 ? seconds / 3 : 5))" "$root"/tests/fuzz/corpus/"$target"/*
 done

@@ -20,6 +20,8 @@
 
 #include "codec.hpp"
 #include "mosb/error.hpp"
+#include "mosb/internal/large_array.hpp"
+#include "mosb/internal/transpose.hpp"
 #include "mosb/internal/verify_rules.hpp"
 #include "mosb/internal/xxh3.hpp"
 #include "mosb/pack.hpp"
@@ -40,31 +42,10 @@ using rules::Problem;
 constexpr std::size_t kChunk = std::size_t{256} << 10;
 constexpr std::size_t kPage = 4096;
 
-// Buffers handed out uninitialized: each is written before it is read, and zeroing what the kernel
-// has just zeroed cost a pass over every decoded byte.
+// Buffers written before they are read: uninitialized, large ones in huge pages (a fault per 4 KiB
+// page cost as much as decoding into it).
 template <class T>
-struct UninitializedAllocator {
-  using value_type = T;
-  UninitializedAllocator() = default;
-  template <class U>
-  UninitializedAllocator(const UninitializedAllocator<U>&) noexcept {}
-  T* allocate(std::size_t n) { return std::allocator<T>().allocate(n); }
-  void deallocate(T* p, std::size_t n) noexcept { std::allocator<T>().deallocate(p, n); }
-  template <class U, class... Args>
-  void construct(U* p, Args&&... args) {
-    if constexpr (sizeof...(Args) == 0)
-      ::new (static_cast<void*>(p)) U;
-    else
-      ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-  }
-  template <class U>
-  bool operator==(const UninitializedAllocator<U>&) const noexcept {
-    return true;
-  }
-};
-
-template <class T>
-using Buffer = std::vector<T, UninitializedAllocator<T>>;
+using Buffer = std::vector<T, LargeArrayAllocator<T>>;
 
 // An unnamed temporary file (O_TMPFILE): it has no name to clean up and is gone when closed, even
 // when the process is killed. Space a region no longer needs is given back (hole punching).
@@ -136,7 +117,7 @@ struct Context {
     return *spill_file;
   }
   // An encoded section up to this size is decoded whole, in memory.
-  std::uint64_t whole_limit() const { return memory / 8; }
+  std::uint64_t whole_limit() const { return memory / 4; }
 };
 
 struct ZstdStream {
@@ -330,11 +311,9 @@ std::span<const T> elements_of(std::span<const std::byte> chunk) {
   return {reinterpret_cast<const T*>(chunk.data()), chunk.size() / sizeof(T)};
 }
 
-// A section read through once: its checksum, and `rule(chunk_elements, first_index)` on every chunk
-// until the rule finds a problem.
-template <class T, class Rule>
-void read_section(const Section& s, Context& context, Problem& checksum, Problem& problem,
-                  Rule rule) {
+// A section read through once: its checksum, and `f(chunk_elements, first_index)` on every chunk.
+template <class T, class F>
+void for_each_chunk(const Section& s, Context& context, Problem& checksum, F f) {
   SectionReader reader(s, context);
   std::unique_ptr<XXH3_state_t, decltype(&XXH3_freeState)> state(XXH3_createState(),
                                                                  &XXH3_freeState);
@@ -344,10 +323,19 @@ void read_section(const Section& s, Context& context, Problem& checksum, Problem
   for (auto chunk = reader.next(); !chunk.empty(); chunk = reader.next()) {
     XXH3_64bits_update(state.get(), chunk.data(), chunk.size());
     const auto values = elements_of<T>(chunk);
-    if (!problem) problem = rule(values, first);
+    f(values, first);
     first += values.size();
   }
   checksum = rules::checksum_problem(s, XXH3_64bits_digest(state.get()));
+}
+
+// Its checksum, and `rule(chunk_elements, first_index)` on every chunk until it finds a problem.
+template <class T, class Rule>
+void read_section(const Section& s, Context& context, Problem& checksum, Problem& problem,
+                  Rule rule) {
+  for_each_chunk<T>(s, context, checksum, [&](std::span<const T> values, std::uint64_t first) {
+    if (!problem) problem = rule(values, first);
+  });
 }
 
 // One reverse CSR section as the transpose produces it, front to back: hashed (a derived section,
@@ -464,9 +452,9 @@ void feed_range(ReverseSinks& sinks, std::uint64_t v0, std::uint64_t v1,
 class Transposer {
  public:
   Transposer(Context& context, std::uint64_t n, std::uint64_t m) : context_(context), n_(n) {
-    const std::uint64_t need = 16 * m + 8 * (n + 1);  // heads, tails, in-lists, counts
-    buckets_ = need <= context.memory ? 1 : (need + context.memory / 2 - 1) / (context.memory / 2);
-    buckets_ = std::min<std::uint64_t>(std::max<std::uint64_t>(buckets_, 1), std::max<std::uint64_t>(n, 1));
+    const std::uint64_t need = 16 * m + 8 * (n + 1);  // records, in-lists, counts
+    buckets_ = std::max<std::uint64_t>((need + context.memory / 2 - 1) / (context.memory / 2), 2);
+    buckets_ = std::min<std::uint64_t>(buckets_, std::max<std::uint64_t>(n, 1));
     width_ = (n + buckets_ - 1) / std::max<std::uint64_t>(buckets_, 1);
     if (buckets_ == 1) {
       heads_.reserve(static_cast<std::size_t>(m)), tails_.reserve(static_cast<std::size_t>(m));
@@ -552,7 +540,9 @@ class Transposer {
       ranges.push_back({first, v1});
     }
     Buffer<std::uint32_t> arcs, heads, tails;
-    for (const auto& [first, last] : ranges) {
+    for (const auto& range : ranges) {
+      // Not a structured binding: clang 14's lambdas cannot capture one.
+      const std::uint64_t first = range.first, last = range.second;
       arcs.clear(), heads.clear(), tails.clear();
       if (last - first == 1 && ranges.size() > 1) {
         // One head: its in-list is its arcs in id order, fed a chunk at a time.
@@ -598,7 +588,17 @@ struct CsrCheck {
   bool forward_is_csr = true;
 };
 
-CsrCheck check_csr(const GraphReader& reader, Context& context) {
+ReverseSinks sinks_for(const GraphReader& reader, Context& context) {
+  return {{*reader.all(SectionKind::reverse_offsets).front(), context},
+          {*reader.all(SectionKind::reverse_sources).front(), context},
+          {*reader.all(SectionKind::reverse_arcs).front(), context},
+          0,
+          {}};
+}
+
+// The forward CSR in buckets of heads, spilled (Transposer), read once in lockstep: arc a leaves
+// the vertex u with offsets[u] <= a < offsets[u + 1].
+CsrCheck check_csr_in_buckets(const GraphReader& reader, Context& context) {
   const auto section = [&](SectionKind kind) -> const Section& {
     return *reader.all(kind).front();
   };
@@ -608,8 +608,6 @@ CsrCheck check_csr(const GraphReader& reader, Context& context) {
   CsrCheck out;
   Transposer transposer(context, n, m);
   {
-    // The forward offsets, read alongside the targets: arc a leaves the vertex u with
-    // offsets[u] <= a < offsets[u + 1].
     SectionReader offsets_reader(fo, context);
     std::unique_ptr<XXH3_state_t, decltype(&XXH3_freeState)> offsets_hash(XXH3_createState(),
                                                                           &XXH3_freeState),
@@ -669,12 +667,54 @@ CsrCheck check_csr(const GraphReader& reader, Context& context) {
   }
   out.forward_is_csr &= !out.forward_offsets && !out.forward_targets;
 
-  ReverseSinks sinks{{section(SectionKind::reverse_offsets), context},
-                     {section(SectionKind::reverse_sources), context},
-                     {section(SectionKind::reverse_arcs), context},
-                     0,
-                     {}};
+  auto sinks = sinks_for(reader, context);
   transposer.finish(sinks);
+  sinks.offsets.finish(out.reverse_checksum[0], out.transpose[0]);
+  sinks.sources.finish(out.reverse_checksum[1], out.transpose[1]);
+  sinks.arcs.finish(out.reverse_checksum[2], out.transpose[2]);
+  return out;
+}
+
+// The forward CSR in memory, when it and its transpose fit (16 (n + 1) + 12 m bytes): the
+// transpose by derive_transpose, as unpacking derives it.
+CsrCheck check_csr(const GraphReader& reader, Context& context) {
+  const std::uint64_t n = reader.vertex_count(), m = reader.arc_count();
+  if (16 * (n + 1) + 12 * m > context.memory) return check_csr_in_buckets(reader, context);
+  const Section& fo = *reader.all(SectionKind::forward_offsets).front();
+  const Section& ft = *reader.all(SectionKind::forward_targets).front();
+  CsrCheck out;
+  Buffer<std::uint64_t> offsets(n + 1);
+  Buffer<std::uint32_t> targets(m);
+  for_each_chunk<std::uint64_t>(
+      fo, context, out.forward_offsets_checksum, [&](auto values, std::uint64_t first) {
+        std::memcpy(offsets.data() + first, values.data(), values.size_bytes());
+        if (out.forward_offsets) return;
+        if (first > 0 && offsets[first - 1] > values.front())
+          out.forward_offsets = rules::check_offsets(fo, {&offsets[first - 1], 2}, first - 1);
+        else if (!rules::offsets_ascend(values))
+          out.forward_offsets = rules::check_offsets(fo, values, first);
+      });
+  for_each_chunk<std::uint32_t>(
+      ft, context, out.forward_targets_checksum, [&](auto values, std::uint64_t first) {
+        std::memcpy(targets.data() + first, values.data(), values.size_bytes());
+        if (!out.forward_targets && !rules::ids_below(values, n))
+          out.forward_targets = rules::check_ids(ft, values, n, "target-range", "arc", first);
+      });
+  if (!out.forward_offsets && (offsets[0] != 0 || offsets[n] != m))
+    out.forward_offsets = rules::in_section(
+        fo, "offsets-ends", "offsets do not run from 0 to the arc count " + std::to_string(m));
+  out.forward_is_csr = !out.forward_offsets && !out.forward_targets;
+  auto sinks = sinks_for(reader, context);
+  if (out.forward_is_csr) {
+    Buffer<std::uint64_t> reverse_offsets(n + 1);
+    Buffer<std::uint32_t> reverse_sources(m), reverse_arcs(m);
+    derive_transpose(offsets, targets, reverse_offsets.data(), reverse_sources.data(),
+                     reverse_arcs.data());
+    offsets = {}, targets = {};
+    sinks.offsets.consume(std::span<const std::uint64_t>(reverse_offsets));
+    sinks.sources.consume(std::span<const std::uint32_t>(reverse_sources));
+    sinks.arcs.consume(std::span<const std::uint32_t>(reverse_arcs));
+  }
   sinks.offsets.finish(out.reverse_checksum[0], out.transpose[0]);
   sinks.sources.finish(out.reverse_checksum[1], out.transpose[1]);
   sinks.arcs.finish(out.reverse_checksum[2], out.transpose[2]);
