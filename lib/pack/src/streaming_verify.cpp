@@ -38,14 +38,37 @@ using format::Encoding;
 using format::SectionKind;
 using rules::Problem;
 
-// Bytes per chunk: a multiple of every element size and of the page size.
-constexpr std::size_t kChunk = std::size_t{256} << 10;
+// Bytes per chunk: a multiple of every element size and of the page size, and below glibc's mmap
+// threshold, so that a chunk buffer is reused memory, not a fresh mapping to fault in.
+constexpr std::size_t kChunk = std::size_t{64} << 10;
 constexpr std::size_t kPage = 4096;
 
-// Buffers written before they are read: uninitialized, large ones in huge pages (a fault per 4 KiB
-// page cost as much as decoding into it).
+// Buffers written in full before they are read: uninitialized, and a large one mapped in huge pages
+// and populated in one call (a fault per 4 KiB page cost as much as decoding into it).
 template <class T>
-using Buffer = std::vector<T, LargeArrayAllocator<T>>;
+struct BufferAllocator : LargeArrayAllocator<T> {
+  BufferAllocator() = default;
+  template <class U>
+  BufferAllocator(const BufferAllocator<U>&) noexcept {}
+  template <class U>
+  struct rebind {
+    using other = BufferAllocator<U>;
+  };
+  T* allocate(std::size_t n) {
+    if (n * sizeof(T) >= kLargeArrayBytes) return static_cast<T*>(map_large(n * sizeof(T), true));
+    return LargeArrayAllocator<T>::allocate(n);
+  }
+};
+template <class T>
+using Buffer = std::vector<T, BufferAllocator<T>>;
+
+// The decoding context of this thread's whole-frame decodes, made once.
+ZSTD_DCtx* thread_decoder() {
+  thread_local std::unique_ptr<ZSTD_DCtx, decltype(&ZSTD_freeDCtx)> context(ZSTD_createDCtx(),
+                                                                            ZSTD_freeDCtx);
+  if (!context) throw std::bad_alloc();
+  return context.get();
+}
 
 // An unnamed temporary file (O_TMPFILE): it has no name to clean up and is gone when closed, even
 // when the process is killed. Space a region no longer needs is given back (hole punching).
@@ -144,9 +167,7 @@ class SectionReader {
     width_ = format::element_size(s.type);
     if (s.decoded_length <= context.whole_limit()) {
       whole_.resize(s.decoded_length);
-      std::unique_ptr<ZSTD_DCtx, decltype(&ZSTD_freeDCtx)> dctx(ZSTD_createDCtx(), ZSTD_freeDCtx);
-      if (!dctx) throw std::bad_alloc();
-      const std::size_t decoded = ZSTD_decompressDCtx(dctx.get(), whole_.data(), whole_.size(),
+      const std::size_t decoded = ZSTD_decompressDCtx(thread_decoder(), whole_.data(), whole_.size(),
                                                       s.stored.data(), s.stored.size());
       check_decoded(decoded);
     } else {

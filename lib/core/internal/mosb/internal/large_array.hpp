@@ -7,6 +7,7 @@
 #include <sys/mman.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <new>
 #include <utility>
 #include <vector>
@@ -16,18 +17,36 @@ namespace mosb {
 // Below this, an array comes from operator new: a mapping per array would cost more than it saves.
 inline constexpr std::size_t kLargeArrayBytes = std::size_t{1} << 20;
 
+inline constexpr std::size_t kHugePageBytes = std::size_t{2} << 20;
+
+// The length map_large maps for `bytes`: whole huge pages.
+inline std::size_t large_mapping_length(std::size_t bytes) {
+  return (bytes + kHugePageBytes - 1) / kHugePageBytes * kHugePageBytes;
+}
+
 // `bytes` of zeroed anonymous memory in huge pages where available; populated at once (one call
-// instead of a fault per page) when `populate`. Throws std::bad_alloc.
+// instead of a fault per page) when `populate`. Throws std::bad_alloc. The mapping is whole huge
+// pages on a 2 MiB boundary (mapped larger, then trimmed): huge pages back only the aligned 2 MiB
+// a mapping covers, and an unaligned one of a few MiB got next to none.
 inline void* map_large(std::size_t bytes, bool populate) {
-  void* p = ::mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-  if (p == MAP_FAILED) throw std::bad_alloc();
+  constexpr std::size_t kHuge = kHugePageBytes;
+  const std::size_t mapped = large_mapping_length(bytes) + kHuge;
+  void* raw = ::mmap(nullptr, mapped, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (raw == MAP_FAILED) throw std::bad_alloc();
+  auto* first = static_cast<char*>(raw);
+  auto* p = reinterpret_cast<char*>((reinterpret_cast<std::uintptr_t>(first) + kHuge - 1) /
+                                    kHuge * kHuge);
+  if (p > first) ::munmap(first, static_cast<std::size_t>(p - first));
+  const auto end = reinterpret_cast<std::uintptr_t>(p) + large_mapping_length(bytes);
+  const auto mapped_end = reinterpret_cast<std::uintptr_t>(first) + mapped;
+  if (mapped_end > end) ::munmap(reinterpret_cast<void*>(end), mapped_end - end);
   ::madvise(p, bytes, MADV_HUGEPAGE);
   if (populate) ::madvise(p, bytes, MADV_POPULATE_WRITE);
   return p;
 }
 
 inline void unmap_large(void* p, std::size_t bytes) noexcept {
-  ::munmap(p, bytes);
+  ::munmap(p, large_mapping_length(bytes));
 }
 
 // A std::vector allocator that maps arrays of kLargeArrayBytes and more with map_large, and leaves
