@@ -13,6 +13,7 @@
 #include <zstd.h>
 
 #include <algorithm>
+#include <bit>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -43,20 +44,98 @@ using rules::Problem;
 constexpr std::size_t kChunk = std::size_t{64} << 10;
 constexpr std::size_t kPage = 4096;
 
-// Buffers written in full before they are read: uninitialized, and a large one mapped in huge pages
-// and populated in one call (a fault per 4 KiB page cost as much as decoding into it).
+}  // namespace
+
+// Large blocks a workspace keeps between checks, in classes of powers of two from 1 MiB, each with
+// the length of it already populated (a reuse populates only what it needs beyond that).
+struct VerifyWorkspace::Blocks {
+  struct Block {
+    void* p;
+    std::size_t length, populated;
+  };
+  static constexpr std::size_t kKept = std::size_t{64} << 20;
+  std::vector<Block> free, used;
+  std::size_t kept = 0;  // populated bytes of the free blocks
+
+  static std::size_t class_of(std::size_t bytes) {
+    return std::bit_ceil(std::max(bytes, kLargeArrayBytes));
+  }
+  void* take(std::size_t bytes) {
+    const std::size_t length = class_of(bytes);
+    auto it = std::find_if(free.begin(), free.end(),
+                           [length](const Block& b) { return b.length == length; });
+    Block block{nullptr, length, 0};
+    if (it != free.end()) {
+      block = *it;
+      kept -= block.populated;
+      free.erase(it);
+    } else {
+      block.p = map_large(length, false);
+    }
+    if (bytes > block.populated) {
+      auto* from = static_cast<char*>(block.p) + block.populated;
+      ::madvise(from, bytes - block.populated, MADV_POPULATE_WRITE);
+      block.populated = bytes;
+    }
+    used.push_back(block);
+    return block.p;
+  }
+  // Kept for the next check while the free blocks hold at most kKept populated bytes, the
+  // smallest given up first (the large ones cost most to fault in again).
+  void give(void* p) noexcept {
+    const auto it =
+        std::find_if(used.begin(), used.end(), [p](const Block& b) { return b.p == p; });
+    const Block block = *it;
+    used.erase(it);
+    std::sort(free.begin(), free.end(),
+              [](const Block& a, const Block& b) { return a.populated > b.populated; });
+    while (!free.empty() && kept + block.populated > kKept &&
+           free.back().populated < block.populated) {
+      kept -= free.back().populated;
+      unmap_large(free.back().p, free.back().length);
+      free.pop_back();
+    }
+    if (kept + block.populated > kKept) return unmap_large(block.p, block.length);
+    free.push_back(block);
+    kept += block.populated;
+  }
+  ~Blocks() {
+    for (const auto& b : free) unmap_large(b.p, b.length);
+  }
+};
+
+VerifyWorkspace::VerifyWorkspace() : blocks_(std::make_unique<Blocks>()) {}
+VerifyWorkspace::~VerifyWorkspace() = default;
+
+namespace {
+
+// Buffers written in full before they are read: uninitialized, and a large one in huge pages,
+// populated in one call (a fault per 4 KiB page cost as much as decoding into it), or taken from
+// a workspace, where an earlier check left it populated.
 template <class T>
 struct BufferAllocator : LargeArrayAllocator<T> {
+  VerifyWorkspace::Blocks* blocks = nullptr;
   BufferAllocator() = default;
+  explicit BufferAllocator(VerifyWorkspace::Blocks* from) noexcept : blocks(from) {}
   template <class U>
-  BufferAllocator(const BufferAllocator<U>&) noexcept {}
+  BufferAllocator(const BufferAllocator<U>& other) noexcept : blocks(other.blocks) {}
   template <class U>
   struct rebind {
     using other = BufferAllocator<U>;
   };
   T* allocate(std::size_t n) {
-    if (n * sizeof(T) >= kLargeArrayBytes) return static_cast<T*>(map_large(n * sizeof(T), true));
-    return LargeArrayAllocator<T>::allocate(n);
+    const std::size_t bytes = n * sizeof(T);
+    if (bytes < kLargeArrayBytes) return LargeArrayAllocator<T>::allocate(n);
+    if (blocks) return static_cast<T*>(blocks->take(bytes));
+    return static_cast<T*>(map_large(bytes, true));
+  }
+  void deallocate(T* p, std::size_t n) noexcept {
+    if (blocks && n * sizeof(T) >= kLargeArrayBytes) return blocks->give(p);
+    LargeArrayAllocator<T>::deallocate(p, n);
+  }
+  template <class U>
+  bool operator==(const BufferAllocator<U>& other) const noexcept {
+    return blocks == other.blocks;
   }
 };
 template <class T>
@@ -134,6 +213,12 @@ struct Context {
   std::uint64_t memory;
   std::vector<fs::path> spill_directories;
   std::unique_ptr<Spill> spill_file;
+  VerifyWorkspace::Blocks* blocks = nullptr;  // the caller's workspace, if any
+
+  template <class T>
+  BufferAllocator<T> allocator() const {
+    return BufferAllocator<T>(blocks);
+  }
 
   Spill& spill() {
     if (!spill_file) spill_file = std::make_unique<Spill>(spill_directories, name);
@@ -156,7 +241,8 @@ struct ZstdStream {
 // A section's decoded bytes, front to back, in chunks of kChunk bytes (the last one shorter).
 class SectionReader {
  public:
-  SectionReader(const Section& s, Context& context) : s_(s), context_(context) {
+  SectionReader(const Section& s, Context& context)
+      : s_(s), context_(context), whole_(context.allocator<std::byte>()) {
     if (!is_encoded(s)) return;
     if (s.decoded_length / kMaxZstdRatio > s.entry.stored_length)
       fail_section(s, context.name,
@@ -704,8 +790,8 @@ CsrCheck check_csr(const GraphReader& reader, Context& context) {
   const Section& fo = *reader.all(SectionKind::forward_offsets).front();
   const Section& ft = *reader.all(SectionKind::forward_targets).front();
   CsrCheck out;
-  Buffer<std::uint64_t> offsets(n + 1);
-  Buffer<std::uint32_t> targets(m);
+  Buffer<std::uint64_t> offsets(n + 1, context.allocator<std::uint64_t>());
+  Buffer<std::uint32_t> targets(m, context.allocator<std::uint32_t>());
   for_each_chunk<std::uint64_t>(
       fo, context, out.forward_offsets_checksum, [&](auto values, std::uint64_t first) {
         std::memcpy(offsets.data() + first, values.data(), values.size_bytes());
@@ -727,8 +813,9 @@ CsrCheck check_csr(const GraphReader& reader, Context& context) {
   out.forward_is_csr = !out.forward_offsets && !out.forward_targets;
   auto sinks = sinks_for(reader, context);
   if (out.forward_is_csr) {
-    Buffer<std::uint64_t> reverse_offsets(n + 1);
-    Buffer<std::uint32_t> reverse_sources(m), reverse_arcs(m);
+    Buffer<std::uint64_t> reverse_offsets(n + 1, context.allocator<std::uint64_t>());
+    Buffer<std::uint32_t> reverse_sources(m, context.allocator<std::uint32_t>()),
+        reverse_arcs(m, context.allocator<std::uint32_t>());
     derive_transpose(offsets, targets, reverse_offsets.data(), reverse_sources.data(),
                      reverse_arcs.data());
     offsets = {}, targets = {};
@@ -809,7 +896,8 @@ FileVerification verify_file_streaming(const fs::path& path,
                                        const StreamingVerifyOptions& options) {
   const auto file = map_file(path);
   Context context{path.string(), std::max<std::uint64_t>(options.memory, 4096),
-                  spill_directories(path, options.scratch_directory), nullptr};
+                  spill_directories(path, options.scratch_directory), nullptr,
+                  options.workspace ? options.workspace->blocks_.get() : nullptr};
   // The open checks (§9 steps 1-9); raw forward offsets' ends are checked here.
   const auto reader = GraphReader::adopt(file, context.name);
   // A derived reverse CSR needs the forward one in the shapes of §4: refused as unpacking refuses.

@@ -11,6 +11,7 @@
 #include <atomic>
 #include <cerrno>
 #include <chrono>
+#include <condition_variable>
 #include <cmath>
 #include <cstring>
 #include <ctime>
@@ -507,8 +508,59 @@ void write_validators(const fs::path& path, const Validators& v) {
                             {"size", v.size},
                             {"etag", v.etag},
                             {"last_modified", v.last_modified}};
-  write_file_atomically(path, json.dump() + "\n");
+  // Not fsynced, nor written through a temporary: validators lost or cut short by a crash do not
+  // parse, and the transfer restarts from zero; stale ones resume wrong bytes, which the SHA-256
+  // then refuses. Either way nothing unverified is placed, and a pull makes no fsync for them.
+  const std::string text = json.dump() + "\n";
+  Fd out{::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_CLOEXEC, 0666)};
+  if (out.fd < 0)
+    throw Error(ErrorCode::io, path.string() + ": cannot create: " + std::strerror(errno));
+  for (std::size_t done = 0; done < text.size();) {
+    const ssize_t wrote = ::write(out.fd, text.data() + done, text.size() - done);
+    if (wrote < 0 && errno == EINTR) continue;
+    if (wrote <= 0)
+      throw Error(ErrorCode::io, path.string() + ": cannot write: " + std::strerror(errno));
+    done += static_cast<std::size_t>(wrote);
+  }
 }
+
+// The checks of received entries, at most one per core at once (they are CPU-bound; more would
+// only interleave), each with a workspace kept from one check to the next.
+class CheckSlots {
+ public:
+  explicit CheckSlots(unsigned count) {
+    for (unsigned i = 0; i < std::max(1U, count); ++i)
+      idle_.push_back(std::make_unique<VerifyWorkspace>());
+  }
+  // Runs f(workspace) in a free slot, waiting for one.
+  template <class F>
+  void run(F f) {
+    std::unique_ptr<VerifyWorkspace> workspace;
+    {
+      std::unique_lock lock(mutex_);
+      freed_.wait(lock, [&] { return !idle_.empty(); });
+      workspace = std::move(idle_.back());
+      idle_.pop_back();
+    }
+    struct Return {
+      CheckSlots& slots;
+      std::unique_ptr<VerifyWorkspace>& workspace;
+      ~Return() {
+        {
+          const std::lock_guard lock(slots.mutex_);
+          slots.idle_.push_back(std::move(workspace));
+        }
+        slots.freed_.notify_one();
+      }
+    } give_back{*this, workspace};
+    f(*workspace);
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable freed_;
+  std::vector<std::unique_ptr<VerifyWorkspace>> idle_;
+};
 
 // The pull's shared state: options, progress, where things are.
 struct Puller {
@@ -521,6 +573,8 @@ struct Puller {
   std::atomic<std::uint64_t> received{0};
   std::uint64_t total = 0;
   std::mutex progress_mutex;
+  CheckSlots checks{std::min(std::max(1U, options.jobs),
+                             std::max(1U, std::thread::hardware_concurrency()))};
 
   std::size_t settled_count = 0;
   std::size_t selected = 0;
@@ -777,13 +831,16 @@ void fetch_entry(Puller& p, Http* http, PulledEntry& pulled) {
   if (sha != e.sha256) return refuse("SHA-256 " + sha + ", the MANIFEST says " + e.sha256, false);
   r.sync_and_close();
   try {
-    Store store = Store::open(p.store);
-    Store::AddOptions add;
-    add.move = true;
-    add.expect = {e};
-    add.sha256 = {sha};  // computed as the bytes arrived: not read again
-    add.check_memory = p.options.check_memory;
-    store.add({r.data_path()}, add);
+    p.checks.run([&](VerifyWorkspace& workspace) {
+      Store store = Store::open(p.store);
+      Store::AddOptions add;
+      add.move = true;
+      add.expect = {e};
+      add.sha256 = {sha};  // computed as the bytes arrived: not read again
+      add.check_memory = p.options.check_memory;
+      add.check_workspace = &workspace;
+      store.add({r.data_path()}, add);
+    });
   } catch (const Error& error) {
     return refuse(error.what(), false);
   }

@@ -423,7 +423,8 @@ Placement prepare(const fs::path& source, const Store::AddOptions& options,
   if (expected != nullptr) check_expected(source, p.entry, *expected);
   // Packed or not, in working memory that does not grow with the file.
   const auto found =
-      verify_file_streaming(source, {options.check_memory, staging.scratch_directory()});
+      verify_file_streaming(source, {options.check_memory, staging.scratch_directory(),
+                                     options.check_workspace});
   if (found.problem)
     throw Error(ErrorCode::damaged, source.string() + ": file is damaged: " + *found.problem);
   if (options.pack && !p.entry.packed) {

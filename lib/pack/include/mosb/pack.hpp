@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -96,11 +97,30 @@ FileVerification verify_file(const std::filesystem::path& path, VerifyLevel leve
 // What it finds is what verify_file finds at level full (a problem, or a mosb::Error for a frame
 // that does not decode, naming the file), with the messages of verify where the rule is the same.
 // It runs on one thread. Used where files are taken in: `store add`, `store pull`.
+// Memory one streaming check leaves to the next: checks given the same workspace take their large
+// buffers from it, mapped and faulted in once, instead of mapping their own (for a pull of many
+// files, a third of the check's time). Between checks it keeps at most 64 MiB, until destroyed.
+// One check at a time.
+class VerifyWorkspace {
+ public:
+  VerifyWorkspace();
+  ~VerifyWorkspace();
+  VerifyWorkspace(const VerifyWorkspace&) = delete;
+  VerifyWorkspace& operator=(const VerifyWorkspace&) = delete;
+  struct Blocks;
+
+ private:
+  friend FileVerification verify_file_streaming(const std::filesystem::path&,
+                                                const struct StreamingVerifyOptions&);
+  std::unique_ptr<Blocks> blocks_;
+};
+
 struct StreamingVerifyOptions {
   std::uint64_t memory = std::uint64_t{32} << 20;  // the working memory aimed at (at least 4 KiB)
   // Where the spill file goes (O_TMPFILE: it has no name and is gone when the check ends, even by
   // kill -9). Empty, or when it cannot be written: the file's own directory, $TMPDIR, /tmp.
   std::filesystem::path scratch_directory;
+  VerifyWorkspace* workspace = nullptr;  // none: each check maps its own buffers
 };
 FileVerification verify_file_streaming(const std::filesystem::path& path,
                                        const StreamingVerifyOptions& options = {});

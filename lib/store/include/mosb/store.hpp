@@ -124,6 +124,9 @@ class Store {
     std::vector<std::string> sha256;
     // The working memory of each file's check (verify_file_streaming), whatever the file's size.
     std::uint64_t check_memory = StreamingVerifyOptions{}.memory;
+    // The buffers of those checks: the caller's, kept from one add to the next (store pull, one
+    // per transfer thread), or none (each check maps its own).
+    VerifyWorkspace* check_workspace = nullptr;
   };
   // Copies (or moves, or packs) each file in under its base name, each through mosb::AtomicFile,
   // then rewrites the manifest atomically, last. Refused before anything is written: a reserved
