@@ -8,6 +8,7 @@ saying so (tools/install-deps.sh installs it).
     MOSB=build/release/tools/mosb /usr/bin/python3 tests/cli/test_pull.py
 """
 
+import hashlib
 import json
 import os
 import re
@@ -22,6 +23,7 @@ import unittest
 from mosbtest import MOSB, CliTest, read, run, setUpModule  # noqa: F401
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.join(HERE, "..", "..")
 NGINX_CONF = os.path.join(HERE, "..", "store", "nginx.conf")
 FAULT_SERVER = os.path.join(HERE, "..", "store", "fault_server.py")
 NGINX = shutil.which("nginx") or next((p for p in ("/usr/sbin/nginx",) if os.path.exists(p)), None)
@@ -440,6 +442,37 @@ class FromADirectory(Published):
                 self.assert_no_staging()
         r = self.pull("ftp://example.org/store")
         self.assert_one_line_error(r, "ftp://example.org/store: not a place mosb pulls from")
+
+    def test_in_a_small_check_memory_the_pull_is_the_same_and_refuses_a_bad_transpose(self):
+        # 4 KiB: big.mosb's frames and transpose go through the spill file (an unnamed
+        # temporary, so nothing is left in the store).
+        self.publish()
+        # A file whose reverse CSR is not the transpose, listed with its own size and SHA-256:
+        # only the check that the store makes can refuse it.
+        bad = os.path.join(ROOT, "spec", "golden", "1.0", "invalid", "not-transpose.mosb")
+        shutil.copy(bad, os.path.join(self.www, "bad.mosb"))
+        data = read(bad)
+        digest = self.ok("verify", "--level", "header", bad).stdout.split("digest ")[1][:32]
+        with open(os.path.join(self.www, "MANIFEST"), "a") as f:
+            f.write(json.dumps({"benchmark": "", "digest": digest, "file": "bad.mosb",
+                                "format_version": "1.0", "packed": False, "query_sets": [],
+                                "sha256": hashlib.sha256(data).hexdigest(), "size": len(data),
+                                "sources": [], "views": []}, sort_keys=True,
+                               separators=(",", ":")) + "\n")
+        for memory in ("4K", "64M"):
+            with self.subTest(check_memory=memory):
+                shutil.rmtree(self.store, ignore_errors=True)
+                report = self.pull_json(self.www, "--check-memory", memory, code=1)
+                self.assertEqual(sorted(e["file"] for e in report["fetched"]), self.names)
+                [refused] = report["refused"]
+                self.assertEqual(refused["file"], "bad.mosb")
+                self.assertIn("reverse-transpose", refused["reason"])
+                self.assert_identical()
+                self.assert_verifies()
+                self.assert_no_staging()
+        r = self.pull(self.www, "--check-memory", "1K")
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn("--check-memory", r.stderr)
 
     def test_an_entry_the_store_lists_with_other_bytes_is_refused_without_a_transfer(self):
         self.publish()
