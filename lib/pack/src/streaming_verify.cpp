@@ -368,7 +368,7 @@ class SectionReader {
     const std::uint64_t count = s_.decoded_length / width_, first = position_ / width_;
     const std::size_t elements = size / width_;
     // Byte k of element first + i is at planes[k * stride + i].
-    const std::byte* planes = whole_.data() + first;
+    const std::byte* planes = spilled_ ? nullptr : whole_.data() + first;
     std::uint64_t stride = count;
     if (spilled_) {
       gathered_.resize(size);
