@@ -8,7 +8,8 @@
 #
 # SUITE_DIR: a published store; default $WORK/suite, made by `mosb suite build` (packed) when
 # absent. Environment: MOSB (default build/release/tools/mosb), WORK (default /tmp/mosb-pull-bench),
-# JOBS (transfers at once, default 4), ROUNDS (default 3).
+# JOBS (transfers at once, default 4), ROUNDS (default 3), BIG (default 1: also the peak memory of
+# pulling one big file, below).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 mosb=${MOSB:-$here/../../build/release/tools/mosb}
@@ -81,3 +82,26 @@ for round in $(seq "$rounds"); do
   end=$(date +%s.%N)
   figure "curl -P $jobs alone" "$(echo "$end - $start" | bc)" 0
 done
+
+# Peak memory against file size (issue 24 §3): the pull of a store holding one Grid 1500x1500
+# (171 MB unpacked, 13 MB packed at level 3), packed and unpacked, from a directory, beside the
+# suite's (the bigger store's files are made once, in $WORK/big). BIG=0 skips it.
+if [[ ${BIG:-1} != 0 ]]; then
+  big=$work/big
+  if [[ ! -f $big/packed/MANIFEST ]]; then
+    rm -rf "$big" && mkdir -p "$big/src"
+    "$mosb" generate grid --width 1500 --height 1500 -o "$big/src/big.mosb" >/dev/null
+    "$mosb" pack --level 3 "$big/src/big.mosb" -o "$big/src/big.packed.mosb" >/dev/null
+    "$mosb" store init "$big/packed" >/dev/null && "$mosb" store add "$big/packed" "$big/src/big.packed.mosb" >/dev/null
+    "$mosb" store init "$big/unpacked" >/dev/null && "$mosb" store add "$big/unpacked" "$big/src/big.mosb" >/dev/null
+  fi
+  for source in "$suite" "$big/packed" "$big/unpacked"; do
+    for j in 1 "$jobs"; do
+      rm -rf "$work/store"
+      read -r seconds peak < <(/usr/bin/time -f "%e %M" "$mosb" store pull "$work/store" "$source" \
+        --jobs "$j" 2>&1 >/dev/null | tail -1)
+      awk -v l="pull $(basename "$source") --jobs $j" -v s="$seconds" -v m="$peak" \
+        'BEGIN { printf "%-28s %7.2f s  peak RSS %7.1f MB\n", l, s, m / 1024 }'
+    done
+  done
+fi
