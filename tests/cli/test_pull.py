@@ -253,6 +253,21 @@ class AgainstNginx(Published):
         self.assertEqual(report["fetched"][0]["resumed_from"], 0)
         self.assert_identical(["big.mosb"])
 
+    def test_a_partial_that_can_never_be_continued_is_swept(self):
+        self.killed_midway()
+        # A pull of another file leaves it: the next pull of big.mosb continues it.
+        self.pull_json(self.slow, "--file", "g3.mosb")
+        self.assertTrue(os.path.exists(self.partial("big.mosb")))
+        # The publisher drops big.mosb: its partial can never be continued, and goes.
+        manifest = os.path.join(self.www, "MANIFEST")
+        lines = [line for line in read(manifest, "r").splitlines(True)
+                 if '"file":"big.mosb"' not in line]
+        with open(manifest, "w") as f:
+            f.writelines(lines)
+        self.pull_json(self.slow, "--file", "g4.mosb")
+        self.assertFalse(os.path.exists(os.path.dirname(self.partial("big.mosb"))))
+        self.assert_no_staging()
+
     def test_a_file_altered_on_the_server_is_refused_and_the_others_placed(self):
         target = os.path.join(self.www, "g4.mosb")
         data = bytearray(read(target))

@@ -862,6 +862,27 @@ bool selected(const ManifestEntry& e, const PullOptions& options) {
          (options.files.empty() || matches_any(options.files, {e.file}));
 }
 
+// Partial transfers from this source that can never be continued, because the published MANIFEST
+// no longer lists their file or lists it with another SHA-256 than the one they were fetched for,
+// are removed, each under its entry's lock taken without waiting (one a concurrent pull holds is
+// left). Partials from other sources, or without validators, are not this pull's to judge.
+void sweep_stale_partials(const fs::path& store, const Location& where, const Manifest& published) {
+  const auto parent = store / kStagingDirectory / kPullDirectory;
+  std::error_code ec;
+  for (fs::directory_iterator it(parent, ec), end; !ec && it != end; it.increment(ec)) {
+    const auto name = it->path().filename().string();
+    if (!it->is_directory(ec) || it->is_symlink(ec)) continue;
+    const auto v = read_validators(it->path() / kValidators);
+    if (!v || v->url != where.url_of(name)) continue;
+    const auto* listed = published.find(name);
+    if (listed != nullptr && listed->sha256 == v->sha256) continue;
+    Fd held{::open(it->path().c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC)};
+    if (held.fd < 0 || ::flock(held.fd, LOCK_EX | LOCK_NB) != 0) continue;
+    std::error_code ignored;
+    fs::remove_all(it->path(), ignored);
+  }
+}
+
 }  // namespace
 
 PullResult pull(const fs::path& store, std::string_view url, const PullOptions& options) {
@@ -941,6 +962,7 @@ PullResult pull(const fs::path& store, std::string_view url, const PullOptions& 
     work();
   }
   if (puller.total > 0) report(options.progress, "pull", puller.total, puller.total);
+  sweep_stale_partials(store, where, published);
   ::rmdir((store / kStagingDirectory / kPullDirectory).c_str());  // when empty
   ::rmdir((store / kStagingDirectory).c_str());
 
