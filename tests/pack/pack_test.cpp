@@ -326,8 +326,9 @@ void check_streaming_agrees(const std::filesystem::path& file, std::uint64_t bud
   CAPTURE(file);
   CAPTURE(budget);
   const auto expected = outcome_of([&] { return verify_file(file, VerifyLevel::full); });
-  const auto streamed = outcome_of(
-      [&] { return verify_file_streaming(file, StreamingVerifyOptions{budget, scratch}); });
+  const auto streamed = outcome_of([&] {
+    return verify_file_streaming(file, StreamingVerifyOptions{budget, scratch});
+  });
   CAPTURE(expected);
   CAPTURE(streamed);
   CHECK(expected.starts_with("ok") == streamed.starts_with("ok"));
@@ -420,7 +421,8 @@ TEST_CASE("verify_file_streaming finds a reverse CSR that is not the transpose i
   REQUIRE(found.problem);
   CHECK(found.problem->find("reverse-transpose") != std::string::npos);
   pack_file(dir / "plain.mosb", dir / "keep.mosb", keeping_reverse());
-  for (const std::uint64_t budget : {std::uint64_t{4096}, std::uint64_t{65536}, std::uint64_t{32} << 20}) {
+  for (const std::uint64_t budget :
+       {std::uint64_t{4096}, std::uint64_t{65536}, std::uint64_t{32} << 20}) {
     CAPTURE(budget);
     const auto streamed = verify_file_streaming(dir / "swapped.mosb", {budget, dir.path()});
     REQUIRE(streamed.problem);

@@ -47,7 +47,8 @@ struct TransposePlan {
 // forward_offsets, the other two as forward_targets); else nullopt and, in `why`, what is not so.
 // A section without stored bytes has no zstd ratio bound: these lengths bound what deriving it
 // allocates by sections that have one.
-inline std::optional<TransposePlan> csr_sections(const std::vector<Section>& sections, std::string& why) {
+inline std::optional<TransposePlan> csr_sections(const std::vector<Section>& sections,
+                                                 std::string& why) {
   auto reject = [&](std::string what) {
     why = std::move(what);
     return std::nullopt;
@@ -84,7 +85,7 @@ inline std::optional<TransposePlan> csr_sections(const std::vector<Section>& sec
 // The CSR sections of a file in which some section is derived, checked before anything is
 // allocated.
 inline std::optional<TransposePlan> transpose_plan(const std::vector<Section>& sections,
-                                            std::string_view name) {
+                                                   std::string_view name) {
   if (std::none_of(sections.begin(), sections.end(), is_derived)) return std::nullopt;
   std::string why;
   auto plan = csr_sections(sections, why);
@@ -162,7 +163,8 @@ std::span<const T> as_elements(const std::byte* p, std::uint64_t bytes) {
   return {reinterpret_cast<const T*>(p), static_cast<std::size_t>(bytes / sizeof(T))};
 }
 
-[[noreturn]] inline void fail_section(const Section& s, std::string_view name, const std::string& what) {
+[[noreturn]] inline void fail_section(const Section& s, std::string_view name,
+                                      const std::string& what) {
   throw Error(ErrorCode::damaged, std::string(name) + ": section '" + s.name + "': " + what);
 }
 

@@ -17,6 +17,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "codec.hpp"
 #include "mosb/atomic_file.hpp"
 #include "mosb/error.hpp"
 #include "mosb/file_writer.hpp"
@@ -26,8 +27,6 @@
 #include "mosb/internal/transpose.hpp"
 #include "mosb/internal/xxh3.hpp"
 #include "mosb/verify.hpp"
-
-#include "codec.hpp"
 
 namespace mosb {
 

@@ -1,12 +1,12 @@
 // verify_file_streaming: verify at level full in working memory that does not grow with the file.
 //
 // Every section is read once, front to back, one chunk at a time: a raw section straight from the
-// mapping (each page let go once read), a zstd frame through a streaming decoder, a shuffled or
-// delta frame from its whole content (in memory when small, else in a spill file, read back plane
-// by plane). The reverse CSR is checked by building the transpose of the forward CSR in the order
-// of §4 (arc records sorted by head in runs that fit the memory, merged from the spill file) and
-// comparing it with the stored sections, or hashing it for derived ones (encoding 4); the rest of
-// §9's rules see the same chunks the checksums do (mosb::rules).
+// mapping (each page let go once read), a zstd frame whole (when small) or through a streaming
+// decoder, a large shuffled or delta frame from its content held in a spill file, read back plane
+// by plane. The reverse CSR is checked against the transpose of the forward CSR in the order of §4:
+// built in memory by derive_transpose when both fit the budget, else in buckets of heads spilled
+// to the spill file and sorted one at a time; it is compared with stored sections and hashed for
+// derived ones (encoding 4). The rest of §9's rules see the chunks the checksums do (mosb::rules).
 #include <fcntl.h>
 #include <sys/mman.h>
 #include <unistd.h>
@@ -159,9 +159,10 @@ class Spill {
       fd_ = ::open(directory.c_str(), O_TMPFILE | O_RDWR | O_CLOEXEC, 0600);
       if (fd_ >= 0) return;
     }
-    throw Error(ErrorCode::io, name + ": cannot create a temporary file to check it in bounded "
-                                      "memory (tried the scratch directory, the file's directory, "
-                                      "$TMPDIR and /tmp): " +
+    throw Error(ErrorCode::io, name +
+                                   ": cannot create a temporary file to check it in bounded "
+                                   "memory (tried the scratch directory, the file's directory, "
+                                   "$TMPDIR and /tmp): " +
                                    std::strerror(errno));
   }
   ~Spill() { ::close(fd_); }
@@ -246,15 +247,16 @@ class SectionReader {
     if (!is_encoded(s)) return;
     if (s.decoded_length / kMaxZstdRatio > s.entry.stored_length)
       fail_section(s, context.name,
-                   "declares " + std::to_string(s.decoded_length) + " decoded bytes, more than its " +
-                       std::to_string(s.entry.stored_length) + "-byte zstd frame can hold");
+                   "declares " + std::to_string(s.decoded_length) +
+                       " decoded bytes, more than its " + std::to_string(s.entry.stored_length) +
+                       "-byte zstd frame can hold");
     check_frame_header(s, context.name);
     encoding_ = static_cast<Encoding>(s.entry.encoding);
     width_ = format::element_size(s.type);
     if (s.decoded_length <= context.whole_limit()) {
       whole_.resize(s.decoded_length);
-      const std::size_t decoded = ZSTD_decompressDCtx(thread_decoder(), whole_.data(), whole_.size(),
-                                                      s.stored.data(), s.stored.size());
+      const std::size_t decoded = ZSTD_decompressDCtx(
+          thread_decoder(), whole_.data(), whole_.size(), s.stored.data(), s.stored.size());
       check_decoded(decoded);
     } else {
       stream_ = std::make_unique<ZstdStream>();
@@ -641,7 +643,8 @@ class Transposer {
       read_blocks(blocks, [&](const ArcRecord& r) { ++in_degree[r.head - v0]; });
       std::uint64_t first = v0, held = 0;
       for (std::uint64_t v = v0; v < v1; ++v) {
-        if (held > 0 && held + in_degree[v - v0] > fits) ranges.push_back({first, v}), first = v, held = 0;
+        if (held > 0 && held + in_degree[v - v0] > fits)
+          ranges.push_back({first, v}), first = v, held = 0;
         held += in_degree[v - v0];
       }
       ranges.push_back({first, v1});
@@ -675,15 +678,16 @@ class Transposer {
       });
       feed_range(sinks, first, last, arcs, heads, tails);
     }
-    for (const auto& block : blocks) context_.spill().release(block.at, block.count * sizeof(ArcRecord));
+    for (const auto& block : blocks)
+      context_.spill().release(block.at, block.count * sizeof(ArcRecord));
   }
 
   Context& context_;
   std::uint64_t n_;
   std::uint64_t buckets_ = 1, width_ = 1, block_ = 0;
-  Buffer<std::uint32_t> heads_, tails_;  // one bucket: every arc, in id order
-  std::vector<std::vector<ArcRecord>> pending_;       // per bucket, not yet spilled
-  std::vector<std::vector<Block>> blocks_;            // per bucket, spilled, in arc order
+  Buffer<std::uint32_t> heads_, tails_;          // one bucket: every arc, in id order
+  std::vector<std::vector<ArcRecord>> pending_;  // per bucket, not yet spilled
+  std::vector<std::vector<Block>> blocks_;       // per bucket, spilled, in arc order
   std::vector<std::uint64_t> counts_;
 };
 
@@ -766,8 +770,10 @@ CsrCheck check_csr_in_buckets(const GraphReader& reader, Context& context) {
     if (!offset_at(n, last) || last != m) out.forward_is_csr = false;
     while (offset_at(offsets_first + offsets.size(), last)) {
     }
-    out.forward_offsets_checksum = rules::checksum_problem(fo, XXH3_64bits_digest(offsets_hash.get()));
-    out.forward_targets_checksum = rules::checksum_problem(ft, XXH3_64bits_digest(targets_hash.get()));
+    out.forward_offsets_checksum =
+        rules::checksum_problem(fo, XXH3_64bits_digest(offsets_hash.get()));
+    out.forward_targets_checksum =
+        rules::checksum_problem(ft, XXH3_64bits_digest(targets_hash.get()));
     if (!out.forward_offsets && out.forward_is_csr == false)
       out.forward_offsets = rules::in_section(
           fo, "offsets-ends", "offsets do not run from 0 to the arc count " + std::to_string(m));

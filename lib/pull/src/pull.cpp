@@ -11,8 +11,8 @@
 #include <atomic>
 #include <cerrno>
 #include <chrono>
-#include <condition_variable>
 #include <cmath>
+#include <condition_variable>
 #include <cstring>
 #include <ctime>
 #include <memory>
@@ -573,8 +573,8 @@ struct Puller {
   std::atomic<std::uint64_t> received{0};
   std::uint64_t total = 0;
   std::mutex progress_mutex;
-  CheckSlots checks{std::min(std::max(1U, options.jobs),
-                             std::max(1U, std::thread::hardware_concurrency()))};
+  CheckSlots checks{
+      std::min(std::max(1U, options.jobs), std::max(1U, std::thread::hardware_concurrency()))};
 
   std::size_t settled_count = 0;
   std::size_t selected = 0;

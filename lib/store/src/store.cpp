@@ -422,9 +422,8 @@ Placement prepare(const fs::path& source, const Store::AddOptions& options,
               false, sha256 != nullptr};
   if (expected != nullptr) check_expected(source, p.entry, *expected);
   // Packed or not, in working memory that does not grow with the file.
-  const auto found =
-      verify_file_streaming(source, {options.check_memory, staging.scratch_directory(),
-                                     options.check_workspace});
+  const auto found = verify_file_streaming(
+      source, {options.check_memory, staging.scratch_directory(), options.check_workspace});
   if (found.problem)
     throw Error(ErrorCode::damaged, source.string() + ": file is damaged: " + *found.problem);
   if (options.pack && !p.entry.packed) {
@@ -537,9 +536,9 @@ std::vector<ManifestEntry> Store::add(const std::vector<fs::path>& files,
   std::vector<Placement> placements;
   for (std::size_t i = 0; i < files.size(); ++i) {
     if (options.pack) report(options.progress, "pack", i, files.size());
-    placements.push_back(
-        prepare(files[i], options, options.expect.empty() ? nullptr : &options.expect[i],
-                options.sha256.empty() ? nullptr : &options.sha256[i], staging));
+    placements.push_back(prepare(files[i], options,
+                                 options.expect.empty() ? nullptr : &options.expect[i],
+                                 options.sha256.empty() ? nullptr : &options.sha256[i], staging));
   }
   if (options.pack) report(options.progress, "pack", files.size(), files.size());
   check_conflicts(manifest_, placements);  // refused at once, without waiting for the lock

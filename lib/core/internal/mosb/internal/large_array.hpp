@@ -34,8 +34,8 @@ inline void* map_large(std::size_t bytes, bool populate) {
   void* raw = ::mmap(nullptr, mapped, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
   if (raw == MAP_FAILED) throw std::bad_alloc();
   auto* first = static_cast<char*>(raw);
-  auto* p = reinterpret_cast<char*>((reinterpret_cast<std::uintptr_t>(first) + kHuge - 1) /
-                                    kHuge * kHuge);
+  auto* p = reinterpret_cast<char*>((reinterpret_cast<std::uintptr_t>(first) + kHuge - 1) / kHuge *
+                                    kHuge);
   if (p > first) ::munmap(first, static_cast<std::size_t>(p - first));
   const auto end = reinterpret_cast<std::uintptr_t>(p) + large_mapping_length(bytes);
   const auto mapped_end = reinterpret_cast<std::uintptr_t>(first) + mapped;
