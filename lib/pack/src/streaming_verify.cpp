@@ -274,7 +274,7 @@ class SectionReader {
   // The next chunk; empty at the end. Valid until the next call.
   std::span<const std::byte> next() {
     const std::uint64_t rest = s_.decoded_length - position_;
-    const std::size_t size = static_cast<std::size_t>(std::min<std::uint64_t>(kChunk, rest));
+    const auto size = static_cast<std::size_t>(std::min<std::uint64_t>(kChunk, rest));
     std::span<const std::byte> out;
     if (size == 0) {
       release_raw(s_.decoded_length);
@@ -301,11 +301,14 @@ class SectionReader {
   // them in the page cache), so that reading a section costs no resident memory beyond a chunk.
   void release_raw(std::uint64_t to) {
     if (is_encoded(s_)) return;
-    const auto base = reinterpret_cast<std::uintptr_t>(s_.stored.data());
-    const std::uintptr_t from = released_ ? released_ : base / kPage * kPage;
-    const std::uintptr_t until = (base + to) / kPage * kPage;
+    auto page_start = [](const std::byte* p) {
+      return p - reinterpret_cast<std::uintptr_t>(p) % kPage;
+    };
+    const std::byte* from = released_ ? released_ : page_start(s_.stored.data());
+    const std::byte* until = page_start(s_.stored.data() + to);
     if (until > from) {
-      (void)::madvise(reinterpret_cast<void*>(from), until - from, MADV_DONTNEED);
+      (void)::madvise(const_cast<std::byte*>(from), static_cast<std::size_t>(until - from),
+                      MADV_DONTNEED);
       released_ = until;
     }
   }
@@ -404,7 +407,7 @@ class SectionReader {
   Encoding encoding_ = Encoding::raw;
   std::size_t width_ = 1;
   std::uint64_t position_ = 0;
-  std::uintptr_t released_ = 0;
+  const std::byte* released_ = nullptr;
   Buffer<std::byte> whole_, chunk_, gathered_;
   std::unique_ptr<ZstdStream> stream_;
   ZSTD_inBuffer input_{};
@@ -637,17 +640,17 @@ class Transposer {
     const std::uint64_t fits = std::max<std::uint64_t>(context_.memory / 2 / 24, 64);
     std::vector<std::pair<std::uint64_t, std::uint64_t>> ranges;  // [first, last) heads
     if (count <= fits) {
-      ranges.push_back({v0, v1});
+      ranges.emplace_back(v0, v1);
     } else {
       std::vector<std::uint64_t> in_degree(v1 - v0, 0);
       read_blocks(blocks, [&](const ArcRecord& r) { ++in_degree[r.head - v0]; });
       std::uint64_t first = v0, held = 0;
       for (std::uint64_t v = v0; v < v1; ++v) {
         if (held > 0 && held + in_degree[v - v0] > fits)
-          ranges.push_back({first, v}), first = v, held = 0;
+          ranges.emplace_back(first, v), first = v, held = 0;
         held += in_degree[v - v0];
       }
-      ranges.push_back({first, v1});
+      ranges.emplace_back(first, v1);
     }
     Buffer<std::uint32_t> arcs, heads, tails;
     for (const auto& range : ranges) {
@@ -929,7 +932,9 @@ FileVerification verify_file_streaming(const fs::path& path,
     const auto i = index_of(reverse[k]);
     if (!is_derived(sections[i]) || csr.forward_is_csr) checksums[i] = csr.reverse_checksum[k];
   }
-  auto result = [&](Problem problem) { return FileVerification{problem, reader.digest()}; };
+  auto result = [&](Problem problem) {
+    return FileVerification{std::move(problem), reader.digest()};
+  };
   for (auto& p : checksums)
     if (p) return result(p);
   if (derives && !csr.forward_is_csr)

@@ -34,12 +34,10 @@ inline void* map_large(std::size_t bytes, bool populate) {
   void* raw = ::mmap(nullptr, mapped, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
   if (raw == MAP_FAILED) throw std::bad_alloc();
   auto* first = static_cast<char*>(raw);
-  auto* p = reinterpret_cast<char*>((reinterpret_cast<std::uintptr_t>(first) + kHuge - 1) / kHuge *
-                                    kHuge);
+  char* p = first + (kHuge - reinterpret_cast<std::uintptr_t>(first) % kHuge) % kHuge;
   if (p > first) ::munmap(first, static_cast<std::size_t>(p - first));
-  const auto end = reinterpret_cast<std::uintptr_t>(p) + large_mapping_length(bytes);
-  const auto mapped_end = reinterpret_cast<std::uintptr_t>(first) + mapped;
-  if (mapped_end > end) ::munmap(reinterpret_cast<void*>(end), mapped_end - end);
+  char* end = p + large_mapping_length(bytes);
+  if (first + mapped > end) ::munmap(end, static_cast<std::size_t>(first + mapped - end));
   ::madvise(p, bytes, MADV_HUGEPAGE);
   if (populate) ::madvise(p, bytes, MADV_POPULATE_WRITE);
   return p;
