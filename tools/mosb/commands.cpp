@@ -284,6 +284,16 @@ std::string vector_text(const std::vector<double>& v) {
   return out.str();
 }
 
+std::string status_counts_text(const std::array<std::uint64_t, kLastQueryStatus + 1>& counts,
+                               bool nonzero) {
+  std::string text;
+  for (std::uint8_t s = 0; s <= kLastQueryStatus; ++s)
+    if (!nonzero || counts[s] != 0)
+      text += (text.empty() ? "" : ", ") + std::to_string(counts[s]) + " " +
+              std::string(to_string(static_cast<QueryStatus>(s)));
+  return text;
+}
+
 std::vector<Ratio> parse_epsilons(const std::string& list) {
   std::vector<Ratio> result;
   std::stringstream in(list);

@@ -2,6 +2,7 @@
 // when that subcommand is chosen; `run` returns the process exit code.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -13,6 +14,7 @@
 #include "mosb/error.hpp"
 #include "mosb/eval.hpp"
 #include "mosb/pack.hpp"
+#include "mosb/solution_file.hpp"
 #include "mosb/views.hpp"
 
 namespace CLI {
@@ -68,6 +70,11 @@ CLI::Validator printable_text();
 
 // A cost vector as the text reports print it: "(a, b, c)", each value as an ostream prints it.
 std::string vector_text(const std::vector<double>& v);
+
+// Query counts per status as `mosb run`, `run --slurm --status` and `solutions merge` print them:
+// "3 solved, 0 timeout, ..." for every status, or with `nonzero` only those with a count.
+std::string status_counts_text(const std::array<std::uint64_t, kLastQueryStatus + 1>& counts,
+                               bool nonzero);
 
 // Registers `--json` (the report as one JSON object on stdout) on a reporting command.
 void add_json_flag(CLI::App* subcommand, bool& json);

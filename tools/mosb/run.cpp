@@ -92,10 +92,9 @@ class ProgressLine {
     if (p.done != p.total && now - last_ < std::chrono::milliseconds(200)) return;
     last_ = now;
     std::string line = "\r" + std::to_string(p.done) + "/" + std::to_string(p.total);
-    for (std::uint8_t s = 0; s <= kLastQueryStatus; ++s)
-      if (s != static_cast<std::uint8_t>(QueryStatus::not_run) && p.counts[s] != 0)
-        line += ", " + std::to_string(p.counts[s]) + " " +
-                std::string(to_string(static_cast<QueryStatus>(s)));
+    auto counts = p.counts;
+    counts[static_cast<std::uint8_t>(QueryStatus::not_run)] = 0;  // not yet run: the rest
+    if (const auto text = status_counts_text(counts, true); !text.empty()) line += ", " + text;
     if (p.done_here != 0 && p.done < p.total)
       line += ", ETA " +
               std::to_string(static_cast<long>(p.elapsed_seconds / p.done_here *
@@ -139,10 +138,8 @@ void print_summary(const RunArgs& a, const RunResult& r) {
                                 : "shard " + a.shard + ", " + std::to_string(r.total) + " of the " +
                                       std::to_string(r.query_set_size) + " queries")
             << (a.shard.empty() ? std::to_string(r.total) + " queries" : std::string()) << " ("
-            << r.ran << " run, " << r.from_journal << " from the journal):";
-  for (std::uint8_t s = 0; s <= kLastQueryStatus; ++s)
-    std::cout << ' ' << r.counts[s] << ' ' << to_string(static_cast<QueryStatus>(s))
-              << (s < kLastQueryStatus ? "," : "");
+            << r.ran << " run, " << r.from_journal
+            << " from the journal): " << status_counts_text(r.counts, false);
   std::cout << "; measured with " << to_string(r.measurement) << ", solvers' wall "
             << r.wall_seconds << " s, cpu " << r.cpu_seconds << " s\n";
 }
@@ -358,15 +355,6 @@ int run_slurm_new(const RunArgs& a) {
   return 0;
 }
 
-std::string counts_text(const std::array<std::uint64_t, kLastQueryStatus + 1>& counts) {
-  std::string text;
-  for (std::uint8_t s = 0; s <= kLastQueryStatus; ++s)
-    if (counts[s] != 0)
-      text += (text.empty() ? "" : ", ") + std::to_string(counts[s]) + " " +
-              std::string(to_string(static_cast<QueryStatus>(s)));
-  return text;
-}
-
 void print_status_json(const SlurmRun& run, const SlurmStatus& status,
                        const std::vector<std::uint64_t>* resubmitted,
                        const std::optional<std::string>& job) {
@@ -441,7 +429,7 @@ void print_status_text(const SlurmRun& run, const SlurmStatus& status) {
     std::cout << "shard " << s.index << "/" << run.shards << ": " << to_string(s.file);
     switch (s.file) {
       case ShardFile::done:
-        std::cout << " (" << counts_text(s.counts) << ")";
+        std::cout << " (" << status_counts_text(s.counts, true) << ")";
         break;
       case ShardFile::partial:
         std::cout << " (" << s.recorded << " of " << s.queries << " queries in the journal)";

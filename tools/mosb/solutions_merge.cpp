@@ -116,10 +116,8 @@ int run_merge(const MergeArgs& a) {
   }
   const auto counts = m.status_counts();
   std::cout << "wrote " << escape_for_terminal(a.output) << ": " << m.query_count()
-            << " queries from " << m.inputs().size() << " files:";
-  for (std::uint8_t s = 0; s <= kLastQueryStatus; ++s)
-    std::cout << ' ' << counts[s] << ' ' << to_string(static_cast<QueryStatus>(s))
-              << (s < kLastQueryStatus ? "," : "\n");
+            << " queries from " << m.inputs().size()
+            << " files: " << status_counts_text(counts, false) << "\n";
   return 0;
 }
 
