@@ -82,19 +82,16 @@ Problem check_checksum(const Section& s) {
 template <class T, class Holds>
 Problem check_checksum_and_rule(const Section& s, std::span<const T> values, Holds holds,
                                 bool& rule_holds) {
-  std::unique_ptr<XXH3_state_t, decltype(&XXH3_freeState)> state(XXH3_createState(),
-                                                                 &XXH3_freeState);
-  if (!state) throw std::bad_alloc();
-  XXH3_64bits_reset(state.get());
+  Xxh3Stream hash;
   rule_holds = true;
   constexpr std::size_t kChunk = (std::size_t{64} << 10) / sizeof(T);
   for (std::size_t first = 0; first * sizeof(T) < s.stored.size(); first += kChunk) {
     const std::size_t bytes = std::min(kChunk * sizeof(T), s.stored.size() - first * sizeof(T));
-    XXH3_64bits_update(state.get(), s.stored.data() + first * sizeof(T), bytes);
+    hash.update(s.stored.data() + first * sizeof(T), bytes);
     if (first < values.size())
       rule_holds &= holds(values.subspan(first, std::min(kChunk + 1, values.size() - first)));
   }
-  return checksum_problem(s, XXH3_64bits_digest(state.get()));
+  return checksum_problem(s, hash.digest());
 }
 
 // The sections check_csr reads, found once.

@@ -104,10 +104,12 @@ void shuffle_bytes(const std::byte* in, std::byte* out, std::size_t count) {
   for (std::size_t i = 0; i < count; ++i)
     for (std::size_t k = 0; k < W; ++k) out[k * count + i] = in[i * W + k];
 }
+// Elements [0, count) from planes `stride` bytes apart (byte k of element i at in[k * stride + i]):
+// stride = count un-shuffles a whole section; a larger one, a window of it.
 template <std::size_t W>
-void unshuffle_bytes(const std::byte* in, std::byte* out, std::size_t count) {
+void unshuffle_bytes(const std::byte* in, std::size_t stride, std::byte* out, std::size_t count) {
   for (std::size_t i = 0; i < count; ++i)
-    for (std::size_t k = 0; k < W; ++k) out[i * W + k] = in[k * count + i];
+    for (std::size_t k = 0; k < W; ++k) out[i * W + k] = in[k * stride + i];
 }
 
 // Calls f(std::integral_constant<std::size_t, W>) for element size w in {1, 2, 4, 8}.
@@ -145,16 +147,19 @@ void delta_in_place(std::byte* bytes, std::size_t count) {
     std::memcpy(bytes + i * W, &d, W);
   }
 }
+// The running sum, continued from `sum` (the last element before these; 0 at the start), which
+// it returns.
 template <std::size_t W>
-void undelta_in_place(std::byte* bytes, std::size_t count) {
+std::uint64_t undelta_in_place(std::byte* bytes, std::size_t count, std::uint64_t sum = 0) {
   using T = Unsigned<W>;
-  T sum = 0;
+  auto running = static_cast<T>(sum);
   for (std::size_t i = 0; i < count; ++i) {
     T d;
     std::memcpy(&d, bytes + i * W, W);
-    sum = static_cast<T>(sum + d);
-    std::memcpy(bytes + i * W, &sum, W);
+    running = static_cast<T>(running + d);
+    std::memcpy(bytes + i * W, &running, W);
   }
+  return running;
 }
 
 // `bytes` bytes at p (aligned for T) as elements of type T.

@@ -95,7 +95,7 @@ void decode_frame(const Section& s, std::byte* out, ZSTD_DCtx* context, std::str
   if (encoding == Encoding::zstd) return;
   const std::size_t count = s.element_count();
   with_width(format::element_size(s.type), [&](auto width) {
-    unshuffle_bytes<width()>(content, out, count);
+    unshuffle_bytes<width()>(content, count, out, count);
     if (encoding == Encoding::delta_zstd) undelta_in_place<width()>(out, count);
   });
 }

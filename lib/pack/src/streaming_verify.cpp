@@ -382,22 +382,10 @@ class SectionReader {
                               spill_at_ + k * count + first);
       planes = gathered_.data(), stride = elements;
     }
-    with_width(width_, [&](auto w) {
-      constexpr std::size_t W = w();
-      auto* out = chunk_.data();
-      for (std::size_t i = 0; i < elements; ++i)
-        for (std::size_t k = 0; k < W; ++k) out[i * W + k] = planes[k * stride + i];
-      if (encoding_ == Encoding::delta_zstd) {
-        using T = Unsigned<W>;
-        auto sum = static_cast<T>(carry_);
-        for (std::size_t i = 0; i < elements; ++i) {
-          T d;
-          std::memcpy(&d, out + i * W, W);
-          sum = static_cast<T>(sum + d);
-          std::memcpy(out + i * W, &sum, W);
-        }
-        carry_ = sum;
-      }
+    with_width(width_, [&](auto width) {
+      unshuffle_bytes<width()>(planes, stride, chunk_.data(), elements);
+      if (encoding_ == Encoding::delta_zstd)
+        carry_ = undelta_in_place<width()>(chunk_.data(), elements, carry_);
     });
     return std::span<const std::byte>(chunk_).first(size);
   }
@@ -427,18 +415,15 @@ std::span<const T> elements_of(std::span<const std::byte> chunk) {
 template <class T, class F>
 void for_each_chunk(const Section& s, Context& context, Problem& checksum, F f) {
   SectionReader reader(s, context);
-  std::unique_ptr<XXH3_state_t, decltype(&XXH3_freeState)> state(XXH3_createState(),
-                                                                 &XXH3_freeState);
-  if (!state) throw std::bad_alloc();
-  XXH3_64bits_reset(state.get());
+  Xxh3Stream hash;
   std::uint64_t first = 0;
   for (auto chunk = reader.next(); !chunk.empty(); chunk = reader.next()) {
-    XXH3_64bits_update(state.get(), chunk.data(), chunk.size());
+    hash.update(chunk.data(), chunk.size());
     const auto values = elements_of<T>(chunk);
     f(values, first);
     first += values.size();
   }
-  checksum = rules::checksum_problem(s, XXH3_64bits_digest(state.get()));
+  checksum = rules::checksum_problem(s, hash.digest());
 }
 
 // Its checksum, and `rule(chunk_elements, first_index)` on every chunk until it finds a problem.
@@ -456,12 +441,11 @@ template <class T>
 class ReverseSink {
  public:
   ReverseSink(const Section& s, Context& context) : s_(s) {
-    XXH3_64bits_reset(state_.get());
     if (!is_derived(s)) stored_ = std::make_unique<SectionReader>(s, context);
   }
   void consume(std::span<const T> built) {
     if (!stored_) {
-      XXH3_64bits_update(state_.get(), built.data(), built.size_bytes());
+      hash_.update(built.data(), built.size_bytes());
       written_ += built.size();
       return;
     }
@@ -469,7 +453,7 @@ class ReverseSink {
       if (stored_chunk_.empty()) {
         const auto chunk = stored_->next();
         if (chunk.empty()) return;  // not possible: the table gives both the same length
-        XXH3_64bits_update(state_.get(), chunk.data(), chunk.size());
+        hash_.update(chunk.data(), chunk.size());
         stored_chunk_ = elements_of<T>(chunk);
       }
       const std::size_t k = std::min(built.size(), stored_chunk_.size());
@@ -487,8 +471,8 @@ class ReverseSink {
   void finish(Problem& checksum, Problem& transpose) {
     if (stored_)
       for (auto chunk = stored_->next(); !chunk.empty(); chunk = stored_->next())
-        XXH3_64bits_update(state_.get(), chunk.data(), chunk.size());
-    checksum = rules::checksum_problem(s_, XXH3_64bits_digest(state_.get()));
+        hash_.update(chunk.data(), chunk.size());
+    checksum = rules::checksum_problem(s_, hash_.digest());
     if (mismatch_)
       transpose = rules::in_section(
           s_, "reverse-transpose",
@@ -504,10 +488,17 @@ class ReverseSink {
   const Section& s_;
   std::unique_ptr<SectionReader> stored_;
   std::span<const T> stored_chunk_;
-  std::unique_ptr<XXH3_state_t, decltype(&XXH3_freeState)> state_{XXH3_createState(),
-                                                                  &XXH3_freeState};
+  Xxh3Stream hash_;
   std::uint64_t written_ = 0;
   std::optional<Mismatch> mismatch_;
+};
+
+// The reverse CSR of §4 built from the forward CSR's two sections, read once, and checked against
+// the file's three reverse sections; on the way the forward sections' checksums and rules.
+struct CsrCheck {
+  Problem forward_offsets_checksum, forward_targets_checksum, forward_offsets, forward_targets;
+  Problem reverse_checksum[3], transpose[3];
+  bool forward_is_csr = false;
 };
 
 // The three reverse sections, fed a vertex range at a time.
@@ -532,6 +523,12 @@ struct ReverseSinks {
     sources.consume(tails);
     arcs.consume(arc_ids);
   }
+  // After the last vertex: each section's checksum problem and first difference.
+  void finish(CsrCheck& out) {
+    offsets.finish(out.reverse_checksum[0], out.transpose[0]);
+    sources.finish(out.reverse_checksum[1], out.transpose[1]);
+    arcs.finish(out.reverse_checksum[2], out.transpose[2]);
+  }
 };
 
 // Arcs as the transpose needs them, in arc id order within any range of heads.
@@ -553,39 +550,31 @@ void feed_range(ReverseSinks& sinks, std::uint64_t v0, std::uint64_t v1,
   for (std::size_t i = 0; i < heads.size(); ++i) {
     const auto at = start[heads[i] - v0]++;
     list_tails[at] = tails[i];
-    list_arcs[at] = arcs.empty() ? static_cast<std::uint32_t>(i) : arcs[i];
+    list_arcs[at] = arcs[i];
   }
   sinks.feed(in_degrees, list_tails, list_arcs);
 }
 
-// The forward CSR's two sections (arcs in id order, each with its head and tail) into the reverse
-// CSR's order: all in memory when they fit, else spilled in blocks per range of heads (a bucket)
-// and each bucket sorted alone, a bucket too large for the memory in narrower ranges.
+// The forward CSR's arcs (in id order, each with its head and tail) into the reverse CSR's order
+// when they do not fit the memory: spilled in blocks per range of heads (a bucket), then each
+// bucket sorted alone, a bucket too large for the memory in narrower ranges.
 class Transposer {
  public:
   Transposer(Context& context, std::uint64_t n, std::uint64_t m) : context_(context), n_(n) {
     const std::uint64_t need = 16 * m + 8 * (n + 1);  // records, in-lists, counts
-    buckets_ = std::max<std::uint64_t>((need + context.memory / 2 - 1) / (context.memory / 2), 2);
-    buckets_ = std::min<std::uint64_t>(buckets_, std::max<std::uint64_t>(n, 1));
-    width_ = (n + buckets_ - 1) / std::max<std::uint64_t>(buckets_, 1);
-    if (buckets_ == 1) {
-      heads_.reserve(static_cast<std::size_t>(m)), tails_.reserve(static_cast<std::size_t>(m));
-    } else {
-      block_ = std::max<std::uint64_t>(context.memory / 4 / buckets_ / sizeof(ArcRecord), 64);
-      pending_.resize(buckets_);
-      blocks_.resize(buckets_);
-      counts_.resize(buckets_, 0);
-    }
+    buckets_ = std::clamp<std::uint64_t>((need + context.memory / 2 - 1) / (context.memory / 2), 1,
+                                         std::max<std::uint64_t>(n, 1));
+    width_ = std::max<std::uint64_t>((n + buckets_ - 1) / buckets_, 1);
+    block_ = std::max<std::uint64_t>(context.memory / 4 / buckets_ / sizeof(ArcRecord), 64);
+    pending_.resize(buckets_);
+    blocks_.resize(buckets_);
+    counts_.resize(buckets_, 0);
   }
 
   // Arc `arc` (ids ascending, from 0) from `tail` to `head` (below n, or it is left out: the
   // forward CSR is then no CSR, which is reported instead).
   void add(std::uint32_t arc, std::uint32_t head, std::uint32_t tail) {
     if (head >= n_) return;
-    if (buckets_ == 1) {
-      heads_.push_back(head), tails_.push_back(tail);
-      return;
-    }
     const auto b = head / width_;
     auto& pending = pending_[b];
     pending.push_back({arc, head, tail});
@@ -594,15 +583,11 @@ class Transposer {
   }
 
   void finish(ReverseSinks& sinks) {
-    if (buckets_ == 1) {
-      feed_range(sinks, 0, n_, {}, heads_, tails_);
-    } else {
-      for (std::uint64_t b = 0; b < buckets_; ++b) flush(b);
-      pending_ = {};
-      for (std::uint64_t b = 0; b < buckets_; ++b)
-        feed_bucket(sinks, std::min(n_, b * width_), std::min(n_, (b + 1) * width_), blocks_[b],
-                    counts_[b]);
-    }
+    for (std::uint64_t b = 0; b < buckets_; ++b) flush(b);
+    pending_ = {};
+    for (std::uint64_t b = 0; b < buckets_; ++b)
+      feed_bucket(sinks, std::min(n_, b * width_), std::min(n_, (b + 1) * width_), blocks_[b],
+                  counts_[b]);
     sinks.offsets.consume(sinks.entries);  // reverse_offsets[n] = m
   }
 
@@ -657,7 +642,7 @@ class Transposer {
       // Not a structured binding: clang 14's lambdas cannot capture one.
       const std::uint64_t first = range.first, last = range.second;
       arcs.clear(), heads.clear(), tails.clear();
-      if (last - first == 1 && ranges.size() > 1) {
+      if (last - first == 1 && count > fits) {
         // One head: its in-list is its arcs in id order, fed a chunk at a time.
         std::uint64_t degree = 0;
         read_blocks(blocks, [&](const ArcRecord& r) { degree += r.head == first; });
@@ -688,18 +673,38 @@ class Transposer {
   Context& context_;
   std::uint64_t n_;
   std::uint64_t buckets_ = 1, width_ = 1, block_ = 0;
-  Buffer<std::uint32_t> heads_, tails_;          // one bucket: every arc, in id order
   std::vector<std::vector<ArcRecord>> pending_;  // per bucket, not yet spilled
   std::vector<std::vector<Block>> blocks_;       // per bucket, spilled, in arc order
   std::vector<std::uint64_t> counts_;
 };
 
-// The reverse CSR of §4 built from the forward CSR's two sections, read once, and checked against
-// the file's three reverse sections; on the way the forward sections' checksums and rules.
-struct CsrCheck {
-  Problem forward_offsets_checksum, forward_targets_checksum, forward_offsets, forward_targets;
-  Problem reverse_checksum[3], transpose[3];
-  bool forward_is_csr = true;
+// The forward offsets' rules, seen a chunk at a time: never decreasing (across chunks too), and
+// from 0 to m (step 9 of FORMAT.md §9, which the open checks only for a raw section).
+struct ForwardOffsetsRule {
+  const Section& s;
+  Problem problem;
+  std::uint64_t front = 0, back = 0;  // the first and the last offset seen
+  bool seen = false;
+
+  void check(std::span<const std::uint64_t> chunk, std::uint64_t first) {
+    if (chunk.empty()) return;
+    if (!problem && seen && back > chunk.front()) {
+      const std::uint64_t pair[] = {back, chunk.front()};
+      problem = rules::check_offsets(s, pair, first - 1);
+    }
+    if (!problem && !rules::offsets_ascend(chunk)) problem = rules::check_offsets(s, chunk, first);
+    if (!seen) front = chunk.front();
+    seen = true, back = chunk.back();
+  }
+  // After the last chunk: the first problem, the ends' included.
+  Problem finish(std::uint64_t m) {
+    if (!problem && (front != 0 || back != m))
+      problem = rules::in_section(s, "offsets-ends",
+                                  "offsets run from " + std::to_string(front) + " to " +
+                                      std::to_string(back) + ", not from 0 to the arc count " +
+                                      std::to_string(m));
+    return problem;
+  }
 };
 
 ReverseSinks sinks_for(const GraphReader& reader, Context& context) {
@@ -723,30 +728,19 @@ CsrCheck check_csr_in_buckets(const GraphReader& reader, Context& context) {
   Transposer transposer(context, n, m);
   {
     SectionReader offsets_reader(fo, context);
-    std::unique_ptr<XXH3_state_t, decltype(&XXH3_freeState)> offsets_hash(XXH3_createState(),
-                                                                          &XXH3_freeState),
-        targets_hash(XXH3_createState(), &XXH3_freeState);
-    XXH3_64bits_reset(offsets_hash.get()), XXH3_64bits_reset(targets_hash.get());
+    Xxh3Stream offsets_hash, targets_hash;
     std::span<const std::uint64_t> offsets;  // the current chunk
-    std::uint64_t offsets_first = 0, offsets_read = 0, previous_last = 0;
+    std::uint64_t offsets_first = 0;
+    ForwardOffsetsRule offsets_rule{fo, {}};
     // offsets[v] for v at or after the current chunk; false past the end.
     auto offset_at = [&](std::uint64_t v, std::uint64_t& value) {
       while (v >= offsets_first + offsets.size()) {
         const auto chunk = offsets_reader.next();
         if (chunk.empty()) return false;
-        XXH3_64bits_update(offsets_hash.get(), chunk.data(), chunk.size());
+        offsets_hash.update(chunk.data(), chunk.size());
         offsets_first += offsets.size();
         offsets = elements_of<std::uint64_t>(chunk);
-        if (!out.forward_offsets && offsets_read > 0 && previous_last > offsets.front())
-          out.forward_offsets = rules::in_section(
-              fo, "offsets-monotonic",
-              "offsets decrease at vertex " + std::to_string(offsets_first - 1) + " (" +
-                  std::to_string(previous_last) + " > " + std::to_string(offsets.front()) + ")");
-        if (!out.forward_offsets && !rules::offsets_ascend(offsets))
-          out.forward_offsets = rules::check_offsets(fo, offsets, offsets_first);
-        if (offsets_read == 0 && offsets.front() != 0) out.forward_is_csr = false;
-        offsets_read += offsets.size();
-        previous_last = offsets.back();
+        offsets_rule.check(offsets, offsets_first);
       }
       value = offsets[v - offsets_first];
       return true;
@@ -756,7 +750,7 @@ CsrCheck check_csr_in_buckets(const GraphReader& reader, Context& context) {
     std::uint64_t tail = 0, tail_end = 0, arc = 0;
     offset_at(std::min<std::uint64_t>(1, n), tail_end);
     for (auto chunk = targets_reader.next(); !chunk.empty(); chunk = targets_reader.next()) {
-      XXH3_64bits_update(targets_hash.get(), chunk.data(), chunk.size());
+      targets_hash.update(chunk.data(), chunk.size());
       const auto targets = elements_of<std::uint32_t>(chunk);
       if (!out.forward_targets && !rules::ids_below(targets, n))
         out.forward_targets = rules::check_ids(ft, targets, n, "target-range", "arc", arc);
@@ -770,24 +764,17 @@ CsrCheck check_csr_in_buckets(const GraphReader& reader, Context& context) {
       }
     }
     std::uint64_t last = 0;
-    if (!offset_at(n, last) || last != m) out.forward_is_csr = false;
-    while (offset_at(offsets_first + offsets.size(), last)) {
+    while (offset_at(offsets_first + offsets.size(), last)) {  // the rest, for the rules and hash
     }
-    out.forward_offsets_checksum =
-        rules::checksum_problem(fo, XXH3_64bits_digest(offsets_hash.get()));
-    out.forward_targets_checksum =
-        rules::checksum_problem(ft, XXH3_64bits_digest(targets_hash.get()));
-    if (!out.forward_offsets && out.forward_is_csr == false)
-      out.forward_offsets = rules::in_section(
-          fo, "offsets-ends", "offsets do not run from 0 to the arc count " + std::to_string(m));
+    out.forward_offsets_checksum = rules::checksum_problem(fo, offsets_hash.digest());
+    out.forward_targets_checksum = rules::checksum_problem(ft, targets_hash.digest());
+    out.forward_offsets = offsets_rule.finish(m);
   }
-  out.forward_is_csr &= !out.forward_offsets && !out.forward_targets;
+  out.forward_is_csr = !out.forward_offsets && !out.forward_targets;
 
   auto sinks = sinks_for(reader, context);
   transposer.finish(sinks);
-  sinks.offsets.finish(out.reverse_checksum[0], out.transpose[0]);
-  sinks.sources.finish(out.reverse_checksum[1], out.transpose[1]);
-  sinks.arcs.finish(out.reverse_checksum[2], out.transpose[2]);
+  sinks.finish(out);
   return out;
 }
 
@@ -801,14 +788,11 @@ CsrCheck check_csr(const GraphReader& reader, Context& context) {
   CsrCheck out;
   Buffer<std::uint64_t> offsets(n + 1, context.allocator<std::uint64_t>());
   Buffer<std::uint32_t> targets(m, context.allocator<std::uint32_t>());
+  ForwardOffsetsRule offsets_rule{fo, {}};
   for_each_chunk<std::uint64_t>(
       fo, context, out.forward_offsets_checksum, [&](auto values, std::uint64_t first) {
         std::memcpy(offsets.data() + first, values.data(), values.size_bytes());
-        if (out.forward_offsets) return;
-        if (first > 0 && offsets[first - 1] > values.front())
-          out.forward_offsets = rules::check_offsets(fo, {&offsets[first - 1], 2}, first - 1);
-        else if (!rules::offsets_ascend(values))
-          out.forward_offsets = rules::check_offsets(fo, values, first);
+        offsets_rule.check(values, first);
       });
   for_each_chunk<std::uint32_t>(
       ft, context, out.forward_targets_checksum, [&](auto values, std::uint64_t first) {
@@ -816,9 +800,7 @@ CsrCheck check_csr(const GraphReader& reader, Context& context) {
         if (!out.forward_targets && !rules::ids_below(values, n))
           out.forward_targets = rules::check_ids(ft, values, n, "target-range", "arc", first);
       });
-  if (!out.forward_offsets && (offsets[0] != 0 || offsets[n] != m))
-    out.forward_offsets = rules::in_section(
-        fo, "offsets-ends", "offsets do not run from 0 to the arc count " + std::to_string(m));
+  out.forward_offsets = offsets_rule.finish(m);
   out.forward_is_csr = !out.forward_offsets && !out.forward_targets;
   auto sinks = sinks_for(reader, context);
   if (out.forward_is_csr) {
@@ -832,9 +814,7 @@ CsrCheck check_csr(const GraphReader& reader, Context& context) {
     sinks.sources.consume(std::span<const std::uint32_t>(reverse_sources));
     sinks.arcs.consume(std::span<const std::uint32_t>(reverse_arcs));
   }
-  sinks.offsets.finish(out.reverse_checksum[0], out.transpose[0]);
-  sinks.sources.finish(out.reverse_checksum[1], out.transpose[1]);
-  sinks.arcs.finish(out.reverse_checksum[2], out.transpose[2]);
+  sinks.finish(out);
   return out;
 }
 

@@ -15,6 +15,7 @@
 #include <condition_variable>
 #include <cstring>
 #include <ctime>
+#include <deque>
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
@@ -508,58 +509,47 @@ void write_validators(const fs::path& path, const Validators& v) {
                             {"size", v.size},
                             {"etag", v.etag},
                             {"last_modified", v.last_modified}};
-  // Not fsynced, nor written through a temporary: validators lost or cut short by a crash do not
-  // parse, and the transfer restarts from zero; stale ones resume wrong bytes, which the SHA-256
-  // then refuses. Either way nothing unverified is placed, and a pull makes no fsync for them.
-  const std::string text = json.dump() + "\n";
-  Fd out{::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_CLOEXEC, 0666)};
-  if (out.fd < 0)
-    throw Error(ErrorCode::io, path.string() + ": cannot create: " + std::strerror(errno));
-  for (std::size_t done = 0; done < text.size();) {
-    const ssize_t wrote = ::write(out.fd, text.data() + done, text.size() - done);
-    if (wrote < 0 && errno == EINTR) continue;
-    if (wrote <= 0)
-      throw Error(ErrorCode::io, path.string() + ": cannot write: " + std::strerror(errno));
-    done += static_cast<std::size_t>(wrote);
-  }
+  write_file_atomically(path, json.dump() + "\n");
 }
 
 // The checks of received entries, at most one per core at once (they are CPU-bound; more would
 // only interleave), each with a workspace kept from one check to the next.
 class CheckSlots {
  public:
-  explicit CheckSlots(unsigned count) {
-    for (unsigned i = 0; i < std::max(1U, count); ++i)
-      idle_.push_back(std::make_unique<VerifyWorkspace>());
+  explicit CheckSlots(unsigned count) : workspaces_(std::max(1U, count)) {
+    for (auto& w : workspaces_) idle_.push_back(&w);
   }
   // Runs f(workspace) in a free slot, waiting for one.
   template <class F>
   void run(F f) {
-    std::unique_ptr<VerifyWorkspace> workspace;
+    VerifyWorkspace* workspace = nullptr;
     {
       std::unique_lock lock(mutex_);
       freed_.wait(lock, [&] { return !idle_.empty(); });
-      workspace = std::move(idle_.back());
+      workspace = idle_.back();
       idle_.pop_back();
     }
-    struct Return {
-      CheckSlots& slots;
-      std::unique_ptr<VerifyWorkspace>& workspace;
-      ~Return() {
-        {
-          const std::lock_guard lock(slots.mutex_);
-          slots.idle_.push_back(std::move(workspace));
-        }
-        slots.freed_.notify_one();
+    auto give_back = [&] {
+      {
+        const std::lock_guard lock(mutex_);
+        idle_.push_back(workspace);
       }
-    } give_back{*this, workspace};
-    f(*workspace);
+      freed_.notify_one();
+    };
+    try {
+      f(*workspace);
+    } catch (...) {
+      give_back();
+      throw;
+    }
+    give_back();
   }
 
  private:
+  std::deque<VerifyWorkspace> workspaces_;  // not movable: a deque makes them in place
+  std::vector<VerifyWorkspace*> idle_;
   std::mutex mutex_;
   std::condition_variable freed_;
-  std::vector<std::unique_ptr<VerifyWorkspace>> idle_;
 };
 
 // The pull's shared state: options, progress, where things are.

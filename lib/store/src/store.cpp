@@ -319,14 +319,9 @@ std::vector<FileCheck> check_against_manifest(const fs::path& manifest_path,
 
 std::string xxh3_file(const fs::path& path) {
   InputFd in(path);
-  std::unique_ptr<XXH3_state_t, decltype(&XXH3_freeState)> state(XXH3_createState(),
-                                                                 &XXH3_freeState);
-  if (!state) throw Error(ErrorCode::no_memory, path.string() + ": out of memory");
-  XXH3_64bits_reset(state.get());
-  in.read_all(path, [&](const char* data, std::size_t size) {
-    XXH3_64bits_update(state.get(), data, size);
-  });
-  return hex64(XXH3_64bits_digest(state.get()));
+  Xxh3Stream hash;
+  in.read_all(path, [&](const char* data, std::size_t size) { hash.update(data, size); });
+  return hex64(hash.digest());
 }
 
 std::vector<SourceCheck> check_sources(const GraphReader& instance, const fs::path& directory) {

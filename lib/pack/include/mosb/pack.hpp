@@ -89,14 +89,6 @@ struct FileVerification {
 FileVerification verify_file(const std::filesystem::path& path, VerifyLevel level,
                              std::uint64_t max_memory = 0, const Progress& progress = {});
 
-// verify_file at level full, in working memory that does not grow with the file: every section is
-// read once, front to back, a chunk at a time (a raw one from the mapping, each page let go once
-// read; a frame through a streaming zstd decoder, a large shuffled or delta frame's content held
-// in a spill file), and the reverse CSR is checked against the transpose of the forward CSR built
-// in sorted runs of at most `memory` / 2 bytes, merged from the spill file when there are several.
-// What it finds is what verify_file finds at level full (a problem, or a mosb::Error for a frame
-// that does not decode, naming the file), with the messages of verify where the rule is the same.
-// It runs on one thread. Used where files are taken in: `store add`, `store pull`.
 // Memory one streaming check leaves to the next: checks given the same workspace take their large
 // buffers from it, mapped and faulted in once, instead of mapping their own (for a pull of many
 // files, a third of the check's time). Between checks it keeps at most 64 MiB, until destroyed.
@@ -115,6 +107,15 @@ class VerifyWorkspace {
   std::unique_ptr<Blocks> blocks_;
 };
 
+// verify_file at level full, in working memory that does not grow with the file: every section is
+// read once, front to back, a chunk at a time (a raw one from the mapping, each page let go once
+// read; a frame whole when small, else through a streaming zstd decoder; a large shuffled or delta
+// frame's content held in a spill file), and the reverse CSR is checked against the transpose of
+// the forward CSR, built in memory when both fit `memory`, else in buckets of heads spilled to the
+// spill file and sorted one at a time. What it finds is what verify_file finds at level full (a
+// problem, or a mosb::Error for a frame that does not decode, naming the file), with the messages
+// of verify where the rule is the same. It runs on one thread. Used where files are taken in:
+// `store add`, `store pull`.
 struct StreamingVerifyOptions {
   std::uint64_t memory = std::uint64_t{32} << 20;  // the working memory aimed at (at least 4 KiB)
   // Where the spill file goes (O_TMPFILE: it has no name and is gone when the check ends, even by
