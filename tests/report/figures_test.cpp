@@ -13,15 +13,28 @@
 
 using namespace mosb;
 
-TEST_CASE("map_of: cells, walls and exposure of a GUARDS instance") {
-  testing::TempDir dir;
-  // 4 x 3 with a wall at (1, 1); each cell's exposure given (the wall's value is ignored).
+namespace {
+
+// dir/g.mosb: a 4 x 3 map with a wall at (1, 1), converted with a second input of `text` given to
+// the converter as `option` (exposure_file or guards_file); returns the conversion.
+auto convert_small_map(const testing::TempDir& dir, const std::string& text,
+                       std::optional<std::string> converters::GuardsOptions::*option) {
   testing::write_text(dir / "small.map", "type octile\nheight 3\nwidth 4\nmap\n....\n.@..\n....\n");
-  testing::write_text(dir / "e.txt", "1 2 3 4\n5 0 6 7\n8 9 1 2\n");
+  testing::write_text(dir / "input.txt", text);
   converters::GuardsOptions o;
   o.map_file = (dir / "small.map").string();
-  o.exposure_file = (dir / "e.txt").string();
-  write_graph(converters::convert_guards(o).graph, dir / "g.mosb");
+  o.*option = (dir / "input.txt").string();
+  auto converted = converters::convert_guards(o);
+  write_graph(converted.graph, dir / "g.mosb");
+  return converted;
+}
+
+}  // namespace
+
+TEST_CASE("map_of: cells, walls and exposure of a GUARDS instance") {
+  testing::TempDir dir;
+  // Each cell's exposure given (the wall's value is ignored).
+  convert_small_map(dir, "1 2 3 4\n5 0 6 7\n8 9 1 2\n", &converters::GuardsOptions::exposure_file);
 
   const auto reader = GraphReader::open(dir / "g.mosb", VerifyLevel::full);
   const auto plot = plots::map_of(reader, "exposure");
@@ -46,13 +59,8 @@ TEST_CASE("map_of: cells, walls and exposure of a GUARDS instance") {
 
 TEST_CASE("map_of: the guards of metadata map.guards, refused when malformed or off the map") {
   testing::TempDir dir;
-  testing::write_text(dir / "small.map", "type octile\nheight 3\nwidth 4\nmap\n....\n.@..\n....\n");
-  testing::write_text(dir / "g.txt", "0 0\n3 2 1.5\n");
-  converters::GuardsOptions o;
-  o.map_file = (dir / "small.map").string();
-  o.guards_file = (dir / "g.txt").string();
-  auto converted = converters::convert_guards(o);
-  write_graph(converted.graph, dir / "g.mosb");
+  auto converted =
+      convert_small_map(dir, "0 0\n3 2 1.5\n", &converters::GuardsOptions::guards_file);
   const auto plot = plots::map_of(GraphReader::open(dir / "g.mosb", VerifyLevel::full), "exposure");
   REQUIRE(plot.guards.size() == 2);
   CHECK((plot.guards[0].x == 0 && plot.guards[0].y == 0));

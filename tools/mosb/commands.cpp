@@ -83,23 +83,27 @@ void add_json_flag(CLI::App* subcommand, bool& json) {
   subcommand->add_flag("--json", json, "print the report as one JSON object on stdout");
 }
 
-CLI::Option* add_max_memory_option(CLI::App* subcommand, std::uint64_t& max_memory) {
-  return subcommand
-      ->add_option("--max-memory", max_memory,
-                   "the most memory decoding a packed file may take (bytes, or 512M, 4G: powers "
-                   "of 1024); 0: the memory available")
+namespace {
+// A memory size in bytes, or with a suffix (512M, 4G: powers of 1024).
+CLI::Option* add_memory_size_option(CLI::App* subcommand, const std::string& name,
+                                    std::uint64_t& bytes, const std::string& what) {
+  return subcommand->add_option(name, bytes, what + " (bytes, or 512M, 4G: powers of 1024)")
       ->transform(CLI::AsSizeValue(false))
       ->capture_default_str();
 }
+}  // namespace
+
+CLI::Option* add_max_memory_option(CLI::App* subcommand, std::uint64_t& max_memory) {
+  return add_memory_size_option(
+      subcommand, "--max-memory", max_memory,
+      "the most memory decoding a packed file may take; 0: the memory available");
+}
 
 CLI::Option* add_check_memory_option(CLI::App* subcommand, std::uint64_t& check_memory) {
-  return subcommand
-      ->add_option("--check-memory", check_memory,
-                   "the working memory of each file's check (bytes, or 16M: powers of 1024), "
-                   "whatever the file's size: more spills to a temporary file in the store")
-      ->transform(CLI::AsSizeValue(false))
-      ->check(CLI::Range(std::uint64_t{4096}, UINT64_MAX))
-      ->capture_default_str();
+  return add_memory_size_option(subcommand, "--check-memory", check_memory,
+                                "the working memory of each file's check, whatever the file's "
+                                "size: more spills to a temporary file in the store")
+      ->check(CLI::Range(std::uint64_t{4096}, UINT64_MAX));
 }
 
 CLI::Option* add_id_base_option(CLI::App* subcommand, unsigned& id_base,
