@@ -394,6 +394,9 @@ class Solutions:
 
     path = property(lambda self: self._reader.display_name)
     instance_digest = property(lambda self: self._reader.instance_digest)
+    # The name the solver is shown under (as by mosb eval and report): solution.solver.name, else
+    # the file's name without directory and extension.
+    solver_name = property(lambda self: self._reader.solver_name)
     view = property(lambda self: self._reader.view)
     query_set = property(lambda self: self._reader.query_set)
     query_count = property(lambda self: self._reader.query_count)

@@ -38,7 +38,7 @@ def _solutions(s):
 
 
 def _name(s):
-    return s.solver["name"] or s.path
+    return s.solver_name
 
 
 def _objective(s, objective):

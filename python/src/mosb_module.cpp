@@ -18,6 +18,7 @@
 #include "mosb/internal/utf8.hpp"
 #include "mosb/pack.hpp"
 #include "mosb/solution_file.hpp"
+#include "mosb/solution_summary.hpp"
 #include "mosb/store.hpp"
 #include "mosb/verify.hpp"
 #include "mosb/version.hpp"
@@ -313,6 +314,9 @@ void bind_solutions(py::module_& m) {
           "display_name", [](const mosb::SolutionReader& r) { return path_text(r.display_name()); })
       .def_property_readonly("instance_digest", &mosb::SolutionReader::instance_digest)
       .def_property_readonly(
+          "solver_name",
+          [](const mosb::SolutionReader& r) { return text_of(r, mosb::solver_name(r)); })
+      .def_property_readonly(
           "view", [](const mosb::SolutionReader& r) { return text_of(r, r.view_name()); })
       .def_property_readonly(
           "query_set", [](const mosb::SolutionReader& r) { return text_of(r, r.query_set()); })
@@ -344,13 +348,10 @@ void bind_solutions(py::module_& m) {
       .def(
           "statistic",
           [](const mosb::SolutionReader& r, const std::string& name) -> py::object {
-            const auto* found =
-                std::find_if(std::begin(mosb::kStatistics), std::end(mosb::kStatistics),
-                             [&](mosb::Statistic s) { return mosb::to_string(s) == name; });
-            if (found == std::end(mosb::kStatistics))
-              throw py::value_error("statistic '" + name +
-                                    "' is not one of runtime_seconds, "
-                                    "expanded, generated, peak_memory_bytes, exit_status");
+            const auto found = mosb::kStatisticNames.parse(name);
+            if (!found)
+              throw py::value_error("statistic '" + name + "' is not one of " +
+                                    mosb::kStatisticNames.choices_text());
             if (!r.has_statistic(*found)) return py::none();
             // float64 with NaN for an absent value: what pandas and numpy expect of a column.
             py::array_t<double> values(static_cast<py::ssize_t>(r.query_count()));
@@ -367,8 +368,7 @@ void bind_solutions(py::module_& m) {
           },
           py::arg("name"));
   py::list statuses;
-  for (std::uint8_t s = 0; s <= mosb::kLastQueryStatus; ++s)
-    statuses.append(std::string(mosb::to_string(static_cast<mosb::QueryStatus>(s))));
+  for (const auto& name : mosb::kQueryStatusNames.names()) statuses.append(name);
   m.attr("STATUSES") = py::tuple(statuses);
 }
 

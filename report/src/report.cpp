@@ -14,6 +14,7 @@
 #include "mosb/report/figures.hpp"
 #include "mosb/report/plots.hpp"
 #include "mosb/report/svg.hpp"
+#include "mosb/solution_summary.hpp"
 #include "mosb/solver_comparison.hpp"
 #include "mosb/stats.hpp"
 #include "mosb/version.hpp"
@@ -41,12 +42,6 @@ struct Benchmark {
   std::map<std::string, std::vector<BoundFile>> solvers;  // by solver name
   std::vector<std::string> solver_order;                  // names in the order first given
 };
-
-std::string solver_name(const SolutionReader& r) {
-  auto name = r.solver().name;
-  if (!name.empty()) return name;
-  return std::filesystem::path(r.display_name()).stem().string();
-}
 
 // [a-z0-9_.] for a table key.
 std::string key_of(const std::string& name) {
@@ -135,24 +130,11 @@ struct QueryKey {
 struct Outcome {
   QueryStatus status = QueryStatus::not_run;
   std::optional<double> runtime;
-  bool completed() const {
-    return status == QueryStatus::solved || status == QueryStatus::disconnected;
-  }
+  bool completed() const { return is_completed(status); }
 };
 
 // Every solver's outcome of every query it has a file for.
 using Outcomes = std::map<QueryKey, std::map<std::string, Outcome>>;
-
-std::optional<double> median_of(std::vector<double> v) {
-  if (v.empty()) return std::nullopt;
-  std::sort(v.begin(), v.end());
-  const auto n = v.size();
-  return n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
-}
-
-Cell optional_cell(std::optional<double> v) {
-  return v ? Cell::of(*v) : Cell{};
-}
 
 // "a" or "a-b" over the instances of a benchmark.
 Cell range_cell(std::uint64_t lo, std::uint64_t hi) {
@@ -378,35 +360,22 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
         t.rows.push_back(std::move(row));
         continue;
       }
-      std::uint64_t queries = 0, timeouts = 0, memory = 0;
-      std::vector<double> sizes, runtimes;
-      for (const auto& f : *files) {
-        const auto& r = readers[f.file];
-        queries += r.query_count();
-        for (std::uint64_t q = 0; q < r.query_count(); ++q) {
-          const auto s = r.status(q);
-          timeouts += s == QueryStatus::timeout;
-          memory += s == QueryStatus::memory_limit;
-          if (s == QueryStatus::solved || s == QueryStatus::disconnected) {
-            sizes.push_back(static_cast<double>(r.front_size(q)));
-            if (auto runtime = r.runtime_seconds(q)) runtimes.push_back(*runtime);
-          }
-        }
-      }
-      row.push_back(Cell::of(queries));
+      std::vector<const SolutionReader*> pooled;
+      for (const auto& f : *files) pooled.push_back(&readers[f.file]);
+      const auto summary = summarize_completed(pooled);
+      row.push_back(Cell::of(summary.statuses.total()));
       row.push_back(Cell::of(source));
-      row.push_back(Cell::of(timeouts));
-      row.push_back(Cell::of(memory));
-      const auto d = distribution_of(sizes);
-      const auto rt = distribution_of(runtimes);
-      if (d) {
-        row.push_back(Cell::of(*std::min_element(sizes.begin(), sizes.end())));
+      row.push_back(Cell::of(summary.statuses[QueryStatus::timeout]));
+      row.push_back(Cell::of(summary.statuses[QueryStatus::memory_limit]));
+      if (const auto& d = summary.front_size) {
+        row.push_back(Cell::of(d->min));
         row.push_back(Cell::of(d->max));
         row.push_back(Cell::of(d->mean));
         row.push_back(Cell::of(d->median));
       } else {
         row.resize(row.size() + 4);
       }
+      const auto& rt = summary.runtime;
       row.push_back(rt ? Cell::of(rt->median) : Cell{});
       row.push_back(rt ? Cell::of(rt->max) : Cell{});
       t.rows.push_back(std::move(row));
@@ -688,9 +657,9 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
         }
         row.push_back(Cell::of(timeouts[s]));
         row.push_back(Cell::of(memory[s]));
-        const auto& v = runtimes[s];
-        row.push_back(optional_cell(median_of(v)));
-        row.push_back(v.empty() ? Cell{} : Cell::of(*std::max_element(v.begin(), v.end())));
+        const auto runtime = distribution_of(runtimes[s]);
+        row.push_back(runtime ? Cell::of(runtime->median) : Cell{});
+        row.push_back(runtime ? Cell::of(runtime->max) : Cell{});
       }
       t.rows.push_back(std::move(row));
     }

@@ -196,8 +196,7 @@ Table comparison_summary(const SolverComparison& comparison,
   };
   Table t;
   t.columns = {{"solver", "Solver"}};
-  for (std::uint8_t s = 0; s <= kLastQueryStatus; ++s) {
-    const auto status = static_cast<QueryStatus>(s);
+  for (const auto status : kQueryStatuses) {
     if (shown(status))
       t.columns.push_back({status_key(status), latex_escape(std::string(to_string(status)))});
   }
@@ -219,8 +218,8 @@ Table comparison_summary(const SolverComparison& comparison,
                    {{"runtime_max", "$t_{\\max}$ [s]"}, {"runtime_sgm", "SGM [s]"}});
   for (const auto& s : comparison.solvers) {
     std::vector<Cell> row{Cell::of(s.name)};
-    for (std::uint8_t k = 0; k <= kLastQueryStatus; ++k)
-      if (shown(static_cast<QueryStatus>(k))) row.push_back(Cell::of(s.status_counts[k]));
+    for (const auto status : kQueryStatuses)
+      if (shown(status)) row.push_back(Cell::of(s.own.statuses[status]));
     if (!for_paper) row.push_back(Cell::of(s.not_solved));
     for (const auto& e : s.per_epsilon) {
       row.push_back(Cell::of(e.covered));

@@ -7,6 +7,7 @@ Instances come from `mosb generate grid`; solution files from `mosb solutions im
 table and JSON inputs written here.
 """
 
+import csv
 import functools
 import json
 import os
@@ -59,6 +60,29 @@ class SolutionsTest(CliTest):
             self.write(os.path.join("fronts", name), text)
         return d
 
+    def test_inspect_eval_and_report_summarise_a_file_alike(self):
+        # One summary of the paper's Table 1 (spec/EVALUATION.md §4): the same file gives the same
+        # front sizes in `solutions inspect`, in `eval` (the solver's own) and in `report`'s
+        # suite table, over its completed queries (a disconnected one counts with size 0), and is
+        # shown under one name (the file name without its extension when it records none).
+        d = self.front_dir({"0.txt": "1 9\n2 7\n3 5\n", "1.txt": "4 4\n", "2.txt": "",
+                            "3.txt": "5 5\n6 1\n"})
+        self.import_("--dir", d, "--status-for-empty", "disconnected", output="boa.sol")
+        sol = self.path("boa.sol")
+        inspected = json.loads(run("solutions", "inspect", "--json", sol).stdout)["front_size"]
+        self.assertEqual(inspected, {"count": 4, "min": 0, "median": 1.5, "mean": 1.5, "max": 3})
+        evaluated = json.loads(run("eval", "--reference", sol, "--solutions", sol, "--json")
+                               .stdout)["solvers"][0]
+        self.assertEqual(evaluated["name"], "boa")
+        self.assertEqual(evaluated["front_size"], inspected)
+        run("report", self.grid, "--solutions", sol, "-o", self.path("r.html"), "--csv",
+            self.path("tables"))
+        with open(self.path(os.path.join("tables", "suite.csv")), newline="") as f:
+            row = next(csv.DictReader(f))
+        self.assertEqual(row["fronts_of"], "boa")
+        self.assertEqual([float(row["front_" + k]) for k in ("min", "median", "mean", "max")],
+                         [inspected[k] for k in ("min", "median", "mean", "max")])
+
     def test_directory_import_and_inspect(self):
         d = self.front_dir({"0.txt": "# a comment\n1 9\n[2, 7]\n\n3;5\r\n", "q1.front": "4,4\n",
                             "query-2.txt": ""})
@@ -72,13 +96,16 @@ class SolutionsTest(CliTest):
         # An empty front file is `failed` unless the user says otherwise (--status-for-empty).
         self.assertEqual(info["statuses"], {"solved": 2, "timeout": 0, "memory-limit": 0,
                                             "disconnected": 0, "not-run": 1, "failed": 1})
-        # Front sizes 3 and 1: the median of an even count is the lower middle one.
-        self.assertEqual(info["front_size"], {"min": 1, "median": 1, "max": 3})
+        # Front sizes 3 and 1 over the two completed queries: the median of an even count is the
+        # middle pair's mean (spec/EVALUATION.md §4, as eval and report say it).
+        self.assertEqual(info["front_size"], {"count": 2, "min": 1, "median": 2, "mean": 2, "max": 3})
+        self.assertIsNone(info["runtime_seconds"])
         self.assertFalse(info["paths"])
         text = run("solutions", "inspect", self.path("out.sol")).stdout
         self.assertIn("4 queries: 2 solved, 0 timeout, 0 memory-limit, 0 disconnected, 1 not-run, "
                       "1 failed", text)
-        self.assertIn("front size: min 1, median 1, max 3 (4 vectors)", text)
+        self.assertIn("front size over 2 completed queries (solved or disconnected): min 1, median 2, "
+                      "mean 2, max 3 (4 vectors)", text)
         ok = run("solutions", "verify", self.path("out.sol"), "--instance", self.grid)
         self.assertIn("OK", ok.stdout)
         self.assertTrue(json.loads(run("solutions", "verify", self.path("out.sol"), "--json").stdout)["ok"])
@@ -477,7 +504,7 @@ class SolutionsTest(CliTest):
         self.assertNotIn("\x1b", text)
         self.assertIn("solver fake\\nOK   forged.sol\\x1b[2J", text)
         self.assertIn("odd\\nname.sol: solutions of instance", text)
-        self.assertEqual(len(text.splitlines()), 6, text)
+        self.assertEqual(len(text.splitlines()), 7, text)
         verified = run("solutions", "verify", out).stdout
         self.assertEqual(verified.count("\n"), 1, verified)
         r = run("verify", self.path("missing\n\x1b[31mfile.mosb"), check=False)

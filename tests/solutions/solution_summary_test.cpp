@@ -11,7 +11,9 @@
 
 using namespace mosb;
 
-TEST_CASE("summarize: statuses, front sizes (lower median) and statistics over the queries") {
+TEST_CASE(
+    "summarize: statuses and statistics. Front sizes and runtimes over the completed queries "
+    "(the median of an even count is the middle pair's mean)") {
   testing::TempDir dir;
   write_graph(testing::golden_input(), dir / "g.mosb");
   const auto instance = GraphReader::open(dir / "g.mosb", VerifyLevel::full);
@@ -25,13 +27,19 @@ TEST_CASE("summarize: statuses, front sizes (lower median) and statistics over t
   w.set_query(2, QueryStatus::timeout, std::vector<double>{});
   w.write(dir / "s.sol.mosb");
   const auto summary = summarize(SolutionReader::open_verified(dir / "s.sol.mosb"));
-  CHECK(summary.status_counts[static_cast<std::size_t>(QueryStatus::solved)] == 2);
-  CHECK(summary.status_counts[static_cast<std::size_t>(QueryStatus::timeout)] == 1);
-  CHECK(summary.status_counts[static_cast<std::size_t>(QueryStatus::not_run)] == 0);
-  REQUIRE(summary.front_sizes);
-  CHECK(summary.front_sizes->min == 1);
-  CHECK(summary.front_sizes->median == 1);  // of {1, 2}: the lower middle one
-  CHECK(summary.front_sizes->max == 2);
+  const auto& statuses = summary.completed.statuses;
+  CHECK(statuses[QueryStatus::solved] == 2);
+  CHECK(statuses[QueryStatus::timeout] == 1);
+  CHECK(statuses[QueryStatus::not_run] == 0);
+  CHECK(statuses.total() == 3);
+  CHECK(statuses.completed() == 2);
+  REQUIRE(summary.completed.front_size);
+  CHECK(summary.completed.front_size->count == 2);
+  CHECK(summary.completed.front_size->min == 1);
+  CHECK(summary.completed.front_size->median == 1.5);  // of {1, 2}: the middle pair's mean
+  CHECK(summary.completed.front_size->max == 2);
+  REQUIRE(summary.completed.runtime);
+  CHECK(summary.completed.runtime->median == 1.5);
   REQUIRE(summary.statistics.size() == 2);
   CHECK(summary.statistics[0].statistic == Statistic::runtime_seconds);
   CHECK(summary.statistics[0].queries == 2);
@@ -44,7 +52,52 @@ TEST_CASE("summarize: statuses, front sizes (lower median) and statistics over t
   SolutionWriter none(instance, "Small_2");
   none.write(dir / "none.sol.mosb");
   const auto empty = summarize(SolutionReader::open_verified(dir / "none.sol.mosb"));
-  CHECK_FALSE(empty.front_sizes);
-  CHECK(empty.status_counts[static_cast<std::size_t>(QueryStatus::not_run)] == 3);
+  CHECK_FALSE(empty.completed.front_size);
+  CHECK(empty.completed.statuses[QueryStatus::not_run] == 3);
   CHECK(empty.statistics.empty());
+}
+
+TEST_CASE("summarize_completed: files pooled. A disconnected query completed with front size 0") {
+  testing::TempDir dir;
+  write_graph(testing::golden_input(), dir / "g.mosb");
+  const auto instance = GraphReader::open(dir / "g.mosb", VerifyLevel::full);
+  SolutionWriter a(instance, "Small_2");
+  QueryStatistics quick;
+  quick.runtime_seconds = 1;
+  a.set_query(0, QueryStatus::disconnected, std::vector<double>{}, quick);
+  a.set_query(1, QueryStatus::solved, std::vector<double>{120, 7.5, 130, 6}, quick);
+  a.set_query(2, QueryStatus::memory_limit, std::vector<double>{});
+  a.write(dir / "a.sol");
+  SolutionWriter b(instance, "Small_2");
+  b.set_query(0, QueryStatus::solved, std::vector<double>{60, 5.25, 80, 3.75, 90, 2}, quick);
+  b.write(dir / "b.sol");
+  const auto ra = SolutionReader::open_verified(dir / "a.sol");
+  const auto rb = SolutionReader::open_verified(dir / "b.sol");
+  const SolutionReader* const both[] = {&ra, &rb};
+  const auto pooled = summarize_completed(both);
+  CHECK(pooled.statuses.total() == 6);
+  CHECK(pooled.statuses[QueryStatus::not_run] == 2);
+  CHECK(pooled.statuses[QueryStatus::memory_limit] == 1);
+  REQUIRE(pooled.front_size);
+  CHECK(pooled.front_size->count == 3);  // sizes 0, 2, 3
+  CHECK(pooled.front_size->min == 0);
+  CHECK(pooled.front_size->median == 2);
+  CHECK(pooled.front_size->mean == doctest::Approx(5.0 / 3));
+  CHECK(pooled.front_size->max == 3);
+  CHECK(pooled.runtime->count == 3);
+}
+
+TEST_CASE("solver_name: the recorded name, else the file name without directory and extension") {
+  testing::TempDir dir;
+  write_graph(testing::golden_input(), dir / "g.mosb");
+  const auto instance = GraphReader::open(dir / "g.mosb", VerifyLevel::full);
+  SolutionWriter unnamed(instance, "Small_2");
+  unnamed.write(dir / "boa.sol");
+  CHECK(solver_name(SolutionReader::open_verified(dir / "boa.sol")) == "boa");
+  SolutionWriter named(instance, "Small_2");
+  SolverInfo info;
+  info.name = "BOA*";
+  named.set_solver(info);
+  named.write(dir / "named.sol");
+  CHECK(solver_name(SolutionReader::open_verified(dir / "named.sol")) == "BOA*");
 }

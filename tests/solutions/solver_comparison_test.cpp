@@ -84,7 +84,7 @@ TEST_CASE("compare_solvers: per-solver statuses, coverage, ratios and runtimes o
 
   const auto& fast = result.solvers[0];
   CHECK(fast.name == "fast");
-  CHECK(fast.status_counts[static_cast<std::size_t>(QueryStatus::solved)] == 2);
+  CHECK(fast.own.statuses[QueryStatus::solved] == 2);
   CHECK(fast.not_solved == 0);
   CHECK(fast.per_epsilon[0].covered == 1);  // ε = 0: query 0 only
   CHECK(fast.per_epsilon[0].not_covered == 1);
@@ -98,7 +98,7 @@ TEST_CASE("compare_solvers: per-solver statuses, coverage, ratios and runtimes o
   CHECK(fast.runtime->max == 1.0);
 
   const auto& slow = result.solvers[1];
-  CHECK(slow.status_counts[static_cast<std::size_t>(QueryStatus::timeout)] == 1);
+  CHECK(slow.own.statuses[QueryStatus::timeout] == 1);
   CHECK(slow.not_solved == 1);
   CHECK(slow.per_epsilon[1].covered == 0);
   CHECK(slow.per_epsilon[1].not_covered == 1);

@@ -288,14 +288,42 @@ std::string vector_text(const std::vector<double>& v) {
   return out.str();
 }
 
-std::string status_counts_text(const std::array<std::uint64_t, kLastQueryStatus + 1>& counts,
-                               bool nonzero) {
+std::string status_counts_text(const StatusCounts& counts, bool nonzero) {
   std::string text;
-  for (std::uint8_t s = 0; s <= kLastQueryStatus; ++s)
-    if (!nonzero || counts[s] != 0)
-      text += (text.empty() ? "" : ", ") + std::to_string(counts[s]) + " " +
-              std::string(to_string(static_cast<QueryStatus>(s)));
+  for (const auto status : kQueryStatuses)
+    if (!nonzero || counts[status] != 0)
+      text += (text.empty() ? "" : ", ") + std::to_string(counts[status]) + " " +
+              std::string(to_string(status));
   return text;
+}
+
+void json_status_counts(JsonWriter& json, const StatusCounts& counts) {
+  json.begin_object();
+  for (const auto status : kQueryStatuses) json.key(to_string(status)).value(counts[status]);
+  json.end_object();
+}
+
+void json_distribution(JsonWriter& json, const std::optional<Distribution>& d, bool with_min,
+                       bool runtime) {
+  if (!d) {
+    json.null();
+    return;
+  }
+  json.begin_object().key("count").value(d->count);
+  if (with_min) json.key("min").value(d->min);
+  json.key("median").value(d->median).key("mean").value(d->mean).key("max").value(d->max);
+  if (runtime) json.key("shifted_geometric_mean").value(d->shifted_geometric_mean);
+  json.end_object();
+}
+
+std::string distribution_text(const std::optional<Distribution>& d, const char* unit,
+                              bool with_min) {
+  if (!d) return "none";
+  std::ostringstream out;
+  if (with_min) out << "min " << d->min << unit << ", ";
+  out << "median " << d->median << unit << ", mean " << d->mean << unit << ", max " << d->max
+      << unit;
+  return out.str();
 }
 
 std::vector<Ratio> parse_epsilons(const std::string& list) {

@@ -15,6 +15,7 @@
 #include "mosb/eval.hpp"
 #include "mosb/pack.hpp"
 #include "mosb/solution_file.hpp"
+#include "mosb/solution_summary.hpp"
 #include "mosb/views.hpp"
 
 namespace CLI {
@@ -71,10 +72,20 @@ CLI::Validator printable_text();
 // A cost vector as the text reports print it: "(a, b, c)", each value as an ostream prints it.
 std::string vector_text(const std::vector<double>& v);
 
-// Query counts per status as `mosb run`, `run --slurm --status` and `solutions merge` print them:
-// "3 solved, 0 timeout, ..." for every status, or with `nonzero` only those with a count.
-std::string status_counts_text(const std::array<std::uint64_t, kLastQueryStatus + 1>& counts,
-                               bool nonzero);
+// Query counts per status as every command prints them: "3 solved, 0 timeout, ..." for every
+// status, or with `nonzero` only those with a count.
+std::string status_counts_text(const StatusCounts& counts, bool nonzero);
+
+class JsonWriter;
+// The counts as a JSON object keyed by status name (after the caller's key).
+void json_status_counts(JsonWriter& json, const StatusCounts& counts);
+// A distribution as a JSON object (count, median, mean, max; min with `with_min`, the shifted
+// geometric mean with `runtime`), or null.
+void json_distribution(JsonWriter& json, const std::optional<Distribution>& d, bool with_min,
+                       bool runtime);
+// "[min A, ]median B, mean C, max D" with `unit` after each value, or "none".
+std::string distribution_text(const std::optional<Distribution>& d, const char* unit,
+                              bool with_min = false);
 
 // Registers `--json` (the report as one JSON object on stdout) on a reporting command.
 void add_json_flag(CLI::App* subcommand, bool& json);

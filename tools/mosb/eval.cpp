@@ -100,19 +100,6 @@ void json_query(JsonWriter& j, const QueryEvaluation& q, bool exact,
   j.end_object();
 }
 
-void json_distribution(JsonWriter& j, std::string_view key, const std::optional<Distribution>& d,
-                       bool runtime) {
-  j.key(key);
-  if (!d) {
-    j.null();
-    return;
-  }
-  j.begin_object().key("count").value(d->count).key("median").value(d->median);
-  j.key("mean").value(d->mean).key("max").value(d->max);
-  if (runtime) j.key("shifted_geometric_mean").value(d->shifted_geometric_mean);
-  j.end_object();
-}
-
 void print_json(const SolverComparison& result, const std::string& reference,
                 std::uint64_t query_count, const std::vector<std::string>& eps_text) {
   JsonWriter j(std::cout);
@@ -126,10 +113,11 @@ void print_json(const SolverComparison& result, const std::string& reference,
   j.key("solvers").begin_array();
   for (const auto& s : result.solvers) {
     j.begin_object().key("name").value(s.name).key("file").value(s.file);
-    j.key("ok").value(!s.evaluation.failed).key("statuses").begin_object();
-    for (std::uint8_t k = 0; k <= kLastQueryStatus; ++k)
-      j.key(to_string(static_cast<QueryStatus>(k))).value(s.status_counts[k]);
-    j.end_object().key("not_solved").value(s.not_solved).key("epsilons").begin_array();
+    j.key("ok").value(!s.evaluation.failed).key("statuses");
+    json_status_counts(j, s.own.statuses);
+    j.key("front_size");
+    json_distribution(j, s.own.front_size, true, false);
+    j.key("not_solved").value(s.not_solved).key("epsilons").begin_array();
     for (std::size_t k = 0; k < eps_text.size(); ++k)
       j.begin_object()
           .key("epsilon")
@@ -140,9 +128,12 @@ void print_json(const SolverComparison& result, const std::string& reference,
           .value(s.per_epsilon[k].not_covered)
           .end_object();
     j.end_array();
-    json_distribution(j, "achieved_epsilon", s.achieved_epsilon, false);
-    json_distribution(j, "size_ratio", s.size_ratio, false);
-    json_distribution(j, "runtime_seconds", s.runtime, true);
+    j.key("achieved_epsilon");
+    json_distribution(j, s.achieved_epsilon, false, false);
+    j.key("size_ratio");
+    json_distribution(j, s.size_ratio, false, false);
+    j.key("runtime_seconds");
+    json_distribution(j, s.runtime, false, true);
     j.key("queries").begin_array();
     for (const auto& q : s.evaluation.queries)
       json_query(j, q, s.evaluation.exact_arithmetic, eps_text);
@@ -152,14 +143,6 @@ void print_json(const SolverComparison& result, const std::string& reference,
   std::cout << '\n';
 }
 
-std::string distribution_text(const std::optional<Distribution>& d, const char* unit) {
-  if (!d) return "none";
-  std::ostringstream out;
-  out << "median " << d->median << unit << ", mean " << d->mean << unit << ", max " << d->max
-      << unit;
-  return out.str();
-}
-
 void print_text(const SolverComparison& result, const std::vector<Ratio>& eps,
                 const std::vector<std::string>& eps_text, bool per_query) {
   for (std::size_t i = 0; i < result.solvers.size(); ++i) {
@@ -167,18 +150,14 @@ void print_text(const SolverComparison& result, const std::vector<Ratio>& eps,
     std::cout << "solver " << escape_for_terminal(s.name) << " (" << escape_for_terminal(s.file)
               << ")\n";
     if (per_query) print_query_lines(s.evaluation, eps, eps_text);
-    std::cout << "  statuses:";
-    const char* separator = " ";
-    for (std::uint8_t k = 0; k <= kLastQueryStatus; ++k) {
-      if (s.status_counts[k] == 0) continue;
-      std::cout << separator << s.status_counts[k] << ' ' << to_string(static_cast<QueryStatus>(k));
-      separator = ", ";
-    }
-    std::cout << "; " << s.not_solved << " solved by the reference only\n";
+    std::cout << "  statuses: " << status_counts_text(s.own.statuses, true) << "; " << s.not_solved
+              << " solved by the reference only\n";
     for (std::size_t k = 0; k < eps.size(); ++k)
       std::cout << "  ε=" << eps_text[k] << ": " << s.per_epsilon[k].covered << " covered, "
                 << s.per_epsilon[k].not_covered << " not covered\n";
     const auto count = [](const std::optional<Distribution>& d) { return d ? d->count : 0; };
+    std::cout << "  front size over " << count(s.own.front_size)
+              << " completed queries: " << distribution_text(s.own.front_size, "", true) << '\n';
     std::cout << "  achieved ε over " << count(s.achieved_epsilon)
               << " queries: " << distribution_text(s.achieved_epsilon, "") << '\n';
     std::cout << "  |S|/|R| over " << count(s.size_ratio)

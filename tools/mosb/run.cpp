@@ -93,7 +93,7 @@ class ProgressLine {
     last_ = now;
     std::string line = "\r" + std::to_string(p.done) + "/" + std::to_string(p.total);
     auto counts = p.counts;
-    counts[static_cast<std::uint8_t>(QueryStatus::not_run)] = 0;  // not yet run: the rest
+    counts[QueryStatus::not_run] = 0;  // not yet run: the rest
     if (const auto text = status_counts_text(counts, true); !text.empty()) line += ", " + text;
     if (p.done_here != 0 && p.done < p.total)
       line += ", ETA " +
@@ -123,10 +123,8 @@ void print_summary(const RunArgs& a, const RunResult& r) {
     if (!a.shard.empty()) json.key("shard").value(a.shard);
     json.key("ran").value(r.ran);
     json.key("from_journal").value(r.from_journal);
-    json.key("statuses").begin_object();
-    for (std::uint8_t s = 0; s <= kLastQueryStatus; ++s)
-      json.key(to_string(static_cast<QueryStatus>(s))).value(r.counts[s]);
-    json.end_object();
+    json.key("statuses");
+    json_status_counts(json, r.counts);
     json.key("measurement").value(std::string(to_string(r.measurement)));
     json.key("solver_wall_seconds").value(r.wall_seconds);
     json.key("solver_cpu_seconds").value(r.cpu_seconds);
@@ -241,8 +239,9 @@ int run_run(const RunArgs& a) {
   const RunResult result = run_solver(config, callbacks, g_stop);
   progress.end();
   if (result.interrupted) {
-    std::cerr << "mosb: interrupted; " << result.total - result.counts[4] << " queries are in "
-              << escape_for_terminal(result.journal) << "; continue with --resume\n";
+    std::cerr << "mosb: interrupted; " << result.total - result.counts[QueryStatus::not_run]
+              << " queries are in " << escape_for_terminal(result.journal)
+              << "; continue with --resume\n";
     return 130;
   }
   print_summary(a, result);
@@ -382,10 +381,8 @@ void print_status_json(const SlurmRun& run, const SlurmStatus& status,
     json.key("recorded").value(s.recorded);
     if (!s.problem.empty()) json.key("problem").value(s.problem);
     if (s.file == ShardFile::done) {
-      json.key("statuses").begin_object();
-      for (std::uint8_t k = 0; k <= kLastQueryStatus; ++k)
-        json.key(to_string(static_cast<QueryStatus>(k))).value(s.counts[k]);
-      json.end_object();
+      json.key("statuses");
+      json_status_counts(json, s.counts);
     }
     json.key("job");
     if (s.job.empty())

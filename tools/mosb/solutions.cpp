@@ -153,19 +153,12 @@ void print_inspect_json(const InspectArgs& a, const SolutionReader& r, const Sol
   json.end_object();
   json.key("queries").value(r.query_count());
   json.key("vectors").value(r.vector_count());
-  json.key("statuses").begin_object();
-  for (std::uint8_t s = 0; s <= kLastQueryStatus; ++s)
-    json.key(to_string(static_cast<QueryStatus>(s))).value(t.status_counts[s]);
-  json.end_object();
-  json.key("front_size").begin_object();
-  if (!t.front_sizes) {
-    json.key("min").null().key("median").null().key("max").null();
-  } else {
-    json.key("min").value(t.front_sizes->min);
-    json.key("median").value(t.front_sizes->median);
-    json.key("max").value(t.front_sizes->max);
-  }
-  json.end_object();
+  json.key("statuses");
+  json_status_counts(json, t.completed.statuses);
+  json.key("front_size");
+  json_distribution(json, t.completed.front_size, true, false);
+  json.key("runtime_seconds");
+  json_distribution(json, t.completed.runtime, true, false);
   json.key("paths").value(r.has_paths());
   json.key("statistics").begin_object();
   for (const auto& statistic : t.statistics) {
@@ -198,15 +191,15 @@ void print_inspect_text(const InspectArgs& a, const SolutionReader& r, const Sol
     std::cout << "machine " << escape_for_terminal(solver.machine) << "\n";
   for (const auto& [key, value] : solver.parameters)
     std::cout << "parameter " << key << " = " << escape_for_terminal(value) << "\n";
-  std::cout << r.query_count() << " queries:";
-  for (std::uint8_t s = 0; s <= kLastQueryStatus; ++s)
-    std::cout << ' ' << t.status_counts[s] << ' ' << to_string(static_cast<QueryStatus>(s))
-              << (s < kLastQueryStatus ? "," : "\n");
-  if (!t.front_sizes)
-    std::cout << "front size: no solved query\n";
-  else
-    std::cout << "front size: min " << t.front_sizes->min << ", median " << t.front_sizes->median
-              << ", max " << t.front_sizes->max << " (" << r.vector_count() << " vectors)\n";
+  std::cout << r.query_count() << " queries: " << status_counts_text(t.completed.statuses, false)
+            << "\n";
+  const auto& c = t.completed;
+  std::cout << "front size over " << (c.front_size ? c.front_size->count : 0)
+            << " completed queries (solved or disconnected): "
+            << distribution_text(c.front_size, "", true) << " (" << r.vector_count()
+            << " vectors)\n";
+  std::cout << "runtime over " << (c.runtime ? c.runtime->count : 0)
+            << " completed queries: " << distribution_text(c.runtime, " s", true) << "\n";
   std::cout << "paths: " << (r.has_paths() ? "yes" : "no") << "\n";
   for (const auto& statistic : t.statistics)
     std::cout << to_string(statistic.statistic) << ": " << statistic.queries << " queries, total "

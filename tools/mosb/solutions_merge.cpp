@@ -62,11 +62,9 @@ void print_json(const MergeArgs& a, const SolutionMerge& m, bool written) {
   j.key("missing").begin_array();
   for (const auto q : m.missing()) j.value(q);
   j.end_array();
-  j.key("statuses").begin_object();
-  const auto counts = m.status_counts();
-  for (std::uint8_t s = 0; s <= kLastQueryStatus; ++s)
-    j.key(to_string(static_cast<QueryStatus>(s))).value(counts[s]);
-  j.end_object().end_object();
+  j.key("statuses");
+  json_status_counts(j, m.status_counts());
+  j.end_object();
 }
 
 // The missing queries, by shard when the inputs are shards.

@@ -365,7 +365,7 @@ void apply_example_run_log(std::string_view text, const std::string& name,
     if (!expansions)
       fail(name, lines.number(), fields[4].column,
            "expected an expansion count, found " + quoted(fields[4].text));
-    if (result.status == QueryStatus::solved || result.status == QueryStatus::disconnected) {
+    if (is_completed(result.status)) {
       result.statistics.runtime_seconds = *seconds;
       result.statistics.expanded = *expansions;
     }
@@ -568,8 +568,7 @@ std::uint64_t json_record_query(const Json& record, std::size_t r, const std::st
 template <class Json, class At>
 void json_record_runtime(const Json& record, const std::string& record_at, const At& at,
                          ImportedResult& result) {
-  const bool keeps_runtime =
-      result.status == QueryStatus::solved || result.status == QueryStatus::disconnected;
+  const bool keeps_runtime = is_completed(result.status);
   const auto runtime = record.find("total_runtime(ms)");
   if (!keeps_runtime || runtime == record.end()) return;
   const std::string runtime_at = record_at + "/total_runtime(ms)";

@@ -45,7 +45,7 @@ ParsedOutput read_json_log_output(const SolverOutputFiles& files) {
     throw Error(path + ": expected one record for the query, found " +
                 std::to_string(results.size()));
   const auto& result = results.front();
-  if (result.status != QueryStatus::solved && result.status != QueryStatus::disconnected)
+  if (!is_completed(result.status))
     throw Error(path + ": the record states status " + std::string(to_string(result.status)));
   ParsedOutput out;
   out.vectors = result.costs.size() / files.objectives;

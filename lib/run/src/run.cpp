@@ -233,7 +233,7 @@ class Runner {
       if (it == j.records().end())
         todo_.push_back(q);
       else
-        ++progress_.counts[static_cast<std::size_t>(it->second.status)];
+        ++progress_.counts[it->second.status];
     }
     progress_.done = progress_.total - todo_.size();
   }
@@ -317,7 +317,7 @@ class Runner {
     cpu_ += outcome.cpu_seconds;
     ++progress_.done;
     ++progress_.done_here;
-    ++progress_.counts[static_cast<std::size_t>(record.status)];
+    ++progress_.counts[record.status];
     progress_.elapsed_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
     if (record.status == QueryStatus::failed && cb_.failed) cb_.failed(record, p_.queries[q]);
@@ -413,10 +413,8 @@ RunResult run_solver(const RunConfig& c, const RunCallbacks& callbacks,
   result.from_journal = result.total - runner.pending();
   runner.run(jobs, result);
   reap_all();
-  for (const auto& [q, record] : journal.records())
-    ++result.counts[static_cast<std::size_t>(record.status)];
-  result.counts[static_cast<std::size_t>(QueryStatus::not_run)] +=
-      result.total - journal.records().size();
+  for (const auto& [q, record] : journal.records()) ++result.counts[record.status];
+  result.counts[QueryStatus::not_run] += result.total - journal.records().size();
   if (stop.load()) {
     result.interrupted = true;
     return result;

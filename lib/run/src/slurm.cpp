@@ -391,9 +391,8 @@ ShardState shard_file_state(const SlurmRun& run, std::uint64_t index) {
     } else if (recorded_shard != shard.text()) {
       s.problem = "is shard " + recorded_shard.value_or("(none)") + ", not " + shard.text();
     } else {
-      for (std::uint64_t q = index - 1; q < run.queries; q += run.shards)
-        ++s.counts[static_cast<std::size_t>(r.status(q))];
-      s.recorded = s.queries - s.counts[static_cast<std::size_t>(QueryStatus::not_run)];
+      for (std::uint64_t q = index - 1; q < run.queries; q += run.shards) ++s.counts[r.status(q)];
+      s.recorded = s.queries - s.counts[QueryStatus::not_run];
       if (s.recorded == s.queries)
         s.file = ShardFile::done;
       else

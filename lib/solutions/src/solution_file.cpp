@@ -18,10 +18,6 @@ using format::SectionKind;
 
 namespace {
 
-constexpr std::string_view kStatusNames[] = {"solved",       "timeout", "memory-limit",
-                                             "disconnected", "not-run", "failed"};
-constexpr std::string_view kStatisticNames[] = {"runtime_seconds", "expanded", "generated",
-                                                "peak_memory_bytes", "exit_status"};
 // The section kinds of a solution file (SOLUTIONS.md §3).
 constexpr SectionKind kSolutionKinds[] = {
     SectionKind::metadata,     SectionKind::solution_status,     SectionKind::front_offsets,
@@ -43,7 +39,7 @@ bool has_front(QueryStatus s) {
 // one; nothing on the others.
 bool statistic_allowed(QueryStatus s, Statistic statistic) {
   if (statistic == Statistic::exit_status) return s == QueryStatus::failed;
-  return s == QueryStatus::solved || s == QueryStatus::disconnected;
+  return is_completed(s);
 }
 
 // The first statistic `stats` holds that `status` may not carry, or nullopt.
@@ -60,18 +56,15 @@ std::optional<Statistic> forbidden_statistic(QueryStatus status, const QueryStat
 }  // namespace
 
 std::string_view to_string(QueryStatus status) {
-  const auto raw = static_cast<std::uint8_t>(status);
-  return raw <= kLastQueryStatus ? kStatusNames[raw] : std::string_view("?");
+  return kQueryStatusNames.name(status);
 }
 
 std::optional<QueryStatus> parse_query_status(std::string_view text) {
-  for (std::uint8_t raw = 0; raw <= kLastQueryStatus; ++raw)
-    if (kStatusNames[raw] == text) return static_cast<QueryStatus>(raw);
-  return std::nullopt;
+  return kQueryStatusNames.parse(text);
 }
 
 std::string_view to_string(Statistic s) {
-  return kStatisticNames[static_cast<std::size_t>(s)];
+  return kStatisticNames.name(s);
 }
 
 // ---- SolutionReader ----
@@ -138,10 +131,9 @@ void SolutionReader::validate() {
   cost_indices_.assign(costs.begin(), costs.end());
   for (auto i : table.all(SectionKind::solution_statistics)) {
     const auto& s = sections_[i];
-    const auto* found = std::find(std::begin(kStatisticNames), std::end(kStatisticNames), s.name);
-    if (found == std::end(kStatisticNames))
-      fail("section '" + s.name + "': is not a statistic of SOLUTIONS.md §3");
-    const auto which = static_cast<std::size_t>(found - std::begin(kStatisticNames));
+    const auto found = kStatisticNames.parse(s.name);
+    if (!found) fail("section '" + s.name + "': is not a statistic of SOLUTIONS.md §3");
+    const auto which = static_cast<std::size_t>(*found);
     table.expect_shape(s, which == 0 ? ElementType::f64 : ElementType::u64);
     statistic_indices_[which] = i;  // one at most: names are unique within a kind
   }
@@ -440,7 +432,7 @@ struct QueryResult {
   std::vector<std::vector<std::uint32_t>> paths;
 };
 
-// The statistic of SOLUTIONS.md §3 with index s (the order of kStatisticNames), if recorded.
+// The statistic of SOLUTIONS.md §3 with index s (the order of kStatistics), if recorded.
 std::optional<std::uint64_t> count_statistic(const QueryStatistics& statistics, std::size_t s) {
   switch (s) {
     case 1:
@@ -471,13 +463,15 @@ void add_statistic_sections(FileWriter& out, std::span<const QueryResult> result
       for (const auto& r : results)
         column.push_back(
             r.statistics.runtime_seconds.value_or(std::numeric_limits<double>::quiet_NaN()));
-      out.add_section<double>(SectionKind::solution_statistics, kStatisticNames[s], 1,
+      out.add_section<double>(SectionKind::solution_statistics,
+                              to_string(static_cast<Statistic>(s)), 1,
                               std::span<const double>(column));
     } else {
       std::vector<std::uint64_t> column;
       for (const auto& r : results)
         column.push_back(count_statistic(r.statistics, s).value_or(kAbsentCount));
-      out.add_section<std::uint64_t>(SectionKind::solution_statistics, kStatisticNames[s], 1,
+      out.add_section<std::uint64_t>(SectionKind::solution_statistics,
+                                     to_string(static_cast<Statistic>(s)), 1,
                                      std::span<const std::uint64_t>(column));
     }
   }

@@ -219,14 +219,14 @@ const std::vector<std::uint64_t>& SolutionMerge::missing() const {
   return state_->missing;
 }
 
-std::array<std::uint64_t, kLastQueryStatus + 1> SolutionMerge::status_counts() const {
-  std::array<std::uint64_t, kLastQueryStatus + 1> counts{};
+StatusCounts SolutionMerge::status_counts() const {
+  StatusCounts counts;
   const auto& st = *state_;
   for (std::uint64_t q = 0; q < st.owner.size(); ++q) {
     const auto status = st.owner[q] < 0
                             ? QueryStatus::not_run
                             : st.readers[static_cast<std::size_t>(st.owner[q])].status(q);
-    ++counts[static_cast<std::size_t>(status)];
+    ++counts[status];
   }
   return counts;
 }

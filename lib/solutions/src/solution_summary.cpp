@@ -1,6 +1,9 @@
 #include "mosb/solution_summary.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <numeric>
 
 namespace mosb {
 
@@ -25,17 +28,51 @@ StatisticSummary summarize(const SolutionReader& r, Statistic statistic) {
 
 }  // namespace
 
+std::string solver_name(const SolutionReader& solutions) {
+  const auto& name = solutions.solver().name;
+  if (!name.empty()) return name;
+  return std::filesystem::path(solutions.display_name()).stem().string();
+}
+
+std::optional<Distribution> distribution_of(std::vector<double> values,
+                                            std::optional<double> runtime_shift) {
+  if (values.empty()) return std::nullopt;
+  std::sort(values.begin(), values.end());
+  Distribution d;
+  d.count = values.size();
+  const std::size_t mid = values.size() / 2;
+  d.median = values.size() % 2 ? values[mid] : (values[mid - 1] + values[mid]) / 2;
+  d.min = values.front();
+  d.max = values.back();
+  d.mean = std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(d.count);
+  if (runtime_shift) {
+    double log_sum = 0;
+    for (double v : values) log_sum += std::log(v + *runtime_shift);
+    d.shifted_geometric_mean = std::exp(log_sum / static_cast<double>(d.count)) - *runtime_shift;
+  }
+  return d;
+}
+
+CompletedSummary summarize_completed(std::span<const SolutionReader* const> files) {
+  CompletedSummary summary;
+  std::vector<double> sizes, runtimes;
+  for (const auto* r : files)
+    for (std::uint64_t q = 0; q < r->query_count(); ++q) {
+      const auto status = r->status(q);
+      ++summary.statuses[status];
+      if (!is_completed(status)) continue;
+      sizes.push_back(static_cast<double>(r->front_size(q)));
+      if (const auto runtime = r->runtime_seconds(q)) runtimes.push_back(*runtime);
+    }
+  summary.front_size = distribution_of(std::move(sizes));
+  summary.runtime = distribution_of(std::move(runtimes));
+  return summary;
+}
+
 SolutionSummary summarize(const SolutionReader& r) {
   SolutionSummary summary;
-  std::vector<std::uint64_t> sizes;
-  for (std::uint64_t q = 0; q < r.query_count(); ++q) {
-    const auto status = r.status(q);
-    ++summary.status_counts[static_cast<std::size_t>(status)];
-    if (status == QueryStatus::solved) sizes.push_back(r.front_size(q));
-  }
-  std::sort(sizes.begin(), sizes.end());
-  if (!sizes.empty())
-    summary.front_sizes = FrontSizes{sizes.front(), sizes[(sizes.size() - 1) / 2], sizes.back()};
+  const SolutionReader* const files[] = {&r};
+  summary.completed = summarize_completed(files);
   for (const auto statistic : kStatistics)
     if (r.has_statistic(statistic)) summary.statistics.push_back(summarize(r, statistic));
   return summary;

@@ -1,35 +1,23 @@
 #include "mosb/solver_comparison.hpp"
 
 #include <algorithm>
-#include <cmath>
-#include <filesystem>
 #include <map>
-#include <numeric>
 
 #include "mosb/error.hpp"
 
 namespace mosb {
 namespace {
 
-bool completed(QueryStatus s) {
-  return s == QueryStatus::solved || s == QueryStatus::disconnected;
-}
-
-std::string solver_name(const SolutionReader& r) {
-  auto name = r.solver().name;
-  if (name.empty()) name = std::filesystem::path(r.display_name()).filename().string();
-  return name;
-}
-
 SolverSummary summarize_solver(const SolutionReader& solution, SolutionEvaluation evaluation,
                                std::size_t epsilon_count) {
   SolverSummary s;
   s.name = solver_name(solution);
   s.file = solution.display_name();
+  const SolutionReader* const files[] = {&solution};
+  s.own = summarize_completed(files);
   s.per_epsilon.assign(epsilon_count, {});
   std::vector<double> achieved, ratios;
   for (const auto& q : evaluation.queries) {
-    ++s.status_counts[static_cast<std::size_t>(q.solution_status)];
     if (q.reference_status == QueryStatus::solved && q.solution_status != QueryStatus::solved)
       ++s.not_solved;
     if (!q.front) continue;
@@ -77,24 +65,6 @@ void compare_query(const SolutionReader& a, const SolutionReader& b, QueryAgreem
 
 }  // namespace
 
-std::optional<Distribution> distribution_of(std::vector<double> values,
-                                            std::optional<double> runtime_shift) {
-  if (values.empty()) return std::nullopt;
-  std::sort(values.begin(), values.end());
-  Distribution d;
-  d.count = values.size();
-  const std::size_t mid = values.size() / 2;
-  d.median = values.size() % 2 ? values[mid] : (values[mid - 1] + values[mid]) / 2;
-  d.max = values.back();
-  d.mean = std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(d.count);
-  if (runtime_shift) {
-    double log_sum = 0;
-    for (double v : values) log_sum += std::log(v + *runtime_shift);
-    d.shifted_geometric_mean = std::exp(log_sum / static_cast<double>(d.count)) - *runtime_shift;
-  }
-  return d;
-}
-
 SolverComparison compare_solvers(const SolutionReader& reference,
                                  std::span<const SolutionReader> solutions,
                                  std::span<const Ratio> epsilons,
@@ -114,8 +84,9 @@ SolverComparison compare_solvers(const SolutionReader& reference,
   for (auto& s : result.solvers)
     if (uses[s.name] > 1) s.name += " (" + s.file + ")";
   for (std::uint64_t q = 0; q < reference.query_count(); ++q) {
-    const bool all = std::all_of(solutions.begin(), solutions.end(),
-                                 [q](const SolutionReader& s) { return completed(s.status(q)); });
+    const bool all = std::all_of(solutions.begin(), solutions.end(), [q](const SolutionReader& s) {
+      return is_completed(s.status(q));
+    });
     if (all) result.common_queries.push_back(q);
   }
   for (std::size_t i = 0; i < solutions.size(); ++i) {

@@ -84,7 +84,7 @@ struct RunConfig {
 
 struct RunProgress {
   std::uint64_t done = 0, total = 0;
-  std::array<std::uint64_t, kLastQueryStatus + 1> counts{};
+  StatusCounts counts;
   double elapsed_seconds = 0;   // of this invocation
   std::uint64_t done_here = 0;  // queries finished by this invocation (for an ETA)
 };
@@ -99,7 +99,7 @@ struct RunResult {
   // total: the queries this run is for (all of the set, or the shard's); `counts` are theirs.
   std::uint64_t total = 0, from_journal = 0, ran = 0;
   std::uint64_t query_set_size = 0;
-  std::array<std::uint64_t, kLastQueryStatus + 1> counts{};
+  StatusCounts counts;
   double wall_seconds = 0, cpu_seconds = 0;  // of the solvers run by this invocation
   Measurement measurement = Measurement::rlimit_poll;
   std::string journal;

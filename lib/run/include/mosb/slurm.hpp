@@ -79,7 +79,7 @@ struct ShardState {
   ShardFile file = ShardFile::missing;
   std::uint64_t recorded = 0;  // done: the shard's queries; partial: the journal's records
   std::string problem;         // damaged: why
-  std::array<std::uint64_t, kLastQueryStatus + 1> counts{};  // done: the shard's statuses
+  StatusCounts counts;         // done: the shard's statuses
   // The scheduler's view of the shard's latest array task, when squeue or sacct knows it.
   std::string job;      // "JOBID_i"
   std::string state;    // PENDING, RUNNING, COMPLETED, FAILED, TIMEOUT, OUT_OF_MEMORY, ...

@@ -9,6 +9,7 @@
 // verify_against() (solution_verify.hpp) the fronts against the instance.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -23,6 +24,7 @@
 #include <vector>
 
 #include "mosb/container.hpp"
+#include "mosb/enum_names.hpp"
 #include "mosb/error.hpp"
 #include "mosb/format.hpp"
 #include "mosb/metadata.hpp"
@@ -44,8 +46,51 @@ enum class QueryStatus : std::uint8_t {
   failed = 5,
 };
 inline constexpr std::uint8_t kLastQueryStatus = 5;
-std::string_view to_string(QueryStatus status);  // "solved", "timeout", "memory-limit", ...
+// Every status in stored order, and its name (spec/SOLUTIONS.md §4): the solution files' text, the
+// journal's, the JSON reports' keys and the command line's choices.
+inline constexpr QueryStatus kQueryStatuses[] = {
+    QueryStatus::solved,       QueryStatus::timeout, QueryStatus::memory_limit,
+    QueryStatus::disconnected, QueryStatus::not_run, QueryStatus::failed};
+inline constexpr auto kQueryStatusNames = enum_names<QueryStatus>({
+    {QueryStatus::solved, "solved"},
+    {QueryStatus::timeout, "timeout"},
+    {QueryStatus::memory_limit, "memory-limit"},
+    {QueryStatus::disconnected, "disconnected"},
+    {QueryStatus::not_run, "not-run"},
+    {QueryStatus::failed, "failed"},
+});
+std::string_view to_string(QueryStatus status);  // kQueryStatusNames
 std::optional<QueryStatus> parse_query_status(std::string_view text);
+
+// Solved or disconnected: the search ran to its end, and what it found (a front, or that there is
+// none) is its answer. Front sizes and runtimes are summarised over completed queries (the
+// paper's Table 1; spec/EVALUATION.md §4).
+constexpr bool is_completed(QueryStatus status) {
+  return status == QueryStatus::solved || status == QueryStatus::disconnected;
+}
+
+// Queries per status, indexed by the status.
+class StatusCounts {
+ public:
+  constexpr std::uint64_t& operator[](QueryStatus s) {
+    return counts_[static_cast<std::size_t>(s)];
+  }
+  constexpr std::uint64_t operator[](QueryStatus s) const {
+    return counts_[static_cast<std::size_t>(s)];
+  }
+  constexpr std::uint64_t total() const {
+    std::uint64_t sum = 0;
+    for (const auto count : counts_) sum += count;
+    return sum;
+  }
+  constexpr std::uint64_t completed() const {
+    return (*this)[QueryStatus::solved] + (*this)[QueryStatus::disconnected];
+  }
+  constexpr bool operator==(const StatusCounts&) const = default;
+
+ private:
+  std::array<std::uint64_t, kLastQueryStatus + 1> counts_{};
+};
 
 // The optional per-query statistics; each is its own solution_statistics section, named as here.
 enum class Statistic : std::uint8_t {
@@ -59,7 +104,15 @@ inline constexpr Statistic kStatistics[] = {Statistic::runtime_seconds, Statisti
                                             Statistic::generated, Statistic::peak_memory_bytes,
                                             Statistic::exit_status};
 inline constexpr std::size_t kStatisticCount = std::size(kStatistics);
-std::string_view to_string(Statistic s);  // the section name, e.g. "runtime_seconds"
+// Each statistic's section name.
+inline constexpr auto kStatisticNames = enum_names<Statistic>({
+    {Statistic::runtime_seconds, "runtime_seconds"},
+    {Statistic::expanded, "expanded"},
+    {Statistic::generated, "generated"},
+    {Statistic::peak_memory_bytes, "peak_memory_bytes"},
+    {Statistic::exit_status, "exit_status"},
+});
+std::string_view to_string(Statistic s);  // kStatisticNames
 // runtime_seconds is f64 (absent: NaN); the counters are u64 (absent: kAbsentCount).
 inline constexpr std::uint64_t kAbsentCount = std::numeric_limits<std::uint64_t>::max();
 // The largest integer path sum a solution file stores: every integer up to 2^53 is exact as a

@@ -73,7 +73,7 @@ class SolutionMerge {
   // Queries not-run in every input, ascending.
   const std::vector<std::uint64_t>& missing() const;
   // The merged file's statuses (missing queries are not_run).
-  std::array<std::uint64_t, kLastQueryStatus + 1> status_counts() const;
+  StatusCounts status_counts() const;
 
   // Writes the merged file atomically. Its bytes depend on the inputs' contents only, not on their
   // order or names.

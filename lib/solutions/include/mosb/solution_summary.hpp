@@ -1,19 +1,49 @@
-// What `mosb solutions inspect` reports of a solution file (the paper's Table 1 columns): queries
-// per status, front sizes over the solved queries, and each statistic's count, total and maximum.
+// What is said of a solution file as a whole, in one place for every command that says it: the
+// name its solver is shown under, queries per status, and the paper's Table 1 columns (front sizes
+// and runtimes over the completed queries; spec/EVALUATION.md §4). `solutions inspect`, `eval`,
+// `report` and mosb.plot all take these from here, so they print the same numbers for one file.
 #pragma once
 
-#include <array>
 #include <cstdint>
 #include <optional>
+#include <span>
+#include <string>
 #include <vector>
 
 #include "mosb/solution_file.hpp"
 
 namespace mosb {
 
-struct FrontSizes {
-  std::uint64_t min = 0, median = 0, max = 0;
+// The name a file's solver is shown under: its solution.solver.name, else the file's name without
+// directory and extension ("boa" for results/boa.sol).
+std::string solver_name(const SolutionReader& solutions);
+
+// A distribution of non-negative values. The median of an even count is the mean of the two
+// middle values. The shifted geometric mean is exp(mean(ln(x + s))) − s, solver papers' usual
+// runtime average: one slow query does not dominate it, and the shift s keeps near-zero times
+// from doing so either.
+struct Distribution {
+  std::uint64_t count = 0;
+  double median = 0, mean = 0, max = 0;
+  double shifted_geometric_mean = 0;  // with a runtime_shift only
+  double min = 0;
 };
+
+// Values may include +infinity (an achieved ε nothing reaches); the mean is then infinite too.
+// nullopt for no values.
+std::optional<Distribution> distribution_of(std::vector<double> values,
+                                            std::optional<double> runtime_shift = std::nullopt);
+
+// The paper's Table 1 over the files of one benchmark (its instances pooled): front sizes and
+// runtimes over the **completed** queries (is_completed: a disconnected query's front size is 0),
+// as the paper states its table ("computed over completed queries only").
+struct CompletedSummary {
+  StatusCounts statuses;                   // of every query of every file
+  std::optional<Distribution> front_size;  // nullopt when no query completed
+  std::optional<Distribution> runtime;     // runtime_seconds of the completed queries that have it
+};
+// O(Q log Q) over the statuses and front offsets; each file must be verified (open_verified).
+CompletedSummary summarize_completed(std::span<const SolutionReader* const> files);
 
 struct StatisticSummary {
   Statistic statistic;
@@ -21,15 +51,13 @@ struct StatisticSummary {
   double total = 0, max = 0;
 };
 
+// What `mosb solutions inspect` reports of one file.
 struct SolutionSummary {
-  std::array<std::uint64_t, kLastQueryStatus + 1> status_counts{};  // indexed by QueryStatus
-  // Over the solved queries; the median of an even count is the lower middle one (a front
-  // cardinality, never a fraction). nullopt when no query is solved.
-  std::optional<FrontSizes> front_sizes;
+  CompletedSummary completed;
   std::vector<StatisticSummary> statistics;  // the statistics the file has, in kStatistics order
 };
 
-// O(Q log Q) over the statuses and front offsets; `solutions` must be verified (open_verified).
+// `solutions` must be verified (open_verified).
 SolutionSummary summarize(const SolutionReader& solutions);
 
 }  // namespace mosb

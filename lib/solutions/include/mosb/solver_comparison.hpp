@@ -11,23 +11,9 @@
 
 #include "mosb/solution_eval.hpp"
 #include "mosb/solution_file.hpp"
+#include "mosb/solution_summary.hpp"
 
 namespace mosb {
-
-// A distribution of non-negative values. The median of an even count is the mean of the two
-// middle values. The shifted geometric mean is exp(mean(ln(x + s))) − s, solver papers' usual
-// runtime average: one slow query does not dominate it, and the shift s keeps near-zero times
-// from doing so either.
-struct Distribution {
-  std::uint64_t count = 0;
-  double median = 0, mean = 0, max = 0;
-  double shifted_geometric_mean = 0;  // with a runtime_shift only
-};
-
-// Values may include +infinity (an achieved ε nothing reaches); the mean is then infinite too.
-// nullopt for no values.
-std::optional<Distribution> distribution_of(std::vector<double> values,
-                                            std::optional<double> runtime_shift = std::nullopt);
 
 struct ComparisonOptions {
   EvalOptions eval;
@@ -40,10 +26,12 @@ struct EpsilonOutcome {
 };
 
 struct SolverSummary {
-  std::string name;  // solution.solver.name, else the file's name
+  std::string name;  // solver_name
   std::string file;
   SolutionEvaluation evaluation;
-  std::array<std::uint64_t, kLastQueryStatus + 1> status_counts{};  // indexed by QueryStatus
+  // The solver's own file: its statuses, and its front sizes and runtimes over the queries it
+  // completed (summarize_completed, as `solutions inspect` and `report` say them).
+  CompletedSummary own;
   std::uint64_t not_solved = 0;  // the reference solved it, the solver did not
   std::vector<EpsilonOutcome> per_epsilon;
   // Over the queries both solved (the solver's achieved ε, as a double; |S|/|R|).
