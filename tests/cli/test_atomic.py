@@ -13,7 +13,6 @@ import signal
 import stat
 import subprocess
 import time
-import unittest
 
 import mosbtest
 from mosbtest import MOSB, CliTest, read, setUpModule  # noqa: F401
@@ -278,4 +277,4 @@ class OutputIsAnInput(Base):
 
 
 if __name__ == "__main__":
-    unittest.main()
+    mosbtest.main()

@@ -16,10 +16,10 @@ import os
 import re
 import struct
 import subprocess
-import unittest
 
 import xxhash
 
+import mosbtest
 from mosbtest import (CHECKSUM_OFFSET, MAGIC, MOSB, CliTest, entries, entry, header, patch_values,
                       payload, relocate_as_f32, reseal, set_entry, set_header, values,
                       write_payload)
@@ -866,4 +866,4 @@ class StrictOptions(CliTest):
         self.assertNotIn("a<b", svg)
 
 if __name__ == "__main__":
-    unittest.main(verbosity=2)
+    mosbtest.main(verbosity=2)

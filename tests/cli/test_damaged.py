@@ -12,8 +12,8 @@ at once instead of blocking. Metadata values are escaped in `inspect`'s text out
 
 import json
 import os
-import unittest
 
+import mosbtest
 from mosbtest import entry, files_under, move_payload_to_end, payload, write_payload
 from mosbtest import setUpModule  # noqa: F401
 from test_cli import GridTest
@@ -332,4 +332,4 @@ class MalformedViews(GridTest):
 
 
 if __name__ == "__main__":
-    unittest.main()
+    mosbtest.main()

@@ -8,8 +8,8 @@ The real files of /work/shared/data/dimacs-small are used when present (skipped 
 
 import json
 import os
-import unittest
 
+import mosbtest
 from mosbtest import DATA as SHARED_DATA
 from mosbtest import METADATA_KIND, CliTest, entries, read, setUpModule  # noqa: F401
 from mosbtest import metadata as metadata_of_bytes
@@ -176,4 +176,4 @@ class Extended(DimacsCase):
 
 
 if __name__ == "__main__":
-    unittest.main(verbosity=2)
+    mosbtest.main(verbosity=2)

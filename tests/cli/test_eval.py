@@ -12,8 +12,8 @@ import csv
 import io
 import json
 import os
-import unittest
 
+import mosbtest
 from mosbtest import GOLDEN, CliTest, run, setUpModule, write_solution  # noqa: F401
 
 SMALL = os.path.join(GOLDEN, "1.0", "valid", "small.mosb")
@@ -266,4 +266,4 @@ class SolverComparisonTest(CliTest):
 
 
 if __name__ == "__main__":
-    unittest.main()
+    mosbtest.main()

@@ -11,8 +11,8 @@ of the solvers. The real-data parts skip with a message when shared/data is abse
 import json
 import os
 import random
-import unittest
 
+import mosbtest
 from mosbtest import DATA, CliTest, mosb_reader, run, setUpModule  # noqa: F401
 
 EXAMPLES = os.path.abspath(os.environ.get("EXAMPLES", "examples"))
@@ -387,4 +387,4 @@ class ResearchLoop(Base):
 
 
 if __name__ == "__main__":
-    unittest.main(verbosity=2)
+    mosbtest.main(verbosity=2)

@@ -7,8 +7,8 @@
 import gzip
 import json
 import os
-import unittest
 
+import mosbtest
 from mosbtest import CliTest, run, setUpModule  # noqa: F401
 
 # A one-way street 3 -> 5; ten costs per edge: c1 is 1 + 10 * (file position), the rest 0..9.
@@ -87,4 +87,4 @@ class ConvertFmi(CliTest):
 
 
 if __name__ == "__main__":
-    unittest.main()
+    mosbtest.main()

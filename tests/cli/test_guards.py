@@ -8,7 +8,6 @@ per-cell loops. The real maps come from shared/data/movingai (skipped visibly wh
 """
 
 import os
-import unittest
 
 import numpy as np
 
@@ -221,4 +220,4 @@ class GuardsCli(CliTest):
 
 
 if __name__ == "__main__":
-    unittest.main()
+    mosbtest.main()

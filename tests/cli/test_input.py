@@ -12,6 +12,7 @@ import shutil
 import subprocess
 import unittest
 
+import mosbtest
 from mosbtest import CliTest, setUpModule  # noqa: F401
 
 # AddressSanitizer reserves terabytes of shadow address space and adds to the peak RSS.
@@ -95,8 +96,7 @@ class InputTest(CliTest):
         for tool, suffix, name in (("gzip", ".gz", "gzip"), ("bzip2", ".bz2", "bzip2"),
                                    ("xz", ".xz", "xz"), ("zstd", ".zst", "zstd")):
             if shutil.which(tool) is None:
-                print(f"skipped {tool}: no '{tool}' command")
-                continue
+                raise mosbtest.missing(f"no '{tool}' command")
             with self.subTest(tool=tool):
                 packed = subprocess.run([tool, "-c", plain], capture_output=True, check=True).stdout
                 cut = self.write("t.gr" + suffix, packed[:len(packed) // 2])
@@ -120,4 +120,4 @@ class InputTest(CliTest):
 
 
 if __name__ == "__main__":
-    unittest.main()
+    mosbtest.main()

@@ -9,10 +9,10 @@ come from shared/data/movingai (skipped visibly when absent).
 """
 
 import os
-import unittest
 
 import numpy as np
 
+import mosbtest
 from mosbtest import CliTest, mosb_reader, run, setUpModule  # noqa: F401
 from test_guards import (arc_rows, expected_arcs, query_cells, read_map, real_maps,
                          scenario_endpoints, sorted_rows)
@@ -149,4 +149,4 @@ class MovingaiCli(CliTest):
 
 
 if __name__ == "__main__":
-    unittest.main()
+    mosbtest.main()

@@ -15,7 +15,6 @@ import os
 import struct
 import subprocess
 import time
-import unittest
 
 import xxhash
 
@@ -405,4 +404,4 @@ class BombTest(CliTest):
 
 
 if __name__ == "__main__":
-    unittest.main()
+    mosbtest.main()

@@ -14,7 +14,6 @@ import re
 import shutil
 import struct
 import subprocess
-import unittest
 import zlib
 
 import mosbtest
@@ -75,7 +74,7 @@ class PlotCase(CliTest):
     def screenshot(self, svg, width, height):
         """Renders svg in headless chromium; returns the share of non-white pixels."""
         if CHROMIUM is None:
-            self.skipTest("chromium is not installed")
+            raise mosbtest.missing("chromium is not installed")
         png = svg + ".png"
         subprocess.run([CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu",
                         "--hide-scrollbars", "--screenshot=" + png,
@@ -146,7 +145,7 @@ class PaperFigureTest(PlotCase):
 
     def test_pdf_opens_at_the_asked_size_and_is_the_same_twice(self):
         if shutil.which("pdfinfo") is None:
-            self.skipTest("pdfinfo (poppler-utils) is not installed")
+            raise mosbtest.missing("pdfinfo (poppler-utils) is not installed")
         pdf = self.path("rho.pdf")
         run("plot", "correlation", self.grid, "-o", pdf, "--width", "3.5in")
         info = subprocess.run(["pdfinfo", pdf], capture_output=True, text=True, check=True).stdout
@@ -341,7 +340,7 @@ class MapPathsTest(PlotCase):
     def setUp(self):
         super().setUp()
         if not os.path.exists(WRITE_SOLUTION):
-            self.skipTest("WRITE_SOLUTION (mosb_test_write_solution) is not built")
+            raise mosbtest.missing("WRITE_SOLUTION (mosb_test_write_solution) is not built")
         for name, text in (("tiny.map", self.MAP), ("guards.txt", "3 0 1\n"), ("q.txt", "0 10\n")):
             self.write(name, text)
         run("convert", "guards", "--map", self.path("tiny.map"), "--guards",
@@ -407,4 +406,4 @@ class MapPathsTest(PlotCase):
 
 
 if __name__ == "__main__":
-    unittest.main()
+    mosbtest.main()

@@ -20,6 +20,7 @@ import tempfile
 import time
 import unittest
 
+import mosbtest
 from mosbtest import MOSB, CliTest, read, run, setUpModule  # noqa: F401
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -131,7 +132,7 @@ class Published(CliTest):
         return os.path.join(self.store, ".staging", "pull", name, name)
 
 
-@unittest.skipIf(NGINX is None, "nginx is not installed (Debian package nginx-light; "
+@unittest.skipIf(NGINX is None, mosbtest.MISSING + "nginx is not installed (Debian package nginx-light; "
                                 "tools/install-deps.sh installs it)")
 class AgainstNginx(Published):
     def setUp(self):
@@ -506,4 +507,4 @@ class FromADirectory(Published):
 
 
 if __name__ == "__main__":
-    unittest.main()
+    mosbtest.main()

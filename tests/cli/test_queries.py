@@ -7,8 +7,8 @@
 import os
 import re
 import struct
-import unittest
 
+import mosbtest
 from mosbtest import (DATA, METADATA_KIND, QUERIES_KIND, CliTest, entries, metadata,  # noqa: F401
                       read, setUpModule)
 
@@ -236,4 +236,4 @@ class QueriesTest(CliTest):
 
 
 if __name__ == "__main__":
-    unittest.main(verbosity=2)
+    mosbtest.main(verbosity=2)

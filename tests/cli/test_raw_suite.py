@@ -15,8 +15,8 @@ import gzip
 import json
 import os
 import shutil
-import unittest
 
+import mosbtest
 from mosbtest import DATA, CliTest, read, run, setUpModule  # noqa: F401
 
 # FMI multi-cost layout (spec/families/ger.md): 4 nodes, 5 edges of 10 costs.
@@ -275,4 +275,4 @@ class RawSuite(CliTest):
 
 
 if __name__ == "__main__":
-    unittest.main()
+    mosbtest.main()

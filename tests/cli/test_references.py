@@ -13,8 +13,8 @@ visibly when absent).
 import hashlib
 import json
 import os
-import unittest
 
+import mosbtest
 from mosbtest import CliTest, mosb_reader, run, setUpModule  # noqa: F401
 from test_guards import real_maps
 
@@ -162,4 +162,4 @@ class ReferencesCli(CliTest):
 
 
 if __name__ == "__main__":
-    unittest.main()
+    mosbtest.main()

@@ -300,7 +300,7 @@ class ReportTest(unittest.TestCase):
 
     def test_the_guards_map_marks_the_guard(self):
         if not self.has_arena:
-            self.skipTest("shared/data is absent")
+            raise mosbtest.missing("shared/data is absent")
         # arena2's one guard (guards.txt), from the instance's metadata map.guards.
         self.assertEqual(self.text.count('class="guards" data-count="1"'), 1)
         self.assertIn("guards black dots", self.text)
@@ -398,4 +398,4 @@ class ReportTest(unittest.TestCase):
 
 
 if __name__ == "__main__":
-    unittest.main()
+    mosbtest.main()

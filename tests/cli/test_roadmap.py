@@ -14,6 +14,7 @@ import shlex
 import unittest
 import xml.etree.ElementTree as ET
 
+import mosbtest
 from mosbtest import DATA, CliTest, header, read, run, setUpModule  # noqa: F401
 
 POINT_ROBOT = os.path.join(DATA, "roadmap-point-robot", "exp_4_obs")
@@ -167,7 +168,7 @@ class HandMade(CliTest):
         self.assertNotIn("warning.clearance", inspect(out)["metadata"])
 
 
-@unittest.skipUnless(os.path.isdir(POINT_ROBOT) and os.path.isfile(GRAPHML), f"shared data absent: {DATA}")
+@unittest.skipUnless(os.path.isdir(POINT_ROBOT) and os.path.isfile(GRAPHML), mosbtest.MISSING + f"shared data absent: {DATA}")
 class RealFixtures(CliTest):
     def test_point_robot(self):
         files = [os.path.join(POINT_ROBOT, f"file_{i}.gr") for i in range(6)]
@@ -234,4 +235,4 @@ class RealFixtures(CliTest):
 
 
 if __name__ == "__main__":
-    unittest.main(verbosity=2)
+    mosbtest.main(verbosity=2)

@@ -14,7 +14,6 @@ import signal
 import stat
 import subprocess
 import time
-import unittest
 
 import mosbtest
 from mosbtest import CliTest, setUpModule  # noqa: F401
@@ -113,7 +112,7 @@ class RunTest(CliTest):
         if info["parameters"]["run.measurement"] != "cgroup-v1":
             for pid in mosbtest.read(self.pids, "r").split():
                 os.kill(int(pid), signal.SIGKILL)
-            self.skipTest("no writable memory cgroup here")
+            raise mosbtest.missing("no writable memory cgroup here")
         self.assert_status(info, "solved")
         self.assert_no_process_left()
 
@@ -367,7 +366,7 @@ class RunTest(CliTest):
 
     def require_examples(self):
         if not os.path.isfile(os.path.join(EXAMPLES, "boa_star")):
-            self.skipTest("EXAMPLES (the example solvers' directory) is not set")
+            raise mosbtest.missing("EXAMPLES (the example solvers' directory) is not set")
 
     def test_example_solvers_verify_and_evaluate(self):
         self.require_examples()
@@ -400,4 +399,4 @@ class RunTest(CliTest):
 
 
 if __name__ == "__main__":
-    unittest.main()
+    mosbtest.main()

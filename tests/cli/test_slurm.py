@@ -23,7 +23,6 @@ import signal
 import stat
 import subprocess
 import time
-import unittest
 
 import mosbtest
 from mosbtest import CliTest, setUpModule  # noqa: F401
@@ -37,7 +36,7 @@ WAIT_SECONDS = 60  # for an array of four small shards on one node
 
 def require_examples(test):
     if not os.path.isfile(BOA):
-        test.skipTest("EXAMPLES (the example solvers' directory) is not set")
+        raise mosbtest.missing("EXAMPLES (the example solvers' directory) is not set")
 
 
 def readme_block(heading):
@@ -226,12 +225,12 @@ class SlurmCluster(CliTest):
     def setUp(self):
         super().setUp()
         if os.geteuid() != 0:
-            self.skipTest("not root: slurmd must run as root (CI runs as root)")
+            raise mosbtest.missing("not root: slurmd must run as root (CI runs as root)")
         missing = [p for p in ("munged", "slurmctld", "slurmd", "sbatch", "squeue", "scancel",
                                "sinfo") if not shutil.which(p, path=os.environ.get("PATH", "") +
                                                             ":/usr/sbin:/sbin")]
         if missing:
-            self.skipTest("SLURM is not installed (no %s; apt-get install slurm-wlm munge)"
+            raise mosbtest.missing("SLURM is not installed (no %s; apt-get install slurm-wlm munge)"
                           % ", ".join(missing))
         require_examples(self)
         self.state = self.path("cluster")
@@ -397,4 +396,4 @@ class SlurmCluster(CliTest):
 
 
 if __name__ == "__main__":
-    unittest.main()
+    mosbtest.main()

@@ -11,7 +11,6 @@ import csv
 import functools
 import json
 import os
-import unittest
 
 import mosbtest
 from mosbtest import CliTest, setUpModule  # noqa: F401
@@ -516,4 +515,4 @@ class SolutionsTest(CliTest):
 
 
 if __name__ == "__main__":
-    unittest.main()
+    mosbtest.main()

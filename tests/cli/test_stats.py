@@ -208,7 +208,7 @@ class StatsTest(CliTest):
         # The grid is one component; the generator's two extra vertices are components of their own.
         self.assertEqual((s["scc"]["count"], s["scc"]["largest"]), (3, 600 * 600))
 
-    @unittest.skipUnless(os.path.exists(NETMAKER), "NetMaker data absent: " + NETMAKER)
+    @unittest.skipUnless(os.path.exists(NETMAKER), mosbtest.MISSING + "NetMaker data absent: " + NETMAKER)
     def test_netmaker_instance(self):
         path = self.path("netmaker.mosb")
         run("convert", "dimacs", "--gr", NETMAKER, "--id-base", "0", "-o", path)
@@ -239,4 +239,4 @@ RECORDED_NETMAKER_LOOPS_PARALLEL = (0, 2)
 
 
 if __name__ == "__main__":
-    unittest.main(verbosity=2)
+    mosbtest.main(verbosity=2)

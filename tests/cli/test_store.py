@@ -13,8 +13,8 @@ import shutil
 import signal
 import subprocess
 import time
-import unittest
 
+import mosbtest
 from mosbtest import MOSB, CliTest, entry, read, run, setUpModule  # noqa: F401
 
 GR = "p sp 4 5\na 1 2 5\na 2 3 7\na 3 1 2\na 3 4 1\na 4 1 9\n"
@@ -345,7 +345,7 @@ class Packed(Base):
         before = sorted(os.listdir(store))
         prefix = read_only_bind(store)
         if prefix is None and os.geteuid() == 0:
-            self.skipTest("running as root and no private read-only mount is allowed here")
+            raise mosbtest.missing("running as root and no private read-only mount is allowed here")
         if prefix is None:
             os.chmod(store, 0o555)
             prefix = []
@@ -722,7 +722,7 @@ class Safety(Base):
     def test_move_onto_a_full_disk_keeps_the_source(self):
         # The store on a small tmpfs (another file system: --move copies), too small for the file.
         if os.geteuid() != 0:
-            self.skipTest("needs root for a private tmpfs mount")
+            raise mosbtest.missing("needs root for a private tmpfs mount")
         small = self.path("small")
         os.mkdir(small)
         source = grid(self.path("big.mosb"), 200, 200)
@@ -733,7 +733,7 @@ class Safety(Base):
         r = subprocess.run(["unshare", "-m", "sh", "-c", script, MOSB, small, source,
                             grid(self.path("g3.mosb"), 3)], capture_output=True, text=True)
         if r.returncode == 77 or "rc=" not in r.stdout:
-            self.skipTest("no private tmpfs mount allowed here: %s" % r.stderr)
+            raise mosbtest.missing("no private tmpfs mount allowed here: %s" % r.stderr)
         self.assertIn("No space left on device", r.stderr)
         self.assertIn("rc=1", r.stdout)
         self.assertNotIn("big.mosb", r.stdout)  # not listed, no file, no temporary left
@@ -855,4 +855,4 @@ class SuiteBuild(Base):
 
 
 if __name__ == "__main__":
-    unittest.main()
+    mosbtest.main()

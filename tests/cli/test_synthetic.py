@@ -13,8 +13,8 @@ import os
 import pty
 import re
 import subprocess
-import unittest
 
+import mosbtest
 from mosbtest import DATA, MOSB, CliTest, read, setUpModule  # noqa: F401
 from test_queries import MASK, mix  # SplitMix64 as spec/GENERATORS.md writes it
 
@@ -236,4 +236,4 @@ class ConvertNetMaker(SyntheticTest):
 
 
 if __name__ == "__main__":
-    unittest.main()
+    mosbtest.main()

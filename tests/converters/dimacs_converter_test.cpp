@@ -15,6 +15,7 @@
 #include "mosb/graph_reader.hpp"
 #include "mosb/internal/hex.hpp"
 #include "mosb/verify.hpp"
+#include "requirements.hpp"
 #include "temp_dir.hpp"
 #include "test_files.hpp"
 
@@ -152,10 +153,7 @@ TEST_CASE("dimacs: gzip, bzip2, xz and zstd inputs are detected by magic bytes")
   for (const auto& entry : tools) {
     const auto &tool = entry.first, &command = entry.second;  // not a binding: see pack_test.cpp
     CAPTURE(tool);
-    if (!have_command(tool)) {
-      MESSAGE("skipped the " << tool << " variant: no '" << tool << "' command");
-      continue;
-    }
+    testing::require(have_command(tool), "the '" + tool + "' command");
     // A misleading name: detection must not look at it.
     const auto packed = dir / (tool + "-input.txt");
     const std::string shell =
@@ -307,11 +305,8 @@ TEST_CASE("dimacs: the same input in two directories gives identical bytes") {
 }
 
 TEST_CASE("dimacs: real data (shared/data/dimacs-small)") {
-  const std::filesystem::path data = MOSB_SOURCE_DIR "/../shared/data/dimacs-small";
-  if (!std::filesystem::exists(data / "ex1-c1.gr")) {
-    MESSAGE("skipped the real-data test: " << data.string() << " is absent");
-    return;
-  }
+  const auto data = testing::shared_data() / "dimacs-small";
+  testing::require_shared(data / "ex1-c1.gr");
   testing::TempDir dir;
   auto r =
       convert(gr({data / "ex1-c1.gr", data / "ex1-c2.gr", data / "ex1-c3.gr"}), dir / "ex1.mosb");

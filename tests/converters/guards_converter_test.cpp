@@ -11,6 +11,7 @@
 #include "mosb/graph_reader.hpp"
 #include "mosb/random.hpp"
 #include "mosb/verify.hpp"
+#include "requirements.hpp"
 #include "temp_dir.hpp"
 #include "test_files.hpp"
 
@@ -245,11 +246,8 @@ TEST_CASE("guards: exposure file round trip, scenario import and errors, determi
 }
 
 TEST_CASE("guards: real Moving AI maps (shared/data/movingai)") {
-  const std::filesystem::path data = MOSB_SOURCE_DIR "/../shared/data/movingai";
-  if (!std::filesystem::exists(data / "arena2.map")) {
-    MESSAGE("skipped the real-data test: " << data.string() << " is absent");
-    return;
-  }
+  const auto data = testing::shared_data() / "movingai";
+  testing::require_shared(data / "arena2.map");
   const struct {
     const char* map;
     std::uint64_t scen_rows, scen_lines;

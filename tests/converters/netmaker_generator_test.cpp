@@ -19,6 +19,7 @@
 #include "mosb/manifest.hpp"
 #include "mosb/pack.hpp"
 #include "mosb/verify.hpp"
+#include "requirements.hpp"
 #include "temp_dir.hpp"
 
 using namespace mosb;
@@ -325,12 +326,9 @@ TEST_CASE("a packed suite lists packed files that unpack to the unpacked suite's
 }
 
 TEST_CASE("the real NetMaker file converts to 10000 vertices, 59750 arcs, 3 objectives") {
-  const std::filesystem::path file = MOSB_SOURCE_DIR
-      "/../shared/data/netmaker/netMaker_3o_10000n_1amin_10amax_20i_1s_scorr_79134.gr";
-  if (!std::filesystem::exists(file)) {
-    MESSAGE("skipped the real-data test: " << file.string() << " is absent");
-    return;
-  }
+  const auto file = testing::shared_data() / "netmaker" /
+                    "netMaker_3o_10000n_1amin_10amax_20i_1s_scorr_79134.gr";
+  testing::require_shared(file);
   testing::TempDir dir;
   write_graph(converters::convert_netmaker(file, std::nullopt), dir / "n.mosb");
   auto r = GraphReader::open(dir / "n.mosb");

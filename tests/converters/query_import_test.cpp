@@ -7,6 +7,7 @@
 #include <string>
 
 #include "mosb/error.hpp"
+#include "requirements.hpp"
 #include "test_files.hpp"
 
 using mosb::Query;
@@ -116,15 +117,11 @@ TEST_CASE("query files: graph fields and --match") {
 }
 
 TEST_CASE("query files: the real DIMACS and targeted-MOSP query files") {
-  const std::filesystem::path data = MOSB_SOURCE_DIR "/../shared/data";
+  const auto data = mosb::testing::shared_data();
   const auto ny = data / "dimacs-queries" / "USA-road-NY-queries";
   const auto bay = data / "dimacs-queries" / "USA-road-BAY-queries";
   const auto inst = data / "netmaker" / "netMaker_4d.inst";
-  if (!std::filesystem::exists(ny) || !std::filesystem::exists(bay) ||
-      !std::filesystem::exists(inst)) {
-    MESSAGE("skipped the real-data test: " << data.string() << " lacks the query files");
-    return;
-  }
+  for (const auto& path : {ny, bay, inst}) mosb::testing::require_shared(path);
   // USA-road-d.NY has 264346 vertices, BAY 321270; ids are 1-based.
   const auto ny_pairs = parse_query_file(slurp(ny), ny.string(), options(1, 264346));
   REQUIRE(ny_pairs.size() == 1000);

@@ -11,6 +11,7 @@
 #include "mosb/error.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/verify.hpp"
+#include "requirements.hpp"
 #include "temp_dir.hpp"
 #include "test_files.hpp"
 
@@ -238,11 +239,8 @@ TEST_CASE(".gr roadmap: ids beyond the declared count, vertex file, determinism"
 }
 
 TEST_CASE("real point-robot roadmap and GraphML fixture") {
-  const std::filesystem::path data = MOSB_SOURCE_DIR "/../shared/data";
-  if (!std::filesystem::exists(data / "roadmap-graphml/roadmap.xml")) {
-    MESSAGE("skipped: " << data.string() << " is absent");
-    return;
-  }
+  const auto data = testing::shared_data();
+  testing::require_shared(data / "roadmap-graphml/roadmap.xml");
   testing::TempDir dir;
   RoadmapOptions o;
   o.graphml_file = (data / "roadmap-graphml/roadmap.xml").string();

@@ -18,6 +18,9 @@ import sys
 import tempfile
 import unittest
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "cli"))
+import mosbtest  # noqa: E402 (main: the suites' skip exit code)
+
 BUILD = os.environ["MOSB_BUILD_DIR"]
 SOURCE = os.environ["MOSB_SOURCE_DIR"]
 VERSION = os.environ["MOSB_VERSION"]
@@ -342,4 +345,4 @@ class InstalledPackage(unittest.TestCase):
 
 
 if __name__ == "__main__":
-    unittest.main(verbosity=2)
+    mosbtest.main(verbosity=2)

@@ -21,6 +21,9 @@ import sys
 import tempfile
 import unittest
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "cli"))
+import mosbtest  # noqa: E402 (main: the suites' skip exit code)
+
 SOURCE = os.environ["MOSB_SOURCE_DIR"]
 MOSB = os.environ["MOSB"]
 VENV = os.environ["MOSB_PY_VENV"]
@@ -660,4 +663,4 @@ class ManyViewsTest(Attack):
 
 
 if __name__ == "__main__":
-    unittest.main()
+    mosbtest.main()

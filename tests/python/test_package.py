@@ -17,6 +17,9 @@ import sys
 import tempfile
 import unittest
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "cli"))
+import mosbtest  # noqa: E402 (main: the suites' skip exit code)
+
 import numpy as np
 
 SOURCE = os.environ["MOSB_SOURCE_DIR"]
@@ -533,7 +536,7 @@ class AdapterTest(Temp):
 
 
 @unittest.skipUnless(os.path.isfile(NETMAKER),
-                     "real NetMaker fixture not found: ../shared/data is absent")
+                     mosbtest.MISSING + "real NetMaker fixture not found: ../shared/data is absent")
 class RealNetMakerTest(Temp):
     def setUp(self):
         super().setUp()
@@ -646,7 +649,7 @@ class PlotTest(Temp):
         try:
             import matplotlib  # noqa: F401
         except ImportError:
-            self.skipTest("python3-matplotlib is not installed")
+            raise mosbtest.missing("python3-matplotlib is not installed")
         import mosb.plot
         self.plot = mosb.plot
         self.grid = self.generate_grid("g.mosb")
@@ -738,4 +741,4 @@ class ParallelArcsTest(Temp):
 
 
 if __name__ == "__main__":
-    unittest.main()
+    mosbtest.main()

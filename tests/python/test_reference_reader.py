@@ -10,6 +10,9 @@ import sys
 import tempfile
 import unittest
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "cli"))
+import mosbtest  # noqa: E402 (main: the suites' skip exit code)
+
 import xxhash
 
 SOURCE = os.environ["MOSB_SOURCE_DIR"]
@@ -149,4 +152,4 @@ class PatchedHeaderTest(unittest.TestCase):
 
 
 if __name__ == "__main__":
-    unittest.main()
+    mosbtest.main()

@@ -15,6 +15,7 @@
 #include "mosb/solution_file.hpp"
 #include "mosb/solution_verify.hpp"
 #include "mosb/verify.hpp"
+#include "requirements.hpp"
 #include "temp_dir.hpp"
 
 using namespace mosb;
@@ -160,11 +161,8 @@ TEST_CASE("movingai bracket: §6's inequalities, both sides") {
 }
 
 TEST_CASE("movingai: published optima bracket the true length optimum (shared/data/movingai)") {
-  const std::filesystem::path data = MOSB_SOURCE_DIR "/../shared/data/movingai";
-  if (!std::filesystem::exists(data / "arena2.map")) {
-    MESSAGE("skipped the real-data test: " << data.string() << " is absent");
-    return;
-  }
+  const auto data = testing::shared_data() / "movingai";
+  testing::require_shared(data / "arena2.map");
   testing::TempDir dir;
   for (const char* name : {"arena2.map", "random512-20-1.map"}) {
     CAPTURE(name);
