@@ -208,6 +208,80 @@ class ShardsAndMerge(CliTest):
                                    "with mosb run --slurm %s --resume --submit" % self.path("later"))
         self.assertTrue(os.path.exists(self.path("later", "run.sbatch")))
 
+    # A value for every option of `mosb run` (other than the defaults), by what it is to a SLURM
+    # run: `run` options define the run and must reach every task (run.json's run_arguments) and be
+    # refused by --slurm DIR --resume and --status; `local` ones are refused with --slurm DIR;
+    # `plan` ones are recorded in run.json and refused on --resume; `action` ones are accepted.
+    # An option missing here fails the test: a new option must say which it is.
+    OPTIONS = {
+        "--view": ("run", ["Grid_2"]), "--objectives": ("run", ["c2,c1"]),
+        "--queries": ("run", ["q"]), "--solver": ("run", None),
+        "--time-limit": ("run", ["7s"]), "--cpu-limit": ("run", ["5"]),
+        "--memory-limit": ("run", ["3G"]), "--grace": ("run", ["2.5"]), "--jobs": ("run", ["2"]),
+        "--pin": ("run", []), "--threads": ("run", ["3"]),
+        "--output-format": ("run", ["json-log"]), "--measurement": ("run", ["rlimit-poll"]),
+        "--solver-name": ("run", ["boa-x"]), "--solver-version": ("run", ["v9"]),
+        "--output": ("local", ["x.sol"]), "--shard": ("local", ["1/2"]),
+        "--shards": ("plan", ["2"]), "--queries-per-task": ("plan", ["3"]),
+        "--throttle": ("plan", ["1"]), "--account": ("plan", ["acct"]),
+        "--partition": ("plan", ["part"]),
+        "--submit": ("action", []), "--resume": ("action", []), "--status": ("action", []),
+        "--json": ("action", []), "--slurm": ("action", None), "--help": ("action", None),
+    }
+
+    def test_every_option_is_passed_on_or_refused_with_slurm(self):
+        help_text = self.ok("run", "--help").stdout
+        listed = set(re.findall(r"^  (?:-\w,)?(--[a-z-]+)", help_text, re.M))
+        self.assertEqual(listed, set(self.OPTIONS), "mosb run's options and this test's table")
+        base = ["run", self.grid, "--solver", self.template]
+        for option, (role, value) in sorted(self.OPTIONS.items()):
+            # --slurm and --help take no part; --resume and --status are the other mode of
+            # --slurm DIR, which every other option meets below.
+            if value is None or option in ("--resume", "--status"):
+                continue
+            with self.subTest(option=option):
+                job = self.path("job" + option)
+                given = [option] + value
+                # --view excludes --objectives; --queries-per-task excludes --shards.
+                choice = [] if option in ("--view", "--objectives") else ["--view", "Grid_2"]
+                choice += [] if option == "--queries" else ["--queries", "q"]
+                shards = [] if option in ("--shards", "--queries-per-task") else ["--shards", "2"]
+                r = self.mosb(*base, *choice, *shards, *given, "--slurm", job,
+                              env=dict(os.environ, PATH=self.path("no-sbatch-here")))
+                if role == "local":
+                    self.assert_one_line_error(r, "%s: not with --slurm DIR" % option, code=2)
+                    continue
+                if option == "--submit":
+                    self.assert_one_line_error(r, "sbatch: no such program in PATH")
+                else:
+                    self.assertEqual(r.returncode, 0, r)
+                run_json = json.loads(mosbtest.read(os.path.join(job, "run.json"), "r"))
+                arguments = run_json["run_arguments"]
+                if role == "run":
+                    at = arguments.index(option)
+                    self.assertEqual(arguments[at + 1:at + 1 + len(value)],
+                                     value if option != "--memory-limit" else [str(3 << 30)])
+                    # A task given these arguments reads the same run.
+                    self.assertIn(" ".join(arguments[at:at + 1 + len(value)]) if option != "--memory-limit"
+                                  else "--memory-limit %d" % (3 << 30),
+                                  " ".join(run_json["run_arguments"]))
+                elif role == "plan":
+                    self.assertNotIn(option, arguments)
+                for action in ("--resume", "--status"):
+                    r = self.mosb("run", "--slurm", job, action, *given,
+                                  env=dict(os.environ, PATH=self.path("no-sbatch-here")))
+                    if role in ("run", "plan"):
+                        self.assert_one_line_error(
+                            r, "%s: not with --slurm DIR --resume or --status" % option, code=2)
+                    elif option == "--submit" and action == "--status":
+                        self.assert_one_line_error(r, "--submit: not with --status", code=2)
+                    elif option in ("--resume", "--status") and option != action:
+                        self.assert_one_line_error(r, "--status: not with --resume", code=2)
+                    elif option == "--submit":
+                        self.assert_one_line_error(r, "sbatch: no such program in PATH")
+                    else:
+                        self.assertEqual(r.returncode, 0, r)
+
 
 # --- the cluster ----------------------------------------------------------------------------
 

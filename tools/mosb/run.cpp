@@ -7,12 +7,14 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <charconv>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <stdexcept>
 
 #include "commands.hpp"
 #include "json_writer.hpp"
@@ -150,25 +152,115 @@ void report_failed(const QueryRecord& record, const Query& q) {
   std::cerr << escape_for_terminal(line) << "\n";
 }
 
-// The options that define a run (refused where run.json defines it, or where they mean nothing).
-constexpr const char* kRunOptions[] = {
-    "INSTANCE",      "--view",        "--objectives",       "--queries",
-    "--solver",      "--time-limit",  "--memory-limit",     "--grace",
-    "--jobs",        "--pin",         "--threads",          "--output-format",
-    "--measurement", "--solver-name", "--solver-version",   "--output",
-    "--shard",       "--shards",      "--queries-per-task", "--throttle",
-    "--account",     "--partition"};
-constexpr const char* kSlurmOptions[] = {"--shards",  "--queries-per-task", "--throttle",
-                                         "--account", "--partition",        "--submit",
-                                         "--status"};
+// The number as `--grace` wrote it: the shortest text that reads back as `value` (std::to_chars).
+std::string number_text(double value) {
+  char text[64];
+  const auto end = std::to_chars(text, text + sizeof text, value).ptr;
+  return {text, end};
+}
+
+// What an option of `mosb run` is to a run on SLURM.
+enum class Role {
+  run,     // defines the run: every SLURM task passes it on; run.json has it for --resume/--status
+  local,   // a run here only (-o, --shard): each task has its own
+  plan,    // plans the job array (--shards, ...): with --slurm DIR only, recorded in run.json
+  submit,  // with --slurm DIR only, new or resumed
+  action,  // says what to do (--slurm, --resume, --status, --json, --help)
+};
+
+using Arguments = std::vector<std::string>;
+
+// Every option of `mosb run`, in one table: what it is to a SLURM run and, for the options that
+// define the run, how a SLURM task is given it (nothing: its default). The table's order is the
+// order of the tasks' arguments. add_run refuses to register an option the table lacks.
+struct RunOption {
+  const char* name;
+  Role role;
+  void (*pass_on)(const RunArgs&, Arguments&) = nullptr;  // Role::run only
+};
+
+void pass(Arguments& out, const char* name, const std::string& value) {
+  if (!value.empty()) out.insert(out.end(), {name, value});
+}
+
+const RunOption kRunOptionTable[] = {
+    {"INSTANCE", Role::run, [](const RunArgs&, Arguments&) {}},  // the script's, made absolute
+    {"--view", Role::run,
+     [](const RunArgs& a, Arguments& out) { pass(out, "--view", a.choice.view); }},
+    {"--objectives", Role::run,
+     [](const RunArgs& a, Arguments& out) {
+       std::string list;
+       for (const auto& name : a.choice.objectives) list += (list.empty() ? "" : ",") + name;
+       pass(out, "--objectives", list);
+     }},
+    {"--queries", Role::run,
+     [](const RunArgs& a, Arguments& out) { pass(out, "--queries", a.choice.queries); }},
+    {"--solver", Role::run,
+     [](const RunArgs& a, Arguments& out) { pass(out, "--solver", a.solver); }},
+    {"--time-limit", Role::run,
+     [](const RunArgs& a, Arguments& out) { pass(out, "--time-limit", a.time_limit); }},
+    {"--cpu-limit", Role::run,
+     [](const RunArgs& a, Arguments& out) { pass(out, "--cpu-limit", a.cpu_limit); }},
+    {"--memory-limit", Role::run,
+     [](const RunArgs& a, Arguments& out) {
+       pass(out, "--memory-limit", std::to_string(a.memory_limit));
+     }},
+    {"--grace", Role::run,
+     [](const RunArgs& a, Arguments& out) { pass(out, "--grace", number_text(a.grace)); }},
+    {"--jobs", Role::run,
+     [](const RunArgs& a, Arguments& out) { pass(out, "--jobs", std::to_string(a.jobs)); }},
+    {"--pin", Role::run,
+     [](const RunArgs& a, Arguments& out) {
+       if (a.pin) out.emplace_back("--pin");
+     }},
+    {"--threads", Role::run,
+     [](const RunArgs& a, Arguments& out) { pass(out, "--threads", std::to_string(a.threads)); }},
+    {"--output-format", Role::run,
+     [](const RunArgs& a, Arguments& out) { pass(out, "--output-format", a.output_format); }},
+    {"--measurement", Role::run,
+     [](const RunArgs& a, Arguments& out) { pass(out, "--measurement", a.measurement); }},
+    {"--solver-name", Role::run,
+     [](const RunArgs& a, Arguments& out) { pass(out, "--solver-name", a.solver_name); }},
+    {"--solver-version", Role::run,
+     [](const RunArgs& a, Arguments& out) { pass(out, "--solver-version", a.solver_version); }},
+    {"--output", Role::local},
+    {"--shard", Role::local},
+    {"--shards", Role::plan},
+    {"--queries-per-task", Role::plan},
+    {"--throttle", Role::plan},
+    {"--account", Role::plan},
+    {"--partition", Role::plan},
+    {"--submit", Role::submit},
+    {"--slurm", Role::action},
+    {"--resume", Role::action},
+    {"--status", Role::action},
+    {"--json", Role::action},
+    {"--help", Role::action},
+};
+
+const RunOption* find_run_option(const std::string& name) {
+  for (const auto& option : kRunOptionTable)
+    if (name == option.name) return &option;
+  return nullptr;
+}
 
 bool given(const RunArgs& a, const char* name) {
   return a.app->get_option_no_throw(name) && a.app->count(name) > 0;
 }
 
-void refuse(const RunArgs& a, std::span<const char* const> names, const std::string& why) {
-  for (const char* name : names)
-    if (given(a, name)) throw UsageError(std::string(name) + ": " + why);
+// Refuses the first given option whose role is one of `roles`.
+void refuse(const RunArgs& a, std::initializer_list<Role> roles, const std::string& why) {
+  for (const auto& option : kRunOptionTable)
+    if (std::find(roles.begin(), roles.end(), option.role) != roles.end() && given(a, option.name))
+      throw UsageError(std::string(option.name) + ": " + why);
+}
+
+// The options that define the run, as every SLURM task is given them.
+Arguments task_options(const RunArgs& a) {
+  Arguments out;
+  for (const auto& option : kRunOptionTable)
+    if (option.role == Role::run) option.pass_on(a, out);
+  return out;
 }
 
 // What the options of a run require, before the instance is opened.
@@ -194,8 +286,35 @@ View checked_selection(const GraphReader& instance, const ViewChoice& choice) {
   }
 }
 
+// The run the options describe, on `instance` (which must outlive the config).
+RunConfig run_config(const RunArgs& a, const GraphReader& instance) {
+  RunConfig config;
+  config.instance = &instance;
+  config.instance_path = a.instance;
+  config.choice = a.choice;
+  config.solver_template = a.solver;
+  config.output_format = a.output_format;
+  const auto* format = converters::find_solver_output_format(a.output_format);
+  if (format == nullptr)
+    throw UsageError("--output-format " + a.output_format + ": no such format");
+  config.adapter = format->adapter();
+  config.limits = {*parse_duration(a.time_limit), a.memory_limit, a.grace,
+                   *parse_duration(a.cpu_limit)};
+  config.jobs = a.jobs;
+  config.pin = a.pin;
+  config.threads = a.threads;
+  if (a.measurement != "auto") config.measurement = parse_measurement(a.measurement);
+  config.resume = a.resume;
+  config.solver_name = a.solver_name;
+  config.solver_version = a.solver_version;
+  config.output = a.output;
+  config.sha256_file = [](const std::string& path) { return sha256_file(path); };
+  return config;
+}
+
 int run_run(const RunArgs& a) {
-  refuse(a, kSlurmOptions, "only with --slurm DIR");
+  refuse(a, {Role::plan, Role::submit}, "only with --slurm DIR");
+  if (given(a, "--status")) throw UsageError("--status: only with --slurm DIR");
   check_run_options(a);
   if (a.output.empty()) throw UsageError("--output is required (or --slurm DIR)");
   std::optional<Shard> shard;
@@ -205,25 +324,8 @@ int run_run(const RunArgs& a) {
   }
   const auto instance = mosb::load(a.instance, VerifyLevel::checksums);
   checked_selection(instance, a.choice);
-  RunConfig config;
-  config.instance = &instance;
-  config.instance_path = a.instance;
-  config.choice = a.choice;
-  config.solver_template = a.solver;
-  config.output_format = a.output_format;
-  config.adapter = *converters::solver_output_adapter(a.output_format);  // checked by CLI11
-  config.limits = {*parse_duration(a.time_limit), a.memory_limit, a.grace,
-                   *parse_duration(a.cpu_limit)};
-  config.jobs = a.jobs;
-  config.pin = a.pin;
-  config.threads = a.threads;
-  if (a.measurement != "auto") config.measurement = parse_measurement(a.measurement);
-  config.resume = a.resume;
+  RunConfig config = run_config(a, instance);
   config.shard = shard;
-  config.solver_name = a.solver_name;
-  config.solver_version = a.solver_version;
-  config.output = a.output;
-  config.sha256_file = [](const std::string& path) { return sha256_file(path); };
   struct sigaction action {};
   action.sa_handler = request_stop;
   sigemptyset(&action.sa_mask);
@@ -248,70 +350,26 @@ int run_run(const RunArgs& a) {
   return 0;
 }
 
-// The shortest text that reads back as `value` (std::to_chars).
-std::string number_text(double value) {
-  char text[64];
-  const auto end = std::to_chars(text, text + sizeof text, value).ptr;
-  return {text, end};
-}
-
 // `mosb run ... --slurm DIR`: writes DIR (run.json, run.sbatch), then submits or prints sbatch.
 int run_slurm_new(const RunArgs& a) {
-  refuse(a, std::array{"--output", "--shard"},
-         "not with --slurm DIR (task i writes DIR/shard-i.sol)");
+  refuse(a, {Role::local}, "not with --slurm DIR (task i writes DIR/shard-i.sol)");
   check_run_options(a);
   const auto instance = mosb::load(a.instance, VerifyLevel::checksums);
   const View selection = checked_selection(instance, a.choice);
-  const auto words = split_command(a.solver);
-  const std::string executable = resolve_executable(words.front());
-  if (executable.empty() || ::access(executable.c_str(), X_OK) != 0)
-    throw Error(ErrorCode::invalid_argument,
-                "--solver: " + words.front() + ": no such executable" +
-                    (words.front().find('/') == std::string::npos ? " in PATH" : ""));
-  namespace fs = std::filesystem;
-  SlurmRun run;
-  run.directory = fs::absolute(a.slurm).lexically_normal().string();
-  while (run.directory.size() > 1 && run.directory.back() == '/') run.directory.pop_back();
-  std::error_code ec;
-  run.mosb = fs::read_symlink("/proc/self/exe", ec).string();
-  if (ec) throw Error(ErrorCode::io, "/proc/self/exe: cannot read: " + ec.message());
-  run.working_directory = fs::current_path().string();
-  run.instance = fs::absolute(a.instance).lexically_normal().string();
-  run.instance_digest = instance.digest();
-  run.view = selection.name;
-  run.query_set = selection.query_set;
-  for (const auto i : selection.objectives) run.objectives.push_back(instance.objective(i).name);
-  run.queries = instance.queries(selection.query_set).size();
-  try {
-    run.shards = slurm_shard_count(run.queries, a.shards, a.queries_per_task);
+  try {  // a shard count that does not fit the query set is a usage error
+    slurm_shard_count(instance.queries(selection.query_set).size(), a.shards, a.queries_per_task);
   } catch (const Error& e) {
     throw UsageError(e.what());
   }
-  run.time_limit_seconds = *parse_duration(a.time_limit);
-  run.grace_seconds = a.grace;
-  run.memory_limit_bytes = a.memory_limit;
-  run.jobs = a.jobs;
-  run.threads = a.threads;
-  run.throttle = a.throttle;
-  run.account = a.account;
-  run.partition = a.partition;
-  auto& args = run.run_arguments;
-  args.push_back(run.instance);
-  if (!a.choice.view.empty()) args.insert(args.end(), {"--view", a.choice.view});
-  if (!a.choice.objectives.empty()) {
-    std::string list;
-    for (const auto& name : a.choice.objectives) list += (list.empty() ? "" : ",") + name;
-    args.insert(args.end(), {"--objectives", list});
-  }
-  if (!a.choice.queries.empty()) args.insert(args.end(), {"--queries", a.choice.queries});
-  args.insert(args.end(), {"--solver", a.solver, "--time-limit", a.time_limit, "--cpu-limit",
-                           a.cpu_limit, "--memory-limit", std::to_string(a.memory_limit), "--grace",
-                           number_text(a.grace), "--jobs", std::to_string(a.jobs)});
-  if (a.pin) args.emplace_back("--pin");
-  args.insert(args.end(), {"--threads", std::to_string(a.threads), "--output-format",
-                           a.output_format, "--measurement", a.measurement});
-  if (!a.solver_name.empty()) args.insert(args.end(), {"--solver-name", a.solver_name});
-  if (!a.solver_version.empty()) args.insert(args.end(), {"--solver-version", a.solver_version});
+  SlurmRequest request;
+  request.directory = a.slurm;
+  request.run_options = task_options(a);
+  request.shards = a.shards;
+  request.queries_per_task = a.queries_per_task;
+  request.throttle = a.throttle;
+  request.account = a.account;
+  request.partition = a.partition;
+  const SlurmRun run = plan_slurm_run(run_config(a, instance), request);
   create_slurm_directory(run);
   std::vector<std::uint64_t> all(run.shards);
   for (std::uint64_t i = 0; i < run.shards; ++i) all[i] = i + 1;
@@ -453,7 +511,8 @@ void print_status_text(const SlurmRun& run, const SlurmStatus& status) {
 
 // `mosb run --slurm DIR --status` and `--resume`.
 int run_slurm_existing(const RunArgs& a) {
-  refuse(a, kRunOptions, "not with --slurm DIR --resume or --status (DIR/run.json has the run)");
+  refuse(a, {Role::run, Role::local, Role::plan},
+         "not with --slurm DIR --resume or --status (DIR/run.json has the run)");
   if (a.status && a.resume) throw UsageError("--status: not with --resume");
   if (a.status && a.submit) throw UsageError("--submit: not with --status");
   const SlurmRun run = read_slurm_directory(a.slurm);
@@ -532,10 +591,15 @@ Command add_run(CLI::App& app) {
   sub->add_flag("--pin", a->pin, "pin each job to a CPU of its own (sched_setaffinity)");
   sub->add_option("--threads", a->threads, "what {threads} becomes (default 1)")
       ->check(unsigned_integer(4096));
-  sub->add_option("--output-format", a->output_format,
-                  "how the solver reports: protocol (spec/RUN.md, default), example-log or "
-                  "json-log (PPA*'s log)")
-      ->check(CLI::IsMember({"protocol", "example-log", "json-log"}));
+  std::string formats_help = "how the solver reports (spec/RUN.md section 3.1):";
+  std::vector<std::string> format_names;
+  for (const auto& format : converters::solver_output_formats()) {
+    formats_help += std::string(format_names.empty() ? " " : "; ") + std::string(format.name) +
+                    ": " + std::string(format.description);
+    format_names.emplace_back(format.name);
+  }
+  sub->add_option("--output-format", a->output_format, formats_help + " (default protocol)")
+      ->check(CLI::IsMember(format_names));
   sub->add_option("--measurement", a->measurement,
                   "auto (default), cgroup-v1 or rlimit-poll: how memory is limited and measured")
       ->check(CLI::IsMember({"auto", "cgroup-v1", "rlimit-poll"}));
@@ -573,6 +637,10 @@ Command add_run(CLI::App& app) {
   sub->add_flag("--status", a->status,
                 "with --slurm DIR: the shards' files and the array's state (squeue, sacct)");
   add_json_flag(sub, a->json);
+  for (const auto* option : sub->get_options())  // a programming error, caught by every test
+    if (find_run_option(option->get_name()) == nullptr)
+      throw std::logic_error("mosb run: option " + option->get_name() +
+                             " is not in kRunOptionTable");
   return {sub, [a] { return run_command(*a); }};
 }
 

@@ -54,11 +54,29 @@ ParsedOutput read_json_log_output(const SolverOutputFiles& files) {
   return out;
 }
 
-std::optional<OutputAdapter> solver_output_adapter(std::string_view format) {
-  if (format == "protocol") return OutputAdapter(read_protocol_output);
-  if (format == "example-log") return OutputAdapter(read_example_log_output);
-  if (format == "json-log") return OutputAdapter(read_json_log_output);
-  return std::nullopt;
+namespace {
+
+constexpr SolverOutputFormat kSolverOutputFormats[] = {
+    {"protocol", "the solver protocol (spec/RUN.md section 3)",
+     [] { return OutputAdapter(read_protocol_output); }},
+    {"example-log",
+     "the example solvers' stdout line `start goal front_size seconds expansions` and the front "
+     "file 0.txt in {fronts}",
+     [] { return OutputAdapter(read_example_log_output); }},
+    {"json-log", "PPA*'s JSON log, from {front} (else stdout)",
+     [] { return OutputAdapter(read_json_log_output); }},
+};
+
+}  // namespace
+
+std::span<const SolverOutputFormat> solver_output_formats() {
+  return kSolverOutputFormats;
+}
+
+const SolverOutputFormat* find_solver_output_format(std::string_view name) {
+  for (const auto& format : kSolverOutputFormats)
+    if (format.name == name) return &format;
+  return nullptr;
 }
 
 }  // namespace mosb::converters

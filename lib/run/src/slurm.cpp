@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "mosb/atomic_file.hpp"
+#include "mosb/command_template.hpp"
 #include "mosb/error.hpp"
 #include "mosb/process.hpp"
 #include "mosb/run.hpp"
@@ -504,6 +505,43 @@ std::string submit_shards(const SlurmRun& run, const std::vector<std::uint64_t>&
   out.flush();
   if (!out) throw Error(ErrorCode::io, jobs.string() + ": cannot append the job id " + id);
   return id;
+}
+
+SlurmRun plan_slurm_run(const RunConfig& config, const SlurmRequest& request) {
+  const auto& instance = *config.instance;
+  const View selection = solution_selection(instance, config.choice);
+  const auto words = split_command(config.solver_template);
+  const std::string executable = resolve_executable(words.front());
+  if (executable.empty() || ::access(executable.c_str(), X_OK) != 0)
+    throw Error(ErrorCode::invalid_argument,
+                "--solver: " + words.front() + ": no such executable" +
+                    (words.front().find('/') == std::string::npos ? " in PATH" : ""));
+  SlurmRun run;
+  run.directory = fs::absolute(request.directory).lexically_normal().string();
+  while (run.directory.size() > 1 && run.directory.back() == '/') run.directory.pop_back();
+  std::error_code ec;
+  run.mosb = fs::read_symlink("/proc/self/exe", ec).string();
+  if (ec) throw Error(ErrorCode::io, "/proc/self/exe: cannot read: " + ec.message());
+  run.working_directory = fs::current_path().string();
+  run.instance = fs::absolute(config.instance_path).lexically_normal().string();
+  run.instance_digest = instance.digest();
+  run.view = selection.name;
+  run.query_set = selection.query_set;
+  for (const auto i : selection.objectives) run.objectives.push_back(instance.objective(i).name);
+  run.queries = instance.queries(selection.query_set).size();
+  run.shards = slurm_shard_count(run.queries, request.shards, request.queries_per_task);
+  run.time_limit_seconds = config.limits.wall_seconds;
+  run.grace_seconds = config.limits.grace_seconds;
+  run.memory_limit_bytes = config.limits.memory_bytes;
+  run.jobs = config.jobs;
+  run.threads = config.threads;
+  run.throttle = request.throttle;
+  run.account = request.account;
+  run.partition = request.partition;
+  run.run_arguments.push_back(run.instance);
+  run.run_arguments.insert(run.run_arguments.end(), request.run_options.begin(),
+                           request.run_options.end());
+  return run;
 }
 
 }  // namespace mosb

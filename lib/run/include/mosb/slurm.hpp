@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "mosb/run.hpp"
 #include "mosb/solution_file.hpp"
 
 namespace mosb {
@@ -35,6 +36,24 @@ struct SlurmRun {
   unsigned throttle = 0;  // at most this many tasks at once (%K); 0: no limit
   std::string account, partition;
 };
+
+// What `mosb run --slurm DIR` asks beyond the run itself.
+struct SlurmRequest {
+  std::string directory;
+  // The options that define the run as every task passes them (from --view on: the instance, and
+  // --shard, --resume and -o, are the script's to add).
+  std::vector<std::string> run_options;
+  std::optional<std::uint64_t> shards, queries_per_task;  // exactly one of them
+  unsigned throttle = 0;
+  std::string account, partition;
+};
+
+// The SLURM run of `config` (whose instance is open and whose choice and template are checked):
+// the directory and the instance made absolute, the solver's executable checked, this program's
+// own path (every task runs it), the binding, the shard count and the per-task resources. Throws
+// mosb::Error: invalid_argument for a solver executable that is not there, or a shard count that
+// does not fit the query set; io when this program's path cannot be read.
+SlurmRun plan_slurm_run(const RunConfig& config, const SlurmRequest& request);
 
 // N for `--shards N` or `--queries-per-task K` (ceil(Q / K)) over Q queries; throws mosb::Error
 // (invalid_argument) for 0, for more shards than queries, or both or neither given.

@@ -4,17 +4,26 @@
 #pragma once
 
 #include <optional>
+#include <span>
 #include <string_view>
 
 #include "mosb/run.hpp"
 
 namespace mosb::converters {
 
-// The adapter of an --output-format name: "protocol" (mosb::read_protocol_output),
-// "example-log" (the example solvers' stdout line `start goal front_size seconds expansions` and
-// the front file 0.txt they write into the {fronts} directory) or "json-log" (PPA*'s JSON log);
-// nullopt for another name.
-std::optional<OutputAdapter> solver_output_adapter(std::string_view format);
+// One output format of `mosb run --output-format` (spec/RUN.md §3.1): its name, what it is, and
+// the adapter that reads it.
+struct SolverOutputFormat {
+  std::string_view name;
+  std::string_view description;
+  OutputAdapter (*adapter)();  // a function, so the registry is a constant table
+};
+
+// Every output format, the default (protocol) first: the registry the command line's choices,
+// its help and the run's adapter all come from.
+std::span<const SolverOutputFormat> solver_output_formats();
+// The format named `name`, or nullptr.
+const SolverOutputFormat* find_solver_output_format(std::string_view name);
 
 // The example-log adapter (apply_example_run_log on stdout, import_front_directory on {fronts}).
 ParsedOutput read_example_log_output(const SolverOutputFiles& files);
