@@ -38,7 +38,7 @@ __version__ = _mosb.__version__
 __all__ = ["Error", "Instance", "STATUSES", "Solutions", "Store", "StoreInstance", "View",
            "VERIFY_LEVELS", "load", "open", "open_solutions", "suite"]
 
-VERIFY_LEVELS = ("header", "checksums", "structure", "full")
+VERIFY_LEVELS = _mosb.VERIFY_LEVELS
 # The query statuses of solution files (spec/SOLUTIONS.md §4), indexed by their stored code.
 STATUSES = _mosb.STATUSES
 

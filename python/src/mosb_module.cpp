@@ -125,31 +125,6 @@ py::str path_text(const std::string& path) {
       PyUnicode_DecodeFSDefaultAndSize(path.data(), static_cast<py::ssize_t>(path.size())));
 }
 
-// mosb.Error.code: the C++ ErrorCode as its enumerator's name, for callers to branch on.
-const char* code_name(mosb::ErrorCode code) {
-  switch (code) {
-    case mosb::ErrorCode::other:
-      return "other";
-    case mosb::ErrorCode::io:
-      return "io";
-    case mosb::ErrorCode::not_mosb:
-      return "not_mosb";
-    case mosb::ErrorCode::version:
-      return "version";
-    case mosb::ErrorCode::damaged:
-      return "damaged";
-    case mosb::ErrorCode::not_found:
-      return "not_found";
-    case mosb::ErrorCode::invalid_argument:
-      return "invalid_argument";
-    case mosb::ErrorCode::packed:
-      return "packed";
-    case mosb::ErrorCode::no_memory:
-      return "no_memory";
-  }
-  return "other";
-}
-
 // mosb::Error as the Python exception mosb.Error.
 void bind_error(py::module_& m) {
   // One message line (naming the file) as str(error), and the C++ ErrorCode as error.code.
@@ -164,7 +139,7 @@ void bind_error(py::module_& m) {
       auto message = py::reinterpret_steal<py::str>(PyUnicode_DecodeUTF8(
           what.data(), static_cast<py::ssize_t>(what.size()), "backslashreplace"));
       py::object error = py::reinterpret_borrow<py::object>(error_type.ptr())(message);
-      error.attr("code") = code_name(e.code());
+      error.attr("code") = std::string(mosb::kErrorCodeNames.name(e.code()));
       PyErr_SetObject(error_type.ptr(), error.ptr());
     }
   });
@@ -255,8 +230,8 @@ void bind_reader_checks(py::class_<mosb::GraphReader, ReaderPtr>& reader) {
           [](const mosb::GraphReader& r, const std::string& level) {
             const auto parsed = mosb::parse_verify_level(level);
             if (!parsed)
-              throw py::value_error("verify level '" + level +
-                                    "' is not one of header, checksums, structure, full");
+              throw py::value_error("verify level '" + level + "' is not one of " +
+                                    mosb::kVerifyLevelNames.choices_text());
             std::optional<std::string> problem;
             {
               py::gil_scoped_release release;
@@ -378,6 +353,9 @@ PYBIND11_MODULE(_mosb, m) {
   m.doc() = "Binding of the mosb C++ reader; use the `mosb` package, not this module.";
   m.attr("__version__") = mosb::kVersion;
   bind_error(m);
+  py::list levels;
+  for (const auto& name : mosb::kVerifyLevelNames.names()) levels.append(name);
+  m.attr("VERIFY_LEVELS") = py::tuple(levels);
   py::class_<mosb::GraphReader, ReaderPtr> reader(m, "Reader");
   bind_reader_data(reader);
   bind_reader_checks(reader);

@@ -52,8 +52,8 @@ int run_dimacs(const DimacsArgs& a) {
     extended.hop |= d == "hop";
     extended.avg_outdegree |= d == "avg-outdegree";
   }
-  if (a.avg_outdegree_mode == "round-half-up")
-    extended.avg_outdegree_mode = converters::AvgOutdegreeMode::round_half_up;
+  extended.avg_outdegree_mode =
+      *converters::kAvgOutdegreeModeNames.parse(a.avg_outdegree_mode);  // checked by CLI11
   for (const auto& v : a.views) extended.views.push_back(mosb::parse_view_spec(v));
   TerminalProgress progress;
   o.progress = progress.callback();
@@ -99,7 +99,7 @@ Command add_convert_dimacs(CLI::App& convert) {
       ->add_option(
           "--avg-outdegree-mode", args->avg_outdegree_mode,
           "avg_outdegree as outdeg(u)+outdeg(v) (twice, exact) or their mean rounded half up")
-      ->check(CLI::IsMember({"twice", "round-half-up"}))
+      ->check(CLI::IsMember(converters::kAvgOutdegreeModeNames.names()))
       ->capture_default_str();
   add_view_spec_option(dimacs, args->views);
   add_output_option(dimacs, args->output, "the .mosb file to write")->required();

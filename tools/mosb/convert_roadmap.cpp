@@ -38,7 +38,7 @@ int run_roadmap(const RoadmapArgs& a) {
   if (!a.vertices.empty()) o.vertex_file = a.vertices;
   o.vertices_from_ids = a.vertices_from_ids;
   if (!a.graphml.empty()) o.graphml_file = a.graphml;
-  const auto mode = converters::parse_clearance_mode(a.clearance);
+  const auto mode = converters::kClearanceModeNames.parse(a.clearance);
   if (!mode) throw Error("convert roadmap: unknown --clearance '" + a.clearance + "'");
   o.clearance = *mode;
   o.delta = a.delta;
@@ -78,7 +78,7 @@ Command add_convert_roadmap(CLI::App& convert) {
   roadmap
       ->add_option("--clearance", args->clearance,
                    "auto, none, aggregate, per-link or both (GraphML)")
-      ->check(CLI::IsMember({"auto", "none", "aggregate", "per-link", "both"}))
+      ->check(CLI::IsMember(converters::kClearanceModeNames.names()))
       ->capture_default_str();
   roadmap->add_option("--delta", args->delta, "safety band of the clearance penalty U(d)")
       ->check(non_negative_real())

@@ -57,8 +57,7 @@ int run_import(const ImportArgs& a) {
   options.id_base = a.id_base.checked(instance).value_or(0);
   options.vertex_count = instance.vertex_count();
   options.queries = instance.queries(set);
-  options.match = a.match == "endpoints" ? converters::RecordMatch::endpoints
-                                         : converters::RecordMatch::position;
+  options.match = *converters::kRecordMatchNames.parse(a.match);       // checked by CLI11
   options.status_for_empty = *parse_query_status(a.status_for_empty);  // checked by CLI11
   std::vector<converters::ImportedResult> results;
   if (!a.directory.empty()) {
@@ -278,14 +277,17 @@ Command add_solutions(CLI::App& app) {
   import
       ->add_option("--match", import_args->match,
                    "JSON records to queries by 'position' (default) or 'endpoints'")
-      ->check(CLI::IsMember({"position", "endpoints"}));
+      ->check(CLI::IsMember(converters::kRecordMatchNames.names()));
   add_instance_id_base_options(import, import_args->id_base, "0");
   import
       ->add_option("--status-for-empty", import_args->status_for_empty,
                    "with --dir: the status of a front file with no vector and no 'status' line: "
                    "disconnected, timeout or failed (default: failed; with --example-log, a "
                    "line saying front size 0 makes it disconnected)")
-      ->check(CLI::IsMember({"disconnected", "timeout", "failed"}))
+      ->check(
+          CLI::IsMember(std::vector<std::string>{std::string(to_string(QueryStatus::disconnected)),
+                                                 std::string(to_string(QueryStatus::timeout)),
+                                                 std::string(to_string(QueryStatus::failed))}))
       ->needs(import->get_option("--dir"));
   import
       ->add_option("--columns", import_args->columns,

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <thread>
 
@@ -171,20 +172,6 @@ int run_instance(const StoreArgs& a) {
   return 0;
 }
 
-const char* status_name(PullStatus status) {
-  switch (status) {
-    case PullStatus::fetched:
-      return "fetched";
-    case PullStatus::present:
-      return "present";
-    case PullStatus::refused:
-      return "refused";
-    case PullStatus::planned:
-      break;
-  }
-  return "planned";
-}
-
 // Fetches what the store lacks; one line per entry on stdout (`fetched`, `present`, or with
 // --dry-run `would fetch`), one line per refused entry on stderr, exit 1 when any was refused.
 int run_pull(const StoreArgs& a) {
@@ -200,22 +187,22 @@ int run_pull(const StoreArgs& a) {
   const auto result = [&] {
     TerminalProgress progress;  // its line ends before the report is printed
     options.progress = progress.bytes_callback();
-    std::size_t counts[4] = {};
+    std::map<PullStatus, std::size_t> counts;
     if (options.progress)
       options.settled = [&](const PulledEntry& entry, std::size_t settled, std::size_t selected) {
-        ++counts[static_cast<int>(entry.status)];
-        progress.set_suffix(
-            "; entries " + std::to_string(settled) + "/" + std::to_string(selected) + " (" +
-            std::to_string(counts[static_cast<int>(PullStatus::fetched)]) + " fetched, " +
-            std::to_string(counts[static_cast<int>(PullStatus::present)]) + " present, " +
-            std::to_string(counts[static_cast<int>(PullStatus::refused)]) + " refused)");
+        ++counts[entry.status];
+        progress.set_suffix("; entries " + std::to_string(settled) + "/" +
+                            std::to_string(selected) + " (" +
+                            std::to_string(counts[PullStatus::fetched]) + " fetched, " +
+                            std::to_string(counts[PullStatus::present]) + " present, " +
+                            std::to_string(counts[PullStatus::refused]) + " refused)");
       };
     return pull(a.directory, a.url, options);
   }();
   std::uint64_t planned_bytes = 0;
-  std::size_t counts[4] = {};
+  std::map<PullStatus, std::size_t> counts;
   for (const auto& p : result.entries) {
-    ++counts[static_cast<int>(p.status)];
+    ++counts[p.status];
     if (p.status == PullStatus::planned) planned_bytes += p.entry.size;
   }
   for (const auto& p : result.entries)
@@ -233,7 +220,9 @@ int run_pull(const StoreArgs& a) {
       if ((a.dry_run && status == PullStatus::fetched) ||
           (!a.dry_run && status == PullStatus::planned))
         continue;
-      json.key(status == PullStatus::planned ? "would_fetch" : status_name(status)).begin_array();
+      json.key(status == PullStatus::planned ? "would_fetch"
+                                             : std::string(kPullStatusNames.name(status)))
+          .begin_array();
       for (const auto& p : result.entries) {
         if (p.status != status) continue;
         json.begin_object();
@@ -272,13 +261,12 @@ int run_pull(const StoreArgs& a) {
         std::cout << "would fetch " << file << " (" << p.entry.size << " bytes)\n";
     }
     if (a.dry_run)
-      std::cout << counts[static_cast<int>(PullStatus::planned)] << " to fetch (" << planned_bytes
-                << " bytes), " << counts[static_cast<int>(PullStatus::present)] << " present, "
-                << counts[static_cast<int>(PullStatus::refused)] << " refused\n";
+      std::cout << counts[PullStatus::planned] << " to fetch (" << planned_bytes << " bytes), "
+                << counts[PullStatus::present] << " present, " << counts[PullStatus::refused]
+                << " refused\n";
     else
-      std::cout << counts[static_cast<int>(PullStatus::fetched)] << " fetched, "
-                << counts[static_cast<int>(PullStatus::present)] << " present, "
-                << counts[static_cast<int>(PullStatus::refused)] << " refused; " << result.bytes
+      std::cout << counts[PullStatus::fetched] << " fetched, " << counts[PullStatus::present]
+                << " present, " << counts[PullStatus::refused] << " refused; " << result.bytes
                 << " bytes received in " << result.seconds << " s\n";
   }
   return result.ok() ? 0 : 1;

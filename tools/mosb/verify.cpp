@@ -150,7 +150,7 @@ Command add_verify(CLI::App& app) {
                   "the .mosb instances to verify (with --manifest: the files to check, default "
                   "every listed file beside the manifest)");
   auto* level = sub->add_option("--level", args->level, "how much to check")
-                    ->check(CLI::IsMember({"header", "checksums", "structure", "full"}))
+                    ->check(CLI::IsMember(kVerifyLevelNames.names()))
                     ->capture_default_str();
   auto* manifest = sub->add_option(
       "--manifest", args->manifest,

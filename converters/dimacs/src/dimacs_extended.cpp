@@ -75,7 +75,7 @@ void append_derived_columns(GraphInput& graph, const ExtendedOptions& options, u
       cost[k] = twice ? sum : (sum + 1) / 2;
     }
     graph.costs.push_back({"avg_outdegree", "", std::move(cost), std::nullopt});
-    meta.set("source.param.avg_outdegree", twice ? "twice" : "round-half-up");
+    meta.set("source.param.avg_outdegree", kAvgOutdegreeModeNames.name(options.avg_outdegree_mode));
   }
   if (options.hop)
     graph.costs.push_back({"hop", "", std::vector<std::uint64_t>(m, 1), std::nullopt});

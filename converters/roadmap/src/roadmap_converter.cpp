@@ -329,10 +329,10 @@ ClearanceChoice choose_clearance(const GraphmlGraph& g, const RoadmapOptions& o,
   c.aggregate = c.mode == ClearanceMode::aggregate || c.mode == ClearanceMode::both;
   c.links = c.mode == ClearanceMode::per_link || c.mode == ClearanceMode::both;
   if (c.aggregate && !keys.aggregate && keys.links.empty())
-    throw Error(file + ": --clearance " + clearance_mode_name(c.mode) +
+    throw Error(file + ": --clearance " + std::string(kClearanceModeNames.name(c.mode)) +
                 ": no edge key 'clearance' or 'clearance_0'...");
   if (c.links && keys.links.empty())
-    throw Error(file + ": --clearance " + clearance_mode_name(c.mode) +
+    throw Error(file + ": --clearance " + std::string(kClearanceModeNames.name(c.mode)) +
                 ": no edge keys 'clearance_0' .. 'clearance_{L-1}'");
   return c;
 }
@@ -478,36 +478,13 @@ GraphInput convert_graphml_file(const RoadmapOptions& o) {
   m.set("roadmap.edges", std::to_string(g.edges.size()));
   if (!clearance.keys.links.empty())
     m.set("roadmap.clearance_links", std::to_string(clearance.keys.links.size()));
-  m.set("source.param.clearance", clearance_mode_name(clearance.mode));
+  m.set("source.param.clearance", kClearanceModeNames.name(clearance.mode));
   if (clearance.aggregate || clearance.links) m.set("source.param.delta", real_text(o.delta));
   m.set("source.param.weight", o.weight ? "true" : "false");
   return out;
 }
 
 }  // namespace
-
-std::optional<ClearanceMode> parse_clearance_mode(std::string_view text) {
-  for (auto mode : {ClearanceMode::automatic, ClearanceMode::none, ClearanceMode::aggregate,
-                    ClearanceMode::per_link, ClearanceMode::both})
-    if (text == clearance_mode_name(mode)) return mode;
-  return std::nullopt;
-}
-
-const char* clearance_mode_name(ClearanceMode mode) {
-  switch (mode) {
-    case ClearanceMode::automatic:
-      return "auto";
-    case ClearanceMode::none:
-      return "none";
-    case ClearanceMode::aggregate:
-      return "aggregate";
-    case ClearanceMode::per_link:
-      return "per-link";
-    case ClearanceMode::both:
-      return "both";
-  }
-  return "?";
-}
 
 double clearance_penalty(double d, double delta) {
   if (d >= delta) return 0.0;

@@ -141,7 +141,7 @@ RawRecipe roadmap_recipe(const description::Json& d) {
   r.name = description::text(d, "name");
   add_input(r, description::text(d, "graphml"));
   RoadmapOptions o;
-  const auto clearance = parse_clearance_mode(description::text(d, "clearance"));
+  const auto clearance = kClearanceModeNames.parse(description::text(d, "clearance"));
   if (!clearance) throw Error("spec/suite.json (built in): unknown clearance mode in " + r.name);
   o.clearance = *clearance;
   o.name = r.name;

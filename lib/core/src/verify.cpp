@@ -19,11 +19,7 @@ using format::ElementType;
 using format::SectionKind;
 
 std::optional<VerifyLevel> parse_verify_level(std::string_view text) {
-  if (text == "header") return VerifyLevel::header;
-  if (text == "checksums") return VerifyLevel::checksums;
-  if (text == "structure") return VerifyLevel::structure;
-  if (text == "full") return VerifyLevel::full;
-  return std::nullopt;
+  return kVerifyLevelNames.parse(text);
 }
 
 namespace rules {

@@ -338,17 +338,7 @@ std::string shard_output(const SlurmRun& run, std::uint64_t shard) {
 }
 
 std::string_view to_string(ShardFile state) {
-  switch (state) {
-    case ShardFile::done:
-      return "done";
-    case ShardFile::partial:
-      return "partial";
-    case ShardFile::missing:
-      return "missing";
-    case ShardFile::damaged:
-      return "damaged";
-  }
-  return "?";
+  return kShardFileNames.name(state);
 }
 
 bool ShardState::queued() const {

@@ -3,6 +3,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "mosb/enum_names.hpp"
+
 namespace mosb {
 
 // What kind of failure an Error reports, so that callers branch on it instead of on the text.
@@ -18,6 +20,18 @@ enum class ErrorCode {
   packed,            // a zstd-packed section, which cannot be mapped zero-copy
   no_memory,         // out of memory, or decoding would need more than the cap (max_memory) allows
 };
+// The enumerators' names (Python's mosb.Error.code).
+inline constexpr auto kErrorCodeNames = enum_names<ErrorCode>({
+    {ErrorCode::other, "other"},
+    {ErrorCode::io, "io"},
+    {ErrorCode::not_mosb, "not_mosb"},
+    {ErrorCode::version, "version"},
+    {ErrorCode::damaged, "damaged"},
+    {ErrorCode::not_found, "not_found"},
+    {ErrorCode::invalid_argument, "invalid_argument"},
+    {ErrorCode::packed, "packed"},
+    {ErrorCode::no_memory, "no_memory"},
+});
 
 // Every failure mosb reports to a user: the message is one line and names the file it concerns.
 class Error : public std::runtime_error {

@@ -40,6 +40,7 @@
 #include <vector>
 
 #include "mosb/container.hpp"
+#include "mosb/enum_names.hpp"
 #include "mosb/error.hpp"
 #include "mosb/format.hpp"
 #include "mosb/metadata.hpp"
@@ -50,6 +51,12 @@ namespace mosb {
 // How much of a file to check (spec/FORMAT.md §9 "Verification levels"). `structure` does not
 // include `checksums`; `full` is both.
 enum class VerifyLevel { header, checksums, structure, full };
+inline constexpr auto kVerifyLevelNames = enum_names<VerifyLevel>({
+    {VerifyLevel::header, "header"},
+    {VerifyLevel::checksums, "checksums"},
+    {VerifyLevel::structure, "structure"},
+    {VerifyLevel::full, "full"},
+});
 
 // True when a file verified at `done` has passed every check of `wanted`.
 constexpr bool covers(VerifyLevel done, VerifyLevel wanted) {

@@ -13,7 +13,7 @@ namespace mosb {
 
 // VerifyLevel is declared in graph_reader.hpp (GraphReader::open takes one).
 
-std::optional<VerifyLevel> parse_verify_level(std::string_view text);
+std::optional<VerifyLevel> parse_verify_level(std::string_view text);  // kVerifyLevelNames
 
 // The first problem found, as "section 'NAME': [rule] detail"; nullopt when the file passes.
 // `progress` hears stage "verify" as the checks finish (from one thread at a time).

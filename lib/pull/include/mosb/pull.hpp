@@ -14,6 +14,7 @@
 #include <string_view>
 #include <vector>
 
+#include "mosb/enum_names.hpp"
 #include "mosb/manifest.hpp"
 #include "mosb/pack.hpp"
 #include "mosb/progress.hpp"
@@ -26,6 +27,12 @@ enum class PullStatus {
   refused,  // not placed: `reason` says why
   planned,  // dry run: would be fetched
 };
+inline constexpr auto kPullStatusNames = enum_names<PullStatus>({
+    {PullStatus::fetched, "fetched"},
+    {PullStatus::present, "present"},
+    {PullStatus::refused, "refused"},
+    {PullStatus::planned, "planned"},
+});
 
 struct PulledEntry {
   ManifestEntry entry;  // as the published MANIFEST lists it

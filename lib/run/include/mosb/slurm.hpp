@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "mosb/enum_names.hpp"
 #include "mosb/run.hpp"
 #include "mosb/solution_file.hpp"
 
@@ -90,7 +91,13 @@ enum class ShardFile {
   missing,  // neither
   damaged,  // a file that is unreadable, of another run, or incomplete
 };
-std::string_view to_string(ShardFile state);
+inline constexpr auto kShardFileNames = enum_names<ShardFile>({
+    {ShardFile::done, "done"},
+    {ShardFile::partial, "partial"},
+    {ShardFile::missing, "missing"},
+    {ShardFile::damaged, "damaged"},
+});
+std::string_view to_string(ShardFile state);  // kShardFileNames
 
 struct ShardState {
   std::uint64_t index = 0;  // i of i/N

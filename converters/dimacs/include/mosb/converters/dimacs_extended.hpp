@@ -11,6 +11,7 @@
 
 #include "mosb/converters/dimacs_converter.hpp"
 #include "mosb/converters/text_scan.hpp"
+#include "mosb/enum_names.hpp"
 #include "mosb/graph_builder.hpp"
 #include "mosb/views.hpp"  // ViewSpec, add_views: the views of every family
 
@@ -21,6 +22,10 @@ enum class AvgOutdegreeMode {
   twice,          // outdeg(u) + outdeg(v): exactly twice the average (the default)
   round_half_up,  // floor((outdeg(u) + outdeg(v) + 1) / 2)
 };
+inline constexpr auto kAvgOutdegreeModeNames = enum_names<AvgOutdegreeMode>({
+    {AvgOutdegreeMode::twice, "twice"},
+    {AvgOutdegreeMode::round_half_up, "round-half-up"},
+});
 
 struct ExtendedOptions {
   std::optional<std::string> elevation_file;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "mosb/converters/objective.hpp"
+#include "mosb/enum_names.hpp"
 #include "mosb/graph_builder.hpp"
 
 namespace mosb::converters {
@@ -22,8 +23,13 @@ namespace mosb::converters {
 // file).
 enum class ClearanceMode { automatic, none, aggregate, per_link, both };
 
-std::optional<ClearanceMode> parse_clearance_mode(std::string_view text);
-const char* clearance_mode_name(ClearanceMode mode);
+inline constexpr auto kClearanceModeNames = enum_names<ClearanceMode>({
+    {ClearanceMode::automatic, "auto"},
+    {ClearanceMode::none, "none"},
+    {ClearanceMode::aggregate, "aggregate"},
+    {ClearanceMode::per_link, "per-link"},
+    {ClearanceMode::both, "both"},
+});
 
 struct RoadmapOptions {
   // Style (a).

@@ -21,6 +21,10 @@ enum class RecordMatch {
   position,   // the k-th record (or file/row query id k) is query k of the set
   endpoints,  // a record names its start and goal; it is the query of the set with them
 };
+inline constexpr auto kRecordMatchNames = enum_names<RecordMatch>({
+    {RecordMatch::position, "position"},
+    {RecordMatch::endpoints, "endpoints"},
+});
 
 struct SolutionImportOptions {
   std::size_t objective_count = 0;  // d: the view's objectives
