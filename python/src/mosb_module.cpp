@@ -332,12 +332,8 @@ void bind_solutions(py::module_& m) {
             py::array_t<double> values(static_cast<py::ssize_t>(r.query_count()));
             auto out = values.mutable_unchecked<1>();
             for (std::uint64_t q = 0; q < r.query_count(); ++q) {
-              std::optional<double> v;
-              if (*found == mosb::Statistic::runtime_seconds)
-                v = r.runtime_seconds(q);
-              else if (const auto count = r.count_statistic(*found, q))
-                v = static_cast<double>(*count);
-              out(static_cast<py::ssize_t>(q)) = v.value_or(std::nan(""));
+              out(static_cast<py::ssize_t>(q)) =
+                  r.statistic_as_double(*found, q).value_or(std::nan(""));
             }
             return values;
           },

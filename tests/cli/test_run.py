@@ -184,7 +184,8 @@ class RunTest(CliTest):
 
     def test_front_in_a_file_and_statistics(self):
         body = ("echo $$ >> %s\nprintf '3 4\\n1 9\\n' > \"$3\"\necho noise\n"
-                "echo 'mosb: generated=11' >&2\n" % self.pids)
+                "echo 'mosb: generated=11' >&2\necho 'mosb: runtime_seconds=0.125' >&2\n"
+                % self.pids)
         self.ok("queries", "generate", self.grid, "--set", "one", "--count", "1", "--in-place",
                 "--replace")
         solver = self.script("solver", body)
@@ -193,6 +194,9 @@ class RunTest(CliTest):
         self.assert_status(info, "solved")
         self.assertEqual(info["vectors"], 2)
         self.assertEqual(info["statistics"]["generated"]["total"], 11)
+        # The solver's own runtime beside mosb's wall clock (format 1.5).
+        self.assertEqual(info["statistics"]["reported_runtime_seconds"]["total"], 0.125)
+        self.assertEqual(mosbtest.header(mosbtest.read(self.path("out.sol")))["version_minor"], 5)
         self.assert_no_process_left()
 
     def test_json_log_adapter_reads_ppa_style_logs(self):
@@ -208,6 +212,7 @@ class RunTest(CliTest):
         info = self.inspect()
         self.assert_status(info, "solved")
         self.assertEqual(info["vectors"], 2)
+        self.assertEqual(info["statistics"]["reported_runtime_seconds"]["total"], 0.0025)
         # A record for other endpoints (source in place of the target) is not this query's.
         solver = self.script("solver", body % (self.pids, 1))
         self.run_solver(solver + " {source} {target} {front}", "--output-format", "json-log",

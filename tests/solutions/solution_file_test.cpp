@@ -292,6 +292,40 @@ TEST_CASE("verify checks every disconnected claim by a search from its start") {
         "answer)");
 }
 
+TEST_CASE("format 1.5: the solver's reported runtime beside mosb's wall clock") {
+  const auto instance = GraphReader::open(kSmall);
+  const auto golden = kGolden / "1.5" / "solutions" / "valid" / "reported-runtime.sol.mosb";
+  testing::TempDir dir;
+  testing::write_golden_reported_runtime_solutions(instance, dir / "r.sol.mosb");
+  CHECK_MESSAGE(testing::read_bytes(dir / "r.sol.mosb") == testing::read_bytes(golden),
+                "the solution writer's output changed: if deliberate, update spec/SOLUTIONS.md "
+                "and regenerate with mosb_make_golden solutions");
+  const auto r = SolutionReader::open_verified(golden);
+  CHECK(r.header().version_minor == 5);
+  CHECK(r.has_statistic(Statistic::reported_runtime_seconds));
+  CHECK(r.reported_runtime_seconds(0) == 0.125);
+  CHECK_FALSE(r.reported_runtime_seconds(1));
+  CHECK(r.runtime_seconds(1) == 0.25);
+  CHECK(r.statistics(0).reported_runtime_seconds == 0.125);
+  CHECK(r.statistic_as_double(Statistic::reported_runtime_seconds, 0) == 0.125);
+  CHECK_FALSE(r.count_statistic(Statistic::reported_runtime_seconds, 0));
+  // Without it a file keeps the minor it had: 1.3 with a view.
+  SolutionWriter plain(instance, "Small_2");
+  plain.write(dir / "plain.sol.mosb");
+  CHECK(SolutionReader::open(dir / "plain.sol.mosb").header().version_minor == 3);
+  // The writer refuses a reported runtime that is not a finite number >= 0, and one on a query
+  // that may carry no statistics.
+  SolutionWriter bad(instance, "Small_2");
+  QueryStatistics negative;
+  negative.reported_runtime_seconds = -1;
+  CHECK_THROWS_WITH(bad.set_query(0, QueryStatus::solved, std::vector<double>{60, 5.25}, negative),
+                    doctest::Contains("reported_runtime_seconds is not finite and >= 0"));
+  QueryStatistics some;
+  some.reported_runtime_seconds = 1;
+  CHECK_THROWS_WITH(bad.set_query(2, QueryStatus::timeout, {}, some),
+                    doctest::Contains("timeout carries no statistics"));
+}
+
 TEST_CASE("format 1.4: a solution file bound to its objectives alone, without a view") {
   const auto instance = GraphReader::open(kSmall);
   const auto golden = kGolden / "1.4" / "solutions" / "valid" / "objectives.sol.mosb";

@@ -1,8 +1,10 @@
 // The solution files behind spec/golden/1.3/solutions/valid/small.sol.mosb (the exact fronts of
 // view Small_2: distance u16, time f32, of the golden instance, worked out by hand from its 7
 // arcs) and spec/golden/1.4/solutions/valid/objectives.sol.mosb (the same fronts for the objective
-// list time,distance, which no view of the instance has: a file bound to its objectives alone).
-// Changing either changes its golden file, deliberately.
+// list time,distance, which no view of the instance has: a file bound to its objectives alone)
+// and spec/golden/1.5/solutions/valid/reported-runtime.sol.mosb (the fronts of view Small_2 as
+// `mosb run` records them: mosb's wall clock and the solver's own runtime). Changing any changes
+// its golden file, deliberately.
 #pragma once
 
 #include <filesystem>
@@ -41,6 +43,20 @@ inline void write_golden_objective_solutions(const GraphReader& small,
   w.set_source_tool("mosb 0.2.0");
   w.set_query(0, QueryStatus::solved, std::vector<double>{5.25, 60, 3.75, 80});
   w.set_query(1, QueryStatus::solved, std::vector<double>{7.5, 120});
+  w.set_query(2, QueryStatus::timeout, {});
+  w.write(out);
+}
+
+inline void write_golden_reported_runtime_solutions(const GraphReader& small,
+                                                    const std::filesystem::path& out) {
+  SolutionWriter w(small, "Small_2");
+  w.set_source_tool("mosb 0.2.0");
+  QueryStatistics first, second;
+  first.runtime_seconds = 0.5;  // mosb's wall clock: loading and search
+  first.reported_runtime_seconds = 0.125;
+  second.runtime_seconds = 0.25;  // a solver that reports no runtime of its own: absent (NaN)
+  w.set_query(0, QueryStatus::solved, std::vector<double>{60, 5.25, 80, 3.75}, first);
+  w.set_query(1, QueryStatus::solved, std::vector<double>{120, 7.5}, second);
   w.set_query(2, QueryStatus::timeout, {});
   w.write(out);
 }

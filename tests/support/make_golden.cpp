@@ -11,7 +11,8 @@
 //               its query reference
 //   solutions   1.3/solutions/: valid/small.sol.mosb (golden_solutions.hpp, bound to
 //               1.0/valid/small.mosb), the faults of solution_faults.hpp; 1.4/solutions/:
-//               valid/objectives.sol.mosb (bound to an objective list alone)
+//               valid/objectives.sol.mosb (bound to an objective list alone); 1.5/solutions/:
+//               valid/reported-runtime.sol.mosb (the solver's own runtime beside mosb's)
 // packed and solutions read 1.0/valid/small.mosb from DIR.
 // Usage: mosb_make_golden instance|packed|references|solutions DIR (e.g. spec/golden)
 #include <algorithm>
@@ -320,6 +321,10 @@ void make_solutions(const fs::path& golden) {
   fs::create_directories(golden / "1.4" / "solutions" / "valid");
   write_golden_objective_solutions(instance,
                                    golden / "1.4" / "solutions" / "valid" / "objectives.sol.mosb");
+  // 1.5: the solver's own runtime beside mosb's (statistic reported_runtime_seconds).
+  fs::create_directories(golden / "1.5" / "solutions" / "valid");
+  write_golden_reported_runtime_solutions(
+      instance, golden / "1.5" / "solutions" / "valid" / "reported-runtime.sol.mosb");
 }
 
 struct GoldenSet {

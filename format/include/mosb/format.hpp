@@ -18,13 +18,16 @@ static_assert(std::endian::native == std::endian::little,
 inline constexpr std::uint16_t kVersionMajor = 1;
 // The newest minor this code reads. A writer stamps a file with the lowest minor whose readers can
 // read it (spec/FORMAT.md §2): instance files using only 1.0 features still say 1.0.
-inline constexpr std::uint16_t kVersionMinor = 4;
+inline constexpr std::uint16_t kVersionMinor = 5;
 // Solution files since 1.3 store path sums (u64 / i64 / f64 front_cost columns, path_sum_type);
 // those of 1.1 and 1.2 stored each objective in its arc cost type (spec/SOLUTIONS.md §3).
 inline constexpr std::uint16_t kSolutionSumsMinor = 3;
 // A solution file without `solution.view`, bound to its front_cost columns' objective names alone
 // (spec/SOLUTIONS.md §2), needs 1.4; one with a view stays 1.3.
 inline constexpr std::uint16_t kSolutionObjectivesMinor = 4;
+// A solution file with a `reported_runtime_seconds` statistic (the solver's own runtime) needs
+// 1.5: a 1.4 reader refuses the section's name; one without it keeps its 1.3 or 1.4.
+inline constexpr std::uint16_t kSolutionReportedRuntimeMinor = 5;
 
 // PNG-style: a high-bit byte catches 7-bit transfers, CR LF catches CRLF->LF conversion,
 // the lone LF catches LF->CRLF conversion, 0x1A stops `type` on DOS.

@@ -49,7 +49,6 @@ nlohmann::json to_json(const QueryRecord& r) {
   j["wall_seconds"] = r.wall_seconds;
   j["cpu_seconds"] = r.cpu_seconds;
   if (r.peak_memory_bytes) j["peak_memory_bytes"] = *r.peak_memory_bytes;
-  if (r.reported_runtime_seconds) j["reported_runtime_seconds"] = *r.reported_runtime_seconds;
   const auto& s = r.statistics;
   nlohmann::json stats = nlohmann::json::object();
   if (s.runtime_seconds) stats["runtime_seconds"] = *s.runtime_seconds;
@@ -57,6 +56,7 @@ nlohmann::json to_json(const QueryRecord& r) {
   if (s.generated) stats["generated"] = *s.generated;
   if (s.peak_memory_bytes) stats["peak_memory_bytes"] = *s.peak_memory_bytes;
   if (s.exit_status) stats["exit_status"] = *s.exit_status;
+  if (s.reported_runtime_seconds) stats["reported_runtime_seconds"] = *s.reported_runtime_seconds;
   j["statistics"] = stats;
   if (!r.message.empty()) j["message"] = r.message;
   if (!r.stderr_tail.empty()) j["stderr_tail"] = r.stderr_tail;
@@ -74,8 +74,6 @@ QueryRecord record_from_json(const nlohmann::json& j) {
   r.cpu_seconds = j.at("cpu_seconds").get<double>();
   if (j.contains("peak_memory_bytes"))
     r.peak_memory_bytes = j["peak_memory_bytes"].get<std::uint64_t>();
-  if (j.contains("reported_runtime_seconds"))
-    r.reported_runtime_seconds = j["reported_runtime_seconds"].get<double>();
   const auto& s = j.at("statistics");
   if (s.contains("runtime_seconds"))
     r.statistics.runtime_seconds = s["runtime_seconds"].get<double>();
@@ -84,6 +82,8 @@ QueryRecord record_from_json(const nlohmann::json& j) {
   if (s.contains("peak_memory_bytes"))
     r.statistics.peak_memory_bytes = s["peak_memory_bytes"].get<std::uint64_t>();
   if (s.contains("exit_status")) r.statistics.exit_status = s["exit_status"].get<std::uint64_t>();
+  if (s.contains("reported_runtime_seconds"))
+    r.statistics.reported_runtime_seconds = s["reported_runtime_seconds"].get<double>();
   r.message = j.value("message", std::string());
   if (j.contains("stderr_tail")) r.stderr_tail = j["stderr_tail"].get<std::vector<std::string>>();
   return r;

@@ -42,13 +42,45 @@ bool statistic_allowed(QueryStatus s, Statistic statistic) {
   return is_completed(s);
 }
 
+// A runtime statistic of `stats` (is_seconds(s)), or nullopt.
+std::optional<double> seconds_of(const QueryStatistics& stats, Statistic s) {
+  return s == Statistic::runtime_seconds ? stats.runtime_seconds : stats.reported_runtime_seconds;
+}
+
+// A counter statistic of `stats` (not is_seconds(s)), or nullopt.
+std::optional<std::uint64_t> count_of(const QueryStatistics& stats, Statistic s) {
+  switch (s) {
+    case Statistic::expanded:
+      return stats.expanded;
+    case Statistic::generated:
+      return stats.generated;
+    case Statistic::peak_memory_bytes:
+      return stats.peak_memory_bytes;
+    case Statistic::exit_status:
+      return stats.exit_status;
+    case Statistic::runtime_seconds:
+    case Statistic::reported_runtime_seconds:
+      break;
+  }
+  return std::nullopt;
+}
+
+bool has_statistic(const QueryStatistics& stats, Statistic s) {
+  return is_seconds(s) ? seconds_of(stats, s).has_value() : count_of(stats, s).has_value();
+}
+
 // The first statistic `stats` holds that `status` may not carry, or nullopt.
 std::optional<Statistic> forbidden_statistic(QueryStatus status, const QueryStatistics& stats) {
-  const bool present[] = {stats.runtime_seconds.has_value(), stats.expanded.has_value(),
-                          stats.generated.has_value(), stats.peak_memory_bytes.has_value(),
-                          stats.exit_status.has_value()};
   for (const auto statistic : kStatistics)
-    if (present[static_cast<std::size_t>(statistic)] && !statistic_allowed(status, statistic))
+    if (has_statistic(stats, statistic) && !statistic_allowed(status, statistic)) return statistic;
+  return std::nullopt;
+}
+
+// The first runtime of `stats` that is not finite and >= 0, or nullopt.
+std::optional<Statistic> bad_seconds(const QueryStatistics& stats) {
+  for (const auto statistic : kStatistics)
+    if (const auto v = is_seconds(statistic) ? seconds_of(stats, statistic) : std::nullopt;
+        v && !(std::isfinite(*v) && *v >= 0))
       return statistic;
   return std::nullopt;
 }
@@ -134,7 +166,7 @@ void SolutionReader::validate() {
     const auto found = kStatisticNames.parse(s.name);
     if (!found) fail("section '" + s.name + "': is not a statistic of SOLUTIONS.md §3");
     const auto which = static_cast<std::size_t>(*found);
-    table.expect_shape(s, which == 0 ? ElementType::f64 : ElementType::u64);
+    table.expect_shape(s, is_seconds(*found) ? ElementType::f64 : ElementType::u64);
     statistic_indices_[which] = i;  // one at most: names are unique within a kind
   }
   if (metadata_index == SIZE_MAX) fail("no metadata section");
@@ -320,27 +352,45 @@ std::size_t SolutionReader::statistic_index(Statistic s) const {
   return statistic_indices_[static_cast<std::size_t>(s)];
 }
 
-std::optional<double> SolutionReader::runtime_seconds(std::uint64_t q) const {
-  const auto i = statistic_index(Statistic::runtime_seconds);
-  if (i == SIZE_MAX || q >= query_count_) return std::nullopt;
+std::optional<double> SolutionReader::seconds_statistic(Statistic s, std::uint64_t q) const {
+  const auto i = statistic_index(s);
+  if (i == SIZE_MAX || q >= query_count_ || !is_seconds(s)) return std::nullopt;
   const double v = values<double>(sections_[i])[q];
   if (std::isnan(v)) return std::nullopt;
   return v;
 }
 
+std::optional<double> SolutionReader::runtime_seconds(std::uint64_t q) const {
+  return seconds_statistic(Statistic::runtime_seconds, q);
+}
+
+std::optional<double> SolutionReader::reported_runtime_seconds(std::uint64_t q) const {
+  return seconds_statistic(Statistic::reported_runtime_seconds, q);
+}
+
 std::optional<std::uint64_t> SolutionReader::count_statistic(Statistic s, std::uint64_t q) const {
   const auto i = statistic_index(s);
-  if (i == SIZE_MAX || q >= query_count_ || s == Statistic::runtime_seconds) return std::nullopt;
+  if (i == SIZE_MAX || q >= query_count_ || is_seconds(s)) return std::nullopt;
   const auto v = values<std::uint64_t>(sections_[i])[q];
   if (v == kAbsentCount) return std::nullopt;
   return v;
 }
 
+std::optional<double> SolutionReader::statistic_as_double(Statistic s, std::uint64_t q) const {
+  if (is_seconds(s)) return seconds_statistic(s, q);
+  if (const auto count = count_statistic(s, q)) return static_cast<double>(*count);
+  return std::nullopt;
+}
+
 QueryStatistics SolutionReader::statistics(std::uint64_t q) const {
-  return {runtime_seconds(q), count_statistic(Statistic::expanded, q),
-          count_statistic(Statistic::generated, q),
-          count_statistic(Statistic::peak_memory_bytes, q),
-          count_statistic(Statistic::exit_status, q)};
+  QueryStatistics stats;
+  stats.runtime_seconds = runtime_seconds(q);
+  stats.expanded = count_statistic(Statistic::expanded, q);
+  stats.generated = count_statistic(Statistic::generated, q);
+  stats.peak_memory_bytes = count_statistic(Statistic::peak_memory_bytes, q);
+  stats.exit_status = count_statistic(Statistic::exit_status, q);
+  stats.reported_runtime_seconds = reported_runtime_seconds(q);
+  return stats;
 }
 
 std::span<const std::uint32_t> SolutionReader::path(std::uint64_t row) const {
@@ -382,8 +432,8 @@ std::optional<std::string> SolutionReader::verify_payload() const {
       return label + "[statistics] " + std::string(to_string(status)) + " carries " +
              (*statistic == Statistic::exit_status ? "exit_status" : "statistics") +
              " (SOLUTIONS.md §4)";
-    if (auto runtime = runtime_seconds(q); runtime && !(std::isfinite(*runtime) && *runtime >= 0))
-      return label + "[statistics] runtime_seconds is not finite and >= 0";
+    if (const auto bad = bad_seconds(statistics(q)))
+      return label + "[statistics] " + std::string(to_string(*bad)) + " is not finite and >= 0";
   }
   for (std::size_t i = 0; i < objective_count(); ++i) {
     auto problem = visit_column(i, [&](auto column) -> std::optional<std::string> {
@@ -432,46 +482,25 @@ struct QueryResult {
   std::vector<std::vector<std::uint32_t>> paths;
 };
 
-// The statistic of SOLUTIONS.md §3 with index s (the order of kStatistics), if recorded.
-std::optional<std::uint64_t> count_statistic(const QueryStatistics& statistics, std::size_t s) {
-  switch (s) {
-    case 1:
-      return statistics.expanded;
-    case 2:
-      return statistics.generated;
-    case 3:
-      return statistics.peak_memory_bytes;
-    default:
-      return statistics.exit_status;
-  }
-}
-
-bool has_statistic(const QueryStatistics& statistics, std::size_t s) {
-  return s == 0 ? statistics.runtime_seconds.has_value()
-                : count_statistic(statistics, s).has_value();
-}
-
 // A statistic column for each statistic some query recorded; absent values are NaN (runtime) or
 // the reserved count 2^64-1.
 void add_statistic_sections(FileWriter& out, std::span<const QueryResult> results) {
-  for (std::size_t s = 0; s < kStatisticCount; ++s) {
+  for (const auto s : kStatistics) {
     if (std::none_of(results.begin(), results.end(),
                      [s](const QueryResult& r) { return has_statistic(r.statistics, s); }))
       continue;
-    if (s == 0) {
+    if (is_seconds(s)) {
       std::vector<double> column;
       for (const auto& r : results)
         column.push_back(
-            r.statistics.runtime_seconds.value_or(std::numeric_limits<double>::quiet_NaN()));
-      out.add_section<double>(SectionKind::solution_statistics,
-                              to_string(static_cast<Statistic>(s)), 1,
+            seconds_of(r.statistics, s).value_or(std::numeric_limits<double>::quiet_NaN()));
+      out.add_section<double>(SectionKind::solution_statistics, to_string(s), 1,
                               std::span<const double>(column));
     } else {
       std::vector<std::uint64_t> column;
       for (const auto& r : results)
-        column.push_back(count_statistic(r.statistics, s).value_or(kAbsentCount));
-      out.add_section<std::uint64_t>(SectionKind::solution_statistics,
-                                     to_string(static_cast<Statistic>(s)), 1,
+        column.push_back(count_of(r.statistics, s).value_or(kAbsentCount));
+      out.add_section<std::uint64_t>(SectionKind::solution_statistics, to_string(s), 1,
                                      std::span<const std::uint64_t>(column));
     }
   }
@@ -655,9 +684,8 @@ void SolutionWriter::set_query(std::uint64_t q, QueryStatus status, std::span<co
     refuse(std::string(to_string(status)) + (*statistic == Statistic::exit_status
                                                  ? " carries no exit_status"
                                                  : " carries no statistics"));
-  if (statistics.runtime_seconds &&
-      !(std::isfinite(*statistics.runtime_seconds) && *statistics.runtime_seconds >= 0))
-    refuse("runtime is not finite and >= 0");
+  if (const auto bad = bad_seconds(statistics))
+    refuse(std::string(to_string(*bad)) + " is not finite and >= 0");
   for (auto count : {statistics.expanded, statistics.generated, statistics.peak_memory_bytes,
                      statistics.exit_status})
     if (count == kAbsentCount) refuse("a statistic equals the reserved value 2^64-1");
@@ -694,8 +722,12 @@ void SolutionWriter::write(const std::filesystem::path& target) const {
 
   FileWriter out(target);
   out.set_file_kind(format::FileKind::solutions);
-  out.require_minor(st.view.empty() ? format::kSolutionObjectivesMinor
-                                    : format::kSolutionSumsMinor);
+  const bool reported = std::any_of(st.results.begin(), st.results.end(), [](const auto& r) {
+    return r.statistics.reported_runtime_seconds.has_value();
+  });
+  out.require_minor(reported          ? format::kSolutionReportedRuntimeMinor
+                    : st.view.empty() ? format::kSolutionObjectivesMinor
+                                      : format::kSolutionSumsMinor);
   const auto text = st.metadata().serialize();
   out.add_section<std::uint8_t>(
       SectionKind::metadata, "metadata", 1,

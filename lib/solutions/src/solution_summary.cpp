@@ -12,12 +12,7 @@ namespace {
 StatisticSummary summarize(const SolutionReader& r, Statistic statistic) {
   StatisticSummary summary{statistic};
   for (std::uint64_t q = 0; q < r.query_count(); ++q) {
-    std::optional<double> value;
-    if (statistic == Statistic::runtime_seconds) {
-      value = r.runtime_seconds(q);
-    } else if (const auto count = r.count_statistic(statistic, q)) {
-      value = static_cast<double>(*count);
-    }
+    const auto value = r.statistic_as_double(statistic, q);
     if (!value) continue;
     ++summary.queries;
     summary.total += *value;

@@ -57,7 +57,6 @@ struct QueryRecord {
   QueryStatistics statistics;  // as the solution file takes them for `status`
   double wall_seconds = 0, cpu_seconds = 0;
   std::optional<std::uint64_t> peak_memory_bytes;
-  std::optional<double> reported_runtime_seconds;
   std::string message;                   // why a failed query failed
   std::vector<std::string> stderr_tail;  // the solver's last lines of stderr (failed queries)
 };
