@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <map>
 #include <optional>
@@ -23,7 +22,6 @@ namespace mosb::pages {
 
 namespace {
 
-using plots::Point2;
 using plots::Svg;
 using tables::Cell;
 using tables::Table;
@@ -171,46 +169,6 @@ function key(tr){var c=tr.cells[col],v=c.getAttribute("data-v");return v===null?
 var rows=Array.prototype.slice.call(body.rows);rows.sort(function(a,b){var x=key(a),y=key(b),r=typeof x==="number"&&typeof y==="number"?(x<y?-1:x>y?1:0):String(x).localeCompare(String(y));return up?r:-r;});
 rows.forEach(function(r){body.appendChild(r);});});});
 )";
-
-// The queries whose fronts are drawn: the chosen ones that the file solved, or its smallest,
-// median and largest solved non-empty front.
-std::vector<std::uint64_t> chosen_queries(const SolutionReader& r,
-                                          const std::vector<std::uint64_t>& wanted) {
-  std::vector<std::uint64_t> out;
-  if (!wanted.empty()) {
-    for (auto q : wanted)
-      if (q < r.query_count() && r.status(q) == QueryStatus::solved && r.front_size(q) > 0)
-        out.push_back(q);
-    return out;
-  }
-  std::vector<std::pair<std::uint64_t, std::uint64_t>> solved;  // (size, query)
-  for (std::uint64_t q = 0; q < r.query_count(); ++q)
-    if (r.status(q) == QueryStatus::solved && r.front_size(q) > 0)
-      solved.emplace_back(r.front_size(q), q);
-  if (solved.empty()) return out;
-  std::sort(solved.begin(), solved.end());
-  for (std::size_t k : {std::size_t{0}, solved.size() / 2, solved.size() - 1})
-    if (std::find(out.begin(), out.end(), solved[k].second) == out.end())
-      out.push_back(solved[k].second);
-  return out;
-}
-
-std::vector<std::vector<double>> front_rows(const SolutionReader& r, std::uint64_t q) {
-  std::vector<std::vector<double>> rows(r.front_size(q));
-  const auto begin = r.front_begin(q);
-  for (std::size_t k = 0; k < rows.size(); ++k)
-    for (std::size_t i = 0; i < r.objective_count(); ++i)
-      rows[k].push_back(r.value_as_double(i, begin + k));
-  return rows;
-}
-
-std::vector<Point2> pair_points(const std::vector<std::vector<double>>& rows, std::size_t a,
-                                std::size_t b) {
-  std::vector<Point2> out;
-  out.reserve(rows.size());
-  for (const auto& row : rows) out.push_back({row[a], row[b]});
-  return out;
-}
 
 // The page being written: its HTML and, for --figures, --latex and --csv, each of its figures and
 // tables alone (kept in the report).
@@ -510,33 +468,39 @@ void write_instance_space(const Context& c) {
 // --- Per benchmark, of its first instance: ρ matrix, degrees, the map of a grid, fronts.
 
 void correlation_figure(const Context& c, std::size_t b) {
-  const auto& bm = c.benchmarks[b];
-  const auto& g = c.instances[bm.instances.front()];
-  const auto& view = bm.views.front();
-  plots::CorrelationPlot rho;
-  rho.title = bm.name + ": objective correlation";
-  const std::size_t d = view.objectives.size();
-  rho.rho.assign(d, std::vector<std::optional<double>>(d));
-  for (std::size_t i = 0; i < d; ++i) {
-    rho.names.push_back(g.objective(view.objectives[i]).name);
-    rho.rho[i][i] = 1.0;
-  }
-  for (const auto& corr : c.stats[b].front().all.correlations)
-    rho.rho[corr.first][corr.second] = rho.rho[corr.second][corr.first] = corr.rho;
-  if (d >= 2) c.page.figure("correlation", plots::plot_correlation(rho), "Pearson ρ over all arcs");
+  auto rho = plots::correlation_of(c.stats[b].front().all);
+  rho.title = c.benchmarks[b].name + ": objective correlation";
+  if (rho.names.size() >= 2)
+    c.page.figure("correlation", plots::plot_correlation(rho), "Pearson ρ over all arcs");
 }
 
 void degrees_figure(const Context& c, const Benchmark& bm) {
-  const auto& g = c.instances[bm.instances.front()];
-  plots::DegreePlot degrees;
+  auto degrees = plots::degrees_of(c.instances[bm.instances.front()]);
   degrees.title = bm.name + ": out-degree distribution";
-  const auto offsets = g.forward_offsets();
-  for (std::size_t v = 0; v + 1 < offsets.size(); ++v) {
-    const auto deg = offsets[v + 1] - offsets[v];
-    if (deg >= degrees.vertices_by_degree.size()) degrees.vertices_by_degree.resize(deg + 1, 0);
-    ++degrees.vertices_by_degree[deg];
-  }
   c.page.figure("degrees", plots::plot_degrees(degrees), "Vertices per out-degree");
+}
+
+// The queries whose fronts are drawn: the chosen ones that the file solved, or its smallest,
+// median and largest solved non-empty front.
+std::vector<std::uint64_t> chosen_queries(const SolutionReader& r,
+                                          const std::vector<std::uint64_t>& wanted) {
+  std::vector<std::uint64_t> out;
+  if (!wanted.empty()) {
+    for (auto q : wanted)
+      if (q < r.query_count() && r.status(q) == QueryStatus::solved && r.front_size(q) > 0)
+        out.push_back(q);
+    return out;
+  }
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> solved;  // (size, query)
+  for (std::uint64_t q = 0; q < r.query_count(); ++q)
+    if (r.status(q) == QueryStatus::solved && r.front_size(q) > 0)
+      solved.emplace_back(r.front_size(q), q);
+  if (solved.empty()) return out;
+  std::sort(solved.begin(), solved.end());
+  for (std::size_t k : {std::size_t{0}, solved.size() / 2, solved.size() - 1})
+    if (std::find(out.begin(), out.end(), solved[k].second) == out.end())
+      out.push_back(solved[k].second);
+  return out;
 }
 
 // The fronts a benchmark's section draws: of the first of its front_files, with the first other
@@ -572,7 +536,6 @@ void map_figure(const Context& c, const Benchmark& bm, const DrawnFronts& fronts
   if (!g.metadata().get("map.width") || !g.find(format::SectionKind::vertex_data, "cell")) return;
   auto map = plots::map_of(g, "exposure");
   map.title = bm.name + ": map of " + g.display_name();
-  map.exposure_unit = g.metadata().get("objective.exposure.unit").value_or("");
   // Start and goal of the drawn queries, else the first three of the view's query set (of the
   // instance's first set when the view names none).
   const bool drawn_here = fronts.shown && fronts.instance == bm.instances.front();
@@ -598,65 +561,78 @@ void map_figure(const Context& c, const Benchmark& bm, const DrawnFronts& fronts
                       "dots; starts and goals of the queries drawn below.");
 }
 
-// Query q's front: d = 2 a scatter, d = 3 its three pairwise projections, more objectives
-// parallel coordinates.
-void query_front_figures(const Context& c, const Benchmark& bm, const DrawnFronts& fronts,
+// Query q's fronts as the figures draw them: the reference's set under the solver's, from the
+// shown file (the reference's, else the solver's) and the overlaid one.
+struct QueryFronts {
+  std::vector<std::vector<double>> reference, solution;  // rows of objective values
+  std::string reference_name = "reference", solver_name = "solver";
+  std::string title, caption;
+};
+
+QueryFronts query_fronts(const Context& c, const Benchmark& bm, const DrawnFronts& fronts,
                          std::uint64_t q) {
   const SolutionReader& shown = *fronts.shown;
-  const std::size_t d = bm.views.front().objectives.size();
-  const auto rows = front_rows(shown, q);
+  auto rows = plots::front_rows(shown, q);
   std::vector<std::vector<double>> other;
   if (fronts.overlay && q < fronts.overlay->query_count() &&
       fronts.overlay->status(q) == QueryStatus::solved)
-    other = front_rows(*fronts.overlay, q);
-  const auto shown_name = solver_name(shown);
-  const auto overlay_name = fronts.overlay ? solver_name(*fronts.overlay) : std::string();
+    other = plots::front_rows(*fronts.overlay, q);
   const std::string what = "query " + std::to_string(q) + " of " + shown.query_set() + " on " +
                            c.instances[fronts.instance].display_name();
-  const std::string counts =
-      std::to_string(rows.size()) + " vectors" +
-      (fronts.overlay ? ", " + overlay_name + " " + std::to_string(other.size()) : std::string());
-  if (d > 3) {
-    plots::ParallelPlot par;
-    par.title = bm.name + ", " + what;
-    par.subtitle = "parallel coordinates of " + std::to_string(d) + " objectives";
-    for (std::size_t i = 0; i < d; ++i) par.axes.push_back(shown.objective_name(i));
-    if (fronts.of_reference) {
-      par.reference = rows;
-      par.reference_name = "reference " + shown_name;
-      if (fronts.overlay) par.solution = other, par.solver_name = overlay_name;
-    } else {
-      par.solution = rows;
-      par.solver_name = shown_name;
-    }
-    c.page.figure("front", plots::plot_parallel(par), "Front of " + what + " (" + counts + ")");
-    return;
+  QueryFronts f;
+  f.title = bm.name + ", " + what;
+  f.caption =
+      "Front of " + what + " (" + std::to_string(rows.size()) + " vectors" +
+      (fronts.overlay ? ", " + solver_name(*fronts.overlay) + " " + std::to_string(other.size())
+                      : std::string()) +
+      ")";
+  if (!fronts.of_reference) {
+    f.solution = std::move(rows);
+    f.solver_name = solver_name(shown);
+    return f;
   }
+  f.reference = std::move(rows);
+  f.reference_name = "reference " + solver_name(shown);
+  if (fronts.overlay) {
+    f.solution = std::move(other);
+    f.solver_name = solver_name(*fronts.overlay);
+  }
+  return f;
+}
+
+// d = 2: one scatter; d = 3: the three pairwise projections, each saying so.
+void pair_figures(const Context& c, const SolutionReader& shown, std::size_t d,
+                  const QueryFronts& f) {
   std::vector<std::pair<std::size_t, std::size_t>> pairs = {{0, 1}};
   if (d == 3) pairs = {{0, 1}, {0, 2}, {1, 2}};
   for (const auto& [a, b] : pairs) {
     plots::FrontPlot front;
-    front.title = bm.name + ", " + what;
+    front.title = f.title;
     front.x_label = shown.objective_name(a);
     front.y_label = shown.objective_name(b);
     front.objective_count = d;
     front.max_points = c.options.max_points;
-    if (fronts.of_reference) {
-      front.reference = pair_points(rows, a, b);
-      front.reference_name = "reference " + shown_name;
-      if (fronts.overlay) {
-        front.solution = pair_points(other, a, b);
-        front.solver_name = overlay_name;
-      }
-    } else {
-      front.solution = pair_points(rows, a, b);
-      front.solver_name = shown_name;
-    }
-    c.page.figure(
-        "front", plots::plot_front(front),
-        "Front of " + what + " (" + counts + ")" +
-            (d == 3 ? ": projection on " + front.x_label + ", " + front.y_label : std::string()));
+    front.reference = plots::pair_points(f.reference, a, b);
+    front.solution = plots::pair_points(f.solution, a, b);
+    front.reference_name = f.reference_name;
+    front.solver_name = f.solver_name;
+    c.page.figure("front", plots::plot_front(front),
+                  f.caption + (d == 3 ? ": projection on " + front.x_label + ", " + front.y_label
+                                      : std::string()));
   }
+}
+
+// d > 3: parallel coordinates.
+void parallel_figure(const Context& c, const SolutionReader& shown, std::size_t d, QueryFronts f) {
+  plots::ParallelPlot par;
+  par.title = f.title;
+  par.subtitle = "parallel coordinates of " + std::to_string(d) + " objectives";
+  for (std::size_t i = 0; i < d; ++i) par.axes.push_back(shown.objective_name(i));
+  par.reference = std::move(f.reference);
+  par.solution = std::move(f.solution);
+  par.reference_name = f.reference_name;
+  par.solver_name = f.solver_name;
+  c.page.figure("front", plots::plot_parallel(par), f.caption);
 }
 
 void front_figures(const Context& c, const Benchmark& bm, const DrawnFronts& fronts) {
@@ -670,12 +646,19 @@ void front_figures(const Context& c, const Benchmark& bm, const DrawnFronts& fro
     if (std::find(fronts.queries.begin(), fronts.queries.end(), q) == fronts.queries.end())
       c.page.note("Query " + std::to_string(q) + ": not a solved query with a front in " +
                   fronts.shown->display_name() + ", not drawn.");
-  if (bm.views.front().objectives.size() < 2) {
+  const std::size_t d = bm.views.front().objectives.size();
+  if (d < 2) {
     if (!fronts.queries.empty())
       c.page.note("One objective: each front is a single value, not drawn.");
     return;
   }
-  for (const auto q : fronts.queries) query_front_figures(c, bm, fronts, q);
+  for (const auto q : fronts.queries) {
+    auto f = query_fronts(c, bm, fronts, q);
+    if (d > 3)
+      parallel_figure(c, *fronts.shown, d, std::move(f));
+    else
+      pair_figures(c, *fronts.shown, d, f);
+  }
 }
 
 void write_benchmark(const Context& c, std::size_t b) {
