@@ -250,6 +250,7 @@ void bind_files(Context& c) {
   }
 }
 
+// Computed once: the instance space and each benchmark's ρ matrix read them.
 std::vector<std::vector<ViewStats>> view_stats(const Context& c) {
   std::vector<std::vector<ViewStats>> stats(c.benchmarks.size());
   for (std::size_t b = 0; b < c.benchmarks.size(); ++b)
@@ -264,6 +265,7 @@ std::vector<std::vector<ViewStats>> view_stats(const Context& c) {
   return stats;
 }
 
+// Every solver's status and runtime of every query it has a file for: the comparison's data.
 Outcomes outcomes_of(const Context& c) {
   Outcomes outcomes;
   for (std::size_t b = 0; b < c.benchmarks.size(); ++b)
@@ -312,8 +314,7 @@ void write_head(const Context& c) {
       ", " + count_of(c.solutions.size(), "solution file") + ", " +
       count_of(c.references.size(), "reference file") + "; written by mosb " + kVersion +
       ". Fronts are drawn with at most " + std::to_string(c.options.max_points) +
-      " vectors per set (thinned past it, the extremes kept), so the page stays "
-      "under " +
+      " vectors per set (thinned past it, the extremes kept), so the page stays under " +
       std::to_string(c.options.max_bytes / 1000) + " kB. Click a column heading to sort a table.");
   c.page.out << "<nav><ul><li><a href=\"#suite\">Suite</a></li><li><a href=\"#instance-space\">"
                 "Instance space</a></li>";
@@ -437,7 +438,8 @@ std::vector<Cell> rho_row(const plots::InstanceSpaceSeries& s, std::size_t colum
   return row;
 }
 
-void write_instance_space(const Context& c) {
+// The figure and its table of ρ min, mean and max per series.
+void instance_space_figure(const Context& c) {
   plots::InstanceSpacePlot plot;
   plot.title = "Instance space: objective correlation against d";
   Table t;
@@ -455,13 +457,17 @@ void write_instance_space(const Context& c) {
       t.rows.push_back(rho_row(s, t.columns.size()));
       plot.series.push_back(std::move(s));
     }
-  c.page.section("instance-space", "Instance space");
   c.page.figure("instance-space", plots::plot_instance_space(plot),
                 "Each benchmark at its number of objectives d: the line spans its smallest to "
                 "largest pairwise ρ (ends marked), each faint dot is one pair of one instance. "
                 "Benchmarks with arc kinds (NetMaker: kind 0 the Hamiltonian cycle, kind 1 the "
                 "locality arcs) also have a series per kind.");
   c.page.table(&Report::instance_space, std::move(t), "instance-space-table");
+}
+
+void write_instance_space(const Context& c) {
+  c.page.section("instance-space", "Instance space");
+  instance_space_figure(c);
   c.page.end_section();
 }
 
