@@ -328,6 +328,12 @@ void write_head(const Context& c) {
 
 // --- The suite table: the paper's Table 1.
 
+// A runtime distribution's median and max cells, absent without one.
+void add_median_and_max(std::vector<Cell>& row, const std::optional<Distribution>& d) {
+  row.push_back(d ? Cell::of(d->median) : Cell{});
+  row.push_back(d ? Cell::of(d->max) : Cell{});
+}
+
 // A benchmark's row: its size, then the fronts and runtimes of its front_files.
 std::vector<Cell> suite_row(const Context& c, const Benchmark& bm, std::size_t columns) {
   std::uint64_t n_lo = UINT64_MAX, n_hi = 0, m_lo = UINT64_MAX, m_hi = 0, set_queries = 0;
@@ -367,9 +373,7 @@ std::vector<Cell> suite_row(const Context& c, const Benchmark& bm, std::size_t c
   } else {
     row.resize(row.size() + 4);
   }
-  const auto& rt = summary.runtime;
-  row.push_back(rt ? Cell::of(rt->median) : Cell{});
-  row.push_back(rt ? Cell::of(rt->max) : Cell{});
+  add_median_and_max(row, summary.runtime);
   return row;
 }
 
@@ -713,9 +717,7 @@ std::vector<Cell> comparison_row(const Context& c, std::size_t b) {
     }
     row.push_back(Cell::of(statuses[s][QueryStatus::timeout]));
     row.push_back(Cell::of(statuses[s][QueryStatus::memory_limit]));
-    const auto runtime = distribution_of(runtimes[s]);
-    row.push_back(runtime ? Cell::of(runtime->median) : Cell{});
-    row.push_back(runtime ? Cell::of(runtime->max) : Cell{});
+    add_median_and_max(row, distribution_of(runtimes[s]));
   }
   return row;
 }
