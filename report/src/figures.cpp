@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -54,7 +55,42 @@ std::size_t index_of(const Point2& cell, std::uint32_t width) {
   return static_cast<std::size_t>(cell.y) * width + static_cast<std::size_t>(cell.x);
 }
 
+// Only a solved query has a front (or paths) to draw; the error gives the query's status.
+void require_solved(const SolutionReader& solutions, std::uint64_t query) {
+  const auto status = solutions.status(query);
+  if (status != QueryStatus::solved)
+    throw Error(ErrorCode::invalid_argument,
+                solutions.display_name() + ": query " + std::to_string(query) + " is " +
+                    std::string(to_string(status)) + ", not solved: no front to draw");
+}
+
 }  // namespace
+
+CorrelationPlot correlation_of(const ArcGroupStats& stats) {
+  CorrelationPlot plot;
+  const std::size_t n = stats.objectives.size();
+  for (const auto& o : stats.objectives) plot.names.push_back(o.name);
+  plot.rho.assign(n, std::vector<std::optional<double>>(n));
+  for (std::size_t i = 0; i < n; ++i) plot.rho[i][i] = 1.0;
+  for (const auto& c : stats.correlations)
+    plot.rho[c.first][c.second] = plot.rho[c.second][c.first] = c.rho;
+  return plot;
+}
+
+DegreePlot degrees_of(const GraphReader& instance) {
+  DegreePlot plot;
+  const auto offsets = instance.forward_offsets();
+  for (std::size_t v = 0; v + 1 < offsets.size(); ++v) {
+    const auto degree = offsets[v + 1] - offsets[v];
+    if (degree >= plot.vertices_by_degree.size()) plot.vertices_by_degree.resize(degree + 1, 0);
+    ++plot.vertices_by_degree[degree];
+  }
+  return plot;
+}
+
+std::string objective_unit(const GraphReader& instance, std::string_view objective) {
+  return instance.metadata().get("objective." + std::string(objective) + ".unit").value_or("");
+}
 
 std::vector<Point2> parse_guard_cells(std::string_view text, std::uint32_t width,
                                       std::uint32_t height, const std::string& name) {
@@ -92,6 +128,7 @@ MapPlot map_of(const GraphReader& reader, std::string_view exposure_objective) {
   for (const auto& cell : grid.cell) plot.passable[index_of(cell, plot.width)] = true;
   if (const auto guards = reader.metadata().get("map.guards"))
     plot.guards = parse_guard_cells(*guards, grid.width, grid.height, reader.display_name());
+  plot.exposure_unit = objective_unit(reader, exposure_objective);
   const auto objective = reader.find_objective(exposure_objective);
   if (!objective) return plot;
   plot.exposure.assign(area, std::numeric_limits<double>::quiet_NaN());
@@ -115,10 +152,7 @@ void add_front_paths(MapPlot& map, const GraphReader& instance, const SolutionRe
   if (!solutions.has_paths())
     throw Error(ErrorCode::invalid_argument,
                 name + ": the solver gave no paths (vertex sequences) to draw");
-  if (solutions.status(query) != QueryStatus::solved)
-    throw Error(ErrorCode::invalid_argument, name + ": query " + std::to_string(query) + " is " +
-                                                 std::string(to_string(solutions.status(query))) +
-                                                 ", not solved: no front to draw");
+  require_solved(solutions, query);
   const Grid grid = grid_of(instance);
   const std::uint64_t begin = solutions.front_begin(query);
   for (std::uint64_t row = begin; row < begin + solutions.front_size(query); ++row) {
@@ -141,6 +175,55 @@ void add_query_markers(MapPlot& map, const GraphReader& instance, std::string_vi
   for (const auto q : queries)
     if (q < set.size() && set[q].start < grid.cell.size() && set[q].goal < grid.cell.size())
       map.queries.push_back({q, grid.cell[set[q].start], grid.cell[set[q].goal]});
+}
+
+std::vector<std::vector<double>> front_rows(const SolutionReader& solutions, std::uint64_t query) {
+  require_solved(solutions, query);
+  std::vector<std::vector<double>> rows(solutions.front_size(query));
+  const std::uint64_t begin = solutions.front_begin(query);
+  for (std::size_t k = 0; k < rows.size(); ++k)
+    for (std::size_t i = 0; i < solutions.objective_count(); ++i)
+      rows[k].push_back(solutions.value_as_double(i, begin + k));
+  return rows;
+}
+
+std::vector<Point2> pair_points(const std::vector<std::vector<double>>& rows, std::size_t x,
+                                std::size_t y) {
+  std::vector<Point2> points;
+  points.reserve(rows.size());
+  for (const auto& row : rows) points.push_back({row[x], row[y]});
+  return points;
+}
+
+FrontPlot front_of(const SolutionReader& solutions, const SolutionReader* reference,
+                   const GraphReader* instance, std::uint64_t query, std::size_t x, std::size_t y) {
+  FrontPlot plot;
+  plot.x_label = solutions.objective_name(x);
+  plot.y_label = solutions.objective_name(y);
+  if (instance != nullptr) {
+    plot.x_unit = objective_unit(*instance, plot.x_label);
+    plot.y_unit = objective_unit(*instance, plot.y_label);
+  }
+  plot.objective_count = solutions.objective_count();
+  plot.solution = pair_points(front_rows(solutions, query), x, y);
+  if (const auto name = solutions.solver().name; !name.empty()) plot.solver_name = name;
+  if (reference != nullptr) {
+    plot.reference = pair_points(front_rows(*reference, query), x, y);
+    if (const auto name = reference->solver().name; !name.empty())
+      plot.reference_name = "reference " + name;
+  }
+  return plot;
+}
+
+CardinalityPlot cardinality_of(const SolutionReader& solutions) {
+  CardinalityPlot plot;
+  for (std::uint64_t q = 0; q < solutions.query_count(); ++q) {
+    if (solutions.status(q) == QueryStatus::solved)
+      plot.sizes.push_back(solutions.front_size(q));
+    else
+      ++plot.left_out;
+  }
+  return plot;
 }
 
 }  // namespace mosb::plots

@@ -287,7 +287,11 @@ std::string plot_cardinality(const CardinalityPlot& plot) {
   Svg svg(kWidth, kHeight);
   const Axis x{x_lo, x_hi, kLeft, kWidth - kRight, false, true};
   const Axis y{y_lo, y_hi, kHeight - kBottom, kTop, log, true};
-  frame(svg, x, y, plot.title, "query rank (sorted by front size)",
+  const std::string title =
+      plot.left_out == 0 ? plot.title
+                         : plot.title + " (" + std::to_string(plot.left_out) + " unsolved quer" +
+                               (plot.left_out == 1 ? "y" : "ies") + " left out)";
+  frame(svg, x, y, title, "query rank (sorted by front size)",
         log ? "front size (log scale)" : "front size");
   std::string points;
   for (std::size_t k = 0; k < sizes.size(); ++k) {

@@ -5,9 +5,12 @@
 #include <cmath>
 #include <string>
 
+#include "golden_input.hpp"
 #include "mosb/converters/guards_converter.hpp"
 #include "mosb/error.hpp"
 #include "mosb/graph_builder.hpp"
+#include "mosb/solution_file.hpp"
+#include "mosb/stats.hpp"
 #include "temp_dir.hpp"
 #include "test_files.hpp"
 
@@ -73,4 +76,84 @@ TEST_CASE("map_of: the guards of metadata map.guards, refused when malformed or 
     CHECK_THROWS_WITH_AS(plots::map_of(reader, "exposure"),
                          doctest::Contains("metadata map.guards"), Error);
   }
+}
+
+TEST_CASE("correlation_of: the objectives' names, 1 on the diagonal, each pair's ρ both ways") {
+  ArcGroupStats stats;
+  for (const char* name : {"a", "b", "c"}) stats.objectives.emplace_back().name = name;
+  stats.correlations = {{0, 1, 0.5}, {0, 2, std::nullopt}, {1, 2, -0.25}};
+  const auto plot = plots::correlation_of(stats);
+  CHECK(plot.names == std::vector<std::string>{"a", "b", "c"});
+  REQUIRE(plot.rho.size() == 3);
+  for (std::size_t i = 0; i < 3; ++i) CHECK(plot.rho[i][i] == 1.0);
+  CHECK(plot.rho[0][1] == 0.5);
+  CHECK(plot.rho[1][0] == 0.5);
+  CHECK_FALSE(plot.rho[0][2]);  // undefined: drawn "n/a"
+  CHECK_FALSE(plot.rho[2][0]);
+  CHECK(plot.rho[2][1] == -0.25);
+}
+
+TEST_CASE("degrees_of and objective_unit: read from the instance") {
+  testing::TempDir dir;
+  write_graph(testing::golden_input(), dir / "g.mosb");
+  const auto instance = GraphReader::open(dir / "g.mosb", VerifyLevel::full);
+  // Out-degrees 2, 2, 2 and 1.
+  CHECK(plots::degrees_of(instance).vertices_by_degree == std::vector<std::uint64_t>{0, 1, 3});
+  CHECK(plots::objective_unit(instance, "distance") == "m");
+  CHECK(plots::objective_unit(instance, "risk").empty());
+  CHECK(plots::objective_unit(instance, "no-such-objective").empty());
+}
+
+TEST_CASE("front_rows, pair_points, front_of and cardinality_of: a query's front, its sets named") {
+  testing::TempDir dir;
+  write_graph(testing::golden_input(), dir / "g.mosb");
+  const auto instance = GraphReader::open(dir / "g.mosb", VerifyLevel::full);
+  SolutionWriter boa(instance, "Small_2");  // the `default` set: 3 queries
+  SolverInfo solver;
+  solver.name = "boa";
+  boa.set_solver(solver);
+  boa.set_query(0, QueryStatus::solved, std::vector<double>{60, 5.25, 80, 3.75});
+  boa.set_query(1, QueryStatus::solved, std::vector<double>{120, 7.5});
+  boa.set_query(2, QueryStatus::timeout, std::vector<double>{});
+  boa.write(dir / "boa.sol");
+  SolutionWriter reference(instance, "Small_2");  // names no solver
+  reference.set_query(0, QueryStatus::solved, std::vector<double>{60, 5.25});
+  reference.write(dir / "ref.sol");
+  const auto s = SolutionReader::open_verified(dir / "boa.sol");
+  const auto r = SolutionReader::open_verified(dir / "ref.sol");
+
+  const auto rows = plots::front_rows(s, 0);
+  CHECK(rows == std::vector<std::vector<double>>{{60, 5.25}, {80, 3.75}});
+  const auto swapped = plots::pair_points(rows, 1, 0);
+  REQUIRE(swapped.size() == 2);
+  CHECK((swapped[1].x == 3.75 && swapped[1].y == 80));
+  CHECK_THROWS_WITH_AS(plots::front_rows(s, 2),
+                       doctest::Contains("query 2 is timeout, not solved: no front to draw"),
+                       Error);
+
+  const auto front = plots::front_of(s, &r, &instance, 0, 0, 1);
+  CHECK(front.x_label == "distance");
+  CHECK(front.y_label == "time");
+  CHECK(front.x_unit == "m");
+  CHECK(front.y_unit == "s");
+  CHECK(front.objective_count == 2);
+  CHECK(front.solution.size() == 2);
+  CHECK(front.reference.size() == 1);
+  CHECK(front.solver_name == "boa");
+  CHECK(front.reference_name == "reference");  // the reference names no solver
+  const auto alone = plots::front_of(r, nullptr, nullptr, 0, 1, 0);
+  CHECK(alone.x_label == "time");
+  CHECK(alone.x_unit.empty());
+  CHECK(alone.solver_name == "solver");
+  CHECK(alone.reference.empty());
+  // The reference's query 1 is not run: no front, and the error says so.
+  CHECK_THROWS_WITH_AS(plots::front_of(s, &r, nullptr, 1, 0, 1),
+                       doctest::Contains("query 1 is not-run"), Error);
+
+  auto cardinality = plots::cardinality_of(s);
+  CHECK(cardinality.sizes == std::vector<std::uint64_t>{2, 1});
+  CHECK(cardinality.left_out == 1);
+  cardinality.title = "boa";
+  CHECK(plots::plot_cardinality(cardinality).find("boa (1 unsolved query left out)") !=
+        std::string::npos);
 }

@@ -1,8 +1,8 @@
-// `mosb plot`: SVG figures (spec/EVALUATION.md §5). The figures are drawn by mosb_report; this
-// file only reads the inputs and writes the document.
+// `mosb plot`: SVG figures (spec/EVALUATION.md §5). mosb_report reads each figure's data from the
+// inputs (figures.hpp) and draws it (plots.hpp); this file parses the options, opens the inputs
+// and writes the document.
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <cmath>
 #include <limits>
 #include <memory>
 #include <sstream>
@@ -87,15 +87,8 @@ int run_correlation(const PlotArgs& args) {
   const auto reader = GraphReader::open(args.instance, VerifyLevel::full);
   StatsOptions options;
   options.selection = args.choice;
-  const auto stats = compute_stats(reader, options);
-  plots::CorrelationPlot plot;
+  auto plot = plots::correlation_of(compute_stats(reader, options).all_arcs);
   plot.title = default_title(reader, args, "objective correlation");
-  const std::size_t n = stats.all_arcs.objectives.size();
-  for (const auto& o : stats.all_arcs.objectives) plot.names.push_back(o.name);
-  plot.rho.assign(n, std::vector<std::optional<double>>(n));
-  for (std::size_t i = 0; i < n; ++i) plot.rho[i][i] = 1.0;
-  for (const auto& c : stats.all_arcs.correlations)
-    plot.rho[c.first][c.second] = plot.rho[c.second][c.first] = c.rho;
   write_svg(args, plots::plot_correlation(plot));
   return 0;
 }
@@ -105,15 +98,6 @@ void require_query(const SolutionReader& r, std::uint64_t q) {
   if (q >= r.query_count())
     throw UsageError("--query " + std::to_string(q) + ": " + r.display_name() + " has " +
                      std::to_string(r.query_count()) + " queries");
-}
-
-// Throws unless query q exists in r and is solved (the error gives its status).
-void require_solved(const SolutionReader& r, std::uint64_t q) {
-  require_query(r, q);
-  if (r.status(q) != QueryStatus::solved)
-    throw Error(ErrorCode::invalid_argument, r.display_name() + ": query " + std::to_string(q) +
-                                                 " is " + std::string(to_string(r.status(q))) +
-                                                 ", not solved: no front to draw");
 }
 
 struct MapPaths {
@@ -131,8 +115,6 @@ int run_map(const PlotArgs& args, const std::string& exposure_objective, const M
   if (!paths.solutions.empty()) solutions.emplace(SolutionReader::open_verified(paths.solutions));
   auto plot = plots::map_of(reader, exposure_objective);
   plot.title = default_title(reader, args, "map");
-  plot.exposure_unit =
-      reader.metadata().get("objective." + exposure_objective + ".unit").value_or("");
   if (solutions) {
     require_query(*solutions, *paths.query);
     plots::add_front_paths(plot, reader, *solutions, *paths.query);
@@ -184,17 +166,6 @@ std::pair<std::size_t, std::size_t> chosen_objectives(const SolutionReader& r,
   return {picked[0], picked[1]};
 }
 
-std::vector<plots::Point2> front_points(const SolutionReader& r, std::uint64_t q,
-                                        std::pair<std::size_t, std::size_t> axes) {
-  require_solved(r, q);
-  std::vector<plots::Point2> points(r.front_size(q));
-  const std::uint64_t begin = r.front_begin(q);
-  for (std::size_t k = 0; k < points.size(); ++k)
-    points[k] = {r.value_as_double(axes.first, begin + k),
-                 r.value_as_double(axes.second, begin + k)};
-  return points;
-}
-
 int run_front(const FrontArgs& args) {
   std::optional<Ratio> epsilon;
   if (!args.epsilon.empty()) {
@@ -213,35 +184,22 @@ int run_front(const FrontArgs& args) {
     check_same_binding(*reference, solutions);
   }
   const auto axes = chosen_objectives(solutions, args.objectives);
-  plots::FrontPlot plot;
-  if (!args.instance.empty()) {  // the objectives' units, from the instance the files belong to
-    const auto instance = GraphReader::open(args.instance);
-    solutions.check_bound_to(instance);
-    const auto unit = [&](std::size_t i) {
-      return instance.metadata()
-          .get("objective." + solutions.objective_name(i) + ".unit")
-          .value_or("");
-    };
-    plot.x_unit = unit(axes.first);
-    plot.y_unit = unit(axes.second);
+  std::optional<GraphReader> instance;  // for the objectives' units
+  if (!args.instance.empty()) {
+    instance.emplace(GraphReader::open(args.instance));
+    solutions.check_bound_to(*instance);
   }
-  plot.solution = front_points(solutions, args.query, axes);
-  if (reference) plot.reference = front_points(*reference, args.query, axes);
+  require_query(solutions, args.query);
+  auto plot = plots::front_of(solutions, reference ? &*reference : nullptr,
+                              instance ? &*instance : nullptr, args.query, axes.first, axes.second);
   if (epsilon) plot.epsilon = epsilon->to_double();
-  plot.x_label = solutions.objective_name(axes.first);
-  plot.y_label = solutions.objective_name(axes.second);
-  const auto solver = solutions.solver().name;
-  plot.objective_count = solutions.objective_count();
-  if (!solver.empty()) plot.solver_name = solver;
-  if (reference && !reference->solver().name.empty())
-    plot.reference_name = "reference " + reference->solver().name;
   plot.title = !args.title.empty()
                    ? args.title
                    : "query " + std::to_string(args.query) + " of " + solutions.query_set() + ": " +
-                         (solver.empty() ? "solver" : solver) + (reference ? " vs reference" : "");
+                         plot.solver_name + (reference ? " vs reference" : "");
   std::vector<std::filesystem::path> inputs = {args.solutions};
   if (reference) inputs.emplace_back(args.reference);
-  if (!args.instance.empty()) inputs.emplace_back(args.instance);
+  if (instance) inputs.emplace_back(args.instance);
   check_output_is_not_input(args.output, inputs);
   write_figure(args.output, plots::plot_front(plot), args.figure);
   return 0;
@@ -254,21 +212,11 @@ struct CardinalityArgs {
 
 int run_cardinality(const CardinalityArgs& args) {
   const auto r = SolutionReader::open_verified(args.solutions);
-  plots::CardinalityPlot plot;
-  std::uint64_t unsolved = 0;
-  for (std::uint64_t q = 0; q < r.query_count(); ++q) {
-    if (r.status(q) == QueryStatus::solved)
-      plot.sizes.push_back(r.front_size(q));
-    else
-      ++unsolved;
-  }
+  auto plot = plots::cardinality_of(r);
   const auto solver = r.solver().name;
   plot.title = !args.title.empty() ? args.title
                                    : (solver.empty() ? std::string("fronts") : solver) + " on " +
                                          r.query_set() + ": front size per query";
-  if (unsolved > 0)
-    plot.title += " (" + std::to_string(unsolved) + " unsolved quer" +
-                  (unsolved == 1 ? "y" : "ies") + " left out)";
   check_output_is_not_input(args.output, {args.solutions});
   write_figure(args.output, plots::plot_cardinality(plot), args.figure);
   return 0;

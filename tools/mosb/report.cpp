@@ -61,6 +61,20 @@ void write_tables(const std::string& directory, const pages::Report& r, bool lat
   }
 }
 
+// Every figure alone as DIR/NN-KIND.EXT, in page order; the directory is made when missing.
+void write_figures(const std::string& directory, const std::string& extension,
+                   const pages::Report& r) {
+  std::filesystem::create_directories(directory);
+  const auto format = *plots::image_format_of("x." + extension);
+  for (std::size_t k = 0; k < r.figures.size(); ++k) {
+    char number[32];
+    std::snprintf(number, sizeof number, "%02zu-", k + 1);
+    write_file_atomically(
+        std::filesystem::path(directory) / (number + r.figures[k].kind + "." + extension),
+        plots::render_svg(r.figures[k].svg, format, {}));
+  }
+}
+
 int run_report(const ReportArgs& args) {
   pages::ReportOptions options;
   options.title = args.title;
@@ -90,18 +104,7 @@ int run_report(const ReportArgs& args) {
   check_output_is_not_input(args.output, inputs);
   if (!args.latex.empty()) write_tables(args.latex, result, true);
   if (!args.csv.empty()) write_tables(args.csv, result, false);
-  if (!args.figures.empty()) {
-    // DIR/NN-KIND.EXT in page order.
-    std::filesystem::create_directories(args.figures);
-    const auto format = *plots::image_format_of("x." + args.figure_format);
-    for (std::size_t k = 0; k < result.figures.size(); ++k) {
-      char number[32];
-      std::snprintf(number, sizeof number, "%02zu-", k + 1);
-      write_file_atomically(std::filesystem::path(args.figures) /
-                                (number + result.figures[k].kind + "." + args.figure_format),
-                            plots::render_svg(result.figures[k].svg, format, {}));
-    }
-  }
+  if (!args.figures.empty()) write_figures(args.figures, args.figure_format, result);
   write_file_atomically(args.output, result.html);
   return 0;
 }

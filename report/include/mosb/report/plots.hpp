@@ -49,10 +49,12 @@ inline constexpr std::size_t kMaxDrawnPoints = 5000;
 std::vector<Point2> thin_points(const std::vector<Point2>& points, std::size_t limit);
 
 // Front size per query, sorted increasing (query hardness); a log scale when sizes span more than
-// two decades. Values of unsolved queries are left out by the caller.
+// two decades. Unsolved queries have no front size: the caller leaves them out and counts them in
+// `left_out`, which the title then says ("(N unsolved queries left out)").
 struct CardinalityPlot {
   std::string title;
   std::vector<std::uint64_t> sizes;
+  std::uint64_t left_out = 0;
 };
 std::string plot_cardinality(const CardinalityPlot& plot);
 

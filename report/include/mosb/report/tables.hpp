@@ -1,6 +1,6 @@
 // Tables of numbers for a results section: one model, written as CSV (RFC 4180, every digit kept),
 // a LaTeX booktabs tabular (three significant digits, for a paper) or aligned text (a terminal).
-// `mosb eval --csv|--latex` and `mosb solutions compare` build theirs here.
+// `mosb eval --csv|--latex` and `mosb report` build theirs here.
 #pragma once
 
 #include <cstdint>
