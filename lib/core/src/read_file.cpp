@@ -18,7 +18,7 @@ std::string read_whole_file(const std::filesystem::path& path) {
   struct stat st {};
   if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0)
     text.reserve(static_cast<std::size_t>(st.st_size));
-  std::array<char, 64 * 1024> buffer;
+  std::array<char, std::size_t{64} * 1024> buffer;
   read_chunks(fd, path, buffer,
               [&](const char* data, std::size_t size) { text.append(data, size); });
   return text;

@@ -19,6 +19,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <initializer_list>
 #include <mutex>
 #include <sstream>
 #include <thread>
@@ -318,6 +319,18 @@ bool read_exactly(int fd, void* data, std::size_t size) {
   report_and_exit(error_fd, 2);
 }
 
+// In the parent, right after fork() returned `pid`: closes the child's ends of their pipes, and
+// when the fork failed also the parent's ends, and throws.
+void in_parent_after_fork(pid_t pid, std::initializer_list<int> child_ends,
+                          std::initializer_list<int> parent_ends) {
+  const int fork_error = errno;
+  for (const int fd : child_ends) ::close(fd);
+  if (pid >= 0) return;
+  for (const int fd : parent_ends) ::close(fd);
+  errno = fork_error;
+  fail("cannot fork");
+}
+
 // Waits for the child `pid` to end, through interruptions by signals: its wait status, and its
 // resource use into `usage` when given.
 int wait_for(pid_t pid, rusage* usage = nullptr) {
@@ -456,15 +469,7 @@ struct ProcessRunner::Parked {
     pid = ::fork();
     if (pid == 0)
       parked_child(command[0], command[1], error[1], group ? group->procs_fd() : -1, mosb, buffer);
-    const int fork_error = errno;
-    ::close(command[0]);
-    ::close(error[1]);
-    if (pid < 0) {
-      ::close(command[1]);
-      ::close(error[0]);
-      errno = fork_error;
-      fail("cannot fork");
-    }
+    in_parent_after_fork(pid, {command[0], error[1]}, {command[1], error[0]});
     command_fd = command[1];
     error_fd = error[0];
   }
@@ -741,15 +746,7 @@ ProgramOutput run_program(const std::string& executable, const std::vector<std::
     if (null >= 0) ::dup2(null, 0);
     execute(executable.c_str(), args.data(), out[1], err[1], -1);
   }
-  const int fork_error = errno;
-  ::close(out[1]);
-  ::close(err[1]);
-  if (pid < 0) {
-    ::close(out[0]);
-    ::close(err[0]);
-    errno = fork_error;
-    fail("cannot fork");
-  }
+  in_parent_after_fork(pid, {out[1], err[1]}, {out[0], err[0]});
   ProgramOutput output;
   read_pipes(out[0], err[0], output);
   const int status = wait_for(pid);
