@@ -931,7 +931,7 @@ PullResult pull(const fs::path& store, std::string_view url, const PullOptions& 
   for (const auto& pulled : result.entries)
     if (pulled.status != PullStatus::planned) puller.settled(pulled);
   if (puller.total > 0) report(options.progress, "pull", 0, puller.total);
-  // Each worker has a connection of its own.
+  // A worker's libcurl handle serves all its transfers, so its connections are kept.
   const auto connect = [&](unsigned) {
     return where.http ? std::make_unique<Http>(options.stall_timeout_seconds) : nullptr;
   };

@@ -236,8 +236,8 @@ class Runner {
 
   std::uint64_t pending() const { return todo_.size(); }
 
-  // Runs the pending queries on `jobs` job slots; the first query that fails to run (mosb's own
-  // trouble: files, cgroup, fork) ends the run and is rethrown once every slot has stopped.
+  // Runs the pending queries on `jobs` job slots. A query mosb itself cannot run (files, cgroup,
+  // fork) ends the run: no slot starts another, and the earliest such failure is rethrown.
   void run(unsigned jobs, RunResult& result) {
     started_ = std::chrono::steady_clock::now();
     parallel_for_with_state(
