@@ -24,6 +24,7 @@
 #include "mosb/pack.hpp"
 #include "mosb/sha256.hpp"
 #include "mosb/slurm.hpp"
+#include "terminal_progress.hpp"
 
 namespace mosb::cli {
 
@@ -80,41 +81,6 @@ CLI::Validator duration() {
           },
           "DURATION", "duration"};
 }
-
-// Redraws "done/total, counts, ETA" on stderr (a terminal), at most ~5 times a second.
-class ProgressLine {
- public:
-  ProgressLine() : enabled_(::isatty(2) == 1) {}
-  ~ProgressLine() { end(); }
-  ProgressLine(const ProgressLine&) = delete;
-  ProgressLine& operator=(const ProgressLine&) = delete;
-  void update(const RunProgress& p) {
-    if (!enabled_) return;
-    const auto now = std::chrono::steady_clock::now();
-    if (p.done != p.total && now - last_ < std::chrono::milliseconds(200)) return;
-    last_ = now;
-    std::string line = "\r" + std::to_string(p.done) + "/" + std::to_string(p.total);
-    auto counts = p.counts;
-    counts[QueryStatus::not_run] = 0;  // not yet run: the rest
-    if (const auto text = status_counts_text(counts, true); !text.empty()) line += ", " + text;
-    if (p.done_here != 0 && p.done < p.total)
-      line += ", ETA " +
-              std::to_string(static_cast<long>(p.elapsed_seconds / p.done_here *
-                                               static_cast<double>(p.total - p.done))) +
-              " s";
-    std::cerr << line << "\x1b[K" << std::flush;
-    open_ = true;
-  }
-  void end() {
-    if (open_) std::cerr << "\n";
-    open_ = false;
-  }
-
- private:
-  bool enabled_;
-  bool open_ = false;
-  std::chrono::steady_clock::time_point last_{};
-};
 
 void print_summary(const RunArgs& a, const RunResult& r) {
   if (a.json) {
@@ -331,15 +297,15 @@ int run_run(const RunArgs& a) {
   sigemptyset(&action.sa_mask);
   ::sigaction(SIGINT, &action, nullptr);
   ::sigaction(SIGTERM, &action, nullptr);
-  ProgressLine progress;
+  TerminalProgress progress;
   RunCallbacks callbacks;
   callbacks.progress = [&](const RunProgress& p) { progress.update(p); };
   callbacks.failed = [&](const QueryRecord& r, const Query& q) {
-    progress.end();
+    progress.end_line();
     report_failed(r, q);
   };
   const RunResult result = run_solver(config, callbacks, g_stop);
-  progress.end();
+  progress.end_line();
   if (result.interrupted) {
     std::cerr << "mosb: interrupted; " << result.total - result.counts[QueryStatus::not_run]
               << " queries are in " << escape_for_terminal(result.journal)

@@ -7,11 +7,11 @@
 #include <iostream>
 #include <map>
 #include <memory>
-#include <thread>
 
 #include "commands.hpp"
 #include "json_writer.hpp"
 #include "mosb/error.hpp"
+#include "mosb/internal/parallel.hpp"
 #include "mosb/internal/utf8.hpp"
 #include "mosb/pull.hpp"
 #include "terminal_progress.hpp"
@@ -88,8 +88,7 @@ int run_add(const StoreArgs& a) {
   options.move = a.move;
   options.check_memory = a.check_memory;
   options.progress = progress.callback();
-  if (a.pack)
-    options.pack = PackOptions{a.level, std::max(1U, std::thread::hardware_concurrency())};
+  if (a.pack) options.pack = PackOptions{a.level, thread_count(0)};
   const auto added = store.add(files, options);
   if (a.json) {
     JsonWriter json(std::cout);

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <utility>
 
+#include "commands.hpp"
+
 namespace mosb::cli {
 
 TerminalProgress::TerminalProgress() : enabled_(::isatty(STDERR_FILENO) == 1) {}
@@ -63,6 +65,27 @@ void TerminalProgress::update(std::string_view stage, std::uint64_t done, std::u
   line_open_ = !finished;  // a finished stage keeps its line, so a report on stdout follows cleanly
   if (finished) std::fputc('\n', stderr);
   std::fflush(stderr);
+}
+
+void TerminalProgress::update(const RunProgress& p) {
+  if (!enabled_) return;
+  std::lock_guard lock(mutex_);
+  const auto now = std::chrono::steady_clock::now();
+  if (p.done != p.total && now - last_draw_ < std::chrono::milliseconds(200)) return;
+  last_draw_ = now;
+  std::string line = "\r" + std::to_string(p.done) + "/" + std::to_string(p.total);
+  auto counts = p.counts;
+  counts[QueryStatus::not_run] = 0;  // not yet run: the rest
+  if (const auto text = status_counts_text(counts, true); !text.empty()) line += ", " + text;
+  if (p.done_here != 0 && p.done < p.total)
+    line += ", ETA " +
+            std::to_string(static_cast<long>(p.elapsed_seconds / p.done_here *
+                                             static_cast<double>(p.total - p.done))) +
+            " s";
+  line += "\x1b[K";  // erase what a longer line before left
+  std::fputs(line.c_str(), stderr);
+  std::fflush(stderr);
+  line_open_ = true;
 }
 
 void TerminalProgress::end_line() {

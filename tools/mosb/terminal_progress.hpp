@@ -1,6 +1,7 @@
 // Draws the library's Progress reports on stderr, only when stderr is a terminal: one line per
 // stage, rewritten in place (at most ~10 times a second), ended when the stage finishes or
 // changes or the display goes out of scope, so a message printed afterwards starts on its own line.
+// `mosb run` draws its RunProgress on the same line, at most ~5 times a second.
 #pragma once
 
 #include <chrono>
@@ -9,6 +10,7 @@
 #include <string_view>
 
 #include "mosb/progress.hpp"
+#include "mosb/run.hpp"
 
 namespace mosb::cli {
 
@@ -27,9 +29,13 @@ class TerminalProgress {
   // Text drawn after the figures of a bytes stage from its next update on (say, files done).
   void set_suffix(std::string suffix);
 
+  // Redraws "done/total, status counts, ETA" of a run; the line stays open at the end (end_line).
+  void update(const RunProgress& p);
+  // Ends an open line, so that what is printed next starts on a line of its own.
+  void end_line();
+
  private:
   void update(std::string_view stage, std::uint64_t done, std::uint64_t total);
-  void end_line();
 
   bool enabled_;
   bool bytes_ = false;

@@ -3,19 +3,18 @@
 #include <sys/mman.h>
 
 #include <algorithm>
-#include <atomic>
 #include <charconv>
 #include <exception>
 #include <limits>
 #include <memory>
 #include <string>
-#include <thread>
 
 #include "mosb/converters/narrow_column.hpp"
 #include "mosb/converters/text_input.hpp"
 #include "mosb/converters/text_scan.hpp"
 #include "mosb/error.hpp"
 #include "mosb/format.hpp"
+#include "mosb/internal/parallel.hpp"
 #include "vertex_values.hpp"
 
 namespace mosb::converters {
@@ -467,17 +466,8 @@ ParsedGr parse_gr_file(const std::string& path, unsigned id_base, ReadProgress& 
 std::vector<ParsedGr> parse_gr_files(const std::vector<std::string>& paths, unsigned id_base,
                                      ReadProgress& read) {
   std::vector<ParsedGr> parsed(paths.size());
-  const std::size_t threads =
-      std::min<std::size_t>(paths.size(), std::max(1u, std::thread::hardware_concurrency()));
-  std::atomic<std::size_t> next{0};
-  auto work = [&] {
-    for (std::size_t i = next++; i < paths.size(); i = next++)
-      parsed[i] = parse_gr_file(paths[i], id_base, read);
-  };
-  std::vector<std::thread> pool;
-  for (std::size_t k = 1; k < threads; ++k) pool.emplace_back(work);
-  work();
-  for (auto& t : pool) t.join();
+  parallel_for(paths.size(), thread_count(0),
+               [&](std::size_t i) { parsed[i] = parse_gr_file(paths[i], id_base, read); });
   return parsed;
 }
 

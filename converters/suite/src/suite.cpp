@@ -3,17 +3,15 @@
 #include <fnmatch.h>
 
 #include <algorithm>
-#include <atomic>
-#include <exception>
 #include <fstream>
 #include <mutex>
-#include <thread>
 
 #include "mosb/atomic_file.hpp"
 #include "mosb/converters/grid_generator.hpp"
 #include "mosb/converters/netmaker_generator.hpp"
 #include "mosb/error.hpp"
 #include "mosb/graph_reader.hpp"
+#include "mosb/internal/parallel.hpp"
 #include "mosb/manifest.hpp"
 #include "mosb/random.hpp"
 #include "suite_description.hpp"
@@ -62,9 +60,6 @@ std::vector<SuiteEntry> run_suite(const std::filesystem::path& directory,
   std::vector<SuiteEntry> entries(instances.size());
   Manifest manifest;
   manifest.entries.resize(instances.size());
-  std::vector<std::exception_ptr> errors(instances.size());
-  std::atomic<std::size_t> next{0};
-  std::atomic<bool> failed{false};
   std::mutex progress_mutex;
   std::size_t done = 0;
   report(options.progress, "suite", 0, instances.size());
@@ -73,42 +68,27 @@ std::vector<SuiteEntry> run_suite(const std::filesystem::path& directory,
   // was there before is replaced atomically (the same bytes, for the same options), except when
   // its own recipe fails after writing it: then it stays, and `verify --manifest` reports it.
   std::vector<char> added(instances.size(), 0);
-  auto work = [&] {
-    for (std::size_t i = next++; i < instances.size() && !failed; i = next++) {
-      try {
-        const auto file = instances[i].name + ".mosb";
-        std::error_code absent;
-        added[i] = !std::filesystem::exists(directory / file, absent);
-        std::visit([&](const auto& graph) { write_graph(graph, directory / file); },
-                   instances[i].build());
-        if (instances[i].finish) instances[i].finish(directory / file);
-        if (options.pack) pack_file(directory / file, directory / file, {options.pack->level, 1});
-        manifest.entries[i] = describe_file(directory / file);
-        const auto& e = manifest.entries[i];
-        entries[i] = {instances[i].name, file, e.size, e.digest};
-        std::lock_guard lock(progress_mutex);
-        ++done;
-        report(options.progress, "suite", done, instances.size());
-      } catch (...) {
-        errors[i] = std::current_exception();
-        failed = true;
-      }
-    }
+  const auto build = [&](std::size_t i) {
+    const auto file = instances[i].name + ".mosb";
+    std::error_code absent;
+    added[i] = !std::filesystem::exists(directory / file, absent);
+    std::visit([&](const auto& graph) { write_graph(graph, directory / file); },
+               instances[i].build());
+    if (instances[i].finish) instances[i].finish(directory / file);
+    if (options.pack) pack_file(directory / file, directory / file, {options.pack->level, 1});
+    manifest.entries[i] = describe_file(directory / file);
+    const auto& e = manifest.entries[i];
+    entries[i] = {instances[i].name, file, e.size, e.digest};
+    std::lock_guard lock(progress_mutex);
+    ++done;
+    report(options.progress, "suite", done, instances.size());
   };
-  unsigned threads =
-      options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
-  threads = static_cast<unsigned>(
-      std::min<std::size_t>(threads, std::max<std::size_t>(1, instances.size())));
-  {
-    std::vector<std::jthread> pool;
-    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
-    work();
-  }
-  if (failed) {
+  try {
+    parallel_for(instances.size(), thread_count(options.threads), build);
+  } catch (...) {
     for (std::size_t i = 0; i < instances.size(); ++i)
       if (added[i]) std::filesystem::remove(directory / (instances[i].name + ".mosb"), ec);
-    for (const auto& e : errors)
-      if (e) std::rethrow_exception(e);
+    throw;
   }
 
   std::sort(entries.begin(), entries.end(),

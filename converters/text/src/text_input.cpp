@@ -19,6 +19,7 @@
 #include "mosb/checksum.hpp"
 #include "mosb/error.hpp"
 #include "mosb/internal/hex.hpp"
+#include "mosb/internal/read_file.hpp"
 
 namespace mosb::converters {
 
@@ -305,16 +306,12 @@ InputFile::InputFile(const std::filesystem::path& path) : stream_(std::make_uniq
   }
   if (!mapped) {
     char buffer[1 << 16];
-    for (;;) {
-      const ssize_t got = ::read(fd, buffer, sizeof buffer);
-      if (got < 0 && errno == EINTR) continue;
-      if (got < 0) {
-        const int e = errno;
-        ::close(fd);
-        throw Error(facts_.display_name + ": read error: " + std::strerror(e));
-      }
-      if (got == 0) break;
-      s.owned.append(buffer, static_cast<std::size_t>(got));
+    try {
+      read_chunks(fd, path, buffer,
+                  [&](const char* data, std::size_t size) { s.owned.append(data, size); });
+    } catch (...) {
+      ::close(fd);
+      throw;
     }
     s.raw = s.owned;
   }

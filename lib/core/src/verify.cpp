@@ -1,15 +1,13 @@
 #include "mosb/verify.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <exception>
 #include <functional>
 #include <memory>
 #include <mutex>
-#include <thread>
 
 #include "mosb/internal/hex.hpp"
+#include "mosb/internal/parallel.hpp"
 #include "mosb/internal/verify_rules.hpp"
 #include "mosb/internal/xxh3.hpp"
 
@@ -236,31 +234,18 @@ class TaskProgress {
   std::mutex mutex_;
 };
 
+// Runs every task, the costliest first, so that no large one starts last.
 std::vector<Problem> run_all(std::vector<Task>& tasks, unsigned threads, TaskProgress& progress) {
   std::vector<Problem> results(tasks.size());
-  std::vector<std::exception_ptr> errors(tasks.size());
   std::vector<std::size_t> order(tasks.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return tasks[a].cost > tasks[b].cost; });
-  std::atomic<std::size_t> next{0};
-  auto work = [&] {
-    for (std::size_t k; (k = next.fetch_add(1)) < order.size();) {
-      const std::size_t i = order[k];
-      try {
-        results[i] = tasks[i].run();
-      } catch (...) {
-        errors[i] = std::current_exception();
-      }
-      progress.done(tasks[i].cost);
-    }
-  };
-  std::vector<std::thread> helpers;
-  for (unsigned t = 1; t < threads && t < tasks.size(); ++t) helpers.emplace_back(work);
-  work();
-  for (auto& helper : helpers) helper.join();
-  for (auto& error : errors)
-    if (error) std::rethrow_exception(error);
+  parallel_for(order.size(), threads, [&](std::size_t k) {
+    const std::size_t i = order[k];
+    results[i] = tasks[i].run();
+    progress.done(tasks[i].cost);
+  });
   return results;
 }
 
@@ -457,8 +442,7 @@ std::optional<std::string> verify(const GraphReader& reader, VerifyLevel level,
   const bool structure = level == VerifyLevel::structure || level == VerifyLevel::full;
   if (!checksums && !structure) return std::nullopt;
   if (auto problem = refuse_packed(reader, checksums)) return problem;
-  const unsigned threads =
-      reader.bytes().size() < kParallelFrom ? 1 : std::max(1u, std::thread::hardware_concurrency());
+  const unsigned threads = reader.bytes().size() < kParallelFrom ? 1 : thread_count(0);
 
   // Every check runs at once, on all threads; first_problem then reports in a fixed order. The CSR
   // rules cost no pass of their own: the forward ones are checked with the forward sections'

@@ -4,16 +4,13 @@
 #include <zstd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cstdlib>
 #include <cstring>
-#include <exception>
 #include <fstream>
 #include <limits>
 #include <memory>
 #include <optional>
 #include <string>
-#include <thread>
 #include <type_traits>
 #include <vector>
 
@@ -23,6 +20,7 @@
 #include "mosb/file_writer.hpp"
 #include "mosb/internal/hex.hpp"
 #include "mosb/internal/large_array.hpp"
+#include "mosb/internal/parallel.hpp"
 #include "mosb/internal/sections_by_kind.hpp"
 #include "mosb/internal/transpose.hpp"
 #include "mosb/internal/xxh3.hpp"
@@ -105,30 +103,6 @@ std::vector<format::SectionEntry> table_of(const std::vector<Section>& sections)
   table.reserve(sections.size());
   for (const auto& s : sections) table.push_back(s.entry);
   return table;
-}
-
-// Runs job(i) for i in [0, count) on up to `threads` threads; rethrows the first failure (by i).
-template <class Job>
-void run_parallel(std::size_t count, unsigned threads, Job job) {
-  std::vector<std::exception_ptr> failures(count);
-  std::atomic<std::size_t> next{0};
-  auto worker = [&] {
-    for (std::size_t i; (i = next.fetch_add(1)) < count;) {
-      try {
-        job(i);
-      } catch (...) {
-        failures[i] = std::current_exception();
-      }
-    }
-  };
-  const unsigned extra = std::min<std::size_t>(std::max(threads, 1U), count) - (count > 0 ? 1 : 0);
-  std::vector<std::thread> pool;
-  pool.reserve(extra);
-  for (unsigned t = 0; t < extra; ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
-  for (auto& f : failures)
-    if (f) std::rethrow_exception(f);
 }
 
 AtomicFile::Existing existing_for(const std::filesystem::path& in,
@@ -445,7 +419,7 @@ void pack_file(const std::filesystem::path& in, const std::filesystem::path& out
       options.derive_reverse ? derived_sections(sections) : std::vector<bool>(sections.size());
   std::vector<std::vector<std::byte>> frames(sections.size());
   std::vector<Encoding> encodings(sections.size(), Encoding::raw);
-  run_parallel(sections.size(), options.threads, [&](std::size_t i) {
+  parallel_for(sections.size(), options.threads, [&](std::size_t i) {
     encode_section(sections[i], derived[i], options.level, name, frames[i], encodings[i]);
   });
 

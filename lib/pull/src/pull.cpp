@@ -24,6 +24,7 @@
 
 #include "mosb/atomic_file.hpp"
 #include "mosb/error.hpp"
+#include "mosb/internal/parallel.hpp"
 #include "mosb/sha256.hpp"
 #include "mosb/store.hpp"
 #include "mosb/version.hpp"
@@ -563,8 +564,7 @@ struct Puller {
   std::atomic<std::uint64_t> received{0};
   std::uint64_t total = 0;
   std::mutex progress_mutex;
-  CheckSlots checks{
-      std::min(std::max(1U, options.jobs), std::max(1U, std::thread::hardware_concurrency()))};
+  CheckSlots checks{std::min(std::max(1U, options.jobs), thread_count(0))};
 
   std::size_t settled_count = 0;
   std::size_t selected = 0;
@@ -931,26 +931,21 @@ PullResult pull(const fs::path& store, std::string_view url, const PullOptions& 
   for (const auto& pulled : result.entries)
     if (pulled.status != PullStatus::planned) puller.settled(pulled);
   if (puller.total > 0) report(options.progress, "pull", 0, puller.total);
-  std::atomic<std::size_t> next{0};
-  auto work = [&] {
-    std::unique_ptr<Http> http;
-    if (where.http) http = std::make_unique<Http>(options.stall_timeout_seconds);
-    for (std::size_t i = next++; i < to_fetch.size(); i = next++) {
-      try {
-        fetch_entry(puller, http.get(), *to_fetch[i]);
-      } catch (const std::exception& error) {  // the store's own trouble (I/O, a planted link)
-        to_fetch[i]->status = PullStatus::refused;
-        to_fetch[i]->reason = error.what();
-      }
-      puller.settled(*to_fetch[i]);
-    }
+  // A worker's libcurl handle serves all its transfers, so its connections are kept.
+  const auto connect = [&](unsigned) {
+    return where.http ? std::make_unique<Http>(options.stall_timeout_seconds) : nullptr;
   };
-  {
-    const auto jobs = std::min<std::size_t>(std::max(1U, options.jobs), to_fetch.size());
-    std::vector<std::jthread> pool;
-    for (std::size_t t = 1; t < jobs; ++t) pool.emplace_back(work);
-    work();
-  }
+  parallel_for_with_state(
+      to_fetch.size(), std::max(1U, options.jobs), connect,
+      [&](std::unique_ptr<Http>& http, std::size_t i) {
+        try {
+          fetch_entry(puller, http.get(), *to_fetch[i]);
+        } catch (const std::exception& error) {  // the store's own trouble (I/O, a planted link)
+          to_fetch[i]->status = PullStatus::refused;
+          to_fetch[i]->reason = error.what();
+        }
+        puller.settled(*to_fetch[i]);
+      });
   if (puller.total > 0) report(options.progress, "pull", puller.total, puller.total);
   sweep_stale_partials(store, where, published);
   ::rmdir((store / kStagingDirectory / kPullDirectory).c_str());  // when empty

@@ -6,10 +6,9 @@
 
 #include <cerrno>
 #include <cstring>
-#include <fstream>
-#include <sstream>
 
 #include "mosb/error.hpp"
+#include "mosb/internal/read_file.hpp"
 
 namespace mosb::run_internal {
 
@@ -109,11 +108,7 @@ Journal::Journal(std::string path, const nlohmann::json& binding, bool resume)
 }
 
 void Journal::read_existing(const nlohmann::json& binding) {
-  std::ifstream in(path_, std::ios::binary);
-  if (!in) io_error(path_, "cannot read the journal");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  const std::string text = buffer.str();
+  const std::string text = read_whole_file(path_);
   std::size_t pos = 0, line = 0, complete = 0;
   while (pos < text.size()) {
     const std::size_t newline = text.find('\n', pos);

@@ -1,4 +1,4 @@
-#include "mosb/process.hpp"
+#include "process.hpp"
 
 #include <dirent.h>
 #include <fcntl.h>
@@ -19,13 +19,27 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <initializer_list>
 #include <mutex>
 #include <sstream>
 #include <thread>
 
 #include "mosb/error.hpp"
+#include "mosb/internal/read_file.hpp"
 
 namespace mosb {
+
+std::string_view to_string(Measurement m) {
+  return m == Measurement::cgroup_v1 ? "cgroup-v1" : "rlimit-poll";
+}
+
+std::optional<Measurement> parse_measurement(std::string_view text) {
+  if (text == "cgroup-v1") return Measurement::cgroup_v1;
+  if (text == "rlimit-poll") return Measurement::rlimit_poll;
+  return std::nullopt;
+}
+
+namespace run_internal {
 
 namespace {
 
@@ -66,15 +80,18 @@ bool write_file(const std::string& path, const std::string& text) {
   return ok;
 }
 
-std::string read_small_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
+// A cgroup file's text; empty when it cannot be read (a file this kernel does not have is no
+// figure, not an error).
+std::string read_cgroup_file(const std::string& path) {
+  try {
+    return read_whole_file(path);
+  } catch (const Error&) {
+    return {};
+  }
 }
 
 std::optional<std::uint64_t> read_number(const std::string& path) {
-  const std::string text = read_small_file(path);
+  const std::string text = read_cgroup_file(path);
   if (text.empty()) return std::nullopt;
   return std::strtoull(text.c_str(), nullptr, 10);
 }
@@ -97,16 +114,6 @@ std::vector<pid_t> cgroup_members(const std::string& dir) {
 }
 
 }  // namespace
-
-std::string_view to_string(Measurement m) {
-  return m == Measurement::cgroup_v1 ? "cgroup-v1" : "rlimit-poll";
-}
-
-std::optional<Measurement> parse_measurement(std::string_view text) {
-  if (text == "cgroup-v1") return Measurement::cgroup_v1;
-  if (text == "rlimit-poll") return Measurement::rlimit_poll;
-  return std::nullopt;
-}
 
 Measurement detect_measurement() {
   const std::string base = own_memory_cgroup();
@@ -131,20 +138,6 @@ std::string describe_measurement(Measurement m) {
          "; memory: RLIMIT_AS per process, and the resident set summed over the solver's "
          "process group polled every 20 ms (peak = largest sum; a sum over the limit is "
          "memory-limit)";
-}
-
-std::string resolve_executable(const std::string& name) {
-  if (name.find('/') != std::string::npos) return name;
-  const char* path = std::getenv("PATH");
-  std::stringstream dirs(path ? path : "/usr/local/bin:/usr/bin:/bin");
-  for (std::string dir; std::getline(dirs, dir, ':');) {
-    std::string candidate = (dir.empty() ? "." : dir) + "/" + name;
-    struct stat st {};
-    if (::stat(candidate.c_str(), &st) == 0 && S_ISREG(st.st_mode) &&
-        ::access(candidate.c_str(), X_OK) == 0)
-      return candidate;
-  }
-  return {};
 }
 
 namespace {
@@ -262,7 +255,7 @@ class MemoryGroup {
     return read_number(dir_ + "/memory.max_usage_in_bytes");
   }
   bool oom_killed() const {
-    const std::string oom = read_small_file(dir_ + "/memory.oom_control");
+    const std::string oom = read_cgroup_file(dir_ + "/memory.oom_control");
     return keyed_value(oom, "oom_kill") > 0 || keyed_value(oom, "under_oom") > 0;
   }
   bool hit_limit() const { return read_number(dir_ + "/memory.failcnt").value_or(0) > 0; }
@@ -307,10 +300,44 @@ bool read_exactly(int fd, void* data, std::size_t size) {
   return true;
 }
 
+// In a forked child: reports `stage` and errno on `error_fd` (when the child has one) and exits
+// with 127, a shell's status for a command it cannot run.
 [[noreturn]] void report_and_exit(int error_fd, int stage) {
   const ChildError report{stage, errno};
-  (void)!::write(error_fd, &report, sizeof report);
+  if (error_fd >= 0) (void)!::write(error_fd, &report, sizeof report);
   ::_exit(127);
+}
+
+// In a forked child, once it is prepared: stdout and stderr become `output` and `errors`, and the
+// program replaces the child (async-signal-safe calls only). Every program lib/run starts is
+// executed here; one that cannot be is reported as stage 2.
+[[noreturn]] void execute(const char* executable, char* const argv[], int output, int errors,
+                          int error_fd) {
+  ::dup2(output, 1);
+  ::dup2(errors, 2);
+  ::execve(executable, argv, environ);
+  report_and_exit(error_fd, 2);
+}
+
+// In the parent, right after fork() returned `pid`: closes the child's ends of their pipes, and
+// when the fork failed also the parent's ends, and throws.
+void in_parent_after_fork(pid_t pid, std::initializer_list<int> child_ends,
+                          std::initializer_list<int> parent_ends) {
+  const int fork_error = errno;
+  for (const int fd : child_ends) ::close(fd);
+  if (pid >= 0) return;
+  for (const int fd : parent_ends) ::close(fd);
+  errno = fork_error;
+  fail("cannot fork");
+}
+
+// Waits for the child `pid` to end, through interruptions by signals: its wait status, and its
+// resource use into `usage` when given.
+int wait_for(pid_t pid, rusage* usage = nullptr) {
+  int status = 0;
+  while (::wait4(pid, &status, 0, usage) < 0 && errno == EINTR) {
+  }
+  return status;
 }
 
 // After fork, in the child: only async-signal-safe calls. The child leaves mosb's process group
@@ -371,10 +398,7 @@ bool read_exactly(int fd, void* data, std::size_t size) {
   const int output = ::open(buffer.words[1], O_WRONLY | O_CREAT | O_TRUNC, 0600);
   const int errors = ::open(buffer.words[2], O_WRONLY | O_CREAT | O_TRUNC, 0600);
   if (output < 0 || errors < 0) report_and_exit(error_fd, 3);
-  ::dup2(output, 1);
-  ::dup2(errors, 2);
-  ::execve(executable, argv, environ);
-  report_and_exit(error_fd, 2);
+  execute(executable, argv, output, errors, error_fd);
 }
 
 double seconds_of(const timeval& t) {
@@ -445,15 +469,7 @@ struct ProcessRunner::Parked {
     pid = ::fork();
     if (pid == 0)
       parked_child(command[0], command[1], error[1], group ? group->procs_fd() : -1, mosb, buffer);
-    const int fork_error = errno;
-    ::close(command[0]);
-    ::close(error[1]);
-    if (pid < 0) {
-      ::close(command[1]);
-      ::close(error[0]);
-      errno = fork_error;
-      fail("cannot fork");
-    }
+    in_parent_after_fork(pid, {command[0], error[1]}, {command[1], error[0]});
     command_fd = command[1];
     error_fd = error[0];
   }
@@ -461,8 +477,7 @@ struct ProcessRunner::Parked {
   ~Parked() {
     if (command_fd >= 0) {
       ::kill(pid, SIGKILL);
-      while (::waitpid(pid, nullptr, 0) < 0 && errno == EINTR) {
-      }
+      wait_for(pid);
       ::close(command_fd);
     }
     ::close(error_fd);
@@ -518,8 +533,6 @@ struct ProcessRunner::Parked {
     command_fd = -1;
   }
 };
-
-namespace {}  // namespace
 
 // The per-job watchdog thread: every 20 ms it checks the running solver against the stop flag,
 // the deadline and (rlimit_poll) the process group's resident memory, and kills the tree when one
@@ -649,10 +662,8 @@ ProcessOutcome ProcessRunner::run(const ProcessSpec& spec, const ProcessLimits& 
     } catch (const Error&) {
       parked_.reset();
     }
-  int status = 0;
   rusage usage{};
-  while (::wait4(child->pid, &status, 0, &usage) < 0 && errno == EINTR) {
-  }
+  const int status = wait_for(child->pid, &usage);
   out.wall_seconds = std::chrono::duration<double>(Clock::now() - started).count();
   out.cpu_seconds = seconds_of(usage.ru_utime) + seconds_of(usage.ru_stime);
   std::optional<Ending> reason;
@@ -683,5 +694,66 @@ ProcessOutcome ProcessRunner::run(const ProcessSpec& spec, const ProcessLimits& 
   }
   return out;
 }
+
+namespace {
+
+// Reads the two pipes of a program until both are closed, into its output.
+void read_pipes(int out, int err, ProgramOutput& output) {
+  pollfd fds[2] = {{out, POLLIN, 0}, {err, POLLIN, 0}};
+  std::string* texts[2] = {&output.out, &output.err};
+  int open = 2;
+  char buffer[4096];
+  while (open > 0) {
+    if (::poll(fds, 2, -1) < 0) {
+      if (errno == EINTR) continue;
+      break;
+    }
+    for (int i = 0; i < 2; ++i) {
+      if (fds[i].fd < 0 || !(fds[i].revents & (POLLIN | POLLHUP | POLLERR))) continue;
+      const ssize_t n = ::read(fds[i].fd, buffer, sizeof buffer);
+      if (n > 0) {
+        texts[i]->append(buffer, static_cast<std::size_t>(n));
+      } else if (n == 0 || errno != EINTR) {
+        ::close(fds[i].fd);
+        fds[i].fd = -1;
+        --open;
+      }
+    }
+  }
+  for (auto& fd : fds)
+    if (fd.fd >= 0) ::close(fd.fd);
+}
+
+}  // namespace
+
+ProgramOutput run_program(const std::string& executable, const std::vector<std::string>& argv) {
+  int out[2], err[2];
+  if (::pipe2(out, O_CLOEXEC) != 0) fail("cannot create a pipe");
+  if (::pipe2(err, O_CLOEXEC) != 0) {
+    const int error = errno;
+    ::close(out[0]);
+    ::close(out[1]);
+    errno = error;
+    fail("cannot create a pipe");
+  }
+  std::vector<char*> args;
+  args.reserve(argv.size() + 1);
+  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int null = ::open("/dev/null", O_RDONLY);
+    if (null >= 0) ::dup2(null, 0);
+    execute(executable.c_str(), args.data(), out[1], err[1], -1);
+  }
+  in_parent_after_fork(pid, {out[1], err[1]}, {out[0], err[0]});
+  ProgramOutput output;
+  read_pipes(out[0], err[0], output);
+  const int status = wait_for(pid);
+  output.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return output;
+}
+
+}  // namespace run_internal
 
 }  // namespace mosb

@@ -16,25 +16,21 @@
 #include "journal.hpp"
 #include "mosb/command_template.hpp"
 #include "mosb/error.hpp"
+#include "mosb/internal/parallel.hpp"
+#include "mosb/internal/read_file.hpp"
 #include "mosb/version.hpp"
+#include "process.hpp"
 
 namespace mosb {
 
 namespace fs = std::filesystem;
+using run_internal::Ending;
 using run_internal::Journal;
+using run_internal::ProcessOutcome;
+using run_internal::ProcessRunner;
+using run_internal::ProcessSpec;
 
 namespace {
-
-std::string read_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(ErrorCode::io, path + ": cannot read the solver's output");
-  std::string text;
-  in.seekg(0, std::ios::end);
-  text.resize(static_cast<std::size_t>(in.tellg()));
-  in.seekg(0);
-  in.read(text.data(), static_cast<std::streamsize>(text.size()));
-  return text;
-}
 
 // The last `count` non-blank lines of a file (at most 4 KiB read), control characters as '?'.
 std::vector<std::string> tail_lines(const std::string& path, std::size_t count) {
@@ -62,10 +58,10 @@ ParsedOutput read_protocol_output(const SolverOutputFiles& files) {
   ParsedOutput out;
   const std::string& front_file = files.front_in_file ? files.front_path : files.stdout_path;
   const std::string name = files.front_in_file ? "{front}" : "stdout";
-  auto front = parse_protocol_front(read_file(front_file), files.objectives, name);
+  auto front = parse_protocol_front(read_whole_file(front_file), files.objectives, name);
   out.costs = std::move(front.costs);
   out.vectors = front.vectors;
-  out.statistics = parse_protocol_statistics(read_file(files.stderr_path), "stderr");
+  out.statistics = parse_protocol_statistics(read_whole_file(files.stderr_path), "stderr");
   return out;
 }
 
@@ -170,7 +166,7 @@ Plan make_plan(const RunConfig& c, const View& selection, const SolutionWriter& 
   if (::access(p.executable.c_str(), X_OK) != 0)
     throw Error(ErrorCode::invalid_argument,
                 "--solver: " + p.executable + ": not an executable file");
-  p.measurement = c.measurement ? *c.measurement : detect_measurement();
+  p.measurement = c.measurement ? *c.measurement : run_internal::detect_measurement();
   cpu_set_t set;
   if (::sched_getaffinity(0, sizeof set, &set) == 0)
     for (int cpu = 0; cpu < CPU_SETSIZE; ++cpu)
@@ -240,35 +236,37 @@ class Runner {
 
   std::uint64_t pending() const { return todo_.size(); }
 
+  // Runs the pending queries on `jobs` job slots. A query mosb itself cannot run (files, cgroup,
+  // fork) ends the run: no slot starts another, and the earliest such failure is rethrown.
   void run(unsigned jobs, RunResult& result) {
     started_ = std::chrono::steady_clock::now();
-    std::vector<std::thread> workers;
-    for (unsigned j = 0; j < jobs; ++j) workers.emplace_back([this, j] { work(j); });
-    for (auto& w : workers) w.join();
-    if (error_) std::rethrow_exception(error_);
+    parallel_for_with_state(
+        todo_.size(), jobs, [this](unsigned job) { return JobSlot(temp_.path(), job, stop_); },
+        [this](JobSlot& slot, std::size_t i) {
+          if (!stop_.load()) run_query(slot.runner, todo_[i], slot.job, slot.dir);
+        });
     result.ran = ran_;
     result.wall_seconds = wall_;
     result.cpu_seconds = cpu_;
   }
 
  private:
-  void work(unsigned job) {
-    try {
-      const std::string dir = temp_.path() + "/job" + std::to_string(job);
-      fs::create_directories(dir);
-      ProcessRunner runner(stop_);
-      while (!stop_.load()) {
-        const std::uint64_t i = next_.fetch_add(1);
-        if (i >= todo_.size()) return;
-        run_query(runner, todo_[i], job, dir);
-        std::lock_guard lock(mutex_);
-        if (error_) return;
-      }
-    } catch (...) {
-      std::lock_guard lock(mutex_);
-      if (!error_) error_ = std::current_exception();
+  // One of the run's --jobs: its directory for the solver's output files and its process runner,
+  // made and destroyed on the slot's own thread (PR_SET_PDEATHSIG ties a solver's waiting process
+  // to the thread that forked it).
+  struct JobSlot {
+    JobSlot(const std::string& temp, unsigned job_index, const std::atomic<bool>& stop)
+        : job(job_index),
+          dir(created_directory(temp + "/job" + std::to_string(job_index))),
+          runner(stop) {}
+    static std::string created_directory(std::string path) {
+      fs::create_directories(path);
+      return path;
     }
-  }
+    unsigned job;
+    std::string dir;
+    ProcessRunner runner;
+  };
 
   std::map<std::string, std::string> values(std::uint64_t q, const SolverOutputFiles& f) const {
     std::string objectives;
@@ -352,9 +350,7 @@ class Runner {
   OutputAdapter adapter_;
   TempDir temp_;
   std::vector<std::uint64_t> todo_;
-  std::atomic<std::uint64_t> next_{0};
   std::mutex mutex_;
-  std::exception_ptr error_;
   RunProgress progress_;
   std::chrono::steady_clock::time_point started_;
   std::uint64_t ran_ = 0;
@@ -379,7 +375,7 @@ SolverInfo solver_info(const RunConfig& c, const Plan& p, unsigned jobs) {
   m["run.pin"] = c.pin ? "yes" : "no";
   m["run.threads"] = std::to_string(c.threads);
   m["run.measurement"] = std::string(to_string(p.measurement));
-  m["run.measurement.detail"] = describe_measurement(p.measurement);
+  m["run.measurement.detail"] = run_internal::describe_measurement(p.measurement);
   m["run.runtime_seconds"] =
       "wall-clock seconds measured by mosb; the solver's own report is reported_runtime_seconds";
   m["run.mosb_version"] = std::string(kVersion);
@@ -402,7 +398,7 @@ RunResult run_solver(const RunConfig& c, const RunCallbacks& callbacks,
   const auto selection = solution_selection(*c.instance, c.choice);
   SolutionWriter writer(*c.instance, selection);
   const Plan plan = make_plan(c, selection, writer);
-  prepare_process_runner();
+  run_internal::prepare_process_runner();
   RunResult result;
   result.measurement = plan.measurement;
   result.query_set_size = plan.queries.size();

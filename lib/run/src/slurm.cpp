@@ -1,12 +1,8 @@
 #include "mosb/slurm.hpp"
 
-#include <fcntl.h>
-#include <poll.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -18,9 +14,10 @@
 #include "mosb/atomic_file.hpp"
 #include "mosb/command_template.hpp"
 #include "mosb/error.hpp"
-#include "mosb/process.hpp"
+#include "mosb/internal/read_file.hpp"
 #include "mosb/run.hpp"
 #include "mosb/version.hpp"
+#include "process.hpp"
 
 namespace mosb {
 
@@ -42,76 +39,11 @@ bool plain_path(const std::string& path) {
   return path.find_first_of(" \t\n\r'\"\\%$`") == std::string::npos;
 }
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(ErrorCode::io, path.string() + ": cannot read: " + std::strerror(errno));
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 // The output of a program run without a shell; nullopt when it is not in PATH.
-struct Captured {
-  int status = -1;  // exit status, or -1 when killed or not started
-  std::string out, err;
-};
-
-std::optional<Captured> capture(const std::vector<std::string>& argv) {
+std::optional<run_internal::ProgramOutput> capture(const std::vector<std::string>& argv) {
   const std::string program = resolve_executable(argv.front());
   if (program.empty() || ::access(program.c_str(), X_OK) != 0) return std::nullopt;
-  int out[2], err[2];
-  if (::pipe2(out, O_CLOEXEC) != 0)
-    throw Error(ErrorCode::io, "pipe: " + std::string(std::strerror(errno)));
-  if (::pipe2(err, O_CLOEXEC) != 0) {
-    ::close(out[0]);
-    ::close(out[1]);
-    throw Error(ErrorCode::io, "pipe: " + std::string(std::strerror(errno)));
-  }
-  std::vector<char*> args;
-  args.reserve(argv.size() + 1);
-  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  const pid_t pid = ::fork();
-  if (pid < 0) throw Error(ErrorCode::io, "fork: " + std::string(std::strerror(errno)));
-  if (pid == 0) {
-    const int null = ::open("/dev/null", O_RDONLY);
-    if (null >= 0) ::dup2(null, 0);
-    ::dup2(out[1], 1);
-    ::dup2(err[1], 2);
-    ::execv(program.c_str(), args.data());
-    ::_exit(127);
-  }
-  ::close(out[1]);
-  ::close(err[1]);
-  Captured result;
-  pollfd fds[2] = {{out[0], POLLIN, 0}, {err[0], POLLIN, 0}};
-  std::string* texts[2] = {&result.out, &result.err};
-  int open = 2;
-  char buffer[4096];
-  while (open > 0) {
-    if (::poll(fds, 2, -1) < 0) {
-      if (errno == EINTR) continue;
-      break;
-    }
-    for (int i = 0; i < 2; ++i) {
-      if (fds[i].fd < 0 || !(fds[i].revents & (POLLIN | POLLHUP | POLLERR))) continue;
-      const ssize_t n = ::read(fds[i].fd, buffer, sizeof buffer);
-      if (n > 0) {
-        texts[i]->append(buffer, static_cast<std::size_t>(n));
-      } else if (n == 0 || errno != EINTR) {
-        ::close(fds[i].fd);
-        fds[i].fd = -1;
-        --open;
-      }
-    }
-  }
-  for (auto& fd : fds)
-    if (fd.fd >= 0) ::close(fd.fd);
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
+  return run_internal::run_program(program, argv);
 }
 
 std::vector<std::string> lines_of(const std::string& text) {
@@ -299,7 +231,7 @@ SlurmRun read_slurm_directory(const std::string& directory) {
     throw Error(ErrorCode::invalid_argument, file.string() + ": no such file; is " + directory +
                                                  " a mosb run --slurm directory?");
   try {
-    const auto j = nlohmann::json::parse(read_text(file));
+    const auto j = nlohmann::json::parse(read_whole_file(file));
     if (j.value("mosb_slurm_run", 0) != 1) throw Error("not a mosb run --slurm file");
     SlurmRun r;
     r.directory = fs::absolute(directory).lexically_normal().string();
@@ -411,7 +343,7 @@ SlurmStatus slurm_status(const SlurmRun& run) {
   for (std::uint64_t i = 1; i <= run.shards; ++i) status.shards.push_back(shard_file_state(run, i));
   const fs::path jobs_file = fs::path(run.directory) / kJobsFile;
   if (fs::exists(jobs_file))
-    for (const auto& line : lines_of(read_text(jobs_file))) {
+    for (const auto& line : lines_of(read_whole_file(jobs_file))) {
       const auto id = line.substr(0, line.find(';'));  // --parsable: JOBID[;CLUSTER]
       if (all_digits(id)) status.jobs.push_back(id);
     }

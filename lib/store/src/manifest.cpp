@@ -1,16 +1,15 @@
 #include "mosb/manifest.hpp"
 
 #include <algorithm>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
-#include <sstream>
 #include <type_traits>
 #include <utility>
 
 #include "mosb/atomic_file.hpp"
 #include "mosb/error.hpp"
 #include "mosb/graph_reader.hpp"
+#include "mosb/internal/read_file.hpp"
 #include "mosb/metadata.hpp"
 #include "mosb/sha256.hpp"
 
@@ -210,12 +209,7 @@ Manifest parse_manifest(std::string_view text, const std::string& display_name) 
 }
 
 Manifest read_manifest(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(ErrorCode::io, path.string() + ": cannot read the manifest");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw Error(ErrorCode::io, path.string() + ": cannot read the manifest");
-  return parse_manifest(text.str(), path.string());
+  return parse_manifest(read_whole_file(path), path.string());
 }
 
 std::string serialize_manifest(const Manifest& manifest) {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "mosb/error.hpp"
+#include "mosb/internal/read_file.hpp"
 
 namespace mosb {
 
@@ -68,15 +69,8 @@ std::string sha256_file(const std::filesystem::path& path) {
   } closer{fd};
   Sha256 hash;
   std::vector<char> buffer(std::size_t{1} << 20);
-  for (;;) {
-    const ssize_t got = ::read(fd, buffer.data(), buffer.size());
-    if (got < 0) {
-      if (errno == EINTR) continue;
-      throw Error(ErrorCode::io, path.string() + ": cannot read: " + std::strerror(errno));
-    }
-    if (got == 0) break;
-    hash.update(buffer.data(), static_cast<std::size_t>(got));
-  }
+  read_chunks(fd, path, buffer,
+              [&](const char* data, std::size_t size) { hash.update(data, size); });
   return hash.hex();
 }
 

@@ -5,18 +5,18 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cerrno>
 #include <cstring>
 #include <ctime>
 #include <mutex>
 #include <optional>
 #include <set>
-#include <thread>
 
 #include "mosb/atomic_file.hpp"
 #include "mosb/error.hpp"
 #include "mosb/internal/hex.hpp"
+#include "mosb/internal/parallel.hpp"
+#include "mosb/internal/read_file.hpp"
 #include "mosb/internal/xxh3.hpp"
 #include "mosb/pack.hpp"
 #include "mosb/sha256.hpp"
@@ -45,15 +45,7 @@ struct InputFd {
   template <class F>
   void read_all(const fs::path& path, F consume) const {
     std::vector<char> buffer(kChunk);
-    for (;;) {
-      const ssize_t got = ::read(fd, buffer.data(), buffer.size());
-      if (got < 0) {
-        if (errno == EINTR) continue;
-        throw Error(ErrorCode::io, path.string() + ": cannot read: " + std::strerror(errno));
-      }
-      if (got == 0) return;
-      consume(buffer.data(), static_cast<std::size_t>(got));
-    }
+    read_chunks(fd, path, buffer, consume);
   }
   int fd;
 };
@@ -112,11 +104,6 @@ FileCheck check_one(const ManifestEntry& e, const fs::path& path, bool accept_ot
     c.problems.push_back({unreadable ? "unreadable" : "damaged", error.what()});
   }
   return c;
-}
-
-unsigned worker_count(unsigned asked, std::size_t jobs) {
-  unsigned threads = asked ? asked : std::max(1u, std::thread::hardware_concurrency());
-  return static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(1, jobs)));
 }
 
 void copy_into(const fs::path& source, AtomicFile& out) {
@@ -266,27 +253,18 @@ std::pair<GraphReader, fs::path> open_packed(const fs::path& directory, const Ma
 std::vector<FileCheck> check_files(const std::vector<std::pair<ManifestEntry, fs::path>>& files,
                                    const CheckOptions& options) {
   std::vector<FileCheck> checks(files.size());
-  std::atomic<std::size_t> next{0};
   std::mutex progress_mutex;
   std::size_t done = 0;
   report(options.progress, "verify", 0, files.size());
-  auto work = [&] {
-    for (std::size_t i = next++; i < files.size(); i = next++) {
-      try {
-        checks[i] = check_one(files[i].first, files[i].second, options.accept_other_form);
-      } catch (const std::exception& error) {  // bad_alloc, filesystem_error: a report, not a crash
-        checks[i] = {files[i].first.file, files[i].second, {{"unreadable", error.what()}}, {}};
-      }
-      std::lock_guard lock(progress_mutex);
-      report(options.progress, "verify", ++done, files.size());
+  parallel_for(files.size(), thread_count(options.threads), [&](std::size_t i) {
+    try {
+      checks[i] = check_one(files[i].first, files[i].second, options.accept_other_form);
+    } catch (const std::exception& error) {  // bad_alloc, filesystem_error: a report, not a crash
+      checks[i] = {files[i].first.file, files[i].second, {{"unreadable", error.what()}}, {}};
     }
-  };
-  {
-    std::vector<std::jthread> pool;
-    const unsigned threads = worker_count(options.threads, files.size());
-    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
-    work();
-  }
+    std::lock_guard lock(progress_mutex);
+    report(options.progress, "verify", ++done, files.size());
+  });
   return checks;
 }
 

@@ -34,4 +34,8 @@ std::vector<std::string> template_placeholders(std::span<const std::string> word
 std::vector<std::string> expand_command(std::span<const std::string> words,
                                         const std::map<std::string, std::string>& values);
 
+// The executable `name` (a template's first word) names: a name with '/' as it is, else the first
+// executable file of that name in $PATH (empty when none).
+std::string resolve_executable(const std::string& name);
+
 }  // namespace mosb

@@ -1,5 +1,5 @@
 // `mosb run` (spec/RUN.md): one solver process per query of a query set, each limited and measured
-// (process.hpp), its output read by an adapter (the solver protocol by default), every finished
+// (spec/RUN.md §4), its output read by an adapter (the solver protocol by default), every finished
 // query appended to a journal beside the output, and at the end one solution file written
 // atomically through SolutionWriter. Queries are indexed 0..Q-1 in the query set's order; the
 // journal holds one record per query, so a run may be resumed, or split into shards (run only the
@@ -12,10 +12,10 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "mosb/graph_reader.hpp"
-#include "mosb/process.hpp"
 #include "mosb/query.hpp"
 #include "mosb/solution_file.hpp"
 #include "mosb/solution_merge.hpp"
@@ -23,6 +23,29 @@
 #include "mosb/views.hpp"
 
 namespace mosb {
+
+// How memory is limited and measured; time is measured the same way by all.
+enum class Measurement {
+  // A memory cgroup (v1 controller) per query: memory.limit_in_bytes (and memsw when present)
+  // limits the tree, memory.max_usage_in_bytes is its peak, an OOM kill in the group (or failcnt
+  // with a failing solver) is a memory-limit.
+  cgroup_v1,
+  // RLIMIT_AS per process plus the tree's resident set (/proc/PID/stat of every process of the
+  // solver's process group) polled every 20 ms: its largest sum is the peak, a sum over the limit
+  // kills.
+  rlimit_poll,
+};
+std::string_view to_string(Measurement m);  // "cgroup-v1", "rlimit-poll"
+std::optional<Measurement> parse_measurement(std::string_view text);
+
+struct ProcessLimits {
+  double wall_seconds = 0;         // 0: none
+  std::uint64_t memory_bytes = 0;  // 0: none (still measured)
+  double grace_seconds = 1;        // between SIGTERM and SIGKILL on a timeout
+  // 0: none. User + system time of the solver's process group (its live processes and the children
+  // they reaped), polled every 20 ms.
+  double cpu_seconds = 0;
+};
 
 // "CPU MODEL, N cores, memory M kB, Linux RELEASE ARCH" from /proc and uname.
 std::string describe_machine();
@@ -71,8 +94,10 @@ struct RunConfig {
   ProcessLimits limits;
   unsigned jobs = 1;
   bool pin = false;
-  unsigned threads = 1;                    // what {threads} becomes
-  std::optional<Measurement> measurement;  // nullopt: detect_measurement()
+  unsigned threads = 1;  // what {threads} becomes
+  // nullopt: the best this process can use, cgroup_v1 when a child group can be created in its
+  // memory cgroup, else rlimit_poll.
+  std::optional<Measurement> measurement;
   bool resume = false;
   std::optional<Shard> shard;  // run only this shard's queries; the file records it (run.shard)
   std::string solver_name, solver_version;  // name empty: the executable's file name

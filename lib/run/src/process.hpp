@@ -1,7 +1,9 @@
-// One solver process tree of `mosb run`, limited and measured (spec/RUN.md §4). The solver starts
-// in a process group of its own (setpgid), which holds the whole tree unless a descendant leaves
-// it; the tree is killed by group (and, under a cgroup, by the cgroup's member list), on a
-// limit, on an interrupt and after the solver exits, so nothing it started outlives it.
+// Starting programs, the one place lib/run forks and executes: one solver process tree of `mosb
+// run`, limited and measured (spec/RUN.md §4), and the short programs a SLURM run asks (sbatch,
+// squeue, sacct), their output captured. The solver starts in a process group of its own
+// (setpgid), which holds the whole tree unless a descendant leaves it; the tree is killed by group
+// (and, under a cgroup, by the cgroup's member list), on a limit, on an interrupt and after the
+// solver exits, so nothing it started outlives it.
 #pragma once
 
 #include <atomic>
@@ -9,38 +11,17 @@
 #include <memory>
 #include <optional>
 #include <string>
-#include <string_view>
 #include <vector>
 
-namespace mosb {
+#include "mosb/run.hpp"
 
-// How memory is limited and measured; time is measured the same way by all.
-enum class Measurement {
-  // A memory cgroup (v1 controller) per query: memory.limit_in_bytes (and memsw when present)
-  // limits the tree, memory.max_usage_in_bytes is its peak, an OOM kill in the group (or failcnt
-  // with a failing solver) is a memory-limit.
-  cgroup_v1,
-  // RLIMIT_AS per process plus the tree's resident set (/proc/PID/stat of every process of the
-  // solver's process group) polled every 20 ms: its largest sum is the peak, a sum over the limit
-  // kills.
-  rlimit_poll,
-};
-std::string_view to_string(Measurement m);  // "cgroup-v1", "rlimit-poll"
-std::optional<Measurement> parse_measurement(std::string_view text);
+namespace mosb::run_internal {
+
 // The best mechanism this process can use: cgroup_v1 when a child group can be created in its
 // memory cgroup, else rlimit_poll.
 Measurement detect_measurement();
 // One sentence per figure saying how it is measured under `m` (for the run's metadata).
 std::string describe_measurement(Measurement m);
-
-struct ProcessLimits {
-  double wall_seconds = 0;         // 0: none
-  std::uint64_t memory_bytes = 0;  // 0: none (still measured)
-  double grace_seconds = 1;        // between SIGTERM and SIGKILL on a timeout
-  // 0: none. User + system time of the solver's process group (its live processes and the children
-  // they reaped), polled every 20 ms.
-  double cpu_seconds = 0;
-};
 
 struct ProcessSpec {
   std::string executable;         // resolved path (resolve_executable)
@@ -69,10 +50,6 @@ struct ProcessOutcome {
   std::string error;
 };
 
-// The executable `name` names: a name with '/' as it is, else the first executable file of that
-// name in $PATH (empty when none).
-std::string resolve_executable(const std::string& name);
-
 // Must be called once before ProcessRunner::run, from the main thread before other threads start:
 // makes this process the reaper of orphaned descendants (PR_SET_CHILD_SUBREAPER), so a solver's
 // children that outlive it are killed and reaped here, never left to init.
@@ -100,4 +77,14 @@ class ProcessRunner {
   std::uint64_t sequence_ = 0;      // numbers the memory groups of this runner
 };
 
-}  // namespace mosb
+// What a program run to its end printed, and how it ended.
+struct ProgramOutput {
+  int status = -1;  // exit status, or -1 when killed by a signal
+  std::string out, err;
+};
+
+// Runs `executable` (a resolved path) with `argv` (argv[0] as given) and no shell, its standard
+// input /dev/null, and waits for it; throws mosb::Error (io) when it cannot be started.
+ProgramOutput run_program(const std::string& executable, const std::vector<std::string>& argv);
+
+}  // namespace mosb::run_internal

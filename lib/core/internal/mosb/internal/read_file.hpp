@@ -1,0 +1,37 @@
+// Reading files whole or chunk by chunk, the one read loop of the library: every failure is a
+// mosb::Error (ErrorCode::io) "PATH: cannot read: REASON".
+#pragma once
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <span>
+#include <string>
+
+#include "mosb/error.hpp"
+
+namespace mosb {
+
+// Calls consume(data, size) for each chunk read from `fd` into `buffer`, to the end of the file;
+// `path` names the file in the error.
+template <class Consume>
+void read_chunks(int fd, const std::filesystem::path& path, std::span<char> buffer,
+                 Consume&& consume) {
+  for (;;) {
+    const ssize_t got = ::read(fd, buffer.data(), buffer.size());
+    if (got < 0) {
+      if (errno == EINTR) continue;
+      throw Error(ErrorCode::io, path.string() + ": cannot read: " + std::strerror(errno));
+    }
+    if (got == 0) return;
+    consume(buffer.data(), static_cast<std::size_t>(got));
+  }
+}
+
+// The whole text of the file at `path`, read to its end (a size from stat is a hint only: the
+// kernel's /proc and /sys files report 0 or 4096).
+std::string read_whole_file(const std::filesystem::path& path);
+
+}  // namespace mosb
