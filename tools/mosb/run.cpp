@@ -566,9 +566,12 @@ Command add_run(CLI::App& app) {
   }
   sub->add_option("--output-format", a->output_format, formats_help + " (default protocol)")
       ->check(CLI::IsMember(format_names));
+  auto measurements = kMeasurementNames.names();
+  measurements.insert(measurements.begin(), "auto");
   sub->add_option("--measurement", a->measurement,
-                  "auto (default), cgroup-v1 or rlimit-poll: how memory is limited and measured")
-      ->check(CLI::IsMember({"auto", "cgroup-v1", "rlimit-poll"}));
+                  "auto (default: the first that works), " + kMeasurementNames.choices_text() +
+                      ": how memory is limited and measured")
+      ->check(CLI::IsMember(measurements));
   sub->add_flag("--resume", a->resume,
                 "continue the run the journal OUTPUT.journal records; with --slurm DIR, resubmit "
                 "the shards whose file is missing or incomplete");

@@ -30,13 +30,11 @@
 namespace mosb {
 
 std::string_view to_string(Measurement m) {
-  return m == Measurement::cgroup_v1 ? "cgroup-v1" : "rlimit-poll";
+  return kMeasurementNames.name(m);
 }
 
 std::optional<Measurement> parse_measurement(std::string_view text) {
-  if (text == "cgroup-v1") return Measurement::cgroup_v1;
-  if (text == "rlimit-poll") return Measurement::rlimit_poll;
-  return std::nullopt;
+  return kMeasurementNames.parse(text);
 }
 
 namespace run_internal {

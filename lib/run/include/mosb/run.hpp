@@ -15,6 +15,7 @@
 #include <string_view>
 #include <vector>
 
+#include "mosb/enum_names.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/query.hpp"
 #include "mosb/solution_file.hpp"
@@ -35,7 +36,11 @@ enum class Measurement {
   // kills.
   rlimit_poll,
 };
-std::string_view to_string(Measurement m);  // "cgroup-v1", "rlimit-poll"
+inline constexpr auto kMeasurementNames = enum_names<Measurement>({
+    {Measurement::cgroup_v1, "cgroup-v1"},
+    {Measurement::rlimit_poll, "rlimit-poll"},
+});
+std::string_view to_string(Measurement m);  // kMeasurementNames
 std::optional<Measurement> parse_measurement(std::string_view text);
 
 struct ProcessLimits {
