@@ -40,7 +40,7 @@ TEST_CASE("protocol statistics on stderr") {
   CHECK(s.other[0].first == "colour");
   CHECK_FALSE(mosb::parse_protocol_statistics("nothing\n", "err").expanded.has_value());
   CHECK_THROWS_WITH_AS(mosb::parse_protocol_statistics("a\nmosb: expanded=-1\n", "err"),
-                       "err:2: expanded is not an unsigned integer", mosb::Error);
+                       "err:2: expanded is not an unsigned integer below 2^64 - 1", mosb::Error);
   CHECK_THROWS_WITH_AS(mosb::parse_protocol_statistics("mosb: hello\n", "err"),
                        "err:1: a 'mosb: ' line without key=value", mosb::Error);
   CHECK_THROWS_WITH_AS(mosb::parse_protocol_statistics("mosb: runtime_seconds=nan\n", "err"),

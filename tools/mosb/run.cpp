@@ -21,7 +21,6 @@
 #include "mosb/command_template.hpp"
 #include "mosb/converters/solver_output.hpp"
 #include "mosb/internal/utf8.hpp"
-#include "mosb/pack.hpp"
 #include "mosb/sha256.hpp"
 #include "mosb/slurm.hpp"
 #include "terminal_progress.hpp"
@@ -33,9 +32,10 @@ namespace {
 struct RunArgs {
   std::string instance, output, solver, time_limit = "0", cpu_limit = "0",
                                         output_format = "protocol";
-  std::string measurement = "auto", solver_name, solver_version;
+  std::string measurement = "auto", solver_name, solver_version, epsilon = "0";
   ViewChoice choice;
-  std::uint64_t memory_limit = 0;
+  std::uint64_t memory_limit = 0, max_output = kDefaultOutputBytes;
+  bool allow_new_executable = false;
   double grace = 1;
   unsigned jobs = 1, threads = 1;
   bool pin = false, resume = false, json = false;
@@ -189,6 +189,16 @@ const RunOption kRunOptionTable[] = {
      [](const RunArgs& a, Arguments& out) { pass(out, "--solver-name", a.solver_name); }},
     {"--solver-version", Role::run,
      [](const RunArgs& a, Arguments& out) { pass(out, "--solver-version", a.solver_version); }},
+    {"--epsilon", Role::run,
+     [](const RunArgs& a, Arguments& out) { pass(out, "--epsilon", a.epsilon); }},
+    {"--max-output", Role::run,
+     [](const RunArgs& a, Arguments& out) {
+       pass(out, "--max-output", std::to_string(a.max_output));
+     }},
+    {"--allow-new-executable", Role::run,
+     [](const RunArgs& a, Arguments& out) {
+       if (a.allow_new_executable) out.emplace_back("--allow-new-executable");
+     }},
     {"--output", Role::local},
     {"--shard", Role::local},
     {"--shards", Role::plan},
@@ -235,11 +245,19 @@ void check_run_options(const RunArgs& a) {
   if (a.solver.empty()) throw UsageError("--solver is required");
   if (a.choice.view.empty() && a.choice.objectives.empty())
     throw UsageError("give --view V or --objectives A,B,... (the objectives the solver optimizes)");
+  std::vector<std::string> words;
   try {
-    template_placeholders(split_command(a.solver), run_placeholders());
+    words = split_command(a.solver);
+    template_placeholders(words, run_placeholders());
+    if (!template_placeholders(std::span(words.data(), 1), run_placeholders()).empty())
+      throw Error("--solver: the program '" + words.front() +
+                  "' is a placeholder: the template starts with the solver's executable");
   } catch (const Error& e) {
     throw UsageError(e.what());
   }
+  if (resolve_executable(words.front()).empty())
+    throw UsageError("--solver: " + words.front() + ": no such executable" +
+                     (words.front().find('/') == std::string::npos ? " in PATH" : ""));
 }
 
 // The instance's selection: a usage error when the choice does not fit it.
@@ -265,7 +283,9 @@ RunConfig run_config(const RunArgs& a, const GraphReader& instance) {
     throw UsageError("--output-format " + a.output_format + ": no such format");
   config.adapter = format->adapter();
   config.limits = {*parse_duration(a.time_limit), a.memory_limit, a.grace,
-                   *parse_duration(a.cpu_limit)};
+                   *parse_duration(a.cpu_limit), a.max_output};
+  config.epsilon = a.epsilon;
+  config.allow_new_executable = a.allow_new_executable;
   config.jobs = a.jobs;
   config.pin = a.pin;
   config.threads = a.threads;
@@ -288,7 +308,7 @@ int run_run(const RunArgs& a) {
     shard = parse_shard(a.shard);
     if (!shard) throw UsageError("--shard " + a.shard + ": not i/N with 1 <= i <= N");
   }
-  const auto instance = mosb::load(a.instance, VerifyLevel::checksums);
+  const auto instance = open_run_instance(a.instance);
   checked_selection(instance, a.choice);
   RunConfig config = run_config(a, instance);
   config.shard = shard;
@@ -297,6 +317,9 @@ int run_run(const RunArgs& a) {
   sigemptyset(&action.sa_mask);
   ::sigaction(SIGINT, &action, nullptr);
   ::sigaction(SIGTERM, &action, nullptr);
+  // A closed pipe on stdout (mosb run ... | head -1) must not kill the run before it removes its
+  // temporaries: the write fails instead.
+  ::signal(SIGPIPE, SIG_IGN);
   TerminalProgress progress;
   RunCallbacks callbacks;
   callbacks.progress = [&](const RunProgress& p) { progress.update(p); };
@@ -320,7 +343,7 @@ int run_run(const RunArgs& a) {
 int run_slurm_new(const RunArgs& a) {
   refuse(a, {Role::local}, "not with --slurm DIR (task i writes DIR/shard-i.sol)");
   check_run_options(a);
-  const auto instance = mosb::load(a.instance, VerifyLevel::checksums);
+  const auto instance = open_run_instance(a.instance);
   const View selection = checked_selection(instance, a.choice);
   try {  // a shard count that does not fit the query set is a usage error
     slurm_shard_count(instance.queries(selection.query_set).size(), a.shards, a.queries_per_task);
@@ -579,6 +602,18 @@ Command add_run(CLI::App& app) {
       ->check(printable_text());
   sub->add_option("--solver-version", a->solver_version, "the solver's version")
       ->check(printable_text());
+  sub->add_option("--epsilon", a->epsilon,
+                  "the ε the solver claims (0, the default: exact); with 0 a front with a vector "
+                  "another dominates is a failure, and eval judges the file by it")
+      ->check(epsilon_value());
+  sub->add_option("--max-output", a->max_output,
+                  "the most a solver may write to any one output file (and a log may decompress "
+                  "to), bytes or 512M, 4G; a front of more than SIZE/8 values is refused too "
+                  "(default 1G)")
+      ->transform(CLI::AsSizeValue(false));
+  sub->add_flag("--allow-new-executable", a->allow_new_executable,
+                "with --resume: continue although the solver's executable changed (both SHA-256 "
+                "are recorded)");
   sub->add_option("--shard", a->shard,
                   "run only shard i of N (query k is in shard k mod N + 1); the other queries "
                   "stay not-run, and solutions merge joins the shards")

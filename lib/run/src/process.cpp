@@ -123,6 +123,17 @@ Measurement detect_measurement() {
   return Measurement::cgroup_v1;
 }
 
+Isolation detect_isolation() {
+  const pid_t probe = ::fork();
+  if (probe < 0) return Isolation::subreaper;
+  if (probe == 0) ::_exit(::unshare(CLONE_NEWPID) == 0 ? 0 : 1);
+  int status = 0;
+  while (::waitpid(probe, &status, 0) < 0 && errno == EINTR) {
+  }
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? Isolation::pid_namespace
+                                                       : Isolation::subreaper;
+}
+
 std::string describe_measurement(Measurement m) {
   const std::string time =
       "wall: steady clock from exec to reaping; cpu: user+system of the solver and every "
@@ -265,7 +276,9 @@ class MemoryGroup {
 
 // What the child reports through its error pipe when it cannot execute.
 struct ChildError {
-  int stage = 0;  // 1: joining the cgroup, 2: execve, 3: opening /dev/null, stdout or stderr
+  // 1: joining the cgroup, 2: execve, 3: opening /dev/null, stdout or stderr, 4: creating the PID
+  // namespace, 5: forking the launcher or the solver
+  int stage = 0;
   int error = 0;
 };
 
@@ -285,6 +298,19 @@ struct LaunchBuffer {
   std::unique_ptr<char[]> bytes{new char[kBytes]};
   std::unique_ptr<char* []> words { new char*[kWords] };
 };
+
+// `size` bytes that are already there (the writer has ended), or false.
+bool read_exactly_now(int fd, void* data, std::size_t size) {
+  auto* at = static_cast<char*>(data);
+  while (size > 0) {
+    const ssize_t got = ::recv(fd, at, size, MSG_DONTWAIT);
+    if (got < 0 && errno == EINTR) continue;
+    if (got <= 0) return false;
+    at += got;
+    size -= static_cast<std::size_t>(got);
+  }
+  return true;
+}
 
 bool read_exactly(int fd, void* data, std::size_t size) {
   auto* at = static_cast<char*>(data);
@@ -338,26 +364,77 @@ int wait_for(pid_t pid, rusage* usage = nullptr) {
   return status;
 }
 
-// After fork, in the child: only async-signal-safe calls. The child leaves mosb's process group
-// (so a Ctrl-C on the terminal reaches mosb alone, and the tree is killed by its own group), joins
-// its memory group, says it is ready, and waits for its command; the group join, which takes
-// milliseconds under cgroup v1 on a loaded machine, happens while the previous solver still runs.
-[[noreturn]] void parked_child(int command_fd, int mosb_end, int error_fd, int procs_fd, pid_t mosb,
-                               LaunchBuffer& buffer) {
-  ::close(mosb_end);  // mosb's end closes when mosb ends: an end of file here
-  // A process group, not a session: on Linux a new session is a new scheduler autogroup, which
-  // costs time per query and gives the solver another CPU share than a shell loop gives it.
+// What the launcher tells mosb when the solver has ended (on the command socket).
+struct LauncherReport {
+  std::int32_t status = 0;      // the solver's wait status
+  std::int32_t leftovers = 0;   // 1: descendants outlived the solver and were killed
+  std::int64_t max_rss_kb = 0;  // the solver's ru_maxrss (with its waited-for descendants)
+};
+
+// In a child: `count` bytes to `fd`, or false.
+bool write_exactly(int fd, const void* data, std::size_t count) {
+  const auto* at = static_cast<const char*>(data);
+  while (count > 0) {
+    const ssize_t put = ::send(fd, at, count, MSG_NOSIGNAL);
+    if (put < 0 && errno == EINTR) continue;
+    if (put <= 0) return false;
+    at += put;
+    count -= static_cast<std::size_t>(put);
+  }
+  return true;
+}
+
+// The pids listed in /proc/thread-self/children, killed; whether any was. Async-signal-safe: one
+// read into a stack buffer (a longer list is killed over several rounds).
+bool kill_listed_children() {
+  const int fd = ::open("/proc/thread-self/children", O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return false;
+  char text[4096];
+  const ssize_t size = ::read(fd, text, sizeof text);
+  ::close(fd);
+  bool any = false;
+  long pid = 0;
+  for (ssize_t i = 0; i < size; ++i) {
+    if (text[i] >= '0' && text[i] <= '9') {
+      pid = pid * 10 + (text[i] - '0');
+    } else {
+      if (pid > 0) any = ::kill(static_cast<pid_t>(pid), SIGKILL) == 0 || any;
+      pid = 0;
+    }
+  }
+  if (pid > 0) any = ::kill(static_cast<pid_t>(pid), SIGKILL) == 0 || any;
+  return any;
+}
+
+// In the launcher, once the solver has been reaped: kills and reaps every process left of the
+// query. In a PID namespace the launcher is its init, and kill(-1) reaches every process of it;
+// a subreaper kills its children, whose own children then become its children, round after
+// round. Returns whether anything was left. Async-signal-safe.
+bool kill_what_is_left(Isolation isolation) {
+  bool left = false;
+  for (int round = 0; round < 10000; ++round) {
+    int status = 0;
+    pid_t reaped = 0;
+    while ((reaped = ::waitpid(-1, &status, WNOHANG)) > 0) {
+    }
+    if (reaped < 0 && errno == ECHILD) return left;  // nothing left: the usual case, at once
+    left = true;
+    if (isolation == Isolation::pid_namespace)
+      ::kill(-1, SIGKILL);
+    else
+      kill_listed_children();
+    ::waitpid(-1, &status, 0);
+  }
+  return left;
+}
+
+// The solver's process, forked by the launcher while the previous query still runs: a process
+// group of its own (the watchdog's signals reach its tree and not the launcher), says it is ready
+// (mosb learns its pid, in mosb's PID namespace, from the message's credentials), waits for its
+// command and executes it. Async-signal-safe calls only.
+[[noreturn]] void solver_child(int command_fd, int error_fd, LaunchBuffer& buffer) {
   ::setpgid(0, 0);
-  // A kill -9 of mosb run takes the solver with it (its descendants are left to their group);
-  // a mosb that ended before the signal was asked for has left this child to another parent.
-  ::prctl(PR_SET_PDEATHSIG, SIGKILL, 0, 0, 0);
-  if (::getppid() != mosb) ::_exit(127);
-  // mosb's standard streams are not the solver's: a waiting child holds none of them open.
-  const int null = ::open("/dev/null", O_RDWR);
-  if (null < 0) report_and_exit(error_fd, 3);
-  for (int fd = 0; fd < 3; ++fd) ::dup2(null, fd);
-  if (null > 2) ::close(null);
-  if (procs_fd >= 0 && ::write(procs_fd, "0", 1) != 1) report_and_exit(error_fd, 1);
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL, 0, 0, 0);  // the launcher's end is the solver's
   const char ready = 1;
   if (::send(command_fd, &ready, 1, MSG_NOSIGNAL) != 1) ::_exit(127);
   LaunchHeader header;
@@ -393,18 +470,88 @@ int wait_for(pid_t pid, rusage* usage = nullptr) {
     const rlimit limit{header.rlimit_as, header.rlimit_as};
     ::setrlimit(RLIMIT_AS, &limit);
   }
-  const int output = ::open(buffer.words[1], O_WRONLY | O_CREAT | O_TRUNC, 0600);
-  const int errors = ::open(buffer.words[2], O_WRONLY | O_CREAT | O_TRUNC, 0600);
+  // Exclusively: a file that exists is another query's, and never this one's output.
+  const int output = ::open(buffer.words[1], O_WRONLY | O_CREAT | O_EXCL, 0600);
+  const int errors = ::open(buffer.words[2], O_WRONLY | O_CREAT | O_EXCL, 0600);
   if (output < 0 || errors < 0) report_and_exit(error_fd, 3);
   execute(executable, argv, output, errors, error_fd);
+}
+
+// The launcher of one query: forks the solver's process, reaps it (and meanwhile any orphan
+// reparented here), kills what the solver left, tells mosb how the solver ended, and exits.
+[[noreturn]] void launcher(int command_fd, int error_fd, Isolation isolation,
+                           LaunchBuffer& buffer) {
+  const pid_t solver = ::fork();
+  if (solver < 0) report_and_exit(error_fd, 5);
+  if (solver == 0) solver_child(command_fd, error_fd, buffer);
+  LauncherReport report;
+  rusage usage{};
+  while (true) {
+    int status = 0;
+    const pid_t reaped = ::wait4(-1, &status, 0, &usage);
+    if (reaped == solver) {
+      report.status = status;
+      report.max_rss_kb = usage.ru_maxrss;
+      break;
+    }
+    if (reaped < 0 && errno != EINTR) ::_exit(127);
+  }
+  report.leftovers = kill_what_is_left(isolation) ? 1 : 0;
+  write_exactly(command_fd, &report, sizeof report);
+  ::_exit(0);
+}
+
+// After fork, in the child: only async-signal-safe calls. The child leaves mosb's process group
+// (so a Ctrl-C on the terminal reaches mosb alone), joins its memory group, and starts the query's
+// launcher (in a new PID namespace, or as a subreaper), which forks the solver's process; the
+// group join, which takes milliseconds under cgroup v1 on a loaded machine, and these forks happen
+// while the previous solver still runs.
+[[noreturn]] void parked_child(int command_fd, int mosb_end, int error_fd, int procs_fd, pid_t mosb,
+                               Isolation isolation, LaunchBuffer& buffer) {
+  ::close(mosb_end);  // mosb's end closes when mosb ends: an end of file here
+  // A process group, not a session: on Linux a new session is a new scheduler autogroup, which
+  // costs time per query and gives the solver another CPU share than a shell loop gives it.
+  ::setpgid(0, 0);
+  // A kill -9 of mosb run takes the launcher with it, and the launcher's end the solver's; a
+  // mosb that ended before the signal was asked for has left this child to another parent.
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL, 0, 0, 0);
+  if (::getppid() != mosb) ::_exit(127);
+  // mosb's standard streams are not the solver's: a waiting child holds none of them open.
+  const int null = ::open("/dev/null", O_RDWR);
+  if (null < 0) report_and_exit(error_fd, 3);
+  for (int fd = 0; fd < 3; ++fd) ::dup2(null, fd);
+  if (null > 2) ::close(null);
+  if (procs_fd >= 0 && ::write(procs_fd, "0", 1) != 1) report_and_exit(error_fd, 1);
+  // The watchdog's SIGTERM is for the solver: the launcher waits for its end (the solver
+  // unblocks them before it executes).
+  sigset_t stops;
+  sigemptyset(&stops);
+  for (const int signal : {SIGTERM, SIGINT, SIGHUP}) sigaddset(&stops, signal);
+  ::sigprocmask(SIG_BLOCK, &stops, nullptr);
+  if (isolation == Isolation::subreaper) {
+    ::prctl(PR_SET_CHILD_SUBREAPER, 1, 0, 0, 0);
+    launcher(command_fd, error_fd, isolation, buffer);
+  }
+  if (::unshare(CLONE_NEWPID) != 0) report_and_exit(error_fd, 4);
+  const pid_t init = ::fork();  // the namespace's first process, its init
+  if (init < 0) report_and_exit(error_fd, 5);
+  if (init == 0) {
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL, 0, 0, 0);
+    launcher(command_fd, error_fd, isolation, buffer);
+  }
+  ::close(command_fd);
+  int status = 0;
+  while (::waitpid(init, &status, 0) < 0 && errno == EINTR) {
+  }
+  ::_exit(0);
 }
 
 double seconds_of(const timeval& t) {
   return static_cast<double>(t.tv_sec) + t.tv_usec / 1e6;
 }
 
-// Kills everything left of the solver's process group and reaps what became ours (subreaper).
-// What left the process group but not the memory group is killed when that group is removed.
+// A backstop after the launcher's own cleanup: kills everything left of the solver's process group
+// and reaps what became ours (a launcher killed from outside leaves its orphans to mosb run).
 void kill_leftovers(pid_t pgid, ProcessOutcome& out) {
   const auto until = Clock::now() + std::chrono::seconds(5);
   while (true) {
@@ -438,23 +585,29 @@ std::optional<ChildError> child_error(int fd) {
 
 // A forked child waiting in its memory group for the command of the next query (parked_child).
 struct ProcessRunner::Parked {
-  pid_t pid = -1;
-  int command_fd = -1;  // mosb's end of the socket pair: ready byte in, command out
+  pid_t pid = -1;       // the parked child (in a PID namespace: the launcher's parent)
+  pid_t solver = -1;    // the solver's process, in mosb's PID namespace (from wait_ready)
+  int command_fd = -1;  // mosb's end of the socket pair: ready byte in, command out, report in
   int error_fd = -1;    // read end of the child's error pipe
   std::unique_ptr<MemoryGroup> group;
   Measurement m = Measurement::rlimit_poll;
   std::uint64_t memory = 0;
   std::string group_prefix;
+  Isolation isolation = Isolation::subreaper;
   LaunchBuffer buffer;
+  bool launched = false;
 
   Parked(Measurement measurement, std::uint64_t memory_bytes, const std::string& prefix,
-         std::uint64_t sequence)
-      : m(measurement), memory(memory_bytes), group_prefix(prefix) {
+         Isolation how, std::uint64_t sequence)
+      : m(measurement), memory(memory_bytes), group_prefix(prefix), isolation(how) {
     if (m == Measurement::cgroup_v1)
       group = std::make_unique<MemoryGroup>(prefix + "-" + std::to_string(sequence), memory);
     int command[2], error[2];
     if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, command) != 0)
       fail("cannot create a socket pair");
+    // The solver's ready byte then carries its pid as mosb's namespace numbers it.
+    const int on = 1;
+    ::setsockopt(command[1], SOL_SOCKET, SO_PASSCRED, &on, sizeof on);
     // Non-blocking: read after the child ended, when a sibling forked meanwhile may still hold the
     // write end (until it executes).
     if (::pipe2(error, O_CLOEXEC) != 0) {
@@ -466,25 +619,27 @@ struct ProcessRunner::Parked {
     const pid_t mosb = ::getpid();
     pid = ::fork();
     if (pid == 0)
-      parked_child(command[0], command[1], error[1], group ? group->procs_fd() : -1, mosb, buffer);
+      parked_child(command[0], command[1], error[1], group ? group->procs_fd() : -1, mosb,
+                   isolation, buffer);
     in_parent_after_fork(pid, {command[0], error[1]}, {command[1], error[0]});
     command_fd = command[1];
     error_fd = error[0];
   }
   // A child never launched is killed and reaped; a launched one is reaped by run().
   ~Parked() {
-    if (command_fd >= 0) {
+    if (!launched) {
       ::kill(pid, SIGKILL);
       wait_for(pid);
-      ::close(command_fd);
     }
+    ::close(command_fd);
     ::close(error_fd);
   }
   Parked(const Parked&) = delete;
   Parked& operator=(const Parked&) = delete;
 
-  bool suits(Measurement measurement, std::uint64_t memory_bytes, const std::string& prefix) const {
-    return m == measurement && memory == memory_bytes && group_prefix == prefix;
+  bool suits(Measurement measurement, std::uint64_t memory_bytes, const std::string& prefix,
+             Isolation how) const {
+    return m == measurement && memory == memory_bytes && group_prefix == prefix && isolation == how;
   }
 
   static bool fits(const ProcessSpec& spec) {
@@ -494,19 +649,46 @@ struct ProcessRunner::Parked {
     return size <= LaunchBuffer::kBytes && spec.argv.size() + 4 <= LaunchBuffer::kWords;
   }
 
-  // Returns once the child is in its group and waits for its command, or has ended (a failed group
-  // join: its error pipe says so). A sibling may hold the child's end of the socket pair, so an
-  // ended child is noticed by polling for it, not by end of file.
-  void wait_ready() const {
+  // Returns once the solver's process waits for its command (`solver` is its pid), or the child
+  // has ended (a failed group join or fork: its error pipe says so). A sibling may hold the
+  // child's end of the socket pair, so an ended child is noticed by polling for it, not by end of
+  // file.
+  void wait_ready() {
     pollfd ready{command_fd, POLLIN, 0};
     while (true) {
-      char byte = 0;
-      if (::poll(&ready, 1, 10) > 0 && ::recv(command_fd, &byte, 1, MSG_DONTWAIT) == 1) return;
+      if (::poll(&ready, 1, 10) > 0 && receive_ready()) return;
       siginfo_t info{};
       if (::waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOHANG | WNOWAIT) == 0 &&
           info.si_pid == pid)
         return;
     }
+  }
+
+  // The ready byte and, in its credentials, the solver's pid.
+  bool receive_ready() {
+    char byte = 0;
+    iovec data{&byte, 1};
+    alignas(cmsghdr) char control[CMSG_SPACE(sizeof(ucred))];
+    msghdr message{};
+    message.msg_iov = &data;
+    message.msg_iovlen = 1;
+    message.msg_control = control;
+    message.msg_controllen = sizeof control;
+    if (::recvmsg(command_fd, &message, MSG_DONTWAIT) != 1) return false;
+    for (cmsghdr* c = CMSG_FIRSTHDR(&message); c != nullptr; c = CMSG_NXTHDR(&message, c))
+      if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SCM_CREDENTIALS) {
+        ucred credentials{};
+        std::memcpy(&credentials, CMSG_DATA(c), sizeof credentials);
+        solver = credentials.pid;
+      }
+    return true;
+  }
+
+  // After the child was reaped: the launcher's report, when it gave one.
+  std::optional<LauncherReport> report() const {
+    LauncherReport r;
+    if (!read_exactly_now(command_fd, &r, sizeof r)) return std::nullopt;
+    return r;
   }
 
   // Sends the command (fits(spec) holds); a child that has ended meanwhile is reaped as usual.
@@ -527,8 +709,7 @@ struct ProcessRunner::Parked {
       at += put;
       left -= static_cast<std::size_t>(put);
     }
-    ::close(command_fd);
-    command_fd = -1;
+    launched = true;
   }
 };
 
@@ -540,9 +721,10 @@ struct ProcessRunner::Watch {
   std::mutex mutex;
   std::condition_variable wake;
   bool quit = false, active = false;
-  pid_t pid = -1;
+  pid_t pid = -1;  // the solver's process, leader of its process group
   Measurement m = Measurement::rlimit_poll;
   ProcessLimits limits;
+  const std::vector<std::string>* files = nullptr;  // held to limits.output_bytes
   const MemoryGroup* group = nullptr;
   Clock::time_point deadline, kill_at;
   std::optional<Ending> reason;
@@ -564,13 +746,22 @@ struct ProcessRunner::Watch {
       if (!reason && limits.cpu_seconds > 0 && usage.cpu_seconds > limits.cpu_seconds)
         reason = Ending::cpu_limit;
     }
+    if (!reason && files) {
+      struct stat st {};
+      for (const auto& file : *files)
+        if (::stat(file.c_str(), &st) == 0 &&
+            static_cast<std::uint64_t>(st.st_size) > limits.output_bytes)
+          reason = Ending::output_limit;
+    }
     const auto now = Clock::now();
     if (!reason && stop.load()) reason = Ending::interrupted;
     if (!reason && limits.wall_seconds > 0 && now >= deadline) reason = Ending::timeout;
     if (!reason) return;
     if (kill_at == Clock::time_point{}) {
       ::kill(-pid, SIGTERM);
-      const double grace = *reason == Ending::memory_limit ? 0 : limits.grace_seconds;
+      const double grace = *reason == Ending::memory_limit || *reason == Ending::output_limit
+                               ? 0
+                               : limits.grace_seconds;
       kill_at =
           now + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(grace));
     }
@@ -606,6 +797,45 @@ ProcessRunner::~ProcessRunner() {
 
 namespace {
 
+void classify_exit(int status, const MemoryGroup* g, ProcessOutcome& out);
+
+// How the query ended, from what the watchdog saw (`reason`), the child's error pipe and the
+// launcher's report; `out` holds the times already.
+ProcessOutcome outcome_of(const ProcessSpec& spec, int error_fd, const MemoryGroup* g,
+                          std::optional<Ending> reason, const std::optional<LauncherReport>& report,
+                          std::uint64_t peak, ProcessOutcome& out) {
+  const auto failed_start = child_error(error_fd);
+  if (failed_start && failed_start->stage == 3) {
+    errno = failed_start->error;
+    fail(spec.stdout_path + " or " + spec.stderr_path + ": cannot create");
+  }
+  const std::uint64_t solver_peak =
+      report ? static_cast<std::uint64_t>(report->max_rss_kb) * 1024 : 0;
+  out.peak_memory_bytes = g ? g->peak() : std::max(peak, solver_peak);
+  if (report) out.left_descendants = report->leftovers != 0;
+  if (failed_start) {
+    static constexpr const char* kStages[] = {"",
+                                              "cannot join the memory cgroup: ",
+                                              "cannot run: ",
+                                              "cannot open its output files: ",
+                                              "cannot create a PID namespace: ",
+                                              "cannot fork: "};
+    const int stage =
+        failed_start->stage >= 1 && failed_start->stage <= 5 ? failed_start->stage : 2;
+    out.ending = Ending::not_started;
+    out.error = (stage == 2 ? spec.executable + ": " : std::string()) + kStages[stage] +
+                errno_text(failed_start->error);
+  } else if (reason) {
+    out.ending = *reason;
+  } else if (report) {
+    classify_exit(report->status, g, out);
+  } else {
+    out.ending = Ending::not_started;
+    out.error = "the solver's launcher ended without saying how the solver did";
+  }
+  return out;
+}
+
 void classify_exit(int status, const MemoryGroup* g, ProcessOutcome& out) {
   if (WIFSIGNALED(status)) {
     out.ending = Ending::signaled;
@@ -626,8 +856,9 @@ void classify_exit(int status, const MemoryGroup* g, ProcessOutcome& out) {
 ProcessOutcome ProcessRunner::run(const ProcessSpec& spec, const ProcessLimits& limits,
                                   Measurement m) {
   ProcessOutcome out;
-  if (!parked_ || !parked_->suits(m, limits.memory_bytes, spec.group_name))
-    parked_ = std::make_unique<Parked>(m, limits.memory_bytes, spec.group_name, sequence_++);
+  if (!parked_ || !parked_->suits(m, limits.memory_bytes, spec.group_name, spec.isolation))
+    parked_ = std::make_unique<Parked>(m, limits.memory_bytes, spec.group_name, spec.isolation,
+                                       sequence_++);
   std::unique_ptr<Parked> child = std::move(parked_);
   if (!Parked::fits(spec)) {
     out.ending = Ending::not_started;
@@ -637,15 +868,17 @@ ProcessOutcome ProcessRunner::run(const ProcessSpec& spec, const ProcessLimits& 
   }
   child->wait_ready();
   const auto started = Clock::now();
-  child->launch(spec);
+  const bool ready = child->solver > 0;  // else the child ended: its error pipe says why
+  if (ready) child->launch(spec);
   const MemoryGroup* g = child->group.get();
-  {
+  if (ready) {
     std::lock_guard lock(watch_->mutex);
     Watch& w = *watch_;
     w.active = true;
-    w.pid = child->pid;
+    w.pid = child->solver;
     w.m = m;
     w.limits = limits;
+    w.files = &spec.watched_files;
     w.group = g;
     w.deadline = started + std::chrono::duration_cast<Clock::duration>(
                                std::chrono::duration<double>(limits.wall_seconds));
@@ -656,12 +889,13 @@ ProcessOutcome ProcessRunner::run(const ProcessSpec& spec, const ProcessLimits& 
   // The next query's child joins its group while this solver runs. Should that fail, the next
   // run() tries again and reports it; this solver is reaped first.
   if (!stop_.load()) try {
-      parked_ = std::make_unique<Parked>(m, limits.memory_bytes, spec.group_name, sequence_++);
+      parked_ = std::make_unique<Parked>(m, limits.memory_bytes, spec.group_name, spec.isolation,
+                                         sequence_++);
     } catch (const Error&) {
       parked_.reset();
     }
   rusage usage{};
-  const int status = wait_for(child->pid, &usage);
+  wait_for(child->pid, &usage);
   out.wall_seconds = std::chrono::duration<double>(Clock::now() - started).count();
   out.cpu_seconds = seconds_of(usage.ru_utime) + seconds_of(usage.ru_stime);
   std::optional<Ending> reason;
@@ -669,30 +903,14 @@ ProcessOutcome ProcessRunner::run(const ProcessSpec& spec, const ProcessLimits& 
   {
     std::lock_guard lock(watch_->mutex);
     watch_->active = false;
+    watch_->files = nullptr;
     reason = watch_->reason;
     peak = watch_->peak;
   }
-  kill_leftovers(child->pid, out);
-  const auto failed_start = child_error(child->error_fd);
-  if (failed_start && failed_start->stage == 3) {
-    errno = failed_start->error;
-    fail(spec.stdout_path + " or " + spec.stderr_path + ": cannot create");
-  }
-  out.peak_memory_bytes =
-      g ? g->peak() : std::max(peak, static_cast<std::uint64_t>(usage.ru_maxrss) * 1024);
-  if (failed_start) {
-    out.ending = Ending::not_started;
-    out.error = (failed_start->stage == 1 ? "cannot join the memory cgroup: "
-                                          : spec.executable + ": cannot run: ") +
-                errno_text(failed_start->error);
-  } else if (reason) {
-    out.ending = *reason;
-  } else {
-    classify_exit(status, g, out);
-  }
-  return out;
+  const auto report = child->report();
+  if (ready) kill_leftovers(child->solver, out);
+  return outcome_of(spec, child->error_fd, g, reason, report, peak, out);
 }
-
 namespace {
 
 // Reads the two pipes of a program until both are closed, into its output.

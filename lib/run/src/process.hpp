@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "mosb/enum_names.hpp"
 #include "mosb/run.hpp"
 
 namespace mosb::run_internal {
@@ -23,12 +24,35 @@ Measurement detect_measurement();
 // One sentence per figure saying how it is measured under `m` (for the run's metadata).
 std::string describe_measurement(Measurement m);
 
+// How the processes of one query are held together, so that none outlives the query
+// (spec/RUN.md §4): chosen once per run.
+enum class Isolation {
+  // The solver runs in a PID namespace of its own under a small init: when the solver ends, the
+  // init kills everything left in the namespace, and a kill of the init (or of mosb run) ends the
+  // namespace. Nothing can leave a PID namespace. Needs CAP_SYS_ADMIN (root).
+  pid_namespace,
+  // The solver's launcher is a child subreaper: a descendant that leaves the process group or
+  // the session is still reparented to it, and killed when the solver ends.
+  subreaper,
+};
+inline constexpr auto kIsolationNames = enum_names<Isolation>({
+    {Isolation::pid_namespace, "pid-namespace"},
+    {Isolation::subreaper, "subreaper"},
+});
+// pid_namespace when this process may create one, else subreaper.
+Isolation detect_isolation();
+
 struct ProcessSpec {
   std::string executable;         // resolved path (resolve_executable)
   std::vector<std::string> argv;  // argv[0] as the template gave it
+  // Created by the solver's process, exclusively: a path is never reused for another query.
   std::string stdout_path, stderr_path;
+  // Files whose size the watchdog holds to `ProcessLimits::output_bytes` (stdout, stderr, the
+  // {front} file): a tree that writes more is killed (Ending::output_limit).
+  std::vector<std::string> watched_files;
   int cpu = -1;            // >= 0: pin the tree to this CPU (sched_setaffinity)
   std::string group_name;  // unique per concurrent process: the cgroup's name
+  Isolation isolation = Isolation::subreaper;
 };
 
 enum class Ending {
@@ -37,6 +61,7 @@ enum class Ending {
   timeout,       // killed at the wall-clock limit
   cpu_limit,     // killed at the CPU-time limit
   memory_limit,  // killed (or failed) at the memory limit
+  output_limit,  // killed when a watched file passed ProcessLimits::output_bytes
   interrupted,   // killed because `stop` was set
   not_started,   // the executable could not be run: error says why
 };
@@ -48,11 +73,15 @@ struct ProcessOutcome {
   double cpu_seconds = 0;   // user + system of the solver and its reaped descendants
   std::optional<std::uint64_t> peak_memory_bytes;
   std::string error;
+  // Descendants still alive when the solver ended, killed then (they left its process group or
+  // lived on after it): counted, so the run can say so.
+  bool left_descendants = false;
 };
 
 // Must be called once before ProcessRunner::run, from the main thread before other threads start:
-// makes this process the reaper of orphaned descendants (PR_SET_CHILD_SUBREAPER), so a solver's
-// children that outlive it are killed and reaped here, never left to init.
+// makes this process the reaper of orphaned descendants (PR_SET_CHILD_SUBREAPER), a backstop: each
+// query's launcher kills what its solver left (Isolation), and a launcher that was killed leaves
+// its orphans here, never to init.
 void prepare_process_runner();
 
 // Runs solvers one after the other (one per job of `mosb run`), each to its end under its

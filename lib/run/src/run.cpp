@@ -1,12 +1,16 @@
 #include "mosb/run.hpp"
 
+#include <fcntl.h>
 #include <sched.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
@@ -14,10 +18,13 @@
 #include <thread>
 
 #include "journal.hpp"
+#include "mosb/atomic_file.hpp"
 #include "mosb/command_template.hpp"
 #include "mosb/error.hpp"
+#include "mosb/eval.hpp"
 #include "mosb/internal/parallel.hpp"
 #include "mosb/internal/read_file.hpp"
+#include "mosb/solution_verify.hpp"
 #include "mosb/version.hpp"
 #include "process.hpp"
 
@@ -52,16 +59,47 @@ std::vector<std::string> tail_lines(const std::string& path, std::size_t count) 
   return lines;
 }
 
+// Calls consume(text) for each chunk of the solver's output file `path`, read 64 KiB at a time,
+// so mosb holds a chunk of it, never the file. A file over `limit` bytes is refused unread.
+template <class Consume>
+void read_output(const std::string& path, const std::string& name, std::uint64_t limit,
+                 Consume&& consume) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw Error(ErrorCode::io, name + ": cannot read: " + std::strerror(errno));
+  struct stat st {};
+  if (::fstat(fd, &st) == 0 && static_cast<std::uint64_t>(st.st_size) > limit) {
+    ::close(fd);
+    throw Error(name + ": " + std::to_string(st.st_size) + " bytes, over the output limit of " +
+                std::to_string(limit) + " bytes (--max-output)");
+  }
+  std::vector<char> buffer(std::size_t{64} << 10);
+  try {
+    read_chunks(fd, path, buffer,
+                [&](const char* data, std::size_t size) { consume(std::string_view(data, size)); });
+  } catch (...) {
+    ::close(fd);
+    throw;
+  }
+  ::close(fd);
+}
+
 }  // namespace
 
 ParsedOutput read_protocol_output(const SolverOutputFiles& files) {
   ParsedOutput out;
   const std::string& front_file = files.front_in_file ? files.front_path : files.stdout_path;
   const std::string name = files.front_in_file ? "{front}" : "stdout";
-  auto front = parse_protocol_front(read_whole_file(front_file), files.objectives, name);
-  out.costs = std::move(front.costs);
-  out.vectors = front.vectors;
-  out.statistics = parse_protocol_statistics(read_whole_file(files.stderr_path), "stderr");
+  ProtocolFrontParser front(files.objectives, files.integer_objectives, name,
+                            files.output_bytes / sizeof(double));
+  read_output(front_file, name, files.output_bytes,
+              [&](std::string_view chunk) { front.feed(chunk); });
+  auto parsed = front.finish();
+  out.costs = std::move(parsed.costs);
+  out.vectors = parsed.vectors;
+  ProtocolStatisticsParser statistics("stderr");
+  read_output(files.stderr_path, "stderr", files.output_bytes,
+              [&](std::string_view chunk) { statistics.feed(chunk); });
+  out.statistics = statistics.finish();
   return out;
 }
 
@@ -71,9 +109,73 @@ std::string journal_path(const std::string& output) {
 
 namespace {
 
-// The status and statistics of a finished solver (spec/RUN.md §4).
+// What classify needs to know of the run besides the query.
+struct Judging {
+  const OutputAdapter& adapter;
+  const SolutionWriter& writer;
+  const std::vector<int>& success_exit_codes;
+  bool exact = true;  // the solver claims ε = 0
+  Measurement measurement = Measurement::rlimit_poll;
+  const ProcessLimits& limits;
+};
+
+// What a failure under rlimit-poll may owe to the address-space backstop (spec/RUN.md §4).
+std::string backstop_note(const Judging& j) {
+  if (j.measurement != Measurement::rlimit_poll || j.limits.memory_bytes == 0) return {};
+  return " (under rlimit-poll each process's address space is limited to twice the memory "
+         "limit, " +
+         std::to_string(j.limits.memory_bytes * 2) +
+         " bytes: an allocation it refused may have ended the solver)";
+}
+
+// The status, statistics and reason of a solver that exited: its output read by the adapter and
+// held to rule 1 of spec/RUN.md §3 (a front without duplicates, and without dominated vectors
+// when exact); the solver's own statement that it did not finish is never solved.
+QueryRecord judge_output(QueryRecord r, const ProcessOutcome& o, const SolverOutputFiles& files,
+                         const Judging& j) {
+  const auto failed = [&](std::string message) {
+    r.status = QueryStatus::failed;
+    r.costs.clear();
+    r.statistics = {};
+    r.statistics.exit_status = static_cast<std::uint64_t>(o.exit_code);
+    r.message = std::move(message);
+    r.stderr_tail = tail_lines(files.stderr_path, 5);
+    return r;
+  };
+  ParsedOutput parsed;
+  try {
+    parsed = j.adapter(files);
+  } catch (const Error& e) {
+    return failed(std::string("unreadable output: ") + e.what());
+  }
+  if (parsed.stated_status) {
+    if (*parsed.stated_status == QueryStatus::failed)
+      return failed("the solver states that it failed: " + parsed.stated);
+    r.status = *parsed.stated_status;  // timeout or memory-limit: no front, no statistics
+    r.message = "the solver states: " + parsed.stated;
+    return r;
+  }
+  for (std::size_t i = 0; i < parsed.costs.size(); ++i)
+    if (auto problem = j.writer.cost_problem(i % files.objectives, parsed.costs[i]))
+      return failed("unreadable output: vector " + std::to_string(i / files.objectives + 1) + ": " +
+                    *problem);
+  if (auto problem = front_problem(parsed.costs, files.objectives, j.exact))
+    return failed("not a front (spec/RUN.md section 3, rule 1): " + *problem);
+  r.status = parsed.vectors == 0 ? QueryStatus::disconnected : QueryStatus::solved;
+  r.costs = std::move(parsed.costs);
+  r.statistics.runtime_seconds = o.wall_seconds;
+  r.statistics.peak_memory_bytes = o.peak_memory_bytes;
+  r.statistics.expanded = parsed.statistics.expanded;
+  r.statistics.generated = parsed.statistics.generated;
+  r.statistics.reported_runtime_seconds = parsed.statistics.runtime_seconds;
+  if (auto problem = j.writer.query_problem(r.query, r.status, r.costs, r.statistics))
+    return failed("unusable output: " + *problem);
+  return r;
+}
+
+// The status and statistics of a finished solver (spec/RUN.md §4–§5).
 QueryRecord classify(std::uint64_t q, const ProcessOutcome& o, const SolverOutputFiles& files,
-                     const OutputAdapter& adapter, const SolutionWriter& writer) {
+                     const Judging& j) {
   QueryRecord r;
   r.query = q;
   r.wall_seconds = o.wall_seconds;
@@ -97,37 +199,25 @@ QueryRecord classify(std::uint64_t q, const ProcessOutcome& o, const SolverOutpu
     case Ending::memory_limit:
       r.status = QueryStatus::memory_limit;
       return r;
+    case Ending::output_limit:
+      return failed(128 + SIGKILL, "killed: an output file passed the output limit of " +
+                                       std::to_string(j.limits.output_bytes) +
+                                       " bytes (--max-output)");
     case Ending::not_started:
       return failed(127, o.error);
     case Ending::signaled:
       return failed(128 + static_cast<std::uint64_t>(o.signal),
-                    "killed by signal " + std::to_string(o.signal));
+                    "killed by signal " + std::to_string(o.signal) + backstop_note(j));
     case Ending::interrupted:
       return r;
     case Ending::exited:
       break;
   }
-  if (o.exit_code != 0)
+  if (std::find(j.success_exit_codes.begin(), j.success_exit_codes.end(), o.exit_code) ==
+      j.success_exit_codes.end())
     return failed(static_cast<std::uint64_t>(o.exit_code),
-                  "exit status " + std::to_string(o.exit_code));
-  ParsedOutput parsed;
-  try {
-    parsed = adapter(files);
-  } catch (const Error& e) {
-    return failed(0, std::string("unreadable output: ") + e.what());
-  }
-  for (std::size_t i = 0; i < parsed.costs.size(); ++i)
-    if (auto problem = writer.cost_problem(i % files.objectives, parsed.costs[i]))
-      return failed(0, "unreadable output: vector " + std::to_string(i / files.objectives + 1) +
-                           ": " + *problem);
-  r.status = parsed.vectors == 0 ? QueryStatus::disconnected : QueryStatus::solved;
-  r.costs = std::move(parsed.costs);
-  r.statistics.runtime_seconds = o.wall_seconds;
-  r.statistics.peak_memory_bytes = o.peak_memory_bytes;
-  r.statistics.expanded = parsed.statistics.expanded;
-  r.statistics.generated = parsed.statistics.generated;
-  r.statistics.reported_runtime_seconds = parsed.statistics.runtime_seconds;
-  return r;
+                  "exit status " + std::to_string(o.exit_code) + backstop_note(j));
+  return judge_output(std::move(r), o, files, j);
 }
 
 std::string format_seconds(double s) {
@@ -140,11 +230,14 @@ std::string format_seconds(double s) {
 struct Plan {
   std::string view, query_set;
   std::vector<std::string> objective_names;
+  std::vector<bool> integer_objectives;
   std::vector<Query> queries;
   std::vector<std::string> words;
   bool front_in_file = false, fronts_used = false;
-  std::string executable;
+  std::string executable, executable_sha256;
+  bool exact = true;  // the solver claims ε = 0
   Measurement measurement = Measurement::rlimit_poll;
+  run_internal::Isolation isolation = run_internal::Isolation::subreaper;
   std::vector<int> cpus;  // --pin: the CPUs this process may use
 };
 
@@ -155,6 +248,9 @@ Plan make_plan(const RunConfig& c, const View& selection, const SolutionWriter& 
   const auto stored = c.instance->queries(p.query_set);
   p.queries.assign(stored.begin(), stored.end());
   p.objective_names = writer.objective_names();
+  for (const auto i : selection.objectives)
+    p.integer_objectives.push_back(!format::is_float(c.instance->objective(i).type));
+  p.exact = parse_epsilon(c.epsilon).num == 0;
   p.words = split_command(c.solver_template);
   const auto used = template_placeholders(p.words, run_placeholders());
   p.front_in_file = std::find(used.begin(), used.end(), "front") != used.end();
@@ -166,7 +262,9 @@ Plan make_plan(const RunConfig& c, const View& selection, const SolutionWriter& 
   if (::access(p.executable.c_str(), X_OK) != 0)
     throw Error(ErrorCode::invalid_argument,
                 "--solver: " + p.executable + ": not an executable file");
+  if (c.sha256_file) p.executable_sha256 = c.sha256_file(p.executable);
   p.measurement = c.measurement ? *c.measurement : run_internal::detect_measurement();
+  p.isolation = run_internal::detect_isolation();
   cpu_set_t set;
   if (::sched_getaffinity(0, sizeof set, &set) == 0)
     for (int cpu = 0; cpu < CPU_SETSIZE; ++cpu)
@@ -185,6 +283,9 @@ nlohmann::json binding_of(const RunConfig& c, const Plan& p) {
                             {"time_limit_seconds", c.limits.wall_seconds},
                             {"cpu_limit_seconds", c.limits.cpu_seconds},
                             {"memory_limit_bytes", c.limits.memory_bytes},
+                            {"output_limit_bytes", c.limits.output_bytes},
+                            {"success_exit_codes", c.success_exit_codes},
+                            {"epsilon", c.epsilon},
                             {"threads", c.threads}};
   if (c.shard) binding["shard"] = c.shard->text();
   return binding;
@@ -194,14 +295,36 @@ nlohmann::json binding_of(const RunConfig& c, const Plan& p) {
 
 namespace {
 
-// A per-run temporary directory, removed with everything in it.
+std::string temporary_base() {
+  const char* base = std::getenv("TMPDIR");
+  return base && *base ? base : "/tmp";
+}
+
+// Removes the `mosb-run-PID-XXXXXX` directories that a run killed by a signal it could not catch
+// (kill -9) left, once process PID is gone; only this user's (the sticky /tmp allows no more).
+void sweep_temporaries() {
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(temporary_base(), ec)) {
+    const std::string name = entry.path().filename().string();
+    if (!name.starts_with("mosb-run-")) continue;
+    const long pid = std::atol(name.c_str() + 9);
+    struct stat st {};
+    if (pid <= 0 || ::lstat(entry.path().c_str(), &st) != 0 || !S_ISDIR(st.st_mode) ||
+        st.st_uid != ::getuid() || ::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH)
+      continue;
+    fs::remove_all(entry.path(), ec);
+  }
+}
+
+// A per-run temporary directory, `mosb-run-PID-XXXXXX`, removed with everything in it; one a
+// killed run left is swept by the next (sweep_temporaries).
 class TempDir {
  public:
   TempDir() {
-    const char* base = std::getenv("TMPDIR");
-    std::string pattern = std::string(base && *base ? base : "/tmp") + "/mosb-run-XXXXXX";
+    std::string pattern = temporary_base() + "/mosb-run-" + std::to_string(::getpid()) + "-XXXXXX";
     if (!::mkdtemp(pattern.data()))
-      throw Error(ErrorCode::io, pattern + ": cannot create a temporary directory");
+      throw Error(ErrorCode::io,
+                  pattern + ": cannot create a temporary directory: " + std::strerror(errno));
     path_ = pattern;
   }
   ~TempDir() {
@@ -222,6 +345,8 @@ class Runner {
          Journal& j, const std::atomic<bool>& stop)
       : c_(c), cb_(cb), p_(p), writer_(w), journal_(j), stop_(stop) {
     adapter_ = c.adapter ? c.adapter : OutputAdapter(read_protocol_output);
+    judging_ = std::make_unique<Judging>(
+        Judging{adapter_, writer_, c.success_exit_codes, p.exact, p.measurement, c.limits});
     for (std::uint64_t q = 0; q < p.queries.size(); ++q) {
       if (c.shard && !c.shard->contains(q)) continue;
       ++progress_.total;
@@ -283,7 +408,9 @@ class Runner {
             {"threads", std::to_string(c_.threads)}};
   }
 
-  void run_query(ProcessRunner& runner, std::uint64_t q, unsigned job, const std::string& dir) {
+  // The query's own files, in a directory made for it and removed after: nothing a process of
+  // another query does (one that outlived its query, had isolation failed) reaches them.
+  SolverOutputFiles files_of(std::uint64_t q, const std::string& dir) const {
     SolverOutputFiles files;
     files.stdout_path = dir + "/stdout";
     files.stderr_path = dir + "/stderr";
@@ -292,22 +419,34 @@ class Runner {
     files.front_in_file = p_.front_in_file;
     files.query = p_.queries[q];
     files.objectives = p_.objective_names.size();
-    if (p_.front_in_file) fs::remove(files.front_path);
-    if (p_.fronts_used) {
-      fs::remove_all(files.fronts_dir);
-      fs::create_directories(files.fronts_dir);
-    }
+    files.integer_objectives = p_.integer_objectives;
+    files.output_bytes = c_.limits.output_bytes;
+    return files;
+  }
+
+  void run_query(ProcessRunner& runner, std::uint64_t q, unsigned job, const std::string& slot) {
+    const std::string dir = slot + "/q" + std::to_string(q);
+    if (::mkdir(dir.c_str(), 0700) != 0)
+      throw Error(ErrorCode::io, dir + ": cannot create: " + std::strerror(errno));
+    const SolverOutputFiles files = files_of(q, dir);
+    if (p_.fronts_used) fs::create_directories(files.fronts_dir);
     ProcessSpec spec;
     spec.executable = p_.executable;
     spec.argv = expand_command(p_.words, values(q, files));
     spec.stdout_path = files.stdout_path;
     spec.stderr_path = files.stderr_path;
+    spec.watched_files = {files.stdout_path, files.stderr_path, files.front_path};
     if (c_.pin && !p_.cpus.empty()) spec.cpu = p_.cpus[job % p_.cpus.size()];
     spec.group_name = "mosb-run-" + std::to_string(::getpid()) + "-" + std::to_string(job);
+    spec.isolation = p_.isolation;
     const ProcessOutcome outcome = runner.run(spec, c_.limits, p_.measurement);
-    if (outcome.ending == Ending::interrupted) return;  // no record: --resume runs it again
-    if (stopped_with_mosb(outcome)) return;
-    const QueryRecord record = classify(q, outcome, files, adapter_, writer_);
+    std::error_code ignored;
+    if (outcome.ending == Ending::interrupted || stopped_with_mosb(outcome)) {
+      fs::remove_all(dir, ignored);
+      return;  // no record: --resume runs it again
+    }
+    const QueryRecord record = classify(q, outcome, files, *judging_);
+    fs::remove_all(dir, ignored);
     journal_.append(record);
     std::lock_guard lock(mutex_);
     ++ran_;
@@ -348,6 +487,7 @@ class Runner {
   Journal& journal_;
   const std::atomic<bool>& stop_;
   OutputAdapter adapter_;
+  std::unique_ptr<Judging> judging_;
   TempDir temp_;
   std::vector<std::uint64_t> todo_;
   std::mutex mutex_;
@@ -357,15 +497,21 @@ class Runner {
   double wall_ = 0, cpu_ = 0;
 };
 
-SolverInfo solver_info(const RunConfig& c, const Plan& p, unsigned jobs) {
+SolverInfo solver_info(const RunConfig& c, const Plan& p, unsigned jobs,
+                       const std::vector<std::string>& executables) {
   SolverInfo info;
+  info.epsilon = c.epsilon;
   info.name = c.solver_name.empty() ? fs::path(p.words.front()).filename().string() : c.solver_name;
   info.version = c.solver_version;
   info.machine = describe_machine();
   auto& m = info.parameters;
   m["run.template"] = c.solver_template;
   m["run.executable"] = p.executable;
-  if (c.sha256_file) m["run.executable_sha256"] = c.sha256_file(p.executable);
+  if (!executables.empty()) {
+    std::string digests;  // more than one: a run continued with --allow-new-executable
+    for (const auto& digest : executables) digests += (digests.empty() ? "" : " | ") + digest;
+    m["run.executable_sha256"] = digests;
+  }
   m["run.output_format"] = c.output_format;
   m["run.time_limit_seconds"] = format_seconds(c.limits.wall_seconds);
   m["run.cpu_limit_seconds"] = format_seconds(c.limits.cpu_seconds);
@@ -376,6 +522,14 @@ SolverInfo solver_info(const RunConfig& c, const Plan& p, unsigned jobs) {
   m["run.threads"] = std::to_string(c.threads);
   m["run.measurement"] = std::string(to_string(p.measurement));
   m["run.measurement.detail"] = run_internal::describe_measurement(p.measurement);
+  m["run.isolation"] = std::string(run_internal::kIsolationNames.name(p.isolation));
+  m["run.output_limit_bytes"] = std::to_string(c.limits.output_bytes);
+  if (c.success_exit_codes != std::vector<int>{0}) {
+    std::string codes;
+    for (const int code : c.success_exit_codes)
+      codes += (codes.empty() ? "" : ",") + std::to_string(code);
+    m["run.success_exit_codes"] = codes;
+  }
   m["run.runtime_seconds"] =
       "wall-clock seconds measured by mosb; the solver's own report is reported_runtime_seconds";
   m["run.mosb_version"] = std::string(kVersion);
@@ -391,21 +545,59 @@ void reap_all() {
 
 }  // namespace
 
+GraphReader open_run_instance(const std::string& path) {
+  try {
+    return GraphReader::open(path, VerifyLevel::checksums);
+  } catch (const Error& e) {
+    if (e.code() != ErrorCode::packed) throw;
+    throw Error(ErrorCode::invalid_argument,
+                path +
+                    ": a packed instance (mosb pack, mosb suite build): a solver maps the file and "
+                    "cannot read it; unpack it first (mosb unpack " +
+                    path +
+                    " -o FILE), or run on a store's unpacked copy (mosb store instance "
+                    "STORE NAME)");
+  }
+}
+
+namespace {
+
+// A journal record a run may take: a query of this run (in its shard), whose status, front and
+// statistics a solution file can hold, and whose front is one (spec/RUN.md §3, rule 1).
+std::optional<std::string> record_problem(const QueryRecord& r, const RunConfig& c,
+                                          const Plan& plan, const SolutionWriter& writer) {
+  if (r.query >= plan.queries.size())
+    return "not a query of set '" + plan.query_set + "' (" + std::to_string(plan.queries.size()) +
+           " queries)";
+  if (c.shard && !c.shard->contains(r.query)) return "not a query of shard " + c.shard->text();
+  if (auto problem = writer.query_problem(r.query, r.status, r.costs, r.statistics)) return problem;
+  return front_problem(r.costs, plan.objective_names.size(), plan.exact);
+}
+
+}  // namespace
+
 RunResult run_solver(const RunConfig& c, const RunCallbacks& callbacks,
                      const std::atomic<bool>& stop) {
   if (!c.instance) throw Error(ErrorCode::invalid_argument, "run_solver: no instance");
+  open_run_instance(c.instance_path);  // a packed file is refused before any solver starts
+  check_output_is_not_input(c.output, {c.instance_path});
   const unsigned jobs = std::max(1u, c.jobs);
   const auto selection = solution_selection(*c.instance, c.choice);
   SolutionWriter writer(*c.instance, selection);
   const Plan plan = make_plan(c, selection, writer);
+  check_output_is_not_input(c.output, {plan.executable});
   run_internal::prepare_process_runner();
+  sweep_temporaries();
   RunResult result;
   result.measurement = plan.measurement;
   result.query_set_size = plan.queries.size();
   if (c.shard && c.shard->count == 0) throw Error(ErrorCode::invalid_argument, "--shard: 0 shards");
   result.total = c.shard ? c.shard->size(result.query_set_size) : result.query_set_size;
   result.journal = journal_path(c.output);
-  Journal journal(result.journal, binding_of(c, plan), c.resume);
+  const run_internal::JournalBinding binding{binding_of(c, plan), plan.executable_sha256,
+                                             c.allow_new_executable};
+  Journal journal(result.journal, binding, c.resume,
+                  [&](const QueryRecord& r) { return record_problem(r, c, plan, writer); });
   Runner runner(c, callbacks, plan, writer, journal, stop);
   result.from_journal = result.total - runner.pending();
   runner.run(jobs, result);
@@ -418,7 +610,7 @@ RunResult run_solver(const RunConfig& c, const RunCallbacks& callbacks,
   }
   for (const auto& [q, record] : journal.records())
     writer.set_query(q, record.status, record.costs, record.statistics);
-  writer.set_solver(solver_info(c, plan, jobs));
+  writer.set_solver(solver_info(c, plan, jobs, journal.executables()));
   writer.write(c.output);
   journal.remove();
   return result;

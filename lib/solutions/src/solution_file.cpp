@@ -661,46 +661,50 @@ std::optional<std::string> SolutionWriter::cost_problem(std::size_t objective, d
   return std::nullopt;
 }
 
-void SolutionWriter::set_query(std::uint64_t q, QueryStatus status, std::span<const double> costs,
-                               const QueryStatistics& statistics,
-                               std::span<const std::vector<std::uint32_t>> paths) {
-  auto& st = *state_;
-  const std::string label = "query " + std::to_string(q);
-  auto refuse = [&](const std::string& what) {
-    throw Error(ErrorCode::invalid_argument, label + ": " + what);
-  };
+std::optional<std::string> SolutionWriter::query_problem(
+    std::uint64_t q, QueryStatus status, std::span<const double> costs,
+    const QueryStatistics& statistics, std::span<const std::vector<std::uint32_t>> paths) const {
+  const auto& st = *state_;
   if (q >= st.query_count)
-    refuse("is not in query set '" + st.query_set + "' (" + std::to_string(st.query_count) +
-           " queries)");
+    return "is not in query set '" + st.query_set + "' (" + std::to_string(st.query_count) +
+           " queries)";
   const std::size_t d = st.objective_names.size();
   if (costs.size() % d != 0)
-    refuse(std::to_string(costs.size()) + " values are not a whole number of " + std::to_string(d) +
-           "-objective vectors");
+    return std::to_string(costs.size()) + " values are not a whole number of " + std::to_string(d) +
+           "-objective vectors";
   const std::size_t vectors = costs.size() / d;
-  if (status == QueryStatus::solved && vectors == 0) refuse("solved with an empty front");
+  if (status == QueryStatus::solved && vectors == 0) return "solved with an empty front";
   if (!has_front(status) && vectors != 0)
-    refuse(std::string(to_string(status)) + " with a front (only solved queries carry one)");
+    return std::string(to_string(status)) + " with a front (only solved queries carry one)";
   if (const auto statistic = forbidden_statistic(status, statistics))
-    refuse(std::string(to_string(status)) + (*statistic == Statistic::exit_status
+    return std::string(to_string(status)) + (*statistic == Statistic::exit_status
                                                  ? " carries no exit_status"
-                                                 : " carries no statistics"));
+                                                 : " carries no statistics");
   if (const auto bad = bad_seconds(statistics))
-    refuse(std::string(to_string(*bad)) + " is not finite and >= 0");
+    return std::string(to_string(*bad)) + " is not finite and >= 0";
   for (auto count : {statistics.expanded, statistics.generated, statistics.peak_memory_bytes,
                      statistics.exit_status})
-    if (count == kAbsentCount) refuse("a statistic equals the reserved value 2^64-1");
+    if (count == kAbsentCount) return "a statistic equals the reserved value 2^64-1";
   if (!paths.empty() && paths.size() != vectors)
-    refuse(std::to_string(paths.size()) + " paths for " + std::to_string(vectors) + " vectors");
+    return std::to_string(paths.size()) + " paths for " + std::to_string(vectors) + " vectors";
   for (const auto& path : paths)
     for (auto v : path)
       if (v >= st.vertex_count)
-        refuse("path vertex " + std::to_string(v) + " is not below the vertex count " +
-               std::to_string(st.vertex_count));
+        return "path vertex " + std::to_string(v) + " is not below the vertex count " +
+               std::to_string(st.vertex_count);
   for (std::size_t k = 0; k < costs.size(); ++k)
     if (auto problem = cost_problem(k % d, costs[k]))
-      refuse("vector " + std::to_string(k / d) + ", objective '" + st.objective_names[k % d] +
-             "': " + *problem);
-  auto& r = st.results[q];
+      return "vector " + std::to_string(k / d) + ", objective '" + st.objective_names[k % d] +
+             "': " + *problem;
+  return std::nullopt;
+}
+
+void SolutionWriter::set_query(std::uint64_t q, QueryStatus status, std::span<const double> costs,
+                               const QueryStatistics& statistics,
+                               std::span<const std::vector<std::uint32_t>> paths) {
+  if (auto problem = query_problem(q, status, costs, statistics, paths))
+    throw Error(ErrorCode::invalid_argument, "query " + std::to_string(q) + ": " + *problem);
+  auto& r = state_->results[q];
   r.status = status;
   r.costs.assign(costs.begin(), costs.end());
   r.statistics = statistics;

@@ -53,6 +53,21 @@ std::optional<std::string> dominance_problem(const std::vector<std::vector<doubl
                  : "[dominated] vector " + vector_text(v) + " is dominated by " + vector_text(w));
 }
 
+// The first pair of equal rows in lexicographic order, or nullopt.
+std::optional<std::size_t> first_repeated_row(std::span<const double> rows, std::size_t d) {
+  std::vector<std::size_t> order(rows.size() / d);
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  const auto row = [&](std::size_t k) { return rows.subspan(k * d, d); };
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    const auto x = row(a), y = row(b);
+    return std::lexicographical_compare(x.begin(), x.end(), y.begin(), y.end());
+  });
+  for (std::size_t k = 1; k < order.size(); ++k)
+    if (std::equal(row(order[k]).begin(), row(order[k]).end(), row(order[k - 1]).begin()))
+      return order[k];
+  return std::nullopt;
+}
+
 // A path's cost so far: integer objectives summed exactly in u64 (a file's integer sums are at most
 // 2^53, so a sum that overflows u64 cannot match), float objectives in f64 (SOLUTIONS.md §5).
 struct PartialSum {
@@ -265,6 +280,22 @@ std::optional<std::string> verify_solutions(const SolutionReader& s, const Graph
         return problem;
     }
   }
+  return std::nullopt;
+}
+
+std::optional<std::string> front_problem(std::span<const double> rows, std::size_t d, bool exact) {
+  if (d == 0 || rows.size() < 2 * d) return std::nullopt;
+  const auto vector_at = [&](std::size_t k) {
+    return std::vector<double>(rows.begin() + static_cast<std::ptrdiff_t>(k * d),
+                               rows.begin() + static_cast<std::ptrdiff_t>((k + 1) * d));
+  };
+  if (exact) {
+    std::vector<std::vector<double>> front(rows.size() / d);
+    for (std::size_t k = 0; k < front.size(); ++k) front[k] = vector_at(k);
+    return dominance_problem(front, d, "");
+  }
+  if (const auto k = first_repeated_row(rows, d))
+    return "[duplicate] vector " + vector_text(vector_at(*k)) + " appears twice";
   return std::nullopt;
 }
 

@@ -43,6 +43,8 @@ inline constexpr auto kMeasurementNames = enum_names<Measurement>({
 std::string_view to_string(Measurement m);  // kMeasurementNames
 std::optional<Measurement> parse_measurement(std::string_view text);
 
+inline constexpr std::uint64_t kDefaultOutputBytes = std::uint64_t{1} << 30;  // 1 GiB
+
 struct ProcessLimits {
   double wall_seconds = 0;         // 0: none
   std::uint64_t memory_bytes = 0;  // 0: none (still measured)
@@ -50,6 +52,10 @@ struct ProcessLimits {
   // 0: none. User + system time of the solver's process group (its live processes and the children
   // they reaped), polled every 20 ms.
   double cpu_seconds = 0;
+  // The most bytes a solver may write to any one output file (stdout, stderr, {front}), and the
+  // most a compressed log may decompress to; a front of more than output_bytes / 8 values is
+  // refused too. What mosb holds of a query's output stays within it (spec/RUN.md §4).
+  std::uint64_t output_bytes = kDefaultOutputBytes;
 };
 
 // "CPU MODEL, N cores, memory M kB, Linux RELEASE ARCH" from /proc and uname.
@@ -63,12 +69,23 @@ struct SolverOutputFiles {
   bool front_in_file = false;
   Query query;
   std::size_t objectives = 0;
+  // Which objectives take integers (an integer value must be written as one, at most 2^53, and is
+  // read exactly); empty: none.
+  std::vector<bool> integer_objectives;
+  // What an adapter may hold: at most this many bytes of any one file (a decompressed log
+  // included) and a front of at most output_bytes / 8 values.
+  std::uint64_t output_bytes = kDefaultOutputBytes;
 };
 
 struct ParsedOutput {
   std::vector<double> costs;  // vector after vector
   std::uint64_t vectors = 0;
   ReportedStatistics statistics;
+  // The solver's own statement that it did not finish (its log says it timed out, ran out of
+  // memory or failed): recorded as that status with no front, whatever it printed. nullopt: it
+  // finished (a front, or none: disconnected).
+  std::optional<QueryStatus> stated_status;
+  std::string stated;  // the statement, for the journal's message
 };
 
 // Reads a solver's output; throws mosb::Error (naming the file) when it is unreadable, which makes
@@ -85,7 +102,7 @@ struct QueryRecord {
   QueryStatistics statistics;  // as the solution file takes them for `status`
   double wall_seconds = 0, cpu_seconds = 0;
   std::optional<std::uint64_t> peak_memory_bytes;
-  std::string message;                   // why a failed query failed
+  std::string message;                   // why a query failed or did not finish
   std::vector<std::string> stderr_tail;  // the solver's last lines of stderr (failed queries)
 };
 
@@ -97,6 +114,11 @@ struct RunConfig {
   std::string output_format = "protocol";  // recorded; `adapter` reads it
   OutputAdapter adapter;                   // empty: read_protocol_output
   ProcessLimits limits;
+  // The exit statuses that mean the solver finished (EMOA* exits 1 when it has); others fail.
+  std::vector<int> success_exit_codes{0};
+  // The ε the solver claims (solution.epsilon, spec/EVALUATION.md §2 form): "0", exact, makes a
+  // front with a vector another dominates a failure, and eval judges the file by it.
+  std::string epsilon = "0";
   unsigned jobs = 1;
   bool pin = false;
   unsigned threads = 1;  // what {threads} becomes
@@ -104,6 +126,9 @@ struct RunConfig {
   // memory cgroup, else rlimit_poll.
   std::optional<Measurement> measurement;
   bool resume = false;
+  // With resume: run on although the solver's executable is not the one the journal records
+  // (both digests are then recorded); without it such a journal is refused.
+  bool allow_new_executable = false;
   std::optional<Shard> shard;  // run only this shard's queries; the file records it (run.shard)
   std::string solver_name, solver_version;  // name empty: the executable's file name
   std::string output;                       // the solution file; the journal is OUTPUT.journal
@@ -136,6 +161,11 @@ struct RunResult {
 
 // The journal of `output`.
 std::string journal_path(const std::string& output);
+
+// The instance a run maps (header and table checked, every checksum verified): a packed file is
+// refused with one line saying how to get one a solver can map (mosb unpack, mosb store
+// instance), since every solver would fail on it.
+GraphReader open_run_instance(const std::string& path);
 
 // Runs the queries `config` selects (those the journal lacks, with resume). Throws mosb::Error
 // (invalid_argument for a bad template or a journal of another run, io for the file system) before

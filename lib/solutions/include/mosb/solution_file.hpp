@@ -290,6 +290,13 @@ class SolutionWriter {
   void set_query(std::uint64_t q, QueryStatus status, std::span<const double> costs,
                  const QueryStatistics& statistics = {},
                  std::span<const std::vector<std::uint32_t>> paths = {});
+  // What set_query would refuse, without the query's name, or nullopt: `mosb run` records such a
+  // query failed (a solver's bad statistic fails its query, not the run) and refuses a journal
+  // record with one.
+  std::optional<std::string> query_problem(
+      std::uint64_t q, QueryStatus status, std::span<const double> costs,
+      const QueryStatistics& statistics = {},
+      std::span<const std::vector<std::uint32_t>> paths = {}) const;
 
   // Writes the file atomically (mosb::FileWriter). Paths are written when every non-empty front
   // came with them; a file mixing fronts with and without paths is refused.

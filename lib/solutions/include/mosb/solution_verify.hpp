@@ -3,7 +3,9 @@
 // duplicate-free, then every stored path.
 #pragma once
 
+#include <cstddef>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -34,6 +36,13 @@ std::optional<QueryReferenceDeclaration> declared_reference(const GraphReader& i
 // "[reference] ..." message showing both values and naming the objective and the source.
 std::optional<std::string> reference_problem(double c_star, double l_star,
                                              const QueryReferenceDeclaration& reference);
+
+// The first problem of a front as a solver returned it (spec/RUN.md §3, rule 1), `rows` row-major
+// with d >= 1 values each: two equal vectors ("[duplicate] vector (1, 9) appears twice"), or, when
+// `exact` (the solver claims ε = 0), a vector another weakly dominates ("[dominated] vector
+// (3, 9) is dominated by (3, 8)"); nullopt when there is none. An ε-approximate front may hold
+// vectors its own others dominate. O(k log k) for d <= 3.
+std::optional<std::string> front_problem(std::span<const double> rows, std::size_t d, bool exact);
 
 // The first problem, as one line naming the query (and both vectors, or the path step), or
 // nullopt. `instance` must be opened with VerifyLevel::full (paths walk its CSR). Cost: the
