@@ -17,14 +17,26 @@ SolutionImportOptions one_query_options(const SolverOutputFiles& files) {
   return options;
 }
 
+// The solver's own statement that it did not finish: never a front.
+ParsedOutput stated(QueryStatus status, std::string statement) {
+  ParsedOutput out;
+  out.stated_status = status;
+  out.stated = std::move(statement);
+  return out;
+}
+
 }  // namespace
 
 ParsedOutput read_example_log_output(const SolverOutputFiles& files) {
   SolutionImportOptions options = one_query_options(files);
   options.status_for_empty = QueryStatus::failed;
   auto results = import_front_directory(files.fronts_dir, options);
-  const auto log = read_text_input(files.stdout_path);
+  const auto log = read_text_input(files.stdout_path, files.output_bytes);
   apply_example_run_log(log.text, files.stdout_path, options, results);
+  if (results.size() == 1 && results.front().status_stated &&
+      !is_completed(results.front().status))
+    return stated(results.front().status, files.fronts_dir + "/0.txt says status " +
+                                              std::string(to_string(results.front().status)));
   if (results.size() != 1 || results.front().status == QueryStatus::failed)
     throw Error(files.fronts_dir + ": no front file 0.txt");
   ParsedOutput out;
@@ -39,14 +51,15 @@ ParsedOutput read_json_log_output(const SolverOutputFiles& files) {
   SolutionImportOptions options = one_query_options(files);
   options.match = RecordMatch::endpoints;
   const std::string& path = files.front_in_file ? files.front_path : files.stdout_path;
-  const auto log = read_text_input(path);
+  const auto log = read_text_input(path, files.output_bytes);
   auto results = parse_solver_json_log(log.text, path, options);
   if (results.size() != 1)
     throw Error(path + ": expected one record for the query, found " +
                 std::to_string(results.size()));
   const auto& result = results.front();
   if (!is_completed(result.status))
-    throw Error(path + ": the record states status " + std::string(to_string(result.status)));
+    return stated(result.status, path + ": the record states status " +
+                                     std::string(to_string(result.status)));
   ParsedOutput out;
   out.vectors = result.costs.size() / files.objectives;
   out.costs = result.costs;

@@ -430,12 +430,17 @@ void ReadProgress::add(std::uint64_t raw_bytes) {
   progress_("read", std::min(done, total_), total_);
 }
 
-TextInput read_text_input(const std::filesystem::path& path) {
+TextInput read_text_input(const std::filesystem::path& path, std::uint64_t max_bytes) {
   InputFile file(path);
   TextInput input;
   static_cast<InputFacts&>(input) = file.facts();
   std::string_view chunk;
-  while (file.next_chunk(chunk)) input.text.append(chunk);
+  while (file.next_chunk(chunk)) {
+    if (chunk.size() > max_bytes - input.text.size())
+      throw Error(input.display_name + ": more than " + std::to_string(max_bytes) +
+                  " bytes of text (the output limit)");
+    input.text.append(chunk);
+  }
   return input;
 }
 

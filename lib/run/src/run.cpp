@@ -435,7 +435,8 @@ class Runner {
     spec.argv = expand_command(p_.words, values(q, files));
     spec.stdout_path = files.stdout_path;
     spec.stderr_path = files.stderr_path;
-    spec.watched_files = {files.stdout_path, files.stderr_path, files.front_path};
+    spec.watched_files = {files.stdout_path, files.stderr_path, files.front_path,
+                          files.fronts_dir + "/0.txt"};
     if (c_.pin && !p_.cpus.empty()) spec.cpu = p_.cpus[job % p_.cpus.size()];
     spec.group_name = "mosb-run-" + std::to_string(::getpid()) + "-" + std::to_string(job);
     spec.isolation = p_.isolation;
