@@ -22,6 +22,12 @@ struct Outcome {
   std::optional<double> reported = std::nullopt;  // reported_runtime_seconds
 };
 
+// The golden instance (views Small_2, Small_5), written into `dir`.
+GraphReader golden_instance(const testing::TempDir& dir) {
+  write_graph(testing::golden_input(), dir / "g.mosb");
+  return GraphReader::open(dir / "g.mosb", VerifyLevel::full);
+}
+
 // A solution file of the golden instance's view Small_2 (3 queries, objectives c1 u32 and c2 f32).
 SolutionReader write_solutions(const testing::TempDir& dir, const GraphReader& instance,
                                const std::string& name, const std::vector<Outcome>& queries,
@@ -61,8 +67,7 @@ TEST_CASE("distribution_of: median of odd and even counts, mean, max, shifted ge
 
 TEST_CASE("compare_solvers: per-solver statuses, coverage, ratios and runtimes on common queries") {
   testing::TempDir dir;
-  write_graph(testing::golden_input(), dir / "g.mosb");
-  const auto instance = GraphReader::open(dir / "g.mosb", VerifyLevel::full);
+  const auto instance = golden_instance(dir);
   const auto reference = write_solutions(dir, instance, "ref",
                                          {{QueryStatus::solved, {10, 40, 20, 20, 40, 10}, 9.0},
                                           {QueryStatus::solved, {30, 30}, 9.0},
@@ -115,8 +120,7 @@ TEST_CASE("compare_solvers: per-solver statuses, coverage, ratios and runtimes o
 
 TEST_CASE("compare_solvers: two files of one solver are told apart by their files") {
   testing::TempDir dir;
-  write_graph(testing::golden_input(), dir / "g.mosb");
-  const auto instance = GraphReader::open(dir / "g.mosb", VerifyLevel::full);
+  const auto instance = golden_instance(dir);
   const std::vector<Outcome> queries{{QueryStatus::solved, {30, 30}, 1.0},
                                      {QueryStatus::solved, {30, 30}, 1.0},
                                      {QueryStatus::disconnected, {}, 1.0}};
@@ -134,8 +138,7 @@ TEST_CASE("compare_solvers: two files of one solver are told apart by their file
 
 TEST_CASE("compare_fronts: equal sets, the first difference and its side, status differences") {
   testing::TempDir dir;
-  write_graph(testing::golden_input(), dir / "g.mosb");
-  const auto instance = GraphReader::open(dir / "g.mosb", VerifyLevel::full);
+  const auto instance = golden_instance(dir);
   const auto a = write_solutions(dir, instance, "a",
                                  {{QueryStatus::solved, {10, 40, 20, 20}, 1.0},
                                   {QueryStatus::solved, {30, 30}, 2.0},
@@ -165,8 +168,7 @@ TEST_CASE("float objectives are equal within the tolerance, integer objectives e
   // roadmap: 0 of 12 queries equal, the largest relative difference 6.2e-16). Small_2 is c1
   // (u32, sums u64: exact) and c2 (f32, sums f64: within the tolerance).
   testing::TempDir dir;
-  write_graph(testing::golden_input(), dir / "g.mosb");
-  const auto instance = GraphReader::open(dir / "g.mosb", VerifyLevel::full);
+  const auto instance = golden_instance(dir);
   const double c2 = 43.88583999999999, c2_next = std::nextafter(c2, 100.0);
   const auto a = write_solutions(dir, instance, "a",
                                  {{QueryStatus::solved, {10, c2, 20, 7}, 1.0},
@@ -215,8 +217,7 @@ TEST_CASE("float objectives are equal within the tolerance, integer objectives e
 TEST_CASE("eval counts why each query fails: not covered, dominated (an exact claim), not solved") {
   // Issue 33 §2: "ε=0: 2 covered, 1 not covered" hid that the failure was a dominated vector.
   testing::TempDir dir;
-  write_graph(testing::golden_input(), dir / "g.mosb");
-  const auto instance = GraphReader::open(dir / "g.mosb", VerifyLevel::full);
+  const auto instance = golden_instance(dir);
   const auto reference = write_solutions(dir, instance, "ref",
                                          {{QueryStatus::solved, {10, 40, 20, 20}, 1.0},
                                           {QueryStatus::solved, {30, 30}, 1.0},
@@ -255,8 +256,7 @@ TEST_CASE("eval counts why each query fails: not covered, dominated (an exact cl
 
 TEST_CASE("the runtime summarised: the wall clock, or the solver's reported figure") {
   testing::TempDir dir;
-  write_graph(testing::golden_input(), dir / "g.mosb");
-  const auto instance = GraphReader::open(dir / "g.mosb", VerifyLevel::full);
+  const auto instance = golden_instance(dir);
   const auto reference = write_solutions(dir, instance, "ref",
                                          {{QueryStatus::solved, {30, 30}, 1.0},
                                           {QueryStatus::solved, {30, 30}, 1.0},

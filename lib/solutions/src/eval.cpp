@@ -37,8 +37,7 @@ struct Arith;
 // hung `eval`: below 1, an ulp of ε is far smaller than an ulp of 1 + ε.
 template <class Ok>
 double smallest_double_where(double guess, Ok ok) {
-  constexpr std::uint64_t kTop =
-      std::bit_cast<std::uint64_t>(std::numeric_limits<double>::infinity());
+  constexpr auto kTop = std::bit_cast<std::uint64_t>(std::numeric_limits<double>::infinity());
   const auto holds = [&](std::uint64_t b) { return ok(std::bit_cast<double>(b)); };
   const std::uint64_t start =
       guess >= 0 ? std::min(std::bit_cast<std::uint64_t>(guess), kTop) : std::uint64_t{0};
