@@ -65,8 +65,9 @@ struct FrontEvaluation {
   // The smallest uniform ε at which the solution covers the reference (componentwise reading);
   // infinite when none does (an empty solution, or q_i = 0 that no vector meets with p_i = 0).
   // For integer costs `achieved` is exact; for double costs its num/den is unset and only
-  // `achieved_value` is meaningful: the smallest double ε at which the coverage test (which
-  // rounds 1+ε, then (1+ε)·q_i) covers, so covered at ε ⟺ ε ≥ achieved_value for every double.
+  // `achieved_value` is meaningful: g − 1 for g the smallest double 1+ε must round to for the
+  // coverage test (1+ε rounded, then (1+ε)·q_i) to cover, so covered at a double ε ⟺
+  // fl(1+ε) ≥ 1 + achieved_value (spec/EVALUATION.md §2).
   Ratio achieved;
   double achieved_value = 0;
   // A reference vector that needs exactly the achieved ε (the worst one); nullopt when the
