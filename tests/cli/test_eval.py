@@ -158,6 +158,125 @@ class EvalTest(CliTest):
         result = self.eval(self.reference, "--eps", "0.1,-1")
         self.assertEqual(result.returncode, 2)
         self.assertIn("--eps", result.stderr)
+        # Issue 33 §6: a value out of range says so, wherever an ε is taken.
+        self.assert_one_line_error(self.eval(self.reference, "--eps", "1e400"), "--eps",
+                                   "'1e400'", "out of range", code=2)
+        self.assertNotIn("not a number", self.eval(self.reference, "--eps", "1e400").stderr)
+        r = self.mosb("plot", "front", "--solutions", self.reference, "--reference",
+                      self.reference, "--query", "0", "--eps", "1e400", "-o", self.path("f.svg"))
+        self.assert_one_line_error(r, "out of range", code=2)
+
+    def test_dominated_vectors_are_counted_apart_from_coverage(self):
+        # Issue 33 §2: the reference's front plus a vector it dominates, from a solver claiming
+        # exactness, was "ε=0: 1 covered, 1 not covered" and "NOT covered (0 uncovered)".
+        sol = self.solution("dominated", "0 solved 10,40 20,20 40,10 25,25\n1 solved 30,30\n"
+                            "2 disconnected\n")
+        rc, report = self.eval_json(sol, "--eps", "0,0.1")
+        self.assertEqual(rc, 1)
+        self.assertEqual(report["epsilons"],
+                         [{"epsilon": e, "covered": 1, "not_covered": 0, "dominated": 1,
+                           "not_solved": 0} for e in ("0", "0.1")])
+        q0 = report["queries"][0]
+        self.assertEqual([(c["uncovered"], c["extra"], c["outcome"]) for c in q0["coverage"]],
+                         [(0, 1, "dominated"), (0, 0, "dominated")])
+        text = self.eval(sol, "--eps", "0,0.1", "--per-query").stdout
+        self.assertIn("  ε=0: 1 covered, 0 not covered, 1 with vectors the reference dominates "
+                      "(solver claims ε = 0), 0 not solved\n", text)
+        self.assertIn("ε=0 NOT covered (0 uncovered, 1 extra)", text)
+        rows = list(csv.DictReader(io.StringIO(self.eval(sol, "--eps", "0,0.1", "--csv").stdout)))
+        self.assertEqual([(r["covered@0"], r["not_covered@0"], r["dominated@0"], r["not_solved"])
+                          for r in rows], [("1", "0", "1", "0")])
+        # Every query the reference solved is in one column per ε; a timeout is "not solved".
+        sol = self.solution("timeout", "0 solved 10,40 20,20\n1 timeout\n2 disconnected\n")
+        rc, report = self.eval_json(sol, "--eps", "0")
+        self.assertEqual(report["epsilons"], [{"epsilon": "0", "covered": 0, "not_covered": 1,
+                                               "dominated": 0, "not_solved": 1}])
+
+    def test_float_objectives_compare_within_a_tolerance(self):
+        # Issue 33 §3: Small_2 is c1 (u32: exact) and c2 (f32, summed in f64). Two exact solvers
+        # whose c2 sums differ in the last place are equal within the default 1e-9; with
+        # --tolerance 0 the solver vector one ulp above the reference's is dominated by it.
+        self.reference = self.solution("fref", "0 solved 10,43.88583999999999 20,20\n"
+                                       "1 solved 1000000000,30\n2 disconnected\n")
+        sol = self.solution("f", "0 solved 20,20 10,43.88584\n1 solved 1000000000,30\n"
+                            "2 disconnected\n")
+        rc, report = self.eval_json(sol, "--eps", "0")
+        self.assertEqual(rc, 0, report)
+        self.assertEqual(report["queries"][0]["achieved_epsilon_value"], 0)
+        full = json.loads(self.eval(sol, "--json", "--eps", "0").stdout)
+        self.assertEqual(full["tolerance"], 1e-9)
+        self.assertIn("float objectives compared within a relative tolerance of 1e-09",
+                      self.eval(sol, "--eps", "0").stdout)
+        rc, report = self.eval_json(sol, "--eps", "0", "--tolerance", "0")
+        self.assertEqual(rc, 1)
+        self.assertEqual(report["epsilons"][0]["dominated"], 1)
+        self.assertGreater(report["queries"][0]["achieved_epsilon_value"], 0)
+        self.assertLess(report["queries"][0]["achieved_epsilon_value"], 1e-15)
+        compare = self.mosb("solutions", "compare", self.reference, sol)
+        self.assertEqual(compare.returncode, 0, compare.stdout)
+        self.assertIn("3 equal, 0 different", compare.stdout)
+        compare = self.mosb("solutions", "compare", self.reference, sol, "--tolerance", "0")
+        self.assertEqual(compare.returncode, 1)
+        self.assertIn("query 0: DIFFERENT fronts: (10, 43.88583999999999) only in", compare.stdout)
+        # The integer objective stays exact whatever the tolerance: 1e9 against 1e9 + 1.
+        other = self.solution("i", "0 solved 20,20 10,43.88584\n1 solved 1000000001,30\n"
+                              "2 disconnected\n")
+        compare = self.mosb("solutions", "compare", self.reference, other, "--tolerance", "0.1")
+        self.assertIn("query 1: DIFFERENT fronts: (1000000000, 30) only in", compare.stdout)
+        for bad in ("-1", "1", "abc", "nan"):
+            self.assert_one_line_error(self.eval(sol, "--tolerance", bad), "--tolerance", code=2)
+            self.assertEqual(self.mosb("solutions", "compare", self.reference, sol, "--tolerance",
+                                       bad).returncode, 2)
+
+    def test_one_ulp_above_the_reference_returns_at_once(self):
+        # Issue 33 §1: this hung (12 minutes on a real EMOA* front, ε stepped an ulp of ε at a
+        # time). self.mosb fails the test on a hang.
+        self.reference = self.solution("uref", "0 solved 10,43.88583999999999\n1 solved 30,30\n"
+                                       "2 disconnected\n")
+        sol = self.solution("u", "0 solved 10,43.88584\n1 solved 30,30\n2 disconnected\n",
+                            solver_epsilon="0.01")
+        r = self.mosb("eval", "--reference", self.reference, "--solutions", sol, "--tolerance",
+                      "0", "--eps", "0,0.01", "--json", timeout=60)
+        self.assertEqual(r.returncode, 1, r.stderr)  # not the same multiset at ε = 0
+        q0 = json.loads(r.stdout)["solvers"][0]["queries"][0]
+        self.assertEqual([c["covered"] for c in q0["coverage"]], [False, True])
+        self.assertEqual(q0["achieved_epsilon"], "0.000000001")  # rounded up at the 9th digit
+        r = self.mosb("solutions", "compare", self.reference, sol, "--tolerance", "0", timeout=60)
+        self.assertEqual(r.returncode, 1)
+
+    def test_runtime_wall_or_reported(self):
+        # Issue 33 §7: the solver's own runtime (format 1.5) beside mosb's wall clock.
+        self.reference = self.solution("rref", REFERENCE)
+        reports = self.solution("reports", "0 solved 10,40 20,20 40,10 t=2 r=0.5\n"
+                                "1 solved 30,30 t=4 r=1.5\n2 disconnected t=1 r=0.25\n")
+        silent = self.solution("silent", "0 solved 10,40 20,20 40,10 t=3\n1 solved 30,30 t=3\n"
+                               "2 disconnected t=3\n")
+        run_eval = lambda *extra: self.mosb("eval", "--reference", self.reference, "--solutions",
+                                            reports, silent, "--eps", "0", *extra)
+        wall = json.loads(run_eval("--json").stdout)
+        self.assertEqual(wall["runtime"], "wall")
+        self.assertEqual(wall["solvers"][0]["runtime_seconds"]["median"], 2)
+        reported = json.loads(run_eval("--json", "--runtime", "reported").stdout)
+        self.assertEqual(reported["runtime"], "reported")
+        self.assertEqual(reported["solvers"][0]["runtime_seconds"]["median"], 0.5)
+        self.assertTrue(reported["solvers"][0]["runtime_recorded"])
+        self.assertIsNone(reported["solvers"][1]["runtime_seconds"])
+        self.assertFalse(reported["solvers"][1]["runtime_recorded"])
+        text = run_eval("--runtime", "reported").stdout
+        self.assertIn("  reported runtime over 3 queries every solver completed: median 0.5 s", text)
+        self.assertIn("  reported runtime over 0 queries every solver completed: none (the file "
+                      "records no reported_runtime_seconds)", text)
+        self.assertIn("  wall runtime over 3 queries", run_eval().stdout)
+        rows = list(csv.DictReader(io.StringIO(run_eval("--csv", "--per-query", "--runtime",
+                                                        "reported").stdout)))
+        self.assertEqual([r["reported_runtime_seconds"] for r in rows],
+                         ["0.5", "1.5", "0.25", "", "", ""])
+        self.assertEqual(run_eval("--runtime", "cpu").returncode, 2)
+        compare = self.mosb("solutions", "compare", silent, reports, "--runtime", "reported",
+                            "--json")
+        self.assertIsNone(json.loads(compare.stdout)["runtime_ratio"])
+        compare = self.mosb("solutions", "compare", reports, reports, "--runtime", "reported")
+        self.assertIn("; reported runtime ", compare.stdout)
 
 
 class SolverComparisonTest(CliTest):
@@ -199,8 +318,11 @@ class SolverComparisonTest(CliTest):
         self.assertAlmostEqual(exact["runtime_seconds"]["shifted_geometric_mean"], 6 ** 0.5 - 1)
         self.assertEqual(approx["statuses"]["timeout"], 1)
         self.assertEqual(approx["not_solved"], 1)
-        self.assertEqual(approx["epsilons"], [{"epsilon": "0", "covered": 0, "not_covered": 1},
-                                              {"epsilon": "0.1", "covered": 1, "not_covered": 0}])
+        self.assertEqual(approx["epsilons"],
+                         [{"epsilon": "0", "covered": 0, "not_covered": 1, "dominated": 0,
+                           "not_solved": 1},
+                          {"epsilon": "0.1", "covered": 1, "not_covered": 0, "dominated": 0,
+                           "not_solved": 1}])
         self.assertAlmostEqual(approx["achieved_epsilon"]["max"], 0.1)
         self.assertEqual(approx["size_ratio"]["median"], 1)
         self.assertEqual(approx["runtime_seconds"]["mean"], 0.75)
@@ -212,7 +334,7 @@ class SolverComparisonTest(CliTest):
     def test_text_csv_and_latex(self):
         text = self.eval("--eps", "0.1").stdout
         self.assertIn("solver exact_solver (%s)\n" % self.exact, text)
-        self.assertIn("  runtime over 2 queries every solver completed: median 1.5 s", text)
+        self.assertIn("  wall runtime over 2 queries every solver completed: median 1.5 s", text)
         self.assertIn("  statuses: 1 solved, 1 timeout, 1 disconnected; 1 solved by the reference "
                       "only\n", text)
         self.assertTrue(text.endswith("FAIL\n"))

@@ -16,6 +16,8 @@ import mosbtest
 from mosbtest import CliTest, setUpModule  # noqa: F401
 
 QUERIES = [(0, 8), (1, 5), (8, 0), (1, 5)]  # a repeated pair: endpoint matching takes them in order
+# How an import refusing a front that is no front ends (issue 33 §4).
+NONDOMINATED = "; give --nondominated to keep each front's non-dominated vectors"
 
 
 # Every run here must succeed unless it says check=False.
@@ -122,11 +124,11 @@ class SolutionsTest(CliTest):
                             "%s/0.txt:1:1: 3 values, the view has 2 objectives (--columns picks values)" % d)
         self.import_("--dir", d, "--columns", "1,2")
         self.assertEqual(self.inspect()["vectors"], 2)
-        # Picked the wrong way round, (9, 1) and (7, 2) are still a front; (99, 1), (99, 2) is not.
-        self.import_("--dir", d, "--columns", "0,1", output="wrong.sol")
-        bad = run("solutions", "verify", self.path("wrong.sol"), "--instance", self.grid, check=False)
-        self.assertEqual(bad.returncode, 1)
-        self.assertIn("query 0: [dominated] vector (99, 2) is dominated by (99, 1)", bad.stderr)
+        # Picked the wrong way round, (9, 1) and (7, 2) are still a front; (99, 1), (99, 2) is not,
+        # and the import refuses it (issue 33 §4), naming both vectors and their lines.
+        self.assert_refused(["--dir", d, "--columns", "0,1"],
+                            "%s/0.txt:2: query 0: [dominated] vector (99, 2) is dominated by "
+                            "(99, 1) (at %s/0.txt:1)%s" % (d, d, NONDOMINATED))
 
     def test_directory_errors_are_located(self):
         d = self.front_dir({"0.txt": "1 9\n2 -7\n"})
@@ -163,11 +165,11 @@ class SolutionsTest(CliTest):
         info = self.inspect()
         self.assertEqual((info["vectors"], info["statuses"]["solved"]), (3, 2))
         run("solutions", "verify", self.path("out.sol"), "--instance", self.grid)
-        # Columns by name: c1 is the third column, so query 0 holds (1, 9) and (2, 7).
+        # Columns by name: c1 is the third column, so query 0 holds (1, 9) and (2, 9), which is no
+        # front: refused naming both rows.
         t = self.write("t.tsv", "query\tc2\tc1\n0\t9\t1\n0\t9\t2\n")
-        self.import_("--table", t)
-        bad = run("solutions", "verify", self.path("out.sol"), "--instance", self.grid, check=False)
-        self.assertIn("query 0: [dominated] vector (2, 9) is dominated by (1, 9)", bad.stderr)
+        self.assert_refused(["--table", t], "%s:3: query 0: [dominated] vector (2, 9) is dominated "
+                            "by (1, 9) (at %s:2)%s" % (t, t, NONDOMINATED))
         t = self.write("p.csv", "query,a,b\n0,9,1\n")
         self.import_("--table", t, "--columns", "2,1")
         self.assertEqual(self.inspect()["vectors"], 1)
@@ -423,14 +425,15 @@ class SolutionsTest(CliTest):
     # --- verify ---------------------------------------------------------------------------------
 
     def test_verify_names_dominated_and_duplicate_vectors(self):
-        d = self.front_dir({"0.txt": "1 9\n2 7\n", "1.txt": "4 4\n5 3\n4 4\n"})
-        self.import_("--dir", d)
+        # `solutions import` refuses such fronts, so the files are written by the library's writer.
+        write = functools.partial(mosbtest.write_solution, self.path("out.sol"), self.grid,
+                                  "Grid_2")
+        write("0 solved 1,9 2,7\n1 solved 4,4 5,3 4,4\n", "0", "s")
         bad = run("solutions", "verify", self.path("out.sol"), "--instance", self.grid, check=False)
         self.assertEqual(bad.returncode, 1)
         self.assertEqual(bad.stderr.strip(), "mosb: %s: query 1: [duplicate] vector (4, 4) appears twice"
                          % self.path("out.sol"))
-        self.write("fronts/1.txt", "4 4\n3 9\n3 8\n")
-        self.import_("--dir", d)
+        write("0 solved 1,9 2,7\n1 solved 4,4 3,9 3,8\n", "0", "s")
         bad = run("solutions", "verify", self.path("out.sol"), "--instance", self.grid, check=False)
         self.assertEqual(bad.returncode, 1)
         self.assertEqual(bad.stderr.strip(),
@@ -451,6 +454,92 @@ class SolutionsTest(CliTest):
                                 "--json", check=False).stdout)
         self.assertFalse(report["ok"])
         self.assertIn(self.digest(self.other), report["problem"])
+
+    # --- issue 33: fronts that are no fronts, outputs that are inputs -----------------------------
+
+    def test_import_refuses_dominated_and_repeated_vectors_unless_nondominated(self):
+        # Query 0 repeats (1, 9) (PPA* pair logs hold each vector twice), query 1 holds (4, 5)
+        # beside (4, 4) (as the published PPA* BAY log holds (955620, 1890862) beside
+        # (955620, 1890092)), query 2 is a front.
+        d = self.front_dir({"0.txt": "1 9\n2 7\n1 9\n", "1.txt": "4 5\n4 4\n3 9\n",
+                            "2.txt": "5 5\n"})
+        self.assert_refused(["--dir", d], "%s/0.txt:3: query 0: [duplicate] vector (1, 9) appears "
+                            "twice (at %s/0.txt:1)%s" % (d, d, NONDOMINATED))
+        records = [self.record(0, 8, [[1, 9], [2, 7], [1, 9]]),
+                   self.record(1, 5, [[4, 5], [4, 4], [3, 9]])]
+        log = self.log(records)
+        self.assert_refused(["--json-log", log],
+                            "%s: /0/finish_info/solutions/2/cost_until_now: query 0: [duplicate] "
+                            "vector (1, 9) appears twice (at %s: /0/finish_info/solutions/0/"
+                            "cost_until_now)%s" % (log, log, NONDOMINATED))
+        log = self.log(records[1:])
+        self.assert_refused(["--json-log", log, "--match", "endpoints"],
+                            "%s: /0/finish_info/solutions/0/cost_until_now: query 1: [dominated] "
+                            "vector (4, 5) is dominated by (4, 4) (at %s: /0/finish_info/solutions/"
+                            "1/cost_until_now)%s" % (log, log, NONDOMINATED))
+        # --nondominated keeps the first of equal vectors and the non-dominated ones, and the
+        # file says what was dropped.
+        r = self.import_("--dir", d, "--nondominated")
+        self.assertIn("5 vectors (2 dominated or repeated vectors dropped from 2 queries)", r.stdout)
+        info = self.inspect()
+        self.assertEqual(info["vectors"], 5)
+        self.assertEqual(info["dropped_vectors"], {"vectors": 2, "queries": 2})
+        self.assertIn("imported with --nondominated: 2 dominated or repeated vectors dropped from 2 "
+                      "queries", run("solutions", "inspect", self.path("out.sol")).stdout)
+        run("solutions", "verify", self.path("out.sol"), "--instance", self.grid)
+        run("solutions", "export", self.path("out.sol"), "--dir", self.path("back"))
+        self.assertEqual(mosbtest.read(self.path("back/0.txt"), "r"), "1 9\n2 7\n")
+        self.assertEqual(mosbtest.read(self.path("back/1.txt"), "r"), "4 4\n3 9\n")
+        # A clean input imported with --nondominated records that nothing was dropped; without
+        # the flag, nothing is recorded.
+        self.import_("--dir", self.path("back"), "--nondominated", "--json", output="clean.sol")
+        self.assertEqual(self.inspect("clean.sol")["dropped_vectors"], {"vectors": 0, "queries": 0})
+        self.import_("--dir", self.path("back"), output="plain.sol")
+        self.assertIsNone(self.inspect("plain.sol")["dropped_vectors"])
+
+    def test_every_writing_command_refuses_to_overwrite_an_input(self):
+        # Issue 33 §5: each of these destroyed its input before. The refusal is one line naming
+        # both files, and the input keeps its bytes.
+        d = self.front_dir({"0.txt": "1 9\n2 7\n", "1.txt": "4 4\n"})
+        self.import_("--dir", d, output="a.sol")
+
+        def refused(command, victim):
+            before = mosbtest.read(victim)
+            r = run(*command, check=False)
+            self.assert_one_line_error(r, victim, "is the same file as the input",
+                                       "refusing to overwrite an input")
+            self.assertEqual(mosbtest.read(victim), before)
+
+        importing = ["solutions", "import", "--instance", self.grid, "--view", "Grid_2",
+                     "--queries", "s"]
+        # import: -o the instance, the log, the table, the example log, a front file of --dir.
+        refused(importing + ["--dir", d, "-o", self.grid], self.grid)
+        log = self.log([self.record(0, 8, [[1, 9]])])
+        refused(importing + ["--json-log", log, "-o", log], log)
+        table = self.write("t.csv", "query,c1,c2\n0,1,9\n")
+        refused(importing + ["--table", table, "-o", table], table)
+        front = os.path.join(d, "0.txt")
+        refused(importing + ["--dir", d, "-o", front], front)
+        example = self.write("run.log", "0 8 2 0.5 10\n1 5 1 0.5 10\n")
+        refused(importing + ["--dir", d, "--example-log", example, "-o", example], example)
+        # export: --json-log onto the solution file or the instance, --dir onto the solution file.
+        sol = self.path("a.sol")
+        refused(["solutions", "export", sol, "--json-log", sol, "--instance", self.grid], sol)
+        refused(["solutions", "export", sol, "--json-log", self.grid, "--instance", self.grid],
+                self.grid)
+        os.makedirs(self.path("out"))
+        inside = self.path("out", "1.txt")  # export --dir out writes out/0.txt and out/1.txt
+        os.rename(sol, inside)
+        refused(["solutions", "export", inside, "--dir", self.path("out")], inside)
+        self.assertFalse(os.path.exists(self.path("out", "0.txt")), "export wrote before refusing")
+        # merge: -o one of the parts.
+        self.write("q0/0.txt", "1 9\n")
+        self.write("q1/1.txt", "4 4\n")
+        self.import_("--dir", self.path("q0"), output="m0.sol")
+        self.import_("--dir", self.path("q1"), output="m1.sol")
+        parts = [self.path("m0.sol"), self.path("m1.sol")]
+        refused(["solutions", "merge", *parts, "-o", parts[0], "--allow-missing"], parts[0])
+        run("solutions", "merge", *parts, "-o", self.path("m.sol"), "--allow-missing")
 
     # --- issue 20: strict ε, header counts, packed instances, large fronts, FIFOs ----------------
 

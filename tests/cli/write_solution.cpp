@@ -2,8 +2,8 @@
 // mosb::SolutionWriter. Usage: mosb_test_write_solution INSTANCE VIEW OUT [SOLVER_EPSILON
 // [QUERY_SET]] < SPEC, one query a line: "Q STATUS [a,b,... a,b,...]" (vectors of the view's
 // objectives, space-separated); a vector may carry its path as "a,b,...@v0/v1/...", and a token
-// "t=SECONDS" sets the query's runtime_seconds. The solver's
-// name is "test", or the environment's MOSB_TEST_SOLVER_NAME (any bytes: hostile names).
+// "t=SECONDS" sets the query's runtime_seconds, "r=SECONDS" its reported_runtime_seconds. The
+// solver's name is "test", or the environment's MOSB_TEST_SOLVER_NAME (any bytes: hostile names).
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -44,6 +44,10 @@ int main(int argc, char** argv) {
       while (in >> vector_text) {
         if (vector_text.starts_with("t=")) {
           statistics.runtime_seconds = std::stod(vector_text.substr(2));
+          continue;
+        }
+        if (vector_text.starts_with("r=")) {
+          statistics.reported_runtime_seconds = std::stod(vector_text.substr(2));
           continue;
         }
         const auto at = vector_text.find('@');

@@ -121,3 +121,30 @@ TEST_CASE("nondominance: a duplicate names both copies, a dominated vector its d
   CHECK_FALSE(find_weakly_dominated<std::int64_t>(std::vector<std::int64_t>{}, 3));
   CHECK_FALSE(find_weakly_dominated<std::int64_t>(std::vector<std::int64_t>{-1, 2}, 2));
 }
+
+TEST_CASE("weakly_dominated_rows: every row outside the non-dominated subset, first copies kept") {
+  // What `solutions import --nondominated` drops (issue 33 §4), against the definition: row j is
+  // dropped iff another row weakly dominates it, unless that row equals it and comes later.
+  using mosb::solutions_internal::weakly_dominated_rows;
+  SplitMix64 rng(33);
+  for (int round = 0; round < 2000; ++round) {
+    const std::size_t d = 1 + round % 5, n = rng.uniform(0, 30);
+    const auto rows = random_front<double>(rng, n, d, rng.uniform(1, 8), round % 2 == 0);
+    std::vector<std::size_t> expected;
+    for (std::size_t j = 0; j < n; ++j) {
+      bool dropped = false;
+      for (std::size_t k = 0; k < n && !dropped; ++k) {
+        if (k == j) continue;
+        bool dominates = true, equal = true;
+        for (std::size_t i = 0; i < d; ++i) {
+          dominates = dominates && rows[k * d + i] <= rows[j * d + i];
+          equal = equal && rows[k * d + i] == rows[j * d + i];
+        }
+        dropped = dominates && (!equal || k < j);
+      }
+      if (dropped) expected.push_back(j);
+    }
+    CAPTURE(round);
+    CHECK(weakly_dominated_rows<double>(rows, d) == expected);
+  }
+}

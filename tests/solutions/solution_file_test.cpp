@@ -13,6 +13,7 @@
 #include "golden_input.hpp"
 #include "golden_solutions.hpp"
 #include "mosb/graph_builder.hpp"
+#include "mosb/solution_merge.hpp"
 #include "mosb/solution_verify.hpp"
 #include "solution_faults.hpp"
 #include "temp_dir.hpp"
@@ -356,4 +357,40 @@ TEST_CASE("format 1.4: a solution file bound to its objectives alone, without a 
     CHECK_THROWS_WITH_AS(SolutionReader::open(dir / "old.sol.mosb"),
                          doctest::Contains("metadata has no 'solution.view'"), Error);
   }
+}
+
+TEST_CASE("an import's dropped vectors: recorded, read back, added up by merge, never an input") {
+  // Issue 33 §4 and §5: solution.import.* says what `solutions import --nondominated` left out;
+  // merge adds up its parts' and refuses to write over one of them.
+  const auto instance = GraphReader::open(kSmall);
+  testing::TempDir dir;
+  const auto part = [&](const char* name, std::uint64_t q, std::optional<DroppedVectors> drop) {
+    SolutionWriter w(instance, "Small_2");
+    const std::vector<double> front{1, 9, 2, 7};
+    w.set_query(q, QueryStatus::solved, front);
+    w.set_dropped_vectors(drop);
+    w.write(dir / name);
+    return dir / name;
+  };
+  const auto a = part("a.sol", 0, DroppedVectors{3, 1});
+  const auto b = part("b.sol", 1, DroppedVectors{5, 2});
+  const auto c = part("c.sol", 2, std::nullopt);
+  CHECK(SolutionReader::open(a).dropped_vectors() == DroppedVectors{3, 1});
+  CHECK_FALSE(SolutionReader::open(c).dropped_vectors());
+  const std::vector<std::filesystem::path> parts{a, b, c};
+  const SolutionMerge merge(parts);
+  const auto before = testing::read_bytes(b);
+  CHECK_THROWS_WITH_AS(merge.write(b), doctest::Contains("refusing to overwrite an input"), Error);
+  CHECK(testing::read_bytes(b) == before);
+  merge.write(dir / "all.sol");
+  CHECK(SolutionReader::open(dir / "all.sol").dropped_vectors() == DroppedVectors{8, 3});
+  // A damaged record is an error, not a number.
+  const auto bytes = testing::read_bytes(a);
+  auto text = std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  const auto at = text.find("solution.import.dropped_vectors=3");
+  REQUIRE(at != std::string::npos);
+  text[at + std::string("solution.import.dropped_vectors=").size()] = 'x';
+  const auto forged =
+      SolutionReader::from_memory(std::as_bytes(std::span(text.data(), text.size())), "forged");
+  CHECK_THROWS_AS(forged.dropped_vectors(), Error);
 }

@@ -280,14 +280,6 @@ void add_terrain_options(CLI::App* subcommand, TerrainOptions& terrain) {
       ->capture_default_str();
 }
 
-std::string vector_text(const std::vector<double>& v) {
-  std::ostringstream out;
-  out << '(';
-  for (std::size_t i = 0; i < v.size(); ++i) out << (i ? ", " : "") << v[i];
-  out << ')';
-  return out.str();
-}
-
 std::string status_counts_text(const StatusCounts& counts, bool nonzero) {
   std::string text;
   for (const auto status : kQueryStatuses)

@@ -29,6 +29,7 @@ struct SuiteEntry;
 }
 
 namespace mosb {
+struct ComparisonOptions;
 struct FileCheck;
 class GraphReader;
 }  // namespace mosb
@@ -65,12 +66,12 @@ CLI::Validator epsilon_value();
 // A comma-separated list of ε (`--eps` of eval and report), each as epsilon_value takes one;
 // throws UsageError naming the item.
 std::vector<Ratio> parse_epsilons(const std::string& list);
+// `--tolerance REL` and `--runtime wall|reported` of every command that compares solution files
+// (`eval`, `solutions compare`; in solutions_compare.cpp), into the library's ComparisonOptions.
+void add_comparison_options(CLI::App* subcommand, ComparisonOptions& options);
 // Free text that ends up in text, JSON and SVG output (--solver, --title, ...): no control
 // character, so a newline cannot forge a line of text output and a NUL or escape cannot reach SVG.
 CLI::Validator printable_text();
-
-// A cost vector as the text reports print it: "(a, b, c)", each value as an ostream prints it.
-std::string vector_text(const std::vector<double>& v);
 
 // Query counts per status as every command prints them: "3 solved, 0 timeout, ..." for every
 // status, or with `nonzero` only those with a count.

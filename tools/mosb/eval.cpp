@@ -7,12 +7,15 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
+#include <span>
 #include <sstream>
 
 #include "commands.hpp"
 #include "json_writer.hpp"
 #include "mosb/internal/utf8.hpp"
 #include "mosb/report/tables.hpp"
+#include "mosb/solution_verify.hpp"
 #include "mosb/solver_comparison.hpp"
 
 namespace mosb::cli {
@@ -23,9 +26,16 @@ struct EvalArgs {
   std::string reference;
   std::vector<std::string> solutions;
   std::string epsilons = "0.01,0.05,0.1";
-  double runtime_shift = 1;
-  bool strict = false, json = false, csv = false, latex = false, per_query = false;
+  ComparisonOptions options;
+  bool json = false, csv = false, latex = false, per_query = false;
 };
+
+// "covered", or "NOT covered (k uncovered[, m extra])".
+std::string coverage_text(const EpsilonCoverage& c) {
+  if (c.covered) return "covered";
+  return "NOT covered (" + std::to_string(c.uncovered) + " uncovered" +
+         (c.extra ? ", " + std::to_string(c.extra) + " extra" : std::string()) + ")";
+}
 
 void print_query_lines(const SolutionEvaluation& result, const std::vector<Ratio>& eps,
                        const std::vector<std::string>& eps_text) {
@@ -46,14 +56,10 @@ void print_query_lines(const SolutionEvaluation& result, const std::vector<Ratio
                       : 0.0)
               << ", achieved ε " << achieved_epsilon_text(f, result.exact_arithmetic);
     for (std::size_t k = 0; k < eps.size(); ++k) {
-      std::cout << ", ε=" << eps_text[k] << ' '
-                << (f.coverage[k].covered
-                        ? "covered"
-                        : "NOT covered (" + std::to_string(f.coverage[k].uncovered) +
-                              " uncovered)");
+      std::cout << ", ε=" << eps_text[k] << ' ' << coverage_text(f.coverage[k]);
     }
     if (!q.worst_reference_values.empty())
-      std::cout << ", worst reference vector " << vector_text(q.worst_reference_values);
+      std::cout << ", worst reference vector " << cost_vector_text(q.worst_reference_values);
     std::cout << (q.failed ? " FAIL" : "") << '\n';
     if (!f.dominated_by_reference.empty() && result.solver_claims_exact)
       std::cout << "query " << q.query << ": SOLVER BUG: " << f.dominated_by_reference.size()
@@ -88,6 +94,10 @@ void json_query(JsonWriter& j, const QueryEvaluation& q, bool exact,
           .value(f.coverage[k].covered)
           .key("uncovered")
           .value(f.coverage[k].uncovered)
+          .key("extra")
+          .value(f.coverage[k].extra)
+          .key("outcome")
+          .value(to_string(*q.outcome(k)))
           .end_object();
     j.end_array();
     j.key("worst_reference").begin_array();
@@ -108,7 +118,9 @@ void print_json(const SolverComparison& result, const std::string& reference,
   j.key("epsilons").begin_array();
   for (const auto& e : eps_text) j.value(e);
   j.end_array();
+  j.key("tolerance").value(result.tolerance);
   j.key("common_queries").value(std::uint64_t{result.common_queries.size()});
+  j.key("runtime").value(to_string(result.runtime));
   j.key("runtime_shift_seconds").value(result.runtime_shift_seconds);
   j.key("solvers").begin_array();
   for (const auto& s : result.solvers) {
@@ -117,22 +129,27 @@ void print_json(const SolverComparison& result, const std::string& reference,
     json_status_counts(j, s.own.statuses);
     j.key("front_size");
     json_distribution(j, s.own.front_size, true, false);
-    j.key("not_solved").value(s.not_solved).key("epsilons").begin_array();
+    j.key("not_solved").value(s.not_solved);
+    j.key("solved_unreachable").value(s.solved_unreachable).key("epsilons").begin_array();
     for (std::size_t k = 0; k < eps_text.size(); ++k)
       j.begin_object()
           .key("epsilon")
           .value(eps_text[k])
-          .key("covered")
+          .key(to_string(QueryOutcome::covered))
           .value(s.per_epsilon[k].covered)
-          .key("not_covered")
+          .key(to_string(QueryOutcome::not_covered))
           .value(s.per_epsilon[k].not_covered)
+          .key(to_string(QueryOutcome::dominated))
+          .value(s.per_epsilon[k].dominated)
+          .key(to_string(QueryOutcome::not_solved))
+          .value(s.not_solved)
           .end_object();
     j.end_array();
     j.key("achieved_epsilon");
     json_distribution(j, s.achieved_epsilon, false, false);
     j.key("size_ratio");
     json_distribution(j, s.size_ratio, false, false);
-    j.key("runtime_seconds");
+    j.key("runtime_recorded").value(s.runtime_recorded).key("runtime_seconds");
     json_distribution(j, s.runtime, false, true);
     j.key("queries").begin_array();
     for (const auto& q : s.evaluation.queries)
@@ -145,16 +162,27 @@ void print_json(const SolverComparison& result, const std::string& reference,
 
 void print_text(const SolverComparison& result, const std::vector<Ratio>& eps,
                 const std::vector<std::string>& eps_text, bool per_query) {
+  if (std::any_of(result.solvers.begin(), result.solvers.end(),
+                  [](const SolverSummary& s) { return !s.evaluation.exact_arithmetic; }))
+    std::cout << "float objectives compared within a relative tolerance of " << result.tolerance
+              << (result.tolerance == 0 ? " (exact)" : "") << "\n";
   for (std::size_t i = 0; i < result.solvers.size(); ++i) {
     const auto& s = result.solvers[i];
     std::cout << "solver " << escape_for_terminal(s.name) << " (" << escape_for_terminal(s.file)
               << ")\n";
     if (per_query) print_query_lines(s.evaluation, eps, eps_text);
     std::cout << "  statuses: " << status_counts_text(s.own.statuses, true) << "; " << s.not_solved
-              << " solved by the reference only\n";
+              << " solved by the reference only";
+    if (s.solved_unreachable)
+      std::cout << "; " << s.solved_unreachable
+                << " solved where the reference found the goal unreachable";
+    std::cout << '\n';
+    // Every query the reference solved, once per ε, by why it passes or fails (QueryOutcome).
     for (std::size_t k = 0; k < eps.size(); ++k)
       std::cout << "  ε=" << eps_text[k] << ": " << s.per_epsilon[k].covered << " covered, "
-                << s.per_epsilon[k].not_covered << " not covered\n";
+                << s.per_epsilon[k].not_covered << " not covered, " << s.per_epsilon[k].dominated
+                << " with vectors the reference dominates (solver claims ε = 0), " << s.not_solved
+                << " not solved\n";
     const auto count = [](const std::optional<Distribution>& d) { return d ? d->count : 0; };
     std::cout << "  front size over " << count(s.own.front_size)
               << " completed queries: " << distribution_text(s.own.front_size, "", true) << '\n';
@@ -162,8 +190,10 @@ void print_text(const SolverComparison& result, const std::vector<Ratio>& eps,
               << " queries: " << distribution_text(s.achieved_epsilon, "") << '\n';
     std::cout << "  |S|/|R| over " << count(s.size_ratio)
               << " queries: " << distribution_text(s.size_ratio, "") << '\n';
-    std::cout << "  runtime over " << count(s.runtime)
+    std::cout << "  " << to_string(result.runtime) << " runtime over " << count(s.runtime)
               << " queries every solver completed: " << distribution_text(s.runtime, " s");
+    if (!s.runtime_recorded)
+      std::cout << " (the file records no " << to_string(runtime_statistic(result.runtime)) << ")";
     if (s.runtime)
       std::cout << ", shifted geometric mean (shift " << result.runtime_shift_seconds << " s) "
                 << s.runtime->shifted_geometric_mean << " s";
@@ -171,6 +201,46 @@ void print_text(const SolverComparison& result, const std::vector<Ratio>& eps,
     if (s.evaluation.failed) std::cout << "  FAIL\n";
   }
   std::cout << (result.failed ? "FAIL" : "OK") << '\n';
+}
+
+// What the tables of report/tables.hpp do not hold yet (report/ has another owner): per ε, the
+// queries that fail for dominated vectors (QueryOutcome::dominated), beside not_covered@ε; and
+// per query, the runtime the comparison summarises when it is not the wall clock.
+void complete_table(tables::Table& table, const SolverComparison& result,
+                    const std::vector<std::string>& eps_text,
+                    std::span<const SolutionReader> solutions, bool per_query) {
+  using tables::Cell;
+  const auto column = [&](const std::string& key) {
+    const auto at = std::find_if(table.columns.begin(), table.columns.end(),
+                                 [&](const tables::Column& c) { return c.key == key; });
+    return at == table.columns.end()
+               ? std::optional<std::size_t>{}
+               : std::optional(static_cast<std::size_t>(at - table.columns.begin()));
+  };
+  if (per_query) {
+    const auto runtime = column("runtime_seconds");
+    if (result.runtime == RuntimeSource::wall || !runtime) return;
+    const auto statistic = runtime_statistic(result.runtime);
+    table.columns[*runtime] = {std::string(to_string(statistic)), "$t_{\\mathrm{rep}}$ [s]"};
+    std::size_t row = 0;
+    for (std::size_t i = 0; i < result.solvers.size(); ++i)
+      for (const auto& q : result.solvers[i].evaluation.queries) {
+        const auto t = solutions[i].statistic_as_double(statistic, q.query);
+        table.rows.at(row++)[*runtime] = t ? Cell::of(*t) : Cell{};
+      }
+    return;
+  }
+  for (std::size_t k = 0; k < eps_text.size(); ++k) {
+    const auto after = column("not_covered@" + eps_text[k]);
+    if (!after) continue;  // the paper's table: covered per ε only
+    const auto at = static_cast<std::ptrdiff_t>(*after + 1);
+    table.columns.insert(
+        table.columns.begin() + at,
+        {"dominated@" + eps_text[k], "dom.\\ $\\varepsilon{=}" + eps_text[k] + "$"});
+    for (std::size_t i = 0; i < result.solvers.size(); ++i)
+      table.rows.at(i).insert(table.rows.at(i).begin() + at,
+                              Cell::of(result.solvers[i].per_epsilon[k].dominated));
+  }
 }
 
 int run_eval(const EvalArgs& args) {
@@ -184,10 +254,7 @@ int run_eval(const EvalArgs& args) {
   std::vector<SolutionReader> solutions;
   solutions.reserve(args.solutions.size());
   for (const auto& file : args.solutions) solutions.push_back(SolutionReader::open_verified(file));
-  ComparisonOptions options;
-  options.eval.strict_dominance = args.strict;
-  options.runtime_shift_seconds = args.runtime_shift;
-  auto result = compare_solvers(reference, solutions, eps, options);
+  auto result = compare_solvers(reference, solutions, eps, args.options);
   if (args.json) {
     print_json(result, reference.display_name(), reference.query_count(), eps_text);
   } else if (args.csv || args.latex) {
@@ -195,8 +262,12 @@ int run_eval(const EvalArgs& args) {
     for (auto& s : result.solvers) s.name = escape_for_terminal(s.name);
     auto table = args.per_query ? tables::comparison_per_query(result, eps_text, solutions)
                                 : tables::comparison_summary(result, eps_text, args.latex);
-    table.caption = "mosb eval: reference " + escape_for_terminal(reference.display_name()) + ", " +
-                    std::to_string(reference.query_count()) + " queries";
+    complete_table(table, result, eps_text, solutions, args.per_query);
+    std::ostringstream caption;
+    caption << "mosb eval: reference " << escape_for_terminal(reference.display_name()) << ", "
+            << reference.query_count() << " queries, " << to_string(result.runtime)
+            << " runtime, float tolerance " << result.tolerance;
+    table.caption = caption.str();
     if (args.csv)
       tables::write_csv(std::cout, table);
     else
@@ -224,14 +295,15 @@ Command add_eval(CLI::App& app) {
       ->expected(1, -1)
       ->check(CLI::ExistingFile);
   sub->add_option("--eps", args->epsilons, "comma-separated ε values")->capture_default_str();
-  sub->add_flag("--strict-dominance", args->strict,
+  sub->add_flag("--strict-dominance", args->options.eval.strict_dominance,
                 "the paper's literal strict clause (spec/EVALUATION.md §1)");
   sub->add_flag("--per-query", args->per_query,
                 "also each query's outcome (text), or one row per solver and query (--csv)");
-  sub->add_option("--runtime-shift", args->runtime_shift,
+  sub->add_option("--runtime-shift", args->options.runtime_shift_seconds,
                   "the shift s, in seconds, of the runtimes' shifted geometric mean")
       ->check(non_negative_real())
       ->capture_default_str();
+  add_comparison_options(sub, args->options);
   add_json_flag(sub, args->json);
   auto* json = sub->get_option("--json");
   auto* csv = sub->add_flag("--csv", args->csv, "print the summary table as CSV (RFC 4180)");

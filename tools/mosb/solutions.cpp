@@ -8,6 +8,7 @@
 
 #include "commands.hpp"
 #include "json_writer.hpp"
+#include "mosb/atomic_file.hpp"
 #include "mosb/converters/solution_export.hpp"
 #include "mosb/converters/solution_import.hpp"
 #include "mosb/converters/text_input.hpp"
@@ -32,13 +33,25 @@ struct ImportArgs {
   InstanceIdBase id_base;
   std::vector<std::size_t> columns;
   std::string solver, solver_version, epsilon = "0";
-  bool json = false;
+  bool nondominated = false, json = false;
 };
+
+// Every file the import reads: the instance, the input, and each regular file of --dir (a file
+// of the directory is a front file, the output among them).
+std::vector<std::filesystem::path> import_inputs(const ImportArgs& a) {
+  std::vector<std::filesystem::path> inputs{a.instance, a.table, a.json_log, a.example_log};
+  std::error_code error;
+  if (!a.directory.empty())
+    for (const auto& entry : std::filesystem::directory_iterator(a.directory, error))
+      inputs.push_back(entry.path());
+  return inputs;
+}
 
 int run_import(const ImportArgs& a) {
   const int inputs = !a.directory.empty() + !a.table.empty() + !a.json_log.empty();
   if (inputs != 1)
     throw Error(ErrorCode::invalid_argument, "give exactly one of --dir, --table, --json-log");
+  check_output_is_not_input(a.output, import_inputs(a));
   if (a.choice.view.empty() && a.choice.objectives.empty())
     throw UsageError("give --view V or --objectives A,B,... (the objectives the costs are)");
   const auto instance = mosb::load(a.instance, VerifyLevel::checksums);
@@ -75,7 +88,10 @@ int run_import(const ImportArgs& a) {
     results = converters::parse_solver_json_log(input.text, a.json_log, options);
   }
   writer.set_solver({a.solver, a.solver_version, {}, a.epsilon, {}});
-  converters::set_imported_results(writer, results);
+  const auto dropped =
+      converters::set_imported_results(writer, results,
+                                       a.nondominated ? converters::DominatedVectors::keep_optimal
+                                                      : converters::DominatedVectors::refuse);
   writer.write(a.output);
   const auto written = SolutionReader::open(a.output);
   if (a.json) {
@@ -85,12 +101,18 @@ int run_import(const ImportArgs& a) {
     json.key("queries").value(written.query_count());
     json.key("imported").value(static_cast<std::uint64_t>(results.size()));
     json.key("vectors").value(written.vector_count());
+    json.key("dropped_vectors").value(dropped.vectors);
+    json.key("dropped_queries").value(dropped.queries);
     json.key("digest").value(written.digest());
     json.end_object();
   } else {
     std::cout << "wrote " << escape_for_terminal(a.output) << ": " << results.size() << " of "
               << written.query_count() << " queries imported, " << written.vector_count()
-              << " vectors, digest " << written.digest() << "\n";
+              << " vectors";
+    if (a.nondominated)
+      std::cout << " (" << dropped.vectors << " dominated or repeated vectors dropped from "
+                << dropped.queries << " queries)";
+    std::cout << ", digest " << written.digest() << "\n";
   }
   return 0;
 }
@@ -104,8 +126,9 @@ int run_export(const ExportArgs& a) {
   if (a.directory.empty() == a.json_log.empty())
     throw Error(ErrorCode::invalid_argument, "give exactly one of --dir, --json-log");
   const auto r = SolutionReader::open_verified(a.file);
+  const std::vector<std::filesystem::path> inputs{a.file, a.instance};
   if (!a.directory.empty()) {
-    const auto files = converters::export_front_directory(r, a.directory, a.id_base);
+    const auto files = converters::export_front_directory(r, a.directory, a.id_base, inputs);
     std::cout << "wrote " << files << " front files to " << escape_for_terminal(a.directory)
               << "\n";
     return 0;
@@ -113,7 +136,7 @@ int run_export(const ExportArgs& a) {
   if (a.instance.empty())
     throw Error(ErrorCode::invalid_argument, "--json-log needs --instance (for the endpoints)");
   const auto records = converters::export_json_log(
-      r, mosb::load(a.instance, VerifyLevel::checksums), a.json_log, a.id_base);
+      r, mosb::load(a.instance, VerifyLevel::checksums), a.json_log, a.id_base, inputs);
   std::cout << "wrote " << escape_for_terminal(a.json_log) << ": " << records << " records\n";
   return 0;
 }
@@ -159,6 +182,16 @@ void print_inspect_json(const InspectArgs& a, const SolutionReader& r, const Sol
   json.key("runtime_seconds");
   json_distribution(json, t.completed.runtime, true, false);
   json.key("paths").value(r.has_paths());
+  json.key("dropped_vectors");
+  if (const auto dropped = r.dropped_vectors())
+    json.begin_object()
+        .key("vectors")
+        .value(dropped->vectors)
+        .key("queries")
+        .value(dropped->queries)
+        .end_object();
+  else
+    json.null();
   json.key("statistics").begin_object();
   for (const auto& statistic : t.statistics) {
     json.key(to_string(statistic.statistic)).begin_object();
@@ -200,6 +233,9 @@ void print_inspect_text(const InspectArgs& a, const SolutionReader& r, const Sol
   std::cout << "runtime over " << (c.runtime ? c.runtime->count : 0)
             << " completed queries: " << distribution_text(c.runtime, " s", true) << "\n";
   std::cout << "paths: " << (r.has_paths() ? "yes" : "no") << "\n";
+  if (const auto dropped = r.dropped_vectors())
+    std::cout << "imported with --nondominated: " << dropped->vectors
+              << " dominated or repeated vectors dropped from " << dropped->queries << " queries\n";
   for (const auto& statistic : t.statistics)
     std::cout << to_string(statistic.statistic) << ": " << statistic.queries << " queries, total "
               << statistic.total << ", max " << statistic.max << "\n";
@@ -300,6 +336,10 @@ Command add_solutions(CLI::App& app) {
       ->check(printable_text());
   import->add_option("--epsilon", import_args->epsilon, "the epsilon the solver used (0: exact)")
       ->check(epsilon_value());
+  import->add_flag("--nondominated", import_args->nondominated,
+                   "keep each front's non-dominated vectors (the first of equal ones) instead of "
+                   "refusing a front with dominated or repeated vectors; the file records how "
+                   "many were dropped");
   add_output_option(import, import_args->output, "the solution file")->required();
   add_json_flag(import, import_args->json);
   auto export_args = std::make_shared<ExportArgs>();

@@ -8,6 +8,7 @@
 #include "commands.hpp"
 #include "json_writer.hpp"
 #include "mosb/internal/utf8.hpp"
+#include "mosb/solution_verify.hpp"
 #include "mosb/solver_comparison.hpp"
 
 namespace mosb::cli {
@@ -15,6 +16,7 @@ namespace {
 
 struct CompareArgs {
   std::string a, b;
+  ComparisonOptions options;
   bool per_query = false, json = false;
 };
 
@@ -27,7 +29,7 @@ std::string query_line(const QueryAgreement& q, const std::string& a, const std:
     out << "DIFFERENT: " << to_string(q.a_status) << " in " << a << ", " << to_string(q.b_status)
         << " in " << b;
   } else {
-    out << "DIFFERENT fronts: " << vector_text(q.first_difference) << " only in "
+    out << "DIFFERENT fronts: " << cost_vector_text(q.first_difference) << " only in "
         << (q.difference_in_a ? a : b);
   }
   if (q.runtime_ratio) out << ", runtime ratio " << *q.runtime_ratio;
@@ -37,6 +39,7 @@ std::string query_line(const QueryAgreement& q, const std::string& a, const std:
 void print_json(const FrontAgreement& r, const CompareArgs& args) {
   JsonWriter j(std::cout);
   j.begin_object().key("a").value(args.a).key("b").value(args.b);
+  j.key("tolerance").value(r.tolerance).key("runtime").value(to_string(r.runtime));
   j.key("ok").value(r.different == 0).key("equal").value(r.equal);
   j.key("different").value(r.different).key("runtime_ratio");
   if (r.runtime_ratio)
@@ -75,7 +78,7 @@ void print_json(const FrontAgreement& r, const CompareArgs& args) {
 int run_compare(const CompareArgs& args) {
   const auto a = SolutionReader::open_verified(args.a);
   const auto b = SolutionReader::open_verified(args.b);
-  const auto result = compare_fronts(a, b);
+  const auto result = compare_fronts(a, b, args.options);
   if (args.json) {
     print_json(result, args);
     return result.different ? 1 : 0;
@@ -86,14 +89,36 @@ int run_compare(const CompareArgs& args) {
   std::cout << "summary: " << result.queries.size() << " queries, " << result.equal << " equal, "
             << result.different << " different";
   if (result.runtime_ratio)
-    std::cout << "; runtime " << name_b << " / " << name_a << " over "
-              << result.runtime_ratio->count << " queries: median " << result.runtime_ratio->median
-              << ", max " << result.runtime_ratio->max;
+    std::cout << "; " << to_string(result.runtime) << " runtime " << name_b << " / " << name_a
+              << " over " << result.runtime_ratio->count << " queries: median "
+              << result.runtime_ratio->median << ", max " << result.runtime_ratio->max;
   std::cout << '\n' << (result.different ? "FAIL" : "OK") << '\n';
   return result.different ? 1 : 0;
 }
 
 }  // namespace
+
+void add_comparison_options(CLI::App* sub, ComparisonOptions& options) {
+  sub->add_option("--tolerance", options.tolerance,
+                  "relative tolerance within which float objective values are equal (integer "
+                  "objectives are exact; 0: exact; spec/EVALUATION.md section 2.1)")
+      ->check(CLI::Validator(
+          [real = non_negative_real()](std::string& text) -> std::string {
+            if (auto problem = real(text); !problem.empty()) return problem;
+            return std::stod(text) < 1 ? "" : "'" + text + "' is not below 1";
+          },
+          "REL", "relative tolerance"))
+      ->capture_default_str();
+  sub->add_option_function<std::string>(
+         "--runtime",
+         [&options](const std::string& name) {
+           options.runtime = *kRuntimeSourceNames.parse(name);  // checked by CLI11
+         },
+         "the runtime summarised: wall (mosb's wall clock, runtime_seconds) or reported (the "
+         "solver's own figure, reported_runtime_seconds)")
+      ->check(CLI::IsMember(kRuntimeSourceNames.names()))
+      ->default_str(std::string(to_string(options.runtime)));
+}
 
 Command add_solutions_compare(CLI::App* solutions) {
   auto args = std::make_shared<CompareArgs>();
@@ -106,6 +131,7 @@ Command add_solutions_compare(CLI::App* solutions) {
       ->required()
       ->check(CLI::ExistingFile);
   sub->add_flag("--per-query", args->per_query, "a line for every query, not only the differing");
+  add_comparison_options(sub, args->options);
   add_json_flag(sub, args->json);
   return {sub, [args] { return run_compare(*args); }};
 }

@@ -29,8 +29,14 @@ std::string value_text(const SolutionReader& r, std::size_t i, std::uint64_t row
 }  // namespace
 
 std::uint64_t export_front_directory(const SolutionReader& r, const std::filesystem::path& out_dir,
-                                     unsigned id_base) {
+                                     unsigned id_base,
+                                     const std::vector<std::filesystem::path>& inputs) {
   if (auto problem = r.verify_payload()) throw Error(r.display_name() + ": " + *problem);
+  const auto file_of = [&](std::uint64_t q) {
+    return out_dir / (std::to_string(q + id_base) + ".txt");
+  };
+  for (std::uint64_t q = 0; q < r.query_count(); ++q)
+    if (exported(r.status(q))) check_output_is_not_input(file_of(q), inputs);
   std::error_code error;
   std::filesystem::create_directories(out_dir, error);
   if (error)
@@ -52,14 +58,16 @@ std::uint64_t export_front_directory(const SolutionReader& r, const std::filesys
         text += (i ? " " : "") + value_text(r, i, begin + k);
       text += '\n';
     }
-    write_file_atomically(out_dir / (std::to_string(q + id_base) + ".txt"), text);
+    write_file_atomically(file_of(q), text);
     ++files;
   }
   return files;
 }
 
 std::uint64_t export_json_log(const SolutionReader& r, const GraphReader& instance,
-                              const std::filesystem::path& output, unsigned id_base) {
+                              const std::filesystem::path& output, unsigned id_base,
+                              const std::vector<std::filesystem::path>& inputs) {
+  check_output_is_not_input(output, inputs);
   r.check_bound_to(instance);
   if (auto problem = r.verify_payload()) throw Error(r.display_name() + ": " + *problem);
   const auto queries = instance.queries(r.query_set());

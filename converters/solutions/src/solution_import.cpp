@@ -8,6 +8,7 @@
 #include "mosb/converters/text_input.hpp"
 #include "mosb/converters/text_scan.hpp"
 #include "mosb/error.hpp"
+#include "mosb/solution_verify.hpp"
 
 namespace mosb::converters {
 
@@ -615,8 +616,44 @@ std::vector<ImportedResult> parse_solver_json_log(std::string_view text, const s
   return by_query(std::move(results), std::move(where));
 }
 
-void set_imported_results(SolutionWriter& writer, std::span<const ImportedResult> results) {
+namespace {
+
+// The vectors of `r` to keep: all of them, or (keep_optimal) its non-dominated subset. Throws for
+// a dominated or repeated vector under `refuse`, naming both and where they came from.
+std::vector<double> kept_costs(const ImportedResult& r, std::size_t d, DominatedVectors policy,
+                               std::uint64_t& dropped) {
+  const auto drop = dominated_rows(r.costs, d);
+  if (drop.empty()) return r.costs;
+  if (policy == DominatedVectors::refuse) {
+    const auto pair = *first_dominated_row(r.costs, d);
+    const auto source = [&](std::size_t row) {
+      return row < r.vector_sources.size() ? r.vector_sources[row] : r.source;
+    };
+    throw Error(ErrorCode::invalid_argument,
+                source(pair.dominated) + ": query " + std::to_string(r.query) + ": " +
+                    dominated_row_text(r.costs, d, pair) + " (at " + source(pair.by) +
+                    "); give --nondominated to keep each front's non-dominated vectors");
+  }
+  std::vector<double> kept;
+  kept.reserve(r.costs.size() - drop.size() * d);
+  for (std::size_t row = 0, next = 0; row < r.costs.size() / d; ++row) {
+    if (next < drop.size() && drop[next] == row) {
+      ++next;
+      continue;
+    }
+    kept.insert(kept.end(), r.costs.begin() + static_cast<std::ptrdiff_t>(row * d),
+                r.costs.begin() + static_cast<std::ptrdiff_t>((row + 1) * d));
+  }
+  dropped += drop.size();
+  return kept;
+}
+
+}  // namespace
+
+DroppedVectors set_imported_results(SolutionWriter& writer, std::span<const ImportedResult> results,
+                                    DominatedVectors dominated) {
   const std::size_t d = writer.objective_count();
+  DroppedVectors drops;
   for (const auto& r : results) {
     for (std::size_t k = 0; k < r.costs.size(); ++k)
       if (const auto problem = writer.cost_problem(k % d, r.costs[k]))
@@ -624,13 +661,19 @@ void set_imported_results(SolutionWriter& writer, std::span<const ImportedResult
                     (k / d < r.vector_sources.size() ? r.vector_sources[k / d] : r.source) +
                         ": query " + std::to_string(r.query) + ", objective '" +
                         writer.objective_names()[k % d] + "': " + *problem);
+    const std::uint64_t before = drops.vectors;
+    const auto costs = r.costs.size() % d == 0 ? kept_costs(r, d, dominated, drops.vectors)
+                                               : r.costs;  // the writer refuses it below
+    if (drops.vectors != before) ++drops.queries;
     try {
-      writer.set_query(r.query, r.status, r.costs, r.statistics);
+      writer.set_query(r.query, r.status, costs, r.statistics);
     } catch (const Error& e) {
       if (r.source.empty()) throw;
       throw Error(e.code(), r.source + ": " + e.what());
     }
   }
+  if (dominated == DominatedVectors::keep_optimal) writer.set_dropped_vectors(drops);
+  return drops;
 }
 
 }  // namespace mosb::converters

@@ -1,6 +1,8 @@
 #include "mosb/eval.hpp"
 
 #include <algorithm>
+#include <bit>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -28,9 +30,58 @@ constexpr Ratio kInfinity{1, 0};
 template <class T>
 struct Arith;
 
+// The smallest non-negative double x with ok(x), for a predicate that is false then true over
+// the non-negative doubles in increasing order and true at +infinity. Found from `guess` by
+// galloping over the bit patterns (ordered as the values they encode), then bisecting: O(log k)
+// calls for an answer k doubles away, at most about 130. Stepping one double at a time is what
+// hung `eval`: below 1, an ulp of ε is far smaller than an ulp of 1 + ε.
+template <class Ok>
+double smallest_double_where(double guess, Ok ok) {
+  constexpr auto kTop = std::bit_cast<std::uint64_t>(std::numeric_limits<double>::infinity());
+  const auto holds = [&](std::uint64_t b) { return ok(std::bit_cast<double>(b)); };
+  const std::uint64_t start =
+      guess >= 0 ? std::min(std::bit_cast<std::uint64_t>(guess), kTop) : std::uint64_t{0};
+  std::uint64_t lo = 0, hi = 0;  // !holds(lo), holds(hi)
+  if (holds(start)) {
+    hi = start;
+    for (std::uint64_t step = 1;; step *= 2) {
+      if (hi == 0) return 0.0;
+      const std::uint64_t probe = hi > step ? hi - step : 0;
+      if (!holds(probe)) {
+        lo = probe;
+        break;
+      }
+      hi = probe;
+    }
+  } else {
+    lo = start;
+    for (std::uint64_t step = 1;; step *= 2) {
+      if (lo == kTop) return std::numeric_limits<double>::infinity();  // ok broke its contract
+      const std::uint64_t probe = kTop - lo > step ? lo + step : kTop;
+      if (holds(probe)) {
+        hi = probe;
+        break;
+      }
+      lo = probe;
+    }
+  }
+  while (hi - lo > 1) {
+    const std::uint64_t mid = lo + (hi - lo) / 2;
+    (holds(mid) ? hi : lo) = mid;
+  }
+  return std::bit_cast<double>(hi);
+}
+
+// Per cost type: ε's representation, the one comparison everything else is built on,
+// sign(p - (1+ε)·q), and what a coordinate needs: `need` gives a key, ordered as the ε it stands
+// for, and `from_need` that ε (keys are compared many times, turned into an ε once per vector).
+template <class T>
+struct Arith;
+
 template <>
 struct Arith<std::uint64_t> {
   using Eps = Ratio;
+  using Need = Ratio;
   static Eps make(Ratio r) { return r; }
   static Eps zero() { return {0, 1}; }
   static int cmp(std::uint64_t p, std::uint64_t q, const Ratio& e) {
@@ -46,18 +97,28 @@ struct Arith<std::uint64_t> {
     return lhs < rhs ? -1 : (lhs == rhs ? 0 : 1);
   }
   // The smallest ε with p ≤ (1+ε)·q.
-  static Eps need(std::uint64_t p, std::uint64_t q) {
+  static Need need(std::uint64_t p, std::uint64_t q) {
     if (p <= q) return zero();
     if (q == 0) return kInfinity;
     return {p - q, q};  // reduced once at the end: comparisons cross-multiply
   }
-  static bool less(const Eps& a, const Eps& b) { return a < b; }
+  static Need no_need() { return zero(); }
+  static Need unreachable() { return kInfinity; }
+  static Eps from_need(const Need& n) { return n; }
+  static bool less(const Ratio& a, const Ratio& b) { return a < b; }
   static double value(const Eps& e) { return e.to_double(); }
 };
 
+// ε is a double and (1+ε)·q is rounded once after 1+ε is: the comparison depends on ε only
+// through the double g = fl(1+ε). So a coordinate's need is the smallest double g ≥ 1 with
+// fl(g·q) ≥ p, and the vector's ε is g − 1 (exact up to g = 2^53; beyond, the first double from
+// there whose 1+ε reaches g): S covers R at ε exactly when fl(1+ε) ≥ 1 + the achieved ε. It is
+// p/q − 1 as mosb 0.2.0 computed it wherever fl(p/q) is the smallest such g, i.e. unless fl(p/q)
+// rounded up and the product with the double below still rounds up to p.
 template <>
 struct Arith<double> {
   using Eps = double;
+  using Need = double;  // g
   static Eps make(Ratio r) { return r.to_double(); }
   static Eps zero() { return 0.0; }
   static int cmp(double p, double q, double e) {
@@ -65,15 +126,21 @@ struct Arith<double> {
     const double t = (1.0 + e) * q;
     return p < t ? -1 : (p == t ? 0 : 1);
   }
-  static Eps need(double p, double q) {
-    if (p <= q) return 0.0;
+  static Need need(double p, double q) {
+    if (p <= q) return 1.0;
     if (q == 0) return std::numeric_limits<double>::infinity();
-    double e = p / q - 1.0;
-    // Rounding may leave (1+e)·q just below p; step up until the comparison agrees.
-    while (cmp(p, q, e) > 0) e = std::nextafter(e, std::numeric_limits<double>::infinity());
-    return e;
+    return smallest_double_where(p / q, [&](double g) { return g * q >= p; });
   }
-  static bool less(Eps a, Eps b) { return a < b; }
+  static Need no_need() { return 1.0; }
+  static Need unreachable() { return std::numeric_limits<double>::infinity(); }
+  static Eps from_need(Need g) {
+    if (g <= 1.0) return 0.0;
+    if (std::isinf(g)) return g;
+    const double e = g - 1.0;
+    if (1.0 + e >= g) return e;
+    return smallest_double_where(e, [&](double x) { return x >= e && 1.0 + x >= g; });
+  }
+  static bool less(double a, double b) { return a < b; }
   static double value(Eps e) { return e; }
 };
 
@@ -295,10 +362,10 @@ void check_fronts(FrontView<T> solution, FrontView<T> reference) {
 template <class T>
 typename Arith<T>::Eps need_of(FrontView<T> solution, const T* q) {
   using A = Arith<T>;
-  typename A::Eps best = A::make(kInfinity);
+  typename A::Need best = A::unreachable();
   for (std::size_t k = 0; k < solution.size(); ++k) {
     const T* p = solution[k];
-    typename A::Eps worst = A::zero();
+    typename A::Need worst = A::no_need();
     for (std::size_t i = 0; i < solution.dimension; ++i) {
       const auto e = A::need(p[i], q[i]);
       if (A::less(worst, e)) worst = e;
@@ -306,7 +373,7 @@ typename Arith<T>::Eps need_of(FrontView<T> solution, const T* q) {
     }
     if (A::less(worst, best)) best = worst;
   }
-  return best;
+  return A::from_need(best);
 }
 
 template <class T>
@@ -388,6 +455,7 @@ Bracket<T> test_requested(FrontView<T> solution, FrontView<T> reference,
     if (epsilon.num == 0) {
       c.covered = result.same_multiset;
       c.uncovered = reference.size() - matched;
+      c.extra = solution.size() - matched;
     } else {
       const typename A::Eps e = A::make(epsilon);
       auto u = weak.uncovered(e);
@@ -522,6 +590,25 @@ bool operator<(const Ratio& a, const Ratio& b) {
   return static_cast<u128>(a.num) * b.den < static_cast<u128>(b.num) * a.den;
 }
 
+namespace {
+
+// Why `text`, which is not the plain decimal parse_epsilon takes, is refused: a number written
+// otherwise (an exponent, a sign, inf) is named for what it is, out of range first.
+std::string refusal(std::string_view text) {
+  double value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error == std::errc::invalid_argument || end != text.data() + text.size())
+    return "not a number: expected a non-negative decimal number such as 0.05";
+  if (std::isnan(value)) return "not a number: expected a non-negative decimal number such as 0.05";
+  if (text.front() == '-') return "negative: expected a non-negative decimal number such as 0.05";
+  if (error == std::errc::result_out_of_range || std::isinf(value) || value >= 1e18 ||
+      (value > 0 && value < 1e-18))
+    return "out of range: an epsilon is below 10^18 and a multiple of 10^-18";
+  return "write it without an exponent, as a decimal number such as 0.05";
+}
+
+}  // namespace
+
 Ratio parse_epsilon(std::string_view text) {
   const auto bad = [&](const std::string& why) {
     return Error(ErrorCode::invalid_argument,
@@ -531,15 +618,20 @@ Ratio parse_epsilon(std::string_view text) {
   std::string_view whole = text.substr(0, point);
   std::string_view fraction =
       point == std::string_view::npos ? std::string_view{} : text.substr(point + 1);
-  if (whole.empty() && fraction.empty()) throw bad("expected a decimal number such as 0.05");
+  if (whole.empty() && fraction.empty()) throw bad(refusal(text));
   for (std::string_view part : {whole, fraction})
     for (char c : part)
-      if (c < '0' || c > '9') throw bad("expected a non-negative decimal number such as 0.05");
+      if (c < '0' || c > '9') throw bad(refusal(text));
   // Leading zeros of the whole part and trailing zeros of the fraction carry no digit of the value.
   while (!whole.empty() && whole.front() == '0') whole.remove_prefix(1);
   while (!fraction.empty() && fraction.back() == '0') fraction.remove_suffix(1);
-  if (whole.size() > 18 || fraction.size() > 18)
-    throw bad("more than 18 significant digits on one side of the point");
+  if (whole.size() > 18)
+    throw bad("out of range: more than 18 digits before the point (at most 10^18 - 1)");
+  if (fraction.size() > 18)
+    throw bad(whole.empty() &&
+                      fraction.substr(0, 18).find_first_not_of('0') == std::string_view::npos
+                  ? "out of range: below 10^-18, the finest epsilon (18 digits after the point)"
+                  : "more than 18 digits after the point");
   // Up to 36 digits: exact in 128 bits, then reduced; the fraction must fit in 64 bits.
   u128 num = 0, den = 1;
   for (char c : whole) num = num * 10 + static_cast<u128>(c - '0');
@@ -553,7 +645,7 @@ Ratio parse_epsilon(std::string_view text) {
       den /= prime;
     }
   if (num > std::numeric_limits<std::uint64_t>::max())
-    throw bad("not a fraction of two 64-bit integers (too many digits)");
+    throw bad("out of range: not a fraction of two 64-bit integers (too many digits)");
   return reduced(static_cast<std::uint64_t>(num), static_cast<std::uint64_t>(den));
 }
 
@@ -581,11 +673,13 @@ std::vector<std::size_t> uncovered_reference(FrontView<double> solution,
 }
 
 // Rounded up at the 9th digit (less a millionth of a unit there, so that a ratio whose double
-// rounding lands just above a 9-digit decimal is not pushed one unit up).
+// rounding lands just above a 9-digit decimal is not pushed one unit up); a positive ε is at least
+// 0.000000001, never "0", which would claim the fronts equal.
 std::string achieved_epsilon_text(const FrontEvaluation& front, bool exact) {
   if (exact) return front.achieved.den == 0 ? "inf" : front.achieved.to_decimal();
   if (!std::isfinite(front.achieved_value)) return "inf";
-  const double up = std::max(0.0, std::ceil(front.achieved_value * 1e9 - 1e-6) / 1e9);
+  const double units = std::ceil(front.achieved_value * 1e9 - 1e-6);
+  const double up = (front.achieved_value > 0 ? std::max(1.0, units) : 0.0) / 1e9;
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.9f", up);
   std::string text = buffer;

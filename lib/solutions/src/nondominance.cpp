@@ -38,38 +38,43 @@ std::vector<std::size_t> lexicographic_order(const Rows<T>& rows) {
   return order;
 }
 
-// The sweeps below return the first position j of `order` whose vector is weakly dominated by one
-// at a position before j. Every earlier vector is no worse in the first objective, so only the
-// other objectives are asked.
+// The sweeps below call found(j), in increasing j, for every position j of `order` whose vector is
+// weakly dominated by one at a position before j, and stop when it returns false. Every earlier
+// vector is no worse in the first objective, so only the other objectives are asked. A dominated
+// vector is not kept for later ones: whatever it dominates, the vector dominating it does too.
 
 // d = 2: some earlier vector dominates v iff the smallest earlier second value is <= v's.
-template <class T>
-std::optional<std::size_t> sweep_two(const Rows<T>& rows, const std::vector<std::size_t>& order) {
+template <class T, class Found>
+void sweep_two(const Rows<T>& rows, const std::vector<std::size_t>& order, Found found) {
   T best = rows.at(order[0])[1];
   for (std::size_t j = 1; j < order.size(); ++j) {
     const T second = rows.at(order[j])[1];
-    if (best <= second) return j;
-    best = std::min(best, second);
+    if (best <= second) {
+      if (!found(j)) return;
+      continue;
+    }
+    best = second;
   }
-  return std::nullopt;
 }
 
 // d = 3: the staircase of earlier (second, third) pairs that no other earlier pair weakly
 // dominates: keyed by the second value, the third strictly decreasing. The entry with the largest
 // second value <= v's holds the smallest third value among all such entries.
-template <class T>
-std::optional<std::size_t> sweep_three(const Rows<T>& rows, const std::vector<std::size_t>& order) {
+template <class T, class Found>
+void sweep_three(const Rows<T>& rows, const std::vector<std::size_t>& order, Found found) {
   std::map<T, T> staircase;
   for (std::size_t j = 0; j < order.size(); ++j) {
     const T y = rows.at(order[j])[1], z = rows.at(order[j])[2];
     auto it = staircase.upper_bound(y);
-    if (it != staircase.begin() && std::prev(it)->second <= z) return j;
+    if (it != staircase.begin() && std::prev(it)->second <= z) {
+      if (!found(j)) return;
+      continue;
+    }
     // (y, z) is not dominated: it replaces the entries it dominates, which follow it.
     it = staircase.lower_bound(y);
     while (it != staircase.end() && it->second >= z) it = staircase.erase(it);
     staircase.emplace_hint(it, y, z);
   }
-  return std::nullopt;
 }
 
 // d >= 4: a static k-d tree over the last d - 1 values of every vector; each node keeps its
@@ -152,12 +157,25 @@ class DominanceTree {
   std::vector<T> low_, high_;
 };
 
-template <class T>
-std::optional<std::size_t> sweep_tree(const Rows<T>& rows, const std::vector<std::size_t>& order) {
+template <class T, class Found>
+void sweep_tree(const Rows<T>& rows, const std::vector<std::size_t>& order, Found found) {
   const DominanceTree<T> tree(rows, order);
   for (std::size_t j = 1; j < order.size(); ++j)
-    if (tree.any_before(j, order[j])) return j;
-  return std::nullopt;
+    if (tree.any_before(j, order[j]) && !found(j)) return;
+}
+
+template <class T, class Found>
+void sweep(const Rows<T>& rows, const std::vector<std::size_t>& order, Found found) {
+  if (rows.d == 1) {
+    for (std::size_t j = 1; j < order.size(); ++j)  // any two one-objective vectors compare
+      if (!found(j)) return;
+  } else if (rows.d == 2) {
+    sweep_two(rows, order, found);
+  } else if (rows.d == 3) {
+    sweep_three(rows, order, found);
+  } else {
+    sweep_tree(rows, order, found);
+  }
 }
 
 }  // namespace
@@ -168,14 +186,10 @@ std::optional<DominatedPair> find_weakly_dominated(std::span<const T> values, st
   if (rows.size() < 2) return std::nullopt;
   const auto order = lexicographic_order(rows);
   std::optional<std::size_t> j;
-  if (d == 1)
-    j = 1;  // any two one-objective vectors are comparable
-  else if (d == 2)
-    j = sweep_two(rows, order);
-  else if (d == 3)
-    j = sweep_three(rows, order);
-  else
-    j = sweep_tree(rows, order);
+  sweep(rows, order, [&](std::size_t position) {
+    j = position;
+    return false;
+  });
   if (!j) return std::nullopt;
   // The first earlier vector in lexicographic order that dominates it: one linear scan.
   const std::size_t dominated = order[*j];
@@ -184,6 +198,22 @@ std::optional<DominatedPair> find_weakly_dominated(std::span<const T> values, st
   return std::nullopt;  // unreachable: the sweep found such a vector
 }
 
+template <class T>
+std::vector<std::size_t> weakly_dominated_rows(std::span<const T> values, std::size_t d) {
+  const Rows<T> rows{values, d};
+  std::vector<std::size_t> dominated;
+  if (rows.size() < 2) return dominated;
+  const auto order = lexicographic_order(rows);
+  sweep(rows, order, [&](std::size_t position) {
+    dominated.push_back(order[position]);
+    return true;
+  });
+  std::sort(dominated.begin(), dominated.end());
+  return dominated;
+}
+
+template std::vector<std::size_t> weakly_dominated_rows<double>(std::span<const double>,
+                                                                std::size_t);
 template std::optional<DominatedPair> find_weakly_dominated<std::uint64_t>(
     std::span<const std::uint64_t>, std::size_t);
 template std::optional<DominatedPair> find_weakly_dominated<std::int64_t>(

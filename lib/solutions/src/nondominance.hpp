@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <vector>
 
 namespace mosb::solutions_internal {
 
@@ -26,6 +27,14 @@ struct DominatedPair {
 template <class T>
 std::optional<DominatedPair> find_weakly_dominated(std::span<const T> rows, std::size_t d);
 
+// Every row weakly dominated by a row before it in that lexicographic order (equal vectors: by
+// index), i.e. every row outside the non-dominated subset that keeps the first of equal vectors;
+// increasing. Empty when find_weakly_dominated finds nothing. The same sweep and cost.
+template <class T>
+std::vector<std::size_t> weakly_dominated_rows(std::span<const T> rows, std::size_t d);
+
+extern template std::vector<std::size_t> weakly_dominated_rows<double>(std::span<const double>,
+                                                                       std::size_t);
 extern template std::optional<DominatedPair> find_weakly_dominated<std::uint64_t>(
     std::span<const std::uint64_t>, std::size_t);
 extern template std::optional<DominatedPair> find_weakly_dominated<std::int64_t>(

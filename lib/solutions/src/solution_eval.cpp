@@ -1,20 +1,13 @@
 #include "mosb/solution_eval.hpp"
 
+#include <algorithm>
 #include <type_traits>
 
 #include "mosb/error.hpp"
+#include "tolerance.hpp"
 
 namespace mosb {
 namespace {
-
-bool all_integer(const SolutionReader& r) {
-  for (std::size_t i = 0; i < r.objective_count(); ++i) {
-    const bool integral = r.visit_column(
-        i, [](auto span) { return std::is_integral_v<typename decltype(span)::value_type>; });
-    if (!integral) return false;
-  }
-  return true;
-}
 
 // Query q's front, row-major, in T (uint64_t for integer views, double otherwise).
 template <class T>
@@ -30,7 +23,45 @@ std::vector<T> gather(const SolutionReader& r, std::uint64_t q) {
   return rows;
 }
 
+// Query q's evaluation when both files solved it.
+void evaluate_front_of(const SolutionReader& reference, const SolutionReader& solution,
+                       std::span<const Ratio> epsilons, const ComparisonOptions& options,
+                       const std::vector<bool>& is_float, QueryEvaluation& e) {
+  const std::size_t d = reference.objective_count();
+  const auto q = e.query;
+  if (std::find(is_float.begin(), is_float.end(), true) == is_float.end()) {
+    const auto s = gather<std::uint64_t>(solution, q), r = gather<std::uint64_t>(reference, q);
+    e.front = evaluate_front(FrontView<std::uint64_t>{s, d}, FrontView<std::uint64_t>{r, d},
+                             epsilons, options.eval);
+  } else {
+    auto s = gather<double>(solution, q), r = gather<double>(reference, q);
+    solutions_internal::snap_within_tolerance(s, r, d, is_float, options.tolerance);
+    e.front =
+        evaluate_front(FrontView<double>{s, d}, FrontView<double>{r, d}, epsilons, options.eval);
+  }
+  if (e.front->worst_reference) {
+    const std::uint64_t row = reference.front_begin(q) + *e.front->worst_reference;
+    for (std::size_t i = 0; i < d; ++i)
+      e.worst_reference_values.push_back(reference.value_as_double(i, row));
+  }
+}
+
 }  // namespace
+
+std::string_view to_string(RuntimeSource source) {
+  return kRuntimeSourceNames.name(source);
+}
+
+std::string_view to_string(QueryOutcome outcome) {
+  return kQueryOutcomeNames.name(outcome);
+}
+
+std::optional<QueryOutcome> QueryEvaluation::outcome(std::size_t k) const {
+  if (reference_status != QueryStatus::solved) return std::nullopt;
+  if (!front) return QueryOutcome::not_solved;
+  if (dominated) return QueryOutcome::dominated;
+  return front->coverage.at(k).covered ? QueryOutcome::covered : QueryOutcome::not_covered;
+}
 
 void check_same_binding(const SolutionReader& ref, const SolutionReader& sol) {
   const auto mismatch = [&](const std::string& what, const std::string& a, const std::string& b) {
@@ -60,12 +91,13 @@ void check_same_binding(const SolutionReader& ref, const SolutionReader& sol) {
 
 SolutionEvaluation evaluate_solutions(const SolutionReader& reference,
                                       const SolutionReader& solution,
-                                      std::span<const Ratio> epsilons, const EvalOptions& options) {
+                                      std::span<const Ratio> epsilons,
+                                      const ComparisonOptions& options) {
   check_same_binding(reference, solution);
-  const std::size_t d = reference.objective_count();
-  const bool integer = all_integer(reference) && all_integer(solution);
+  solutions_internal::check_tolerance(options.tolerance);
+  const auto is_float = solutions_internal::float_objectives(reference, solution);
   SolutionEvaluation result;
-  result.exact_arithmetic = integer;
+  result.exact_arithmetic = std::find(is_float.begin(), is_float.end(), true) == is_float.end();
   result.solver_claims_exact = parse_epsilon(solution.solver().epsilon).num == 0;
   result.covered_per_epsilon.assign(epsilons.size(), 0);
   for (std::uint64_t q = 0; q < reference.query_count(); ++q) {
@@ -74,24 +106,13 @@ SolutionEvaluation evaluate_solutions(const SolutionReader& reference,
     e.reference_status = reference.status(q);
     e.solution_status = solution.status(q);
     if (e.reference_status == QueryStatus::solved && e.solution_status == QueryStatus::solved) {
-      const auto run = [&](auto tag) {
-        using T = decltype(tag);
-        const auto s = gather<T>(solution, q), r = gather<T>(reference, q);
-        return evaluate_front(FrontView<T>{s, d}, FrontView<T>{r, d}, epsilons, options);
-      };
-      e.front = integer ? run(std::uint64_t{}) : run(double{});
-      if (e.front->worst_reference) {
-        const std::uint64_t row = reference.front_begin(q) + *e.front->worst_reference;
-        for (std::size_t i = 0; i < d; ++i)
-          e.worst_reference_values.push_back(reference.value_as_double(i, row));
-      }
+      evaluate_front_of(reference, solution, epsilons, options, is_float, e);
+      e.dominated = result.solver_claims_exact && !e.front->dominated_by_reference.empty();
+      e.failed = e.dominated;
       for (std::size_t k = 0; k < epsilons.size(); ++k) {
-        if (e.front->coverage[k].covered)
-          ++result.covered_per_epsilon[k];
-        else
-          e.failed = true;
+        if (e.outcome(k) == QueryOutcome::covered) ++result.covered_per_epsilon[k];
+        e.failed = e.failed || !e.front->coverage[k].covered;
       }
-      if (result.solver_claims_exact && !e.front->dominated_by_reference.empty()) e.failed = true;
     } else if (e.reference_status == QueryStatus::solved) {
       e.failed = true;  // the solver did not solve a query the reference solved
     } else {

@@ -1,6 +1,7 @@
 #include "mosb/solution_file.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstring>
 
@@ -302,6 +303,23 @@ SolverInfo SolutionReader::solver() const {
   return info;
 }
 
+std::optional<DroppedVectors> SolutionReader::dropped_vectors() const {
+  const auto vectors = metadata_.get("solution.import.dropped_vectors");
+  const auto queries = metadata_.get("solution.import.dropped_queries");
+  if (!vectors && !queries) return std::nullopt;
+  const auto number = [&](const std::optional<std::string>& text, const char* key) {
+    std::uint64_t value = 0;
+    const char* end = text ? text->data() + text->size() : nullptr;
+    if (!text || text->empty() || text->front() < '0' || text->front() > '9' ||
+        std::from_chars(text->data(), end, value).ptr != end)
+      fail(ErrorCode::invalid_argument, std::string("metadata '") + key +
+                                            "' is not an unsigned decimal integer (or is missing)");
+    return value;
+  };
+  return DroppedVectors{number(vectors, "solution.import.dropped_vectors"),
+                        number(queries, "solution.import.dropped_queries")};
+}
+
 const Section& SolutionReader::objective(std::size_t i) const {
   if (i >= cost_indices_.size())
     fail(ErrorCode::invalid_argument, "objective index " + std::to_string(i) + " out of range (" +
@@ -528,6 +546,7 @@ struct SolutionWriter::State {
   std::vector<std::string> objective_names;
   std::vector<ElementType> objective_types;
   SolverInfo solver;
+  std::optional<DroppedVectors> dropped;
   std::string source_tool = std::string("mosb ") + version();
   std::vector<QueryResult> results;
 
@@ -546,6 +565,10 @@ Metadata SolutionWriter::State::metadata() const {
   if (!solver.machine.empty()) meta.set("solution.machine", solver.machine);
   for (const auto& [key, value] : solver.parameters)
     meta.set("solution.solver.param." + key, value);
+  if (dropped) {
+    meta.set("solution.import.dropped_vectors", std::to_string(dropped->vectors));
+    meta.set("solution.import.dropped_queries", std::to_string(dropped->queries));
+  }
   meta.set("source.tool", source_tool);
   return meta;
 }
@@ -633,6 +656,10 @@ void SolutionWriter::set_solver(SolverInfo info) {
       throw Error(ErrorCode::invalid_argument,
                   "solver parameter name '" + key + "' is not from [A-Za-z0-9_.+-]");
   state_->solver = std::move(info);
+}
+
+void SolutionWriter::set_dropped_vectors(std::optional<DroppedVectors> dropped) {
+  state_->dropped = dropped;
 }
 
 void SolutionWriter::set_source_tool(std::string tool) {

@@ -4,6 +4,8 @@
 #include <map>
 #include <set>
 
+#include "mosb/atomic_file.hpp"
+
 namespace mosb {
 
 namespace {
@@ -233,6 +235,9 @@ StatusCounts SolutionMerge::status_counts() const {
 
 void SolutionMerge::write(const std::filesystem::path& output) const {
   const auto& st = *state_;
+  std::vector<std::filesystem::path> inputs;
+  for (const auto& input : st.inputs) inputs.push_back(input.file);
+  check_output_is_not_input(output, inputs);
   const auto& first = st.readers.front();
   SolutionWriter writer(first);
   // The solver: what every input shares, and for what may differ, each distinct value.
@@ -250,6 +255,15 @@ void SolutionMerge::write(const std::filesystem::path& output) const {
   for (const auto& [key, values] : lenient_values) info.parameters[key] = joined(values);
   if (st.shards) info.parameters[std::string(kShardsKey)] = std::to_string(*st.shards);
   writer.set_solver(std::move(info));
+  // What imports dropped from the parts, added up.
+  std::optional<DroppedVectors> dropped;
+  for (const auto& r : st.readers)
+    if (const auto part = r.dropped_vectors()) {
+      if (!dropped) dropped.emplace();
+      dropped->vectors += part->vectors;
+      dropped->queries += part->queries;
+    }
+  writer.set_dropped_vectors(dropped);
 
   std::vector<double> costs;
   std::vector<std::vector<std::uint32_t>> paths;

@@ -15,18 +15,6 @@ namespace mosb {
 
 namespace {
 
-std::string number_text(double value) {
-  char buffer[32];
-  const auto end = std::to_chars(buffer, buffer + sizeof buffer, value).ptr;
-  return {buffer, end};
-}
-
-std::string vector_text(const std::vector<double>& v) {
-  std::string text = "(";
-  for (std::size_t i = 0; i < v.size(); ++i) text += (i ? ", " : "") + number_text(v[i]);
-  return text + ")";
-}
-
 // The front of query q, values as doubles: exact for every integer cost (the writer refuses
 // integers above 2^53) and for f32/f64 costs.
 std::vector<std::vector<double>> front_of(const SolutionReader& s, std::uint64_t begin,
@@ -45,12 +33,9 @@ std::optional<std::string> dominance_problem(const std::vector<std::vector<doubl
   std::vector<double> rows;
   rows.reserve(front.size() * d);
   for (const auto& v : front) rows.insert(rows.end(), v.begin(), v.end());
-  const auto pair = solutions_internal::find_weakly_dominated<double>(rows, d);
+  const auto pair = first_dominated_row(rows, d);
   if (!pair) return std::nullopt;
-  const auto &v = front[pair->dominated], &w = front[pair->by];
-  return label +
-         (w == v ? "[duplicate] vector " + vector_text(v) + " appears twice"
-                 : "[dominated] vector " + vector_text(v) + " is dominated by " + vector_text(w));
+  return label + dominated_row_text(rows, d, *pair);
 }
 
 // The first pair of equal rows in lexicographic order, or nullopt.
@@ -119,7 +104,7 @@ std::string sum_text(const PartialSum& sum, const std::vector<bool>& is_float) {
   std::string text = "(";
   for (std::size_t i = 0; i < is_float.size(); ++i)
     text +=
-        (i ? ", " : "") + (is_float[i] ? number_text(sum.real[i]) : std::to_string(sum.integer[i]));
+        (i ? ", " : "") + (is_float[i] ? cost_text(sum.real[i]) : std::to_string(sum.integer[i]));
   return text + ")";
 }
 
@@ -205,8 +190,8 @@ std::optional<std::string> disconnected_problem(const SolutionReader& s,
 std::optional<std::string> reference_problem(double c_star, double l_star,
                                              const QueryReferenceDeclaration& reference) {
   const std::string head = "[reference] the smallest " + reference.objective +
-                           " c* = " + number_text(c_star) + " does not match the " +
-                           reference.source + " optimum L* = " + number_text(l_star) + ": ";
+                           " c* = " + cost_text(c_star) + " does not match the " +
+                           reference.source + " optimum L* = " + cost_text(l_star) + ": ";
   if (reference.units == ReferenceUnits::objective) {
     // The objective's own unit: an exact front's smallest value is the optimum, up to the
     // rounding of a printed real.
@@ -220,8 +205,8 @@ std::optional<std::string> reference_problem(double c_star, double l_star,
   const double low = c_star / 10, high = std::sqrt(2.0) / 1.4 * c_star / 10;
   if (low <= l_star + tau && l_star <= high + tau) return std::nullopt;
   return head +
-         (low > l_star + tau ? "c*/10 = " + number_text(low) + " > L* + tau"
-                             : "L* > (sqrt 2/1.4) c*/10 + tau = " + number_text(high + tau)) +
+         (low > l_star + tau ? "c*/10 = " + cost_text(low) + " > L* + tau"
+                             : "L* > (sqrt 2/1.4) c*/10 + tau = " + cost_text(high + tau)) +
          " (spec/SOLUTIONS.md section 6)";
 }
 
@@ -236,6 +221,43 @@ std::optional<QueryReferenceDeclaration> declared_reference(const GraphReader& i
   d.units = metadata.get(key + "units") == "objective" ? ReferenceUnits::objective
                                                        : ReferenceUnits::octile;
   return d;
+}
+
+std::string cost_text(double value) {
+  // Integers (every integer path sum, up to 2^53) as integers: to_chars' shortest form would
+  // print 1000000000 as 1e+09.
+  if (value == std::floor(value) && std::fabs(value) <= 9007199254740992.0)
+    return std::to_string(static_cast<std::int64_t>(value));
+  char buffer[32];
+  const auto end = std::to_chars(buffer, buffer + sizeof buffer, value).ptr;
+  return {buffer, end};
+}
+
+std::string cost_vector_text(std::span<const double> values) {
+  std::string text = "(";
+  for (std::size_t i = 0; i < values.size(); ++i) text += (i ? ", " : "") + cost_text(values[i]);
+  return text + ")";
+}
+
+std::vector<std::size_t> dominated_rows(std::span<const double> rows, std::size_t d) {
+  return solutions_internal::weakly_dominated_rows<double>(rows, d);
+}
+
+std::optional<DominatedRow> first_dominated_row(std::span<const double> rows, std::size_t d) {
+  const auto pair = solutions_internal::find_weakly_dominated<double>(rows, d);
+  if (!pair) return std::nullopt;
+  return DominatedRow{pair->dominated, pair->by};
+}
+
+std::string dominated_row_text(std::span<const double> rows, std::size_t d, DominatedRow pair) {
+  const auto vector = [&](std::size_t row) {
+    return std::vector<double>(rows.begin() + static_cast<std::ptrdiff_t>(row * d),
+                               rows.begin() + static_cast<std::ptrdiff_t>((row + 1) * d));
+  };
+  const auto v = vector(pair.dominated), w = vector(pair.by);
+  return v == w ? "[duplicate] vector " + cost_vector_text(v) + " appears twice"
+                : "[dominated] vector " + cost_vector_text(v) + " is dominated by " +
+                      cost_vector_text(w);
 }
 
 std::optional<std::string> verify_solutions(const SolutionReader& s, const GraphReader& g) {
@@ -274,7 +296,7 @@ std::optional<std::string> verify_solutions(const SolutionReader& s, const Graph
     }
     if (!s.has_paths()) continue;
     for (std::uint64_t k = 0; k < size; ++k) {
-      const std::string where = label + "path of vector " + vector_text(front[k]) + ": ";
+      const std::string where = label + "path of vector " + cost_vector_text(front[k]) + ": ";
       if (auto problem = path_problem(s, g, objectives, offsets, targets, queries[q],
                                       s.path(begin + k), front[k], where))
         return problem;
@@ -283,20 +305,16 @@ std::optional<std::string> verify_solutions(const SolutionReader& s, const Graph
   return std::nullopt;
 }
 
-std::optional<std::string> front_problem(std::span<const double> rows, std::size_t d, bool exact) {
+std::optional<std::string> front_problem(std::span<const double> rows, std::size_t d,
+                                         bool exact) {
   if (d == 0 || rows.size() < 2 * d) return std::nullopt;
-  const auto vector_at = [&](std::size_t k) {
-    return std::vector<double>(rows.begin() + static_cast<std::ptrdiff_t>(k * d),
-                               rows.begin() + static_cast<std::ptrdiff_t>((k + 1) * d));
-  };
   if (exact) {
-    std::vector<std::vector<double>> front(rows.size() / d);
-    for (std::size_t k = 0; k < front.size(); ++k) front[k] = vector_at(k);
-    return dominance_problem(front, d, "");
+    const auto pair = first_dominated_row(rows, d);
+    return pair ? std::optional(dominated_row_text(rows, d, *pair)) : std::nullopt;
   }
-  if (const auto k = first_repeated_row(rows, d))
-    return "[duplicate] vector " + vector_text(vector_at(*k)) + " appears twice";
-  return std::nullopt;
+  const auto repeated = first_repeated_row(rows, d);
+  return repeated ? std::optional(dominated_row_text(rows, d, {*repeated, *repeated}))
+                  : std::nullopt;
 }
 
 }  // namespace mosb

@@ -54,6 +54,9 @@ struct EpsilonCoverage {
   // Reference vectors no solution vector ε-dominates. At ε = 0, `covered` means the same
   // multiset; uncovered then counts reference vectors without an equal solution vector.
   std::uint64_t uncovered = 0;
+  // At ε = 0 only: solution vectors without an equal reference vector (duplicates, vectors the
+  // reference dominates, vectors it lacks), the other way a multiset can differ; 0 at ε > 0.
+  std::uint64_t extra = 0;
 };
 
 struct FrontEvaluation {
@@ -62,7 +65,9 @@ struct FrontEvaluation {
   // The smallest uniform ε at which the solution covers the reference (componentwise reading);
   // infinite when none does (an empty solution, or q_i = 0 that no vector meets with p_i = 0).
   // For integer costs `achieved` is exact; for double costs its num/den is unset and only
-  // `achieved_value` is meaningful.
+  // `achieved_value` is meaningful: g − 1 for g the smallest double 1+ε must round to for the
+  // coverage test (1+ε rounded, then (1+ε)·q_i) to cover, so covered at a double ε ⟺
+  // fl(1+ε) ≥ 1 + achieved_value (spec/EVALUATION.md §2).
   Ratio achieved;
   double achieved_value = 0;
   // A reference vector that needs exactly the achieved ε (the worst one); nullopt when the
@@ -80,9 +85,12 @@ struct FrontEvaluation {
 std::string achieved_epsilon_text(const FrontEvaluation& front, bool exact);
 
 // Both fronts must have the same dimension ≥ 1 (throws mosb::Error otherwise); values must be
-// non-negative (double: finite and ≥ 0), which the caller checks.
+// non-negative (double: finite and ≥ 0), which the caller checks. Values are compared as given
+// (a tolerance is applied before, by evaluate_solutions and compare_fronts).
 // Time: O((|S| + |R|) log(|S| + |R|)) per coverage test for d ≤ 3, O(|S|·|R|·d) worst case for
-// d ≥ 4; the achieved ε takes O(log) coverage tests plus a refinement (spec/EVALUATION.md).
+// d ≥ 4; the achieved ε takes expected O(log |R|) coverage tests plus at most 256 + 64 per test
+// scans of S, each coordinate's need found in O(1) expected and O(64) worst-case steps
+// (spec/EVALUATION.md §3), whatever the values, integer or double.
 FrontEvaluation evaluate_front(FrontView<std::uint64_t> solution,
                                FrontView<std::uint64_t> reference, std::span<const Ratio> epsilons,
                                const EvalOptions& options = {});

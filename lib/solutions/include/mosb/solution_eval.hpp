@@ -1,15 +1,63 @@
 // `mosb eval` over solution files (spec/EVALUATION.md §4): a solver's solution file against a
-// reference solution file of the same instance, view and query set, query by query.
+// reference solution file of the same instance, view and query set, query by query; and the
+// options every comparison of solution files takes (eval, `solutions compare`, report).
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
+#include <string_view>
 #include <vector>
 
+#include "mosb/enum_names.hpp"
 #include "mosb/eval.hpp"
 #include "mosb/solution_file.hpp"
 
 namespace mosb {
+
+// Which runtime a comparison summarises (spec/SOLUTIONS.md §4): mosb's wall clock over the
+// solver's process tree (`runtime_seconds`), or the solver's own figure
+// (`reported_runtime_seconds`, format 1.5).
+enum class RuntimeSource : std::uint8_t { wall, reported };
+inline constexpr auto kRuntimeSourceNames = enum_names<RuntimeSource>({
+    {RuntimeSource::wall, "wall"},
+    {RuntimeSource::reported, "reported"},
+});
+std::string_view to_string(RuntimeSource source);  // kRuntimeSourceNames
+constexpr Statistic runtime_statistic(RuntimeSource source) {
+  return source == RuntimeSource::reported ? Statistic::reported_runtime_seconds
+                                           : Statistic::runtime_seconds;
+}
+
+// The default relative tolerance of float objectives (spec/EVALUATION.md §2.1): the per-arc
+// tolerance `solutions verify` allows a float path sum.
+inline constexpr double kDefaultTolerance = 1e-9;
+
+// How solution files are compared: by eval (compare_solvers, evaluate_solutions), by `solutions
+// compare` (compare_fronts) and by report.
+struct ComparisonOptions {
+  EvalOptions eval;
+  // Relative tolerance of floating-point objectives, in [0, 1): the values of one float objective
+  // in the two fronts compared are grouped from the smallest, a group holding every value up to
+  // (1 + tolerance) times its first, and each value is compared as its group's first
+  // (spec/EVALUATION.md §2.1). 0: exact. Integer objectives are always compared exactly.
+  double tolerance = kDefaultTolerance;
+  RuntimeSource runtime = RuntimeSource::wall;  // the runtimes summarised
+  double runtime_shift_seconds = 1;             // s of the shifted geometric mean
+};
+
+// Why a query the reference solved passes or fails at one requested ε: one answer per query and
+// ε (spec/EVALUATION.md §4), in this order of precedence: the solver did not solve it; the solver
+// claims exactness (solution.epsilon = 0) and returned vectors the reference dominates; its front
+// does not cover the reference's at ε (at ε = 0: is not the same multiset); it does.
+enum class QueryOutcome : std::uint8_t { not_solved, dominated, not_covered, covered };
+inline constexpr auto kQueryOutcomeNames = enum_names<QueryOutcome>({
+    {QueryOutcome::not_solved, "not_solved"},
+    {QueryOutcome::dominated, "dominated"},
+    {QueryOutcome::not_covered, "not_covered"},
+    {QueryOutcome::covered, "covered"},
+});
+std::string_view to_string(QueryOutcome outcome);  // kQueryOutcomeNames
 
 struct QueryEvaluation {
   std::uint64_t query = 0;
@@ -19,9 +67,14 @@ struct QueryEvaluation {
   std::optional<FrontEvaluation> front;
   // The worst reference vector's values (objective order), when front->worst_reference is set.
   std::vector<double> worst_reference_values;
-  // Uncovered at some requested ε, not solved, or (from a solver claiming exactness,
-  // metadata solution.epsilon = 0) vectors the reference strictly dominates.
+  // The solver claims exactness and returned vectors the reference strictly dominates.
+  bool dominated = false;
+  // Uncovered at some requested ε, not solved, dominated, or solved where the reference found
+  // the goal unreachable.
   bool failed = false;
+
+  // The outcome at requested ε number k; nullopt when the reference did not solve the query.
+  std::optional<QueryOutcome> outcome(std::size_t k) const;
 };
 
 struct SolutionEvaluation {
@@ -41,11 +94,13 @@ struct SolutionEvaluation {
 // the reference: the message names files, not roles.
 void check_same_binding(const SolutionReader& reference, const SolutionReader& solution);
 
-// Throws as check_same_binding (naming both files) unless they share the binding. Integer
-// objectives are compared exactly, a view with any floating-point objective in double arithmetic.
+// Throws as check_same_binding (naming both files) unless they share the binding, and
+// ErrorCode::invalid_argument for a tolerance outside [0, 1). Integer objectives are compared
+// exactly, a view with any floating-point objective in double arithmetic, its float objectives
+// within options.tolerance.
 SolutionEvaluation evaluate_solutions(const SolutionReader& reference,
                                       const SolutionReader& solution,
                                       std::span<const Ratio> epsilons,
-                                      const EvalOptions& options = {});
+                                      const ComparisonOptions& options = {});
 
 }  // namespace mosb

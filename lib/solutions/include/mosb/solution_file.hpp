@@ -146,6 +146,15 @@ struct SolverInfo {
   std::string machine;                            // free-text machine notes
 };
 
+// What `solutions import --nondominated` left out of the file (metadata
+// `solution.import.dropped_vectors` and `solution.import.dropped_queries`, spec/SOLUTIONS.md §2):
+// input vectors that another vector of the same query's front weakly dominated or repeated, and
+// the number of queries that had any.
+struct DroppedVectors {
+  std::uint64_t vectors = 0, queries = 0;
+  bool operator==(const DroppedVectors&) const = default;
+};
+
 class SolutionReader : public ContainerReader {
  public:
   static SolutionReader open(const std::filesystem::path& path);
@@ -174,6 +183,9 @@ class SolutionReader : public ContainerReader {
   const std::string& view_name() const { return view_; }
   const std::string& query_set() const { return query_set_; }
   SolverInfo solver() const;
+  // nullopt when the file records no drop (it was not imported with --nondominated); throws
+  // mosb::Error when the keys are not both unsigned decimal integers.
+  std::optional<DroppedVectors> dropped_vectors() const;
 
   // Whether the front_cost columns hold path sums in format::path_sum_type (format 1.3 on), or,
   // in a 1.1/1.2 file, each objective in its arc cost type. Readers need not care: every value
@@ -271,6 +283,8 @@ class SolutionWriter {
   SolutionWriter& operator=(const SolutionWriter&) = delete;
 
   void set_solver(SolverInfo info);
+  // Records what an import left out (metadata solution.import.*); nullopt (the default): nothing.
+  void set_dropped_vectors(std::optional<DroppedVectors> dropped);
   // The `source.tool` stamp (default "mosb VERSION"); golden files pin it.
   void set_source_tool(std::string tool);
   std::size_t objective_count() const;

@@ -8,6 +8,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "mosb/graph_reader.hpp"
 #include "mosb/solution_file.hpp"
@@ -36,6 +37,30 @@ std::optional<QueryReferenceDeclaration> declared_reference(const GraphReader& i
 // "[reference] ..." message showing both values and naming the objective and the source.
 std::optional<std::string> reference_problem(double c_star, double l_star,
                                              const QueryReferenceDeclaration& reference);
+
+// A cost as messages and reports print it: an integer as an integer, any other value in the
+// shortest text that reads back to the same double (so two different values never print alike).
+std::string cost_text(double value);
+// "(a, b, c)", each value as cost_text prints it.
+std::string cost_vector_text(std::span<const double> values);
+
+// A front's vectors (row-major, d >= 1 values each) that are not Pareto-optimal within it:
+// weakly dominated by another of its vectors, or equal to one before it (the first of equal
+// vectors is kept). What `solutions import --nondominated` drops and verify's [dominated] and
+// [duplicate] refuse. Row indices, increasing; empty when the vectors are mutually
+// non-dominated and distinct. O(k log k) for d <= 3 (one sort and one sweep; a k-d tree for
+// d >= 4, as verify_solutions).
+std::vector<std::size_t> dominated_rows(std::span<const double> rows, std::size_t d);
+
+// The pair verify_solutions names: row `dominated` is weakly dominated by row `by` (equal to it,
+// for a duplicate), the first such row in lexicographic order; nullopt when there is none.
+struct DominatedRow {
+  std::size_t dominated = 0, by = 0;
+};
+std::optional<DominatedRow> first_dominated_row(std::span<const double> rows, std::size_t d);
+// How the pair is named: "[duplicate] vector (4, 4) appears twice" or "[dominated] vector (3, 9)
+// is dominated by (3, 8)" (each value in the shortest text that reads back the same).
+std::string dominated_row_text(std::span<const double> rows, std::size_t d, DominatedRow pair);
 
 // The first problem of a front as a solver returned it (spec/RUN.md §3, rule 1), `rows` row-major
 // with d >= 1 values each: two equal vectors ("[duplicate] vector (1, 9) appears twice"), or, when

@@ -104,10 +104,22 @@ void apply_example_run_log(std::string_view text, const std::string& display_nam
                            const SolutionImportOptions& options,
                            std::vector<ImportedResult>& results);
 
+// What to do with a front that is not a set of mutually non-dominated, distinct vectors.
+enum class DominatedVectors {
+  refuse,        // an error naming both vectors, their inputs and the query
+  keep_optimal,  // keep the non-dominated subset (the first of equal vectors); record the drop
+};
+
 // Hands every result to the writer. A value the writer refuses (SolutionWriter::cost_problem: a
 // fraction for an integer objective, a path sum above 2^53) is an error naming the input it came
 // from (its vector_sources entry: FILE:LINE or FILE: JSON-POINTER), the query and the objective;
-// any other refusal is prefixed with the result's source.
-void set_imported_results(SolutionWriter& writer, std::span<const ImportedResult> results);
+// any other refusal is prefixed with the result's source. A front holding a vector that another
+// of its vectors weakly dominates or repeats (mosb::dominated_rows) is refused naming the query,
+// both vectors and their inputs ("SOURCE: query Q: [dominated] vector V is dominated by W (at
+// SOURCE2); ..."), unless `dominated` is keep_optimal: then only the non-dominated subset is kept
+// (the first of equal vectors) and the writer records how many vectors were dropped and from how
+// many queries (SolutionWriter::set_dropped_vectors), which is returned.
+DroppedVectors set_imported_results(SolutionWriter& writer, std::span<const ImportedResult> results,
+                                    DominatedVectors dominated = DominatedVectors::refuse);
 
 }  // namespace mosb::converters
