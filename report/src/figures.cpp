@@ -47,8 +47,8 @@ void check_map_fits(const GraphReader& reader, const Grid& grid, const Section& 
   const std::string size = std::to_string(grid.width) + " x " + std::to_string(grid.height) +
                            " map (" + std::to_string(area) + " cells)";
   if (area > format::kMaxCount)
-    throw Error(name + ": metadata map.width and map.height give a " + size +
-                ", more than the " + std::to_string(format::kMaxCount) + " a map may have");
+    throw Error(name + ": metadata map.width and map.height give a " + size + ", more than the " +
+                std::to_string(format::kMaxCount) + " a map may have");
   if (reader.vertex_count() > area)
     throw Error(name + ": its " + std::to_string(reader.vertex_count()) +
                 " vertices do not fit a " + size + ", one vertex per passable cell");

@@ -47,8 +47,8 @@ double finite_or(double x, double otherwise) {
 constexpr int kFirstDecade = -307, kLastDecade = 308;
 int decade(double v, bool up) {
   const double k = up ? std::ceil(std::log10(v)) : std::floor(std::log10(v));
-  return static_cast<int>(std::clamp(std::isnan(k) ? 0.0 : k, double{kFirstDecade},
-                                     double{kLastDecade}));
+  return static_cast<int>(
+      std::clamp(std::isnan(k) ? 0.0 : k, double{kFirstDecade}, double{kLastDecade}));
 }
 
 // A linear or log10 axis from data range [lo, hi] onto pixels [p0, p1].
@@ -199,8 +199,8 @@ std::vector<double> nice_ticks(double lo, double hi, int target) {
       !(std::fabs(last) < kExact) || last - first > 4.0 * std::max(target, 2))
     return {lo, hi};
   std::vector<double> ticks;
-  for (double k = first; k <= last; ++k) {
-    const double v = k * step;
+  for (std::int64_t k = 0; k <= static_cast<std::int64_t>(last - first); ++k) {
+    const double v = (first + static_cast<double>(k)) * step;
     if (std::isfinite(v)) ticks.push_back(std::fabs(v) < step * 1e-9 ? 0 : v);
   }
   return ticks;
@@ -260,7 +260,9 @@ void value_range(double& lo, double& hi) {
 std::string plot_front(const FrontPlot& plot) {
   const double e = plot.epsilon.value_or(0);
   // The far corner of an ε-box, at most the largest double.
-  const auto box = [e](double v) { return finite_or(v * (1 + e), std::numeric_limits<double>::max()); };
+  const auto box = [e](double v) {
+    return finite_or(v * (1 + e), std::numeric_limits<double>::max());
+  };
   const auto reference = thin_points(plot.reference, plot.max_points);
   const auto solution = thin_points(plot.solution, plot.max_points);
   double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo, y_lo = x_lo, y_hi = -x_lo;
@@ -812,8 +814,7 @@ std::string plot_parallel(const ParallelPlot& plot) {
                                static_cast<double>(d - 1);
   };
   const auto axis_y = [&](std::size_t i, double v) {
-    return hi[i] > lo[i] ? bottom - fraction(v, lo[i], hi[i]) * (bottom - top)
-                         : (top + bottom) / 2;
+    return hi[i] > lo[i] ? bottom - fraction(v, lo[i], hi[i]) * (bottom - top) : (top + bottom) / 2;
   };
   svg.text(kWidth / 2 - (kRight - kLeft) / 2, 28, plot.title, "middle", kTitleFont);
   if (!plot.subtitle.empty())

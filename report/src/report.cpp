@@ -98,6 +98,7 @@ std::vector<Benchmark> benchmarks_of(std::span<const GraphReader> instances) {
     }
   }
   std::vector<std::string> names;
+  names.reserve(out.size());
   for (const auto& b : out) names.push_back(b.name);
   const auto keys = unique_keys(names);
   for (std::size_t b = 0; b < out.size(); ++b) out[b].anchor = "b-" + keys[b];
@@ -232,11 +233,11 @@ struct Context {
   const ReportOptions& options;
   Page& page;
   std::vector<Benchmark> benchmarks;          // each with its solution and reference files
+  std::span<const std::string> notes;         // about the inputs, under the head's paragraph
   std::vector<std::string> solver_names;      // every solver, in the order first given
   std::vector<std::string> solver_keys;       // of each solver: unique_keys of solver_names
   std::vector<std::vector<ViewStats>> stats;  // per benchmark, per instance
   Outcomes outcomes;
-  std::span<const std::string> notes;  // about the inputs, under the head's paragraph
 };
 
 // Binds every file to its benchmark (one file per solver, or reference, and binding) and names
@@ -338,8 +339,7 @@ void write_head(const Context& c) {
   c.page.out << "<nav><ul><li><a href=\"#suite\">Suite</a></li><li><a href=\"#instance-space\">"
                 "Instance space</a></li>";
   for (const auto& b : c.benchmarks)
-    c.page.out << "<li><a href=\"#" << b.anchor << "\">" << Svg::escape(b.name)
-               << "</a></li>";
+    c.page.out << "<li><a href=\"#" << b.anchor << "\">" << Svg::escape(b.name) << "</a></li>";
   if (c.solver_names.size() >= 2)
     c.page.out << "<li><a href=\"#comparison\">Solver comparison</a></li>";
   c.page.out << "</ul></nav>\n";
@@ -981,8 +981,8 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
   Report report;
   report.notes = notes;
   Page page(report);
-  Context c{instances, solutions, references, options, page, benchmarks_of(instances), {}, {}, {},
-            {},        notes};
+  Context c{instances, solutions, references, options, page, benchmarks_of(instances),
+            notes,     {},        {},         {},      {}};
   bind_files(c);
   c.stats = view_stats(c);
   c.outcomes = outcomes_of(c);

@@ -224,8 +224,7 @@ Table comparison_summary(const SolverComparison& comparison,
   Table t;
   t.columns = {{"solver", "Solver"}};
   for (const auto status : kQueryStatuses) {
-    if (shown(status))
-      t.columns.push_back({status_key(status), latex_escape(to_string(status))});
+    if (shown(status)) t.columns.push_back({status_key(status), latex_escape(to_string(status))});
   }
   if (!for_paper) t.columns.push_back({"not_solved", "not solved"});
   for (const auto& e : epsilon_labels) {

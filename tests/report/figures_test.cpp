@@ -65,7 +65,8 @@ TEST_CASE("map_of: the guards of metadata map.guards, refused when malformed or 
   testing::TempDir dir;
   auto converted =
       convert_small_map(dir, "0 0\n3 2 1.5\n", &converters::GuardsOptions::guards_file);
-  const auto plot = plots::map_of(GraphReader::open(dir / "g.mosb", VerifyLevel::full), "exposure", 160);
+  const auto plot =
+      plots::map_of(GraphReader::open(dir / "g.mosb", VerifyLevel::full), "exposure", 160);
   REQUIRE(plot.guards.size() == 2);
   CHECK((plot.guards[0].x == 0 && plot.guards[0].y == 0));
   CHECK((plot.guards[1].x == 3 && plot.guards[1].y == 2));
@@ -94,8 +95,7 @@ TEST_CASE("map_of: the map's size parsed strictly and checked against the instan
   for (const char* bad : {"-5", "5x", "4294967301", "4294967296", "0", "", " 4", "+4", "04", "4.0",
                           "99999999999999999999"}) {
     CAPTURE(bad);
-    CHECK_THROWS_WITH_AS(map_of(bad, "3"),
-                         doctest::Contains("metadata map.width '"), Error);
+    CHECK_THROWS_WITH_AS(map_of(bad, "3"), doctest::Contains("metadata map.width '"), Error);
     CHECK_THROWS_WITH_AS(map_of("4", bad),
                          doctest::Contains("is not a whole number from 1 to 4294967295"), Error);
   }

@@ -168,6 +168,7 @@ TEST_CASE("svg escape replaces the C0 controls XML 1.0 forbids") {
 
 TEST_CASE("a large front is thinned, keeps its extreme points and says so") {
   std::vector<mosb::plots::Point2> front;
+  front.reserve(12345);
   for (int k = 0; k < 12345; ++k) front.push_back({double(k), double(12345 - k)});
   const auto drawn = mosb::plots::thin_points(front, mosb::plots::kMaxDrawnPoints);
   CHECK(drawn.size() <= mosb::plots::kMaxDrawnPoints + 4);
@@ -347,6 +348,7 @@ TEST_CASE("front plot of a reference alone has no solver entry, and an all-zero 
 
 TEST_CASE("thin_rows keeps every objective's extremes and at most limit + 2d rows") {
   std::vector<std::vector<double>> rows;
+  rows.reserve(1000);
   for (int k = 0; k < 1000; ++k)
     rows.push_back({static_cast<double>(k), static_cast<double>((k * 37) % 1000),
                     static_cast<double>(1000 - k), static_cast<double>((k * 91) % 997)});

@@ -64,7 +64,8 @@ TEST_CASE("write_csv: a field with a comma, a quote or a line break is quoted") 
 }
 
 // Issue 36 §4: a spreadsheet runs a field starting with = + - @ TAB or CR as a formula.
-TEST_CASE("write_csv: text that a spreadsheet would run is quoted after a ', numbers stay numbers") {
+TEST_CASE(
+    "write_csv: text that a spreadsheet would run is quoted after a ', numbers stay numbers") {
   Table t;
   t.columns = {{"name", "Name"}, {"rho", "$\\rho$"}};
   for (const char* name : {"=cmd|' /C calc'!A0", "+1", "-2+3", "@SUM(A1)", "\tx", "\rx", "a\\b",

@@ -59,9 +59,7 @@ class JsonWriter {
   };
 
   // Invalid UTF-8 (say, in a file name) becomes U+FFFD instead of failing the report.
-  void append(const Json& v) {
-    buffer_ += v.dump(-1, ' ', false, Json::error_handler_t::replace);
-  }
+  void append(const Json& v) { buffer_ += v.dump(-1, ' ', false, Json::error_handler_t::replace); }
   // What comes before a value: a comma after a sibling, and inside an object the pending key.
   void separate() {
     if (open_.empty()) return;

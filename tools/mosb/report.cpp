@@ -58,8 +58,9 @@ void add_tables(Outputs& out, const std::string& directory, const pages::Report&
       tables::write_latex(text, *table);
     else
       tables::write_csv(text, *table);
-    out.emplace_back(std::filesystem::path(directory) / (std::string(name) + (latex ? ".tex" : ".csv")),
-                     text.str());
+    out.emplace_back(
+        std::filesystem::path(directory) / (std::string(name) + (latex ? ".tex" : ".csv")),
+        text.str());
   }
 }
 
@@ -70,8 +71,9 @@ void add_figures(Outputs& out, const std::string& directory, const std::string& 
   for (std::size_t k = 0; k < r.figures.size(); ++k) {
     char number[32];
     std::snprintf(number, sizeof number, "%02zu-", k + 1);
-    out.emplace_back(std::filesystem::path(directory) / (number + r.figures[k].kind + "." + extension),
-                     plots::render_svg(r.figures[k].svg, format, {}));
+    out.emplace_back(
+        std::filesystem::path(directory) / (number + r.figures[k].kind + "." + extension),
+        plots::render_svg(r.figures[k].svg, format, {}));
   }
 }
 

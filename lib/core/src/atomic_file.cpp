@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cerrno>
@@ -352,7 +353,7 @@ class MadeDirectories {
   MadeDirectories() = default;
   ~MadeDirectories() {
     std::error_code ec;
-    for (auto it = made_.rbegin(); it != made_.rend(); ++it) fs::remove(*it, ec);
+    for (; !made_.empty(); made_.pop_back()) fs::remove(made_.back(), ec);  // innermost first
   }
   // Makes `directory` and its missing parents, outermost first.
   void make(const fs::path& directory) {
@@ -361,9 +362,10 @@ class MadeDirectories {
     for (fs::path at = place_of(directory); !fs::exists(fs::symlink_status(at, ec));
          at = at.parent_path())
       missing.push_back(at);
-    for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
-      if (fs::create_directory(*it, ec))
-        made_.push_back(*it);
+    std::reverse(missing.begin(), missing.end());
+    for (const auto& at : missing) {
+      if (fs::create_directory(at, ec))
+        made_.push_back(at);
       else if (ec)
         throw Error(directory.string() + ": cannot make the directory: " + ec.message());
     }

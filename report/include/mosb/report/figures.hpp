@@ -46,8 +46,8 @@ std::vector<Point2> parse_guard_cells(std::string_view text, std::uint32_t width
                                       std::uint32_t height, const std::string& name);
 
 // Adds the paths of query `query`'s front in `solutions` (bound to `instance`, verified) to `map`
-// (map_of's), as sequences of its squares. Throws when the file holds no paths, the query is not solved, or a path
-// vertex is not one of the instance's.
+// (map_of's), as sequences of its squares. Throws when the file holds no paths, the query is not
+// solved, or a path vertex is not one of the instance's.
 void add_front_paths(MapPlot& map, const GraphReader& instance, const SolutionReader& solutions,
                      std::uint64_t query);
 

@@ -48,11 +48,11 @@ struct Report {
 
 // A benchmark is a view (its objectives and query set) over every instance that has it; an
 // instance without views is one benchmark of all its objectives. An instance given twice (the
-// same content digest, under two paths or one) is counted once, and said in `notes`. Instances must be verified in
-// full, solution files with SolutionReader::open_verified. Every solution and reference file must
-// be bound to one of the instances (throws ErrorCode::invalid_argument naming the file and its
-// instance digest otherwise, or check_bound_to's error), and a solver (or the reference) may have
-// one file per instance, view and query set.
+// same content digest, under two paths or one) is counted once, and said in `notes`. Instances must
+// be verified in full, solution files with SolutionReader::open_verified. Every solution and
+// reference file must be bound to one of the instances (throws ErrorCode::invalid_argument naming
+// the file and its instance digest otherwise, or check_bound_to's error), and a solver (or the
+// reference) may have one file per instance, view and query set.
 Report make_report(std::span<const GraphReader> instances,
                    std::span<const SolutionReader> solutions,
                    std::span<const SolutionReader> references, const ReportOptions& options);
