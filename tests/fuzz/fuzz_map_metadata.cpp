@@ -48,15 +48,23 @@ mosb::GraphInput small_map() {
   return g;
 }
 
+std::filesystem::path g_scratch;  // removed when the fuzzer exits
+
+void remove_scratch() {
+  std::error_code ignored;
+  std::filesystem::remove_all(g_scratch, ignored);
+}
+
 const std::filesystem::path& scratch() {
   // tmpfs where there is one: each input writes a file (and fsyncs it).
-  static const std::filesystem::path dir = [] {
+  if (g_scratch.empty()) {
     std::string base = std::filesystem::exists("/dev/shm") ? "/dev/shm" : "/tmp";
     std::string name = base + "/mosb-fuzz-map-XXXXXX";
     if (::mkdtemp(name.data()) == nullptr) std::abort();
-    return std::filesystem::path(name);
-  }();
-  return dir;
+    g_scratch = name;
+    std::atexit(remove_scratch);
+  }
+  return g_scratch;
 }
 
 void check_drawn(const mosb::plots::MapPlot& map, std::uint32_t max_side) {
