@@ -1,6 +1,7 @@
 #include "mosb/report/figures.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -18,29 +19,82 @@ struct Grid {
   std::vector<Point2> cell;  // of each vertex, on the map
 };
 
-// The map's size and each vertex's cell, checked to lie on the map.
+// A metadata value as an error message quotes it: at most 40 bytes.
+std::string quoted(const std::string& value) {
+  return "'" + (value.size() <= 40 ? value : value.substr(0, 40) + "...") + "'";
+}
+
+// Metadata `key` (map.width or map.height): a whole number from 1 to 2^32 - 1, decimal digits
+// without a leading zero and nothing else ("5x", "-5", "4294967301" are refused, not read as 5).
+std::uint32_t map_side(const GraphReader& reader, const char* key) {
+  const std::string text = reader.metadata().get(key).value_or("");
+  std::uint64_t value = 0;
+  const char* end = text.data() + text.size();
+  const bool digits = !text.empty() && text.size() <= 10 && text.front() != '0' &&
+                      text.find_first_not_of("0123456789") == std::string::npos;
+  if (!digits || std::from_chars(text.data(), end, value).ptr != end || value > UINT32_MAX)
+    throw Error(reader.display_name() + ": metadata " + key + " " + quoted(text) +
+                " is not a whole number from 1 to 4294967295");
+  return static_cast<std::uint32_t>(value);
+}
+
+// Refuses a map the instance's vertices cannot be the passable cells of (spec/families/games.md
+// §2: one vertex per passable cell, so at most width x height vertices, and a map of at most
+// 2^32 - 2 cells, as convert movingai reads one), before anything of its size is allocated.
+void check_map_fits(const GraphReader& reader, const Grid& grid, const Section& cells) {
+  const std::string& name = reader.display_name();
+  const std::uint64_t area = std::uint64_t{grid.width} * grid.height;
+  const std::string size = std::to_string(grid.width) + " x " + std::to_string(grid.height) +
+                           " map (" + std::to_string(area) + " cells)";
+  if (area > format::kMaxCount)
+    throw Error(name + ": metadata map.width and map.height give a " + size + ", more than the " +
+                std::to_string(format::kMaxCount) + " a map may have");
+  if (reader.vertex_count() > area)
+    throw Error(name + ": its " + std::to_string(reader.vertex_count()) +
+                " vertices do not fit a " + size + ", one vertex per passable cell");
+  if (cells.entry.row_width != 2 || cells.element_count() != 2 * reader.vertex_count() ||
+      (cells.type != format::ElementType::u16 && cells.type != format::ElementType::u32))
+    throw Error(name + ": vertex data 'cell' is not one (x, y) pair of u16 or u32 per vertex");
+}
+
+// Refuses two vertices on one cell: the map counts each passable cell once.
+void check_distinct_cells(const GraphReader& reader, const Grid& grid) {
+  std::vector<std::pair<std::uint64_t, std::size_t>> at;  // (row-major cell, vertex)
+  at.reserve(grid.cell.size());
+  for (std::size_t v = 0; v < grid.cell.size(); ++v)
+    at.emplace_back(static_cast<std::uint64_t>(grid.cell[v].y) * grid.width +
+                        static_cast<std::uint64_t>(grid.cell[v].x),
+                    v);
+  std::sort(at.begin(), at.end());
+  for (std::size_t k = 1; k < at.size(); ++k)
+    if (at[k].first == at[k - 1].first) {
+      const Point2 c = grid.cell[at[k].second];
+      throw Error(reader.display_name() + ": vertices " + std::to_string(at[k - 1].second) +
+                  " and " + std::to_string(at[k].second) + " lie on the same cell (" +
+                  std::to_string(static_cast<std::uint64_t>(c.x)) + ", " +
+                  std::to_string(static_cast<std::uint64_t>(c.y)) + ")");
+    }
+}
+
+// The map's size and each vertex's cell, checked to lie on the map, one vertex per cell.
 Grid grid_of(const GraphReader& reader) {
   const auto& meta = reader.metadata();
-  const auto width = meta.get("map.width"), height = meta.get("map.height");
   const auto* cells = reader.find(format::SectionKind::vertex_data, "cell");
-  if (!width || !height || cells == nullptr)
+  if (!meta.get("map.width") || !meta.get("map.height") || cells == nullptr)
     throw Error(reader.display_name() +
                 ": not a grid instance (needs metadata map.width, map.height and vertex data "
                 "'cell')");
   Grid grid;
-  try {
-    grid.width = static_cast<std::uint32_t>(std::stoul(*width));
-    grid.height = static_cast<std::uint32_t>(std::stoul(*height));
-  } catch (const std::exception&) {
-    throw Error(reader.display_name() + ": metadata map.width/map.height is not a number");
-  }
+  grid.width = map_side(reader, "map.width");
+  grid.height = map_side(reader, "map.height");
+  check_map_fits(reader, grid, *cells);
   grid.cell.resize(reader.vertex_count());
   auto read_cells = [&](auto values) {
     for (std::size_t v = 0; v < grid.cell.size(); ++v) {
       const auto x = values[2 * v], y = values[2 * v + 1];
       if (x >= grid.width || y >= grid.height)
-        throw Error(reader.display_name() + ": vertex " + std::to_string(v) +
-                    "'s cell lies outside the map");
+        throw Error(reader.display_name() + ": vertex " + std::to_string(v) + "'s cell (" +
+                    std::to_string(x) + ", " + std::to_string(y) + ") lies outside the map");
       grid.cell[v] = {static_cast<double>(x), static_cast<double>(y)};
     }
   };
@@ -48,11 +102,8 @@ Grid grid_of(const GraphReader& reader) {
     read_cells(reader.values<std::uint16_t>(*cells));
   else
     read_cells(reader.values<std::uint32_t>(*cells));
+  check_distinct_cells(reader, grid);
   return grid;
-}
-
-std::size_t index_of(const Point2& cell, std::uint32_t width) {
-  return static_cast<std::size_t>(cell.y) * width + static_cast<std::size_t>(cell.x);
 }
 
 // Only a solved query has a front (or paths) to draw; the error gives the query's status.
@@ -117,31 +168,34 @@ std::vector<Point2> parse_guard_cells(std::string_view text, std::uint32_t width
   return guards;
 }
 
-MapPlot map_of(const GraphReader& reader, std::string_view exposure_objective) {
+MapPlot map_of(const GraphReader& reader, std::string_view exposure_objective,
+               std::uint32_t max_side) {
   reader.require_verified(VerifyLevel::full, "a map");
   const Grid grid = grid_of(reader);
-  MapPlot plot;
-  plot.width = grid.width;
-  plot.height = grid.height;
-  const std::size_t area = std::size_t{plot.width} * plot.height;
-  plot.passable.assign(area, false);
-  for (const auto& cell : grid.cell) plot.passable[index_of(cell, plot.width)] = true;
-  if (const auto guards = reader.metadata().get("map.guards"))
-    plot.guards = parse_guard_cells(*guards, grid.width, grid.height, reader.display_name());
-  plot.exposure_unit = objective_unit(reader, exposure_objective);
+  std::vector<Point2> guards;
+  if (const auto text = reader.metadata().get("map.guards"))
+    guards = parse_guard_cells(*text, grid.width, grid.height, reader.display_name());
   const auto objective = reader.find_objective(exposure_objective);
-  if (!objective) return plot;
-  plot.exposure.assign(area, std::numeric_limits<double>::quiet_NaN());
-  std::vector<double> cost(reader.arc_count());
-  reader.read_cost_as(*objective, cost);
-  const auto offsets = reader.forward_offsets();
-  const auto targets = reader.forward_targets();
-  for (std::size_t u = 0; u + 1 < offsets.size(); ++u)
-    for (std::uint64_t a = offsets[u]; a < offsets[u + 1]; ++a) {
-      const Point2 from = grid.cell[u], to = grid.cell[targets[a]];
-      if (from.x != to.x && from.y != to.y) continue;  // diagonal: charged max of three cells
-      plot.exposure[index_of(to, plot.width)] = cost[a];
-    }
+  MapSquares squares(grid.width, grid.height, max_side, objective.has_value());
+  const auto cell = [](const Point2& p) {
+    return std::pair{static_cast<std::uint32_t>(p.x), static_cast<std::uint32_t>(p.y)};
+  };
+  for (const auto& c : grid.cell) squares.add_passable(cell(c).first, cell(c).second);
+  if (objective) {
+    std::vector<double> cost(reader.arc_count());
+    reader.read_cost_as(*objective, cost);
+    const auto offsets = reader.forward_offsets();
+    const auto targets = reader.forward_targets();
+    for (std::size_t u = 0; u + 1 < offsets.size(); ++u)
+      for (std::uint64_t a = offsets[u]; a < offsets[u + 1]; ++a) {
+        const Point2 from = grid.cell[u], to = grid.cell[targets[a]];
+        if (from.x != to.x && from.y != to.y) continue;  // diagonal: charged max of three cells
+        squares.add_exposure(cell(to).first, cell(to).second, cost[a]);
+      }
+  }
+  MapPlot plot = squares.plot();
+  plot.exposure_unit = objective_unit(reader, exposure_objective);
+  for (const auto& g : guards) plot.guards.push_back(square_of(plot, g));
   return plot;
 }
 
@@ -163,7 +217,7 @@ void add_front_paths(MapPlot& map, const GraphReader& instance, const SolutionRe
                     name + ": query " + std::to_string(query) + ": path vertex " +
                         std::to_string(v) + " is not a vertex of " + instance.display_name() +
                         "; run mosb solutions verify --instance");
-      path.push_back(grid.cell[v]);
+      path.push_back(square_of(map, grid.cell[v]));
     }
   }
 }
@@ -174,7 +228,8 @@ void add_query_markers(MapPlot& map, const GraphReader& instance, std::string_vi
   const auto set = instance.queries(query_set);
   for (const auto q : queries)
     if (q < set.size() && set[q].start < grid.cell.size() && set[q].goal < grid.cell.size())
-      map.queries.push_back({q, grid.cell[set[q].start], grid.cell[set[q].goal]});
+      map.queries.push_back(
+          {q, square_of(map, grid.cell[set[q].start]), square_of(map, grid.cell[set[q].goal])});
 }
 
 std::vector<std::vector<double>> front_rows(const SolutionReader& solutions, std::uint64_t query) {

@@ -30,6 +30,27 @@ std::string tick_label(double v) {
   return buffer;
 }
 
+// Where v lies between lo and hi, as a fraction: (v - lo) / (hi - lo) computed on halves, so
+// that no difference of two finite values overflows (the same bits for every value a normal
+// double can hold).
+double fraction(double v, double lo, double hi) {
+  return (v / 2 - lo / 2) / (hi / 2 - lo / 2);
+}
+
+// x when finite, else `otherwise`: a padded bound that overflowed stays where it was.
+double finite_or(double x, double otherwise) {
+  return std::isfinite(x) ? x : otherwise;
+}
+
+// The decades of a log axis: 10^k for k from -307 to 308, the powers of ten a double holds
+// exactly enough and log10 maps back without overflow.
+constexpr int kFirstDecade = -307, kLastDecade = 308;
+int decade(double v, bool up) {
+  const double k = up ? std::ceil(std::log10(v)) : std::floor(std::log10(v));
+  return static_cast<int>(
+      std::clamp(std::isnan(k) ? 0.0 : k, double{kFirstDecade}, double{kLastDecade}));
+}
+
 // A linear or log10 axis from data range [lo, hi] onto pixels [p0, p1].
 struct Axis {
   double lo = 0, hi = 1, p0 = 0, p1 = 1;
@@ -38,7 +59,7 @@ struct Axis {
   double map(double v) const {
     const double a = log ? std::log10(std::max(v, lo)) : v;
     const double l = log ? std::log10(lo) : lo, h = log ? std::log10(hi) : hi;
-    return p0 + (a - l) / (h - l) * (p1 - p0);
+    return p0 + fraction(a, l, h) * (p1 - p0);
   }
   std::vector<double> ticks() const {
     if (!log) {
@@ -46,10 +67,11 @@ struct Axis {
       if (whole) std::erase_if(t, [](double v) { return v != std::floor(v); });
       return t;
     }
+    // A tick per decade, every n-th past a dozen decades: bounded whatever lo and hi are.
     std::vector<double> t;
-    const auto first = static_cast<int>(std::floor(std::log10(lo)));
-    const auto last = static_cast<int>(std::ceil(std::log10(hi)));
-    for (int k = first; k <= last; ++k) {
+    const int first = decade(lo, false), last = decade(hi, true);
+    const int stride = std::max(1, (last - first + 12) / 12);
+    for (int k = first; k <= last; k += stride) {
       const double v = std::pow(10, k);
       if (v >= lo * 0.9999 && v <= hi * 1.0001) t.push_back(v);
     }
@@ -57,18 +79,19 @@ struct Axis {
   }
 };
 
-// Pads [lo, hi] outward to tick steps so points do not sit on the frame.
+// Pads [lo, hi] outward to tick steps so points do not sit on the frame; a bound padded past the
+// largest double stays where it was.
 void widen(double& lo, double& hi) {
   if (!(hi > lo)) {
     const double pad = lo == 0 ? 1 : std::fabs(lo) * 0.1;
-    lo -= pad;
-    hi += pad;
+    lo = finite_or(lo - pad, lo);
+    hi = finite_or(hi + pad, hi);
   }
   const auto t = nice_ticks(lo, hi);
   if (t.size() >= 2) {
     const double step = t[1] - t[0];
-    lo = std::floor(lo / step) * step;
-    hi = std::ceil(hi / step) * step;
+    lo = finite_or(std::floor(lo / step) * step, lo);
+    hi = finite_or(std::ceil(hi / step) * step, hi);
   }
 }
 
@@ -158,7 +181,8 @@ std::string axis_label(const std::string& name, const std::string& unit) {
 
 std::vector<double> nice_ticks(double lo, double hi, int target) {
   if (!(hi > lo) || !std::isfinite(lo) || !std::isfinite(hi)) return {lo};
-  const double raw = (hi - lo) / std::max(target, 1);
+  // The span on halves (hi - lo overflows for -DBL_MAX..DBL_MAX), the step at least 2 parts.
+  const double raw = (hi / 2 - lo / 2) / std::max(target, 2) * 2;
   const double power = std::pow(10, std::floor(std::log10(raw)));
   double step = power;
   for (double m : {1.0, 2.0, 5.0, 10.0})
@@ -166,12 +190,18 @@ std::vector<double> nice_ticks(double lo, double hi, int target) {
       step = m * power;
       break;
     }
+  // The ticks are the multiples first..last of the step, counted, not walked to: where the range
+  // is too narrow for its magnitude (no 1-2-5 step between two doubles) or the step is no
+  // number, the axis gets its ends alone.
+  const double first = std::ceil(lo / step - 1e-9), last = std::floor(hi / step + 1e-9);
+  constexpr double kExact = 1e15;  // whole numbers a double counts exactly, with room
+  if (!(step > 0) || !std::isfinite(step) || !(std::fabs(first) < kExact) ||
+      !(std::fabs(last) < kExact) || last - first > 4.0 * std::max(target, 2))
+    return {lo, hi};
   std::vector<double> ticks;
-  const double first = std::ceil(lo / step - 1e-9);
-  for (int k = 0;; ++k) {
-    const double v = (first + k) * step;
-    if (v > hi + step * 1e-9) break;
-    ticks.push_back(std::fabs(v) < step * 1e-9 ? 0 : v);
+  for (std::int64_t k = 0; k <= static_cast<std::int64_t>(last - first); ++k) {
+    const double v = (first + static_cast<double>(k)) * step;
+    if (std::isfinite(v)) ticks.push_back(std::fabs(v) < step * 1e-9 ? 0 : v);
   }
   return ticks;
 }
@@ -219,6 +249,7 @@ LegendEntry front_entry(char kind, const char* colour, const std::string& name, 
 // tick steps; the same rule for every plot, so two plots of one query share their origin.
 void value_range(double& lo, double& hi) {
   if (!std::isfinite(lo)) lo = 0, hi = 1;
+  hi = std::min(hi, std::numeric_limits<double>::max());  // an ε-box's corner past it
   lo = std::min(lo, 0.0);
   if (lo == 0 && hi <= 0) hi = 1;  // all zero: 0 to 1, not −1 to 1
   widen(lo, hi);
@@ -228,6 +259,10 @@ void value_range(double& lo, double& hi) {
 
 std::string plot_front(const FrontPlot& plot) {
   const double e = plot.epsilon.value_or(0);
+  // The far corner of an ε-box, at most the largest double.
+  const auto box = [e](double v) {
+    return finite_or(v * (1 + e), std::numeric_limits<double>::max());
+  };
   const auto reference = thin_points(plot.reference, plot.max_points);
   const auto solution = thin_points(plot.solution, plot.max_points);
   double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo, y_lo = x_lo, y_hi = -x_lo;
@@ -235,7 +270,7 @@ std::string plot_front(const FrontPlot& plot) {
     x_lo = std::min(x_lo, p.x), x_hi = std::max(x_hi, p.x);
     y_lo = std::min(y_lo, p.y), y_hi = std::max(y_hi, p.y);
   };
-  for (const auto& p : plot.reference) extend({p.x * (1 + e), p.y * (1 + e)}), extend(p);
+  for (const auto& p : plot.reference) extend({box(p.x), box(p.y)}), extend(p);
   for (const auto& p : plot.solution) extend(p);
   if (!std::isfinite(y_lo)) y_lo = 0, y_hi = 1;
   value_range(x_lo, x_hi);
@@ -252,8 +287,8 @@ std::string plot_front(const FrontPlot& plot) {
              "middle", kMinFontSize, 0, "#333");
   if (e > 0)
     for (const auto& q : reference)
-      svg.rect(x.map(q.x), y.map(q.y * (1 + e)), x.map(q.x * (1 + e)) - x.map(q.x),
-               y.map(q.y) - y.map(q.y * (1 + e)), kBoxColour, kBoxColour, 0.5, 0.25);
+      svg.rect(x.map(q.x), y.map(box(q.y)), x.map(box(q.x)) - x.map(q.x),
+               y.map(q.y) - y.map(box(q.y)), kBoxColour, kBoxColour, 0.5, 0.25);
   // Rings under small translucent dots: a solver vector on a reference vector shows both.
   for (const auto& q : reference)
     svg.circle(x.map(q.x), y.map(q.y), 5, "none", kReferenceColour, 1.5);
@@ -354,7 +389,7 @@ namespace {
 
 // Exposure v on reversed viridis: the lowest value yellow, the highest dark purple.
 std::string exposure_colour(double v, double lo, double hi) {
-  return viridis(hi > lo ? 1 - (v - lo) / (hi - lo) : 1);
+  return viridis(hi > lo ? 1 - fraction(v, lo, hi) : 1);
 }
 
 // The legend's exposure entries: every distinct value when there are at most 8, else 5 values
@@ -367,7 +402,7 @@ std::vector<LegendEntry> exposure_legend(const MapPlot& plot, double lo, double 
   values.erase(std::unique(values.begin(), values.end()), values.end());
   if (values.size() > 8) {
     values.clear();
-    for (int k = 0; k <= 4; ++k) values.push_back(lo + (hi - lo) * k / 4);
+    for (int k = 0; k <= 4; ++k) values.push_back(lo + (hi - lo) / 4 * k);
   }
   std::vector<LegendEntry> entries;
   if (!plot.exposure_unit.empty() && !values.empty())
@@ -473,41 +508,53 @@ std::string plot_map(const MapPlot& plot) {
   return svg.str();
 }
 
-MapPlot coarsen_map(const MapPlot& plot, std::uint32_t max_side) {
-  const std::uint32_t side = std::max(plot.width, plot.height);
-  if (max_side == 0 || side <= max_side) return plot;
-  const std::uint32_t k = (side + max_side - 1) / max_side;
+MapSquares::MapSquares(std::uint32_t width, std::uint32_t height, std::uint32_t max_side,
+                       bool shaded)
+    : width_(width), height_(height) {
+  // In 64 bits: a side of 2^32 - 1 cells and any max_side, 0 read as 1, neither overflows.
+  const std::uint64_t side = std::max(width, height), most = std::max<std::uint32_t>(max_side, 1);
+  block_ = static_cast<std::uint32_t>(std::max<std::uint64_t>((side + most - 1) / most, 1));
+  columns_ = static_cast<std::uint32_t>((std::uint64_t{width} + block_ - 1) / block_);
+  rows_ = static_cast<std::uint32_t>((std::uint64_t{height} + block_ - 1) / block_);
+  open_.assign(std::size_t{columns_} * rows_, 0);
+  if (shaded) exposure_.assign(open_.size(), std::numeric_limits<double>::quiet_NaN());
+}
+
+std::size_t MapSquares::index(std::uint32_t x, std::uint32_t y) const {
+  return std::size_t{y / block_} * columns_ + x / block_;
+}
+
+void MapSquares::add_passable(std::uint32_t x, std::uint32_t y) {
+  ++open_[index(x, y)];
+}
+
+void MapSquares::add_exposure(std::uint32_t x, std::uint32_t y, double value) {
+  double& square = exposure_[index(x, y)];
+  if (!std::isnan(value) && !(square >= value)) square = value;
+}
+
+MapPlot MapSquares::plot() const {
   MapPlot out;
-  out.title = plot.title;
-  out.exposure_unit = plot.exposure_unit;
-  out.width = (plot.width + k - 1) / k;
-  out.height = (plot.height + k - 1) / k;
-  out.block = plot.block * k;
-  const std::size_t area = std::size_t{out.width} * out.height;
-  std::vector<std::uint32_t> cells(area, 0), open(area, 0);
-  if (!plot.exposure.empty()) out.exposure.assign(area, std::numeric_limits<double>::quiet_NaN());
-  for (std::uint32_t y = 0; y < plot.height; ++y)
-    for (std::uint32_t x = 0; x < plot.width; ++x) {
-      const std::size_t from = std::size_t{y} * plot.width + x;
-      const std::size_t to = std::size_t{y / k} * out.width + x / k;
-      ++cells[to];
-      if (from >= plot.passable.size() || !plot.passable[from]) continue;
-      ++open[to];
-      if (!plot.exposure.empty() && !std::isnan(plot.exposure[from]) &&
-          !(out.exposure[to] >= plot.exposure[from]))
-        out.exposure[to] = plot.exposure[from];
+  out.width = columns_;
+  out.height = rows_;
+  out.block = block_;
+  out.exposure = exposure_;
+  out.passable.resize(open_.size());
+  // The cells of a square: k x k, fewer in the last column and row of a side k does not divide.
+  const auto cells = [this](std::uint32_t square, std::uint32_t side) {
+    return std::min<std::uint64_t>(block_, side - std::uint64_t{square} * block_);
+  };
+  for (std::uint32_t y = 0; y < rows_; ++y)
+    for (std::uint32_t x = 0; x < columns_; ++x) {
+      const std::size_t i = std::size_t{y} * columns_ + x;
+      out.passable[i] = 2 * std::uint64_t{open_[i]} >= cells(x, width_) * cells(y, height_);
     }
-  out.passable.resize(area);
-  for (std::size_t i = 0; i < area; ++i) out.passable[i] = 2 * open[i] >= cells[i];
-  const auto scale = [k](Point2 p) { return Point2{std::floor(p.x / k), std::floor(p.y / k)}; };
-  for (const auto& path : plot.paths) {
-    auto& scaled = out.paths.emplace_back();
-    for (const auto& p : path) scaled.push_back(scale(p));
-  }
-  for (const auto& q : plot.queries)
-    out.queries.push_back({q.query, scale(q.start), scale(q.goal)});
-  for (const auto& g : plot.guards) out.guards.push_back(scale(g));
   return out;
+}
+
+Point2 square_of(const MapPlot& map, Point2 cell) {
+  const double k = std::max<std::uint32_t>(map.block, 1);
+  return {std::floor(cell.x / k), std::floor(cell.y / k)};
 }
 
 namespace {
@@ -530,13 +577,16 @@ void capped_legend(Svg& svg, std::vector<LegendEntry> entries) {
   legend(svg, entries);
 }
 
-// Log axis bounds: powers of ten around the positive values (1 when there are none).
+// Log axis bounds: powers of ten around the positive values (1 when there are none), from 1e-307
+// up to the largest double.
 void log_range(double& lo, double& hi) {
-  if (!(lo > 0) || !std::isfinite(lo)) lo = hi > 0 ? hi : 1;
-  if (!(hi > 0) || !std::isfinite(hi)) hi = lo;
-  lo = std::pow(10, std::floor(std::log10(lo)));
-  hi = std::pow(10, std::ceil(std::log10(hi)));
-  if (hi <= lo) hi = lo * 10;
+  constexpr double kLargest = std::numeric_limits<double>::max();
+  const auto usable = [](double v) { return v > 0 && std::isfinite(v); };
+  if (!usable(lo)) lo = usable(hi) ? hi : 1;
+  if (!usable(hi)) hi = lo;
+  lo = std::pow(10, decade(lo, false));
+  hi = hi > std::pow(10, kLastDecade) ? kLargest : std::pow(10, decade(hi, true));
+  if (hi <= lo) hi = finite_or(lo * 10, kLargest);
 }
 
 std::string polyline_points(const Axis& x, const Axis& y, const std::vector<Point2>& points) {
@@ -764,8 +814,7 @@ std::string plot_parallel(const ParallelPlot& plot) {
                                static_cast<double>(d - 1);
   };
   const auto axis_y = [&](std::size_t i, double v) {
-    return hi[i] > lo[i] ? bottom - (v - lo[i]) / (hi[i] - lo[i]) * (bottom - top)
-                         : (top + bottom) / 2;
+    return hi[i] > lo[i] ? bottom - fraction(v, lo[i], hi[i]) * (bottom - top) : (top + bottom) / 2;
   };
   svg.text(kWidth / 2 - (kRight - kLeft) / 2, 28, plot.title, "middle", kTitleFont);
   if (!plot.subtitle.empty())

@@ -34,6 +34,7 @@ struct BoundFile {
 
 struct Benchmark {
   std::string name, family;
+  std::string anchor;                  // its section's id, unique on the page
   std::vector<std::size_t> instances;  // indices, in the order given
   std::vector<View> views;             // per entry of `instances`
   std::vector<BoundFile> references;
@@ -51,8 +52,18 @@ std::string key_of(const std::string& name) {
   return key;
 }
 
-std::string anchor(const std::string& name) {
-  return "b-" + key_of(name);
+// The keys of `names`, in order: each name's key_of, with _2, _3, ... appended where an earlier
+// name took it (names that differ only by case or punctuation), so that no two names share a key.
+std::vector<std::string> unique_keys(const std::vector<std::string>& names) {
+  std::set<std::string> taken;
+  std::vector<std::string> keys;
+  for (const auto& name : names) {
+    std::string key = key_of(name);
+    for (std::size_t n = 2; !taken.insert(key).second; ++n)
+      key = key_of(name) + "_" + std::to_string(n);
+    keys.push_back(std::move(key));
+  }
+  return keys;
 }
 
 std::string objective_names(const GraphReader& g, const View& v) {
@@ -86,6 +97,11 @@ std::vector<Benchmark> benchmarks_of(std::span<const GraphReader> instances) {
       out[at->second].views.push_back(std::move(v));
     }
   }
+  std::vector<std::string> names;
+  names.reserve(out.size());
+  for (const auto& b : out) names.push_back(b.name);
+  const auto keys = unique_keys(names);
+  for (std::size_t b = 0; b < out.size(); ++b) out[b].anchor = "b-" + keys[b];
   return out;
 }
 
@@ -217,7 +233,9 @@ struct Context {
   const ReportOptions& options;
   Page& page;
   std::vector<Benchmark> benchmarks;          // each with its solution and reference files
+  std::span<const std::string> notes;         // about the inputs, under the head's paragraph
   std::vector<std::string> solver_names;      // every solver, in the order first given
+  std::vector<std::string> solver_keys;       // of each solver: unique_keys of solver_names
   std::vector<std::vector<ViewStats>> stats;  // per benchmark, per instance
   Outcomes outcomes;
 };
@@ -248,6 +266,7 @@ void bind_files(Context& c) {
     if (std::find(c.solver_names.begin(), c.solver_names.end(), name) == c.solver_names.end())
       c.solver_names.push_back(name);
   }
+  c.solver_keys = unique_keys(c.solver_names);
 }
 
 // Computed once: the instance space and each benchmark's ρ matrix read them.
@@ -316,11 +335,11 @@ void write_head(const Context& c) {
       ". Fronts are drawn with at most " + std::to_string(c.options.max_points) +
       " vectors per set (thinned past it, the extremes kept), so the page stays under " +
       std::to_string(c.options.max_bytes / 1000) + " kB. Click a column heading to sort a table.");
+  for (const auto& note : c.notes) c.page.note(note);
   c.page.out << "<nav><ul><li><a href=\"#suite\">Suite</a></li><li><a href=\"#instance-space\">"
                 "Instance space</a></li>";
   for (const auto& b : c.benchmarks)
-    c.page.out << "<li><a href=\"#" << anchor(b.name) << "\">" << Svg::escape(b.name)
-               << "</a></li>";
+    c.page.out << "<li><a href=\"#" << b.anchor << "\">" << Svg::escape(b.name) << "</a></li>";
   if (c.solver_names.size() >= 2)
     c.page.out << "<li><a href=\"#comparison\">Solver comparison</a></li>";
   c.page.out << "</ul></nav>\n";
@@ -541,13 +560,12 @@ DrawnFronts drawn_fronts(const Context& c, const Benchmark& bm) {
   return fronts;
 }
 
-void map_figure(const Context& c, const Benchmark& bm, const DrawnFronts& fronts) {
+// The map of a benchmark's first instance with the starts and goals of the drawn queries, else of
+// the first three of the view's query set (of the instance's first set when the view names none).
+plots::MapPlot marked_map(const Context& c, const Benchmark& bm, const DrawnFronts& fronts) {
   const auto& g = c.instances[bm.instances.front()];
-  if (!g.metadata().get("map.width") || !g.find(format::SectionKind::vertex_data, "cell")) return;
-  auto map = plots::map_of(g, "exposure");
+  auto map = plots::map_of(g, "exposure", c.options.max_map_side);
   map.title = bm.name + ": map of " + g.display_name();
-  // Start and goal of the drawn queries, else the first three of the view's query set (of the
-  // instance's first set when the view names none).
   const bool drawn_here = fronts.shown && fronts.instance == bm.instances.front();
   std::string set = drawn_here ? fronts.shown->query_set() : bm.views.front().query_set;
   if (const auto sets = g.all(format::SectionKind::queries); set.empty() && !sets.empty())
@@ -560,7 +578,21 @@ void map_figure(const Context& c, const Benchmark& bm, const DrawnFronts& fronts
       for (std::uint64_t q = 0; q < qs.size() && q < 3; ++q) marked.push_back(q);
     plots::add_query_markers(map, g, set, marked);
   }
-  map = plots::coarsen_map(map, c.options.max_map_side);
+  return map;
+}
+
+// A grid's map; one whose metadata does not fit the instance (map_of's errors) is left out, the
+// page saying why, and the rest of the report is drawn.
+void map_figure(const Context& c, const Benchmark& bm, const DrawnFronts& fronts) {
+  const auto& g = c.instances[bm.instances.front()];
+  if (!g.metadata().get("map.width") || !g.find(format::SectionKind::vertex_data, "cell")) return;
+  plots::MapPlot map;
+  try {
+    map = marked_map(c, bm, fronts);
+  } catch (const Error& e) {
+    c.page.note(std::string("No map: ") + e.what());
+    return;
+  }
   c.page.figure("map", plots::plot_map(map),
                 map.guards.empty()
                     ? "Blocked cells dark grey, passable cells shaded by exposure; starts and "
@@ -674,7 +706,7 @@ void front_figures(const Context& c, const Benchmark& bm, const DrawnFronts& fro
 void write_benchmark(const Context& c, std::size_t b) {
   const auto& bm = c.benchmarks[b];
   const auto& g = c.instances[bm.instances.front()];
-  c.page.section(anchor(bm.name), bm.name);
+  c.page.section(bm.anchor, bm.name);
   c.page.paragraph(
       "family " + (bm.family.empty() ? std::string("unknown") : bm.family) + "; " +
       count_of(bm.instances.size(), "instance") + "; objectives " +
@@ -733,12 +765,10 @@ Table comparison_table(const Context& c) {
                {"benchmark", "Benchmark", "benchmark"},
                {"queries", "Queries", "queries"},
                {"common", "Common", "completed by all"}};
-  for (const auto& s : c.solver_names) {
-    const auto k = key_of(s);
-    std::string latex;
-    for (char ch : s)
-      latex += (ch == '_' || ch == '&' || ch == '%' || ch == '#') ? std::string("\\") + ch
-                                                                  : std::string(1, ch);
+  for (std::size_t i = 0; i < c.solver_names.size(); ++i) {
+    const auto& s = c.solver_names[i];
+    const auto& k = c.solver_keys[i];
+    const auto latex = tables::latex_escape(s);
     t.columns.push_back({"timeout@" + k, latex + " Timeout", s + " timeout"});
     t.columns.push_back({"memory_limit@" + k, latex + " Mem-limit", s + " memory limit"});
     t.columns.push_back({"runtime_median@" + k, latex + " Med.\\ (s)", s + " median [s]"});
@@ -871,6 +901,7 @@ std::map<std::string, std::vector<EpsilonOutcome>> coverage_of(const Context& c)
         for (std::size_t e = 0; e < total.size(); ++e) {
           total[e].covered += result.solvers[k].per_epsilon[e].covered;
           total[e].not_covered += result.solvers[k].per_epsilon[e].not_covered;
+          total[e].dominated += result.solvers[k].per_epsilon[e].dominated;
         }
       }
     }
@@ -888,8 +919,8 @@ void coverage_figure(const Context& c) {
       "front the solver's covers at ε";
   t.columns = {{"solver", "Solver", "solver"}, {"evaluated", "Queries", "queries"}};
   for (const auto& e : c.options.epsilon_labels)
-    t.columns.push_back(
-        {"covered@" + e, "cov.\\ $\\varepsilon{=}" + e + "$", "covered at ε = " + e});
+    t.columns.push_back({"covered@" + e, "cov.\\ $\\varepsilon{=}" + tables::latex_escape(e) + "$",
+                         "covered at ε = " + e});
   plots::BarPlot bars;
   bars.title = "ε-coverage per solver";
   bars.x_label = "ε";
@@ -898,7 +929,7 @@ void coverage_figure(const Context& c) {
   for (const auto& s : c.solver_names) {
     const auto it = coverage.find(s);
     if (it == coverage.end()) continue;
-    const auto evaluated = it->second.front().covered + it->second.front().not_covered;
+    const auto evaluated = it->second.front().evaluated();
     std::vector<Cell> row{Cell::of(s), Cell::of(evaluated)};
     plots::BarSeries series{s, {}};
     for (const auto& o : it->second) {
@@ -926,12 +957,33 @@ void write_comparison(const Context& c) {
   c.page.end_section();
 }
 
+// The instances, each once: a second copy of one (the same content digest, under another path or
+// the same) is left out, and a note names both.
+std::vector<GraphReader> distinct_instances(std::span<const GraphReader> instances,
+                                            std::vector<std::string>& notes) {
+  std::vector<GraphReader> distinct;
+  std::map<std::string, std::size_t> by_digest;
+  for (const auto& g : instances) {
+    const auto [at, added] = by_digest.emplace(g.digest(), distinct.size());
+    if (added)
+      distinct.push_back(g);
+    else
+      notes.push_back(g.display_name() + " is the same instance as " +
+                      distinct[at->second].display_name() + " (content digest " + g.digest() +
+                      "): counted once");
+  }
+  return distinct;
+}
+
 Report draw(std::span<const GraphReader> instances, std::span<const SolutionReader> solutions,
-            std::span<const SolutionReader> references, const ReportOptions& options) {
+            std::span<const SolutionReader> references, const ReportOptions& options,
+            const std::vector<std::string>& notes) {
   if (instances.empty()) throw Error(ErrorCode::invalid_argument, "a report needs an instance");
   Report report;
+  report.notes = notes;
   Page page(report);
-  Context c{instances, solutions, references, options, page, benchmarks_of(instances), {}, {}, {}};
+  Context c{instances, solutions, references, options, page, benchmarks_of(instances),
+            notes,     {},        {},         {},      {}};
   bind_files(c);
   c.stats = view_stats(c);
   c.outcomes = outcomes_of(c);
@@ -951,9 +1003,11 @@ Report make_report(std::span<const GraphReader> instances,
                    std::span<const SolutionReader> solutions,
                    std::span<const SolutionReader> references, const ReportOptions& options) {
   constexpr std::size_t kFewestPoints = 50;
+  std::vector<std::string> notes;
+  const auto distinct = distinct_instances(instances, notes);
   auto current = options;
   for (;;) {
-    auto report = draw(instances, solutions, references, current);
+    auto report = draw(distinct, solutions, references, current, notes);
     if (report.html.size() <= options.max_bytes) return report;
     if (current.max_points <= kFewestPoints)
       throw Error(ErrorCode::invalid_argument,

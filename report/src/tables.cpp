@@ -23,44 +23,21 @@ std::string significant(double x, int digits) {
   return buffer.data();
 }
 
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
-  std::string out = "\"";
-  for (char c : s) {
+// The one CSV field writer (RFC 4180, and OWASP's guard against formulas: tables.hpp).
+std::string csv_field(std::string_view s) {
+  const bool formula = !s.empty() && std::string_view("=+-@\t\r").find(s.front()) != s.npos;
+  const bool quoted = formula || s.find_first_of(",\"\r\n") != std::string_view::npos;
+  std::string out = formula ? "\"'" : quoted ? "\"" : "";
+  for (const char c : s) {
+    const auto byte = static_cast<unsigned char>(c);
+    if ((byte < 0x20 && c != '\t' && c != '\r' && c != '\n') || byte == 0x7f) {
+      out += "\xEF\xBF\xBD";  // U+FFFD: no control character reaches a file or a terminal
+      continue;
+    }
     if (c == '"') out += '"';
     out += c;
   }
-  return out + '"';
-}
-
-std::string latex_escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '\\':
-        out += "\\textbackslash{}";
-        break;
-      case '~':
-        out += "\\textasciitilde{}";
-        break;
-      case '^':
-        out += "\\textasciicircum{}";
-        break;
-      case '&':
-      case '%':
-      case '$':
-      case '#':
-      case '_':
-      case '{':
-      case '}':
-        out += '\\';
-        out += c;
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
+  return quoted ? out + '"' : out;
 }
 
 std::string csv_cell(const Cell& c) {
@@ -117,6 +94,56 @@ std::string status_key(QueryStatus s) {
 
 }  // namespace
 
+std::string latex_escape(std::string_view text) {
+  std::string out;
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte == 0x7f) {
+      std::array<char, 8> hex{};
+      std::snprintf(hex.data(), hex.size(), "x%02X", byte);
+      out += std::string("\\textbackslash{}") + hex.data();
+      continue;
+    }
+    switch (c) {
+      case '\\':
+        out += "\\textbackslash{}";
+        break;
+      case '~':
+        out += "\\textasciitilde{}";
+        break;
+      case '^':
+        out += "\\textasciicircum{}";
+        break;
+      case '<':
+        out += "\\textless{}";
+        break;
+      case '>':
+        out += "\\textgreater{}";
+        break;
+      case '|':
+        out += "\\textbar{}";
+        break;
+      case '[':  // braced: never the optional argument of the row's \\ before it
+      case ']':
+        out += std::string("{") + c + "}";
+        break;
+      case '&':
+      case '%':
+      case '$':
+      case '#':
+      case '_':
+      case '{':
+      case '}':
+        out += '\\';
+        out += c;
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
 void write_csv(std::ostream& out, const Table& table) {
   for (std::size_t i = 0; i < table.columns.size(); ++i)
     out << (i ? "," : "") << csv_field(table.columns[i].key);
@@ -128,7 +155,7 @@ void write_csv(std::ostream& out, const Table& table) {
 }
 
 void write_latex(std::ostream& out, const Table& table) {
-  if (!table.caption.empty()) out << "% " << table.caption << '\n';
+  if (!table.caption.empty()) out << "% " << latex_escape(table.caption) << '\n';
   out << "\\begin{tabular}{l" << std::string(table.columns.size() - 1, 'r') << "}\n\\toprule\n";
   for (std::size_t i = 0; i < table.columns.size(); ++i)
     out << (i ? " & " : "") << table.columns[i].latex;
@@ -197,14 +224,14 @@ Table comparison_summary(const SolverComparison& comparison,
   Table t;
   t.columns = {{"solver", "Solver"}};
   for (const auto status : kQueryStatuses) {
-    if (shown(status))
-      t.columns.push_back({status_key(status), latex_escape(std::string(to_string(status)))});
+    if (shown(status)) t.columns.push_back({status_key(status), latex_escape(to_string(status))});
   }
   if (!for_paper) t.columns.push_back({"not_solved", "not solved"});
   for (const auto& e : epsilon_labels) {
-    t.columns.push_back({"covered@" + e, "cov.\\ $\\varepsilon{=}" + e + "$"});
+    t.columns.push_back({"covered@" + e, "cov.\\ $\\varepsilon{=}" + latex_escape(e) + "$"});
     if (!for_paper)
-      t.columns.push_back({"not_covered@" + e, "not cov.\\ $\\varepsilon{=}" + e + "$"});
+      t.columns.push_back(
+          {"not_covered@" + e, "not cov.\\ $\\varepsilon{=}" + latex_escape(e) + "$"});
   }
   t.columns.insert(t.columns.end(), {{"eps_median", "$\\tilde\\varepsilon$"},
                                      {"eps_max", "$\\varepsilon_{\\max}$"},
@@ -253,7 +280,7 @@ Table comparison_per_query(const SolverComparison& comparison,
                {"reference_size", "$|R|$"},
                {"achieved_eps", "$\\varepsilon$"}};
   for (const auto& e : epsilon_labels)
-    t.columns.push_back({"covered@" + e, "cov.\\ $\\varepsilon{=}" + e + "$"});
+    t.columns.push_back({"covered@" + e, "cov.\\ $\\varepsilon{=}" + latex_escape(e) + "$"});
   t.columns.insert(t.columns.end(), {{"runtime_seconds", "$t$ [s]"}, {"failed", "failed"}});
   for (std::size_t i = 0; i < comparison.solvers.size(); ++i) {
     const auto& s = comparison.solvers[i];

@@ -201,7 +201,8 @@ ENTRY_FIELDS = ("name", "kind", "element_type", "encoding", "row_width", "row_co
 assert HEADER.size == 128 and ENTRY.size == 64
 MAGIC = b"\x89MOS\r\n\x1a\n"
 CHECKSUM_OFFSET = 120
-F32 = 9  # §5 element type code
+F32 = 9  # §5 element type codes
+F64 = 10
 METADATA_KIND = 1  # §4 section kinds
 QUERIES_KIND = 10
 
@@ -307,7 +308,24 @@ def move_payload_to_end(data, name, body, **fields):
     reseal(data)
 
 
+def set_metadata(data, **values):
+    """Give the metadata section (§7: sorted, unique `key=value` lines) the keys `values` (keys
+    with dots are passed as **{"map.width": "5"}), the section moved to the end of the file."""
+    meta = metadata(data)
+    meta.update(values)
+    text = "".join("%s=%s\n" % (k, meta[k]) for k in sorted(meta)).encode()
+    (e,) = [e for e in entries(data) if e["kind"] == METADATA_KIND]
+    move_payload_to_end(data, e["name"], text, row_count=len(text))
+
+
 def relocate_as_f32(data, name, costs):
     """Turn cost section `name` into an f32 column holding `costs`."""
+    relocate_as_float(data, name, costs, F32)
+
+
+def relocate_as_float(data, name, costs, element_type):
+    """Turn cost section `name` into an F32 or F64 column holding `costs`."""
     assert entry(data, name)["row_count"] == len(costs)
-    move_payload_to_end(data, name, struct.pack("<%df" % len(costs), *costs), element_type=F32)
+    code = {F32: "f", F64: "d"}[element_type]
+    move_payload_to_end(data, name, struct.pack("<%d%s" % (len(costs), code), *costs),
+                        element_type=element_type)

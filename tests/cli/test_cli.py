@@ -865,5 +865,35 @@ class StrictOptions(CliTest):
         self.assertIn("a&lt;b&amp;c", svg)
         self.assertNotIn("a<b", svg)
 
+
+class ManyViewsJsonTest(CliTest):
+    """Issue 36 §8: every `--json` report that lists views, on a file of 20,000 views, completes
+    and parses (the JSON writer scanned an object's keys for each key it added: 4.6 s for
+    `inspect --json`). Not timed here: BENCHMARKS.md has the figures."""
+
+    def test_every_json_report_of_twenty_thousand_views(self):
+        views = [arg for i in range(20000) for arg in ("--view", "V%05d=c1,c2" % i)]
+        g = self.path("views.mosb")
+        written = json.loads(self.ok("generate", "grid", "--width", "3", "--height", "3",
+                                     *views, "-o", g, "--json").stdout)
+        self.assertEqual(written["vertices"], 11)
+        inspect = json.loads(self.ok("inspect", "--json", g).stdout)
+        named = [k for k in inspect["metadata"] if re.fullmatch(r"view\.[^.]*\.objectives", k)]
+        self.assertEqual(len(named), 20002)  # Grid_2, Grid_3 and the 20,000
+        self.assertEqual(inspect["metadata"]["view.V19999.objectives"], "c1,c2")
+        stats = json.loads(self.ok("stats", "--json", "--view", "V19999", g).stdout)
+        self.assertEqual(stats["view"], "V19999")
+        verified = json.loads(self.ok("verify", "--json", "--level", "full", g).stdout)
+        self.assertTrue(verified["ok"])
+        store = self.path("store")
+        self.ok("store", "init", store)
+        added = json.loads(self.ok("store", "add", "--json", store, g).stdout)
+        self.assertEqual(len(added["added"][0]["views"]), 20002)
+        listed = json.loads(self.ok("store", "list", "--json", store).stdout)
+        self.assertEqual(listed["entries"][0]["views"][-1], "V19999")
+        found = json.loads(self.ok("store", "instance", "--json", store, "V19999").stdout)
+        self.assertEqual(found["view"], "V19999")
+
+
 if __name__ == "__main__":
     mosbtest.main(verbosity=2)

@@ -356,6 +356,28 @@ class SolverComparisonTest(CliTest):
         self.assertEqual(usage.returncode, 2)
         self.assertEqual(self.eval("--json", "--csv").returncode, 2)
 
+    def test_csv_and_latex_show_names_as_the_files_give_them(self):
+        """Issue 36 §3-§4: a name is escaped for the file's language alone: no terminal escaping
+        (a backslash stays one), a formula guarded in CSV, every LaTeX special escaped."""
+        spec = "0 solved 10,40 20,20 40,10\n1 solved 30,30\n2 disconnected\n"
+        names = ["=1+1", "a\\b", "@x", "\\end{tabular}\\input{/etc/passwd}"]
+        files = [write_solution(self.path("n%d.sol" % k), SMALL, "Small_2", spec, "0",
+                                env=dict(os.environ, MOSB_TEST_SOLVER_NAME=name))
+                 for k, name in enumerate(names)]
+        table = self.mosb("eval", "--reference", self.reference, "--solutions", *files, "--csv")
+        self.assertEqual(table.returncode, 0, table.stderr)
+        lines = table.stdout.splitlines()
+        self.assertEqual([line.split(",")[0] for line in lines[1:5]],
+                         ['"\'=1+1"', "a\\b", '"\'@x"', "\\end{tabular}\\input{/etc/passwd}"])
+        rows = list(csv.DictReader(io.StringIO(table.stdout)))
+        self.assertEqual(rows[1]["solver"], "a\\b")
+        latex = self.mosb("eval", "--reference", self.reference, "--solutions", *files, "--latex")
+        body = latex.stdout.split("\\midrule\n")[1]
+        self.assertEqual([line.split(" & ")[0] for line in body.splitlines()[:4]],
+                         ["=1+1", "a\\textbackslash{}b", "@x",
+                          "\\textbackslash{}end\\{tabular\\}\\textbackslash{}input\\{/etc/passwd\\}"])
+        self.assertEqual(latex.stdout.count("\\end{tabular}"), 1)
+
     def test_a_file_of_another_binding_is_named(self):
         grid = self.path("grid.mosb")
         run("generate", "grid", "--width", "3", "--height", "3", "-o", grid, check=True)

@@ -405,5 +405,80 @@ class MapPathsTest(PlotCase):
         self.assertFalse(os.path.exists(svg))
 
 
+class HostileMetadataTest(PlotCase):
+    """Issue 36 §1-§2: files that pass `verify --level full` whose map metadata or front values
+    crashed, hung or exhausted memory. Each must be drawn in bounded time and memory or refused
+    in one line, nothing written."""
+
+    MAP = MapPathsTest.MAP  # 4 x 3, one wall: 11 vertices
+
+    def setUp(self):
+        super().setUp()
+        self.write("tiny.map", self.MAP)
+        self.write("guards.txt", "3 0 1\n")
+        self.map = self.path("tiny.mosb")
+        run("convert", "guards", "--map", self.path("tiny.map"), "--guards",
+            self.path("guards.txt"), "-o", self.map)
+
+    def with_map(self, name, **values):
+        data = bytearray(read(self.map))
+        mosbtest.set_metadata(data, **values)
+        path = self.write(name, bytes(data))
+        self.ok("verify", "--level", "full", path)  # valid files: only their metadata lies
+        return path
+
+    def test_map_metadata_that_does_not_fit_the_instance_is_refused(self):
+        svg = self.path("m.svg")
+        for width, height, message in (
+                ("-5", "3", "metadata map.width '-5' is not a whole number from 1 to 4294967295"),
+                ("5x", "3", "metadata map.width '5x' is not a whole number"),
+                ("4294967301", "3", "metadata map.width '4294967301' is not a whole number"),
+                ("4", "0", "metadata map.height '0' is not a whole number"),
+                ("4294967295", "4294967295",
+                 "4294967295 x 4294967295 map (18446744065119617025 cells), more than the "
+                 "4294967294 a map may have"),
+                ("100000", "100000", "(10000000000 cells), more than the 4294967294"),
+                ("2", "5", "its 11 vertices do not fit a 2 x 5 map (10 cells)")):
+            with self.subTest(width=width, height=height):
+                bad = self.with_map("bad.mosb", **{"map.width": width, "map.height": height})
+                r = self.mosb("plot", "map", bad, "-o", svg, timeout=120)
+                self.assert_one_line_error(r, "bad.mosb: ", message)
+                self.assertFalse(os.path.exists(svg))
+
+    def test_a_huge_map_of_few_cells_is_drawn_in_squares(self):
+        # 3.6 billion cells, all blocked but the 11 in the corner: drawn from the vertices alone.
+        huge = self.with_map("huge.mosb", **{"map.width": "60000", "map.height": "60000"})
+        svg = self.path("huge.svg")
+        self.ok("plot", "map", huge, "-o", svg, timeout=120)
+        text = read(svg, "r")
+        self.assertIn(">1 square: 59x59 cells<", text)  # 1017 squares a side, at most 1024
+        self.assertLess(len(text), 1_000_000)
+
+    def test_front_of_values_up_to_the_largest_double(self):
+        if not os.path.exists(WRITE_SOLUTION):
+            raise mosbtest.missing("WRITE_SOLUTION (mosb_test_write_solution) is not built")
+        grid = self.path("g.mosb")
+        run("generate", "grid", "--width", "3", "--height", "3", "-o", grid)
+        data = bytearray(read(grid))
+        for column in ("c1", "c2"):  # both objectives f64
+            costs = mosbtest.values(data, column, "B")
+            mosbtest.relocate_as_float(data, column, [float(c) for c in costs], mosbtest.F64)
+        f64 = self.write("f64.mosb", bytes(data))
+        largest = "1.7976931348623157e308"
+        spec = "0 solved %s,3 2,%s\n" % (largest, largest)
+        sol = write_solution(self.path("s.sol"), f64, "Grid_2", spec, "0")
+        ref = write_solution(self.path("r.sol"), f64, "Grid_2", spec, "0")
+        svg = self.path("front.svg")
+        # Alone (the axis walked its ticks past the largest double for 48 s, then bad_alloc),
+        # and with ε-boxes whose far corners lie past it.
+        for extra in ([], ["--reference", ref, "--eps", "0.5"]):
+            self.ok("plot", "front", "--solutions", sol, *extra, "--query", "0", "-o", svg,
+                    timeout=120)
+            texts = re.findall(r"<text[^>]*>([^<]*)</text>", read(svg, "r"))
+            self.assertIn("1.5e+308", texts)
+            self.assertFalse([t for t in texts if "inf" in t or "nan" in t], texts)
+            self.assertNotRegex(read(svg, "r"), r'(width|height)="-')
+
+
 if __name__ == "__main__":
     mosbtest.main()

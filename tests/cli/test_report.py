@@ -397,5 +397,165 @@ class ReportTest(unittest.TestCase):
             self.assertFalse(os.path.exists(out))
 
 
+class HostileInputTest(mosbtest.CliTest):
+    """Issue 36: names, metadata and values that pass every check of the files they are in, and
+    the destinations of the outputs. Needs the solution-file helper only (no browser, no example
+    solver): the files are written by SolutionWriter."""
+
+    MAP = "type octile\nheight 3\nwidth 4\nmap\n....\n.@..\n....\n"  # 11 vertices
+
+    def setUp(self):
+        super().setUp()
+        if not os.path.exists(mosbtest.WRITE_SOLUTION):
+            raise mosbtest.missing("WRITE_SOLUTION (mosb_test_write_solution) is not built")
+        self.grid = self.path("grid.mosb")
+        run("generate", "grid", "--width", "3", "--height", "3", "-o", self.grid)
+
+    def solution(self, name, solver, instance=None, spec="0 solved 1,2 2,1 t=0.5\n"):
+        env = dict(os.environ, MOSB_TEST_SOLVER_NAME=solver)
+        return mosbtest.write_solution(self.path(name), instance or self.grid, "Grid_2", spec,
+                                       "0", env=env)
+
+    def report(self, *args, **options):
+        return self.mosb("report", *args, timeout=300, **options)
+
+    def test_a_map_that_does_not_fit_is_left_out_and_said(self):
+        self.write("tiny.map", self.MAP)
+        self.write("guards.txt", "3 0 1\n")
+        tiny = self.path("tiny.mosb")
+        run("convert", "guards", "--map", self.path("tiny.map"), "--guards",
+            self.path("guards.txt"), "-o", tiny)
+        run("queries", "generate", tiny, "--set", "q", "--count", "2", "--in-place")
+        for width, height, why in (("-5", "3", "map.width '-5' is not a whole number"),
+                                   ("4294967295", "4294967295", "more than the 4294967294"),
+                                   ("100000", "100000", "more than the 4294967294")):
+            with self.subTest(width=width):
+                data = bytearray(read(tiny))
+                mosbtest.set_metadata(data, **{"map.width": width, "map.height": height})
+                bad = self.write("bad.mosb", bytes(data))
+                html = self.path("r.html")
+                self.ok("report", bad, "-o", html, timeout=300)
+                page = read(html, "r")
+                self.assertIn("No map: %s: metadata" % bad, page)
+                self.assertIn(why.replace("'", "&apos;"), page)
+                kinds = [f["kind"] for f in parse(page).figures]
+                self.assertNotIn("map", kinds)
+                self.assertIn("degrees", kinds)  # the rest of the page is drawn
+
+    def test_fronts_and_runtimes_up_to_the_largest_double(self):
+        data = bytearray(read(self.grid))
+        for column in ("c1", "c2"):
+            costs = mosbtest.values(data, column, "B")
+            mosbtest.relocate_as_float(data, column, [float(c) for c in costs], mosbtest.F64)
+        f64 = self.write("f64.mosb", bytes(data))
+        largest = "1.7976931348623157e308"
+        spec = "0 solved %s,3 2,%s t=%s\n" % (largest, largest, largest)
+        a = self.solution("a.sol", "a", f64, spec)
+        b = self.solution("b.sol", "b", f64, "0 solved %s,3 2,%s t=1e-300\n" % (largest, largest))
+        html = self.path("r.html")
+        self.ok("report", f64, "--solutions", a, b, "--reference", a, "-o", html, timeout=300)
+        page = parse(read(html, "r"))
+        for figure in page.figures:
+            self.assertFalse([t for t in figure["texts"] if t in ("inf", "nan", "-nan")],
+                             figure["kind"])
+        self.assertIn("front", [f["kind"] for f in page.figures])
+
+    def test_latex_names_escaped_headings_included(self):
+        names = ["\\end{tabular}\\input{/etc/passwd}", "$ _ # % & ~ ^ { }"]
+        files = [self.solution("s%d.sol" % k, n) for k, n in enumerate(names)]
+        tex = self.path("tex")
+        self.ok("report", self.grid, "--solutions", *files, "-o", self.path("r.html"), "--latex",
+                tex)
+        comparison = read(os.path.join(tex, "comparison.tex"), "r")
+        heading = comparison.splitlines()[3]
+        self.assertIn("\\textbackslash{}end\\{tabular\\}\\textbackslash{}input\\{/etc/passwd\\} "
+                      "Timeout", heading)
+        self.assertIn("\\$ \\_ \\# \\% \\& \\textasciitilde{} \\textasciicircum{} \\{ \\} Timeout",
+                      heading)
+        for text in (read(os.path.join(tex, f), "r") for f in os.listdir(tex)):
+            self.assertNotIn("\\input", text)
+            self.assertEqual(text.count("\\end{tabular}"), 1)
+
+    def test_csv_names_a_spreadsheet_would_run_are_quoted_after_a_quote(self):
+        names = ["=HYPERLINK(\"http://x\")", "+1", "-1", "@SUM(A1)"]
+        files = [self.solution("s%d.sol" % k, n) for k, n in enumerate(names)]
+        out = self.path("csv")
+        self.ok("report", self.grid, "--solutions", *files, "--reference", files[0], "-o",
+                self.path("r.html"), "--csv", out)
+        coverage = read(os.path.join(out, "coverage.csv"), "r").splitlines()
+        self.assertEqual([line.split(",")[0] for line in coverage[2:]],
+                         ['"\'+1"', '"\'-1"', '"\'@SUM(A1)"'])
+        self.assertTrue(coverage[1].startswith('"\'=HYPERLINK(""http://x"")",'), coverage[1])
+        suite = read(os.path.join(out, "suite.csv"), "r")
+        self.assertIn('"reference (=HYPERLINK(""http://x""))"', suite)  # no formula: as it is
+
+    def test_names_differing_by_punctuation_or_case_get_keys_of_their_own(self):
+        names = ["a b", "a_b", "A-B", "a b 2"]
+        files = [self.solution("s%d.sol" % k, n) for k, n in enumerate(names)]
+        out, html = self.path("csv"), self.path("r.html")
+        self.ok("report", self.grid, "--solutions", *files, "-o", html, "--csv", out)
+        header = read(os.path.join(out, "comparison.csv"), "r").splitlines()[0].split(",")
+        self.assertEqual([h[len("timeout@"):] for h in header if h.startswith("timeout@")],
+                         ["a_b", "a_b_2", "a_b_3", "a_b_2_2"])
+        page = read(html, "r")
+        table = re.search(r'<table class="sortable" id="comparison-table">.*?</table>', page, re.S)
+        keys = re.findall(r'data-key="([^"]*)"', table.group(0))
+        self.assertEqual(len(keys), 4 + 4 * len(names))
+        self.assertEqual(len(keys), len(set(keys)))
+        for name in names:
+            self.assertIn(">%s timeout</th>" % name, page)  # names shown as given
+
+    def test_an_instance_given_twice_is_counted_once(self):
+        import shutil as copier
+        twin = self.path("twin.mosb")
+        copier.copy(self.grid, twin)
+        sol = self.solution("s.sol", "s")
+        html, out = self.path("r.html"), self.path("csv")
+        r = self.ok("report", self.grid, twin, "--solutions", sol, "-o", html, "--csv", out)
+        self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+        self.assertIn("warning: %s is the same instance as %s" % (twin, self.grid), r.stderr)
+        self.assertIn("counted once", r.stderr)
+        suite = list(csv_rows(os.path.join(out, "suite.csv")))
+        self.assertEqual([(row["benchmark"], row["instances"]) for row in suite],
+                         [("Grid_2", "1"), ("Grid_3", "1")])
+        instance_space = list(csv_rows(os.path.join(out, "instance-space.csv")))
+        self.assertEqual(instance_space[0]["pairs"], "1")  # Grid_2's one pair, not two
+        self.assertIn("1 instance, 2 benchmarks", read(html, "r"))
+        self.assertIn("is the same instance as", read(html, "r"))
+
+    def test_every_destination_checked_first_and_all_or_nothing(self):
+        sol = self.solution("s.sol", "s")
+        args = [self.grid, "--solutions", sol]
+        afile = self.write("afile", "not a directory\n")
+        for outputs, message in (
+                (["-o", "missing/r.html", "--csv", "t", "--latex", "t", "--figures", "f"],
+                 "missing/r.html: the directory missing does not exist"),
+                (["-o", "r.html", "--csv", "afile"], "afile: not a directory"),
+                (["-o", "r.html", "--figures", "afile/f"], "afile/f: not a directory"),
+                (["-o", "t", "--csv", "t"], "t: is a directory"),
+                # Found only while writing: the tables were written to temporaries, the
+                # directory t made; both are gone again.
+                (["-o", "r.html", "--csv", "t", "--figures", "/proc/self"], "/proc/self/01-"),
+                (["-o", "r.html", "--csv", "t", "--figures", "/proc/mosb-report-test"],
+                 "/proc/mosb-report-test: cannot make the directory")):
+            with self.subTest(outputs=outputs):
+                if outputs[1] == "t":
+                    os.mkdir(self.path("t"))
+                r = self.report(*args, *outputs)
+                self.assert_one_line_error(r, message)
+                self.assertEqual(sorted(os.listdir(self.dir)),
+                                 sorted(["grid.mosb", "s.sol", "afile"] +
+                                        (["t"] if outputs[1] == "t" else [])))
+                if outputs[1] == "t":
+                    os.rmdir(self.path("t"))
+        self.assertEqual(read(afile, "r"), "not a directory\n")
+
+
+def csv_rows(path):
+    import csv
+    with open(path, newline="", encoding="utf-8") as f:
+        return list(csv.DictReader(f))
+
+
 if __name__ == "__main__":
     mosbtest.main()

@@ -2,6 +2,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -40,7 +41,7 @@ TEST_CASE("map_of: cells, walls and exposure of a GUARDS instance") {
   convert_small_map(dir, "1 2 3 4\n5 0 6 7\n8 9 1 2\n", &converters::GuardsOptions::exposure_file);
 
   const auto reader = GraphReader::open(dir / "g.mosb", VerifyLevel::full);
-  const auto plot = plots::map_of(reader, "exposure");
+  const auto plot = plots::map_of(reader, "exposure", 160);
   CHECK(plot.width == 4);
   CHECK(plot.height == 3);
   CHECK(plot.passable == std::vector<bool>{true, true, true, true,   //
@@ -53,10 +54,10 @@ TEST_CASE("map_of: cells, walls and exposure of a GUARDS instance") {
     CHECK(std::isnan(plot.exposure[i]) == std::isnan(expected[i]));
   for (std::size_t i = 0; i < 12; ++i)
     if (!std::isnan(expected[i])) CHECK(plot.exposure[i] == expected[i]);
-  CHECK(plots::map_of(reader, "no-such-objective").exposure.empty());
+  CHECK(plots::map_of(reader, "no-such-objective", 160).exposure.empty());
 
   // A reader not verified in full is refused: the map walks the CSR.
-  CHECK_THROWS_AS(plots::map_of(GraphReader::open(dir / "g.mosb"), "exposure"), Error);
+  CHECK_THROWS_AS(plots::map_of(GraphReader::open(dir / "g.mosb"), "exposure", 160), Error);
   CHECK(plot.guards.empty());  // an exposure grid says nothing of where guards stand
 }
 
@@ -64,7 +65,8 @@ TEST_CASE("map_of: the guards of metadata map.guards, refused when malformed or 
   testing::TempDir dir;
   auto converted =
       convert_small_map(dir, "0 0\n3 2 1.5\n", &converters::GuardsOptions::guards_file);
-  const auto plot = plots::map_of(GraphReader::open(dir / "g.mosb", VerifyLevel::full), "exposure");
+  const auto plot =
+      plots::map_of(GraphReader::open(dir / "g.mosb", VerifyLevel::full), "exposure", 160);
   REQUIRE(plot.guards.size() == 2);
   CHECK((plot.guards[0].x == 0 && plot.guards[0].y == 0));
   CHECK((plot.guards[1].x == 3 && plot.guards[1].y == 2));
@@ -73,9 +75,76 @@ TEST_CASE("map_of: the guards of metadata map.guards, refused when malformed or 
     converted.graph.metadata.set("map.guards", bad);
     write_graph(converted.graph, dir / "bad.mosb");
     const auto reader = GraphReader::open(dir / "bad.mosb", VerifyLevel::full);
-    CHECK_THROWS_WITH_AS(plots::map_of(reader, "exposure"),
+    CHECK_THROWS_WITH_AS(plots::map_of(reader, "exposure", 160),
                          doctest::Contains("metadata map.guards"), Error);
   }
+}
+
+// Issue 36 §1: map.width and map.height of a file that passes verify --level full, read strictly
+// and checked against the instance before anything of the map's size is allocated.
+TEST_CASE("map_of: the map's size parsed strictly and checked against the instance") {
+  testing::TempDir dir;
+  auto converted =
+      convert_small_map(dir, "0 0\n", &converters::GuardsOptions::guards_file);  // 11 vertices
+  const auto map_of = [&](const char* width, const char* height) {
+    converted.graph.metadata.set("map.width", width);
+    converted.graph.metadata.set("map.height", height);
+    write_graph(converted.graph, dir / "m.mosb");
+    return plots::map_of(GraphReader::open(dir / "m.mosb", VerifyLevel::full), "exposure", 160);
+  };
+  for (const char* bad : {"-5", "5x", "4294967301", "4294967296", "0", "", " 4", "+4", "04", "4.0",
+                          "99999999999999999999"}) {
+    CAPTURE(bad);
+    CHECK_THROWS_WITH_AS(map_of(bad, "3"), doctest::Contains("metadata map.width '"), Error);
+    CHECK_THROWS_WITH_AS(map_of("4", bad),
+                         doctest::Contains("is not a whole number from 1 to 4294967295"), Error);
+  }
+  // Each side fits in 32 bits, their product does not fit a map; and fewer cells than vertices.
+  CHECK_THROWS_WITH_AS(map_of("4294967295", "4294967295"),
+                       doctest::Contains("more than the 4294967294 a map may have"), Error);
+  CHECK_THROWS_WITH_AS(map_of("100000", "100000"),
+                       doctest::Contains("10000000000 cells), more than"), Error);
+  CHECK_THROWS_WITH_AS(map_of("2", "5"),
+                       doctest::Contains("its 11 vertices do not fit a 2 x 5 map (10 cells)"),
+                       Error);
+  CHECK_THROWS_WITH_AS(map_of("3", "4"), doctest::Contains("lies outside the map"), Error);
+  // A map of billions of cells, nearly all blocked, is drawn in squares from its 11 vertices:
+  // nothing of its size is allocated.
+  const auto huge = map_of("65536", "65535");
+  CHECK(huge.block == 410);
+  CHECK(huge.width == 160);
+  CHECK(huge.height == 160);
+  CHECK(huge.passable.size() == 160 * 160);
+  CHECK(std::count(huge.passable.begin(), huge.passable.end(), true) == 0);  // 11 of 168,100
+  CHECK(huge.guards.size() == 1);
+  const auto exact = map_of("4", "3");
+  CHECK(exact.block == 1);
+  CHECK(std::count(exact.passable.begin(), exact.passable.end(), true) == 11);
+}
+
+TEST_CASE("map_of: vertex data 'cell' must give one cell of the map per vertex") {
+  testing::TempDir dir;
+  auto converted = convert_small_map(dir, "0 0\n", &converters::GuardsOptions::guards_file);
+  auto& cells = converted.graph.vertex_data.front();
+  REQUIRE(cells.name == "cell");
+  const auto with_cells = [&](const DataColumn& column) {
+    auto graph = converted.graph;
+    graph.vertex_data = {column};
+    write_graph(graph, dir / "c.mosb");
+    return plots::map_of(GraphReader::open(dir / "c.mosb", VerifyLevel::full), "exposure", 160);
+  };
+  // Vertices 0 and 1 on one cell: a map counts each passable cell once.
+  auto same = cells;
+  same.bytes[4] = same.bytes[0], same.bytes[5] = same.bytes[1];  // vertex 1's x = vertex 0's
+  CHECK_THROWS_WITH_AS(with_cells(same),
+                       doctest::Contains("vertices 0 and 1 lie on the same cell (0, 0)"), Error);
+  // One value per vertex where (x, y) pairs are needed: not read past its end.
+  std::vector<std::uint16_t> single(11, 0);
+  CHECK_THROWS_WITH_AS(with_cells(DataColumn::from("cell", 1, single)),
+                       doctest::Contains("vertex data 'cell' is not one (x, y) pair"), Error);
+  std::vector<std::uint8_t> narrow(22, 0);
+  CHECK_THROWS_WITH_AS(with_cells(DataColumn::from("cell", 2, narrow)),
+                       doctest::Contains("vertex data 'cell' is not one (x, y) pair"), Error);
 }
 
 TEST_CASE("correlation_of: the objectives' names, 1 on the diagonal, each pair's ρ both ways") {

@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <string>
+#include <tuple>
 
 #include "mosb/report/svg.hpp"
 
@@ -76,6 +78,42 @@ TEST_CASE("nice_ticks are 1-2-5 steps covering the range") {
   CHECK(t.size() >= 4);
 }
 
+// Issue 36 §2: values up to the largest double (a float objective holding DBL_MAX) give axes in a
+// bounded number of steps, with finite ticks.
+TEST_CASE("nice_ticks: any finite range, in a bounded number of steps") {
+  constexpr double kMax = std::numeric_limits<double>::max();
+  CHECK(nice_ticks(-kMax, kMax) == std::vector<double>{-1e308, 0, 1e308});
+  CHECK(nice_ticks(0, kMax) == std::vector<double>{0, 5e307, 1e308, 1.5e308});
+  // Too narrow for its magnitude to step through: its ends.
+  const double lo = 1e300, hi = std::nextafter(std::nextafter(lo, kMax), kMax);
+  CHECK(nice_ticks(lo, hi) == std::vector<double>{lo, hi});
+  CHECK(nice_ticks(0, 5e-324).size() <= 25);
+}
+
+TEST_CASE("front plot of values up to the largest double: finite ticks, points on the plot") {
+  constexpr double kMax = std::numeric_limits<double>::max();
+  FrontPlot p = small_front();
+  p.reference = {{kMax, 2}, {2, kMax}};
+  p.solution = {{kMax, kMax}, {0, 0}};
+  p.epsilon = 0.5;  // (1 + ε) q past the largest double: the box ends at it
+  const auto doc = plot_front(p);
+  for (const auto& t : texts(doc)) {
+    CHECK(t.find("inf") == std::string::npos);
+    CHECK(t.find("nan") == std::string::npos);
+  }
+  CHECK(has(doc, ">1.5e+308<"));
+  CHECK(!has(doc, "width=\"-"));
+  CHECK(!has(doc, "height=\"-"));
+  LinePlot lines;
+  lines.title = "runtimes";
+  lines.y_log = true;
+  lines.series = {{"a", {{1, kMax}, {2, 5e-324}, {3, 1}}}};
+  const auto log_doc = plot_lines(lines);
+  CHECK(has(log_doc, ">1e-307<"));  // the lowest decade a log axis has
+  for (const auto& t : texts(log_doc)) CHECK(t.find("inf") == std::string::npos);
+  CHECK(count(log_doc, "<text") < 40);  // at most a dozen decades labelled
+}
+
 TEST_CASE("front plot draws every vector, the epsilon boxes and a legend") {
   FrontPlot p;
   p.title = "q1";
@@ -130,6 +168,7 @@ TEST_CASE("svg escape replaces the C0 controls XML 1.0 forbids") {
 
 TEST_CASE("a large front is thinned, keeps its extreme points and says so") {
   std::vector<mosb::plots::Point2> front;
+  front.reserve(12345);
   for (int k = 0; k < 12345; ++k) front.push_back({double(k), double(12345 - k)});
   const auto drawn = mosb::plots::thin_points(front, mosb::plots::kMaxDrawnPoints);
   CHECK(drawn.size() <= mosb::plots::kMaxDrawnPoints + 4);
@@ -188,9 +227,9 @@ TEST_CASE("map marks the guards where they stand, also on a coarsened map") {
   const auto doc = plot_map(p);
   CHECK(has(doc, R"(class="guards" data-count="2")"));
   CHECK(has(doc, ">guard<"));
-  const auto coarse = coarsen_map(p, 2);
-  REQUIRE(coarse.guards.size() == 2);
-  CHECK((coarse.guards[1].x == 1 && coarse.guards[1].y == 0));
+  MapPlot coarse = MapSquares(4, 2, 2, false).plot();
+  CHECK(coarse.block == 2);
+  CHECK((square_of(coarse, p.guards[1]).x == 1 && square_of(coarse, p.guards[1]).y == 0));
 }
 
 TEST_CASE("front legend says what it counts, and coincident vectors are both visible") {
@@ -309,6 +348,7 @@ TEST_CASE("front plot of a reference alone has no solver entry, and an all-zero 
 
 TEST_CASE("thin_rows keeps every objective's extremes and at most limit + 2d rows") {
   std::vector<std::vector<double>> rows;
+  rows.reserve(1000);
   for (int k = 0; k < 1000; ++k)
     rows.push_back({static_cast<double>(k), static_cast<double>((k * 37) % 1000),
                     static_cast<double>(1000 - k), static_cast<double>((k * 91) % 997)});
@@ -394,25 +434,43 @@ TEST_CASE("lines, scatter and bars: log axes, a diagonal, one bar per series and
   CHECK(has(doc, ">ε = 0.1<"));
 }
 
-TEST_CASE("coarsen_map: blocks of k x k cells, passable when half are, the highest exposure") {
-  MapPlot m;
-  m.width = 4;
-  m.height = 2;
-  m.passable = {true, false, false, false, false, false, true, true};
-  m.exposure = {1, NAN, NAN, NAN, NAN, NAN, 2, 5};
-  m.queries = {{7, {3, 1}, {0, 0}}};
-  const auto c = coarsen_map(m, 2);
+TEST_CASE("MapSquares: squares of k x k cells, passable when half are, the highest exposure") {
+  // The 4 x 2 map with cells (0,0), (2,1), (3,1) passable, exposures 1, 2 and 5.
+  MapSquares squares(4, 2, 2, true);
+  for (const auto& [x, y, e] : {std::tuple{0u, 0u, 1.0}, {2u, 1u, 2.0}, {3u, 1u, 5.0}}) {
+    squares.add_passable(x, y);
+    squares.add_exposure(x, y, e);
+  }
+  auto c = squares.plot();
   CHECK(c.width == 2);
   CHECK(c.height == 1);
   CHECK(c.block == 2);
   CHECK(c.passable == std::vector<bool>{false, true});  // 1 of 4 cells, 2 of 4
   CHECK(c.exposure[1] == 5);
-  REQUIRE(c.queries.size() == 1);
+  c.queries = {{7, square_of(c, {3, 1}), square_of(c, {0, 0})}};
   CHECK(c.queries[0].start.x == 1);
   CHECK(c.queries[0].goal.x == 0);
-  CHECK(coarsen_map(m, 4).width == 4);  // small enough: unchanged
+  CHECK(MapSquares(4, 2, 4, false).plot().width == 4);  // small enough: a square per cell
+  CHECK(MapSquares(4, 2, 4, false).plot().exposure.empty());
   const auto doc = plot_map(c);
   CHECK(has(doc, ">1 square: 2x2 cells<"));
   CHECK(has(doc, ">start (query number)<"));
   CHECK(count(doc, ">7<") == 2);  // start and goal labelled
+  // The last square of a side the block does not divide holds fewer cells: 5 x 1 in squares of
+  // 2, the last square one cell, passable when that cell is.
+  MapSquares odd(5, 1, 3, false);
+  odd.add_passable(4, 0);
+  CHECK(odd.plot().passable == std::vector<bool>{false, false, true});
+}
+
+// Issue 36 §1: a map's squares come from its size alone, whatever it is (0 read as 1).
+TEST_CASE("MapSquares: at most max_side squares a side, for any size up to 2^32 - 1") {
+  const auto most = MapSquares(4294967295u, 4294967295u, 160, true).plot();
+  CHECK(most.width == 160);
+  CHECK(most.height == 160);
+  CHECK(most.block == 26843546);
+  CHECK(MapSquares(7, 3, 0, false).plot().width == 1);
+  const auto thin = MapSquares(4294967295u, 1, 100, false).plot();
+  CHECK(thin.width == 100);
+  CHECK(thin.height == 1);
 }

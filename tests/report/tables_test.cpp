@@ -63,6 +63,47 @@ TEST_CASE("write_csv: a field with a comma, a quote or a line break is quoted") 
   CHECK(out.str() == "name\r\n\"a,b\"\r\n\"say \"\"x\"\"\"\r\n");
 }
 
+// Issue 36 §4: a spreadsheet runs a field starting with = + - @ TAB or CR as a formula.
+TEST_CASE(
+    "write_csv: text that a spreadsheet would run is quoted after a ', numbers stay numbers") {
+  Table t;
+  t.columns = {{"name", "Name"}, {"rho", "$\\rho$"}};
+  for (const char* name : {"=cmd|' /C calc'!A0", "+1", "-2+3", "@SUM(A1)", "\tx", "\rx", "a\\b",
+                           "a\x1b[2Jb", "ok-name"})
+    t.rows.push_back({Cell::of(std::string(name)), Cell::of(-0.44)});
+  std::ostringstream out;
+  write_csv(out, t);
+  CHECK(out.str() ==
+        "name,rho\r\n"
+        "\"'=cmd|' /C calc'!A0\",-0.44\r\n"
+        "\"'+1\",-0.44\r\n"
+        "\"'-2+3\",-0.44\r\n"
+        "\"'@SUM(A1)\",-0.44\r\n"
+        "\"'\tx\",-0.44\r\n"
+        "\"'\rx\",-0.44\r\n"
+        "a\\b,-0.44\r\n"               // a backslash is data, not terminal escaping
+        "a\xEF\xBF\xBD[2Jb,-0.44\r\n"  // no control character reaches the file
+        "ok-name,-0.44\r\n");
+}
+
+// Issue 36 §3: every string a LaTeX table shows goes through latex_escape, headings included.
+TEST_CASE("latex_escape: no name can end the tabular, run a command or take an argument") {
+  CHECK(latex_escape("\\end{tabular}\\input{/etc/passwd}") ==
+        "\\textbackslash{}end\\{tabular\\}\\textbackslash{}input\\{/etc/passwd\\}");
+  CHECK(latex_escape("$ _ # % & ~ ^ { }") ==
+        "\\$ \\_ \\# \\% \\& \\textasciitilde{} \\textasciicircum{} \\{ \\}");
+  CHECK(latex_escape("[1cm]<a|b>") == "{[}1cm{]}\\textless{}a\\textbar{}b\\textgreater{}");
+  CHECK(latex_escape("a\nb\x7f") == "a\\textbackslash{}x0Ab\\textbackslash{}x7F");
+  CHECK(latex_escape("ε-solver") == "ε-solver");
+  // The comparison's headings carry each ε through it as well.
+  std::ostringstream out;
+  auto c = two_solvers();
+  c.solvers[0].name = "\\end{tabular}";
+  write_latex(out, comparison_summary(c, kLabels, true));
+  CHECK(out.str().find("\n\\textbackslash{}end\\{tabular\\} & 2 & ") != std::string::npos);
+  CHECK(out.str().find("\\end{tabular}") == out.str().rfind("\\end{tabular}"));  // the table's
+}
+
 TEST_CASE("write_latex: a booktabs tabular of the paper's columns, escaped, three digits") {
   std::ostringstream out;
   auto table = comparison_summary(two_solvers(), kLabels, true);

@@ -258,13 +258,12 @@ int run_eval(const EvalArgs& args) {
   if (args.json) {
     print_json(result, reference.display_name(), reference.query_count(), eps_text);
   } else if (args.csv || args.latex) {
-    // Names come from the files: no control character may reach a terminal or a document.
-    for (auto& s : result.solvers) s.name = escape_for_terminal(s.name);
+    // Names as the files give them: the table writers escape them for CSV or LaTeX.
     auto table = args.per_query ? tables::comparison_per_query(result, eps_text, solutions)
                                 : tables::comparison_summary(result, eps_text, args.latex);
     complete_table(table, result, eps_text, solutions, args.per_query);
-    std::ostringstream caption;
-    caption << "mosb eval: reference " << escape_for_terminal(reference.display_name()) << ", "
+    std::ostringstream caption;  // a file's caption: the names as given (no terminal escaping)
+    caption << "mosb eval: reference " << reference.display_name() << ", "
             << reference.query_count() << " queries, " << to_string(result.runtime)
             << " runtime, float tolerance " << result.tolerance;
     table.caption = caption.str();

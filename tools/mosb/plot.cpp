@@ -113,7 +113,7 @@ int run_map(const PlotArgs& args, const std::string& exposure_objective, const M
   // Every input is opened (and verified) before any of it is used.
   std::optional<SolutionReader> solutions;
   if (!paths.solutions.empty()) solutions.emplace(SolutionReader::open_verified(paths.solutions));
-  auto plot = plots::map_of(reader, exposure_objective);
+  auto plot = plots::map_of(reader, exposure_objective, plots::kMapSideOfPlot);
   plot.title = default_title(reader, args, "map");
   if (solutions) {
     require_query(*solutions, *paths.query);

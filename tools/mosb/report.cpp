@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <iostream>
 #include <limits>
 #include <memory>
 #include <sstream>
@@ -41,38 +42,61 @@ std::vector<std::uint64_t> parse_queries(const std::string& list) {
   return out;
 }
 
-// The tables as DIR/NAME.EXT, each written atomically; the directory is made when missing.
-void write_tables(const std::string& directory, const pages::Report& r, bool latex) {
-  std::filesystem::create_directories(directory);
+// The outputs, each a file and its content, all rendered before any is written.
+using Outputs = std::vector<std::pair<std::filesystem::path, std::string>>;
+
+// The tables as DIR/NAME.EXT.
+void add_tables(Outputs& out, const std::string& directory, const pages::Report& r, bool latex) {
   const std::pair<const char*, const tables::Table*> all[] = {{"suite", &r.suite},
                                                               {"instance-space", &r.instance_space},
                                                               {"comparison", &r.comparison},
                                                               {"coverage", &r.coverage}};
   for (const auto& [name, table] : all) {
     if (table->rows.empty()) continue;
-    std::ostringstream out;
+    std::ostringstream text;
     if (latex)
-      tables::write_latex(out, *table);
+      tables::write_latex(text, *table);
     else
-      tables::write_csv(out, *table);
-    write_file_atomically(
+      tables::write_csv(text, *table);
+    out.emplace_back(
         std::filesystem::path(directory) / (std::string(name) + (latex ? ".tex" : ".csv")),
-        out.str());
+        text.str());
   }
 }
 
-// Every figure alone as DIR/NN-KIND.EXT, in page order; the directory is made when missing.
-void write_figures(const std::string& directory, const std::string& extension,
-                   const pages::Report& r) {
-  std::filesystem::create_directories(directory);
+// Every figure alone as DIR/NN-KIND.EXT, in page order.
+void add_figures(Outputs& out, const std::string& directory, const std::string& extension,
+                 const pages::Report& r) {
   const auto format = *plots::image_format_of("x." + extension);
   for (std::size_t k = 0; k < r.figures.size(); ++k) {
     char number[32];
     std::snprintf(number, sizeof number, "%02zu-", k + 1);
-    write_file_atomically(
+    out.emplace_back(
         std::filesystem::path(directory) / (number + r.figures[k].kind + "." + extension),
         plots::render_svg(r.figures[k].svg, format, {}));
   }
+}
+
+// Writes the page, the tables and the figures all or nothing: every output is rendered in memory,
+// then write_files_atomically checks every destination, writes each to a temporary and renames
+// them only once all are written (so a full disk or an unwritable directory found on the last
+// file leaves no half set, which checking first alone could not promise).
+void write_outputs(const ReportArgs& args, const pages::Report& result,
+                   const std::vector<std::filesystem::path>& inputs) {
+  Outputs outputs;
+  std::vector<std::filesystem::path> directories;
+  if (!args.latex.empty()) add_tables(outputs, args.latex, result, true);
+  if (!args.csv.empty()) add_tables(outputs, args.csv, result, false);
+  if (!args.figures.empty()) add_figures(outputs, args.figures, args.figure_format, result);
+  for (const auto* d : {&args.latex, &args.csv, &args.figures})
+    if (!d->empty()) directories.emplace_back(*d);
+  outputs.emplace_back(args.output, result.html);
+  std::vector<FileContent> files;
+  for (const auto& [path, content] : outputs) {
+    check_output_is_not_input(path, inputs);
+    files.push_back({path, content});
+  }
+  write_files_atomically(directories, files);
 }
 
 int run_report(const ReportArgs& args) {
@@ -100,12 +124,10 @@ int run_report(const ReportArgs& args) {
     references.push_back(SolutionReader::open_verified(path));
     inputs.emplace_back(path);
   }
-  auto result = pages::make_report(instances, solutions, references, options);
-  check_output_is_not_input(args.output, inputs);
-  if (!args.latex.empty()) write_tables(args.latex, result, true);
-  if (!args.csv.empty()) write_tables(args.csv, result, false);
-  if (!args.figures.empty()) write_figures(args.figures, args.figure_format, result);
-  write_file_atomically(args.output, result.html);
+  const auto result = pages::make_report(instances, solutions, references, options);
+  write_outputs(args, result, inputs);
+  for (const auto& note : result.notes)
+    std::cerr << "mosb: warning: " << escape_for_terminal(note) << '\n';
   return 0;
 }
 

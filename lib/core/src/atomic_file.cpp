@@ -5,14 +5,17 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cerrno>
 #include <climits>
 #include <csignal>
 #include <cstring>
+#include <memory>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <string>
 
 #include "mosb/error.hpp"
@@ -314,6 +317,92 @@ void write_file_atomically(const std::filesystem::path& target, std::string_view
   AtomicFile file(target);
   file.write(content);
   file.commit();
+}
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// `p` absolute and normal, without a trailing separator: how two names of one place compare.
+fs::path place_of(const fs::path& p) {
+  auto normal = fs::absolute(p.empty() ? fs::path(".") : p).lexically_normal();
+  return normal.has_filename() || normal == normal.root_path() ? normal : normal.parent_path();
+}
+
+bool is_a_directory(const fs::path& p) {
+  std::error_code ec;
+  return fs::is_directory(p, ec);
+}
+
+// Refuses a directory to make that exists as something else, or whose nearest existing ancestor
+// is not a directory.
+void check_directory_to_make(const fs::path& directory) {
+  std::error_code ec;
+  fs::path at = place_of(directory);
+  while (!fs::exists(fs::symlink_status(at, ec)) && at.has_relative_path()) at = at.parent_path();
+  if (!is_a_directory(at))
+    throw Error(directory.string() + ": not a directory" +
+                (at == place_of(directory) ? "" : " (" + at.string() + " is a file)"));
+}
+
+// The directories made for a set of files, removed again (when still empty) unless released.
+class MadeDirectories {
+ public:
+  MadeDirectories(const MadeDirectories&) = delete;
+  MadeDirectories& operator=(const MadeDirectories&) = delete;
+  MadeDirectories() = default;
+  ~MadeDirectories() {
+    std::error_code ec;
+    for (; !made_.empty(); made_.pop_back()) fs::remove(made_.back(), ec);  // innermost first
+  }
+  // Makes `directory` and its missing parents, outermost first.
+  void make(const fs::path& directory) {
+    std::vector<fs::path> missing;
+    std::error_code ec;
+    for (fs::path at = place_of(directory); !fs::exists(fs::symlink_status(at, ec));
+         at = at.parent_path())
+      missing.push_back(at);
+    std::reverse(missing.begin(), missing.end());
+    for (const auto& at : missing) {
+      if (fs::create_directory(at, ec))
+        made_.push_back(at);
+      else if (ec)
+        throw Error(directory.string() + ": cannot make the directory: " + ec.message());
+    }
+  }
+  void release() { made_.clear(); }
+
+ private:
+  std::vector<fs::path> made_;
+};
+
+}  // namespace
+
+void write_files_atomically(const std::vector<fs::path>& directories,
+                            const std::vector<FileContent>& files) {
+  std::set<fs::path> to_make, named;
+  for (const auto& d : directories) {
+    check_directory_to_make(d);
+    to_make.insert(place_of(d));
+  }
+  for (const auto& f : files) {
+    const std::string shown = f.path.string();
+    if (!f.path.has_filename()) throw Error(shown + ": not a file name");
+    if (is_a_directory(f.path)) throw Error(shown + ": is a directory");
+    const auto directory = place_of(f.path).parent_path();
+    if (!to_make.contains(directory) && !is_a_directory(directory))
+      throw Error(shown + ": the directory " + f.path.parent_path().string() + " does not exist");
+    if (!named.insert(place_of(f.path)).second) throw Error(shown + ": named twice");
+  }
+  MadeDirectories made;
+  for (const auto& d : directories) made.make(d);
+  std::vector<std::unique_ptr<AtomicFile>> staged;
+  for (const auto& f : files) {
+    staged.push_back(std::make_unique<AtomicFile>(f.path));
+    staged.back()->write(f.content);
+  }
+  made.release();
+  for (auto& file : staged) file->commit();
 }
 
 }  // namespace mosb

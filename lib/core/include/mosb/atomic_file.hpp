@@ -74,6 +74,25 @@ class AtomicFile {
 // shows its old content or all of the new. Throws mosb::Error naming the target.
 void write_file_atomically(const std::filesystem::path& target, std::string_view content);
 
+// A file of a set written all or nothing: its name and its whole content (the caller keeps it).
+struct FileContent {
+  std::filesystem::path path;
+  std::string_view content;
+};
+
+// Writes `files` all or nothing (mosb report's page, tables and figures). Each of `directories`
+// is made when missing, with its parents; every other file's directory must exist. First every
+// destination is checked, before anything is touched: a directory to make is a directory or can
+// be made (its nearest existing ancestor is a directory), no file names an existing directory or
+// is named twice, each file's directory exists or is one to make. Then the directories are made,
+// each file is written to its temporary (AtomicFile), and only once every file is written are the
+// temporaries renamed onto their names, in order. On an error before that nothing is left behind,
+// no temporary and no directory made here, and the mosb::Error names the file or directory. (Only
+// a rename that fails once others succeeded, the destination having changed meanwhile, leaves the
+// files renamed before it.)
+void write_files_atomically(const std::vector<std::filesystem::path>& directories,
+                            const std::vector<FileContent>& files);
+
 // Called (from the writing thread, one call at a time) with each stale temporary that was
 // removed; the library prints nothing itself. An empty function removes them silently (the
 // default).

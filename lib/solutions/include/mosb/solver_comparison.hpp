@@ -23,6 +23,8 @@ struct EpsilonOutcome {
   // Both solved, the solver claims exactness and returned vectors the reference dominates (the
   // same count at every ε: such a query fails at each).
   std::uint64_t dominated = 0;
+  // The queries both solved: every one is one of the three.
+  std::uint64_t evaluated() const { return covered + not_covered + dominated; }
 };
 
 struct SolverSummary {

@@ -27,25 +27,32 @@ DegreePlot degrees_of(const GraphReader& instance);
 std::string objective_unit(const GraphReader& instance, std::string_view objective);
 
 // The map of a grid instance (metadata map.width/map.height, vertex data `cell` (x, y); the games
-// family, spec/families/games.md §2), with each cell shaded by the cost of an orthogonal move into
-// it in objective `exposure_objective` (and that objective's unit) when the instance has one, and
-// the guards of metadata map.guards. `instance` must be verified in full (its cells and CSR are
-// walked). Throws mosb::Error naming the file when it is not a grid.
-MapPlot map_of(const GraphReader& instance, std::string_view exposure_objective);
+// family, spec/families/games.md §2), drawn with MapSquares of at most `max_side` squares per
+// side: each passable cell shaded by the cost of an orthogonal move into it in objective
+// `exposure_objective` (and that objective's unit) when the instance has one, and the guards of
+// metadata map.guards. `instance` must be verified in full (its cells and CSR are walked). Throws
+// mosb::Error naming the file when it is not a grid or its map does not fit it: map.width or
+// map.height not a whole number from 1 to 2^32 - 1, a map of more than 2^32 - 2 cells or of fewer
+// cells than the instance has vertices (each checked before anything of the map's size is
+// allocated), vertex data 'cell' not one (x, y) pair per vertex, a vertex outside the map or two
+// on one cell, map.guards malformed. Time and memory: O(vertices + arcs + max_side²), whatever
+// the map's size.
+MapPlot map_of(const GraphReader& instance, std::string_view exposure_objective,
+               std::uint32_t max_side);
 
 // The cells of a metadata value map.guards, "x,y;x,y;..." (spec/families/games.md §5), each on a
 // width x height map; throws mosb::Error "NAME: metadata map.guards: ..." when malformed.
 std::vector<Point2> parse_guard_cells(std::string_view text, std::uint32_t width,
                                       std::uint32_t height, const std::string& name);
 
-// Adds the paths of query `query`'s front in `solutions` (bound to `instance`, verified) to `map`,
-// as cell sequences. Throws when the file holds no paths, the query is not solved, or a path
-// vertex is not one of the instance's.
+// Adds the paths of query `query`'s front in `solutions` (bound to `instance`, verified) to `map`
+// (map_of's), as sequences of its squares. Throws when the file holds no paths, the query is not
+// solved, or a path vertex is not one of the instance's.
 void add_front_paths(MapPlot& map, const GraphReader& instance, const SolutionReader& solutions,
                      std::uint64_t query);
 
-// Adds the start and goal cells of the given queries of set `query_set` (positions past its end
-// are skipped) to `map` as markers. Throws as map_of when `instance` is not a grid.
+// Adds the start and goal squares of the given queries of set `query_set` (positions past its end
+// are skipped) to `map` (map_of's) as markers. Throws as map_of when `instance` is not a grid.
 void add_query_markers(MapPlot& map, const GraphReader& instance, std::string_view query_set,
                        std::span<const std::uint64_t> queries);
 

@@ -88,14 +88,40 @@ struct MapPlot {
   std::vector<std::vector<Point2>> paths;  // cell coordinates (x, y)
   std::vector<MapQuery> queries;           // start and goal markers
   std::vector<Point2> guards;              // cells where guards stand (metadata map.guards)
-  std::uint32_t block = 1;  // cells per drawn square per side (coarsen_map), said in the legend
+  // Cells per drawn square per side (MapSquares), said in the legend: width, height, passable,
+  // exposure, paths, queries and guards are then of squares, not cells.
+  std::uint32_t block = 1;
 };
 std::string plot_map(const MapPlot& plot);
-// The map drawn with squares of k x k cells so no side has more than `max_side` squares (k = 1:
-// unchanged): a square is passable when at least half of its cells are (a randomly blocked map
-// keeps its texture), its exposure the highest of its passable cells; paths and markers are scaled
-// with it. Keeps a 1024 x 1024 map a figure of tens, not thousands, of kB.
-MapPlot coarsen_map(const MapPlot& plot, std::uint32_t max_side);
+
+// The squares a map of width x height cells is drawn with: k x k cells each, k the smallest that
+// leaves no side more than max_side squares (max_side at least 1; k = 1: a square per cell). A
+// square is passable when at least half of its cells are (a randomly blocked map keeps its
+// texture), its exposure the highest given to its cells (NaN when none). Only the squares are
+// held, never the cells: a map of billions of cells, mostly blocked, costs what its drawing does
+// (at most max_side² squares). Keeps a 1024 x 1024 map in a report a figure of tens, not
+// thousands, of kB.
+class MapSquares {
+ public:
+  MapSquares(std::uint32_t width, std::uint32_t height, std::uint32_t max_side, bool shaded);
+  // A passable cell (x < width, y < height), each at most once.
+  void add_passable(std::uint32_t x, std::uint32_t y);
+  // An exposure of a cell: the cost of a move into it (with `shaded` only).
+  void add_exposure(std::uint32_t x, std::uint32_t y, double value);
+  // Its squares as a map (width, height, block, passable and, when shaded, exposure set).
+  MapPlot plot() const;
+
+ private:
+  std::size_t index(std::uint32_t x, std::uint32_t y) const;
+  std::uint32_t width_, height_, block_, columns_, rows_;
+  std::vector<std::uint32_t> open_;  // passable cells per square
+  std::vector<double> exposure_;     // per square; empty when not shaded
+};
+// Squares per side of `mosb plot map`'s figure: every cell of a map up to 1024 cells a side,
+// squares of several cells past that.
+inline constexpr std::uint32_t kMapSideOfPlot = 1024;
+// Where `map` draws cell `cell`: the square that holds it.
+Point2 square_of(const MapPlot& map, Point2 cell);
 
 // The paper's instance-space figure: one series per benchmark at its number of objectives d
 // (y axis), a line from its smallest to its largest pairwise ρ (x axis, −1 to 1) with the ends

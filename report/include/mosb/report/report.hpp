@@ -26,7 +26,7 @@ struct ReportOptions {
   // The page's largest size: past it, fronts are drawn with half as many points, down to 50,
   // and past it then make_report throws (ErrorCode::invalid_argument).
   std::size_t max_bytes = 5'000'000;
-  std::uint32_t max_map_side = 160;  // squares per map side (plots::coarsen_map)
+  std::uint32_t max_map_side = 160;  // squares per map side (plots::MapSquares)
 };
 
 // A figure of the page as a document of its own, named by its kind ("front", "cactus", ...).
@@ -41,14 +41,18 @@ struct Report {
   // instance space (ρ per benchmark), the solvers' comparison (the paper's two-solver table,
   // empty without two solvers) and the ε-coverage per solver (empty without a reference).
   tables::Table suite, instance_space, comparison, coverage;
+  // What the page says about its inputs that a user should also be told where the report is
+  // made: each instance given twice (the same content digest), left out and named with its twin.
+  std::vector<std::string> notes;
 };
 
 // A benchmark is a view (its objectives and query set) over every instance that has it; an
-// instance without views is one benchmark of all its objectives. Instances must be verified in
-// full, solution files with SolutionReader::open_verified. Every solution and reference file must
-// be bound to one of the instances (throws ErrorCode::invalid_argument naming the file and its
-// instance digest otherwise, or check_bound_to's error), and a solver (or the reference) may have
-// one file per instance, view and query set.
+// instance without views is one benchmark of all its objectives. An instance given twice (the
+// same content digest, under two paths or one) is counted once, and said in `notes`. Instances must
+// be verified in full, solution files with SolutionReader::open_verified. Every solution and
+// reference file must be bound to one of the instances (throws ErrorCode::invalid_argument naming
+// the file and its instance digest otherwise, or check_bound_to's error), and a solver (or the
+// reference) may have one file per instance, view and query set.
 Report make_report(std::span<const GraphReader> instances,
                    std::span<const SolutionReader> solutions,
                    std::span<const SolutionReader> references, const ReportOptions& options);

@@ -1,12 +1,16 @@
 // Tables of numbers for a results section: one model, written as CSV (RFC 4180, every digit kept),
 // a LaTeX booktabs tabular (three significant digits, for a paper) or aligned text (a terminal).
-// `mosb eval --csv|--latex` and `mosb report` build theirs here.
+// `mosb eval --csv|--latex` and `mosb report` build theirs here. The writers take text as given
+// (a solver's name as its file says it) and escape it for their language, each in one place:
+// CSV in write_csv, LaTeX in latex_escape, HTML in plots::Svg::escape; the terminal's escaping
+// (escape_for_terminal) is the program's and never reaches a file.
 #pragma once
 
 #include <cstdint>
 #include <ostream>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "mosb/solver_comparison.hpp"
@@ -26,7 +30,7 @@ struct Cell {
 
 struct Column {
   std::string key;        // CSV header and text heading: [a-z0-9_@.]
-  std::string latex;      // LaTeX heading (math allowed)
+  std::string latex;      // LaTeX heading (math allowed; any text in it through latex_escape)
   std::string html = {};  // HTML heading (plain text, escaped on writing); the key when empty
 };
 
@@ -36,8 +40,19 @@ struct Table {
   std::string caption;                  // LaTeX comment line and text heading; may be empty
 };
 
+// `text` as LaTeX shows it in text mode, a cell's or a heading's: \ { } $ & # % _ ~ ^ [ ] < > |
+// escaped (so no name can end a tabular, start a command or be read as the optional argument
+// of the previous row's \\), and each C0 control character and DEL as \textbackslash{}xNN (it
+// would otherwise break the table or the run). Other bytes, UTF-8 included, are kept.
+std::string latex_escape(std::string_view text);
+
 // Numbers: CSV the shortest text that reads back the same ("inf" for infinity), an empty field
 // when absent; LaTeX %.3g, $\infty$, "--" when absent, text escaped; text %.4g, "-" when absent.
+// CSV (RFC 4180) quotes a field holding a comma, a quote, CR or LF, doubling its quotes; a text
+// field starting with = + - @ TAB or CR, which a spreadsheet would run as a formula, is written
+// with a ' before it, quoted (OWASP, "CSV Injection"); any other C0 control character, and DEL,
+// becomes U+FFFD, as in HTML. Numbers are written as numbers: a negative one (a ρ of the instance
+// space) is a value to a spreadsheet, not a formula, and keeps its sign.
 void write_csv(std::ostream& out, const Table& table);
 void write_latex(std::ostream& out, const Table& table);
 void write_text(std::ostream& out, const Table& table);
