@@ -156,6 +156,20 @@ class Hostile(CliTest):
                 self.assertEqual(info["statuses"][recorded], 1, info["statuses"])
                 self.assertEqual(info["statuses"]["disconnected"], 0)
 
+    def test_a_json_log_that_says_failed_is_never_solved(self):
+        # How the A*pex family logs its own time-out: finish_info.status "Failed" beside a
+        # partial front.
+        body = ("printf '[{\"source\": %s, \"target\": %s, \"finish_info\": {\"solutions\": "
+                "[{\"cost_until_now\": [3, 4]}], \"status\": \"Failed\"}}]' \"$2\" \"$3\" > \"$4\"\n")
+        self.one()
+        solver = self.script("apex-like", body)
+        r = self.run_solver(solver + " {query} {source} {target} {front} #", "--output-format",
+                            "json-log", queries="one")
+        info = self.inspect()
+        self.assertEqual(info["statuses"]["failed"], 1, r.stderr)
+        self.assertEqual(info["vectors"], 0)
+        self.assertIn('finish_info.status "Failed"', r.stderr)
+
     def one(self):
         self.ok("queries", "generate", self.grid, "--set", "one", "--count", "1", "--in-place",
                 "--replace")

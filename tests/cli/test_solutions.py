@@ -84,6 +84,24 @@ class SolutionsTest(CliTest):
         self.assertEqual([float(row["front_" + k]) for k in ("min", "median", "mean", "max")],
                          [inspected[k] for k in ("min", "median", "mean", "max")])
 
+    def test_import_reads_integers_exactly_and_never_keeps_a_failed_search(self):
+        # 2^53 + 1 would be rounded to 2^53 as a double: refused, in text and in JSON.
+        d = self.front_dir({"0.txt": "9007199254740993 1\n"})
+        self.assert_refused(["--dir", d], "%s/0.txt:1:1: the integer '9007199254740993' is above "
+                            "2^53, the largest exact integer cost" % d)
+        log = self.write("big.json", '[{"source": %d, "target": %d, "finish_info": {"solutions": '
+                                     '[{"cost_until_now": [9007199254740993, 1]}]}}]' % QUERIES[0])
+        self.assert_refused(["--json-log", log], "%s: /0/finish_info/solutions/0/cost_until_now/0: "
+                            "the integer 9007199254740993 is above 2^53, the largest exact integer "
+                            "cost" % log)
+        # A record whose search says it did not succeed: failed, its partial front dropped.
+        log = self.write("failed.json", '[{"source": %d, "target": %d, "finish_info": {"solutions":'
+                                        ' [{"cost_until_now": [1, 9]}], "status": "Failed"}}]'
+                                        % QUERIES[0])
+        self.import_("--json-log", log)
+        info = self.inspect()
+        self.assertEqual((info["statuses"]["failed"], info["vectors"]), (1, 0))
+
     def test_directory_import_and_inspect(self):
         d = self.front_dir({"0.txt": "# a comment\n1 9\n[2, 7]\n\n3;5\r\n", "q1.front": "4,4\n",
                             "query-2.txt": ""})
@@ -302,8 +320,8 @@ class SolutionsTest(CliTest):
         self.assertEqual(mosbtest.header(self.read("out.sol"))["version_minor"], 3)
         # Above 2^53 a sum is refused, naming the file and line, never wrapped.
         self.write("fronts/0.txt", "1 1\n9007199254740994 1\n")
-        self.assert_refused(["--dir", d], "%s/0.txt:2: query 0, objective 'c1': path sum above "
-                            "2^53, the largest integer a solution file stores exactly" % d)
+        self.assert_refused(["--dir", d], "%s/0.txt:2:1: the integer '9007199254740994' is above "
+                            "2^53, the largest exact integer cost" % d)
         records = [self.record(1, 9, [[1, 1], [2, 1e300]])]
         self.assert_refused(["--json-log", self.log(records), "--id-base", "1", "--force-id-base"],
                             "%s: /0/finish_info/solutions/1/cost_until_now: query 0, objective 'c2': "

@@ -1,6 +1,7 @@
 #include "mosb/converters/solution_import.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -21,8 +22,19 @@ bool is_value_separator(char c) {
   return c == ' ' || c == '\t' || c == ',' || c == ';';
 }
 
-// Why `token` is no cost, or empty when it is one (stored in `value`).
+constexpr std::uint64_t kMaxExactInteger = std::uint64_t{1} << 53;
+
+// Why `token` is no cost, or empty when it is one (stored in `value`). An integer of digits alone
+// is read exactly: one above 2^53 would be rounded to another (…993 to …992), so it is refused.
 std::string cost_problem(std::string_view token, double& value) {
+  if (!token.empty() && token.find_first_not_of("0123456789") == std::string_view::npos) {
+    std::uint64_t n = 0;
+    const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), n);
+    if (ec != std::errc() || n > kMaxExactInteger)
+      return "the integer " + quoted(token) + " is above 2^53, the largest exact integer cost";
+    value = static_cast<double>(n);
+    return {};
+  }
   const auto parsed = text::to_real(token);
   if (!parsed) {
     std::string lower(token);
@@ -178,6 +190,19 @@ void json_record_front(const Json& record, const std::string& record_at, const s
                        const SolutionImportOptions& o, const At& at, ImportedResult& result) {
   const auto info = record.find("finish_info");
   const bool has_info = info != record.end() && info->is_object();
+  // A solver that says its search did not succeed (A*pex's own time-out is "Failed") did not
+  // finish: its solutions are a partial front, never kept.
+  if (has_info && !result.status_stated)
+    if (const auto status = info->find("status"); status != info->end()) {
+      if (!status->is_string())
+        throw at(record_at + "/finish_info/status", "expected a word, found " + status->dump());
+      if (status->template get<std::string>() != "Success") {
+        result.status = QueryStatus::failed;
+        result.status_stated = true;
+        result.statement = "finish_info.status " + status->dump();
+        return;
+      }
+    }
   const Json* solutions = nullptr;
   if (has_info)
     if (const auto found = info->find("solutions"); found != info->end() && found->is_array())
@@ -200,6 +225,9 @@ void json_record_front(const Json& record, const std::string& record_at, const s
       const Json& value = (*cost)[i];
       const std::string value_at = solution_at + "/cost_until_now/" + std::to_string(i);
       if (!value.is_number()) throw at(value_at, "expected a cost, found " + value.dump());
+      if (value.is_number_unsigned() && value.template get<std::uint64_t>() > kMaxExactInteger)
+        throw at(value_at,
+                 "the integer " + value.dump() + " is above 2^53, the largest exact integer cost");
       const double v = value.template get<double>();
       if (!std::isfinite(v)) throw at(value_at, "non-finite cost " + value.dump());
       if (v < 0) throw at(value_at, "negative cost " + value.dump());

@@ -33,8 +33,7 @@ ParsedOutput read_example_log_output(const SolverOutputFiles& files) {
   auto results = import_front_directory(files.fronts_dir, options);
   const auto log = read_text_input(files.stdout_path, files.output_bytes);
   apply_example_run_log(log.text, files.stdout_path, options, results);
-  if (results.size() == 1 && results.front().status_stated &&
-      !is_completed(results.front().status))
+  if (results.size() == 1 && results.front().status_stated && !is_completed(results.front().status))
     return stated(results.front().status, files.fronts_dir + "/0.txt says status " +
                                               std::string(to_string(results.front().status)));
   if (results.size() != 1 || results.front().status == QueryStatus::failed)
@@ -58,8 +57,10 @@ ParsedOutput read_json_log_output(const SolverOutputFiles& files) {
                 std::to_string(results.size()));
   const auto& result = results.front();
   if (!is_completed(result.status))
-    return stated(result.status, path + ": the record states status " +
-                                     std::string(to_string(result.status)));
+    return stated(result.status,
+                  path + ": the record says " +
+                      (result.statement.empty() ? "status " + std::string(to_string(result.status))
+                                                : result.statement));
   ParsedOutput out;
   out.vectors = result.costs.size() / files.objectives;
   out.costs = result.costs;

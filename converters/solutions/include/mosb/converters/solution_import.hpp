@@ -53,6 +53,7 @@ struct ImportedResult {
   std::vector<double> costs;  // front_size·d values, vector after vector
   QueryStatistics statistics;
   bool status_stated = false;  // the input said the status (else it follows from the front)
+  std::string statement = {};  // what the input said, where it said more than a status word
   // Where the result and each of its vectors came from, for messages on values the writer refuses:
   // "FILE", "FILE:LINE" or "FILE: JSON-POINTER".
   std::string source = {};
