@@ -228,9 +228,9 @@ TEST_CASE(
   auto again = convert(fmi(dir / "plain.txt"), dir / "again.mosb");
   CHECK(slurp(dir / "plain.mosb") == slurp(dir / "again.mosb"));
   testing::require(std::system("command -v gzip >/dev/null 2>&1") == 0, "the 'gzip' command");
-  REQUIRE(std::system(("gzip -c '" + (dir / "plain.txt").string() + "' > '" +
-                       (dir / "p.gz").string() + "'")
-                          .c_str()) == 0);
+  REQUIRE(std::system(
+              ("gzip -c '" + (dir / "plain.txt").string() + "' > '" + (dir / "p.gz").string() + "'")
+                  .c_str()) == 0);
   auto packed = convert(fmi(dir / "p.gz"), dir / "packed.mosb");
   CHECK(checksums(packed) == checksums(plain));
 }

@@ -326,8 +326,8 @@ TEST_CASE("a packed suite lists packed files that unpack to the unpacked suite's
 }
 
 TEST_CASE("the real NetMaker file converts to 10000 vertices, 59750 arcs, 3 objectives") {
-  const auto file = testing::shared_data() / "netmaker" /
-                    "netMaker_3o_10000n_1amin_10amax_20i_1s_scorr_79134.gr";
+  const auto file =
+      testing::shared_data() / "netmaker" / "netMaker_3o_10000n_1amin_10amax_20i_1s_scorr_79134.gr";
   testing::require_shared(file);
   testing::TempDir dir;
   write_graph(converters::convert_netmaker(file, std::nullopt), dir / "n.mosb");

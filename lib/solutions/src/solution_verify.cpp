@@ -305,8 +305,7 @@ std::optional<std::string> verify_solutions(const SolutionReader& s, const Graph
   return std::nullopt;
 }
 
-std::optional<std::string> front_problem(std::span<const double> rows, std::size_t d,
-                                         bool exact) {
+std::optional<std::string> front_problem(std::span<const double> rows, std::size_t d, bool exact) {
   if (d == 0 || rows.size() < 2 * d) return std::nullopt;
   if (exact) {
     const auto pair = first_dominated_row(rows, d);

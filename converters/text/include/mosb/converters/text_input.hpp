@@ -95,8 +95,7 @@ struct TextInput : InputFacts {
 // Throws mosb::Error naming the file when it cannot be read or decompressed.
 // With `max_bytes`, a text (decompressed) longer than that is refused once it passes it, before
 // more is decoded: a small compressed file can decode to gigabytes.
-TextInput read_text_input(const std::filesystem::path& path,
-                          std::uint64_t max_bytes = UINT64_MAX);
+TextInput read_text_input(const std::filesystem::path& path, std::uint64_t max_bytes = UINT64_MAX);
 
 // Provenance of raw input `index`: metadata source.input.<index>.name, .size and .xxh3 (spec §7).
 void record_input(Metadata& metadata, std::size_t index, const InputFacts& input);
