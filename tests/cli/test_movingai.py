@@ -125,6 +125,26 @@ class MovingaiCli(CliTest):
         self.assertEqual(mosb_reader.open_instance(out).metadata["view.length.queries"], "scen")
         self.assertNotIn("view.twice.queries", mosb_reader.open_instance(out).metadata)
 
+    def test_scenario_import_refuses_a_map_size_no_map_can_have(self):
+        # Hostile metadata: the scenario check held width x height flags, so 4294967295 squared
+        # was an allocation that could only fail (internal error). Now one line naming the file.
+        m = self.write("hand.map", HAND_MADE)
+        s = self.write("s.scen", "version 1\n0\thand.map\t5\t4\t0\t0\t1\t0\t1\n")
+        bare = self.path("bare.mosb")
+        self.ok("convert", "movingai", "--map", m, "-o", bare)
+        data = bytearray(open(bare, "rb").read())
+        mosbtest.set_metadata(data, **{"map.width": "4294967295", "map.height": "4294967295"})
+        hostile = self.path("hostile.mosb")
+        with open(hostile, "wb") as f:
+            f.write(data)
+        out = self.path("out.mosb")
+        r = run("queries", "import", hostile, s, "--scen", "--set", "scen", "-o", out)
+        self.assertEqual(r.returncode, 1, r)
+        self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+        self.assertIn("hostile.mosb: metadata map.width x map.height is 4294967295 x 4294967295, "
+                      "more cells than a map may have", r.stderr)
+        self.assertFalse(os.path.exists(out))
+
     def test_scenario_errors_are_located(self):
         m = self.write("hand.map", HAND_MADE)
         s = self.write("s.scen", "version 1\n0\thand.map\t5\t4\t0\t0\t2\t0\t1\n")

@@ -17,8 +17,6 @@ namespace {
 
 using namespace text;  // the shared primitives of text_scan.hpp
 
-constexpr std::uint64_t kMaxCells = format::kMaxCount;  // a vertex per passable cell
-
 // 1 passable, 0 blocked, nullopt for a character the format does not define.
 std::optional<std::uint8_t> terrain(char c, const TerrainRules& rules) {
   switch (c) {
@@ -97,7 +95,7 @@ OctileMap parse_octile_map(std::string_view text_in, const std::string& file,
   }
   const auto cells = std::uint64_t{map.width} * map.height;
   // Untrusted header: the rows must be in the text before anything that large is allocated.
-  if (cells > kMaxCells || cells > text_in.size())
+  if (cells > kMaxOctileCells || cells > text_in.size())
     fail(file, header_line, 1,
          "a " + std::to_string(map.width) + " x " + std::to_string(map.height) +
              " map cannot be held in this " + std::to_string(text_in.size()) + "-byte file");

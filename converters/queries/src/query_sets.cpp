@@ -82,7 +82,12 @@ OctileMap instance_map(const GraphReader& reader) {
     const auto v = reader.values<std::uint32_t>(*cell);
     cells.assign(v.begin(), v.end());
   }
-  map.passable.assign(std::size_t{map.width} * map.height, 0);
+  const std::uint64_t cells_in_map = std::uint64_t{map.width} * map.height;
+  if (cells_in_map > kMaxOctileCells)
+    throw Error(file + ": metadata map.width x map.height is " + std::to_string(map.width) + " x " +
+                std::to_string(map.height) + ", more cells than a map may have (" +
+                std::to_string(kMaxOctileCells) + ")");
+  map.passable.assign(cells_in_map, 0);
   std::uint64_t previous = 0;
   for (std::size_t v = 0; v < cells.size() / 2; ++v) {
     const std::uint32_t x = cells[2 * v], y = cells[2 * v + 1];

@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "mosb/format.hpp"
 #include "mosb/graph_builder.hpp"
 
 namespace mosb::converters {
@@ -22,6 +23,10 @@ struct TerrainRules {
 };
 
 // A parsed octile map. Cell (x, y) is column x, row y, row 0 being the first row of the file.
+// The most cells (width x height) a map may have: one vertex per passable cell must fit the
+// format's counts. The map converters and the instance map of `queries import --scen` apply it.
+inline constexpr std::uint64_t kMaxOctileCells = format::kMaxCount;
+
 struct OctileMap {
   std::uint32_t width = 0;
   std::uint32_t height = 0;
