@@ -162,6 +162,20 @@ class Extended(DimacsCase):
         self.fails("no view 'nope'", "export", "dimacs", "g.mosb", "-o", "o", "--view", "nope")
         self.fails("g.gr", "export", "dimacs", "g.gr", "-o", "o")
 
+    def test_a_file_name_that_is_not_utf8_is_kept_escaped_and_the_file_verifies(self):
+        # Metadata is UTF-8 (FORMAT.md §7): the name of the input, bytes on Linux, used to go in
+        # raw, giving a file that `verify` refuses. A --name that is not UTF-8 is refused.
+        name = "caf\udce9.gr"  # the byte 0xE9 alone (surrogateescape)
+        self.write(name, GRAPH)
+        self.ok("convert", "dimacs", "--gr", name, "-o", "g.mosb")
+        self.ok("verify", "g.mosb", "--level", "full")
+        meta = mosbtest.mosb_reader.open_instance(self.path("g.mosb")).metadata
+        self.assertEqual(meta["benchmark"], "caf\\xe9")
+        self.assertEqual(meta["source.input.0.name"], "caf\\xe9.gr")
+        r = self.mosb("convert", "dimacs", "--gr", name, "--name", "bad\udcff", "-o", "n.mosb")
+        self.assert_one_line_error(r, "metadata value of 'benchmark' is not valid UTF-8")
+        self.assertFalse(os.path.exists(self.path("n.mosb")))
+
     def convert_args(self, *extra):
         self.write("g.gr", GRAPH)
         return ["convert", "dimacs", "--gr", "g.gr", *extra, "-o", "g.mosb"]

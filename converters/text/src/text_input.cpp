@@ -20,6 +20,7 @@
 #include "mosb/error.hpp"
 #include "mosb/internal/hex.hpp"
 #include "mosb/internal/read_file.hpp"
+#include "mosb/internal/utf8.hpp"
 
 namespace mosb::converters {
 
@@ -446,7 +447,8 @@ TextInput read_text_input(const std::filesystem::path& path, std::uint64_t max_b
 
 void record_input(Metadata& metadata, std::size_t index, const InputFacts& input) {
   const std::string key = "source.input." + std::to_string(index);
-  metadata.set(key + ".name", input.base_name);
+  // A file name is bytes; metadata values are UTF-8 (§7): a name that is not is kept escaped.
+  metadata.set(key + ".name", escape_for_terminal(input.base_name));
   metadata.set(key + ".size", std::to_string(input.raw_size));
   metadata.set(key + ".xxh3", input.raw_xxh3);
 }
@@ -460,7 +462,7 @@ std::string benchmark_name_from(std::string base,
   };
   for (std::string_view compression : {".gz", ".bz2", ".xz", ".zst", ".zstd"}) strip(compression);
   for (auto ext : extensions) strip(ext);
-  return base;
+  return escape_for_terminal(base);  // metadata is UTF-8 (§7); a file name need not be
 }
 
 std::uint64_t physical_memory_bytes() {

@@ -18,6 +18,9 @@ bool Metadata::is_valid_key(std::string_view key) {
 
 void Metadata::set(std::string_view key, std::string_view value) {
   if (!is_valid_key(key)) throw Error("invalid metadata key '" + std::string(key) + "'");
+  // What a reader refuses is never written (spec/FORMAT.md §7).
+  if (!is_valid_utf8(value))
+    throw Error("metadata value of '" + std::string(key) + "' is not valid UTF-8");
   entries_.insert_or_assign(std::string(key), std::string(value));
 }
 

@@ -101,7 +101,8 @@ TextInput read_text_input(const std::filesystem::path& path, std::uint64_t max_b
 void record_input(Metadata& metadata, std::size_t index, const InputFacts& input);
 
 // A default benchmark name: `base` stripped of each compression suffix (.gz .bz2 .xz .zst .zstd),
-// then of each of `extensions`, in that order ("NY.gr.gz" with {".gr"} -> "NY").
+// then of each of `extensions`, in that order ("NY.gr.gz" with {".gr"} -> "NY"); bytes that are
+// not UTF-8 escaped as \\xHH (escape_for_terminal), since metadata is UTF-8.
 std::string benchmark_name_from(std::string base,
                                 std::initializer_list<std::string_view> extensions);
 
