@@ -221,7 +221,7 @@ class AgainstNginx(Published):
         report = self.pull_json(self.slow, "--file", "big.mosb")
         self.assertEqual(report["fetched"], [{"file": "big.mosb", "size": size,
                                               "received": size - reached,
-                                              "resumed_from": reached}])
+                                              "resumed_from": reached, "restarted": ""}])
         last = [r for r in self.requests() if r[1] == "/slow/big.mosb"][-1]
         self.assertEqual(last[2:4], (206, "bytes=%d-" % reached))
         self.assertTrue(last[4].startswith('"') and last[4].endswith('"'),
@@ -320,6 +320,39 @@ class AgainstNginx(Published):
                 self.assertEqual([x[1] for x in self.requests()][-1], "/pub/MANIFEST")
                 self.assertFalse(os.path.exists(self.store))
 
+    def published_with_name(self, name):
+        """The published MANIFEST, its first entry renamed `name`."""
+        manifest = os.path.join(self.www, "MANIFEST")
+        lines = read(manifest, "r").splitlines()
+        record = json.loads(lines[1])
+        record["file"] = name
+        with open(manifest, "w") as f:
+            f.write("\n".join([lines[0], json.dumps(record)] + lines[2:]) + "\n")
+
+    def test_names_with_c1_controls_or_bidi_overrides_are_refused_before_any_fetch(self):
+        # Issue 36 item 10: each passed the name rule, and `store list` printed it raw.
+        for name, shown in (("g\u0085.mosb", "g\\u{0085}.mosb"),
+                            ("g\u009b2J.mosb", "g\\u{009b}2J.mosb"),
+                            ("g\u202ebsom.exe", "g\\u{202e}bsom.exe"),
+                            ("g\u2066.mosb", "g\\u{2066}.mosb"), ("g\u2069.mosb", "g\\u{2069}.mosb")):
+            with self.subTest(name=shown):
+                self.published_with_name(name)
+                before = len(self.requests())
+                r = self.pull(self.url)
+                line = self.assert_one_line_error(
+                    r, "/pub/MANIFEST:2: invalid file name '%s' (a base name: UTF-8" % shown)
+                self.assertNotIn(name[1], line)
+                self.assertEqual([x[1] for x in self.requests()[before:]], ["/pub/MANIFEST"])
+                self.assertFalse(os.path.exists(self.store), "nothing written")
+
+    def test_a_nul_in_an_entry_name_is_shown_whole_and_escaped(self):
+        # Issue 36 item 11: the message ended at the NUL ("invalid file name 'g").
+        self.published_with_name("g\u0000evil.mosb")
+        r = self.pull(self.url)
+        self.assert_one_line_error(
+            r, "/pub/MANIFEST:2: invalid file name 'g\\x00evil.mosb' (a base name: UTF-8, no")
+        self.assertFalse(os.path.exists(self.store), "nothing written")
+
     def test_dry_run_and_selection(self):
         r = self.ok("store", "pull", self.store, self.url, "--dry-run", "--benchmark", "Grid-[34]x4")
         self.assertIn("would fetch g3.mosb", r.stdout)
@@ -417,6 +450,54 @@ class AgainstFaults(Published):
         big = [e for e in report["fetched"] if e["file"] == "big.mosb"][0]
         self.assertEqual(big["received"], 50000 + big["size"])
 
+    def killed_after(self, url, at):
+        """A pull of big.mosb killed (SIGKILL) once `at` bytes are in its staging file (the server
+        stalls there on its first request): the partial file the next pull continues."""
+        p = subprocess.Popen([MOSB, "store", "pull", self.store, url, "--file", "big.mosb"],
+                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        deadline = time.time() + 30
+        while time.time() < deadline and p.poll() is None:
+            if os.path.exists(self.partial("big.mosb")) and \
+                    os.path.getsize(self.partial("big.mosb")) >= at:
+                break
+            time.sleep(0.005)
+        p.kill()
+        p.wait()
+        self.assertEqual(os.path.getsize(self.partial("big.mosb")), at)
+
+    def test_a_resume_answered_from_byte_0_says_so(self):
+        # Issue 36 item 9: a resume the server answered from byte 0 was reported "resumed at
+        # byte 50000" while every byte came again from zero.
+        for fault, answer in (("ignore-range", "HTTP 200 and the whole file"),
+                              ("wrong-range", "HTTP 206 for other bytes than asked")):
+            with self.subTest(fault=fault):
+                shutil.rmtree(self.path("www"), ignore_errors=True)
+                shutil.rmtree(self.path("store"), ignore_errors=True)
+                if os.path.exists(self.path("requests.log")):
+                    os.remove(self.path("requests.log"))
+                url = self.serve({"big.mosb": ["stall-after:50000"]})
+                self.killed_after(url, 50000)
+                with open(os.path.join(self.www, ".faults"), "w") as f:
+                    json.dump({"big.mosb": [fault]}, f)
+                size = os.path.getsize(os.path.join(self.www, "big.mosb"))
+                said = ("the server answered the range from byte 50000 with %s: fetched from "
+                        "byte 0" % answer)
+                if fault == "ignore-range":
+                    report = self.pull_json(url, "--file", "big.mosb")
+                    fetched = report["fetched"][0]
+                    self.assertEqual(
+                        (fetched["received"], fetched["resumed_from"], fetched["restarted"]),
+                        (size, 0, said))
+                else:
+                    r = self.pull(url, "--file", "big.mosb")
+                    self.assertEqual(r.returncode, 0, r)
+                    self.assertEqual(r.stdout.splitlines()[0],
+                                     "fetched big.mosb (%d bytes; %s)" % (size, said))
+                got = self.requests("big.mosb")
+                self.assertEqual(got[1][1].split('" "')[0], '"bytes=50000-', got)
+                self.assert_identical(["big.mosb"])
+                self.assert_no_staging()
+
     def test_a_stalled_transfer_is_retried_after_the_stall_timeout(self):
         url = self.serve({"big.mosb": ["stall-after:20000"]})
         started = time.time()
@@ -458,6 +539,30 @@ class FromADirectory(Published):
                 self.assert_no_staging()
         r = self.pull("ftp://example.org/store")
         self.assert_one_line_error(r, "ftp://example.org/store: not a place mosb pulls from")
+
+    def test_what_a_pull_did_not_make_at_its_staging_file_is_replaced_never_followed(self):
+        # Issue 36 item 13: a symlink there refused the entry ("Too many levels of symbolic
+        # links") until removed by hand; a hard link to a file outside the store had that file
+        # truncated and overwritten.
+        self.publish()
+        outside = self.path("outside")
+        plants = {"symlink": lambda at: os.symlink(outside, at),
+                  "hard link": lambda at: os.link(outside, at),
+                  "directory": os.mkdir, "fifo": os.mkfifo}
+        for kind, plant in plants.items():
+            with self.subTest(kind=kind):
+                shutil.rmtree(self.store, ignore_errors=True)
+                with open(outside, "w") as f:
+                    f.write("mine")
+                staging = os.path.join(self.store, ".staging", "pull", "g3.mosb")
+                os.makedirs(staging)
+                plant(os.path.join(staging, "g3.mosb"))
+                report = self.pull_json(self.www, "--file", "g3.mosb")
+                self.assertEqual([e["file"] for e in report["fetched"]], ["g3.mosb"])
+                self.assertEqual(read(outside, "r"), "mine")
+                self.assert_identical(["g3.mosb"])
+                self.assert_verifies()
+                self.assert_no_staging()
 
     def test_in_a_small_check_memory_the_pull_is_the_same_and_refuses_a_bad_transpose(self):
         # 4 KiB: big.mosb's frames and transpose go through the spill file (an unnamed
