@@ -595,6 +595,44 @@ class FromADirectory(Published):
         self.assertNotEqual(r.returncode, 0)
         self.assertIn("--check-memory", r.stderr)
 
+    def test_a_small_entry_whose_check_would_spill_far_more_is_refused_before_it_spills(self):
+        # Issue 36 item 12: a packed entry of a few KiB whose arcs all repeat one pair is valid,
+        # and its check in buckets spilled 12 bytes per arc: megabytes (with 40 million arcs,
+        # 480 MB) from a download of kilobytes.
+        self.publish()
+        arcs = 300000
+        gr = self.write("repeat.gr", "p sp 2 %d\n" % arcs + "a 1 2 1\n" * arcs)
+        self.ok("convert", "dimacs", "--gr", gr, "-o", self.path("repeat.plain.mosb"))
+        packed = self.path("repeat.mosb")
+        self.ok("pack", self.path("repeat.plain.mosb"), "-o", packed)
+        size = os.path.getsize(packed)
+        self.assertLess(size, 8192)
+        self.ok("store", "add", self.www, packed)  # in the default 32 MiB nothing spills
+        r = self.pull(self.www, "--check-memory", "4K")
+        self.assertEqual(r.returncode, 1, r)
+        self.assertEqual(len(r.stderr.splitlines()), 1, r.stderr)
+        self.assertRegex(r.stderr, r"^mosb: refused repeat\.mosb: .*repeat\.mosb: checking it in 4096 "
+                         r"bytes of memory needs up to (\d+) bytes of disk for its spill file, more "
+                         r"than the limit of %d bytes \(the default: 64 times its %d bytes or 8 "
+                         r"times the memory, whichever is more; --check-disk SIZE, or more "
+                         r"--check-memory, allows it\)\n$" % (64 * size, size))
+        needs = int(re.search(r"needs up to (\d+)", r.stderr).group(1))
+        self.assertGreaterEqual(needs, 12 * arcs)
+        self.assertEqual(sorted(self.listed()), self.names)
+        self.assert_no_staging()
+        # What the limit allows is checked and placed; `store add` takes the same option.
+        report = self.pull_json(self.www, "--check-memory", "4K", "--check-disk", str(needs))
+        self.assertEqual([e["file"] for e in report["fetched"]], ["repeat.mosb"])
+        self.assert_no_staging()
+        other = self.path("other")
+        self.ok("store", "init", other)
+        r = self.mosb("store", "add", other, packed, "--check-memory", "4K")
+        self.assert_one_line_error(r, "needs up to %d bytes of disk" % needs)
+        r = self.mosb("store", "add", other, packed, "--check-memory", "4K", "--check-disk",
+                      str(needs - 1))
+        self.assert_one_line_error(r, "more than the limit of %d bytes (as asked;" % (needs - 1))
+        self.ok("store", "add", other, packed, "--check-memory", "4K", "--check-disk", "1G")
+
     def test_an_entry_the_store_lists_with_other_bytes_is_refused_without_a_transfer(self):
         self.publish()
         other = self.path("other", "g3.mosb")

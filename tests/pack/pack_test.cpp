@@ -450,7 +450,12 @@ TEST_CASE(
   const auto reader = GraphReader::open(dir / "packed.mosb");
   const std::uint64_t bound = streaming_spill_bound(reader, 4096);
   CHECK(bound >= 12 * std::uint64_t{m});
-  CHECK(bound > kCheckDiskFactor * size);
+  CHECK(bound > default_check_disk(size, 4096));
+  // The default: 64 times the file or 8 times the memory, whichever is more.
+  CHECK(default_check_disk(size, 4096) == std::max<std::uint64_t>(64 * size, 32768));
+  CHECK(default_check_disk(5632, std::uint64_t{32} << 20) == std::uint64_t{256} << 20);
+  CHECK(default_check_disk(std::uint64_t{1} << 30, 4096) == std::uint64_t{64} << 30);
+  CHECK(default_check_disk(UINT64_MAX / 2, 4096) == UINT64_MAX);
   // In 32 MiB the transpose fits: nothing spills, nothing is refused.
   CHECK(streaming_spill_bound(reader, std::uint64_t{32} << 20) == 0);
   const auto fine =
@@ -461,8 +466,10 @@ TEST_CASE(
   const std::string said =
       (dir / "packed.mosb").string() + ": checking it in 4096 bytes of memory needs up to " +
       std::to_string(bound) + " bytes of disk for its spill file, more than the limit of " +
-      std::to_string(kCheckDiskFactor * size) + " bytes (" + std::to_string(kCheckDiskFactor) +
-      " times its " + std::to_string(size) + " bytes;";
+      std::to_string(default_check_disk(size, 4096)) + " bytes (the default: 64 times its " +
+      std::to_string(size) +
+      " bytes or 8 times the memory, whichever is more; --check-disk SIZE, "
+      "or more --check-memory, allows it)";
   CHECK_THROWS_WITH_AS(verify_file_streaming(dir / "packed.mosb", {4096, dir.path()}),
                        doctest::Contains(said.c_str()), Error);
   CHECK_THROWS_AS(
@@ -471,8 +478,7 @@ TEST_CASE(
   const auto allowed =
       verify_file_streaming(dir / "packed.mosb", {4096, dir.path(), nullptr, bound});
   CHECK_FALSE(allowed.problem);
-  CHECK(allowed.spilled > 0);
-  CHECK(allowed.spilled <= bound);
+  CHECK(allowed.spilled == bound);
   // The unpacked file holds more than it spills: the default limit never refuses one.
   const auto plain = verify_file_streaming(dir / "plain.mosb", {4096, dir.path()});
   CHECK_FALSE(plain.problem);

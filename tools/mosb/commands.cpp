@@ -114,7 +114,9 @@ CLI::Option* add_check_disk_option(CLI::App* subcommand, std::optional<std::uint
           "--check-disk", [&check_disk](const std::uint64_t& bytes) { check_disk = bytes; },
           "the most disk each file's check may spill to (a file whose check needs more is "
           "refused before it spills); default: " +
-              std::to_string(kCheckDiskFactor) + " times the file's size" + std::string(kSizeUnits))
+              std::to_string(kCheckDiskPerFileByte) + " times the file's size or " +
+              std::to_string(kCheckDiskPerMemoryByte) + " times --check-memory, whichever is more" +
+              std::string(kSizeUnits))
       ->transform(CLI::AsSizeValue(false));
 }
 

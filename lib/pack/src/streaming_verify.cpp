@@ -890,8 +890,7 @@ std::vector<fs::path> spill_directories(const fs::path& file, const fs::path& sc
 void check_spill_limit(const GraphReader& reader, const Context& context,
                        const StreamingVerifyOptions& options) {
   const std::uint64_t size = reader.bytes().size();
-  const std::uint64_t limit = options.disk.value_or(
-      size > UINT64_MAX / kCheckDiskFactor ? UINT64_MAX : size * kCheckDiskFactor);
+  const std::uint64_t limit = options.disk.value_or(default_check_disk(size, context.memory));
   const std::uint64_t bound = streaming_spill_bound(reader, context.memory);
   if (bound <= limit) return;
   throw Error(ErrorCode::no_memory,
@@ -900,8 +899,10 @@ void check_spill_limit(const GraphReader& reader, const Context& context,
                   " bytes of disk for its spill file, more than the limit of " +
                   std::to_string(limit) + " bytes (" +
                   (options.disk ? std::string("as asked")
-                                : std::to_string(kCheckDiskFactor) + " times its " +
-                                      std::to_string(size) + " bytes") +
+                                : "the default: " + std::to_string(kCheckDiskPerFileByte) +
+                                      " times its " + std::to_string(size) + " bytes or " +
+                                      std::to_string(kCheckDiskPerMemoryByte) +
+                                      " times the memory, whichever is more") +
                   "; --check-disk SIZE, or more --check-memory, allows it)");
 }
 

@@ -10,6 +10,7 @@
 // single-threaded zstd context per section (so any thread count gives the same bytes).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -108,11 +109,21 @@ class VerifyWorkspace {
   std::unique_ptr<Blocks> blocks_;
 };
 
-// The disk a streaming check's spill file may take when the caller sets no limit: this many times
-// the size of the file checked. A packed suite file needs at most 31 times its size at the
-// smallest memory (4 KiB), and nothing at the default 32 MiB (spec/MANIFEST.md); a file built to
-// need more (a few KiB that decode to hundreds of megabytes of arcs) is refused before it spills.
-inline constexpr std::uint64_t kCheckDiskFactor = 64;
+// The disk a streaming check's spill file may take when the caller sets no limit: 64 bytes per
+// byte of the file checked, or 8 per byte of the check's memory, whichever is more. Measured
+// (spec/MANIFEST.md): a packed Grid needs 14 times its size, a NetMaker 5, a Moving AI map of
+// random obstacles 31, at any memory from 4 KiB; and no disk at all in the default 32 MiB. Files
+// more regular than any factor could allow for (Moving AI maps of few obstacles pack 190 to 6300
+// times smaller) pass on the memory term from 8 MiB up. A file built to need more (5,632 bytes
+// whose arcs all repeat one pair, 480 MB of spill) is refused before the check spills a byte.
+inline constexpr std::uint64_t kCheckDiskPerFileByte = 64;
+inline constexpr std::uint64_t kCheckDiskPerMemoryByte = 8;
+inline std::uint64_t default_check_disk(std::uint64_t file_size, std::uint64_t memory) {
+  const auto times = [](std::uint64_t bytes, std::uint64_t factor) {
+    return bytes > UINT64_MAX / factor ? UINT64_MAX : bytes * factor;
+  };
+  return std::max(times(file_size, kCheckDiskPerFileByte), times(memory, kCheckDiskPerMemoryByte));
+}
 
 // verify_file at level full, in working memory that does not grow with the file: every section is
 // read once, front to back, a chunk at a time (a raw one from the mapping, each page let go once
@@ -132,7 +143,7 @@ struct StreamingVerifyOptions {
   // kill -9). Empty, or when it cannot be written: the file's own directory, $TMPDIR, /tmp.
   std::filesystem::path scratch_directory;
   VerifyWorkspace* workspace = nullptr;  // none: each check maps its own buffers
-  // The most bytes the spill file may take; nullopt: kCheckDiskFactor times the file's size.
+  // The most bytes the spill file may take; nullopt: default_check_disk(the file's size, memory).
   std::optional<std::uint64_t> disk = std::nullopt;
 };
 FileVerification verify_file_streaming(const std::filesystem::path& path,

@@ -69,7 +69,7 @@ struct PullOptions {
   // The working memory of each entry's check (Store::AddOptions::check_memory).
   std::uint64_t check_memory = StreamingVerifyOptions{}.memory;
   // The most disk each entry's check may spill (Store::AddOptions::check_disk); nullopt:
-  // kCheckDiskFactor times the entry's size.
+  // default_check_disk(the entry's size, check_memory).
   std::optional<std::uint64_t> check_disk;
   Progress progress;  // stage "pull": bytes in the staging area out of the bytes to fetch
   // Called as each selected entry is settled (fetched, present or refused), one call at a time,
