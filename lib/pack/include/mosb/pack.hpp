@@ -154,4 +154,5 @@ FileVerification verify_file_streaming(const std::filesystem::path& path,
 // transpose do not fit the memory (16 (n + 1) + 12 m bytes), plus the decoded length of every
 // shuffled or delta frame that decodes to more than a quarter of it.
 std::uint64_t streaming_spill_bound(const GraphReader& reader, std::uint64_t memory);
+
 }  // namespace mosb
