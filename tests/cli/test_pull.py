@@ -156,8 +156,18 @@ class AgainstNginx(Published):
         self.url = "http://127.0.0.1:%d/pub/" % self.port
         self.slow = "http://127.0.0.1:%d/slow" % self.port
 
-    def requests(self):
-        """The access log: (method, uri, status, range, if-range) per request so far."""
+    def requests(self, until=lambda log: True):
+        """The access log: (method, uri, status, range, if-range) per request so far. nginx logs a
+        request after its response is sent, so a client may exit first: the log is read again
+        until `until(log)` holds (10 s at most)."""
+        deadline = time.time() + 10
+        while True:
+            log = self.access_log()
+            if until(log) or time.time() > deadline:
+                return log
+            time.sleep(0.01)
+
+    def access_log(self):
         path = os.path.join(self.server, "access.log")
         if not os.path.exists(path):
             return []
@@ -189,7 +199,7 @@ class AgainstNginx(Published):
         before = len(self.requests())
         r = self.pull(self.url)
         self.assertEqual(r.returncode, 0, r)
-        self.assertEqual(self.requests()[before:],
+        self.assertEqual(self.requests(lambda log: len(log) > before)[before:],
                          [("GET", "/pub/MANIFEST", 200, "", "")], "a second pull fetches no entry")
         self.assertIn("0 fetched, 4 present, 0 refused", r.stdout)
 
@@ -222,7 +232,8 @@ class AgainstNginx(Published):
         self.assertEqual(report["fetched"], [{"file": "big.mosb", "size": size,
                                               "received": size - reached,
                                               "resumed_from": reached, "restarted": ""}])
-        last = [r for r in self.requests() if r[1] == "/slow/big.mosb"][-1]
+        last = [r for r in self.requests(lambda log: any(r[2] == 206 for r in log))
+                if r[1] == "/slow/big.mosb"][-1]
         self.assertEqual(last[2:4], (206, "bytes=%d-" % reached))
         self.assertTrue(last[4].startswith('"') and last[4].endswith('"'),
                         "If-Range carries the ETag: %r" % (last,))
@@ -244,7 +255,8 @@ class AgainstNginx(Published):
         # the changed bytes are refused against the MANIFEST.
         report = self.pull_json(self.slow, "--file", "big.mosb", code=1)
         self.assertIn("SHA-256 ", report["refused"][0]["reason"])
-        last = [r for r in self.requests() if r[1] == "/slow/big.mosb"][-1]
+        last = [r for r in self.requests(lambda log: any(r[3] for r in log))
+                if r[1] == "/slow/big.mosb"][-1]
         self.assertEqual(last[2], 200)
         self.assertTrue(last[3].startswith("bytes="), last)
         self.assertFalse(os.path.exists(self.partial("big.mosb")), "wrong bytes are not kept")
@@ -296,7 +308,8 @@ class AgainstNginx(Published):
                 r = self.pull(self.url)
                 self.assert_one_line_error(r, "/pub/MANIFEST:1" if "html" in text else
                                            "/pub/MANIFEST:2: not JSON")
-                self.assertEqual([x[1] for x in self.requests()[before:]], ["/pub/MANIFEST"])
+                fetched = self.requests(lambda log: len(log) > before)[before:]
+                self.assertEqual([x[1] for x in fetched], ["/pub/MANIFEST"])
                 self.assertFalse(os.path.exists(self.store), "nothing written")
 
     def test_entry_names_escaping_the_store_are_refused_before_any_fetch(self):
@@ -342,7 +355,8 @@ class AgainstNginx(Published):
                 line = self.assert_one_line_error(
                     r, "/pub/MANIFEST:2: invalid file name '%s' (a base name: UTF-8" % shown)
                 self.assertNotIn(name[1], line)
-                self.assertEqual([x[1] for x in self.requests()[before:]], ["/pub/MANIFEST"])
+                fetched = self.requests(lambda log: len(log) > before)[before:]
+                self.assertEqual([x[1] for x in fetched], ["/pub/MANIFEST"])
                 self.assertFalse(os.path.exists(self.store), "nothing written")
 
     def test_a_nul_in_an_entry_name_is_shown_whole_and_escaped(self):
