@@ -135,7 +135,7 @@ void bind_error(py::module_& m) {
     } catch (const mosb::Error& e) {
       // One line, whatever the message quotes from a file (metadata values, names), as the C ABI
       // and the CLI print it; names and paths need not be UTF-8.
-      const std::string what = mosb::escape_for_terminal(e.what());
+      const std::string what = mosb::escape_for_terminal(e.message());
       auto message = py::reinterpret_steal<py::str>(PyUnicode_DecodeUTF8(
           what.data(), static_cast<py::ssize_t>(what.size()), "backslashreplace"));
       py::object error = py::reinterpret_borrow<py::object>(error_type.ptr())(message);

@@ -156,8 +156,18 @@ class AgainstNginx(Published):
         self.url = "http://127.0.0.1:%d/pub/" % self.port
         self.slow = "http://127.0.0.1:%d/slow" % self.port
 
-    def requests(self):
-        """The access log: (method, uri, status, range, if-range) per request so far."""
+    def requests(self, until=lambda log: True):
+        """The access log: (method, uri, status, range, if-range) per request so far. nginx logs a
+        request after its response is sent, so a client may exit first: the log is read again
+        until `until(log)` holds (10 s at most)."""
+        deadline = time.time() + 10
+        while True:
+            log = self.access_log()
+            if until(log) or time.time() > deadline:
+                return log
+            time.sleep(0.01)
+
+    def access_log(self):
         path = os.path.join(self.server, "access.log")
         if not os.path.exists(path):
             return []
@@ -189,7 +199,7 @@ class AgainstNginx(Published):
         before = len(self.requests())
         r = self.pull(self.url)
         self.assertEqual(r.returncode, 0, r)
-        self.assertEqual(self.requests()[before:],
+        self.assertEqual(self.requests(lambda log: len(log) > before)[before:],
                          [("GET", "/pub/MANIFEST", 200, "", "")], "a second pull fetches no entry")
         self.assertIn("0 fetched, 4 present, 0 refused", r.stdout)
 
@@ -221,8 +231,9 @@ class AgainstNginx(Published):
         report = self.pull_json(self.slow, "--file", "big.mosb")
         self.assertEqual(report["fetched"], [{"file": "big.mosb", "size": size,
                                               "received": size - reached,
-                                              "resumed_from": reached}])
-        last = [r for r in self.requests() if r[1] == "/slow/big.mosb"][-1]
+                                              "resumed_from": reached, "restarted": ""}])
+        last = [r for r in self.requests(lambda log: any(r[2] == 206 for r in log))
+                if r[1] == "/slow/big.mosb"][-1]
         self.assertEqual(last[2:4], (206, "bytes=%d-" % reached))
         self.assertTrue(last[4].startswith('"') and last[4].endswith('"'),
                         "If-Range carries the ETag: %r" % (last,))
@@ -244,7 +255,8 @@ class AgainstNginx(Published):
         # the changed bytes are refused against the MANIFEST.
         report = self.pull_json(self.slow, "--file", "big.mosb", code=1)
         self.assertIn("SHA-256 ", report["refused"][0]["reason"])
-        last = [r for r in self.requests() if r[1] == "/slow/big.mosb"][-1]
+        last = [r for r in self.requests(lambda log: any(r[3] for r in log))
+                if r[1] == "/slow/big.mosb"][-1]
         self.assertEqual(last[2], 200)
         self.assertTrue(last[3].startswith("bytes="), last)
         self.assertFalse(os.path.exists(self.partial("big.mosb")), "wrong bytes are not kept")
@@ -296,7 +308,8 @@ class AgainstNginx(Published):
                 r = self.pull(self.url)
                 self.assert_one_line_error(r, "/pub/MANIFEST:1" if "html" in text else
                                            "/pub/MANIFEST:2: not JSON")
-                self.assertEqual([x[1] for x in self.requests()[before:]], ["/pub/MANIFEST"])
+                fetched = self.requests(lambda log: len(log) > before)[before:]
+                self.assertEqual([x[1] for x in fetched], ["/pub/MANIFEST"])
                 self.assertFalse(os.path.exists(self.store), "nothing written")
 
     def test_entry_names_escaping_the_store_are_refused_before_any_fetch(self):
@@ -319,6 +332,40 @@ class AgainstNginx(Published):
                 self.assertEqual(read(outside, "r"), "mine")
                 self.assertEqual([x[1] for x in self.requests()][-1], "/pub/MANIFEST")
                 self.assertFalse(os.path.exists(self.store))
+
+    def published_with_name(self, name):
+        """The published MANIFEST, its first entry renamed `name`."""
+        manifest = os.path.join(self.www, "MANIFEST")
+        lines = read(manifest, "r").splitlines()
+        record = json.loads(lines[1])
+        record["file"] = name
+        with open(manifest, "w") as f:
+            f.write("\n".join([lines[0], json.dumps(record)] + lines[2:]) + "\n")
+
+    def test_names_with_c1_controls_or_bidi_overrides_are_refused_before_any_fetch(self):
+        # Issue 36 item 10: each passed the name rule, and `store list` printed it raw.
+        for name, shown in (("g\u0085.mosb", "g\\u{0085}.mosb"),
+                            ("g\u009b2J.mosb", "g\\u{009b}2J.mosb"),
+                            ("g\u202ebsom.exe", "g\\u{202e}bsom.exe"),
+                            ("g\u2066.mosb", "g\\u{2066}.mosb"), ("g\u2069.mosb", "g\\u{2069}.mosb")):
+            with self.subTest(name=shown):
+                self.published_with_name(name)
+                before = len(self.requests())
+                r = self.pull(self.url)
+                line = self.assert_one_line_error(
+                    r, "/pub/MANIFEST:2: invalid file name '%s' (a base name: UTF-8" % shown)
+                self.assertNotIn(name[1], line)
+                fetched = self.requests(lambda log: len(log) > before)[before:]
+                self.assertEqual([x[1] for x in fetched], ["/pub/MANIFEST"])
+                self.assertFalse(os.path.exists(self.store), "nothing written")
+
+    def test_a_nul_in_an_entry_name_is_shown_whole_and_escaped(self):
+        # Issue 36 item 11: the message ended at the NUL ("invalid file name 'g").
+        self.published_with_name("g\u0000evil.mosb")
+        r = self.pull(self.url)
+        self.assert_one_line_error(
+            r, "/pub/MANIFEST:2: invalid file name 'g\\x00evil.mosb' (a base name: UTF-8, no")
+        self.assertFalse(os.path.exists(self.store), "nothing written")
 
     def test_dry_run_and_selection(self):
         r = self.ok("store", "pull", self.store, self.url, "--dry-run", "--benchmark", "Grid-[34]x4")
@@ -417,6 +464,54 @@ class AgainstFaults(Published):
         big = [e for e in report["fetched"] if e["file"] == "big.mosb"][0]
         self.assertEqual(big["received"], 50000 + big["size"])
 
+    def killed_after(self, url, at):
+        """A pull of big.mosb killed (SIGKILL) once `at` bytes are in its staging file (the server
+        stalls there on its first request): the partial file the next pull continues."""
+        p = subprocess.Popen([MOSB, "store", "pull", self.store, url, "--file", "big.mosb"],
+                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        deadline = time.time() + 30
+        while time.time() < deadline and p.poll() is None:
+            if os.path.exists(self.partial("big.mosb")) and \
+                    os.path.getsize(self.partial("big.mosb")) >= at:
+                break
+            time.sleep(0.005)
+        p.kill()
+        p.wait()
+        self.assertEqual(os.path.getsize(self.partial("big.mosb")), at)
+
+    def test_a_resume_answered_from_byte_0_says_so(self):
+        # Issue 36 item 9: a resume the server answered from byte 0 was reported "resumed at
+        # byte 50000" while every byte came again from zero.
+        for fault, answer in (("ignore-range", "HTTP 200 and the whole file"),
+                              ("wrong-range", "HTTP 206 for other bytes than asked")):
+            with self.subTest(fault=fault):
+                shutil.rmtree(self.path("www"), ignore_errors=True)
+                shutil.rmtree(self.path("store"), ignore_errors=True)
+                if os.path.exists(self.path("requests.log")):
+                    os.remove(self.path("requests.log"))
+                url = self.serve({"big.mosb": ["stall-after:50000"]})
+                self.killed_after(url, 50000)
+                with open(os.path.join(self.www, ".faults"), "w") as f:
+                    json.dump({"big.mosb": [fault]}, f)
+                size = os.path.getsize(os.path.join(self.www, "big.mosb"))
+                said = ("the server answered the range from byte 50000 with %s: fetched from "
+                        "byte 0" % answer)
+                if fault == "ignore-range":
+                    report = self.pull_json(url, "--file", "big.mosb")
+                    fetched = report["fetched"][0]
+                    self.assertEqual(
+                        (fetched["received"], fetched["resumed_from"], fetched["restarted"]),
+                        (size, 0, said))
+                else:
+                    r = self.pull(url, "--file", "big.mosb")
+                    self.assertEqual(r.returncode, 0, r)
+                    self.assertEqual(r.stdout.splitlines()[0],
+                                     "fetched big.mosb (%d bytes; %s)" % (size, said))
+                got = self.requests("big.mosb")
+                self.assertEqual(got[1][1].split('" "')[0], '"bytes=50000-', got)
+                self.assert_identical(["big.mosb"])
+                self.assert_no_staging()
+
     def test_a_stalled_transfer_is_retried_after_the_stall_timeout(self):
         url = self.serve({"big.mosb": ["stall-after:20000"]})
         started = time.time()
@@ -459,6 +554,30 @@ class FromADirectory(Published):
         r = self.pull("ftp://example.org/store")
         self.assert_one_line_error(r, "ftp://example.org/store: not a place mosb pulls from")
 
+    def test_what_a_pull_did_not_make_at_its_staging_file_is_replaced_never_followed(self):
+        # Issue 36 item 13: a symlink there refused the entry ("Too many levels of symbolic
+        # links") until removed by hand; a hard link to a file outside the store had that file
+        # truncated and overwritten.
+        self.publish()
+        outside = self.path("outside")
+        plants = {"symlink": lambda at: os.symlink(outside, at),
+                  "hard link": lambda at: os.link(outside, at),
+                  "directory": os.mkdir, "fifo": os.mkfifo}
+        for kind, plant in plants.items():
+            with self.subTest(kind=kind):
+                shutil.rmtree(self.store, ignore_errors=True)
+                with open(outside, "w") as f:
+                    f.write("mine")
+                staging = os.path.join(self.store, ".staging", "pull", "g3.mosb")
+                os.makedirs(staging)
+                plant(os.path.join(staging, "g3.mosb"))
+                report = self.pull_json(self.www, "--file", "g3.mosb")
+                self.assertEqual([e["file"] for e in report["fetched"]], ["g3.mosb"])
+                self.assertEqual(read(outside, "r"), "mine")
+                self.assert_identical(["g3.mosb"])
+                self.assert_verifies()
+                self.assert_no_staging()
+
     def test_in_a_small_check_memory_the_pull_is_the_same_and_refuses_a_bad_transpose(self):
         # 4 KiB: big.mosb's frames and transpose go through the spill file (an unnamed
         # temporary, so nothing is left in the store).
@@ -489,6 +608,44 @@ class FromADirectory(Published):
         r = self.pull(self.www, "--check-memory", "1K")
         self.assertNotEqual(r.returncode, 0)
         self.assertIn("--check-memory", r.stderr)
+
+    def test_a_small_entry_whose_check_would_spill_far_more_is_refused_before_it_spills(self):
+        # Issue 36 item 12: a packed entry of a few KiB whose arcs all repeat one pair is valid,
+        # and its check in buckets spilled 12 bytes per arc: megabytes (with 40 million arcs,
+        # 480 MB) from a download of kilobytes.
+        self.publish()
+        arcs = 300000
+        gr = self.write("repeat.gr", "p sp 2 %d\n" % arcs + "a 1 2 1\n" * arcs)
+        self.ok("convert", "dimacs", "--gr", gr, "-o", self.path("repeat.plain.mosb"))
+        packed = self.path("repeat.mosb")
+        self.ok("pack", self.path("repeat.plain.mosb"), "-o", packed)
+        size = os.path.getsize(packed)
+        self.assertLess(size, 8192)
+        self.ok("store", "add", self.www, packed)  # in the default 32 MiB nothing spills
+        r = self.pull(self.www, "--check-memory", "4K")
+        self.assertEqual(r.returncode, 1, r)
+        self.assertEqual(len(r.stderr.splitlines()), 1, r.stderr)
+        self.assertRegex(r.stderr, r"^mosb: refused repeat\.mosb: .*repeat\.mosb: checking it in 4096 "
+                         r"bytes of memory needs up to (\d+) bytes of disk for its spill file, more "
+                         r"than the limit of %d bytes \(the default: 64 times its %d bytes or 8 "
+                         r"times the memory, whichever is more; --check-disk SIZE, or more "
+                         r"--check-memory, allows it\)\n$" % (64 * size, size))
+        needs = int(re.search(r"needs up to (\d+)", r.stderr).group(1))
+        self.assertGreaterEqual(needs, 12 * arcs)
+        self.assertEqual(sorted(self.listed()), self.names)
+        self.assert_no_staging()
+        # What the limit allows is checked and placed; `store add` takes the same option.
+        report = self.pull_json(self.www, "--check-memory", "4K", "--check-disk", str(needs))
+        self.assertEqual([e["file"] for e in report["fetched"]], ["repeat.mosb"])
+        self.assert_no_staging()
+        other = self.path("other")
+        self.ok("store", "init", other)
+        r = self.mosb("store", "add", other, packed, "--check-memory", "4K")
+        self.assert_one_line_error(r, "needs up to %d bytes of disk" % needs)
+        r = self.mosb("store", "add", other, packed, "--check-memory", "4K", "--check-disk",
+                      str(needs - 1))
+        self.assert_one_line_error(r, "more than the limit of %d bytes (as asked;" % (needs - 1))
+        self.ok("store", "add", other, packed, "--check-memory", "4K", "--check-disk", "1G")
 
     def test_an_entry_the_store_lists_with_other_bytes_is_refused_without_a_transfer(self):
         self.publish()

@@ -570,6 +570,58 @@ class Safety(Base):
             r = self.mosb("store", command, store)
             self.assert_one_line_error(r, manifest + ": lists '.cache', a name the store keeps")
 
+    def test_entry_names_a_terminal_would_not_show_as_themselves_are_refused(self):
+        # Issue 36 item 10: C1 controls and bidirectional overrides or isolates passed the name
+        # rule, and `store list` printed them raw.
+        store = self.store_with(3)
+        manifest = os.path.join(store, "MANIFEST")
+        header, entries = self.records(manifest)
+        for name, shown in (("g\u0085.mosb", "g\\u{0085}.mosb"),
+                            ("g\u202egsom.exe", "g\\u{202e}gsom.exe"),
+                            ("g\u2066.mosb", "g\\u{2066}.mosb"), ("g\u200f.mosb", "g\\u{200f}.mosb")):
+            entries[0]["file"] = name
+            with open(manifest, "w", encoding="utf-8") as f:
+                f.write("".join(json.dumps(x) + "\n" for x in [header] + entries))
+            for command in ("list", "verify"):
+                with self.subTest(name=shown, command=command):
+                    r = self.mosb("store", command, store)
+                    line = self.assert_one_line_error(
+                        r, manifest + ":2: invalid file name '%s' (a base name: UTF-8" % shown)
+                    self.assertNotIn(name[1], line)
+        # store add refuses such a file before it reads it; a name that only looks like an escape
+        # (a backslash, then x1b) is printed escaped, so it cannot pass for the escape of an ESC.
+        added = self.path("added")
+        self.ok("store", "init", added)
+        os.makedirs(self.path("in"))
+        for name in ("g\u0085.mosb", "g\u202egsom.mosb", "g\u2069.mosb"):
+            with self.subTest(add=name):
+                source = grid(self.path("in", name), 4)
+                r = self.mosb("store", "add", added, source)
+                line = self.assert_one_line_error(r, "cannot be an entry's name (a base name")
+                self.assertNotIn(name[1], line)
+        literal = grid(self.path("in", "g\\x1b.mosb"), 4)
+        self.assertIn("added g\\\\x1b.mosb (digest ", self.ok("store", "add", added, literal).stdout)
+        self.assertIn("\ng\\\\x1b.mosb  ", "\n" + self.ok("store", "list", added).stdout)
+        self.assertTrue(self.ok("store", "instance", added, "Grid-4x4/Grid_2").stdout
+                        .startswith(os.path.join(added, "g\\\\x1b.mosb\n")))
+
+    def test_names_from_the_files_are_printed_escaped(self):
+        # Issue 36 item 10: benchmark, view and query set names come from the files (or a
+        # MANIFEST) and were printed raw by `store list`.
+        store = self.store_with(3)
+        manifest = os.path.join(store, "MANIFEST")
+        header, entries = self.records(manifest)
+        entries[0]["benchmark"] = "Grid\u202e3x4"
+        entries[0]["views"] = ["Grid_2\u0085", "Grid_3\x1b[31m"]
+        entries[0]["query_sets"] = ["default\u2066"]
+        with open(manifest, "w", encoding="utf-8") as f:
+            f.write("".join(json.dumps(x) + "\n" for x in [header] + entries))
+        out = self.ok("store", "list", store).stdout
+        self.assertIn("benchmark Grid\\u{202e}3x4  views Grid_2\\u{0085},Grid_3\\x1b[31m  queries "
+                      "default\\u{2066}  digest ", out)
+        for raw in ("\u202e", "\u0085", "\x1b", "\u2066"):
+            self.assertNotIn(raw, out)
+
     def test_forty_concurrent_adds_are_all_listed(self):
         store = self.path("store")
         self.ok("store", "init", store)

@@ -431,3 +431,76 @@ TEST_CASE("verify_file_streaming finds a reverse CSR that is not the transpose i
     CHECK_FALSE(verify_file_streaming(dir / "keep.mosb", {budget, dir.path()}).problem);
   }
 }
+
+TEST_CASE(
+    "verify_file_streaming refuses, before it spills, a check that needs more disk than allowed") {
+  // Issue 36 item 12: a few KiB of packed arcs that all go 0 -> 1, with one cost, decode to
+  // megabytes of arcs: the check in buckets spills 12 bytes per arc, far beyond the download.
+  testing::TempDir dir;
+  GraphInput g;
+  g.vertex_count = 2;
+  const std::uint32_t m = 300000;
+  g.tails.assign(m, 0);
+  g.heads.assign(m, 1);
+  g.costs.push_back({"c", "", std::vector<std::uint64_t>(m, 1), {}});
+  write_graph(g, dir / "plain.mosb");
+  pack_file(dir / "plain.mosb", dir / "packed.mosb", PackOptions{19, 1});
+  const auto size = std::filesystem::file_size(dir / "packed.mosb");
+  CHECK(size < 8192);
+  const auto reader = GraphReader::open(dir / "packed.mosb");
+  const std::uint64_t bound = streaming_spill_bound(reader, 4096);
+  CHECK(bound >= 12 * std::uint64_t{m});
+  CHECK(bound > default_check_disk(size, 4096));
+  // The default: 64 times the file or 8 times the memory, whichever is more.
+  CHECK(default_check_disk(size, 4096) == std::max<std::uint64_t>(64 * size, 32768));
+  CHECK(default_check_disk(5632, std::uint64_t{32} << 20) == std::uint64_t{256} << 20);
+  CHECK(default_check_disk(std::uint64_t{1} << 30, 4096) == std::uint64_t{64} << 30);
+  CHECK(default_check_disk(UINT64_MAX / 2, 4096) == UINT64_MAX);
+  // In 32 MiB the transpose fits: nothing spills, nothing is refused.
+  CHECK(streaming_spill_bound(reader, std::uint64_t{32} << 20) == 0);
+  const auto fine =
+      verify_file_streaming(dir / "packed.mosb", {std::uint64_t{32} << 20, dir.path()});
+  CHECK_FALSE(fine.problem);
+  CHECK(fine.spilled == 0);
+  // In 4 KiB it would spill: refused at the default limit, saying what it needs and the limit.
+  const std::string said =
+      (dir / "packed.mosb").string() + ": checking it in 4096 bytes of memory needs up to " +
+      std::to_string(bound) + " bytes of disk for its spill file, more than the limit of " +
+      std::to_string(default_check_disk(size, 4096)) + " bytes (the default: 64 times its " +
+      std::to_string(size) +
+      " bytes or 8 times the memory, whichever is more; --check-disk SIZE, "
+      "or more --check-memory, allows it)";
+  CHECK_THROWS_WITH_AS(verify_file_streaming(dir / "packed.mosb", {4096, dir.path()}),
+                       doctest::Contains(said.c_str()), Error);
+  CHECK_THROWS_AS(
+      verify_file_streaming(dir / "packed.mosb", {4096, dir.path(), nullptr, bound - 1}), Error);
+  // Allowed the disk, it passes, and the spill file never grew past the bound.
+  const auto allowed =
+      verify_file_streaming(dir / "packed.mosb", {4096, dir.path(), nullptr, bound});
+  CHECK_FALSE(allowed.problem);
+  CHECK(allowed.spilled == bound);
+  // The unpacked file holds more than it spills: the default limit never refuses one.
+  const auto plain = verify_file_streaming(dir / "plain.mosb", {4096, dir.path()});
+  CHECK_FALSE(plain.problem);
+  CHECK(plain.spilled <= std::filesystem::file_size(dir / "plain.mosb"));
+}
+
+TEST_CASE("the spill bound is what the check spills, in every budget") {
+  testing::TempDir dir;
+  write_graph(random_graph(30000, 120000, 5), dir / "random.mosb");
+  pack_file(dir / "random.mosb", dir / "packed.mosb", PackOptions{3, 1});
+  pack_file(dir / "random.mosb", dir / "keep.mosb", keeping_reverse());
+  for (const auto* name : {"random.mosb", "packed.mosb", "keep.mosb"})
+    for (const std::uint64_t budget :
+         {std::uint64_t{4096}, std::uint64_t{1} << 20, std::uint64_t{32} << 20}) {
+      CAPTURE(name);
+      CAPTURE(budget);
+      const auto bound = streaming_spill_bound(GraphReader::open(dir / name), budget);
+      const auto found =
+          verify_file_streaming(dir / name, {budget, dir.path(), nullptr, UINT64_MAX});
+      CHECK_FALSE(found.problem);
+      // Every region the check spills is in the bound, and nothing else: the spill file of a
+      // valid file grows to the bound exactly.
+      CHECK(found.spilled == bound);
+    }
+}

@@ -16,6 +16,7 @@ from DIRECTORY/.faults (JSON, read at each request so a test can change it): {"N
   "429-once"       the first request: 429 (Too Many Requests) with Retry-After: 1
   "404"            every request: 404
   "ignore-range"   every request: the whole file with 200, whatever Range says
+  "wrong-range"    every request with a Range: 206 with the whole file (Content-Range from 0)
   "html"           every request: 200 with an HTML error page, as a misconfigured host answers
 
 Each request is appended to LOG as one line: METHOD PATH STATUS "RANGE" "IF-RANGE".
@@ -88,6 +89,8 @@ class Handler(http.server.BaseHTTPRequestHandler):
             start, status = int(wanted[6:-1]), 206
             if start >= len(data):
                 return self.answer(416, b"", [("Content-Range", "bytes */%d" % len(data))])
+        if "wrong-range" in faults and status == 206:
+            start = 0
         body = data[start:]
         self.record(status)
         self.send_response(status)

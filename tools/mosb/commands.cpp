@@ -84,10 +84,12 @@ void add_json_flag(CLI::App* subcommand, bool& json) {
 }
 
 namespace {
+constexpr std::string_view kSizeUnits = " (bytes, or 512M, 4G: powers of 1024)";
+
 // A memory size in bytes, or with a suffix (512M, 4G: powers of 1024).
 CLI::Option* add_memory_size_option(CLI::App* subcommand, const std::string& name,
                                     std::uint64_t& bytes, const std::string& what) {
-  return subcommand->add_option(name, bytes, what + " (bytes, or 512M, 4G: powers of 1024)")
+  return subcommand->add_option(name, bytes, what + std::string(kSizeUnits))
       ->transform(CLI::AsSizeValue(false))
       ->capture_default_str();
 }
@@ -104,6 +106,18 @@ CLI::Option* add_check_memory_option(CLI::App* subcommand, std::uint64_t& check_
                                 "the working memory of each file's check, whatever the file's "
                                 "size: more spills to a temporary file in the store")
       ->check(CLI::Range(std::uint64_t{4096}, UINT64_MAX));
+}
+
+CLI::Option* add_check_disk_option(CLI::App* subcommand, std::optional<std::uint64_t>& check_disk) {
+  return subcommand
+      ->add_option_function<std::uint64_t>(
+          "--check-disk", [&check_disk](const std::uint64_t& bytes) { check_disk = bytes; },
+          "the most disk each file's check may spill to (a file whose check needs more is "
+          "refused before it spills); default: " +
+              std::to_string(kCheckDiskPerFileByte) + " times the file's size or " +
+              std::to_string(kCheckDiskPerMemoryByte) + " times --check-memory, whichever is more" +
+              std::string(kSizeUnits))
+      ->transform(CLI::AsSizeValue(false));
 }
 
 CLI::Option* add_id_base_option(CLI::App* subcommand, unsigned& id_base,

@@ -98,6 +98,9 @@ void add_json_flag(CLI::App* subcommand, bool& json);
 CLI::Option* add_max_memory_option(CLI::App* subcommand, std::uint64_t& max_memory);
 // --check-memory: the working memory of each file's check as a store takes it in.
 CLI::Option* add_check_memory_option(CLI::App* subcommand, std::uint64_t& check_memory);
+// --check-disk: the most disk that check may spill to; absent, mosb::default_check_disk (a factor
+// of the file's size or of --check-memory).
+CLI::Option* add_check_disk_option(CLI::App* subcommand, std::optional<std::uint64_t>& check_disk);
 
 // `--id-base 0|1`, the same everywhere: the id of the first vertex in the text files a command
 // reads or writes (the instance itself is always 0-based). `default_text` says what applies

@@ -39,6 +39,7 @@ struct StoreArgs {
   bool dry_run = false;
   unsigned stall_timeout = PullOptions{}.stall_timeout_seconds;
   std::uint64_t check_memory = StreamingVerifyOptions{}.memory;
+  std::optional<std::uint64_t> check_disk;
 };
 
 void write_entry(JsonWriter& json, const ManifestEntry& e) {
@@ -68,15 +69,20 @@ void write_entry(JsonWriter& json, const ManifestEntry& e) {
   json.end_object();
 }
 
+// Names read from a MANIFEST or a file, as a terminal shows them: escaped, "-" when empty.
+std::string shown(const std::string& name) {
+  return name.empty() ? "-" : escape_for_terminal(name);
+}
+
 std::string joined(const std::vector<std::string>& names) {
   std::string out;
-  for (const auto& n : names) out += (out.empty() ? "" : ",") + n;
+  for (const auto& n : names) out += (out.empty() ? "" : ",") + escape_for_terminal(n);
   return out.empty() ? "-" : out;
 }
 
 int run_init(const StoreArgs& a) {
   Store::init(a.directory);
-  std::cout << "created an empty store in " << a.directory << '\n';
+  std::cout << "created an empty store in " << escape_for_terminal(a.directory) << '\n';
   return 0;
 }
 
@@ -87,6 +93,7 @@ int run_add(const StoreArgs& a) {
   Store::AddOptions options;
   options.move = a.move;
   options.check_memory = a.check_memory;
+  options.check_disk = a.check_disk;
   options.progress = progress.callback();
   if (a.pack) options.pack = PackOptions{a.level, thread_count(0)};
   const auto added = store.add(files, options);
@@ -100,8 +107,8 @@ int run_add(const StoreArgs& a) {
     json.end_object();
   } else {
     for (const auto& e : added)
-      std::cout << (a.move ? "moved " : "added ") << e.file << (e.packed ? " packed" : "")
-                << " (digest " << e.digest << ")\n";
+      std::cout << (a.move ? "moved " : "added ") << escape_for_terminal(e.file)
+                << (e.packed ? " packed" : "") << " (digest " << e.digest << ")\n";
   }
   return 0;
 }
@@ -119,8 +126,8 @@ int run_list(const StoreArgs& a) {
     return 0;
   }
   for (const auto& e : store.manifest().entries)
-    std::cout << e.file << "  " << e.size << " bytes  " << (e.packed ? "packed  " : "")
-              << "benchmark " << (e.benchmark.empty() ? "-" : e.benchmark) << "  views "
+    std::cout << escape_for_terminal(e.file) << "  " << e.size << " bytes  "
+              << (e.packed ? "packed  " : "") << "benchmark " << shown(e.benchmark) << "  views "
               << joined(e.views) << "  queries " << joined(e.query_sets) << "  digest " << e.digest
               << '\n';
   std::cout << store.manifest().entries.size() << " entries"
@@ -163,10 +170,10 @@ int run_instance(const StoreArgs& a) {
     json.key("digest").value(found.reader.digest());
     json.end_object();
   } else {
-    std::cout << found.path.string() << '\n'
-              << "view " << (view.empty() ? "- (every objective)" : view) << "  queries "
-              << (found.query_set.empty() ? "-" : found.query_set) << "  digest "
-              << found.reader.digest() << '\n';
+    std::cout << escape_for_terminal(found.path.string()) << '\n'
+              << "view " << (view.empty() ? "- (every objective)" : escape_for_terminal(view))
+              << "  queries " << shown(found.query_set) << "  digest " << found.reader.digest()
+              << '\n';
   }
   return 0;
 }
@@ -183,6 +190,7 @@ int run_pull(const StoreArgs& a) {
   options.dry_run = a.dry_run;
   options.stall_timeout_seconds = a.stall_timeout;
   options.check_memory = a.check_memory;
+  options.check_disk = a.check_disk;
   const auto result = [&] {
     TerminalProgress progress;  // its line ends before the report is printed
     options.progress = progress.bytes_callback();
@@ -230,6 +238,7 @@ int run_pull(const StoreArgs& a) {
         if (status == PullStatus::fetched) {
           json.key("received").value(p.received);
           json.key("resumed_from").value(p.resumed_from);
+          json.key("restarted").value(p.restarted);
         }
         json.end_object();
       }
@@ -253,7 +262,7 @@ int run_pull(const StoreArgs& a) {
       if (p.status == PullStatus::fetched)
         std::cout << "fetched " << file << " (" << p.entry.size << " bytes"
                   << (p.resumed_from ? ", resumed at byte " + std::to_string(p.resumed_from) : "")
-                  << ")\n";
+                  << (p.restarted.empty() ? "" : "; " + escape_for_terminal(p.restarted)) << ")\n";
       else if (p.status == PullStatus::present)
         std::cout << "present " << file << '\n';
       else if (p.status == PullStatus::planned)
@@ -327,6 +336,7 @@ Command add_store(CLI::App& app) {
   add->add_option("FILE", args->files, "the .mosb files to add")->required();
   add->add_flag("--move", args->move, "move the files instead of copying them");
   add_check_memory_option(add, args->check_memory);
+  add_check_disk_option(add, args->check_disk);
   add->add_flag("--pack", args->pack, "store each unpacked file packed (as mosb pack does)");
   add->add_option("--level", args->level,
                   "zstd level for --pack (fixed, so the bytes are reproducible)")
@@ -381,6 +391,7 @@ Command add_store(CLI::App& app) {
       ->check(CLI::Range(1, 86400))
       ->capture_default_str();
   add_check_memory_option(pull_command, args->check_memory);
+  add_check_disk_option(pull_command, args->check_disk);
   add_json_flag(pull_command, args->json);
   return group(store, {{init, [args] { return run_init(*args); }},
                        {pull_command, [args] { return run_pull(*args); }},

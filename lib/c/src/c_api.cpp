@@ -84,12 +84,12 @@ mosb_status guarded(const char* function, Body&& body) noexcept {
     return MOSB_OK;
   } catch (const CallError& e) {
     try {
-      return failed(MOSB_ERROR_INVALID_ARGUMENT, std::string(function) + ": " + e.what());
+      return failed(MOSB_ERROR_INVALID_ARGUMENT, std::string(function) + ": " + e.message());
     } catch (...) {
-      return failed(MOSB_ERROR_INVALID_ARGUMENT, e.what());
+      return failed(MOSB_ERROR_INVALID_ARGUMENT, e.message());
     }
   } catch (const mosb::Error& e) {
-    return failed(status_of(e.code()), e.what());
+    return failed(status_of(e.code()), e.message());
   } catch (const std::bad_alloc&) {
     // No file to name here: the function, as for a call error.
     try {

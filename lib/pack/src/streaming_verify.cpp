@@ -193,6 +193,7 @@ class Spill {
       p += done, size -= static_cast<std::size_t>(done), at += static_cast<std::uint64_t>(done);
     }
   }
+  std::uint64_t size() const { return end_; }
   void release(std::uint64_t at, std::uint64_t bytes) {
     (void)::fallocate(fd_, FALLOC_FL_PUNCH_HOLE | FALLOC_FL_KEEP_SIZE, static_cast<off_t>(at),
                       static_cast<off_t>(bytes));  // only space: failing costs nothing else
@@ -778,11 +779,17 @@ CsrCheck check_csr_in_buckets(const GraphReader& reader, Context& context) {
   return out;
 }
 
-// The forward CSR in memory, when it and its transpose fit (16 (n + 1) + 12 m bytes): the
-// transpose by derive_transpose, as unpacking derives it.
+// True when the forward CSR and its transpose fit the memory (16 (n + 1) + 12 m bytes): checked
+// in memory, else in buckets spilled to disk.
+bool csr_fits(const GraphReader& reader, std::uint64_t memory) {
+  return 16 * (reader.vertex_count() + 1) + 12 * reader.arc_count() <= memory;
+}
+
+// The forward CSR in memory, when it and its transpose fit: the transpose by derive_transpose, as
+// unpacking derives it.
 CsrCheck check_csr(const GraphReader& reader, Context& context) {
   const std::uint64_t n = reader.vertex_count(), m = reader.arc_count();
-  if (16 * (n + 1) + 12 * m > context.memory) return check_csr_in_buckets(reader, context);
+  if (!csr_fits(reader, context.memory)) return check_csr_in_buckets(reader, context);
   const Section& fo = *reader.all(SectionKind::forward_offsets).front();
   const Section& ft = *reader.all(SectionKind::forward_targets).front();
   CsrCheck out;
@@ -879,7 +886,41 @@ std::vector<fs::path> spill_directories(const fs::path& file, const fs::path& sc
   return out;
 }
 
+// Refuses, before anything is spilled, a check whose spill file could grow past the limit.
+void check_spill_limit(const GraphReader& reader, const Context& context,
+                       const StreamingVerifyOptions& options) {
+  const std::uint64_t size = reader.bytes().size();
+  const std::uint64_t limit = options.disk.value_or(default_check_disk(size, context.memory));
+  const std::uint64_t bound = streaming_spill_bound(reader, context.memory);
+  if (bound <= limit) return;
+  throw Error(ErrorCode::no_memory,
+              context.name + ": checking it in " + std::to_string(context.memory) +
+                  " bytes of memory needs up to " + std::to_string(bound) +
+                  " bytes of disk for its spill file, more than the limit of " +
+                  std::to_string(limit) + " bytes (" +
+                  (options.disk ? std::string("as asked")
+                                : "the default: " + std::to_string(kCheckDiskPerFileByte) +
+                                      " times its " + std::to_string(size) + " bytes or " +
+                                      std::to_string(kCheckDiskPerMemoryByte) +
+                                      " times the memory, whichever is more") +
+                  "; --check-disk SIZE, or more --check-memory, allows it)");
+}
+
 }  // namespace
+
+std::uint64_t streaming_spill_bound(const GraphReader& reader, std::uint64_t memory) {
+  memory = std::max<std::uint64_t>(memory, 4096);
+  // The transpose in buckets: every arc's record (Transposer), all written before any is read.
+  std::uint64_t bound = csr_fits(reader, memory) ? 0 : reader.arc_count() * sizeof(ArcRecord);
+  // A shuffled or delta frame too large to decode whole: its content (SectionReader). Regions
+  // given back are not reused, so the file's size is the sum, whatever the holes punched.
+  for (const Section& s : reader.sections())
+    if (is_encoded(s) && !is_derived(s) &&
+        s.entry.encoding != static_cast<std::uint8_t>(Encoding::zstd) &&
+        s.decoded_length > memory / 4)
+      bound += s.decoded_length;
+  return bound;
+}
 
 FileVerification verify_file_streaming(const fs::path& path,
                                        const StreamingVerifyOptions& options) {
@@ -891,6 +932,7 @@ FileVerification verify_file_streaming(const fs::path& path,
   const auto reader = GraphReader::adopt(file, context.name);
   // A derived reverse CSR needs the forward one in the shapes of §4: refused as unpacking refuses.
   (void)transpose_plan(reader.sections(), context.name);
+  check_spill_limit(reader, context, options);
   const auto& sections = reader.sections();
   std::vector<Problem> checksums(sections.size()), values(sections.size());
   std::string metadata_text;
@@ -913,7 +955,8 @@ FileVerification verify_file_streaming(const fs::path& path,
     if (!is_derived(sections[i]) || csr.forward_is_csr) checksums[i] = csr.reverse_checksum[k];
   }
   auto result = [&](Problem problem) {
-    return FileVerification{std::move(problem), reader.digest()};
+    return FileVerification{std::move(problem), reader.digest(),
+                            context.spill_file ? context.spill_file->size() : 0};
   };
   for (auto& p : checksums)
     if (p) return result(p);

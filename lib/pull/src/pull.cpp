@@ -462,6 +462,7 @@ class EntryLock {
   EntryLock& operator=(const EntryLock&) = delete;
 
   const fs::path& path() const { return path_; }
+  int fd() const { return fd_; }  // the directory, open and locked
   void remove_when_done() { remove_ = true; }
 
  private:
@@ -584,17 +585,43 @@ struct Puller {
   }
 };
 
+// The file `name` in the entry's staging directory (open and locked as `directory`), opened for
+// reading and writing: the one a pull left there (a regular file of one link) or a new one.
+// Anything else found there (a symbolic link, a hard link, a directory, a FIFO) no pull made; as
+// the directory is the pull's own, it is removed (a link, never what it leads to) and replaced.
+int open_staging_file(int directory, const std::string& name, const fs::path& path) {
+  const auto is_own = [](const struct stat& st) { return S_ISREG(st.st_mode) && st.st_nlink == 1; };
+  std::string why = "it keeps changing";
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    struct stat st {};
+    if (::fstatat(directory, name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0 && !is_own(st) &&
+        ::unlinkat(directory, name.c_str(), S_ISDIR(st.st_mode) ? AT_REMOVEDIR : 0) != 0) {
+      why = std::string("not a file a pull made, and it cannot be removed: ") +
+            std::strerror(errno) + "; remove it and pull again";
+      break;
+    }
+    const int fd = ::openat(directory, name.c_str(),
+                            O_RDWR | O_CREAT | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0666);
+    if (fd < 0) {
+      why = std::strerror(errno);
+      if (errno == ELOOP || errno == EISDIR || errno == ENXIO) continue;  // replaced meanwhile
+      break;
+    }
+    if (::fstat(fd, &st) == 0 && is_own(st)) return fd;
+    ::close(fd);  // replaced between the look and the open: look again
+  }
+  throw Error(ErrorCode::io, path.string() + ": cannot open: " + why);
+}
+
 // The bytes of one entry as they arrive: appended to the staging file and hashed on the way.
 class Receiver : public Sink {
  public:
-  Receiver(Puller& puller, PulledEntry& pulled, const fs::path& directory)
+  Receiver(Puller& puller, PulledEntry& pulled, const EntryLock& staging)
       : puller_(puller),
         pulled_(pulled),
-        data_path_(directory / pulled.entry.file),
-        validators_path_(directory / kValidators) {
-    fd_.fd = ::open(data_path_.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0666);
-    if (fd_.fd < 0)
-      throw Error(ErrorCode::io, data_path_.string() + ": cannot open: " + std::strerror(errno));
+        data_path_(staging.path() / pulled.entry.file),
+        validators_path_(staging.path() / kValidators) {
+    fd_.fd = open_staging_file(staging.fd(), pulled.entry.file, data_path_);
   }
 
   const fs::path& data_path() const { return data_path_; }
@@ -629,6 +656,16 @@ class Receiver : public Sink {
     return v->if_range();
   }
 
+  // The server answered a request for the bytes from have() on with `answer` (the whole file, a
+  // 416, another range): what is held goes, and the report says the transfer started again from
+  // byte 0 rather than that it resumed.
+  void restart_unresumed(const std::string& answer) {
+    pulled_.restarted = "the server answered the range from byte " + std::to_string(have_) +
+                        " with " + answer + ": fetched from byte 0";
+    pulled_.resumed_from = 0;
+    restart();
+  }
+
   void restart() {
     if (::ftruncate(fd_.fd, 0) != 0)
       throw Error(ErrorCode::io,
@@ -659,12 +696,15 @@ class Receiver : public Sink {
     }
     // The whole file (the server ignored Range, or If-Range said it changed): from zero.
     try {
-      restart();
+      if (have_ > 0)  // a Range request
+        restart_unresumed("HTTP " + std::to_string(status) + " and the whole file");
+      else
+        restart();
       validators_ = {url_, pulled_.entry.sha256, pulled_.entry.size, response.etag,
                      response.last_modified};
       write_validators(validators_path_, validators_);
     } catch (const Error& error) {
-      write_error_ = error.what();
+      write_error_ = error.message();
       return false;
     }
     return true;
@@ -746,13 +786,13 @@ std::string transfer(Puller& p, Http* http, Receiver& r, const ManifestEntry& e)
       if (!r.write_error().empty()) return r.write_error();
       if (r.range_mismatch()) {
         // A 206 for other bytes than asked: start again from zero.
-        r.restart();
+        r.restart_unresumed("HTTP 206 for other bytes than asked");
         verdict = Verdict::transient;
         why = "the server sent another range than asked";
       }
     } else if (result.code == CURLE_OK && result.status == 416) {
       // Range Not Satisfiable: the file on the server is shorter than the partial one.
-      r.restart();
+      r.restart_unresumed("HTTP 416, Range Not Satisfiable");
       verdict = Verdict::transient;
     }
     if (verdict == Verdict::done) return "";
@@ -802,7 +842,7 @@ void fetch_entry(Puller& p, Http* http, PulledEntry& pulled) {
     pulled.reason = std::move(why);
     return;
   }
-  Receiver r(p, pulled, lock.path());
+  Receiver r(p, pulled, lock);
   const auto refuse = [&](std::string why, bool keep_partial) {
     pulled.status = PullStatus::refused;
     pulled.reason = std::move(why);
@@ -828,11 +868,12 @@ void fetch_entry(Puller& p, Http* http, PulledEntry& pulled) {
       add.expect = {e};
       add.sha256 = {sha};  // computed as the bytes arrived: not read again
       add.check_memory = p.options.check_memory;
+      add.check_disk = p.options.check_disk;
       add.check_workspace = &workspace;
       store.add({r.data_path()}, add);
     });
   } catch (const Error& error) {
-    return refuse(error.what(), false);
+    return refuse(error.message(), false);
   }
   pulled.status = PullStatus::fetched;
   lock.remove_when_done();
@@ -959,7 +1000,7 @@ PullResult pull(const fs::path& store, std::string_view url, const PullOptions& 
         placed.unpack(pulled.entry.file);
       } catch (const Error& error) {
         pulled.status = PullStatus::refused;
-        pulled.reason = std::string("listed, but not unpacked: ") + error.what();
+        pulled.reason = std::string("listed, but not unpacked: ") + error.message();
       }
     }
   }

@@ -10,6 +10,7 @@
 #include "mosb/error.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/internal/read_file.hpp"
+#include "mosb/internal/utf8.hpp"
 #include "mosb/metadata.hpp"
 #include "mosb/sha256.hpp"
 
@@ -75,7 +76,8 @@ ManifestEntry entry_from_json(const Json& object) {
   ManifestEntry e;
   e.file = field<std::string>(object, "file", true);
   if (!is_valid_manifest_file_name(e.file))
-    throw LineError{"invalid file name '" + e.file + "' (a base name, no directory)"};
+    throw LineError{"invalid file name '" + e.file + "' (" + std::string(kManifestFileNameRule) +
+                    ")"};
   e.size = field<std::uint64_t>(object, "size", true);
   e.sha256 = field<std::string>(object, "sha256", true);
   if (!is_lower_hex(e.sha256, 64)) throw LineError{"sha256 is not 64 lowercase hex digits"};
@@ -130,7 +132,8 @@ Manifest parse_legacy(const std::vector<std::string_view>& lines, const std::str
     e.benchmark = fields[0];
     e.file = fields[1];
     if (!is_valid_manifest_file_name(e.file))
-      throw Error(where + "invalid file name '" + e.file + "'");
+      throw Error(where + "invalid file name '" + e.file + "' (" +
+                  std::string(kManifestFileNameRule) + ")");
     const auto& size = fields[2];
     if (size.empty() || size.size() > 19 ||
         !std::all_of(size.begin(), size.end(), [](char c) { return c >= '0' && c <= '9'; }))
@@ -162,9 +165,16 @@ const ManifestEntry* Manifest::find(std::string_view file) const {
 
 bool is_valid_manifest_file_name(std::string_view name) {
   if (name.empty() || name == "." || name == ".." || name == kManifestName) return false;
-  return std::none_of(name.begin(), name.end(), [](char c) {
-    return c == '/' || static_cast<unsigned char>(c) < 0x20 || c == 0x7F;
-  });
+  for (std::size_t i = 0; i < name.size();) {
+    const auto c = static_cast<unsigned char>(name[i]);
+    // Not UTF-8 (a lone byte 0x80-0x9F is itself a C1 control to an 8-bit terminal, and JSON
+    // cannot hold it): refused too.
+    const std::size_t length = utf8_sequence_length(name, i);
+    if (length == 0 || c == '/' || c < 0x20 || c == 0x7F) return false;
+    if (length > 1 && is_hidden_code_point(utf8_code_point(name, i, length))) return false;
+    i += length;
+  }
+  return true;
 }
 
 Manifest parse_manifest(std::string_view text, const std::string& display_name) {
@@ -219,7 +229,8 @@ std::string serialize_manifest(const Manifest& manifest) {
   std::string text = Json{{"format", kManifestFormat}, {"version", kManifestVersion}}.dump() + '\n';
   for (const auto& e : sorted.entries) {
     if (!is_valid_manifest_file_name(e.file))
-      throw Error(std::string(kManifestName) + ": invalid file name '" + e.file + "'");
+      throw Error(std::string(kManifestName) + ": invalid file name '" + e.file + "' (" +
+                  std::string(kManifestFileNameRule) + ")");
     // nlohmann::json keeps object keys in a std::map: sorted. Invalid UTF-8 is replaced, never
     // thrown on, so a manifest can always be written.
     text += to_json(e).dump(-1, ' ', false, Json::error_handler_t::replace) + '\n';

@@ -312,8 +312,8 @@ std::vector<SourceCheck> check_sources(const GraphReader& instance, const fs::pa
     const auto where = c.path.string() + ": ";
     std::error_code ec;
     if (!is_valid_manifest_file_name(input.name)) {
-      c.problem =
-          instance.display_name() + ": raw input name '" + input.name + "' is not a base name";
+      c.problem = instance.display_name() + ": raw input name '" + input.name + "' is not " +
+                  std::string(kManifestFileNameRule);
     } else if (!fs::exists(c.path, ec)) {
       c.problem = where + "missing";
     } else {
@@ -360,7 +360,8 @@ void check_names(const std::vector<fs::path>& files) {
       throw Error(source.string() + ": cannot be added as '" + name +
                   "': the store keeps MANIFEST and names starting with '.' for itself");
     if (!is_valid_manifest_file_name(name))
-      throw Error(source.string() + ": '" + name + "' cannot be an entry's name");
+      throw Error(source.string() + ": '" + name + "' cannot be an entry's name (" +
+                  std::string(kManifestFileNameRule) + ")");
     if (!names.insert(name).second)
       throw Error(source.string() + ": a second file named '" + name + "' in one add");
   }
@@ -395,8 +396,9 @@ Placement prepare(const fs::path& source, const Store::AddOptions& options,
               false, sha256 != nullptr};
   if (expected != nullptr) check_expected(source, p.entry, *expected);
   // Packed or not, in working memory that does not grow with the file.
-  const auto found = verify_file_streaming(
-      source, {options.check_memory, staging.scratch_directory(), options.check_workspace});
+  const auto found =
+      verify_file_streaming(source, {options.check_memory, staging.scratch_directory(),
+                                     options.check_workspace, options.check_disk});
   if (found.problem)
     throw Error(ErrorCode::damaged, source.string() + ": file is damaged: " + *found.problem);
   if (options.pack && !p.entry.packed) {

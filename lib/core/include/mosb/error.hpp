@@ -38,12 +38,17 @@ class Error : public std::runtime_error {
  public:
   explicit Error(const std::string& what) : Error(ErrorCode::other, what) {}
   explicit Error(const char* what) : Error(ErrorCode::other, what) {}
-  Error(ErrorCode code, const std::string& what) : std::runtime_error(what), code_(code) {}
+  Error(ErrorCode code, const std::string& what)
+      : std::runtime_error(what), code_(code), message_(what) {}
 
   ErrorCode code() const noexcept { return code_; }
+  // The whole message. what() is a C string and ends at the first NUL, which a name read from a
+  // file may hold: what prints a message prints this one, escaped (escape_for_terminal).
+  const std::string& message() const noexcept { return message_; }
 
  private:
   ErrorCode code_;
+  std::string message_;
 };
 
 }  // namespace mosb

@@ -10,6 +10,7 @@
 // single-threaded zstd context per section (so any thread count gives the same bytes).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -79,6 +80,7 @@ GraphReader load(const std::filesystem::path& path, VerifyLevel level,
 struct FileVerification {
   std::optional<std::string> problem;
   std::string digest;
+  std::uint64_t spilled = 0;  // verify_file_streaming: the bytes its spill file grew to
 };
 
 // verify(level) of the instance at `path`, packed or not. Level header reads the header and the
@@ -107,6 +109,22 @@ class VerifyWorkspace {
   std::unique_ptr<Blocks> blocks_;
 };
 
+// The disk a streaming check's spill file may take when the caller sets no limit: 64 bytes per
+// byte of the file checked, or 8 per byte of the check's memory, whichever is more. Measured
+// (spec/MANIFEST.md): a packed Grid needs 14 times its size, a NetMaker 5, a Moving AI map of
+// random obstacles 31, at any memory from 4 KiB; and no disk at all in the default 32 MiB. Files
+// more regular than any factor could allow for (Moving AI maps of few obstacles pack 190 to 6300
+// times smaller) pass on the memory term from 8 MiB up. A file built to need more (5,632 bytes
+// whose arcs all repeat one pair, 480 MB of spill) is refused before the check spills a byte.
+inline constexpr std::uint64_t kCheckDiskPerFileByte = 64;
+inline constexpr std::uint64_t kCheckDiskPerMemoryByte = 8;
+inline std::uint64_t default_check_disk(std::uint64_t file_size, std::uint64_t memory) {
+  const auto times = [](std::uint64_t bytes, std::uint64_t factor) {
+    return bytes > UINT64_MAX / factor ? UINT64_MAX : bytes * factor;
+  };
+  return std::max(times(file_size, kCheckDiskPerFileByte), times(memory, kCheckDiskPerMemoryByte));
+}
+
 // verify_file at level full, in working memory that does not grow with the file: every section is
 // read once, front to back, a chunk at a time (a raw one from the mapping, each page let go once
 // read; a frame whole when small, else through a streaming zstd decoder; a large shuffled or delta
@@ -116,14 +134,25 @@ class VerifyWorkspace {
 // problem, or a mosb::Error for a frame that does not decode, naming the file), with the messages
 // of verify where the rule is the same. It runs on one thread. Used where files are taken in:
 // `store add`, `store pull`.
+//
+// The spill file never grows past streaming_spill_bound(); when that is more than `disk`, the
+// check throws mosb::Error (ErrorCode::no_memory) saying both, before it writes anything.
 struct StreamingVerifyOptions {
   std::uint64_t memory = std::uint64_t{32} << 20;  // the working memory aimed at (at least 4 KiB)
   // Where the spill file goes (O_TMPFILE: it has no name and is gone when the check ends, even by
   // kill -9). Empty, or when it cannot be written: the file's own directory, $TMPDIR, /tmp.
   std::filesystem::path scratch_directory;
   VerifyWorkspace* workspace = nullptr;  // none: each check maps its own buffers
+  // The most bytes the spill file may take; nullopt: default_check_disk(the file's size, memory).
+  std::optional<std::uint64_t> disk = std::nullopt;
 };
 FileVerification verify_file_streaming(const std::filesystem::path& path,
                                        const StreamingVerifyOptions& options = {});
+
+// The most bytes verify_file_streaming's spill file takes for `reader`'s file in `memory` bytes of
+// memory, from its header and section table alone: 12 per arc when the forward CSR and its
+// transpose do not fit the memory (16 (n + 1) + 12 m bytes), plus the decoded length of every
+// shuffled or delta frame that decodes to more than a quarter of it.
+std::uint64_t streaming_spill_bound(const GraphReader& reader, std::uint64_t memory);
 
 }  // namespace mosb

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -37,9 +38,14 @@ inline constexpr auto kPullStatusNames = enum_names<PullStatus>({
 struct PulledEntry {
   ManifestEntry entry;  // as the published MANIFEST lists it
   PullStatus status = PullStatus::planned;
-  std::string reason;              // refused: one line, what differs or what failed
-  std::uint64_t received = 0;      // bytes received for it by this pull (retries included)
-  std::uint64_t resumed_from = 0;  // the offset of a transfer continued from a partial file, or 0
+  std::string reason;          // refused: one line, what differs or what failed
+  std::uint64_t received = 0;  // bytes received for it by this pull (retries included)
+  // The offset at which a partial file left by an earlier transfer was continued, or 0 (when the
+  // transfer started from zero, or the server answered the range with other bytes).
+  std::uint64_t resumed_from = 0;
+  // "", or what the server answered a request to continue at some byte with, when that made the
+  // transfer start again from byte 0 (the whole file, HTTP 416, another range): one line.
+  std::string restarted;
 };
 
 struct PullOptions {
@@ -62,6 +68,9 @@ struct PullOptions {
   double first_backoff_seconds = 0.5;  // before the first retry; doubled each time, at most 30 s
   // The working memory of each entry's check (Store::AddOptions::check_memory).
   std::uint64_t check_memory = StreamingVerifyOptions{}.memory;
+  // The most disk each entry's check may spill (Store::AddOptions::check_disk); nullopt:
+  // default_check_disk(the entry's size, check_memory).
+  std::optional<std::uint64_t> check_disk;
   Progress progress;  // stage "pull": bytes in the staging area out of the bytes to fetch
   // Called as each selected entry is settled (fetched, present or refused), one call at a time,
   // with how many are settled and how many were selected. Not called by a dry run.

@@ -71,8 +71,15 @@ class Metadata;
 // is absent); throws mosb::Error naming `display_name` on a size that is not a number.
 std::vector<SourceInput> source_inputs(const Metadata& metadata, const std::string& display_name);
 
-// True when `name` may be a manifest file name: non-empty, not "." or "..", no '/', no NUL,
-// no control characters, not the manifest's own name.
+// True when `name` may be a manifest file name: non-empty, UTF-8, not "." or "..", no '/', not
+// the manifest's own name, and no character a terminal would not show as itself: no control
+// character (C0, DEL, C1: U+0080-U+009F), no line or paragraph separator, no bidirectional
+// override, isolate or mark (U+202A-U+202E, U+2066-U+2069, ...), so that no name can pass for
+// another when printed. The one name rule: MANIFESTs read and written, `store add`, raw inputs.
 bool is_valid_manifest_file_name(std::string_view name);
+// That rule in words, for the messages that refuse a name.
+inline constexpr std::string_view kManifestFileNameRule =
+    "a base name: UTF-8, no '/', no control or bidirectional formatting character, not '.', "
+    "'..' or 'MANIFEST'";
 
 }  // namespace mosb

@@ -124,6 +124,10 @@ class Store {
     std::vector<std::string> sha256;
     // The working memory of each file's check (verify_file_streaming), whatever the file's size.
     std::uint64_t check_memory = StreamingVerifyOptions{}.memory;
+    // The most disk each check's spill file may take (StreamingVerifyOptions::disk); nullopt:
+    // default_check_disk(the file's size, check_memory). A file whose check would need more is
+    // refused before the check spills.
+    std::optional<std::uint64_t> check_disk;
     // The buffers of those checks: the caller's, kept from one add to the next (store pull, one
     // per transfer thread), or none (each check maps its own).
     VerifyWorkspace* check_workspace = nullptr;

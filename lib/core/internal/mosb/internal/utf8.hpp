@@ -44,6 +44,26 @@ inline bool is_valid_utf8(std::string_view s) {
   return true;
 }
 
+// The code point of the well-formed sequence of `length` bytes at s[i] (utf8_sequence_length).
+inline std::uint32_t utf8_code_point(std::string_view s, std::size_t i, std::size_t length) {
+  const auto lead = static_cast<unsigned char>(s[i]);
+  if (length == 1) return lead;
+  std::uint32_t code = lead & (0xFF >> (length + 1));
+  for (std::size_t k = 1; k < length; ++k)
+    code = (code << 6) | (static_cast<unsigned char>(s[i + k]) & 0x3F);
+  return code;
+}
+
+// True for the code points above ASCII that a terminal does not show as themselves: C1 controls
+// (U+0080-U+009F, e.g. the 8-bit CSI), line and paragraph separators, and the bidirectional
+// overrides, isolates and marks, which reorder what follows. escape_for_terminal writes them as
+// `\u{XXXX}`; a MANIFEST file name may hold none of them (is_valid_manifest_file_name).
+inline bool is_hidden_code_point(std::uint32_t code) {
+  return (code >= 0x80 && code <= 0x9F) || code == 0x2028 || code == 0x2029 ||
+         (code >= 0x202A && code <= 0x202E) || (code >= 0x2066 && code <= 0x2069) ||
+         code == 0x200E || code == 0x200F || code == 0x061C;
+}
+
 // Text from a file, made safe to print on a terminal as one line: `\` becomes `\\`, LF `\n`, CR
 // `\r`, tab `\t`, other C0 controls and DEL `\xHH`; C1 controls (U+0080-U+009F, e.g. the 8-bit
 // CSI), line/paragraph separators and bidirectional overrides `\u{XXXX}`; bytes that are not UTF-8
@@ -73,14 +93,8 @@ inline std::string escape_for_terminal(std::string_view s) {
       i += 1;
       continue;
     } else {
-      std::uint32_t code = c & (0xFF >> (length + 1));
-      for (std::size_t k = 1; k < length; ++k)
-        code = (code << 6) | (static_cast<unsigned char>(s[i + k]) & 0x3F);
-      const bool hidden = (code >= 0x80 && code <= 0x9F) || code == 0x2028 || code == 0x2029 ||
-                          (code >= 0x202A && code <= 0x202E) ||
-                          (code >= 0x2066 && code <= 0x2069) || code == 0x200E || code == 0x200F ||
-                          code == 0x061C;
-      if (hidden) {
+      const std::uint32_t code = utf8_code_point(s, i, length);
+      if (is_hidden_code_point(code)) {
         out += "\\u{";
         for (int shift = 12; shift >= 0; shift -= 4) out += kHex[(code >> shift) & 15];
         out += '}';
