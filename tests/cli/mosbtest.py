@@ -72,6 +72,15 @@ def setUpModule():
         raise RuntimeError("MOSB=%r is not an executable file" % MOSB)
 
 
+def alive(pid):
+    """Whether process `pid` exists and is not a zombie."""
+    try:
+        with open("/proc/%d/stat" % pid) as f:
+            return f.read().rsplit(")", 1)[1].split()[0] != "Z"
+    except (FileNotFoundError, ProcessLookupError):
+        return False
+
+
 def run(*args, program=None, check=False, **options):
     """Runs mosb (or `program`) with `args`, stdout and stderr captured as text unless `options`
     say otherwise; with `check`, a non-zero exit raises AssertionError with the stderr."""

@@ -20,21 +20,13 @@ import subprocess
 import time
 
 import mosbtest
-from mosbtest import CliTest, setUpModule  # noqa: F401
+from mosbtest import CliTest, alive, setUpModule  # noqa: F401
 
 # A solver script's `record FILE` appends the pid of the shell that runs it as this test sees it
 # (/proc is the test's even inside a PID namespace; `read` is a builtin, so /proc/self is the
 # shell itself).
 RECORD = 'record() { read -r me rest < /proc/self/stat; echo "$me" >> "$1"; }\n'
 NOBODY = 65534
-
-
-def alive(pid):
-    try:
-        with open("/proc/%d/stat" % pid) as f:
-            return f.read().rsplit(")", 1)[1].split()[0] != "Z"
-    except (FileNotFoundError, ProcessLookupError):
-        return False
 
 
 class Hostile(CliTest):

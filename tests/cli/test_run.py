@@ -16,7 +16,7 @@ import subprocess
 import time
 
 import mosbtest
-from mosbtest import CliTest, setUpModule  # noqa: F401
+from mosbtest import CliTest, alive, setUpModule  # noqa: F401
 
 EXAMPLES = os.path.abspath(os.environ.get("EXAMPLES", ""))
 MEASUREMENTS = ["auto", "rlimit-poll"]
@@ -36,15 +36,6 @@ def memory_cgroup():
                 d = "/sys/fs/cgroup/memory" + ("" if path == "/" else path)
                 return d if os.path.isdir(d) else None
     return None
-
-
-def alive(pid):
-    """Whether process `pid` exists and is not a zombie."""
-    try:
-        with open("/proc/%d/stat" % pid) as f:
-            return f.read().rsplit(")", 1)[1].split()[0] != "Z"
-    except (FileNotFoundError, ProcessLookupError):
-        return False
 
 
 # A solver script's `record FILE` appends the pid of the shell that runs it, as this test sees it:
