@@ -43,10 +43,8 @@ std::optional<ImageFormat> image_format_of(const std::filesystem::path& file) {
   std::string ext = file.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (ext == ".svg") return ImageFormat::svg;
-  if (ext == ".pdf") return ImageFormat::pdf;
-  if (ext == ".png") return ImageFormat::png;
-  return std::nullopt;
+  if (ext.empty()) return std::nullopt;
+  return kImageFormatNames.parse(std::string_view(ext).substr(1));
 }
 
 double parse_length(std::string_view text) {

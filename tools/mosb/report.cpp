@@ -67,7 +67,7 @@ void add_tables(Outputs& out, const std::string& directory, const pages::Report&
 // Every figure alone as DIR/NN-KIND.EXT, in page order.
 void add_figures(Outputs& out, const std::string& directory, const std::string& extension,
                  const pages::Report& r) {
-  const auto format = *plots::image_format_of("x." + extension);
+  const auto format = *plots::kImageFormatNames.parse(extension);
   for (std::size_t k = 0; k < r.figures.size(); ++k) {
     char number[32];
     std::snprintf(number, sizeof number, "%02zu-", k + 1);
@@ -171,7 +171,7 @@ Command add_report(CLI::App& app) {
   sub->add_option("--figures", args->figures,
                   "also write every figure alone into this directory (NN-KIND.svg|pdf|png)");
   sub->add_option("--figure-format", args->figure_format, "the format of --figures' files")
-      ->check(CLI::IsMember({"svg", "pdf", "png"}))
+      ->check(CLI::IsMember(plots::kImageFormatNames.names()))
       ->capture_default_str();
   return {sub, [args] { return run_report(*args); }};
 }

@@ -8,11 +8,20 @@
 #include <string>
 #include <string_view>
 
+#include "mosb/enum_names.hpp"
+
 namespace mosb::plots {
 
 enum class ImageFormat { svg, pdf, png };
+// Each format's name, also its file name extension: `--figure-format`'s choices and the files'.
+inline constexpr auto kImageFormatNames = enum_names<ImageFormat>({
+    {ImageFormat::svg, "svg"},
+    {ImageFormat::pdf, "pdf"},
+    {ImageFormat::png, "png"},
+});
 
-// By the file name's extension (.svg, .pdf, .png, any case); nullopt for another.
+// By the file name's extension (.svg, .pdf, .png, any case: kImageFormatNames); nullopt for
+// another.
 std::optional<ImageFormat> image_format_of(const std::filesystem::path& file);
 
 // A length in points (1/72 in): a number with a unit, "3.5in", "252pt", "8.9cm", "89mm" or
