@@ -550,6 +550,8 @@ int run_command(const RunArgs& a) {
 
 }  // namespace
 
+// Longer than 80 lines on purpose: one statement per option of `mosb run`, in --help's order, so
+// the option list reads as one (kRunOptionTable says what each is to a SLURM run).
 Command add_run(CLI::App& app) {
   auto a = std::make_shared<RunArgs>();
   auto* sub = app.add_subcommand(
