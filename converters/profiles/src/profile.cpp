@@ -342,8 +342,10 @@ SolverProfile parse_profile(std::string_view text, const std::string& file) {
   try {
     table = toml::parse(text, file);
   } catch (const toml::parse_error& e) {
-    throw Error(ErrorCode::invalid_argument,
-                position(file, e.source()) + ": " + std::string(e.description()));
+    std::string what(e.description());
+    for (auto& c : what)  // one line, whatever the parser quotes
+      if (static_cast<unsigned char>(c) < 0x20) c = ' ';
+    throw Error(ErrorCode::invalid_argument, position(file, e.source()) + ": " + what);
   }
   Fields root(table, file, "");
   SolverProfile p;
