@@ -1,5 +1,6 @@
 # Writes OUTPUT, a C++ file holding every profiles/*.toml as a string (the shipped solver profiles,
-# converters/profiles): cmake -DPROFILES="a.toml;b.toml" -DOUTPUT=file.cpp -P embed_profiles.cmake
+# converters/profiles): cmake -DPROFILES="a.toml|b.toml" -DOUTPUT=file.cpp -P embed_profiles.cmake
+string(REPLACE "|" ";" PROFILES "${PROFILES}")
 set(body "")
 foreach(profile IN LISTS PROFILES)
   get_filename_component(name "${profile}" NAME_WE)

@@ -91,11 +91,11 @@ class ProfileTest(CliTest):
         self.write("par-c1.gr", PARALLEL_C1)
         self.write("par-c2.gr", PARALLEL_C2)
         self.write("par.queries", PARALLEL_QUERIES)
-        self.ok("convert", "dimacs", self.path("par-c1.gr"), self.path("par-c2.gr"),
-                "--benchmark", "par", "-o", self.path("par.mosb"))
-        self.ok("queries", "import", self.path("par.mosb"), self.path("par.queries"), "--set",
-                "q", "--id-base", "1", "--in-place")
-        self.ok("inspect", self.path("par.mosb"))
+        self.ok("convert", "dimacs", "--gr", self.path("par-c1.gr"), "--gr",
+                self.path("par-c2.gr"), "--name", "par", "--view", "par=c1,c2", "-o",
+                self.path("bare-par.mosb"))
+        self.ok("queries", "import", self.path("bare-par.mosb"), self.path("par.queries"),
+                "--set", "q", "--view", "par", "-o", self.path("par.mosb"))
 
     # --- the shipped profiles, each against the example NAMOA* --------------------------------
 
@@ -270,10 +270,10 @@ class ProfileTest(CliTest):
         self.write("f-c1.gr", "p sp 3 3\na 1 2 1.5\na 2 3 2.7\na 1 3 4.5\n")
         self.write("f-c2.gr", "p sp 3 3\na 1 2 1\na 2 3 1\na 1 3 1\n")
         self.write("f.queries", "1 3\n")
-        self.ok("convert", "dimacs", self.path("f-c1.gr"), self.path("f-c2.gr"), "--benchmark",
-                "f", "-o", self.path("f.mosb"))
+        self.ok("convert", "dimacs", "--gr", self.path("f-c1.gr"), "--gr", self.path("f-c2.gr"),
+                "--name", "f", "-o", self.path("f.mosb"))
         self.ok("queries", "import", self.path("f.mosb"), self.path("f.queries"), "--set", "q",
-                "--id-base", "1", "--in-place")
+                "--in-place")
         for profile in ("apex", "mohs", "tmda"):
             r = self.mosb("run", self.path("f.mosb"), "--objectives", "c1,c2", "--queries", "q",
                           "--profile", profile, "--executable", self.standins[profile], "-o",
@@ -287,9 +287,9 @@ class ProfileTest(CliTest):
                   "-o", self.path("s.sol"), env=self.env)
         self.assertEqual(self.parameters("s.sol")["profile.scale"], "10.0")
         self.assertEqual(self.parameters("s.sol")["profile.scaled_objectives"], "c1")
-        front = self.ok("solutions", "export", "--format", "text", self.path("s.sol")).stdout
-        self.assertIn("4.2 2", front)
-        self.assertIn("4.5 1", front)
+        self.ok("solutions", "export", self.path("s.sol"), "--dir", self.path("s"))
+        front = mosbtest.read(self.path("s", "0.txt"), "r")
+        self.assertEqual(front, "4.2 2\n4.5 1\n")
         r = self.mosb("run", self.path("g2.mosb"), "--view", "Grid_2", "--profile", "mohs",
                       "--executable", self.standins["mohs"], "--scale", "10", "-o",
                       self.path("y.sol"), env=self.env)

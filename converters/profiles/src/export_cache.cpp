@@ -86,8 +86,9 @@ std::optional<DimacsExportFiles> read_manifest(const fs::path& dir, const std::s
     if (role == "vertices" || role == "arcs" || role == "id_base") {
       std::uint64_t value = 0;
       words >> value;
-      (role == "vertices" ? f.vertex_count : role == "arcs" ? f.arc_count : f.id_base) =
-          static_cast<decltype(f.arc_count)>(value);
+      if (role == "vertices") f.vertex_count = value;
+      if (role == "arcs") f.arc_count = value;
+      if (role == "id_base") f.id_base = static_cast<unsigned>(value);
       continue;
     }
     if (role == "scaled") {

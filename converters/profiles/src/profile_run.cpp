@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mosb/command_template.hpp"
 #include "mosb/converters/solver_output.hpp"
 #include "mosb/error.hpp"
 #include "mosb/views.hpp"
@@ -190,11 +191,14 @@ PreparedProfileRun apply_profile(RunConfig& config, const ProfileRunRequest& req
   const auto options = option_values(p, request.options);
   const auto words = split_command(p.command);
   bool uses_epsilon = false, uses_coordinates = false;
-  for (const auto& word : words)
-    for (const auto& name : *profile_internal::placeholder_names(word)) {
+  for (const auto& word : words) {
+    const auto names = profile_internal::placeholder_names(word).value_or(
+        std::vector<std::string>{});  // parse_profile refused a lone brace
+    for (const auto& name : names) {
       uses_epsilon |= name == "epsilon";
       uses_coordinates |= name == "co";
     }
+  }
   if (!uses_epsilon && config.epsilon != "0")
     refuse("--epsilon " + config.epsilon + ": profile " + p.name +
            " gives its solver no epsilon (its command has no {epsilon})");
