@@ -47,18 +47,20 @@ class Fields {
     return table_.get(key);
   }
 
-  std::optional<std::string> string(std::string_view key) {
+  // `blanks`: tabs and newlines are allowed (a command's words may span lines).
+  std::optional<std::string> string(std::string_view key, bool blanks = false) {
     const auto* node = find(key);
     if (node == nullptr) return std::nullopt;
     const auto value = node->value<std::string>();
     if (!node->is_string()) fail(*node, key, "expected a string");
     for (const char c : *value)
-      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F)
+      if ((static_cast<unsigned char>(c) < 0x20 || c == 0x7F) &&
+          !(blanks && (c == '\n' || c == '\t')))
         fail(*node, key, "a control character in the string");
     return *value;
   }
-  std::string required_string(std::string_view key) {
-    auto value = string(key);
+  std::string required_string(std::string_view key, bool blanks = false) {
+    auto value = string(key, blanks);
     if (!value) fail_missing(key);
     return *value;
   }
@@ -356,7 +358,7 @@ SolverProfile parse_profile(std::string_view text, const std::string& file) {
   p.description = root.string("description").value_or("");
   p.repository = root.string("repository").value_or("");
   p.version = root.string("version").value_or("");
-  p.command = root.required_string("command");
+  p.command = root.required_string("command", true);
   if (const auto* codes = root.array("success_exit_codes")) {
     p.success_exit_codes.clear();
     for (const auto& code : *codes) {

@@ -87,8 +87,7 @@ std::optional<std::uint64_t> exact_integer(std::string_view text) {
 
 // The values of one vector line: the text after the prefix, or its `group`-th [...].
 std::string_view vector_text(std::string_view line, const ProfileOutput& out, const std::string& where) {
-  line.remove_prefix(out.prefix.size());
-  if (out.group == 0) return line;
+  if (out.group == 0) return line.substr(out.prefix.size());  // the prefix only picks the line
   std::size_t at = 0;
   for (unsigned g = 1;; ++g) {
     const auto open = line.find('[', at);
