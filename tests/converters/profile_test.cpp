@@ -110,8 +110,8 @@ TEST_CASE("a malformed profile is one line with file, line, column and key") {
 }
 
 TEST_CASE("a shipped name and a file are told apart") {
-  CHECK_THROWS_WITH_AS(load_profile("nosuch"),
-                       doctest::Contains("no shipped profile of that name"), Error);
+  CHECK_THROWS_WITH_AS(load_profile("nosuch"), doctest::Contains("no shipped profile of that name"),
+                       Error);
   CHECK_THROWS_WITH_AS(load_profile("/nonexistent/p.toml"),
                        doctest::Contains("/nonexistent/p.toml: cannot open the profile"), Error);
 }

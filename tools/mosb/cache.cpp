@@ -39,9 +39,10 @@ Command add_cache_clear(CLI::App& parent) {
   auto* clear = parent.add_subcommand(
       "clear", "remove every text export solver profiles made (they are made again when needed)");
   auto args = std::make_shared<CacheArgs>();
-  clear->add_option("--export-cache", args->directory,
-                    "the cache (default $MOSB_EXPORT_CACHE, else $XDG_CACHE_HOME/mosb/exports, "
-                    "else ~/.cache/mosb/exports)")
+  clear
+      ->add_option("--export-cache", args->directory,
+                   "the cache (default $MOSB_EXPORT_CACHE, else $XDG_CACHE_HOME/mosb/exports, "
+                   "else ~/.cache/mosb/exports)")
       ->option_text("DIR");
   add_json_flag(clear, args->json);
   return {clear, [args] { return run_cache_clear(*args); }};

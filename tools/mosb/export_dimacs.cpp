@@ -52,7 +52,8 @@ int run_export_dimacs(const ExportDimacsArgs& a) {
 
 Command add_export_dimacs(CLI::App& parent) {
   auto* dimacs = parent.add_subcommand(
-      "dimacs", "one DIMACS .gr per objective (or one multi-column .gr), a .co for coords, a .queries file "
+      "dimacs",
+      "one DIMACS .gr per objective (or one multi-column .gr), a .co for coords, a .queries file "
       "per query set");
   auto args = std::make_shared<ExportDimacsArgs>();
   dimacs->add_option("INSTANCE", args->instance, "the .mosb instance")
@@ -65,13 +66,15 @@ Command add_export_dimacs(CLI::App& parent) {
   dimacs->add_flag("--multi-column", args->multi_column,
                    "one .gr whose arc lines carry every objective's cost (a u v c1 c2 ...) "
                    "instead of one .gr per objective");
-  dimacs->add_option("--queries-format", args->queries_format,
-                     "how a .queries line separates its two ids: space (default, `s t`) or "
-                     "comma (`s,t`, as the A*pex and mohs query files)")
+  dimacs
+      ->add_option("--queries-format", args->queries_format,
+                   "how a .queries line separates its two ids: space (default, `s t`) or "
+                   "comma (`s,t`, as the A*pex and mohs query files)")
       ->check(CLI::IsMember(converters::kQueriesFormatNames.names()));
-  dimacs->add_option("--scale", args->scale,
-                     "write float objectives' costs x K rounded to integers (for solvers that "
-                     "read integer costs only)")
+  dimacs
+      ->add_option("--scale", args->scale,
+                   "write float objectives' costs x K rounded to integers (for solvers that "
+                   "read integer costs only)")
       ->check(CLI::PositiveNumber)
       ->option_text("K");
   add_json_flag(dimacs, args->json);

@@ -620,8 +620,9 @@ int list_profiles(const RunArgs& a) {
     for (const auto& option : p.options) {
       std::string values;
       for (const auto& v : option.values) values += (values.empty() ? "" : "|") + v;
-      std::cout << "  --profile-option " << option.name << "=" << (values.empty() ? "VALUE" : values)
-                << " (default " << option.default_value << ")\n";
+      std::cout << "  --profile-option " << option.name << "="
+                << (values.empty() ? "VALUE" : values) << " (default " << option.default_value
+                << ")\n";
     }
   }
   return 0;

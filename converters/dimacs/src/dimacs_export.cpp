@@ -186,8 +186,7 @@ CostColumn read_column(const GraphReader& reader, std::size_t j, const DimacsExp
       if (column.integers[a] > *o.max_arc_cost)
         throw Error(reader.display_name() + ": objective '" + section.name + "': cost " +
                     std::to_string(column.integers[a]) + " is above " +
-                    std::to_string(*o.max_arc_cost) + ", the largest the solver reads" +
-                    where(a));
+                    std::to_string(*o.max_arc_cost) + ", the largest the solver reads" + where(a));
   return column;
 }
 
@@ -213,8 +212,7 @@ void plan_collapsed(const GraphReader& reader, const std::vector<CostColumn>& co
   const auto targets = reader.forward_targets();
   std::vector<std::uint64_t> out;
   for (auto a = offsets[v]; a < offsets[v + 1]; ++a) out.push_back(a);
-  std::stable_sort(out.begin(), out.end(),
-                   [&](auto x, auto y) { return targets[x] < targets[y]; });
+  std::stable_sort(out.begin(), out.end(), [&](auto x, auto y) { return targets[x] < targets[y]; });
   for (std::size_t i = 0; i < out.size();) {
     std::size_t end = i;
     while (end < out.size() && targets[out[end]] == targets[out[i]]) ++end;
@@ -379,8 +377,9 @@ DimacsExportFiles export_dimacs_files(const std::filesystem::path& instance,
       files.scaled_objectives.push_back(g.columns.back().name);
   }
   if (options.scale > 0 && files.scaled_objectives.empty())
-    throw Error(reader.display_name() + ": --scale: no objective of the selection holds float "
-                                        "costs (integer costs are written as they are)");
+    throw Error(reader.display_name() +
+                ": --scale: no objective of the selection holds float "
+                "costs (integer costs are written as they are)");
   g.arcs = plan_arcs(reader, g.columns, options, g.vertex_count);
   files.vertex_count = g.vertex_count;
   files.arc_count = g.arcs.size();
@@ -389,10 +388,10 @@ DimacsExportFiles export_dimacs_files(const std::filesystem::path& instance,
   std::error_code ec;
   std::filesystem::create_directories(options.out_dir, ec);
   if (ec) throw Error(options.out_dir.string() + ": cannot create the directory: " + ec.message());
-  const auto* coords = options.coordinates ? reader.find(SectionKind::vertex_data, "coords")
-                                           : nullptr;
-  const std::uint64_t file_count = (options.multi_column ? 1 : objectives.size()) +
-                                   (coords ? 1 : 0) + query_sets.size();
+  const auto* coords =
+      options.coordinates ? reader.find(SectionKind::vertex_data, "coords") : nullptr;
+  const std::uint64_t file_count =
+      (options.multi_column ? 1 : objectives.size()) + (coords ? 1 : 0) + query_sets.size();
   const auto add = [&](const std::filesystem::path& path) {
     check_output_is_not_input(path, {instance});
     files.written.push_back(path);

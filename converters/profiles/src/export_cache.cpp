@@ -110,7 +110,8 @@ std::optional<DimacsExportFiles> read_manifest(const fs::path& dir, const std::s
 
 std::string temporary_name() {
   std::random_device random;
-  return ".tmp-" + std::to_string(::getpid()) + "-" + hex64((std::uint64_t{random()} << 32) ^ random());
+  return ".tmp-" + std::to_string(::getpid()) + "-" +
+         hex64((std::uint64_t{random()} << 32) ^ random());
 }
 
 }  // namespace
@@ -138,7 +139,9 @@ CachedExport cached_export(const fs::path& cache, const fs::path& instance,
   }
   std::error_code ec;
   fs::create_directories(cache, ec);
-  if (ec) throw Error(ErrorCode::io, cache.string() + ": cannot create the export cache: " + ec.message());
+  if (ec)
+    throw Error(ErrorCode::io,
+                cache.string() + ": cannot create the export cache: " + ec.message());
   const auto temporary = cache / temporary_name();
   DimacsExportOptions o = options;
   o.out_dir = temporary;
@@ -152,7 +155,8 @@ CachedExport cached_export(const fs::path& cache, const fs::path& instance,
     throw;
   }
   // A damaged export (a file gone or cut short) is replaced; one another run just placed is used.
-  if (fs::exists(out.directory) && !read_manifest(out.directory, key)) fs::remove_all(out.directory, ec);
+  if (fs::exists(out.directory) && !read_manifest(out.directory, key))
+    fs::remove_all(out.directory, ec);
   fs::rename(temporary, out.directory, ec);
   if (ec) {
     fs::remove_all(temporary, ec);
@@ -178,7 +182,8 @@ std::uint64_t clear_export_cache(const fs::path& cache) {
     if (ec) throw Error(ErrorCode::io, entry.path().string() + ": cannot remove: " + ec.message());
     ++removed;
   }
-  if (ec) throw Error(ErrorCode::io, cache.string() + ": cannot read the directory: " + ec.message());
+  if (ec)
+    throw Error(ErrorCode::io, cache.string() + ": cannot read the directory: " + ec.message());
   return removed;
 }
 

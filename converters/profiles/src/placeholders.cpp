@@ -34,8 +34,9 @@ bool scan(std::string_view word, Name&& name, Literal&& literal) {
 
 std::optional<std::vector<std::string>> placeholder_names(std::string_view word) {
   std::vector<std::string> names;
-  if (!scan(word, [&](std::string name) { names.push_back(std::move(name)); },
-            [](std::string_view) {}))
+  if (!scan(
+          word, [&](std::string name) { names.push_back(std::move(name)); },
+          [](std::string_view) {}))
     return std::nullopt;
   return names;
 }
@@ -71,7 +72,9 @@ std::string expand_placeholders(std::string_view word, const PlaceholderValue& f
         if (value) out += *value;
       },
       [&](std::string_view text) { out += text.size() == 2 ? text.substr(0, 1) : text; });
-  if (!whole) throw Error(ErrorCode::invalid_argument, what + ": a lone brace in '" + std::string(word) + "'");
+  if (!whole)
+    throw Error(ErrorCode::invalid_argument,
+                what + ": a lone brace in '" + std::string(word) + "'");
   if (!unknown.empty())
     throw Error(ErrorCode::invalid_argument, what + ": unknown placeholder {" + unknown + "}");
   return out;

@@ -1,12 +1,13 @@
 #include "mosb/converters/profile.hpp"
 
+#include <toml++/toml.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <fstream>
 #include <set>
 #include <sstream>
-#include <toml++/toml.h>
 
 #include "mosb/command_template.hpp"
 #include "mosb/error.hpp"
@@ -17,9 +18,9 @@ namespace mosb::converters {
 namespace {
 
 constexpr std::array<std::string_view, 19> kPlaceholders = {
-    "instance", "view",     "objectives", "query",      "source",  "target", "front",
-    "fronts",   "threads",  "executable", "gr",         "multi_gr", "queries", "co",
-    "d",        "time_limit", "epsilon",  "gr:NAME",    "OPTION"};
+    "instance", "view",       "objectives", "query",   "source",   "target",  "front",
+    "fronts",   "threads",    "executable", "gr",      "multi_gr", "queries", "co",
+    "d",        "time_limit", "epsilon",    "gr:NAME", "OPTION"};
 
 std::string position(const std::string& file, const toml::source_region& where) {
   return file + ":" + std::to_string(where.begin.line) + ":" + std::to_string(where.begin.column);
@@ -32,13 +33,14 @@ class Fields {
   Fields(const toml::table& table, const std::string& file, std::string prefix)
       : table_(table), file_(file), prefix_(std::move(prefix)) {}
 
-  [[noreturn]] void fail(const toml::node& at, std::string_view key, const std::string& what) const {
+  [[noreturn]] void fail(const toml::node& at, std::string_view key,
+                         const std::string& what) const {
     throw Error(ErrorCode::invalid_argument,
                 position(file_, at.source()) + ": key '" + path(key) + "': " + what);
   }
   [[noreturn]] void fail_missing(std::string_view key) const {
-    throw Error(ErrorCode::invalid_argument, position(file_, table_.source()) + ": key '" +
-                                                 path(key) + "' is missing");
+    throw Error(ErrorCode::invalid_argument,
+                position(file_, table_.source()) + ": key '" + path(key) + "' is missing");
   }
   std::string path(std::string_view key) const { return prefix_ + std::string(key); }
 
@@ -95,7 +97,8 @@ class Fields {
     if (!node->is_number()) fail(*node, key, "expected a number");
     const auto value = *node->value<double>();
     if (!std::isfinite(value) || value < min || value > max)
-      fail(*node, key, "not a number in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
+      fail(*node, key,
+           "not a number in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
     return value;
   }
   const toml::table* table(std::string_view key) {
@@ -122,8 +125,8 @@ class Fields {
   void finish() const {
     for (const auto& [key, node] : table_)
       if (!known_.count(std::string(key.str())))
-        throw Error(ErrorCode::invalid_argument, position(file_, key.source()) + ": key '" +
-                                                     path(key.str()) + "': unknown key");
+        throw Error(ErrorCode::invalid_argument,
+                    position(file_, key.source()) + ": key '" + path(key.str()) + "': unknown key");
   }
   const std::string& file() const { return file_; }
 
@@ -137,8 +140,8 @@ class Fields {
 bool is_name(std::string_view text) {
   if (text.empty() || text.size() > 64) return false;
   return std::all_of(text.begin(), text.end(), [](char c) {
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
-           c == '-' || c == '_';
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' ||
+           c == '_';
   });
 }
 
@@ -192,8 +195,8 @@ std::vector<ProfileOption> parse_options(Fields& root) {
   for (const auto& [key, node] : *table) {
     const std::string name(key.str());
     const auto* option_table = all.table(name);
-    if (!is_name(name) || std::find(kPlaceholders.begin(), kPlaceholders.end(), name) !=
-                              kPlaceholders.end())
+    if (!is_name(name) ||
+        std::find(kPlaceholders.begin(), kPlaceholders.end(), name) != kPlaceholders.end())
       all.fail(node, name, "an option's name is letters, digits, - and _, and no placeholder's");
     Fields f(*option_table, root.file(), "options." + name + ".");
     ProfileOption option;
@@ -201,9 +204,8 @@ std::vector<ProfileOption> parse_options(Fields& root) {
     option.description = f.string("description").value_or("");
     option.default_value = f.required_string("default");
     option.values = f.strings("values");
-    if (!option.values.empty() &&
-        std::find(option.values.begin(), option.values.end(), option.default_value) ==
-            option.values.end())
+    if (!option.values.empty() && std::find(option.values.begin(), option.values.end(),
+                                            option.default_value) == option.values.end())
       f.fail(*f.find("default"), "default", "not one of the values");
     if (const auto* limits = f.table("max_objectives")) {
       Fields g(*limits, root.file(), "options." + name + ".max_objectives.");
@@ -237,7 +239,8 @@ OutputLine parse_output_line(const toml::node& node, const std::string& file,
     f.fail(*f.find("status"), "status", "a status line states that the solver did not finish");
   if (const auto when = f.string("when")) {
     const auto eq = when->find('=');
-    if (eq == std::string::npos || eq == 0) f.fail(*f.find("when"), "when", "expected OPTION=VALUE");
+    if (eq == std::string::npos || eq == 0)
+      f.fail(*f.find("when"), "when", "expected OPTION=VALUE");
     line.when_option = when->substr(0, eq);
     line.when_value = when->substr(eq + 1);
   }
@@ -309,7 +312,9 @@ void check_command(const SolverProfile& p, Fields& root) {
   } catch (const Error& e) {
     root.fail(*root.find("command"), "command", e.what());
   }
-  const auto refuse = [&](const std::string& what) { root.fail(*root.find("command"), "command", what); };
+  const auto refuse = [&](const std::string& what) {
+    root.fail(*root.find("command"), "command", what);
+  };
   if (words.front() != "{executable}") refuse("the first word is {executable} (--executable PATH)");
   for (const auto& word : words) {
     const auto names = profile_internal::placeholder_names(word);
@@ -380,9 +385,9 @@ SolverProfile parse_profile(std::string_view text, const std::string& file) {
 }
 
 SolverProfile load_profile(const std::string& name_or_path) {
-  const bool path = name_or_path.find('/') != std::string::npos ||
-                    (name_or_path.size() > 5 &&
-                     name_or_path.compare(name_or_path.size() - 5, 5, ".toml") == 0);
+  const bool path =
+      name_or_path.find('/') != std::string::npos ||
+      (name_or_path.size() > 5 && name_or_path.compare(name_or_path.size() - 5, 5, ".toml") == 0);
   if (!path) {
     for (const auto& shipped : shipped_profiles())
       if (shipped.name == name_or_path)
@@ -390,9 +395,9 @@ SolverProfile load_profile(const std::string& name_or_path) {
     std::string names;
     for (const auto& shipped : shipped_profiles())
       names += (names.empty() ? "" : ", ") + std::string(shipped.name);
-    throw Error(ErrorCode::invalid_argument, "--profile " + name_or_path +
-                                                 ": no shipped profile of that name (shipped: " +
-                                                 names + "; a file's path has a / or ends in .toml)");
+    throw Error(ErrorCode::invalid_argument,
+                "--profile " + name_or_path + ": no shipped profile of that name (shipped: " +
+                    names + "; a file's path has a / or ends in .toml)");
   }
   std::ifstream in(name_or_path, std::ios::binary);
   if (!in) throw Error(ErrorCode::io, name_or_path + ": cannot open the profile");

@@ -34,8 +34,7 @@ std::map<std::string, std::string> option_values(const SolverProfile& p,
       std::string names;
       for (const auto& o : p.options) names += (names.empty() ? "" : ", ") + o.name;
       refuse("--profile-option " + text + ": profile " + p.name + " has " +
-             (names.empty() ? std::string("no options") : "the options " + names) +
-             " (KEY=VALUE)");
+             (names.empty() ? std::string("no options") : "the options " + names) + " (KEY=VALUE)");
     }
     if (seen[key]) refuse("--profile-option " + key + ": given twice");
     seen[key] = true;
@@ -113,11 +112,11 @@ RunInput prepare_input(const RunConfig& config, const ProfileRunRequest& request
     }
   }
   if (p.input.form == InputForm::mosb) {
-    if (request.scale > 0) refuse("--scale: profile " + p.name + "'s solver reads the .mosb itself");
+    if (request.scale > 0)
+      refuse("--scale: profile " + p.name + "'s solver reads the .mosb itself");
     return in;
   }
-  if (request.scale > 0 && !any_float)
-    refuse("--scale: no objective of the run holds float costs");
+  if (request.scale > 0 && !any_float) refuse("--scale: no objective of the run holds float costs");
   DimacsExportOptions o;
   o.selection.objectives = in.objective_names;
   o.selection.queries = in.query_set;
@@ -254,7 +253,8 @@ PreparedProfileRun apply_profile(RunConfig& config, const ProfileRunRequest& req
     m["profile.scaled_objectives"] = names;
   }
   if (p.input.parallel_arcs == ParallelArcs::collapse)
-    m["profile.parallel_arcs"] = "collapsed: dominated parallel arcs dropped, the others subdivided";
+    m["profile.parallel_arcs"] =
+        "collapsed: dominated parallel arcs dropped, the others subdivided";
   if (p.input.append_dummy_arc) m["profile.dummy_arc"] = "appended to every .gr";
   return prepared;
 }

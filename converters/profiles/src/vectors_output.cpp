@@ -86,7 +86,8 @@ std::optional<std::uint64_t> exact_integer(std::string_view text) {
 }
 
 // The values of one vector line: the text after the prefix, or its `group`-th [...].
-std::string_view vector_text(std::string_view line, const ProfileOutput& out, const std::string& where) {
+std::string_view vector_text(std::string_view line, const ProfileOutput& out,
+                             const std::string& where) {
   if (out.group == 0) return line.substr(out.prefix.size());  // the prefix only picks the line
   std::size_t at = 0;
   for (unsigned g = 1;; ++g) {
@@ -106,7 +107,8 @@ void read_vector(std::string_view line, const ProfileOutput& out, const VectorsC
   std::vector<std::string_view> values;
   for (std::size_t start = 0;;) {
     const auto end = text.find(out.separator, start);
-    values.push_back(trimmed(text.substr(start, end == std::string_view::npos ? end : end - start)));
+    values.push_back(
+        trimmed(text.substr(start, end == std::string_view::npos ? end : end - start)));
     if (end == std::string_view::npos) break;
     start = end + out.separator.size();
   }
@@ -122,15 +124,15 @@ void read_vector(std::string_view line, const ProfileOutput& out, const VectorsC
     const auto v = values[k];
     const auto name = "value " + std::to_string(k + 1) + " '" + std::string(v) + "'";
     if (k >= context.objectives) {  // a padding column the text had as 0
-      if (exact_integer(v) != 0u) throw Error(where + ": " + name + " of a padding column is not 0");
+      if (exact_integer(v) != 0u)
+        throw Error(where + ": " + name + " of a padding column is not 0");
       continue;
     }
-    const bool integer = context.scaled[k] ||
-                         (k < files.integer_objectives.size() && files.integer_objectives[k]);
+    const bool integer =
+        context.scaled[k] || (k < files.integer_objectives.size() && files.integer_objectives[k]);
     if (integer) {
       const auto value = exact_integer(v);
-      if (!value)
-        throw Error(where + ": " + name + " is not an integer in [0, 2^53]");
+      if (!value) throw Error(where + ": " + name + " is not an integer in [0, 2^53]");
       costs.push_back(context.scaled[k] ? static_cast<double>(*value) / context.scale
                                         : static_cast<double>(*value));
       continue;
@@ -189,16 +191,15 @@ ParsedOutput read_vectors_output(const SolverOutputFiles& files, const ProfileOu
     if (name == "target") return std::to_string(std::uint64_t{files.query.goal} + context.id_base);
     return std::nullopt;
   };
-  const std::string front_path =
-      output.file == "stdout" ? files.stdout_path
-                              : profile_internal::expand_placeholders(output.file, fill, "output.file");
+  const std::string front_path = output.file == "stdout" ? files.stdout_path
+                                                         : profile_internal::expand_placeholders(
+                                                               output.file, fill, "output.file");
   OutputTexts texts(files, front_path);
   for (const auto& rule : output.status_lines) {
     if (!applies(rule, context)) continue;
     bool found = false;
-    for_each_line(texts.text(rule.file), [&](std::string_view line, std::size_t) {
-      found |= trimmed(line) == rule.text;
-    });
+    for_each_line(texts.text(rule.file),
+                  [&](std::string_view line, std::size_t) { found |= trimmed(line) == rule.text; });
     if (found) return stated(rule.status, texts.path(rule.file) + " says '" + rule.text + "'");
   }
   for (const auto& rule : output.finished) {
@@ -214,8 +215,7 @@ ParsedOutput read_vectors_output(const SolverOutputFiles& files, const ProfileOu
   ParsedOutput out;
   for_each_line(texts.text(OutputFile::front), [&](std::string_view line, std::size_t number) {
     if (line.substr(0, output.prefix.size()) != output.prefix || trimmed(line).empty()) return;
-    read_vector(line, output, context, files, front_path + ":" + std::to_string(number),
-                out.costs);
+    read_vector(line, output, context, files, front_path + ":" + std::to_string(number), out.costs);
     if (out.costs.size() > files.output_bytes / 8)
       throw Error(front_path + ": a front of more than " + std::to_string(files.output_bytes / 8) +
                   " values");

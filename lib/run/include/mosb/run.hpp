@@ -138,7 +138,7 @@ struct RunConfig {
   // More of what the run is (a solver profile's name, repository, options, scale), recorded as
   // the solver's parameters and bound into the journal.
   std::map<std::string, std::string> parameters;
-  std::string output;                       // the solution file; the journal is OUTPUT.journal
+  std::string output;  // the solution file; the journal is OUTPUT.journal
   // SHA-256 (hex) of a file: the executable's digest for the metadata.
   std::function<std::string(const std::string&)> sha256_file;
 };

@@ -41,7 +41,7 @@ struct DimacsExportOptions {
   bool integer_costs = false;
   double scale = 0;
   // The largest arc cost the reader can hold (a uint32 loader: 2^32 - 1); a larger one is refused.
-  std::optional<std::uint64_t> max_arc_cost;
+  std::optional<std::uint64_t> max_arc_cost{};
   // For a reader that keeps one arc per vertex pair: parallel arcs whose cost vectors another
   // dominates (or equals) are dropped, and each further one is subdivided through a new vertex
   // numbered after the instance's own (cost on the first half, 0 on the second), so that no
@@ -60,7 +60,7 @@ struct DimacsExportFiles {
   std::filesystem::path coordinates;              // empty when none was written
   std::vector<std::pair<std::string, std::filesystem::path>> queries;  // per query set
   std::vector<std::filesystem::path> written;  // every file, in the order written
-  std::uint64_t vertex_count = 0;  // of the text (with subdivision and dummy vertices)
+  std::uint64_t vertex_count = 0;              // of the text (with subdivision and dummy vertices)
   std::uint64_t arc_count = 0;
   unsigned id_base = 1;
   std::vector<std::string> scaled_objectives;  // the float objectives written × scale

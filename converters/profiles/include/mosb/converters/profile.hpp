@@ -49,7 +49,7 @@ struct ProfileInput {
   std::optional<std::uint64_t> max_arc_cost;
   ParallelArcs parallel_arcs = ParallelArcs::keep;
   bool append_dummy_arc = false;
-  unsigned pad_columns = 0;                    // dimacs-multi-column: exactly this many columns
+  unsigned pad_columns = 0;                     // dimacs-multi-column: exactly this many columns
   std::optional<QueriesFormat> queries_format;  // when the command uses {queries}
   unsigned min_objectives = 1, max_objectives = 0;  // 0: no maximum
 };
@@ -73,7 +73,7 @@ struct ProfileOption {
 // A line of the output that says something: a status (`timeout: 1`), or that the solver finished.
 struct OutputLine {
   OutputFile file = OutputFile::front;
-  std::string text;    // status: the whole line (trailing blanks and \r ignored); finished: prefix
+  std::string text;  // status: the whole line (trailing blanks and \r ignored); finished: prefix
   QueryStatus status = QueryStatus::timeout;  // status lines
   std::string when_option, when_value;        // only when --profile-option when_option=when_value
 };

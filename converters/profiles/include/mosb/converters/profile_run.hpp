@@ -17,10 +17,10 @@ namespace mosb::converters {
 
 struct ProfileRunRequest {
   SolverProfile profile;
-  std::string executable;                 // what {executable} becomes
-  std::vector<std::string> options;       // --profile-option KEY=VALUE, in order
-  double scale = 0;                       // --scale K (0: none)
-  std::filesystem::path export_cache;     // empty: default_export_cache()
+  std::string executable;              // what {executable} becomes
+  std::vector<std::string> options;    // --profile-option KEY=VALUE, in order
+  double scale = 0;                    // --scale K (0: none)
+  std::filesystem::path export_cache;  // empty: default_export_cache()
 };
 
 struct PreparedProfileRun {
