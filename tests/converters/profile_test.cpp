@@ -106,7 +106,7 @@ TEST_CASE("a malformed profile is one line with file, line, column and key") {
   // an option's default outside its values
   CHECK(error_of("name = \"x\"\ncommand = \"{executable} {a}\"\n[options.a]\ndefault = "
                  "\"q\"\nvalues = [\"p\"]\n") ==
-        "p.toml:5:11: key 'options.a.default': not one of the values");
+        "p.toml:4:11: key 'options.a.default': not one of the values");
 }
 
 TEST_CASE("a shipped name and a file are told apart") {
