@@ -22,6 +22,14 @@ constexpr std::array<std::string_view, 19> kPlaceholders = {
     "fronts",   "threads",    "executable", "gr",      "multi_gr", "queries", "co",
     "d",        "time_limit", "epsilon",    "gr:NAME", "OPTION"};
 
+// The message as one line: a quoted value's control characters (a command's newlines) shown as
+// blanks.
+std::string one_line(std::string text) {
+  for (auto& c : text)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) c = ' ';
+  return text;
+}
+
 std::string position(const std::string& file, const toml::source_region& where) {
   return file + ":" + std::to_string(where.begin.line) + ":" + std::to_string(where.begin.column);
 }
@@ -36,11 +44,11 @@ class Fields {
   [[noreturn]] void fail(const toml::node& at, std::string_view key,
                          const std::string& what) const {
     throw Error(ErrorCode::invalid_argument,
-                position(file_, at.source()) + ": key '" + path(key) + "': " + what);
+                one_line(position(file_, at.source()) + ": key '" + path(key) + "': " + what));
   }
   [[noreturn]] void fail_missing(std::string_view key) const {
-    throw Error(ErrorCode::invalid_argument,
-                position(file_, table_.source()) + ": key '" + path(key) + "' is missing");
+    throw Error(ErrorCode::invalid_argument, one_line(position(file_, table_.source()) + ": key '" +
+                                                      path(key) + "' is missing"));
   }
   std::string path(std::string_view key) const { return prefix_ + std::string(key); }
 
@@ -126,7 +134,8 @@ class Fields {
     for (const auto& [key, node] : table_)
       if (!known_.count(std::string(key.str())))
         throw Error(ErrorCode::invalid_argument,
-                    position(file_, key.source()) + ": key '" + path(key.str()) + "': unknown key");
+                    one_line(position(file_, key.source()) + ": key '" + path(key.str()) +
+                             "': unknown key"));
   }
   const std::string& file() const { return file_; }
 
@@ -228,7 +237,7 @@ OutputLine parse_output_line(const toml::node& node, const std::string& file,
                              const std::string& path, bool status) {
   if (!node.is_table())
     throw Error(ErrorCode::invalid_argument,
-                position(file, node.source()) + ": key '" + path + "': expected a table");
+                one_line(position(file, node.source()) + ": key '" + path + "': expected a table"));
   Fields f(*node.as_table(), file, path + ".");
   OutputLine line;
   line.file = f.choice("file", kOutputFileNames).value_or(OutputFile::front);
@@ -349,10 +358,8 @@ SolverProfile parse_profile(std::string_view text, const std::string& file) {
   try {
     table = toml::parse(text, file);
   } catch (const toml::parse_error& e) {
-    std::string what(e.description());
-    for (auto& c : what)  // one line, whatever the parser quotes
-      if (static_cast<unsigned char>(c) < 0x20) c = ' ';
-    throw Error(ErrorCode::invalid_argument, position(file, e.source()) + ": " + what);
+    throw Error(ErrorCode::invalid_argument,
+                one_line(position(file, e.source()) + ": " + std::string(e.description())));
   }
   Fields root(table, file, "");
   SolverProfile p;
