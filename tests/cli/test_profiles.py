@@ -382,6 +382,10 @@ class ProfileTest(CliTest):
                               ("--profile-option", "algorithm=Apex"),
                               ("--export-cache", self.cache)):
             self.assertEqual(arguments[arguments.index(option) + 1], value)
+        # What a task runs: its arguments are a run of their own.
+        self.ok("run", *arguments, "--shard", "1/2", "-o",
+                self.path("shard-1.sol"), env=self.env)
+        self.assertEqual(self.statuses("shard-1.sol"), {"solved": 4, "not-run": 4})
 
     # --- export dimacs ---------------------------------------------------------------------
 

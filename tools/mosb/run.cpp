@@ -188,7 +188,9 @@ const RunOption kRunOptionTable[] = {
     {"--threads", Role::run,
      [](const RunArgs& a, Arguments& out) { pass(out, "--threads", std::to_string(a.threads)); }},
     {"--output-format", Role::run,
-     [](const RunArgs& a, Arguments& out) { pass(out, "--output-format", a.output_format); }},
+     [](const RunArgs& a, Arguments& out) {
+       if (a.profile.empty()) pass(out, "--output-format", a.output_format);  // else the profile's
+     }},
     {"--measurement", Role::run,
      [](const RunArgs& a, Arguments& out) { pass(out, "--measurement", a.measurement); }},
     {"--solver-name", Role::run,
