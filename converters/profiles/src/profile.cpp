@@ -341,7 +341,7 @@ void check_command(const SolverProfile& p, Fields& root) {
       if (name == "multi_gr" && p.input.form != InputForm::dimacs_multi_column)
         refuse("{multi_gr} needs input.form = \"dimacs-multi-column\"");
       if (name == "queries" && !p.input.queries_format)
-        refuse("{queries} needs input.queries = \"space\" or \"comma\"");
+        refuse(R"({queries} needs input.queries = "space" or "comma")");
       if (name == "gr" && word != "{gr}") refuse("{gr} is a word of its own (one word per file)");
     }
   }
