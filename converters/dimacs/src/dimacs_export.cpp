@@ -331,7 +331,7 @@ std::vector<std::string> text_comments(const GraphReader& reader, const DimacsEx
                        std::to_string(files.vertex_count - dummy - 1 + files.id_base) +
                        " subdivide parallel arcs");
   if (o.append_dummy_arc)
-    comments.push_back("the last arc joins two vertices of no query (a reader's workaround)");
+    comments.emplace_back("the last arc joins two vertices of no query (a reader's workaround)");
   return comments;
 }
 
