@@ -269,6 +269,41 @@ class ProfileTest(CliTest):
                          output="tmda1.sol")
         self.assertEqual(self.statuses("tmda1.sol"), {"failed": 4})
 
+    def test_a_query_file_and_named_objective_files(self):
+        # A solver of query files (as A*pex's and mohs's -q FILE, `s,t` lines): it reads line
+        # {query} of {queries} and the objectives' files by name, in the order it wants them.
+        self.parallel_instance()
+        self.reference("par.mosb", "par")
+        solver = self.write("bin/qsolver", """#!/usr/bin/python3
+import sys
+sys.path.insert(0, %r)
+import standin_solvers as s
+c2, c1, queries, k, d = sys.argv[1:]
+assert d == "2"
+line = open(queries).read().split("\\n")[int(k)]
+source, target = (int(x) for x in line.split(","))
+arcs = [(u, v, (int(a), int(b))) for (u, v, a), (_, _, b) in
+        zip(s.read_gr_boost(c1), s.read_gr_boost(c2))]
+n = max(max(u, v) for u, v, _ in arcs) + 1
+for c in s.pareto(n, arcs, source, target):
+    print(*c)
+""" % os.path.dirname(STANDIN))
+        os.chmod(solver, 0o755)
+        self.write("q.toml", 'name = "q"\n'
+                   'command = "{executable} {gr:c2} {gr:c1} {queries} {query} {d}"\n'
+                   '[input]\nform = "dimacs"\nid_base = 1\nqueries = "comma"\n')
+        self.run_profile("par.mosb", "par", self.path("q.toml"), solver, output="q.sol")
+        result = self.compare("ref.sol", "q.sol")
+        self.assertTrue(result["ok"], result)
+        self.assertEqual(result["equal"], 4)
+        self.assertEqual(self.export_files()["par-q.queries"], "1,3\n1,6\n2,1\n1,5\n")
+        self.write("bad.toml", 'name = "q"\ncommand = "{executable} {gr:c9}"\n'
+                   '[input]\nform = "dimacs"\n')
+        r = self.mosb("run", self.path("par.mosb"), "--view", "par", "--profile",
+                      self.path("bad.toml"), "--executable", solver, "-o", self.path("x.sol"),
+                      env=self.env)
+        self.assert_one_line_error(r, "profile q: {gr:c9}: the run has no objective 'c9'")
+
     # --- refusals --------------------------------------------------------------------------
 
     def test_float_costs_for_an_integer_solver(self):
