@@ -268,6 +268,12 @@ class ProfileTest(CliTest):
         self.run_profile("par.mosb", "par", self.path("tmda1.toml"), self.standins["tmda"],
                          output="tmda1.sol")
         self.assertEqual(self.statuses("tmda1.sol"), {"failed": 4})
+        # T-MDA's degrees are 16-bit counts: a profile's max_degree refuses more, naming the vertex.
+        self.write("tmda-deg.toml", tmda.replace("max_degree = 65534", "max_degree = 2"))
+        r = self.mosb("run", self.path("par.mosb"), "--view", "par", "--profile",
+                      self.path("tmda-deg.toml"), "--executable", self.standins["tmda"], "-o",
+                      self.path("deg.sol"), env=self.env)
+        self.assert_one_line_error(r, "vertex 0 has more than 2 arcs out, the most the solver holds")
 
     def test_a_query_file_and_named_objective_files(self):
         # A solver of query files (as A*pex's and mohs's -q FILE, `s,t` lines): it reads line

@@ -268,6 +268,7 @@ void write_cost(AtomicTextFile& out, const CostColumn& column, std::uint64_t arc
 }
 
 // What the text holds: its arcs and the comments every .gr of it carries.
+// What the text holds: its arcs and the comments every .gr of it carries.
 struct TextGraph {
   std::vector<CostColumn> columns;
   std::vector<TextArc> arcs;
@@ -275,6 +276,19 @@ struct TextGraph {
   unsigned id_base = 1;
   std::vector<std::string> comments;  // the same in every file, so line numbers agree
 };
+
+// Refuses a vertex of the text with more than `max_degree` arcs out or in.
+void check_degrees(const GraphReader& reader, const TextGraph& g, std::uint64_t max_degree) {
+  std::vector<std::uint64_t> out(g.vertex_count), in(g.vertex_count);
+  for (const auto& arc : g.arcs) {
+    for (auto* count : {&out[arc.tail], &in[arc.head]})
+      if (++*count > max_degree)
+        throw Error(reader.display_name() + ": vertex " +
+                    std::to_string((count == &out[arc.tail] ? arc.tail : arc.head) + g.id_base) +
+                    " has more than " + std::to_string(max_degree) + " arcs " +
+                    (count == &out[arc.tail] ? "out" : "in") + ", the most the solver holds");
+  }
+}
 
 // `columns` of the text's objectives into `path` (one per objective, or all in one file), with
 // `padding` columns of 0 after them.
@@ -381,6 +395,7 @@ DimacsExportFiles export_dimacs_files(const std::filesystem::path& instance,
                 ": --scale: no objective of the selection holds float "
                 "costs (integer costs are written as they are)");
   g.arcs = plan_arcs(reader, g.columns, options, g.vertex_count);
+  if (options.max_degree) check_degrees(reader, g, *options.max_degree);
   files.vertex_count = g.vertex_count;
   files.arc_count = g.arcs.size();
   g.comments = text_comments(reader, options, files);

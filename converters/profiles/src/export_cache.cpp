@@ -37,7 +37,8 @@ std::string export_key(const std::string& digest, const DimacsExportOptions& o) 
       << "\nmulti_column " << o.multi_column << "\npad_columns " << o.pad_columns
       << "\nqueries_format " << kQueriesFormatNames.name(o.queries_format) << "\ninteger_costs "
       << o.integer_costs << "\nscale " << format_real_cost(o.scale) << "\nmax_arc_cost "
-      << (o.max_arc_cost ? std::to_string(*o.max_arc_cost) : "none") << "\ncollapse "
+      << (o.max_arc_cost ? std::to_string(*o.max_arc_cost) : "none") << "\nmax_degree "
+      << (o.max_degree ? std::to_string(*o.max_degree) : "none") << "\ncollapse "
       << o.collapse_parallel_arcs << "\ndummy_arc " << o.append_dummy_arc << "\ncoordinates "
       << o.coordinates << "\n";
   return key.str();

@@ -164,6 +164,8 @@ ProfileInput parse_input(Fields& root) {
   in.integer_costs = f.boolean("integer_costs").value_or(false);
   if (const auto max = f.integer("max_arc_cost", 1, std::int64_t{1} << 53))
     in.max_arc_cost = static_cast<std::uint64_t>(*max);
+  if (const auto max = f.integer("max_degree", 1, std::int64_t{1} << 32))
+    in.max_degree = static_cast<std::uint64_t>(*max);
   in.parallel_arcs = f.choice("parallel_arcs", kParallelArcsNames).value_or(ParallelArcs::keep);
   in.append_dummy_arc = f.boolean("append_dummy_arc").value_or(false);
   in.pad_columns = static_cast<unsigned>(f.integer("pad_columns", 0, 64).value_or(0));

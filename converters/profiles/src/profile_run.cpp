@@ -127,6 +127,7 @@ RunInput prepare_input(const RunConfig& config, const ProfileRunRequest& request
   o.integer_costs = p.input.integer_costs;
   o.scale = request.scale;
   o.max_arc_cost = p.input.max_arc_cost;
+  o.max_degree = p.input.max_degree;
   o.collapse_parallel_arcs = p.input.parallel_arcs == ParallelArcs::collapse;
   o.append_dummy_arc = p.input.append_dummy_arc;
   o.coordinates = uses_coordinates;

@@ -42,6 +42,9 @@ struct DimacsExportOptions {
   double scale = 0;
   // The largest arc cost the reader can hold (a uint32 loader: 2^32 - 1); a larger one is refused.
   std::optional<std::uint64_t> max_arc_cost{};
+  // The largest in- or out-degree the reader can hold (T-MDA counts them in 16 bits: 65534); a
+  // vertex with more arcs in the text is refused.
+  std::optional<std::uint64_t> max_degree{};
   // For a reader that keeps one arc per vertex pair: parallel arcs whose cost vectors another
   // dominates (or equals) are dropped, and each further one is subdivided through a new vertex
   // numbered after the instance's own (cost on the first half, 0 on the second), so that no

@@ -47,6 +47,7 @@ struct ProfileInput {
   unsigned id_base = 0;
   bool integer_costs = false;
   std::optional<std::uint64_t> max_arc_cost;
+  std::optional<std::uint64_t> max_degree;  // in- and out-degree
   ParallelArcs parallel_arcs = ParallelArcs::keep;
   bool append_dummy_arc = false;
   unsigned pad_columns = 0;                     // dimacs-multi-column: exactly this many columns
