@@ -27,6 +27,9 @@ if(MOSB_BUILD_TOOLS)
 endif()
 # The example solvers' sources, which build against the installed package (examples/CMakeLists.txt).
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/examples/ DESTINATION ${CMAKE_INSTALL_DATADIR}/mosb/examples)
+# The shipped solver profiles (also embedded in the program: mosb run --profile NAME).
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/profiles/ DESTINATION ${CMAKE_INSTALL_DATADIR}/mosb/profiles
+        FILES_MATCHING PATTERN "*.toml")
 
 install(EXPORT mosbTargets NAMESPACE mosb:: DESTINATION ${mosb_cmake_dir})
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/mosbConfig.cmake.in

@@ -223,6 +223,10 @@ class ShardsAndMerge(CliTest):
         "--solver-name": ("run", ["boa-x"]), "--solver-version": ("run", ["v9"]),
         "--epsilon": ("run", ["0.05"]), "--max-output": ("run", ["2G"]),
         "--allow-new-executable": ("run", []),
+        # With --profile only (not with --solver): test_profiles.py checks that tasks get them.
+        "--profile": ("run", None), "--executable": ("run", None),
+        "--profile-option": ("run", None), "--scale": ("run", None),
+        "--export-cache": ("run", None), "--list-profiles": ("action", None),
         "--output": ("local", ["x.sol"]), "--shard": ("local", ["1/2"]),
         "--shards": ("plan", ["2"]), "--queries-per-task": ("plan", ["3"]),
         "--throttle": ("plan", ["1"]), "--account": ("plan", ["acct"]),

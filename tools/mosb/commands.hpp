@@ -201,6 +201,7 @@ Command add_eval(CLI::App& app);                     // eval.cpp: `eval`
 Command add_pack(CLI::App& app);                     // pack.cpp: `pack`
 Command add_run(CLI::App& app);                      // run.cpp: `run`
 Command add_report(CLI::App& app);                   // report.cpp: `report`
+Command add_cache(CLI::App& app);                    // cache.cpp: `cache clear`
 Command add_unpack(CLI::App& app);                   // pack.cpp: `unpack`
 
 // Children of `generate`.

@@ -18,6 +18,9 @@ struct ExportDimacsArgs {
   std::string output;
   ViewChoice choice;
   InstanceIdBase id_base;
+  bool multi_column = false;
+  std::string queries_format = "space";
+  double scale = 0;
   bool json = false;
 };
 
@@ -26,6 +29,9 @@ int run_export_dimacs(const ExportDimacsArgs& a) {
   o.out_dir = a.output;
   o.selection = a.choice;
   o.id_base = a.id_base.checked(GraphReader::open(a.instance));
+  o.multi_column = a.multi_column;
+  o.queries_format = *converters::kQueriesFormatNames.parse(a.queries_format);
+  o.scale = a.scale;
   TerminalProgress progress;
   const auto written = converters::export_dimacs(a.instance, o, progress.callback());
   if (a.json) {
@@ -46,7 +52,9 @@ int run_export_dimacs(const ExportDimacsArgs& a) {
 
 Command add_export_dimacs(CLI::App& parent) {
   auto* dimacs = parent.add_subcommand(
-      "dimacs", "one DIMACS .gr per objective, a .co for coords, a .queries file per query set");
+      "dimacs",
+      "one DIMACS .gr per objective (or one multi-column .gr), a .co for coords, a .queries file "
+      "per query set");
   auto args = std::make_shared<ExportDimacsArgs>();
   dimacs->add_option("INSTANCE", args->instance, "the .mosb instance")
       ->required()
@@ -55,6 +63,20 @@ Command add_export_dimacs(CLI::App& parent) {
       ->required();
   add_view_choice_options(dimacs, args->choice, "export only these objectives and their query set");
   add_instance_id_base_options(dimacs, args->id_base, "the instance's metadata id_base, else 1");
+  dimacs->add_flag("--multi-column", args->multi_column,
+                   "one .gr whose arc lines carry every objective's cost (a u v c1 c2 ...) "
+                   "instead of one .gr per objective");
+  dimacs
+      ->add_option("--queries-format", args->queries_format,
+                   "how a .queries line separates its two ids: space (default, `s t`) or "
+                   "comma (`s,t`, as the A*pex and mohs query files)")
+      ->check(CLI::IsMember(converters::kQueriesFormatNames.names()));
+  dimacs
+      ->add_option("--scale", args->scale,
+                   "write float objectives' costs x K rounded to integers (for solvers that "
+                   "read integer costs only)")
+      ->check(CLI::PositiveNumber)
+      ->option_text("K");
   add_json_flag(dimacs, args->json);
   return {dimacs, [args] { return run_export_dimacs(*args); }};
 }

@@ -19,6 +19,7 @@
 #include "commands.hpp"
 #include "json_writer.hpp"
 #include "mosb/command_template.hpp"
+#include "mosb/converters/profile_run.hpp"
 #include "mosb/converters/solver_output.hpp"
 #include "mosb/internal/utf8.hpp"
 #include "mosb/sha256.hpp"
@@ -40,6 +41,11 @@ struct RunArgs {
   unsigned jobs = 1, threads = 1;
   bool pin = false, resume = false, json = false;
   std::string shard;  // --shard i/N
+  // --profile NAME|FILE and what it takes
+  std::string profile, executable, export_cache;
+  std::vector<std::string> profile_options;
+  double scale = 0;
+  bool list_profiles = false;
   // --slurm DIR and its options
   std::string slurm, account, partition;
   std::optional<std::uint64_t> shards, queries_per_task;
@@ -182,7 +188,9 @@ const RunOption kRunOptionTable[] = {
     {"--threads", Role::run,
      [](const RunArgs& a, Arguments& out) { pass(out, "--threads", std::to_string(a.threads)); }},
     {"--output-format", Role::run,
-     [](const RunArgs& a, Arguments& out) { pass(out, "--output-format", a.output_format); }},
+     [](const RunArgs& a, Arguments& out) {
+       if (a.profile.empty()) pass(out, "--output-format", a.output_format);  // else the profile's
+     }},
     {"--measurement", Role::run,
      [](const RunArgs& a, Arguments& out) { pass(out, "--measurement", a.measurement); }},
     {"--solver-name", Role::run,
@@ -199,6 +207,21 @@ const RunOption kRunOptionTable[] = {
      [](const RunArgs& a, Arguments& out) {
        if (a.allow_new_executable) out.emplace_back("--allow-new-executable");
      }},
+    {"--profile", Role::run,
+     [](const RunArgs& a, Arguments& out) { pass(out, "--profile", a.profile); }},
+    {"--executable", Role::run,
+     [](const RunArgs& a, Arguments& out) { pass(out, "--executable", a.executable); }},
+    {"--profile-option", Role::run,
+     [](const RunArgs& a, Arguments& out) {
+       for (const auto& option : a.profile_options) pass(out, "--profile-option", option);
+     }},
+    {"--scale", Role::run,
+     [](const RunArgs& a, Arguments& out) {
+       if (a.scale > 0) pass(out, "--scale", number_text(a.scale));
+     }},
+    // Each task exports (or finds) the text in its node's cache unless the run names one.
+    {"--export-cache", Role::run,
+     [](const RunArgs& a, Arguments& out) { pass(out, "--export-cache", a.export_cache); }},
     {"--output", Role::local},
     {"--shard", Role::local},
     {"--shards", Role::plan},
@@ -211,6 +234,7 @@ const RunOption kRunOptionTable[] = {
     {"--resume", Role::action},
     {"--status", Role::action},
     {"--json", Role::action},
+    {"--list-profiles", Role::action},
     {"--help", Role::action},
 };
 
@@ -239,10 +263,29 @@ Arguments task_options(const RunArgs& a) {
   return out;
 }
 
+// --profile: the profile says the command and its output; the executable is given.
+void check_profile_options(const RunArgs& a) {
+  for (const char* option : {"--solver", "--output-format"})
+    if (given(a, option))
+      throw UsageError(std::string(option) + ": not with --profile (the profile says it)");
+  if (a.choice.view.empty() && a.choice.objectives.empty())
+    throw UsageError("give --view V or --objectives A,B,... (the objectives the solver optimizes)");
+  if (a.executable.empty()) throw UsageError("--profile: give --executable PATH (the solver)");
+  if (resolve_executable(a.executable).empty())
+    throw UsageError("--executable: " + a.executable + ": no such executable" +
+                     (a.executable.find('/') == std::string::npos ? " in PATH" : ""));
+}
+
 // What the options of a run require, before the instance is opened.
 void check_run_options(const RunArgs& a) {
   if (a.instance.empty()) throw UsageError("INSTANCE is required");
-  if (a.solver.empty()) throw UsageError("--solver is required");
+  if (!a.profile.empty()) {
+    check_profile_options(a);
+    return;
+  }
+  for (const char* option : {"--executable", "--profile-option", "--scale", "--export-cache"})
+    if (given(a, option)) throw UsageError(std::string(option) + ": only with --profile");
+  if (a.solver.empty()) throw UsageError("--solver is required (or --profile)");
   if (a.choice.view.empty() && a.choice.objectives.empty())
     throw UsageError("give --view V or --objectives A,B,... (the objectives the solver optimizes)");
   std::vector<std::string> words;
@@ -295,6 +338,15 @@ RunConfig run_config(const RunArgs& a, const GraphReader& instance) {
   config.solver_version = a.solver_version;
   config.output = a.output;
   config.sha256_file = [](const std::string& path) { return sha256_file(path); };
+  if (!a.profile.empty()) {
+    converters::ProfileRunRequest request;
+    request.profile = converters::load_profile(a.profile);
+    request.executable = a.executable;
+    request.options = a.profile_options;
+    request.scale = a.scale;
+    request.export_cache = a.export_cache;
+    converters::apply_profile(config, request);
+  }
   return config;
 }
 
@@ -542,7 +594,49 @@ int run_slurm_existing(const RunArgs& a) {
   return 0;
 }
 
+// `mosb run --list-profiles`: the shipped profiles, one a line.
+int list_profiles(const RunArgs& a) {
+  std::vector<converters::SolverProfile> profiles;
+  for (const auto& shipped : converters::shipped_profiles())
+    profiles.push_back(converters::load_profile(std::string(shipped.name)));
+  if (a.json) {
+    JsonWriter json(std::cout);
+    json.begin_array();
+    for (const auto& p : profiles) {
+      json.begin_object();
+      json.key("name").value(p.name);
+      json.key("description").value(p.description);
+      json.key("repository").value(p.repository);
+      json.key("input").value(std::string(converters::kInputFormNames.name(p.input.form)));
+      json.key("output").value(p.output.format);
+      json.key("options").begin_object();
+      for (const auto& option : p.options) json.key(option.name).value(option.default_value);
+      json.end_object();
+      json.end_object();
+    }
+    json.end_array();
+    return 0;
+  }
+  for (const auto& p : profiles) {
+    std::cout << p.name << ": " << p.description << "\n";
+    for (const auto& option : p.options) {
+      std::string values;
+      for (const auto& v : option.values) values += (values.empty() ? "" : "|") + v;
+      std::cout << "  --profile-option " << option.name << "="
+                << (values.empty() ? "VALUE" : values) << " (default " << option.default_value
+                << ")\n";
+    }
+  }
+  return 0;
+}
+
 int run_command(const RunArgs& a) {
+  if (a.list_profiles) {
+    for (const auto& option : kRunOptionTable)
+      if (option.role != Role::action && given(a, option.name))
+        throw UsageError(std::string(option.name) + ": not with --list-profiles");
+    return list_profiles(a);
+  }
   if (a.slurm.empty()) return run_run(a);
   if (a.resume || a.status) return run_slurm_existing(a);
   return run_slurm_new(a);
@@ -620,6 +714,27 @@ Command add_run(CLI::App& app) {
                   "run only shard i of N (query k is in shard k mod N + 1); the other queries "
                   "stay not-run, and solutions merge joins the shards")
       ->option_text("i/N");
+  sub->add_option("--profile", a->profile,
+                  "run a solver that does not speak the protocol through its profile: a shipped "
+                  "one's name (--list-profiles) or a TOML file (spec/RUN.md section 10)")
+      ->option_text("NAME|FILE");
+  sub->add_option("--executable", a->executable, "with --profile: the solver's program")
+      ->option_text("PATH");
+  sub->add_option("--profile-option", a->profile_options,
+                  "with --profile: one of its options (repeatable)")
+      ->option_text("KEY=VALUE")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  sub->add_option("--scale", a->scale,
+                  "with --profile of a solver that reads integer costs: float costs x K rounded; "
+                  "its values are divided back and the factor recorded")
+      ->check(CLI::PositiveNumber)
+      ->option_text("K");
+  sub->add_option("--export-cache", a->export_cache,
+                  "with --profile: where the text forms are exported once and reused (default "
+                  "$MOSB_EXPORT_CACHE, else $XDG_CACHE_HOME/mosb/exports, else "
+                  "~/.cache/mosb/exports; mosb cache clear empties it)")
+      ->option_text("DIR");
+  sub->add_flag("--list-profiles", a->list_profiles, "print the shipped solver profiles");
   add_output_option(sub, a->output, "the solution file (required without --slurm)");
   sub->add_option("--slurm", a->slurm,
                   "write a SLURM job array to DIR instead of running: one task per shard, each "

@@ -288,6 +288,8 @@ nlohmann::json binding_of(const RunConfig& c, const Plan& p) {
                             {"epsilon", c.epsilon},
                             {"threads", c.threads}};
   if (c.shard) binding["shard"] = c.shard->text();
+  if (c.id_base != 0) binding["id_base"] = c.id_base;
+  if (!c.parameters.empty()) binding["parameters"] = c.parameters;
   return binding;
 }
 
@@ -401,8 +403,8 @@ class Runner {
             {"view", p_.view},
             {"objectives", objectives},
             {"query", std::to_string(q)},
-            {"source", std::to_string(p_.queries[q].start)},
-            {"target", std::to_string(p_.queries[q].goal)},
+            {"source", std::to_string(std::uint64_t{p_.queries[q].start} + c_.id_base)},
+            {"target", std::to_string(std::uint64_t{p_.queries[q].goal} + c_.id_base)},
             {"front", f.front_path},
             {"fronts", f.fronts_dir},
             {"threads", std::to_string(c_.threads)}};
@@ -535,6 +537,8 @@ SolverInfo solver_info(const RunConfig& c, const Plan& p, unsigned jobs,
       "wall-clock seconds measured by mosb; the solver's own report is reported_runtime_seconds";
   m["run.mosb_version"] = std::string(kVersion);
   if (c.shard) m["run.shard"] = c.shard->text();
+  if (c.id_base != 0) m["run.id_base"] = std::to_string(c.id_base);
+  for (const auto& [key, value] : c.parameters) m[key] = value;
   return info;
 }
 

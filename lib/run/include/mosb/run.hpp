@@ -10,6 +10,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -131,7 +132,13 @@ struct RunConfig {
   bool allow_new_executable = false;
   std::optional<Shard> shard;  // run only this shard's queries; the file records it (run.shard)
   std::string solver_name, solver_version;  // name empty: the executable's file name
-  std::string output;                       // the solution file; the journal is OUTPUT.journal
+  // What {source} and {target} add to the stored 0-based ids: 1 for a solver that reads the text
+  // a profile prepared in base 1 (the text and the ids come from the same profile field).
+  unsigned id_base = 0;
+  // More of what the run is (a solver profile's name, repository, options, scale), recorded as
+  // the solver's parameters and bound into the journal.
+  std::map<std::string, std::string> parameters;
+  std::string output;  // the solution file; the journal is OUTPUT.journal
   // SHA-256 (hex) of a file: the executable's digest for the metadata.
   std::function<std::string(const std::string&)> sha256_file;
 };

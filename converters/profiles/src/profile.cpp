@@ -1,0 +1,419 @@
+#include "mosb/converters/profile.hpp"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "mosb/command_template.hpp"
+#include "mosb/error.hpp"
+#include "placeholders.hpp"
+
+namespace mosb::converters {
+
+namespace {
+
+constexpr std::array<std::string_view, 19> kPlaceholders = {
+    "instance", "view",       "objectives", "query",   "source",   "target",  "front",
+    "fronts",   "threads",    "executable", "gr",      "multi_gr", "queries", "co",
+    "d",        "time_limit", "epsilon",    "gr:NAME", "OPTION"};
+
+// The message as one line: a quoted value's control characters (a command's newlines) shown as
+// blanks.
+std::string one_line(std::string text) {
+  for (auto& c : text)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) c = ' ';
+  return text;
+}
+
+std::string position(const std::string& file, const toml::source_region& where) {
+  return file + ":" + std::to_string(where.begin.line) + ":" + std::to_string(where.begin.column);
+}
+
+// The keys of one TOML table, read by type; each read marks its key known, and finish() refuses
+// the others. Every error names the file, the line and column, and the key's dotted path.
+class Fields {
+ public:
+  Fields(const toml::table& table, const std::string& file, std::string prefix)
+      : table_(table), file_(file), prefix_(std::move(prefix)) {}
+
+  [[noreturn]] void fail(const toml::node& at, std::string_view key,
+                         const std::string& what) const {
+    throw Error(ErrorCode::invalid_argument,
+                one_line(position(file_, at.source()) + ": key '" + path(key) + "': " + what));
+  }
+  [[noreturn]] void fail_missing(std::string_view key) const {
+    throw Error(ErrorCode::invalid_argument, one_line(position(file_, table_.source()) + ": key '" +
+                                                      path(key) + "' is missing"));
+  }
+  std::string path(std::string_view key) const { return prefix_ + std::string(key); }
+
+  const toml::node* find(std::string_view key) {
+    known_.insert(std::string(key));
+    return table_.get(key);
+  }
+
+  // `blanks`: tabs and newlines are allowed (a command's words may span lines).
+  std::optional<std::string> string(std::string_view key, bool blanks = false) {
+    const auto* node = find(key);
+    if (node == nullptr) return std::nullopt;
+    const auto value = node->value<std::string>();
+    if (!node->is_string()) fail(*node, key, "expected a string");
+    for (const char c : *value)
+      if ((static_cast<unsigned char>(c) < 0x20 || c == 0x7F) &&
+          !(blanks && (c == '\n' || c == '\t')))
+        fail(*node, key, "a control character in the string");
+    return *value;
+  }
+  std::string required_string(std::string_view key, bool blanks = false) {
+    auto value = string(key, blanks);
+    if (!value) fail_missing(key);
+    return *value;
+  }
+  template <class Enum, std::size_t N>
+  std::optional<Enum> choice(std::string_view key, const EnumNames<Enum, N>& names) {
+    const auto text = string(key);
+    if (!text) return std::nullopt;
+    const auto value = names.parse(*text);
+    if (!value) fail(*find(key), key, "'" + *text + "' is not one of " + names.choices_text());
+    return value;
+  }
+  std::optional<bool> boolean(std::string_view key) {
+    const auto* node = find(key);
+    if (node == nullptr) return std::nullopt;
+    if (!node->is_boolean()) fail(*node, key, "expected true or false");
+    return node->value<bool>();
+  }
+  std::optional<std::int64_t> integer(std::string_view key, std::int64_t min, std::int64_t max) {
+    const auto* node = find(key);
+    if (node == nullptr) return std::nullopt;
+    if (!node->is_integer()) fail(*node, key, "expected an integer");
+    const auto value = *node->value<std::int64_t>();
+    if (value < min || value > max)
+      fail(*node, key,
+           std::to_string(value) + " is not in [" + std::to_string(min) + ", " +
+               std::to_string(max) + "]");
+    return value;
+  }
+  std::optional<double> number(std::string_view key, double min, double max) {
+    const auto* node = find(key);
+    if (node == nullptr) return std::nullopt;
+    if (!node->is_number()) fail(*node, key, "expected a number");
+    const auto value = *node->value<double>();
+    if (!std::isfinite(value) || value < min || value > max)
+      fail(*node, key,
+           "not a number in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
+    return value;
+  }
+  const toml::table* table(std::string_view key) {
+    const auto* node = find(key);
+    if (node == nullptr) return nullptr;
+    if (!node->is_table()) fail(*node, key, "expected a table");
+    return node->as_table();
+  }
+  const toml::array* array(std::string_view key) {
+    const auto* node = find(key);
+    if (node == nullptr) return nullptr;
+    if (!node->is_array()) fail(*node, key, "expected an array");
+    return node->as_array();
+  }
+  std::vector<std::string> strings(std::string_view key) {
+    std::vector<std::string> out;
+    if (const auto* list = array(key))
+      for (const auto& item : *list) {
+        if (!item.is_string()) fail(item, key, "expected an array of strings");
+        out.push_back(*item.value<std::string>());
+      }
+    return out;
+  }
+  void finish() const {
+    for (const auto& [key, node] : table_)
+      if (!known_.count(std::string(key.str())))
+        throw Error(ErrorCode::invalid_argument,
+                    one_line(position(file_, key.source()) + ": key '" + path(key.str()) +
+                             "': unknown key"));
+  }
+  const std::string& file() const { return file_; }
+
+ private:
+  const toml::table& table_;
+  const std::string& file_;
+  std::string prefix_;
+  std::set<std::string> known_;
+};
+
+bool is_name(std::string_view text) {
+  if (text.empty() || text.size() > 64) return false;
+  return std::all_of(text.begin(), text.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' ||
+           c == '_';
+  });
+}
+
+ProfileInput parse_input(Fields& root) {
+  ProfileInput in;
+  const auto* table = root.table("input");
+  if (table == nullptr) return in;
+  Fields f(*table, root.file(), "input.");
+  in.form = f.choice("form", kInputFormNames).value_or(InputForm::mosb);
+  in.id_base = static_cast<unsigned>(f.integer("id_base", 0, 1).value_or(0));
+  in.integer_costs = f.boolean("integer_costs").value_or(false);
+  if (const auto max = f.integer("max_arc_cost", 1, std::int64_t{1} << 53))
+    in.max_arc_cost = static_cast<std::uint64_t>(*max);
+  if (const auto max = f.integer("max_degree", 1, std::int64_t{1} << 32))
+    in.max_degree = static_cast<std::uint64_t>(*max);
+  in.parallel_arcs = f.choice("parallel_arcs", kParallelArcsNames).value_or(ParallelArcs::keep);
+  in.append_dummy_arc = f.boolean("append_dummy_arc").value_or(false);
+  in.pad_columns = static_cast<unsigned>(f.integer("pad_columns", 0, 64).value_or(0));
+  in.queries_format = f.choice("queries", kQueriesFormatNames);
+  if (const auto* range = f.array("objectives")) {
+    if (range->size() != 2 || !(*range)[0].is_integer() || !(*range)[1].is_integer())
+      f.fail(*range, "objectives", "expected [MIN, MAX] (MAX 0: no maximum)");
+    const auto min = *(*range)[0].value<std::int64_t>(), max = *(*range)[1].value<std::int64_t>();
+    if (min < 1 || max < 0 || max > 4096 || min > 4096 || (max != 0 && max < min))
+      f.fail(*range, "objectives", "expected 1 <= MIN <= MAX (MAX 0: no maximum)");
+    in.min_objectives = static_cast<unsigned>(min);
+    in.max_objectives = static_cast<unsigned>(max);
+  }
+  if (in.pad_columns > 0 && in.form != InputForm::dimacs_multi_column)
+    f.fail(*f.find("pad_columns"), "pad_columns", "only with form = \"dimacs-multi-column\"");
+  f.finish();
+  return in;
+}
+
+ProfileTimeLimit parse_time_limit(Fields& root) {
+  ProfileTimeLimit limit;
+  const auto* table = root.table("time_limit");
+  if (table == nullptr) return limit;
+  Fields f(*table, root.file(), "time_limit.");
+  limit.scale = f.number("scale", 1, 100).value_or(limit.scale);
+  limit.add_seconds = f.number("add", 0, 1e6).value_or(limit.add_seconds);
+  limit.integer = f.boolean("integer").value_or(false);
+  limit.unlimited = f.number("unlimited", 1, 1e12).value_or(limit.unlimited);
+  f.finish();
+  return limit;
+}
+
+std::vector<ProfileOption> parse_options(Fields& root) {
+  std::vector<ProfileOption> options;
+  const auto* table = root.table("options");
+  if (table == nullptr) return options;
+  Fields all(*table, root.file(), "options.");
+  for (const auto& [key, node] : *table) {
+    const std::string name(key.str());
+    const auto* option_table = all.table(name);
+    if (!is_name(name) ||
+        std::find(kPlaceholders.begin(), kPlaceholders.end(), name) != kPlaceholders.end())
+      all.fail(node, name, "an option's name is letters, digits, - and _, and no placeholder's");
+    Fields f(*option_table, root.file(), "options." + name + ".");
+    ProfileOption option;
+    option.name = name;
+    option.description = f.string("description").value_or("");
+    option.default_value = f.required_string("default");
+    option.values = f.strings("values");
+    if (!option.values.empty() && std::find(option.values.begin(), option.values.end(),
+                                            option.default_value) == option.values.end())
+      f.fail(*f.find("default"), "default", "not one of the values");
+    if (const auto* limits = f.table("max_objectives")) {
+      Fields g(*limits, root.file(), "options." + name + ".max_objectives.");
+      for (const auto& [value, limit] : *limits) {
+        const std::string v(value.str());
+        if (std::find(option.values.begin(), option.values.end(), v) == option.values.end())
+          g.fail(limit, v, "not one of the option's values");
+        option.max_objectives[v] = static_cast<unsigned>(*g.integer(v, 1, 4096));
+      }
+      g.finish();
+    }
+    f.finish();
+    options.push_back(std::move(option));
+  }
+  all.finish();
+  return options;
+}
+
+OutputLine parse_output_line(const toml::node& node, const std::string& file,
+                             const std::string& path, bool status) {
+  if (!node.is_table())
+    throw Error(ErrorCode::invalid_argument,
+                one_line(position(file, node.source()) + ": key '" + path + "': expected a table"));
+  Fields f(*node.as_table(), file, path + ".");
+  OutputLine line;
+  line.file = f.choice("file", kOutputFileNames).value_or(OutputFile::front);
+  line.text = status ? f.required_string("line") : f.required_string("prefix");
+  if (line.text.empty()) f.fail(node, status ? "line" : "prefix", "empty");
+  if (status) line.status = f.choice("status", kQueryStatusNames).value_or(QueryStatus::timeout);
+  if (status && is_completed(line.status))
+    f.fail(*f.find("status"), "status", "a status line states that the solver did not finish");
+  if (const auto when = f.string("when")) {
+    const auto eq = when->find('=');
+    if (eq == std::string::npos || eq == 0)
+      f.fail(*f.find("when"), "when", "expected OPTION=VALUE");
+    line.when_option = when->substr(0, eq);
+    line.when_value = when->substr(eq + 1);
+  }
+  f.finish();
+  return line;
+}
+
+std::vector<OutputLine> parse_output_lines(Fields& f, std::string_view key, bool status) {
+  std::vector<OutputLine> lines;
+  if (const auto* list = f.array(key))
+    for (const auto& item : *list)
+      lines.push_back(parse_output_line(item, f.file(), f.path(key), status));
+  return lines;
+}
+
+std::optional<OutputRuntime> parse_runtime(Fields& out) {
+  const auto* table = out.table("runtime");
+  if (table == nullptr) return std::nullopt;
+  Fields f(*table, out.file(), "output.runtime.");
+  OutputRuntime runtime;
+  runtime.file = f.choice("file", kOutputFileNames).value_or(OutputFile::stdout_file);
+  runtime.prefix = f.required_string("prefix");
+  runtime.field = static_cast<unsigned>(f.integer("field", 0, 1000).value_or(0));
+  runtime.separator = f.string("separator").value_or("");
+  if (runtime.field > 0 && runtime.separator.empty())
+    f.fail(*f.find("field"), "field", "a field needs a separator");
+  const auto unit = f.string("unit").value_or("s");
+  if (unit != "s" && unit != "ms") f.fail(*f.find("unit"), "unit", "expected s or ms");
+  runtime.unit_seconds = unit == "ms" ? 1e-3 : 1;
+  f.finish();
+  return runtime;
+}
+
+ProfileOutput parse_output(Fields& root) {
+  ProfileOutput output;
+  const auto* table = root.table("output");
+  if (table == nullptr) return output;
+  Fields f(*table, root.file(), "output.");
+  output.format = f.string("format").value_or("protocol");
+  if (output.format != "protocol" && output.format != "example-log" &&
+      output.format != "json-log" && output.format != "vectors")
+    f.fail(*f.find("format"), "format", "expected protocol, example-log, json-log or vectors");
+  const bool vectors = output.format == "vectors";
+  for (const char* key : {"file", "prefix", "group", "separator", "trailing_separator", "status",
+                          "finished", "unfinished", "runtime"})
+    if (!vectors && f.find(key) != nullptr)
+      f.fail(*f.find(key), key, "only with format = \"vectors\"");
+  output.file = f.string("file").value_or("{front}");
+  output.prefix = f.string("prefix").value_or("");
+  output.group = static_cast<unsigned>(f.integer("group", 0, 16).value_or(0));
+  output.separator = f.string("separator").value_or(" ");
+  if (output.separator.empty()) f.fail(*f.find("separator"), "separator", "empty");
+  output.trailing_separator = f.boolean("trailing_separator").value_or(false);
+  output.status_lines = parse_output_lines(f, "status", true);
+  output.finished = parse_output_lines(f, "finished", false);
+  output.unfinished = f.choice("unfinished", kQueryStatusNames).value_or(QueryStatus::failed);
+  if (is_completed(output.unfinished))
+    f.fail(*f.find("unfinished"), "unfinished", "expected a status of a search that did not end");
+  output.runtime = parse_runtime(f);
+  f.finish();
+  return output;
+}
+
+// The command's placeholders are known, fit the input form, and {gr} is a word of its own.
+void check_command(const SolverProfile& p, Fields& root) {
+  std::vector<std::string> words;
+  try {
+    words = split_command(p.command);
+  } catch (const Error& e) {
+    root.fail(*root.find("command"), "command", e.what());
+  }
+  const auto refuse = [&](const std::string& what) {
+    root.fail(*root.find("command"), "command", what);
+  };
+  if (words.front() != "{executable}") refuse("the first word is {executable} (--executable PATH)");
+  for (const auto& word : words) {
+    const auto names = profile_internal::placeholder_names(word);
+    if (!names) refuse("a lone brace in '" + word + "'");
+    for (const auto& name : *names) {
+      const bool option = std::any_of(p.options.begin(), p.options.end(),
+                                      [&](const auto& o) { return o.name == name; });
+      const bool gr = name == "gr" || name.rfind("gr:", 0) == 0;
+      const bool known = option || gr ||
+                         std::find(kPlaceholders.begin(), kPlaceholders.end() - 2, name) !=
+                             kPlaceholders.end() - 2;
+      if (!known) refuse("unknown placeholder {" + name + "}");
+      if ((gr || name == "co") && p.input.form != InputForm::dimacs)
+        refuse("{" + name + "} needs input.form = \"dimacs\"");
+      if (name == "multi_gr" && p.input.form != InputForm::dimacs_multi_column)
+        refuse("{multi_gr} needs input.form = \"dimacs-multi-column\"");
+      if (name == "queries" && !p.input.queries_format)
+        refuse(R"({queries} needs input.queries = "space" or "comma")");
+      if (name == "gr" && word != "{gr}") refuse("{gr} is a word of its own (one word per file)");
+    }
+  }
+}
+
+}  // namespace
+
+std::span<const std::string_view> profile_placeholders() {
+  return kPlaceholders;
+}
+
+SolverProfile parse_profile(std::string_view text, const std::string& file) {
+  toml::table table;
+  try {
+    table = toml::parse(text, file);
+  } catch (const toml::parse_error& e) {
+    throw Error(ErrorCode::invalid_argument,
+                one_line(position(file, e.source()) + ": " + std::string(e.description())));
+  }
+  Fields root(table, file, "");
+  SolverProfile p;
+  p.file = file;
+  p.name = root.required_string("name");
+  if (!is_name(p.name)) root.fail(*root.find("name"), "name", "letters, digits, - and _ only");
+  p.solver = root.string("solver").value_or("");  // empty: the executable's file name
+  p.description = root.string("description").value_or("");
+  p.repository = root.string("repository").value_or("");
+  p.version = root.string("version").value_or("");
+  p.command = root.required_string("command", true);
+  if (const auto* codes = root.array("success_exit_codes")) {
+    p.success_exit_codes.clear();
+    for (const auto& code : *codes) {
+      if (!code.is_integer() || *code.value<std::int64_t>() < 0 ||
+          *code.value<std::int64_t>() > 255)
+        root.fail(code, "success_exit_codes", "expected exit statuses 0 to 255");
+      p.success_exit_codes.push_back(static_cast<int>(*code.value<std::int64_t>()));
+    }
+    if (p.success_exit_codes.empty())
+      root.fail(*codes, "success_exit_codes", "at least one exit status");
+  }
+  p.input = parse_input(root);
+  p.time_limit = parse_time_limit(root);
+  p.options = parse_options(root);
+  p.output = parse_output(root);
+  check_command(p, root);
+  root.finish();
+  return p;
+}
+
+SolverProfile load_profile(const std::string& name_or_path) {
+  const bool path =
+      name_or_path.find('/') != std::string::npos ||
+      (name_or_path.size() > 5 && name_or_path.compare(name_or_path.size() - 5, 5, ".toml") == 0);
+  if (!path) {
+    for (const auto& shipped : shipped_profiles())
+      if (shipped.name == name_or_path)
+        return parse_profile(shipped.text, "(shipped) " + std::string(shipped.name) + ".toml");
+    std::string names;
+    for (const auto& shipped : shipped_profiles())
+      names += (names.empty() ? "" : ", ") + std::string(shipped.name);
+    throw Error(ErrorCode::invalid_argument,
+                "--profile " + name_or_path + ": no shipped profile of that name (shipped: " +
+                    names + "; a file's path has a / or ends in .toml)");
+  }
+  std::ifstream in(name_or_path, std::ios::binary);
+  if (!in) throw Error(ErrorCode::io, name_or_path + ": cannot open the profile");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (text.str().size() > (1u << 20)) throw Error(name_or_path + ": a profile of more than 1 MiB");
+  return parse_profile(text.str(), name_or_path);
+}
+
+}  // namespace mosb::converters

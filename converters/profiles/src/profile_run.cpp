@@ -1,0 +1,263 @@
+#include "mosb/converters/profile_run.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "mosb/command_template.hpp"
+#include "mosb/converters/solver_output.hpp"
+#include "mosb/error.hpp"
+#include "mosb/views.hpp"
+#include "placeholders.hpp"
+
+namespace mosb::converters {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+[[noreturn]] void refuse(const std::string& message) {
+  throw Error(ErrorCode::invalid_argument, message);
+}
+
+// Every option's value: its default, or what --profile-option gave.
+std::map<std::string, std::string> option_values(const SolverProfile& p,
+                                                 const std::vector<std::string>& given) {
+  std::map<std::string, std::string> values;
+  for (const auto& option : p.options) values[option.name] = option.default_value;
+  std::map<std::string, bool> seen;
+  for (const auto& text : given) {
+    const auto eq = text.find('=');
+    const std::string key = text.substr(0, eq);
+    const auto option = std::find_if(p.options.begin(), p.options.end(),
+                                     [&](const auto& o) { return o.name == key; });
+    if (eq == std::string::npos || option == p.options.end()) {
+      std::string names;
+      for (const auto& o : p.options) names += (names.empty() ? "" : ", ") + o.name;
+      refuse("--profile-option " + text + ": profile " + p.name + " has " +
+             (names.empty() ? std::string("no options") : "the options " + names) + " (KEY=VALUE)");
+    }
+    if (seen[key]) refuse("--profile-option " + key + ": given twice");
+    seen[key] = true;
+    const auto value = text.substr(eq + 1);
+    if (!option->values.empty() &&
+        std::find(option->values.begin(), option->values.end(), value) == option->values.end()) {
+      std::string allowed;
+      for (const auto& v : option->values) allowed += (allowed.empty() ? "" : ", ") + v;
+      refuse("--profile-option " + text + ": " + key + " is one of " + allowed);
+    }
+    if (value.empty() || value.find_first_of(" \t\n{}") != std::string::npos)
+      refuse("--profile-option " + text + ": a value without blanks or braces");
+    values[key] = value;
+  }
+  return values;
+}
+
+void check_objective_count(const SolverProfile& p, std::size_t d,
+                           const std::map<std::string, std::string>& values) {
+  const auto& in = p.input;
+  if (d < in.min_objectives || (in.max_objectives > 0 && d > in.max_objectives))
+    refuse("profile " + p.name + ": its solver takes " + std::to_string(in.min_objectives) +
+           (in.max_objectives > 0 ? " to " + std::to_string(in.max_objectives) : " or more") +
+           " objectives, the run has " + std::to_string(d));
+  for (const auto& option : p.options) {
+    const auto limit = option.max_objectives.find(values.at(option.name));
+    if (limit != option.max_objectives.end() && d > limit->second)
+      refuse("profile " + p.name + ": " + option.name + "=" + limit->first + " takes at most " +
+             std::to_string(limit->second) + " objectives, the run has " + std::to_string(d) +
+             " (the solver would silently drop the others)");
+  }
+}
+
+// {time_limit}: above mosb's own limit, so the solver's cut-off never ends a search mosb would let
+// finish (its limit is CPU time of the search; mosb's wall time of the whole process).
+std::string time_limit_text(const ProfileTimeLimit& rule, const ProcessLimits& limits) {
+  const double mosb = std::max(limits.wall_seconds, limits.cpu_seconds);
+  double value = mosb > 0 ? mosb * rule.scale + rule.add_seconds : rule.unlimited;
+  if (rule.integer) value = std::ceil(value);
+  if (rule.integer || value == std::floor(value))
+    return std::to_string(static_cast<std::uint64_t>(value));
+  return format_real_cost(value);
+}
+
+// A word that split_command reads back as exactly `word`.
+std::string quoted(const std::string& word) {
+  std::string out = "'";
+  for (const char c : word) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+struct RunInput {
+  DimacsExportFiles files;
+  fs::path directory;
+  bool reused = false;
+  std::vector<std::string> objective_names;
+  std::string query_set;
+};
+
+RunInput prepare_input(const RunConfig& config, const ProfileRunRequest& request,
+                       bool uses_coordinates) {
+  const auto& p = request.profile;
+  const auto& instance = *config.instance;
+  const View selection = solution_selection(instance, config.choice);
+  RunInput in;
+  in.query_set = selection.query_set;
+  bool any_float = false;
+  for (const auto j : selection.objectives) {
+    in.objective_names.push_back(instance.objective(j).name);
+    if (format::is_float(instance.objective(j).type)) {
+      any_float = true;
+      if (p.input.integer_costs && p.input.form == InputForm::mosb)
+        refuse(instance.display_name() + ": objective '" + instance.objective(j).name +
+               "' holds float costs and profile " + p.name + "'s solver reads integers only");
+    }
+  }
+  if (p.input.form == InputForm::mosb) {
+    if (request.scale > 0)
+      refuse("--scale: profile " + p.name + "'s solver reads the .mosb itself");
+    return in;
+  }
+  if (request.scale > 0 && !any_float) refuse("--scale: no objective of the run holds float costs");
+  DimacsExportOptions o;
+  o.selection.objectives = in.objective_names;
+  o.selection.queries = in.query_set;
+  o.id_base = p.input.id_base;
+  o.multi_column = p.input.form == InputForm::dimacs_multi_column;
+  o.pad_columns = p.input.pad_columns;
+  o.queries_format = p.input.queries_format.value_or(QueriesFormat::space);
+  o.integer_costs = p.input.integer_costs;
+  o.scale = request.scale;
+  o.max_arc_cost = p.input.max_arc_cost;
+  o.max_degree = p.input.max_degree;
+  o.collapse_parallel_arcs = p.input.parallel_arcs == ParallelArcs::collapse;
+  o.append_dummy_arc = p.input.append_dummy_arc;
+  o.coordinates = uses_coordinates;
+  const auto cache = request.export_cache.empty() ? default_export_cache() : request.export_cache;
+  auto cached = cached_export(cache, config.instance_path, instance.digest(), o);
+  if (uses_coordinates && cached.files.coordinates.empty())
+    refuse(instance.display_name() + ": profile " + p.name +
+           " passes {co}, and the instance has no vertex data 'coords'");
+  in.files = std::move(cached.files);
+  in.directory = cached.directory;
+  in.reused = cached.reused;
+  return in;
+}
+
+// The run-constant placeholders' values; nullopt for the per-query ones lib/run fills.
+std::optional<std::string> run_value(const std::string& name, const RunConfig& config,
+                                     const ProfileRunRequest& request, const RunInput& in,
+                                     const std::map<std::string, std::string>& options) {
+  if (name == "executable") return request.executable;
+  if (name == "multi_gr") return in.files.multi_column.string();
+  if (name == "co") return in.files.coordinates.string();
+  if (name == "d") return std::to_string(in.objective_names.size());
+  if (name == "time_limit") return time_limit_text(request.profile.time_limit, config.limits);
+  if (name == "epsilon") return config.epsilon;
+  if (name == "queries")
+    for (const auto& [set, path] : in.files.queries)
+      if (set == in.query_set) return path.string();
+  if (name.rfind("gr:", 0) == 0) {
+    for (std::size_t k = 0; k < in.objective_names.size(); ++k)
+      if (in.objective_names[k] == name.substr(3)) return in.files.objectives[k].string();
+    refuse("profile " + request.profile.name + ": {" + name + "}: the run has no objective '" +
+           name.substr(3) + "'");
+  }
+  if (const auto option = options.find(name); option != options.end()) return option->second;
+  return std::nullopt;
+}
+
+OutputAdapter profile_adapter(const SolverProfile& p, const VectorsContext& context) {
+  if (p.output.format == "vectors")
+    return [output = p.output, context](const SolverOutputFiles& files) {
+      return read_vectors_output(files, output, context);
+    };
+  const auto* format = find_solver_output_format(p.output.format);
+  if (format == nullptr) refuse("profile " + p.name + ": no output format " + p.output.format);
+  // The registry's readers match a log's endpoints with the query: in the solver's id base.
+  return [inner = format->adapter(), context](const SolverOutputFiles& files) {
+    SolverOutputFiles shifted = files;
+    shifted.query.start += context.id_base;
+    shifted.query.goal += context.id_base;
+    auto out = inner(shifted);
+    for (std::size_t i = 0; i < out.costs.size(); ++i)
+      if (context.scaled[i % context.objectives]) out.costs[i] /= context.scale;
+    return out;
+  };
+}
+
+}  // namespace
+
+PreparedProfileRun apply_profile(RunConfig& config, const ProfileRunRequest& request) {
+  const auto& p = request.profile;
+  const auto options = option_values(p, request.options);
+  const auto words = split_command(p.command);
+  bool uses_epsilon = false, uses_coordinates = false;
+  for (const auto& word : words) {
+    const auto names = profile_internal::placeholder_names(word).value_or(
+        std::vector<std::string>{});  // parse_profile refused a lone brace
+    for (const auto& name : names) {
+      uses_epsilon |= name == "epsilon";
+      uses_coordinates |= name == "co";
+    }
+  }
+  if (!uses_epsilon && config.epsilon != "0")
+    refuse("--epsilon " + config.epsilon + ": profile " + p.name +
+           " gives its solver no epsilon (its command has no {epsilon})");
+  const auto in = prepare_input(config, request, uses_coordinates);
+  check_objective_count(p, in.objective_names.size(), options);
+
+  PreparedProfileRun prepared;
+  prepared.export_directory = in.directory;
+  prepared.export_reused = in.reused;
+  std::string command;
+  const auto add = [&](const std::string& word) {
+    command += (command.empty() ? "" : " ") + quoted(word);
+    prepared.words.push_back(word);
+  };
+  for (const auto& word : words) {
+    if (word == "{gr}") {
+      for (const auto& path : in.files.objectives) add(path.string());
+      continue;
+    }
+    add(profile_internal::fill_placeholders(word, [&](const std::string& name) {
+      return run_value(name, config, request, in, options);
+    }));
+  }
+
+  VectorsContext context;
+  context.id_base = p.input.id_base;
+  context.objectives = in.objective_names.size();
+  context.padded_columns = p.input.pad_columns;
+  context.scale = request.scale;
+  context.options = options;
+  for (const auto& name : in.objective_names)
+    context.scaled.push_back(std::find(in.files.scaled_objectives.begin(),
+                                       in.files.scaled_objectives.end(),
+                                       name) != in.files.scaled_objectives.end());
+  config.solver_template = command;
+  config.output_format = p.output.format;
+  config.adapter = profile_adapter(p, context);
+  config.success_exit_codes = p.success_exit_codes;
+  config.id_base = p.input.id_base;
+  if (config.solver_name.empty() && !p.solver.empty()) config.solver_name = p.solver;
+  if (config.solver_version.empty()) config.solver_version = p.version;
+  auto& m = config.parameters;
+  m["profile.name"] = p.name;
+  m["profile.file"] = p.file;
+  if (!p.repository.empty()) m["profile.repository"] = p.repository;
+  m["profile.input"] = std::string(kInputFormNames.name(p.input.form));
+  m["profile.id_base"] = std::to_string(p.input.id_base);
+  for (const auto& [key, value] : options) m["profile.option." + key] = value;
+  if (!in.files.scaled_objectives.empty()) {
+    m["profile.scale"] = format_real_cost(request.scale);
+    std::string names;
+    for (const auto& name : in.files.scaled_objectives) names += (names.empty() ? "" : ",") + name;
+    m["profile.scaled_objectives"] = names;
+  }
+  if (p.input.parallel_arcs == ParallelArcs::collapse)
+    m["profile.parallel_arcs"] =
+        "collapsed: dominated parallel arcs dropped, the others subdivided";
+  if (p.input.append_dummy_arc) m["profile.dummy_arc"] = "appended to every .gr";
+  return prepared;
+}
+
+}  // namespace mosb::converters
