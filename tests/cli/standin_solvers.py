@@ -9,6 +9,8 @@ a two-line executable per solver that does so). Environment:
   STANDIN_SEARCH_SECONDS=X      the search needs X CPU seconds: under a smaller own limit the
                                 stand-in stops as its solver does (a partial front)
   STANDIN_NO_SUMMARY=1          (tmda) end without the summary line, as a killed T-MDA does
+  STANDIN_NO_FRONT=1            (tmda) no Solution lines, as T-MDA built unchanged (its printf
+                                commented out) prints only the summary
 """
 
 import heapq
@@ -355,7 +357,7 @@ def tmda(argv):
     if algorithm not in ("MDA", "NAMOA"):
         finish(0)
     front = pareto(n, arcs, s, t)
-    if algorithm == "MDA":
+    if algorithm == "MDA" and not os.environ.get("STANDIN_NO_FRONT"):
         for c in front:
             print("Solution %d %d %d" % c)
     if os.environ.get("STANDIN_NO_SUMMARY"):

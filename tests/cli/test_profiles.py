@@ -178,6 +178,14 @@ class ProfileTest(CliTest):
                              env=env)
         self.assertEqual(self.statuses("tmda.sol"), {"failed": 8})
         self.assertIn("has no line starting with 'T-MDA;': the search did not finish", r.stderr)
+        # T-MDA built unchanged prints its summary (N solutions) and no front: failed, with why,
+        # never 8 queries read as disconnected.
+        env = dict(self.env, STANDIN_NO_FRONT="1")
+        r = self.run_profile("g3.mosb", "Grid_3", "tmda", self.standins["tmda"],
+                             output="tmda-nofront.sol", env=env)
+        self.assertEqual(self.statuses("tmda-nofront.sol"), {"failed": 8})
+        self.assertRegex(r.stderr, r"stdout:1: the solver says it found [1-9][0-9]* solutions, its "
+                         r"output holds 0 vectors")
 
     # --- ids, the text forms ---------------------------------------------------------------
 

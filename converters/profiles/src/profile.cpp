@@ -267,22 +267,38 @@ std::vector<OutputLine> parse_output_lines(Fields& f, std::string_view key, bool
   return lines;
 }
 
+// The keys of an output field (OutputField) in `f`.
+OutputField parse_output_field(Fields& f) {
+  OutputField field;
+  field.file = f.choice("file", kOutputFileNames).value_or(OutputFile::stdout_file);
+  field.prefix = f.required_string("prefix");
+  field.field = static_cast<unsigned>(f.integer("field", 0, 1000).value_or(0));
+  field.separator = f.string("separator").value_or("");
+  if (field.field > 0 && field.separator.empty())
+    f.fail(*f.find("field"), "field", "a field needs a separator");
+  return field;
+}
+
 std::optional<OutputRuntime> parse_runtime(Fields& out) {
   const auto* table = out.table("runtime");
   if (table == nullptr) return std::nullopt;
   Fields f(*table, out.file(), "output.runtime.");
   OutputRuntime runtime;
-  runtime.file = f.choice("file", kOutputFileNames).value_or(OutputFile::stdout_file);
-  runtime.prefix = f.required_string("prefix");
-  runtime.field = static_cast<unsigned>(f.integer("field", 0, 1000).value_or(0));
-  runtime.separator = f.string("separator").value_or("");
-  if (runtime.field > 0 && runtime.separator.empty())
-    f.fail(*f.find("field"), "field", "a field needs a separator");
+  static_cast<OutputField&>(runtime) = parse_output_field(f);
   const auto unit = f.string("unit").value_or("s");
   if (unit != "s" && unit != "ms") f.fail(*f.find("unit"), "unit", "expected s or ms");
   runtime.unit_seconds = unit == "ms" ? 1e-3 : 1;
   f.finish();
   return runtime;
+}
+
+std::optional<OutputField> parse_count(Fields& out) {
+  const auto* table = out.table("count");
+  if (table == nullptr) return std::nullopt;
+  Fields f(*table, out.file(), "output.count.");
+  auto count = parse_output_field(f);
+  f.finish();
+  return count;
 }
 
 ProfileOutput parse_output(Fields& root) {
@@ -296,7 +312,7 @@ ProfileOutput parse_output(Fields& root) {
     f.fail(*f.find("format"), "format", "expected protocol, example-log, json-log or vectors");
   const bool vectors = output.format == "vectors";
   for (const char* key : {"file", "prefix", "group", "separator", "trailing_separator", "status",
-                          "finished", "unfinished", "runtime"})
+                          "finished", "unfinished", "runtime", "count"})
     if (!vectors && f.find(key) != nullptr)
       f.fail(*f.find(key), key, "only with format = \"vectors\"");
   output.file = f.string("file").value_or("{front}");
@@ -311,6 +327,7 @@ ProfileOutput parse_output(Fields& root) {
   if (is_completed(output.unfinished))
     f.fail(*f.find("unfinished"), "unfinished", "expected a status of a search that did not end");
   output.runtime = parse_runtime(f);
+  output.count = parse_count(f);
   f.finish();
   return output;
 }

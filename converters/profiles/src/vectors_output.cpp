@@ -3,6 +3,9 @@
 // status, a line whose absence means the search did not finish, and a runtime line.
 #include <charconv>
 #include <cmath>
+#include <optional>
+#include <string>
+#include <utility>
 
 #include "mosb/converters/profile_run.hpp"
 #include "mosb/converters/text_input.hpp"
@@ -145,32 +148,55 @@ void read_vector(std::string_view line, const ProfileOutput& out, const VectorsC
   }
 }
 
-std::optional<double> read_runtime(const OutputRuntime& rule, OutputTexts& texts) {
-  std::optional<double> seconds;
+// The text of `rule`'s field on the first line that has its prefix, trimmed, and where it is
+// ("PATH:LINE"); nullopt when no line has the prefix.
+std::optional<std::pair<std::string, std::string>> read_field(const OutputField& rule,
+                                                              OutputTexts& texts) {
+  std::optional<std::pair<std::string, std::string>> found;
   const auto& path = texts.path(rule.file);
   for_each_line(texts.text(rule.file), [&](std::string_view line, std::size_t number) {
-    if (seconds || line.substr(0, rule.prefix.size()) != rule.prefix) return;
+    if (found || line.substr(0, rule.prefix.size()) != rule.prefix) return;
+    const auto where = path + ":" + std::to_string(number);
     auto value = line.substr(rule.prefix.size());
     if (rule.field > 0) {
       for (unsigned f = 1; f < rule.field; ++f) {
         const auto at = line.find(rule.separator);
         if (at == std::string_view::npos)
-          throw Error(path + ":" + std::to_string(number) + ": no field " +
-                      std::to_string(rule.field) + " in the runtime line");
+          throw Error(where + ": no field " + std::to_string(rule.field) + " in the line");
         line.remove_prefix(at + rule.separator.size());
       }
       value = line.substr(0, line.find(rule.separator));
     }
-    value = trimmed(value);
-    double x = 0;
-    const auto r = std::from_chars(value.data(), value.data() + value.size(), x);
-    if (value.empty() || r.ec != std::errc() || r.ptr != value.data() + value.size() ||
-        !std::isfinite(x) || x < 0)
-      throw Error(path + ":" + std::to_string(number) + ": runtime '" + std::string(value) +
-                  "' is not a number of seconds");
-    seconds = x * rule.unit_seconds;
+    found.emplace(std::string(trimmed(value)), where);
   });
-  return seconds;
+  return found;
+}
+
+std::optional<double> read_runtime(const OutputRuntime& rule, OutputTexts& texts) {
+  const auto field = read_field(rule, texts);
+  if (!field) return std::nullopt;
+  const auto& [value, where] = *field;
+  double x = 0;
+  const auto r = std::from_chars(value.data(), value.data() + value.size(), x);
+  if (value.empty() || r.ec != std::errc() || r.ptr != value.data() + value.size() ||
+      !std::isfinite(x) || x < 0)
+    throw Error(where + ": runtime '" + value + "' is not a number of seconds");
+  return x * rule.unit_seconds;
+}
+
+// The solver's own count of its front against the vectors read: a query whose output holds
+// another number of vectors (none, from a T-MDA built without its front printing) fails.
+void check_count(const OutputField& rule, OutputTexts& texts, std::uint64_t vectors) {
+  const auto field = read_field(rule, texts);
+  if (!field) return;  // no such line: `finished` says whether the search ended
+  const auto& [value, where] = *field;
+  std::uint64_t count = 0;
+  const auto r = std::from_chars(value.data(), value.data() + value.size(), count);
+  if (value.empty() || r.ec != std::errc() || r.ptr != value.data() + value.size())
+    throw Error(where + ": the count of solutions '" + value + "' is not a whole number");
+  if (count != vectors)
+    throw Error(where + ": the solver says it found " + value + " solutions, its output holds " +
+                std::to_string(vectors) + " vectors");
 }
 
 ParsedOutput stated(QueryStatus status, std::string statement) {
@@ -222,6 +248,7 @@ ParsedOutput read_vectors_output(const SolverOutputFiles& files, const ProfileOu
   });
   out.vectors = context.objectives == 0 ? 0 : out.costs.size() / context.objectives;
   if (output.runtime) out.statistics.runtime_seconds = read_runtime(*output.runtime, texts);
+  if (output.count) check_count(*output.count, texts, out.vectors);
   return out;
 }
 

@@ -79,12 +79,16 @@ struct OutputLine {
   std::string when_option, when_value;        // only when --profile-option when_option=when_value
 };
 
-// The solver's runtime: the line starting with `prefix`, its `field`-th field (1-based) split
-// on `separator` (0: the rest of the line after the prefix), × unit_seconds.
-struct OutputRuntime {
+// A value on a line of the output: the line starting with `prefix`, its `field`-th field
+// (1-based) split on `separator` (0: the rest of the line after the prefix).
+struct OutputField {
   OutputFile file = OutputFile::stdout_file;
   std::string prefix, separator;
   unsigned field = 0;
+};
+
+// The solver's runtime: an output field × unit_seconds.
+struct OutputRuntime : OutputField {
   double unit_seconds = 1;
 };
 
@@ -103,6 +107,9 @@ struct ProfileOutput {
   std::vector<OutputLine> finished;  // a line that must be there, else `unfinished`
   QueryStatus unfinished = QueryStatus::failed;
   std::optional<OutputRuntime> runtime;
+  // The number of vectors the solver says it found (T-MDA's summary): a front of another size
+  // fails the query, so a build that does not print its front is never read as disconnected.
+  std::optional<OutputField> count;
 };
 
 struct SolverProfile {
