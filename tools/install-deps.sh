@@ -12,6 +12,7 @@ build=(
   libssl-dev                                # SHA-256 (libcrypto) for manifests and stores
   libcurl4-openssl-dev                      # HTTP(S) transfers of mosb store pull (mosb::pull)
   libexpat1-dev                             # streaming XML parser: GraphML roadmaps
+  libtomlplusplus-dev                       # TOML: experiment files (mosb experiment)
   zlib1g-dev libbz2-dev liblzma-dev libzstd-dev  # compressed inputs
   librsvg2-dev libcairo2-dev                # mosb plot -o fig.pdf|fig.png (the program only)
   doctest-dev                               # unit tests (the release preset configures them)

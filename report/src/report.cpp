@@ -72,8 +72,25 @@ std::string objective_names(const GraphReader& g, const View& v) {
   return out;
 }
 
-// The benchmarks of the instances: each view by name (instances sharing it aggregated), in the
-// order of first appearance; an instance without views is one benchmark of all its objectives.
+// A view the suite names as a benchmark of its own, NAME_d with d its number of objectives
+// (Grid_2, NetMaker_3, Games-GUARDS_2, DIMACS-Extended-NY_4): the suite groups every instance
+// that has it into that one benchmark. Any other view ("length", a Moving AI map's) is a view of
+// one instance's own benchmark.
+bool is_suite_benchmark_view(const View& v) {
+  const auto separator = v.name.rfind('_');
+  return separator != std::string::npos && separator > 0 &&
+         v.name.substr(separator + 1) == std::to_string(v.objectives.size());
+}
+
+// The instance's name on the page: its `benchmark` metadata, else its file's display name.
+std::string instance_name(const GraphReader& g) {
+  return g.metadata().get("benchmark").value_or(g.display_name());
+}
+
+// The benchmarks of the instances, in the order of first appearance: a suite benchmark view
+// (is_suite_benchmark_view) groups the instances that have it under the view's name; any other
+// view is the benchmark of its instance, named by the instance (INSTANCE/VIEW when the instance
+// has more than one such view); an instance without views is one benchmark of all its objectives.
 std::vector<Benchmark> benchmarks_of(std::span<const GraphReader> instances) {
   std::vector<Benchmark> out;
   std::map<std::string, std::size_t> by_name;
@@ -82,15 +99,21 @@ std::vector<Benchmark> benchmarks_of(std::span<const GraphReader> instances) {
     auto views = g.views();
     if (views.empty()) {
       View all;
-      all.name = g.metadata().get("benchmark").value_or(g.display_name());
+      all.name = instance_name(g);
       for (std::size_t k = 0; k < g.objective_count(); ++k) all.objectives.push_back(k);
       views.push_back(all);
     }
+    const auto own_views = std::count_if(views.begin(), views.end(), [](const View& v) {
+      return !is_suite_benchmark_view(v);
+    });
     for (auto& v : views) {
-      auto [at, added] = by_name.emplace(v.name, out.size());
+      const auto name = is_suite_benchmark_view(v) || g.views().empty() ? v.name
+                        : own_views > 1 ? instance_name(g) + "/" + v.name
+                                        : instance_name(g);
+      auto [at, added] = by_name.emplace(name, out.size());
       if (added) {
         out.emplace_back();
-        out.back().name = v.name;
+        out.back().name = name;
         out.back().family = g.metadata().get("family").value_or("");
       }
       out[at->second].instances.push_back(i);
@@ -707,9 +730,11 @@ void write_benchmark(const Context& c, std::size_t b) {
   const auto& bm = c.benchmarks[b];
   const auto& g = c.instances[bm.instances.front()];
   c.page.section(bm.anchor, bm.name);
+  std::string names;
+  for (auto i : bm.instances) names += (names.empty() ? "" : ", ") + instance_name(c.instances[i]);
   c.page.paragraph(
       "family " + (bm.family.empty() ? std::string("unknown") : bm.family) + "; " +
-      count_of(bm.instances.size(), "instance") + "; objectives " +
+      count_of(bm.instances.size(), "instance") + " (" + names + "); objectives " +
       objective_names(g, bm.views.front()) +
       (bm.instances.size() > 1 ? "; the figures below are of " + g.display_name() : std::string()));
   correlation_figure(c, b);
