@@ -198,6 +198,8 @@ Command add_eval(CLI::App& app);                     // eval.cpp: `eval`
 Command add_pack(CLI::App& app);                     // pack.cpp: `pack`
 Command add_run(CLI::App& app);                      // run.cpp: `run`
 Command add_report(CLI::App& app);                   // report.cpp: `report`
+Command add_experiment(CLI::App& app);  // experiment.cpp: `experiment run|status`
+Command add_solutions_reference(CLI::App* solutions);  // solutions_reference.cpp
 Command add_unpack(CLI::App& app);                   // pack.cpp: `unpack`
 
 // Children of `generate`.

@@ -11,7 +11,7 @@ namespace mosb {
 namespace {
 
 // files[k] is the file of options.solvers[k], or null.
-std::vector<const SolutionReader*> files_by_solver(std::span<const SolutionReader> files,
+std::vector<const SolutionReader*> files_by_solver(std::span<const SolutionReader* const> files,
                                                    const ReferenceOptions& options) {
   const auto& solvers = options.solvers;
   if (solvers.empty()) throw Error(ErrorCode::invalid_argument, "no solver named for the reference");
@@ -28,8 +28,9 @@ std::vector<const SolutionReader*> files_by_solver(std::span<const SolutionReade
                 "--prefer '" + *options.prefer + "' is not one of the reference's solvers");
   if (files.empty()) throw Error(ErrorCode::invalid_argument, "no solution file for the reference");
   std::vector<const SolutionReader*> out(solvers.size(), nullptr);
-  for (const auto& file : files) {
-    check_same_binding(files.front(), file);
+  for (const auto* file_pointer : files) {
+    const auto& file = *file_pointer;
+    check_same_binding(*files.front(), file);
     const auto name = solver_name(file);
     const auto at = std::find(solvers.begin(), solvers.end(), name);
     if (at == solvers.end())
@@ -71,7 +72,7 @@ std::uint64_t CrossValidation::count(ReferenceKind kind) const {
       queries.begin(), queries.end(), [&](const ReferenceQuery& q) { return q.kind == kind; }));
 }
 
-CrossValidation cross_validate(std::span<const SolutionReader> files,
+CrossValidation cross_validate(std::span<const SolutionReader* const> files,
                                const ReferenceOptions& options) {
   const auto by_solver = files_by_solver(files, options);
   const std::size_t n = by_solver.size();
@@ -87,7 +88,7 @@ CrossValidation cross_validate(std::span<const SolutionReader> files,
   }
   CrossValidation out;
   out.solvers = options.solvers;
-  const auto queries = files.front().query_count();
+  const auto queries = files.front()->query_count();
   for (std::uint64_t q = 0; q < queries; ++q) {
     ReferenceQuery r;
     r.query = q;
@@ -148,10 +149,10 @@ std::string query_ranges(std::span<const std::uint64_t> queries) {
   return out;
 }
 
-void write_reference(std::span<const SolutionReader> files, const CrossValidation& validation,
+void write_reference(std::span<const SolutionReader* const> files, const CrossValidation& validation,
                      const ReferenceOptions& options, const std::filesystem::path& target) {
   const auto by_solver = files_by_solver(files, options);
-  SolutionWriter writer(files.front());
+  SolutionWriter writer(*files.front());
   SolverInfo info;
   info.name = "reference";
   info.epsilon = "0";
@@ -188,6 +189,38 @@ void write_reference(std::span<const SolutionReader> files, const CrossValidatio
     writer.set_query(q.query, q.status, costs);
   }
   writer.write(target);
+}
+
+std::vector<ReferenceGroup> reference_groups(std::span<const SolutionReader> files,
+                                             const ReferenceOptions& options) {
+  std::vector<ReferenceGroup> groups;
+  for (std::size_t f = 0; f < files.size(); ++f) {
+    const auto name = solver_name(files[f]);
+    if (std::find(options.solvers.begin(), options.solvers.end(), name) == options.solvers.end())
+      continue;
+    const auto& file = files[f];
+    auto group = std::find_if(groups.begin(), groups.end(), [&](const ReferenceGroup& g) {
+      const auto& first = files[g.files.front()];
+      return first.instance_digest() == file.instance_digest() &&
+             first.view_name() == file.view_name() && first.query_set() == file.query_set();
+    });
+    if (group == groups.end()) {
+      groups.push_back({{}, std::filesystem::path(file.display_name()).filename().string()});
+      group = groups.end() - 1;
+    }
+    group->files.push_back(f);
+  }
+  for (std::size_t g = 0; g < groups.size(); ++g)
+    for (std::size_t h = 0; h < g; ++h)
+      if (groups[g].name == groups[h].name)
+        throw Error(ErrorCode::invalid_argument,
+                    "two references would be named " + groups[g].name + ": " +
+                        files[groups[h].files.front()].display_name() + " and " +
+                        files[groups[g].files.front()].display_name() +
+                        " are of different instances or views");
+  if (groups.empty())
+    throw Error(ErrorCode::invalid_argument, "no solution file of the named solvers");
+  return groups;
 }
 
 }  // namespace mosb

@@ -71,7 +71,7 @@ struct CrossValidation {
 // mosb::Error (invalid_argument) for no solver, a solver named twice or with a ',', a file of a
 // solver not named or two of one solver, no file at all, `prefer` not among the solvers, or a
 // tolerance outside [0, 1).
-CrossValidation cross_validate(std::span<const SolutionReader> files,
+CrossValidation cross_validate(std::span<const SolutionReader* const> files,
                                const ReferenceOptions& options);
 
 // The reference as a solution file of the files' binding: each query's status and the front of its
@@ -79,8 +79,20 @@ CrossValidation cross_validate(std::span<const SolutionReader> files,
 // `solution.solver.param.solvers` (the names, comma-separated), `.param.prefer` (when given) and
 // per kind K other than unsolved `.param.K` (the queries, as ranges "0-4,7"), per solver i
 // `.param.agreed.<i>` (the queries whose front it gave). Written atomically.
-void write_reference(std::span<const SolutionReader> files, const CrossValidation& validation,
+void write_reference(std::span<const SolutionReader* const> files, const CrossValidation& validation,
                      const ReferenceOptions& options, const std::filesystem::path& target);
+
+// The files of one binding (instance, view, query set), indices into the files given, and the
+// reference's file name: the base name of the group's first file.
+struct ReferenceGroup {
+  std::vector<std::size_t> files;
+  std::string name;
+};
+// The files of the named solvers (solver_name; others are left out) grouped by binding, in the
+// order of their first file. Throws mosb::Error (invalid_argument) when two groups would have one
+// name, or for no file of a named solver.
+std::vector<ReferenceGroup> reference_groups(std::span<const SolutionReader> files,
+                                             const ReferenceOptions& options);
 
 // "0-4,7,9-12": ascending distinct numbers as ranges; "" for none.
 std::string query_ranges(std::span<const std::uint64_t> queries);
