@@ -103,9 +103,8 @@ std::vector<Benchmark> benchmarks_of(std::span<const GraphReader> instances) {
       for (std::size_t k = 0; k < g.objective_count(); ++k) all.objectives.push_back(k);
       views.push_back(all);
     }
-    const auto own_views = std::count_if(views.begin(), views.end(), [](const View& v) {
-      return !is_suite_benchmark_view(v);
-    });
+    const auto own_views = std::count_if(views.begin(), views.end(),
+                                         [](const View& v) { return !is_suite_benchmark_view(v); });
     for (auto& v : views) {
       const auto name = is_suite_benchmark_view(v) || g.views().empty() ? v.name
                         : own_views > 1 ? instance_name(g) + "/" + v.name

@@ -54,8 +54,7 @@ int run_suite_build(const SuiteBuildArgs& a) {
   });
   TerminalProgress progress;
   const auto entries = converters::run_suite(
-      a.directory, instances,
-      {a.threads, progress.callback(), suite_pack(!a.no_pack), a.replace});
+      a.directory, instances, {a.threads, progress.callback(), suite_pack(!a.no_pack), a.replace});
   if (!a.json)
     for (const auto& s : raw)
       std::cout << s.name << ": "

@@ -127,8 +127,11 @@ ExperimentSolver read_solver(const toml::table& table, std::size_t index, const 
           !node.is_boolean())
         t.fail(node, "options." + std::string(key.str()), "must be a string, number or boolean");
       std::ostringstream value;
-      if (node.is_string()) value << *node.value<std::string>();
-      else value << node;
+      node.visit([&](const auto& v) {
+        if constexpr (toml::is_string<decltype(v)>) value << v.get();
+        else if constexpr (toml::is_boolean<decltype(v)>) value << (v.get() ? "true" : "false");
+        else if constexpr (toml::is_number<decltype(v)>) value << v.get();
+      });
       s.options[std::string(key.str())] = value.str();
     }
   }

@@ -124,8 +124,8 @@ std::vector<SuiteEntry> run_suite(const std::filesystem::path& directory,
 
   for (const auto& entry : kept) {
     manifest.entries.push_back(entry);
-    const auto stem = entry.file.ends_with(".mosb") ? entry.file.substr(0, entry.file.size() - 5)
-                                                    : entry.file;
+    const auto stem =
+        entry.file.ends_with(".mosb") ? entry.file.substr(0, entry.file.size() - 5) : entry.file;
     entries.push_back({stem, entry.file, entry.size, entry.digest, true});
   }
   std::sort(manifest.entries.begin(), manifest.entries.end(),
