@@ -1,5 +1,8 @@
-// `mosb experiment run EXP.toml -o RESULTS` and `mosb experiment status RESULTS` (spec/EXPERIMENT.md):
-// the file read by converters/experiment, the cells planned and run by lib/experiment.
+// `mosb experiment run EXP.toml -o RESULTS` and `mosb experiment status RESULTS`
+// (spec/EXPERIMENT.md): the file read by converters/experiment, the cells planned and run by
+// lib/experiment.
+#include "mosb/experiment.hpp"
+
 #include <CLI/CLI.hpp>
 #include <csignal>
 #include <iostream>
@@ -9,7 +12,6 @@
 #include "json_writer.hpp"
 #include "mosb/converters/experiment_file.hpp"
 #include "mosb/converters/solver_output.hpp"
-#include "mosb/experiment.hpp"
 #include "mosb/internal/utf8.hpp"
 #include "terminal_progress.hpp"
 
@@ -19,7 +21,9 @@ namespace {
 
 std::atomic<bool> g_experiment_stop{false};
 
-extern "C" void request_experiment_stop(int) { g_experiment_stop.store(true); }
+extern "C" void request_experiment_stop(int) {
+  g_experiment_stop.store(true);
+}
 
 struct ExperimentRunArgs {
   std::string file, output, measurement = "auto";
@@ -67,8 +71,8 @@ int run_experiment_command(const ExperimentRunArgs& a) {
   const auto result = run_experiment(plan, a.output, options, g_experiment_stop);
   progress.end_line();
   if (result.interrupted) {
-    std::cerr << "mosb: interrupted; finished cells are listed in "
-              << escape_for_terminal(a.output) << "/MANIFEST, the running one keeps its journal; "
+    std::cerr << "mosb: interrupted; finished cells are listed in " << escape_for_terminal(a.output)
+              << "/MANIFEST, the running one keeps its journal; "
               << "run the same command again to continue\n";
     return 130;
   }
@@ -87,9 +91,9 @@ int run_experiment_command(const ExperimentRunArgs& a) {
     std::cout << '\n';
     return 0;
   }
-  std::cout << "experiment " << escape_for_terminal(plan.experiment.name) << ": "
-            << result.cells << " cells, " << result.ran << " run now, " << result.skipped
-            << " done before; " << status_counts_text(result.counts, true) << "; results in "
+  std::cout << "experiment " << escape_for_terminal(plan.experiment.name) << ": " << result.cells
+            << " cells, " << result.ran << " run now, " << result.skipped << " done before; "
+            << status_counts_text(result.counts, true) << "; results in "
             << escape_for_terminal(a.output) << '\n';
   return 0;
 }
@@ -139,9 +143,8 @@ int run_experiment_status(const ExperimentStatusArgs& a) {
   std::cout << '\n';
   const auto rerun = std::count_if(cells.begin(), cells.end(), to_rerun);
   if (rerun > 0) {
-    std::cout << "to rerun: " << rerun
-              << " cells: `mosb experiment run EXP.toml -o " << escape_for_terminal(a.results)
-              << "` runs the missing and stopped ones";
+    std::cout << "to rerun: " << rerun << " cells: `mosb experiment run EXP.toml -o "
+              << escape_for_terminal(a.results) << "` runs the missing and stopped ones";
     if (totals[CellState::failed] + totals[CellState::damaged] > 0)
       std::cout << "; a failed or damaged cell runs again once its file and MANIFEST record are "
                    "removed";
@@ -173,8 +176,9 @@ Command add_experiment(CLI::App& app) {
       "status", "Per cell of RESULTS: done, running, stopped, missing, failed or damaged");
   status->add_option("RESULTS", status_args->results, "the results directory")->required();
   add_json_flag(status, status_args->json);
-  return group(experiment, {{run, [run_args] { return run_experiment_command(*run_args); }},
-                            {status, [status_args] { return run_experiment_status(*status_args); }}});
+  return group(experiment,
+               {{run, [run_args] { return run_experiment_command(*run_args); }},
+                {status, [status_args] { return run_experiment_status(*status_args); }}});
 }
 
 }  // namespace mosb::cli

@@ -39,7 +39,8 @@ std::string disagreement_line(const std::string& name, const ReferenceQuery& q) 
 int run_reference(const ReferenceArgs& a) {
   std::vector<SolutionReader> files;
   for (const auto& input : a.inputs)
-    for (const auto& path : result_files(input)) files.push_back(SolutionReader::open_verified(path));
+    for (const auto& path : result_files(input))
+      files.push_back(SolutionReader::open_verified(path));
   ReferenceOptions options;
   options.solvers = a.solvers;
   if (!a.prefer.empty()) options.prefer = a.prefer;
@@ -61,10 +62,11 @@ int run_reference(const ReferenceArgs& a) {
     JsonWriter out(std::cout);
     out.begin_object().key("references").begin_array();
     for (std::size_t g = 0; g < groups.size(); ++g) {
-      out.begin_object().key("file").value((std::filesystem::path(a.output) / groups[g].name).string());
-      for (const auto kind : {ReferenceKind::agreed, ReferenceKind::single,
-                              ReferenceKind::disagreement, ReferenceKind::preferred,
-                              ReferenceKind::unsolved})
+      out.begin_object().key("file").value(
+          (std::filesystem::path(a.output) / groups[g].name).string());
+      for (const auto kind :
+           {ReferenceKind::agreed, ReferenceKind::single, ReferenceKind::disagreement,
+            ReferenceKind::preferred, ReferenceKind::unsolved})
         out.key(std::string(to_string(kind))).value(validations[g].count(kind));
       out.key("disagreements").begin_array();
       for (const auto& q : validations[g].queries) {
@@ -87,7 +89,8 @@ int run_reference(const ReferenceArgs& a) {
     for (const auto& q : v.queries)
       if (q.kind == ReferenceKind::disagreement || q.kind == ReferenceKind::preferred)
         std::cout << escape_for_terminal(disagreement_line(groups[g].name, q)) << '\n';
-    std::cout << "wrote " << escape_for_terminal((std::filesystem::path(a.output) / groups[g].name).string())
+    std::cout << "wrote "
+              << escape_for_terminal((std::filesystem::path(a.output) / groups[g].name).string())
               << ": " << v.queries.size() << " queries, " << v.count(ReferenceKind::agreed)
               << " agreed, " << v.count(ReferenceKind::single) << " by one solver only, "
               << v.count(ReferenceKind::disagreement) << " disagreements left out, "

@@ -97,16 +97,16 @@ void TerminalProgress::update(const ExperimentProgress& p) {
     return;
   last_draw_ = now;
   std::string line = "\rcells " + std::to_string(p.cells_done) + "/" +
-                     std::to_string(p.cells_total) + ", queries " +
-                     std::to_string(p.queries_done) + "/" + std::to_string(p.queries_total);
+                     std::to_string(p.cells_total) + ", queries " + std::to_string(p.queries_done) +
+                     "/" + std::to_string(p.queries_total);
   auto counts = p.counts;
   counts[QueryStatus::not_run] = 0;
   if (const auto text = status_counts_text(counts, true); !text.empty()) line += ", " + text;
   if (p.queries_done_here != 0 && p.queries_done < p.queries_total)
     line += ", ETA " +
-            std::to_string(static_cast<long>(p.elapsed_seconds /
-                                             static_cast<double>(p.queries_done_here) *
-                                             static_cast<double>(p.queries_total - p.queries_done))) +
+            std::to_string(
+                static_cast<long>(p.elapsed_seconds / static_cast<double>(p.queries_done_here) *
+                                  static_cast<double>(p.queries_total - p.queries_done))) +
             " s";
   if (!p.cell.empty() && p.queries_done < p.queries_total)
     line += " (" + escape_for_terminal(p.cell) + ")";

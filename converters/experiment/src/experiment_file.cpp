@@ -1,8 +1,9 @@
 #include "mosb/converters/experiment_file.hpp"
 
+#include <toml++/toml.h>
+
 #include <set>
 #include <sstream>
-#include <toml++/toml.h>
 
 #include "mosb/converters/solver_output.hpp"
 #include "mosb/error.hpp"
@@ -20,8 +21,7 @@ class TableReader {
 
   [[noreturn]] void fail(const toml::node& at, const std::string& key,
                          const std::string& problem) const {
-    throw Error(ErrorCode::invalid_argument,
-                experiment_error(e_, where(at, key), problem));
+    throw Error(ErrorCode::invalid_argument, experiment_error(e_, where(at, key), problem));
   }
   SourceLine where(const toml::node& at, const std::string& key) const {
     return {static_cast<std::size_t>(at.source().begin.line), prefix_ + key};
@@ -128,9 +128,12 @@ ExperimentSolver read_solver(const toml::table& table, std::size_t index, const 
         t.fail(node, "options." + std::string(key.str()), "must be a string, number or boolean");
       std::ostringstream value;
       node.visit([&](const auto& v) {
-        if constexpr (toml::is_string<decltype(v)>) value << v.get();
-        else if constexpr (toml::is_boolean<decltype(v)>) value << (v.get() ? "true" : "false");
-        else if constexpr (toml::is_number<decltype(v)>) value << v.get();
+        if constexpr (toml::is_string<decltype(v)>)
+          value << v.get();
+        else if constexpr (toml::is_boolean<decltype(v)>)
+          value << (v.get() ? "true" : "false");
+        else if constexpr (toml::is_number<decltype(v)>)
+          value << v.get();
       });
       s.options[std::string(key.str())] = value.str();
     }
@@ -141,6 +144,10 @@ ExperimentSolver read_solver(const toml::table& table, std::size_t index, const 
     s.output_format = *format;
   }
   s.epsilon = t.text("epsilon").value_or("0");
+  for (auto& [pattern, line] : t.texts("benchmarks")) {
+    s.benchmarks.push_back(pattern);
+    s.benchmark_sources.push_back(line);
+  }
   t.refuse_unknown();
   if (s.solver_template.empty() == s.profile.empty())
     t.fail(table, "template", "give exactly one of template and profile");
@@ -159,10 +166,10 @@ Experiment parse_experiment(std::string_view text, const std::string& display_na
   try {
     root = toml::parse(text, display_name);
   } catch (const toml::parse_error& err) {
-    throw Error(ErrorCode::invalid_argument,
-                display_name + ":" + std::to_string(err.source().begin.line) + ":" +
-                    std::to_string(err.source().begin.column) + ": " +
-                    std::string(err.description()));
+    throw Error(ErrorCode::invalid_argument, display_name + ":" +
+                                                 std::to_string(err.source().begin.line) + ":" +
+                                                 std::to_string(err.source().begin.column) + ": " +
+                                                 std::string(err.description()));
   }
   TableReader t(root, "", e);
   e.name = t.required_text("name");
@@ -172,7 +179,8 @@ Experiment parse_experiment(std::string_view text, const std::string& display_na
   }
   for (auto& [path, line] : t.texts("instances")) e.instances.emplace_back(path);
   if (e.store.empty() == e.instances.empty())
-    t.fail(root, e.store.empty() ? "store" : "instances", "give exactly one of store and instances");
+    t.fail(root, e.store.empty() ? "store" : "instances",
+           "give exactly one of store and instances");
   if (e.store.empty()) e.store_source = t.where("instances");
   for (auto& [pattern, line] : t.texts("benchmarks")) {
     e.benchmarks.push_back(pattern);

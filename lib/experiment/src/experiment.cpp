@@ -5,11 +5,10 @@
 #include <sys/file.h>
 #include <unistd.h>
 
-#include <cerrno>
-#include <cstring>
-
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -111,10 +110,14 @@ std::string executable_digest(const Experiment& e, const ExperimentSolver& solve
 }
 
 Json cell_json(const ExperimentCell& c) {
-  return {{"solver", c.solver},           {"instance", c.instance},
-          {"view", c.view},               {"query_set", c.query_set},
-          {"instance_digest", c.instance_digest}, {"instance_file", c.instance_file},
-          {"queries", c.queries},         {"file", c.file}};
+  return {{"solver", c.solver},
+          {"instance", c.instance},
+          {"view", c.view},
+          {"query_set", c.query_set},
+          {"instance_digest", c.instance_digest},
+          {"instance_file", c.instance_file},
+          {"queries", c.queries},
+          {"file", c.file}};
 }
 
 ExperimentCell cell_of(const Json& j) {
@@ -143,11 +146,9 @@ void write_text_atomically(const fs::path& path, const std::string& text) {
 }
 
 void write_results_manifest(const fs::path& results, std::vector<CellRecord> records) {
-  std::sort(records.begin(), records.end(), [](const CellRecord& a, const CellRecord& b) {
-    return a.cell.id() < b.cell.id();
-  });
-  std::string text =
-      Json{{"format", kResultsManifestFormat}, {"version", kVersion}}.dump() + "\n";
+  std::sort(records.begin(), records.end(),
+            [](const CellRecord& a, const CellRecord& b) { return a.cell.id() < b.cell.id(); });
+  std::string text = Json{{"format", kResultsManifestFormat}, {"version", kVersion}}.dump() + "\n";
   for (const auto& r : records) {
     Json j = cell_json(r.cell);
     j["sha256"] = r.sha256;
@@ -168,9 +169,9 @@ Json plan_json(const ExperimentPlan& plan) {
                        {"executable_sha256", plan.executable_sha256[s]}});
   Json cells = Json::array();
   for (const auto& c : plan.cells) cells.push_back(cell_json(c));
-  return {{"format", kPlanFormat},   {"version", kVersion},
+  return {{"format", kPlanFormat},        {"version", kVersion},
           {"name", plan.experiment.name}, {"limits", plan.experiment.limits.text},
-          {"solvers", solvers},      {"cells", cells}};
+          {"solvers", solvers},           {"cells", cells}};
 }
 
 Json read_json_file(const fs::path& path) {
@@ -194,8 +195,9 @@ std::string experiment_error(const Experiment& e, const SourceLine& at,
 SolverCommand solver_command(const Experiment& e, const ExperimentSolver& solver) {
   if (!solver.profile.empty())
     refuse(e, solver.source,
-           "solver '" + solver.name + "': profiles need the solver profiles of issue 34, which "
-           "this mosb does not have yet; give the solver's command as template = \"...\"");
+           "solver '" + solver.name +
+               "': profiles need the solver profiles of issue 34, which "
+               "this mosb does not have yet; give the solver's command as template = \"...\"");
   if (solver.solver_template.empty())
     refuse(e, solver.source, "solver '" + solver.name + "' has neither template nor profile");
   return {solver.solver_template, solver.output_format, solver.epsilon};
@@ -230,7 +232,9 @@ ExperimentPlan plan_experiment(const Experiment& experiment) {
                  (e.store.empty() ? std::string("the instances") : e.store.string()));
   }
   std::vector<ExperimentCell> cells;  // instance-major, for the solvers to repeat
-  for (const auto& i : instances)
+  std::vector<std::pair<std::size_t, std::size_t>> cell_views;  // (instance, view) per cell
+  for (std::size_t n = 0; n < instances.size(); ++n) {
+    const auto& i = instances[n];
     for (std::size_t k = 0; k < i.views.size(); ++k) {
       const auto& v = i.views[k];
       if (!e.benchmarks.empty() &&
@@ -240,14 +244,33 @@ ExperimentPlan plan_experiment(const Experiment& experiment) {
       if (i.queries[k] == 0)
         refuse(e, {}, i.file + ": view " + v.name + " names no query set with queries");
       cells.push_back({"", i.name, v.name, v.query_set, i.digest, i.file, i.queries[k], ""});
+      cell_views.emplace_back(n, k);
     }
+  }
   if (cells.empty()) refuse(e, {}, "no instance view to run");
-  for (const auto& solver : e.solvers)
-    for (auto cell : cells) {
+  for (const auto& solver : e.solvers) {
+    const auto runs = [&](std::size_t c, const std::string& pattern) {
+      const auto& i = instances[cell_views[c].first];
+      return matches(pattern, i, i.views[cell_views[c].second]);
+    };
+    for (std::size_t b = 0; b < solver.benchmarks.size(); ++b) {
+      bool any = false;
+      for (std::size_t c = 0; c < cells.size() && !any; ++c) any = runs(c, solver.benchmarks[b]);
+      if (!any)
+        refuse(e, solver.benchmark_sources[b],
+               "'" + solver.benchmarks[b] + "' matches no cell of the experiment");
+    }
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      if (!solver.benchmarks.empty() &&
+          std::none_of(solver.benchmarks.begin(), solver.benchmarks.end(),
+                       [&](const std::string& p) { return runs(c, p); }))
+        continue;
+      auto cell = cells[c];
       cell.solver = solver.name;
       cell.file = "cells/" + solver.name + "/" + cell.instance + "." + cell.view + ".sol";
       plan.cells.push_back(std::move(cell));
     }
+  }
   std::set<std::string> files;
   for (const auto& c : plan.cells)
     if (!files.insert(c.file).second)
@@ -255,7 +278,9 @@ ExperimentPlan plan_experiment(const Experiment& experiment) {
   return plan;
 }
 
-std::string_view to_string(CellState state) { return kCellStateNames.name(state); }
+std::string_view to_string(CellState state) {
+  return kCellStateNames.name(state);
+}
 
 std::vector<CellRecord> read_results_manifest(const fs::path& results) {
   const auto path = results / kManifestName;
@@ -302,9 +327,8 @@ CellStatus cell_status(const ExperimentCell& cell, const fs::path& results,
                        const std::vector<CellRecord>& records, bool lock_held) {
   CellStatus s;
   s.cell = cell;
-  const auto record = std::find_if(records.begin(), records.end(), [&](const CellRecord& r) {
-    return r.cell.file == cell.file;
-  });
+  const auto record = std::find_if(records.begin(), records.end(),
+                                   [&](const CellRecord& r) { return r.cell.file == cell.file; });
   std::error_code ec;
   if (record != records.end()) {
     if (!fs::exists(results / cell.file, ec)) {
@@ -375,7 +399,8 @@ std::vector<CellStatus> experiment_status(const fs::path& results) {
   const bool held = lock_is_held(results);
   std::vector<CellStatus> out;
   try {
-    for (const auto& c : plan.at("cells")) out.push_back(cell_status(cell_of(c), results, records, held));
+    for (const auto& c : plan.at("cells"))
+      out.push_back(cell_status(cell_of(c), results, records, held));
   } catch (const Json::exception& err) {
     throw Error(ErrorCode::invalid_argument, plan_path.string() + ": " + err.what());
   }
@@ -411,20 +436,24 @@ void check_finished_cells(const ExperimentPlan& plan, const fs::path& results,
                      [&](const ExperimentSolver& x) { return x.name == cell.solver; }) -
         plan.experiment.solvers.begin());
     std::string why;
-    if (r->executable_sha256 != plan.executable_sha256[s]) why = "the solver's executable changed";
-    else if (r->solver_template != plan.commands[s].solver_template) why = "the template changed";
+    if (r->executable_sha256 != plan.executable_sha256[s])
+      why = "the solver's executable changed";
+    else if (r->solver_template != plan.commands[s].solver_template)
+      why = "the template changed";
     else if (r->limits != plan.experiment.limits.text)
       why = "the limits changed (" + r->limits + ", now " + plan.experiment.limits.text + ")";
-    else if (r->cell.instance_digest != cell.instance_digest) why = "the instance changed";
+    else if (r->cell.instance_digest != cell.instance_digest)
+      why = "the instance changed";
     else if (cell_status(cell, results, records, false).state == CellState::damaged)
       why = "its file is not the listed one";
     if (!why.empty()) refused += (refused.empty() ? "" : "; ") + cell.id() + ": " + why;
   }
   if (!refused.empty())
     throw Error(ErrorCode::invalid_argument,
-                results.string() + ": finished cells that this run would not reproduce: " +
-                    refused + " (remove their files and MANIFEST records, or use another results "
-                              "directory)");
+                results.string() +
+                    ": finished cells that this run would not reproduce: " + refused +
+                    " (remove their files and MANIFEST records, or use another results "
+                    "directory)");
 }
 
 // Creates results/ and records the plan; refuses a directory of another experiment.

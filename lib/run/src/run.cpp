@@ -647,14 +647,21 @@ std::optional<std::uint64_t> parse_memory_size(std::string_view text) {
   }
   if (i == 0) return std::nullopt;
   auto unit = text.substr(i);
-  if (unit.ends_with("iB")) unit.remove_suffix(2);
-  else if (unit.ends_with("B") && unit.size() == 2) unit.remove_suffix(1);
+  if (unit.ends_with("iB"))
+    unit.remove_suffix(2);
+  else if (unit.ends_with("B") && unit.size() == 2)
+    unit.remove_suffix(1);
   int shift = 0;
-  if (unit == "K" || unit == "k") shift = 10;
-  else if (unit == "M") shift = 20;
-  else if (unit == "G") shift = 30;
-  else if (unit == "T") shift = 40;
-  else if (!unit.empty()) return std::nullopt;
+  if (unit == "K" || unit == "k")
+    shift = 10;
+  else if (unit == "M")
+    shift = 20;
+  else if (unit == "G")
+    shift = 30;
+  else if (unit == "T")
+    shift = 40;
+  else if (!unit.empty())
+    return std::nullopt;
   if (shift > 0 && value > (UINT64_MAX >> shift)) return std::nullopt;
   return value << shift;
 }

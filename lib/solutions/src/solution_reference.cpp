@@ -14,13 +14,14 @@ namespace {
 std::vector<const SolutionReader*> files_by_solver(std::span<const SolutionReader* const> files,
                                                    const ReferenceOptions& options) {
   const auto& solvers = options.solvers;
-  if (solvers.empty()) throw Error(ErrorCode::invalid_argument, "no solver named for the reference");
+  if (solvers.empty())
+    throw Error(ErrorCode::invalid_argument, "no solver named for the reference");
   for (std::size_t k = 0; k < solvers.size(); ++k) {
     if (solvers[k].empty() || solvers[k].find(',') != std::string::npos)
       throw Error(ErrorCode::invalid_argument,
                   "solver name '" + solvers[k] + "' is empty or has a ','");
-    if (std::find(solvers.begin(), solvers.begin() + static_cast<std::ptrdiff_t>(k),
-                  solvers[k]) != solvers.begin() + static_cast<std::ptrdiff_t>(k))
+    if (std::find(solvers.begin(), solvers.begin() + static_cast<std::ptrdiff_t>(k), solvers[k]) !=
+        solvers.begin() + static_cast<std::ptrdiff_t>(k))
       throw Error(ErrorCode::invalid_argument, "solver '" + solvers[k] + "' is named twice");
   }
   if (options.prefer && std::find(solvers.begin(), solvers.end(), *options.prefer) == solvers.end())
@@ -65,7 +66,9 @@ QueryStatus unsolved_status(const std::vector<const SolutionReader*>& files, std
 
 }  // namespace
 
-std::string_view to_string(ReferenceKind kind) { return kReferenceKindNames.name(kind); }
+std::string_view to_string(ReferenceKind kind) {
+  return kReferenceKindNames.name(kind);
+}
 
 std::uint64_t CrossValidation::count(ReferenceKind kind) const {
   return static_cast<std::uint64_t>(std::count_if(
@@ -113,15 +116,16 @@ CrossValidation cross_validate(std::span<const SolutionReader* const> files,
         r.difference_in_first = a.difference_in_a;
       }
     }
-    const auto preferred =
-        options.prefer ? std::find(options.solvers.begin(), options.solvers.end(), *options.prefer) -
-                             options.solvers.begin()
-                       : -1;
+    const auto preferred = options.prefer ? std::find(options.solvers.begin(),
+                                                      options.solvers.end(), *options.prefer) -
+                                                options.solvers.begin()
+                                          : -1;
     if (r.differing.empty()) {
       r.kind = completed.size() == 1 ? ReferenceKind::single : ReferenceKind::agreed;
       r.source = options.solvers[base];
-    } else if (preferred >= 0 && std::find(completed.begin(), completed.end(),
-                                           static_cast<std::size_t>(preferred)) != completed.end()) {
+    } else if (preferred >= 0 &&
+               std::find(completed.begin(), completed.end(), static_cast<std::size_t>(preferred)) !=
+                   completed.end()) {
       r.kind = ReferenceKind::preferred;
       r.source = *options.prefer;
       r.agreed = {*options.prefer};
@@ -149,8 +153,9 @@ std::string query_ranges(std::span<const std::uint64_t> queries) {
   return out;
 }
 
-void write_reference(std::span<const SolutionReader* const> files, const CrossValidation& validation,
-                     const ReferenceOptions& options, const std::filesystem::path& target) {
+void write_reference(std::span<const SolutionReader* const> files,
+                     const CrossValidation& validation, const ReferenceOptions& options,
+                     const std::filesystem::path& target) {
   const auto by_solver = files_by_solver(files, options);
   SolutionWriter writer(*files.front());
   SolverInfo info;
@@ -160,8 +165,8 @@ void write_reference(std::span<const SolutionReader* const> files, const CrossVa
   for (const auto& s : options.solvers) names += (names.empty() ? "" : ",") + s;
   info.parameters["solvers"] = names;
   if (options.prefer) info.parameters["prefer"] = *options.prefer;
-  for (const auto kind : {ReferenceKind::agreed, ReferenceKind::single,
-                          ReferenceKind::disagreement, ReferenceKind::preferred}) {
+  for (const auto kind : {ReferenceKind::agreed, ReferenceKind::single, ReferenceKind::disagreement,
+                          ReferenceKind::preferred}) {
     std::vector<std::uint64_t> of_kind;
     for (const auto& q : validation.queries)
       if (q.kind == kind) of_kind.push_back(q.query);

@@ -37,6 +37,10 @@ struct ExperimentSolver {
   std::map<std::string, std::string> options;
   std::string output_format = "protocol";
   std::string epsilon = "0";
+  // Optional: the solver runs only the cells these patterns match (as Experiment::benchmarks), a
+  // bi-objective solver the 2-objective views; each must match a cell of the experiment.
+  std::vector<std::string> benchmarks;
+  std::vector<SourceLine> benchmark_sources;
   SourceLine source;
 };
 
@@ -48,7 +52,7 @@ struct ExperimentLimits {
 struct Experiment {
   std::string file;  // the experiment file, for errors
   std::string name;
-  std::filesystem::path store;                // or instances
+  std::filesystem::path store;  // or instances
   std::vector<std::filesystem::path> instances;
   std::vector<std::string> benchmarks;        // view or benchmark names, shell patterns
   std::vector<SourceLine> benchmark_sources;  // per benchmarks entry
@@ -84,9 +88,9 @@ struct ExperimentCell {
 
 struct ExperimentPlan {
   Experiment experiment;
-  std::vector<SolverCommand> commands;           // per solver
-  std::vector<std::string> executable_sha256;    // per solver: its executable's SHA-256
-  std::vector<ExperimentCell> cells;             // solver-major, then instance, then view
+  std::vector<SolverCommand> commands;         // per solver
+  std::vector<std::string> executable_sha256;  // per solver: its executable's SHA-256
+  std::vector<ExperimentCell> cells;           // solver-major, then instance, then view
 };
 
 // Resolves the experiment: the store (or instance files), the benchmarks each matching some

@@ -79,8 +79,9 @@ CrossValidation cross_validate(std::span<const SolutionReader* const> files,
 // `solution.solver.param.solvers` (the names, comma-separated), `.param.prefer` (when given) and
 // per kind K other than unsolved `.param.K` (the queries, as ranges "0-4,7"), per solver i
 // `.param.agreed.<i>` (the queries whose front it gave). Written atomically.
-void write_reference(std::span<const SolutionReader* const> files, const CrossValidation& validation,
-                     const ReferenceOptions& options, const std::filesystem::path& target);
+void write_reference(std::span<const SolutionReader* const> files,
+                     const CrossValidation& validation, const ReferenceOptions& options,
+                     const std::filesystem::path& target);
 
 // The files of one binding (instance, view, query set), indices into the files given, and the
 // reference's file name: the base name of the group's first file.
