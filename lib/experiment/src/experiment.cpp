@@ -418,6 +418,36 @@ std::vector<fs::path> result_files(const fs::path& path) {
   return out;
 }
 
+std::vector<fs::path> result_instances(const fs::path& results) {
+  const auto plan_path = results / kPlanFile;
+  std::error_code ec;
+  if (!fs::exists(plan_path, ec))
+    throw Error(ErrorCode::not_found,
+                results.string() + ": no experiment here (no " + std::string(kPlanFile) + ")");
+  std::vector<fs::path> out;
+  const auto plan = read_json_file(plan_path);  // a range-for over a temporary's member dangles
+  try {
+    for (const auto& c : plan.at("cells")) {
+      const fs::path file = c.at("instance_file").get<std::string>();
+      if (std::find(out.begin(), out.end(), file) == out.end()) out.push_back(file);
+    }
+  } catch (const Json::exception& err) {
+    throw Error(ErrorCode::invalid_argument, plan_path.string() + ": " + err.what());
+  }
+  return out;
+}
+
+std::vector<fs::path> reference_files(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::is_directory(path, ec)) return {path};
+  std::vector<fs::path> out;
+  for (const auto& entry : fs::directory_iterator(path))
+    if (entry.path().extension() == ".sol" && entry.is_regular_file()) out.push_back(entry.path());
+  std::sort(out.begin(), out.end());
+  if (out.empty()) throw Error(ErrorCode::not_found, path.string() + ": no .sol file");
+  return out;
+}
+
 namespace {
 
 // Refuses, naming every cell, what a rerun must not continue: a done cell whose solver

@@ -180,5 +180,11 @@ ExperimentResult run_experiment(const ExperimentPlan& plan, const std::filesyste
 // The solution files of a results directory (its MANIFEST's, in cell order), or `path` itself
 // when it is a file: what `solutions reference`, `eval` and `report` take for RESULTS.
 std::vector<std::filesystem::path> result_files(const std::filesystem::path& path);
+// The instance files of a results directory's cells (results/experiment.json), each once, in cell
+// order: what `mosb report RESULTS` reports on.
+std::vector<std::filesystem::path> result_instances(const std::filesystem::path& results);
+// A reference directory's solution files (*.sol, sorted by name), or `path` itself when it is a
+// file (`--reference REFS/`).
+std::vector<std::filesystem::path> reference_files(const std::filesystem::path& path);
 
 }  // namespace mosb
