@@ -11,8 +11,8 @@
 #include <sstream>
 
 #include "commands.hpp"
-#include "mosb/experiment.hpp"
 #include "mosb/atomic_file.hpp"
+#include "mosb/experiment.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/internal/utf8.hpp"
 #include "mosb/pack.hpp"

@@ -178,9 +178,6 @@ Experiment parse_experiment(std::string_view text, const std::string& display_na
     e.store_source = t.where("store");
   }
   for (auto& [path, line] : t.texts("instances")) e.instances.emplace_back(path);
-  if (e.store.empty() == e.instances.empty())
-    t.fail(root, e.store.empty() ? "store" : "instances",
-           "give exactly one of store and instances");
   if (e.store.empty()) e.store_source = t.where("instances");
   for (auto& [pattern, line] : t.texts("benchmarks")) {
     e.benchmarks.push_back(pattern);
@@ -194,7 +191,6 @@ Experiment parse_experiment(std::string_view text, const std::string& display_na
     for (std::size_t i = 0; i < array->size(); ++i)
       e.solvers.push_back(read_solver(*array->get(i)->as_table(), i + 1, e));
   }
-  if (e.solvers.empty()) t.fail(root, "solver", "no [[solver]]");
   if (const auto* reference = t.table("reference")) {
     TableReader r(*reference, "reference.", e);
     e.reference_source = r.where("solvers");
@@ -202,6 +198,10 @@ Experiment parse_experiment(std::string_view text, const std::string& display_na
     r.refuse_unknown();
   }
   t.refuse_unknown();
+  if (e.store.empty() == e.instances.empty())
+    t.fail(root, e.store.empty() ? "store" : "instances",
+           "give exactly one of store and instances");
+  if (e.solvers.empty()) t.fail(root, "solver", "no [[solver]]");
   return e;
 }
 
