@@ -128,11 +128,10 @@ ExperimentSolver read_solver(const toml::table& table, std::size_t index, const 
         t.fail(node, "options." + std::string(key.str()), "must be a string, number or boolean");
       std::ostringstream value;
       node.visit([&](const auto& v) {
-        if constexpr (toml::is_string<decltype(v)>)
-          value << v.get();
-        else if constexpr (toml::is_boolean<decltype(v)>)
+        // Strings and numbers as written; booleans as true/false, not 1/0.
+        if constexpr (toml::is_boolean<decltype(v)>)
           value << (v.get() ? "true" : "false");
-        else if constexpr (toml::is_number<decltype(v)>)
+        else if constexpr (toml::is_string<decltype(v)> || toml::is_number<decltype(v)>)
           value << v.get();
       });
       s.options[std::string(key.str())] = value.str();
