@@ -619,7 +619,10 @@ RunResult run_solver(const RunConfig& c, const RunCallbacks& callbacks,
 
 std::optional<double> parse_duration(std::string_view view) {
   const std::string text(view);
-  if (text.empty() || text.front() == '+' || text.front() == ' ') return std::nullopt;
+  // Decimal only: std::stod would also take "+1", " 1", "inf", "nan" and hex ("0x1p4").
+  if (text.empty() || !((text.front() >= '0' && text.front() <= '9') || text.front() == '.') ||
+      text.find_first_of("xX") != std::string::npos)
+    return std::nullopt;
   std::size_t used = 0;
   double value = 0;
   try {
@@ -633,7 +636,7 @@ std::optional<double> parse_duration(std::string_view view) {
   if (unit == "ms") scale = 1e-3;
   if (unit == "m" || unit == "min") scale = 60;
   if (unit == "h") scale = 3600;
-  if (scale == 0 || !(value >= 0) || value > 1e9) return std::nullopt;
+  if (scale == 0 || !(value >= 0) || !(value * scale <= 1e9)) return std::nullopt;
   return value * scale;
 }
 
@@ -647,9 +650,10 @@ std::optional<std::uint64_t> parse_memory_size(std::string_view text) {
   }
   if (i == 0) return std::nullopt;
   auto unit = text.substr(i);
-  if (unit.ends_with("iB"))
+  // "B" alone (bytes), or after the multiplier: "KB", "KiB".
+  if (unit.size() == 3 && unit.ends_with("iB"))
     unit.remove_suffix(2);
-  else if (unit.ends_with("B") && unit.size() == 2)
+  else if (unit.size() <= 2 && unit.ends_with("B"))
     unit.remove_suffix(1);
   int shift = 0;
   if (unit == "K" || unit == "k")

@@ -56,6 +56,7 @@ QueryStatus unsolved_status(const std::vector<const SolutionReader*>& files, std
   bool timeout = false, memory = false, other = false;
   for (const auto* file : files) {
     const auto status = status_of(file, q);
+    if (status == QueryStatus::not_run) continue;  // not run: says nothing of the query
     timeout |= status == QueryStatus::timeout;
     memory |= status == QueryStatus::memory_limit;
     other |= status != QueryStatus::timeout && status != QueryStatus::memory_limit;

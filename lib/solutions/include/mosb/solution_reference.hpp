@@ -66,8 +66,9 @@ struct CrossValidation {
 
 // `files` holds at most one file per solver of options.solvers (solver_name), every one of one
 // binding (check_same_binding). A solver without a file counts as not-run on every query. A query
-// no solver completed is `timeout` when every solver that ran it timed out or hit the memory limit
-// and one timed out, `memory-limit` when all hit the memory limit, else not-run. Throws
+// no solver completed is `timeout` when every solver that ran it (not-run ones left out) timed out
+// or hit the memory limit and one timed out, `memory-limit` when all hit the memory limit, else
+// not-run. Throws
 // mosb::Error (invalid_argument) for no solver, a solver named twice or with a ',', a file of a
 // solver not named or two of one solver, no file at all, `prefer` not among the solvers, or a
 // tolerance outside [0, 1).
