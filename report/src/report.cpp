@@ -260,6 +260,9 @@ struct Context {
   std::vector<std::string> solver_keys;       // of each solver: unique_keys of solver_names
   std::vector<std::vector<ViewStats>> stats;  // per benchmark, per instance
   Outcomes outcomes;
+  // Per benchmark, per solver its ε-coverage (one entry per options.epsilons) summed over the
+  // benchmark's bindings that have a reference; empty without references or ε.
+  std::vector<std::map<std::string, std::vector<EpsilonOutcome>>> coverage;
 };
 
 // Binds every file to its benchmark (one file per solver, or reference, and binding) and names
@@ -442,6 +445,80 @@ void write_suite(const Context& c) {
   for (const auto& bm : c.benchmarks) t.rows.push_back(suite_row(c, bm, t.columns.size()));
   c.page.section("suite", "Suite");
   c.page.table(&Report::suite, std::move(t), "suite-table");
+  c.page.end_section();
+}
+
+// --- The solvers per benchmark: the paper's Table 5.
+
+// A solver's row of the solver table over its files of benchmark b.
+std::vector<Cell> solver_row(const Context& c, std::size_t b, const std::string& name) {
+  const auto& bm = c.benchmarks[b];
+  std::vector<const SolutionReader*> files;
+  for (const auto& f : bm.solvers.at(name)) files.push_back(&c.solutions[f.file]);
+  const auto summary = summarize_completed(files);
+  const auto& statuses = summary.statuses;
+  std::vector<Cell> row{
+      Cell::of(bm.family),
+      Cell::of(bm.name),
+      Cell::of(name),
+      Cell::of(std::uint64_t{files.size()}),
+      Cell::of(statuses.total()),
+      Cell::of(statuses[QueryStatus::solved] + statuses[QueryStatus::disconnected]),
+      Cell::of(statuses[QueryStatus::timeout]),
+      Cell::of(statuses[QueryStatus::memory_limit]),
+      Cell::of(statuses[QueryStatus::failed]),
+      Cell::of(statuses[QueryStatus::not_run])};
+  add_median_and_max(row, summary.runtime);
+  add_median_and_max(row, summary.reported_runtime);
+  if (c.references.empty() || c.options.epsilons.empty()) return row;
+  const auto it = c.coverage[b].find(name);
+  if (it == c.coverage[b].end()) {
+    row.resize(row.size() + 1 + c.options.epsilons.size());
+    return row;
+  }
+  row.push_back(Cell::of(it->second.front().evaluated()));
+  for (const auto& o : it->second) row.push_back(Cell::of(o.covered));
+  return row;
+}
+
+// One row per benchmark and solver (in the order first given): its files, queries and their
+// statuses, the median and max wall-clock and reported runtime over its completed queries, and
+// with references its ε-coverage against them.
+Table solver_table(const Context& c) {
+  Table t;
+  t.caption =
+      "Solvers per benchmark (the paper's Table 5): statuses of each solver's queries; median and "
+      "max runtime, wall clock and as the solver reported it, over the queries it completed";
+  t.columns = {{"family", "Family", "family"},
+               {"benchmark", "Benchmark", "benchmark"},
+               {"solver", "Solver", "solver"},
+               {"files", "Files", "files"},
+               {"queries", "Queries", "queries"},
+               {"solved", "Solved", "solved"},
+               {"timeout", "Timeout", "timeout"},
+               {"memory_limit", "Mem-limit", "memory limit"},
+               {"failed", "Failed", "failed"},
+               {"not_run", "Not run", "not run"},
+               {"runtime_median", "Med.\\ (s)", "median runtime [s]"},
+               {"runtime_max", "Max (s)", "max runtime [s]"},
+               {"reported_median", "Rep.\\ med.\\ (s)", "median reported runtime [s]"},
+               {"reported_max", "Rep.\\ max (s)", "max reported runtime [s]"}};
+  if (!c.references.empty() && !c.options.epsilons.empty()) {
+    t.columns.push_back({"evaluated", "Evaluated", "queries evaluated against the reference"});
+    for (const auto& e : c.options.epsilon_labels)
+      t.columns.push_back({"covered@" + e,
+                           "cov.\\ $\\varepsilon{=}" + tables::latex_escape(e) + "$",
+                           "covered at ε = " + e});
+  }
+  for (std::size_t b = 0; b < c.benchmarks.size(); ++b)
+    for (const auto& name : c.benchmarks[b].solver_order) t.rows.push_back(solver_row(c, b, name));
+  return t;
+}
+
+void write_solvers(const Context& c) {
+  if (c.solver_names.empty()) return;
+  c.page.section("solvers", "Solvers");
+  c.page.table(&Report::solvers, solver_table(c), "solvers-table");
   c.page.end_section();
 }
 
@@ -905,10 +982,14 @@ void scatter_figures(const Context& c) {
   }
 }
 
-// Per solver, its ε-coverage summed over every binding that has a reference.
-std::map<std::string, std::vector<EpsilonOutcome>> coverage_of(const Context& c) {
-  std::map<std::string, std::vector<EpsilonOutcome>> coverage;
-  for (const auto& bm : c.benchmarks)
+// Per benchmark, per solver its ε-coverage summed over the benchmark's bindings that have a
+// reference (compare_solvers per instance, view and query set).
+std::vector<std::map<std::string, std::vector<EpsilonOutcome>>> coverage_by_benchmark(
+    const Context& c) {
+  std::vector<std::map<std::string, std::vector<EpsilonOutcome>>> out(c.benchmarks.size());
+  if (c.options.epsilons.empty()) return out;
+  for (std::size_t b = 0; b < c.benchmarks.size(); ++b) {
+    const auto& bm = c.benchmarks[b];
     for (const auto& ref : bm.references) {
       const auto& reference = c.references[ref.file];
       std::vector<SolutionReader> group;
@@ -920,13 +1001,30 @@ std::map<std::string, std::vector<EpsilonOutcome>> coverage_of(const Context& c)
       if (group.empty()) continue;
       const auto result = compare_solvers(reference, group, c.options.epsilons);
       for (std::size_t k = 0; k < result.solvers.size(); ++k) {
-        auto& total = coverage[solver_name(group[k])];
+        auto& total = out[b][solver_name(group[k])];
         total.resize(c.options.epsilons.size());
         for (std::size_t e = 0; e < total.size(); ++e) {
           total[e].covered += result.solvers[k].per_epsilon[e].covered;
           total[e].not_covered += result.solvers[k].per_epsilon[e].not_covered;
           total[e].dominated += result.solvers[k].per_epsilon[e].dominated;
         }
+      }
+    }
+  }
+  return out;
+}
+
+// Per solver, its ε-coverage summed over every benchmark.
+std::map<std::string, std::vector<EpsilonOutcome>> coverage_of(const Context& c) {
+  std::map<std::string, std::vector<EpsilonOutcome>> coverage;
+  for (const auto& of_benchmark : c.coverage)
+    for (const auto& [name, outcomes] : of_benchmark) {
+      auto& total = coverage[name];
+      total.resize(outcomes.size());
+      for (std::size_t e = 0; e < total.size(); ++e) {
+        total[e].covered += outcomes[e].covered;
+        total[e].not_covered += outcomes[e].not_covered;
+        total[e].dominated += outcomes[e].dominated;
       }
     }
   return coverage;
@@ -1007,12 +1105,14 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
   report.notes = notes;
   Page page(report);
   Context c{instances, solutions, references, options, page, benchmarks_of(instances),
-            notes,     {},        {},         {},      {}};
+            notes,     {},        {},         {},      {},   {}};
   bind_files(c);
   c.stats = view_stats(c);
   c.outcomes = outcomes_of(c);
+  c.coverage = coverage_by_benchmark(c);
   write_head(c);
   write_suite(c);
+  write_solvers(c);
   write_instance_space(c);
   for (std::size_t b = 0; b < c.benchmarks.size(); ++b) write_benchmark(c, b);
   write_comparison(c);
@@ -1022,6 +1122,22 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
 }
 
 }  // namespace
+
+tables::Table solver_table(std::span<const GraphReader> instances,
+                           std::span<const SolutionReader> solutions,
+                           std::span<const SolutionReader> references,
+                           const ReportOptions& options) {
+  if (instances.empty()) throw Error(ErrorCode::invalid_argument, "no instance");
+  std::vector<std::string> notes;
+  const auto distinct = distinct_instances(instances, notes);
+  Report unused;
+  Page page(unused);
+  Context c{distinct, solutions, references, options, page, benchmarks_of(distinct),
+            notes,    {},        {},         {},      {},   {}};
+  bind_files(c);
+  c.coverage = coverage_by_benchmark(c);
+  return solver_table(c);
+}
 
 Report make_report(std::span<const GraphReader> instances,
                    std::span<const SolutionReader> solutions,

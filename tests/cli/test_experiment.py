@@ -7,14 +7,18 @@ third solver that is wrong on one query on purpose.
     MOSB=build/release/tools/mosb EXAMPLES=build/release/examples /usr/bin/python3 tests/cli/test_experiment.py
 """
 
+import csv
+import io
 import json
 import os
+import re
 import signal
 import subprocess
 import time
 import unittest
 
 import mosbtest
+import test_report
 from mosbtest import DATA, MOSB, CliTest, read, run, setUpModule  # noqa: F401
 
 EXAMPLES = os.path.abspath(os.environ.get("EXAMPLES", ""))
@@ -161,6 +165,71 @@ class ExperimentTest(CliTest):
         page = read(self.path("r.html")).decode()
         for name in self.benchmarks + ["namoa", "boa", "wrong"]:
             self.assertIn(name, page)
+        self.check_solver_table(read(os.path.join(out, "solvers.csv")).decode())
+        self.check_page_in_chromium(self.path("r.html"))
+        self.check_eval(part, self.path("refs"))
+
+    def solver_pairs(self):
+        return ({(b, s) for b in self.benchmarks for s in ("namoa", "wrong")}
+                | {(b, "boa") for b in self.bi_objective})
+
+    def check_solver_table(self, text):
+        """The paper's Table 5 as CSV: one row per benchmark and solver."""
+        rows = list(csv.DictReader(io.StringIO(text)))
+        self.assertEqual({(r["benchmark"], r["solver"]) for r in rows}, self.solver_pairs())
+        for r in rows:
+            self.assertEqual((r["queries"], r["solved"], r["timeout"], r["memory_limit"]),
+                             ("5", "5", "0", "0"), r)
+            self.assertGreater(float(r["runtime_max"]), 0, r)
+            self.assertLessEqual(float(r["runtime_median"]), float(r["runtime_max"]), r)
+
+    def check_page_in_chromium(self, html):
+        """The report's solver table as headless Chromium shows it (script off, so the table is
+        the page's own, not what a script made of it): every benchmark and solver named."""
+        if test_report.CHROMIUM is None:
+            raise mosbtest.missing("chromium")
+        copy = self.path("noscript.html")
+        with open(copy, "w", encoding="utf-8") as f:
+            f.write(re.sub(r"<script>.*?</script>", "", read(html).decode(), flags=re.S))
+        r = test_report.chromium("--dump-dom", "file://" + copy)
+        self.assertEqual(r.returncode, 0, r.stderr[-2000:])
+        table = test_report.parse(r.stdout).tables["solvers-table"]
+        headings = [c[1] for c in table[0]]
+        for column in ("benchmark", "solver", "solved", "timeout", "memory limit",
+                       "median runtime [s]", "max runtime [s]", "median reported runtime [s]",
+                       "max reported runtime [s]", "covered at ε = 0.01"):
+            self.assertIn(column, headings)
+        shown = {(row[headings.index("benchmark")][1], row[headings.index("solver")][1])
+                 for row in table[1:]}
+        self.assertEqual(shown, self.solver_pairs())
+
+    def check_eval(self, results, refs):
+        """`mosb eval RESULTS --reference REFS`: the same table, with the ε-coverage."""
+        table = json.loads(self.ok("eval", results, "--reference", refs, "--json").stdout)
+        rows = {(r["benchmark"], r["solver"]): r for r in table["rows"]}
+        self.assertEqual(set(rows), self.solver_pairs())
+        for (benchmark, solver), r in rows.items():
+            # The grid's query 2 is a disagreement: left out of its references.
+            evaluated = 4 if benchmark.startswith("Grid") else 5
+            self.assertEqual(r["evaluated"], evaluated, (benchmark, solver))
+            self.assertEqual(r["covered@0.01"], evaluated, (benchmark, solver))
+            self.assertEqual(r["solved"], 5)
+        text = self.ok("eval", results, "--reference", refs, "--csv").stdout
+        self.check_solver_table(text)
+        self.assertIn("covered@0.05", text.splitlines()[0])
+        latex = self.ok("eval", results, "--latex").stdout
+        self.assertIn("\\toprule", latex)
+        self.assertNotIn("covered", latex)  # no references, no coverage
+        plain = self.ok("eval", results).stdout
+        for benchmark, solver in self.solver_pairs():
+            self.assertIn(benchmark, plain)
+            self.assertIn(solver, plain)
+        for bad in (["eval", results, "--solutions", os.path.join(results, "MANIFEST")],
+                    ["eval", "--reference", refs, "--solutions",
+                     os.path.join(refs, os.listdir(refs)[0])]):
+            r = run(*bad)
+            self.assertEqual(r.returncode, 2, r.stderr)
+            self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
 
     def test_changed_limits_or_executable_refuse_the_cells_they_touch(self):
         results = self.path("r")

@@ -108,6 +108,9 @@ TEST_CASE("parse_experiment: each refusal names the file, the line and the key")
   // TOML syntax: FILE:LINE:COLUMN.
   CHECK(error_of("name = \"x\"\nstore = = 1\n").starts_with("exp.toml:2:9: "));
   CHECK(error_of("name = \"x\"\nname = \"y\"\n").starts_with("exp.toml:2:"));
+  // toml++ describes this one over two lines (found by mosb_fuzz_experiment): one line still.
+  CHECK(error_of("name = \"x\"\nlimits = { time = \"1h\", merge = tr\nb = 1 }\n")
+            .starts_with("exp.toml:2:"));
   // The root table's keys.
   CHECK(error_of(head + "colour = 1\n" + kSolver) == "exp.toml:3: colour: unknown key");
   CHECK(error_of("store = \"s\"\n" + std::string(kSolver)) ==

@@ -49,6 +49,7 @@ using Outputs = std::vector<std::pair<std::filesystem::path, std::string>>;
 // The tables as DIR/NAME.EXT.
 void add_tables(Outputs& out, const std::string& directory, const pages::Report& r, bool latex) {
   const std::pair<const char*, const tables::Table*> all[] = {{"suite", &r.suite},
+                                                              {"solvers", &r.solvers},
                                                               {"instance-space", &r.instance_space},
                                                               {"comparison", &r.comparison},
                                                               {"coverage", &r.coverage}};

@@ -13,6 +13,23 @@ namespace mosb::converters {
 
 namespace {
 
+// toml++'s description of a syntax error may span lines: each line break (and the indentation
+// after it) becomes "; ", so that the error stays one line.
+std::string one_line(std::string_view text) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] != '\n' && text[i] != '\r') {
+      out += text[i];
+      continue;
+    }
+    while (i + 1 < text.size() && (text[i + 1] == '\n' || text[i + 1] == '\r' ||
+                                   text[i + 1] == ' ' || text[i + 1] == '\t'))
+      ++i;
+    if (!out.empty() && i + 1 < text.size()) out += "; ";
+  }
+  return out;
+}
+
 // Reads one table's keys, each once, refusing any key it was not asked for.
 class TableReader {
  public:
@@ -165,10 +182,9 @@ Experiment parse_experiment(std::string_view text, const std::string& display_na
   try {
     root = toml::parse(text, display_name);
   } catch (const toml::parse_error& err) {
-    throw Error(ErrorCode::invalid_argument, display_name + ":" +
-                                                 std::to_string(err.source().begin.line) + ":" +
-                                                 std::to_string(err.source().begin.column) + ": " +
-                                                 std::string(err.description()));
+    throw Error(ErrorCode::invalid_argument,
+                display_name + ":" + std::to_string(err.source().begin.line) + ":" +
+                    std::to_string(err.source().begin.column) + ": " + one_line(err.description()));
   }
   TableReader t(root, "", e);
   e.name = t.required_text("name");
