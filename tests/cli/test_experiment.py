@@ -19,6 +19,7 @@ import unittest
 
 import mosbtest
 import test_report
+import test_slurm
 from mosbtest import DATA, MOSB, CliTest, read, run, setUpModule  # noqa: F401
 
 EXAMPLES = os.path.abspath(os.environ.get("EXAMPLES", ""))
@@ -26,7 +27,9 @@ ARENA = os.path.join(DATA, "movingai", "arena2.map")
 TEMPLATE = "%s {instance} --view {view} --query {source} {target} --protocol"
 
 
-class ExperimentTest(CliTest):
+class ExperimentFixture(CliTest):
+    """The store, the three solvers and the experiment file every test here starts from."""
+
     def setUp(self):
         super().setUp()
         if not os.path.isfile(os.path.join(EXAMPLES, "namoa")):
@@ -87,6 +90,67 @@ class ExperimentTest(CliTest):
         per_solver = {"namoa": len(self.benchmarks), "boa": len(self.bi_objective),
                       "wrong": len(self.benchmarks)}
         return sum(per_solver.values())
+
+    def same_fronts(self, expected, actual):
+        """Every cell of `expected` in `actual`, with the same fronts and statuses."""
+        listed = self.cells(actual)
+        self.assertEqual(sorted(listed), sorted(self.cells(expected)))
+        for f, record in listed.items():
+            self.ok("solutions", "compare", os.path.join(expected, f), os.path.join(actual, f))
+            self.assertEqual(record["counts"], self.cells(expected)[f]["counts"], f)
+        status = json.loads(self.ok("experiment", "status", actual, "--json").stdout)
+        self.assertTrue(status["complete"])
+
+
+class ExperimentTest(ExperimentFixture):
+    def test_slurm_array_run_by_hand_merges_into_the_local_results(self):
+        """The array's script run task by task here (as SLURM would, SLURM_ARRAY_TASK_ID set),
+        then --resume merges the tasks' cells into RESULTS: the local run's fronts."""
+        local = self.path("local")
+        self.run_experiment(local)
+        array, results = self.path("array"), self.path("results")
+        r = self.ok("experiment", "run", self.experiment, "-o", results, "--slurm", array,
+                    "--queries-per-task", "10")
+        cells = self.expected_cells()
+        tasks = (cells + 1) // 2  # cells of 5 queries, two a task
+        self.assertIn("%d tasks of the %d cells" % (tasks, cells), r.stdout)
+        self.assertIn("submit it: sbatch --parsable %s/run.sbatch" % array, r.stdout)
+        script = read(os.path.join(array, "run.sbatch")).decode()
+        self.assertIn("#SBATCH --array=1-%d\n" % tasks, script)
+        self.assertIn('experiment run %s --queries-per-task 10' % self.experiment, script)
+        self.assertIn('--task "$shard/%d" -o %s/task-"$shard"' % (tasks, array), script)
+        status = json.loads(self.ok("experiment", "run", self.experiment, "-o", results,
+                                    "--slurm", array, "--status", "--json").stdout)
+        self.assertEqual([t["file"] for t in status["task_states"]], ["missing"] * tasks)
+        for task in range(1, tasks):  # the last task left out: resume must say so
+            subprocess.run(["sh", os.path.join(array, "run.sbatch")], check=True,
+                           env=dict(os.environ, SLURM_ARRAY_TASK_ID=str(task)),
+                           stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        r = json.loads(self.ok("experiment", "run", self.experiment, "-o", results, "--slurm",
+                               array, "--resume", "--json").stdout)
+        self.assertEqual(r["resubmit"], str(tasks))
+        self.assertEqual(r["merged"], 2 * (tasks - 1))
+        subprocess.run(["sh", os.path.join(array, "run.sbatch")], check=True,
+                       env=dict(os.environ, SLURM_ARRAY_TASK_ID=str(tasks)),
+                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        status = json.loads(self.ok("experiment", "run", self.experiment, "-o", results,
+                                    "--slurm", array, "--status", "--json").stdout)
+        self.assertTrue(status["complete"])
+        text = self.ok("experiment", "run", self.experiment, "-o", results, "--slurm", array,
+                       "--resume").stdout
+        self.assertIn("merged %d cells" % (cells - 2 * (tasks - 1)), text)
+        self.assertIn("nothing to resubmit", text)
+        self.same_fronts(local, results)
+        self.assertEqual(self.run_experiment(results)["ran"], 0)  # nothing left to run here
+        # Refusals, one line each: a task count the file no longer makes, the array given to
+        # `mosb run`, an array option without --slurm.
+        for args in (["experiment", "run", self.experiment, "-o", self.path("t"), "--task",
+                      "1/99", "--queries-per-task", "10"],
+                     ["run", "--slurm", array, "--status"],
+                     ["experiment", "run", self.experiment, "-o", results, "--submit"]):
+            r = run(*args)
+            self.assertEqual(r.returncode, 2, (args, r.stderr))
+            self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
 
     def test_killed_and_rerun_is_the_uninterrupted_run(self):
         full = self.path("full")
@@ -277,6 +341,37 @@ class ExperimentTest(CliTest):
                 self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
                 self.assertIn(path + expected, r.stderr)
                 self.assertFalse(os.path.exists(self.path("never")))
+
+
+class ExperimentOnSlurm(ExperimentFixture, test_slurm.SlurmCluster):
+    """The same experiment as one job array on the one-node cluster tools/slurm-cluster.sh
+    starts (test_slurm.SlurmCluster's machinery): the same fronts as the local run."""
+
+    test_readme_then_a_cancelled_shard_resumed = None  # test_slurm's own test, run there
+
+    def test_one_array_for_the_matrix_has_the_local_fronts(self):
+        local = self.path("local")
+        self.run_experiment(local)
+        self.start_cluster()
+        array, results = self.path("array"), self.path("results")
+        r = self.m("experiment", "run", self.experiment, "-o", results, "--slurm", array,
+                   "--queries-per-task", "10", "--submit")
+        self.assertIn("submitted array job", r.stdout)
+        self.assertEqual(len(read(os.path.join(array, "jobs")).decode().split()), 1)
+        self.wait_until("the array's tasks finish",
+                        lambda: self.squeue().returncode == 0 and not self.squeue().stdout.strip(),
+                        array, seconds=300)
+        status = json.loads(self.m("experiment", "run", self.experiment, "-o", results,
+                                   "--slurm", array, "--status", "--json").stdout)
+        self.assertTrue(status["complete"], status)
+        self.assertTrue(set(status["scheduler"]) & {"squeue", "sacct"}, status)
+        self.assertEqual({t["state"] for t in status["task_states"]} - {"COMPLETED"}, set(),
+                         status)
+        r = json.loads(self.m("experiment", "run", self.experiment, "-o", results, "--slurm",
+                              array, "--resume", "--submit", "--json").stdout)
+        self.assertEqual((r["merged"], r["resubmit"], r["job"]),
+                         (self.expected_cells(), "", None))
+        self.same_fronts(local, results)
 
 
 if __name__ == "__main__":

@@ -11,6 +11,7 @@
 #include <cstring>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <span>
 
 #include "mosb/atomic_file.hpp"
 #include "mosb/command_template.hpp"
@@ -614,6 +615,134 @@ ExperimentResult run_experiment(const ExperimentPlan& plan, const fs::path& resu
   for (const auto& r : records)
     for (const auto status : kQueryStatuses) result.counts[status] += r.counts[status];
   return result;
+}
+
+}  // namespace mosb
+
+namespace mosb {
+
+std::vector<std::vector<std::size_t>> experiment_tasks(const ExperimentPlan& plan,
+                                                       std::uint64_t queries_per_task) {
+  if (queries_per_task == 0)
+    throw Error(ErrorCode::invalid_argument, "--queries-per-task 0: give at least 1");
+  std::vector<std::vector<std::size_t>> tasks;
+  std::uint64_t in_task = 0;
+  for (std::size_t c = 0; c < plan.cells.size(); ++c) {
+    const auto queries = plan.cells[c].queries;
+    if (tasks.empty() || in_task + queries > queries_per_task) {
+      if (tasks.empty() || !tasks.back().empty()) tasks.emplace_back();
+      in_task = 0;
+    }
+    tasks.back().push_back(c);
+    in_task += queries;
+  }
+  return tasks;
+}
+
+ExperimentPlan task_plan(const ExperimentPlan& plan,
+                         const std::vector<std::vector<std::size_t>>& tasks, std::uint64_t index) {
+  if (index < 1 || index > tasks.size())
+    throw Error(ErrorCode::invalid_argument, "task " + std::to_string(index) + " of " +
+                                                 std::to_string(tasks.size()) + ": no such task");
+  ExperimentPlan out = plan;
+  out.cells.clear();
+  for (const auto c : tasks[index - 1]) out.cells.push_back(plan.cells[c]);
+  return out;
+}
+
+TaskFiles task_files(const ExperimentPlan& task, const fs::path& directory) {
+  TaskFiles t;
+  std::error_code ec;
+  if (!fs::exists(directory, ec)) return t;
+  std::vector<CellRecord> records;
+  try {
+    records = read_results_manifest(directory);
+  } catch (const Error& e) {
+    t.state = TaskFiles::State::damaged;
+    t.problem = e.what();
+    return t;
+  }
+  bool started = false;
+  for (const auto& cell : task.cells) {
+    const auto s = cell_status(cell, directory, records, false);
+    if (s.state == CellState::damaged) {
+      t.state = TaskFiles::State::damaged;
+      t.problem = cell.id() + ": " + s.detail;
+      return t;
+    }
+    if (s.state == CellState::done || s.state == CellState::failed) {
+      ++t.cells_done;
+      t.queries_done += cell.queries;
+      for (const auto status : kQueryStatuses) t.counts[status] += s.counts[status];
+    } else {
+      t.queries_done += s.journaled;
+    }
+    started = started || s.state != CellState::missing;
+  }
+  t.state = t.cells_done == task.cells.size() ? TaskFiles::State::done
+            : started                         ? TaskFiles::State::partial
+                                              : TaskFiles::State::missing;
+  return t;
+}
+
+namespace {
+
+// The part's records of the plan's cells that `listed` does not hold, each checked as a rerun
+// checks a finished cell (check_finished_cells): throws naming every refused cell.
+std::vector<std::pair<fs::path, CellRecord>> records_to_merge(const ExperimentPlan& plan,
+                                                              const std::vector<CellRecord>& listed,
+                                                              const std::vector<fs::path>& parts) {
+  std::vector<std::pair<fs::path, CellRecord>> out;
+  std::set<std::string> taken;
+  for (const auto& r : listed) taken.insert(r.cell.file);
+  for (const auto& part : parts) {
+    std::error_code ec;
+    if (!fs::exists(part / kManifestName, ec)) continue;
+    const auto records = read_results_manifest(part);
+    ExperimentPlan mine = plan;
+    mine.cells.clear();
+    for (const auto& r : records) {
+      const auto in_plan =
+          std::find_if(plan.cells.begin(), plan.cells.end(),
+                       [&](const ExperimentCell& c) { return c.file == r.cell.file; });
+      if (in_plan == plan.cells.end() || taken.contains(r.cell.file)) continue;
+      mine.cells.push_back(*in_plan);
+      out.emplace_back(part, r);
+      taken.insert(r.cell.file);
+    }
+    check_finished_cells(mine, part, records);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::uint64_t merge_experiment_results(const ExperimentPlan& plan, const fs::path& results,
+                                       const std::vector<fs::path>& parts) {
+  std::error_code ec;
+  fs::create_directories(results, ec);
+  if (ec) throw Error(ErrorCode::io, results.string() + ": cannot create: " + ec.message());
+  const ResultsLock lock(results);
+  if (!lock.held())
+    throw Error(ErrorCode::invalid_argument,
+                results.string() + ": another `mosb experiment run` is writing it");
+  auto records = read_results_manifest(results);
+  check_finished_cells(plan, results, records);
+  const auto merged = records_to_merge(plan, records, parts);
+  record_plan(plan, results);
+  for (const auto& [part, record] : merged) {
+    const auto target = results / record.cell.file;
+    fs::create_directories(target.parent_path(), ec);
+    if (ec) throw Error(ErrorCode::io, target.parent_path().string() + ": " + ec.message());
+    const auto bytes = read_whole_file(part / record.cell.file);
+    if (sha256_hex(std::as_bytes(std::span(bytes.data(), bytes.size()))) != record.sha256)
+      throw Error(ErrorCode::invalid_argument,
+                  (part / record.cell.file).string() + ": not the bytes its MANIFEST lists");
+    write_text_atomically(target, bytes);
+    records.push_back(record);
+    write_results_manifest(results, records);  // after each cell, as run_experiment does
+  }
+  return merged.size();
 }
 
 }  // namespace mosb

@@ -177,6 +177,38 @@ struct ExperimentResult {
 ExperimentResult run_experiment(const ExperimentPlan& plan, const std::filesystem::path& results,
                                 const ExperimentOptions& options, const std::atomic<bool>& stop);
 
+// --- One SLURM job array for the whole matrix (spec/EXPERIMENT.md §4).
+
+// The experiment's cells as array tasks: consecutive cells (plan order) packed while a task holds
+// at most `queries_per_task` queries; a cell of more queries is a task of its own. Deterministic:
+// every task recomputes the packing from the plan. Throws mosb::Error (invalid_argument) for 0.
+std::vector<std::vector<std::size_t>> experiment_tasks(const ExperimentPlan& plan,
+                                                       std::uint64_t queries_per_task);
+// The plan of task `index` (1-based) of `tasks`: the same experiment, its cells only.
+ExperimentPlan task_plan(const ExperimentPlan& plan,
+                         const std::vector<std::vector<std::size_t>>& tasks, std::uint64_t index);
+
+// What a task's results directory holds, as lib/run's SLURM status counts a shard: done (every
+// cell of the task listed and intact), partial (some cells or a journal), missing (nothing),
+// damaged (a listed cell's file is not the listed bytes).
+struct TaskFiles {
+  enum class State { done, partial, missing, damaged } state = State::missing;
+  std::uint64_t cells_done = 0, queries_done = 0;
+  StatusCounts counts;
+  std::string problem;
+};
+TaskFiles task_files(const ExperimentPlan& task, const std::filesystem::path& directory);
+
+// Merges the finished cells of task results directories into `results` (created as
+// run_experiment creates it, the plan recorded): each cell of the plan that `results` does not
+// list and a part does is copied (its SHA-256 checked against the part's MANIFEST record) and
+// listed. Refuses, before copying anything, as run_experiment refuses a rerun: a part's cell whose
+// executable, template, limits or instance are not the plan's, or whose file is not the listed
+// bytes. Returns the cells merged.
+std::uint64_t merge_experiment_results(const ExperimentPlan& plan,
+                                       const std::filesystem::path& results,
+                                       const std::vector<std::filesystem::path>& parts);
+
 // The solution files of a results directory (its MANIFEST's, in cell order), or `path` itself
 // when it is a file: what `solutions reference`, `eval` and `report` take for RESULTS.
 std::vector<std::filesystem::path> result_files(const std::filesystem::path& path);
