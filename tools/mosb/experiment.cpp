@@ -251,7 +251,11 @@ std::pair<SlurmRun, std::vector<std::vector<std::size_t>>> existing_array(
 // every finished cell merged into -o, and the tasks neither done nor queued resubmitted.
 int run_experiment_slurm_existing(const ExperimentRunArgs& a) {
   const auto plan = read_plan(a.file);
-  const auto [run, tasks] = existing_array(a, plan);
+  // Named references, not a structured binding: the lambdas below capture them (C++20 clang
+  // refuses a structured binding there).
+  const auto array = existing_array(a, plan);
+  const SlurmRun& run = array.first;
+  const auto& tasks = array.second;
   const auto task_directory = [&](std::uint64_t i) {
     return std::filesystem::path(run.directory) / ("task-" + std::to_string(i));
   };
