@@ -25,7 +25,7 @@ std::string error_of(const std::string& text) {
     (void)parse_experiment(text, "exp.toml");
   } catch (const Error& e) {
     CHECK(e.code() == ErrorCode::invalid_argument);
-    const std::string message = e.what();
+    std::string message = e.what();
     CHECK(message.find('\n') == std::string::npos);
     return message;
   }
