@@ -92,7 +92,7 @@ solvers = ["namoa", "apex"]
   CHECK(e.reference_source.line == 20);
 }
 
-TEST_CASE("parse_experiment: instances instead of a store; no limits, no reference") {
+TEST_CASE("parse_experiment: instances instead of a store, no limits, no reference") {
   const auto e = parse_experiment(
       std::string("name = \"x\"\ninstances = [\"a.mosb\", \"b.mosb\"]\n") + kSolver, "exp.toml");
   CHECK(e.store.empty());
@@ -181,7 +181,7 @@ TEST_CASE("parse_experiment: each refusal names the file, the line and the key")
         "exp.toml:6: solver[1].reference: unknown key");
 }
 
-TEST_CASE("read_experiment_file: the path names the file in errors; an absent file is refused") {
+TEST_CASE("read_experiment_file: the path names the file in errors, an absent file is refused") {
   testing::TempDir dir;
   const auto path = dir / "exp.toml";
   {

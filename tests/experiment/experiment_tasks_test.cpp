@@ -31,7 +31,7 @@ using Tasks = std::vector<std::vector<std::size_t>>;
 
 }  // namespace
 
-TEST_CASE("experiment_tasks: consecutive cells while their queries fit; a large cell alone") {
+TEST_CASE("experiment_tasks: consecutive cells while their queries fit, a large cell alone") {
   const auto plan = plan_of({5, 5, 5, 5, 5});
   CHECK(experiment_tasks(plan, 10) == Tasks{{0, 1}, {2, 3}, {4}});
   CHECK(experiment_tasks(plan, 9) == Tasks{{0}, {1}, {2}, {3}, {4}});
