@@ -9,7 +9,7 @@ build=(
   libxxhash-dev                             # XXH3 checksums and digests
   libcli11-dev                              # the mosb command line
   nlohmann-json3-dev                        # JSON: --json output, solver logs, manifests
-  libtomlplusplus-dev                       # TOML: solver profiles (mosb run --profile)
+  libtomlplusplus-dev                       # TOML: solver profiles and experiment files
   libssl-dev                                # SHA-256 (libcrypto) for manifests and stores
   libcurl4-openssl-dev                      # HTTP(S) transfers of mosb store pull (mosb::pull)
   libexpat1-dev                             # streaming XML parser: GraphML roadmaps

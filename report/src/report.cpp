@@ -72,8 +72,25 @@ std::string objective_names(const GraphReader& g, const View& v) {
   return out;
 }
 
-// The benchmarks of the instances: each view by name (instances sharing it aggregated), in the
-// order of first appearance; an instance without views is one benchmark of all its objectives.
+// A view the suite names as a benchmark of its own, NAME_d with d its number of objectives
+// (Grid_2, NetMaker_3, Games-GUARDS_2, DIMACS-Extended-NY_4): the suite groups every instance
+// that has it into that one benchmark. Any other view ("length", a Moving AI map's) is a view of
+// one instance's own benchmark.
+bool is_suite_benchmark_view(const View& v) {
+  const auto separator = v.name.rfind('_');
+  return separator != std::string::npos && separator > 0 &&
+         v.name.substr(separator + 1) == std::to_string(v.objectives.size());
+}
+
+// The instance's name on the page: its `benchmark` metadata, else its file's display name.
+std::string instance_name(const GraphReader& g) {
+  return g.metadata().get("benchmark").value_or(g.display_name());
+}
+
+// The benchmarks of the instances, in the order of first appearance: a suite benchmark view
+// (is_suite_benchmark_view) groups the instances that have it under the view's name; any other
+// view is the benchmark of its instance, named by the instance (INSTANCE/VIEW when the instance
+// has more than one such view); an instance without views is one benchmark of all its objectives.
 std::vector<Benchmark> benchmarks_of(std::span<const GraphReader> instances) {
   std::vector<Benchmark> out;
   std::map<std::string, std::size_t> by_name;
@@ -82,15 +99,20 @@ std::vector<Benchmark> benchmarks_of(std::span<const GraphReader> instances) {
     auto views = g.views();
     if (views.empty()) {
       View all;
-      all.name = g.metadata().get("benchmark").value_or(g.display_name());
+      all.name = instance_name(g);
       for (std::size_t k = 0; k < g.objective_count(); ++k) all.objectives.push_back(k);
       views.push_back(all);
     }
+    const auto own_views = std::count_if(views.begin(), views.end(),
+                                         [](const View& v) { return !is_suite_benchmark_view(v); });
     for (auto& v : views) {
-      auto [at, added] = by_name.emplace(v.name, out.size());
+      const auto name = is_suite_benchmark_view(v) || g.views().empty() ? v.name
+                        : own_views > 1 ? instance_name(g) + "/" + v.name
+                                        : instance_name(g);
+      auto [at, added] = by_name.emplace(name, out.size());
       if (added) {
         out.emplace_back();
-        out.back().name = v.name;
+        out.back().name = name;
         out.back().family = g.metadata().get("family").value_or("");
       }
       out[at->second].instances.push_back(i);
@@ -238,6 +260,9 @@ struct Context {
   std::vector<std::string> solver_keys;       // of each solver: unique_keys of solver_names
   std::vector<std::vector<ViewStats>> stats;  // per benchmark, per instance
   Outcomes outcomes;
+  // Per benchmark, per solver its ε-coverage (one entry per options.epsilons) summed over the
+  // benchmark's bindings that have a reference; empty without references or ε.
+  std::vector<std::map<std::string, std::vector<EpsilonOutcome>>> coverage;
 };
 
 // Binds every file to its benchmark (one file per solver, or reference, and binding) and names
@@ -420,6 +445,80 @@ void write_suite(const Context& c) {
   for (const auto& bm : c.benchmarks) t.rows.push_back(suite_row(c, bm, t.columns.size()));
   c.page.section("suite", "Suite");
   c.page.table(&Report::suite, std::move(t), "suite-table");
+  c.page.end_section();
+}
+
+// --- The solvers per benchmark: the paper's Table 5.
+
+// A solver's row of the solver table over its files of benchmark b.
+std::vector<Cell> solver_row(const Context& c, std::size_t b, const std::string& name) {
+  const auto& bm = c.benchmarks[b];
+  std::vector<const SolutionReader*> files;
+  for (const auto& f : bm.solvers.at(name)) files.push_back(&c.solutions[f.file]);
+  const auto summary = summarize_completed(files);
+  const auto& statuses = summary.statuses;
+  std::vector<Cell> row{
+      Cell::of(bm.family),
+      Cell::of(bm.name),
+      Cell::of(name),
+      Cell::of(std::uint64_t{files.size()}),
+      Cell::of(statuses.total()),
+      Cell::of(statuses[QueryStatus::solved] + statuses[QueryStatus::disconnected]),
+      Cell::of(statuses[QueryStatus::timeout]),
+      Cell::of(statuses[QueryStatus::memory_limit]),
+      Cell::of(statuses[QueryStatus::failed]),
+      Cell::of(statuses[QueryStatus::not_run])};
+  add_median_and_max(row, summary.runtime);
+  add_median_and_max(row, summary.reported_runtime);
+  if (c.references.empty() || c.options.epsilons.empty()) return row;
+  const auto it = c.coverage[b].find(name);
+  if (it == c.coverage[b].end()) {
+    row.resize(row.size() + 1 + c.options.epsilons.size());
+    return row;
+  }
+  row.push_back(Cell::of(it->second.front().evaluated()));
+  for (const auto& o : it->second) row.push_back(Cell::of(o.covered));
+  return row;
+}
+
+// One row per benchmark and solver (in the order first given): its files, queries and their
+// statuses, the median and max wall-clock and reported runtime over its completed queries, and
+// with references its ε-coverage against them.
+Table solver_table(const Context& c) {
+  Table t;
+  t.caption =
+      "Solvers per benchmark (the paper's Table 5): statuses of each solver's queries; median and "
+      "max runtime, wall clock and as the solver reported it, over the queries it completed";
+  t.columns = {{"family", "Family", "family"},
+               {"benchmark", "Benchmark", "benchmark"},
+               {"solver", "Solver", "solver"},
+               {"files", "Files", "files"},
+               {"queries", "Queries", "queries"},
+               {"solved", "Solved", "solved"},
+               {"timeout", "Timeout", "timeout"},
+               {"memory_limit", "Mem-limit", "memory limit"},
+               {"failed", "Failed", "failed"},
+               {"not_run", "Not run", "not run"},
+               {"runtime_median", "Med.\\ (s)", "median runtime [s]"},
+               {"runtime_max", "Max (s)", "max runtime [s]"},
+               {"reported_median", "Rep.\\ med.\\ (s)", "median reported runtime [s]"},
+               {"reported_max", "Rep.\\ max (s)", "max reported runtime [s]"}};
+  if (!c.references.empty() && !c.options.epsilons.empty()) {
+    t.columns.push_back({"evaluated", "Evaluated", "queries evaluated against the reference"});
+    for (const auto& e : c.options.epsilon_labels)
+      t.columns.push_back({"covered@" + e,
+                           "cov.\\ $\\varepsilon{=}" + tables::latex_escape(e) + "$",
+                           "covered at ε = " + e});
+  }
+  for (std::size_t b = 0; b < c.benchmarks.size(); ++b)
+    for (const auto& name : c.benchmarks[b].solver_order) t.rows.push_back(solver_row(c, b, name));
+  return t;
+}
+
+void write_solvers(const Context& c) {
+  if (c.solver_names.empty()) return;
+  c.page.section("solvers", "Solvers");
+  c.page.table(&Report::solvers, solver_table(c), "solvers-table");
   c.page.end_section();
 }
 
@@ -707,9 +806,11 @@ void write_benchmark(const Context& c, std::size_t b) {
   const auto& bm = c.benchmarks[b];
   const auto& g = c.instances[bm.instances.front()];
   c.page.section(bm.anchor, bm.name);
+  std::string names;
+  for (auto i : bm.instances) names += (names.empty() ? "" : ", ") + instance_name(c.instances[i]);
   c.page.paragraph(
       "family " + (bm.family.empty() ? std::string("unknown") : bm.family) + "; " +
-      count_of(bm.instances.size(), "instance") + "; objectives " +
+      count_of(bm.instances.size(), "instance") + " (" + names + "); objectives " +
       objective_names(g, bm.views.front()) +
       (bm.instances.size() > 1 ? "; the figures below are of " + g.display_name() : std::string()));
   correlation_figure(c, b);
@@ -881,10 +982,14 @@ void scatter_figures(const Context& c) {
   }
 }
 
-// Per solver, its ε-coverage summed over every binding that has a reference.
-std::map<std::string, std::vector<EpsilonOutcome>> coverage_of(const Context& c) {
-  std::map<std::string, std::vector<EpsilonOutcome>> coverage;
-  for (const auto& bm : c.benchmarks)
+// Per benchmark, per solver its ε-coverage summed over the benchmark's bindings that have a
+// reference (compare_solvers per instance, view and query set).
+std::vector<std::map<std::string, std::vector<EpsilonOutcome>>> coverage_by_benchmark(
+    const Context& c) {
+  std::vector<std::map<std::string, std::vector<EpsilonOutcome>>> out(c.benchmarks.size());
+  if (c.options.epsilons.empty()) return out;
+  for (std::size_t b = 0; b < c.benchmarks.size(); ++b) {
+    const auto& bm = c.benchmarks[b];
     for (const auto& ref : bm.references) {
       const auto& reference = c.references[ref.file];
       std::vector<SolutionReader> group;
@@ -896,13 +1001,30 @@ std::map<std::string, std::vector<EpsilonOutcome>> coverage_of(const Context& c)
       if (group.empty()) continue;
       const auto result = compare_solvers(reference, group, c.options.epsilons);
       for (std::size_t k = 0; k < result.solvers.size(); ++k) {
-        auto& total = coverage[solver_name(group[k])];
+        auto& total = out[b][solver_name(group[k])];
         total.resize(c.options.epsilons.size());
         for (std::size_t e = 0; e < total.size(); ++e) {
           total[e].covered += result.solvers[k].per_epsilon[e].covered;
           total[e].not_covered += result.solvers[k].per_epsilon[e].not_covered;
           total[e].dominated += result.solvers[k].per_epsilon[e].dominated;
         }
+      }
+    }
+  }
+  return out;
+}
+
+// Per solver, its ε-coverage summed over every benchmark.
+std::map<std::string, std::vector<EpsilonOutcome>> coverage_of(const Context& c) {
+  std::map<std::string, std::vector<EpsilonOutcome>> coverage;
+  for (const auto& of_benchmark : c.coverage)
+    for (const auto& [name, outcomes] : of_benchmark) {
+      auto& total = coverage[name];
+      total.resize(outcomes.size());
+      for (std::size_t e = 0; e < total.size(); ++e) {
+        total[e].covered += outcomes[e].covered;
+        total[e].not_covered += outcomes[e].not_covered;
+        total[e].dominated += outcomes[e].dominated;
       }
     }
   return coverage;
@@ -983,12 +1105,14 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
   report.notes = notes;
   Page page(report);
   Context c{instances, solutions, references, options, page, benchmarks_of(instances),
-            notes,     {},        {},         {},      {}};
+            notes,     {},        {},         {},      {},   {}};
   bind_files(c);
   c.stats = view_stats(c);
   c.outcomes = outcomes_of(c);
+  c.coverage = coverage_by_benchmark(c);
   write_head(c);
   write_suite(c);
+  write_solvers(c);
   write_instance_space(c);
   for (std::size_t b = 0; b < c.benchmarks.size(); ++b) write_benchmark(c, b);
   write_comparison(c);
@@ -998,6 +1122,22 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
 }
 
 }  // namespace
+
+tables::Table solver_table(std::span<const GraphReader> instances,
+                           std::span<const SolutionReader> solutions,
+                           std::span<const SolutionReader> references,
+                           const ReportOptions& options) {
+  if (instances.empty()) throw Error(ErrorCode::invalid_argument, "no instance");
+  std::vector<std::string> notes;
+  const auto distinct = distinct_instances(instances, notes);
+  Report unused;
+  Page page(unused);
+  Context c{distinct, solutions, references, options, page, benchmarks_of(distinct),
+            notes,    {},        {},         {},      {},   {}};
+  bind_files(c);
+  c.coverage = coverage_by_benchmark(c);
+  return solver_table(c);
+}
 
 Report make_report(std::span<const GraphReader> instances,
                    std::span<const SolutionReader> solutions,

@@ -419,6 +419,27 @@ class HostileInputTest(mosbtest.CliTest):
     def report(self, *args, **options):
         return self.mosb("report", *args, timeout=300, **options)
 
+    def test_benchmarks_are_named_as_the_suite_groups_them(self):
+        """A suite view (NAME_d) groups its instances; a Moving AI map's view `length` is the map's
+        own benchmark, named by its `benchmark` metadata; each section lists its instances."""
+        maps = []
+        for name in ("DarkContinent", "Arena"):
+            self.write(name + ".map", self.MAP)
+            maps.append(self.path(name + ".mosb"))
+            run("convert", "movingai", "--map", self.path(name + ".map"), "-o", maps[-1])
+        twin = self.path("grid2.mosb")
+        run("generate", "grid", "--width", "4", "--height", "3", "-o", twin)
+        out, html = self.path("csv"), self.path("r.html")
+        self.ok("report", self.grid, twin, *maps, "-o", html, "--csv", out)
+        suite = list(csv_rows(os.path.join(out, "suite.csv")))
+        self.assertEqual([(row["benchmark"], row["instances"]) for row in suite],
+                         [("Grid_2", "2"), ("Grid_3", "2"), ("DarkContinent", "1"),
+                          ("Arena", "1")])
+        page = read(html, "r")
+        self.assertNotIn(">length<", page)
+        self.assertIn("2 instances (Grid-3x3, Grid-4x3)", page)
+        self.assertIn("1 instance (DarkContinent)", page)
+
     def test_a_map_that_does_not_fit_is_left_out_and_said(self):
         self.write("tiny.map", self.MAP)
         self.write("guards.txt", "3 0 1\n")

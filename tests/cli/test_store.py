@@ -892,6 +892,33 @@ class SuiteBuild(Base):
         self.assertIn("'Grid-9*' matches no benchmark", r.stderr)
         self.assertFalse(os.path.exists(self.path("t", "MANIFEST")))
 
+    def test_a_second_build_adds_to_the_manifest(self):
+        s = self.path("s")
+        self.ok("suite", "build", s, "--benchmark", "NetMaker-N10000-I20-1")
+        r = self.ok("suite", "build", s, "--benchmark", "Grid-300x300", "--json")
+        listed = [(i["name"], i["kept"]) for i in json.loads(r.stdout)["instances"]]
+        self.assertEqual(listed, [("Grid-300x300", False), ("NetMaker-N10000-I20-1", True)])
+        _, entries = self.records(self.path("s", "MANIFEST"))
+        self.assertEqual([e["file"] for e in entries],
+                         ["Grid-300x300.mosb", "NetMaker-N10000-I20-1.mosb"])
+        self.assertIn("0 with problems", self.ok("store", "verify", s).stdout)
+        # A kept entry is checked: a damaged one refuses the build before anything is written.
+        manifest = read(self.path("s", "MANIFEST"))
+        with open(self.path("s", "NetMaker-N10000-I20-1.mosb"), "r+b") as f:
+            f.seek(200)
+            byte = f.read(1)
+            f.seek(200)
+            f.write(bytes([byte[0] ^ 1]))
+        r = run("suite", "build", s, "--benchmark", "Grid-300x300")
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn("NetMaker-N10000-I20-1.mosb", r.stderr)
+        self.assertIn("--replace", r.stderr)
+        self.assertEqual(read(self.path("s", "MANIFEST")), manifest)
+        # --replace lists the built instances only.
+        self.ok("suite", "build", s, "--benchmark", "Grid-300x300", "--replace")
+        _, entries = self.records(self.path("s", "MANIFEST"))
+        self.assertEqual([e["file"] for e in entries], ["Grid-300x300.mosb"])
+
     def test_a_packed_suite_is_a_store_of_packed_files(self):
         self.ok("generate", "grid", "--suite", self.path("p"), "--sizes", "20,30", "--pack")
         _, entries = self.records(self.path("p", "MANIFEST"))

@@ -1,6 +1,7 @@
 #include "commands.hpp"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <iostream>
@@ -208,8 +209,11 @@ int report_suite(const std::string& directory, const std::string& family,
                  const std::vector<converters::SuiteEntry>& entries, bool json,
                  const std::function<void(JsonWriter&)>& more) {
   if (!json) {
-    std::cout << "wrote " << entries.size() << ' ' << family << " instances and MANIFEST to "
-              << escape_for_terminal(directory) << '\n';
+    const auto kept = std::count_if(entries.begin(), entries.end(),
+                                    [](const converters::SuiteEntry& e) { return e.kept; });
+    std::cout << "wrote " << entries.size() - kept << ' ' << family << " instances"
+              << (kept > 0 ? " (kept " + std::to_string(kept) + " listed before)" : std::string())
+              << " and MANIFEST to " << escape_for_terminal(directory) << '\n';
     return 0;
   }
   JsonWriter out(std::cout);
@@ -222,6 +226,7 @@ int report_suite(const std::string& directory, const std::string& family,
     out.key("file").value(e.file);
     out.key("size").value(e.size);
     out.key("digest").value(e.digest);
+    out.key("kept").value(e.kept);
     out.end_object();
   }
   out.end_array();

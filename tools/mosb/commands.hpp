@@ -195,14 +195,16 @@ Command add_store(CLI::App& app);      // store.cpp: `store init|add|list|verify
 Command add_suite(CLI::App& app);      // suite_build.cpp: `suite build`
 Command add_plot(CLI::App& app);       // plot.cpp: `plot correlation`, `plot map`
 Command add_solutions(CLI::App& app);  // solutions.cpp: `solutions import|export|inspect|verify`
-Command add_solutions_compare(CLI::App* solutions);  // solutions_compare.cpp: `solutions compare`
-Command add_solutions_merge(CLI::App* solutions);    // solutions_merge.cpp: `solutions merge`
-Command add_eval(CLI::App& app);                     // eval.cpp: `eval`
-Command add_pack(CLI::App& app);                     // pack.cpp: `pack`
-Command add_run(CLI::App& app);                      // run.cpp: `run`
-Command add_report(CLI::App& app);                   // report.cpp: `report`
-Command add_cache(CLI::App& app);                    // cache.cpp: `cache clear`
-Command add_unpack(CLI::App& app);                   // pack.cpp: `unpack`
+Command add_solutions_compare(CLI::App* solutions);    // solutions_compare.cpp: `solutions compare`
+Command add_solutions_merge(CLI::App* solutions);      // solutions_merge.cpp: `solutions merge`
+Command add_eval(CLI::App& app);                       // eval.cpp: `eval`
+Command add_pack(CLI::App& app);                       // pack.cpp: `pack`
+Command add_run(CLI::App& app);                        // run.cpp: `run`
+Command add_report(CLI::App& app);                     // report.cpp: `report`
+Command add_cache(CLI::App& app);                      // cache.cpp: `cache clear`
+Command add_experiment(CLI::App& app);                 // experiment.cpp: `experiment run|status`
+Command add_solutions_reference(CLI::App* solutions);  // solutions_reference.cpp
+Command add_unpack(CLI::App& app);                     // pack.cpp: `unpack`
 
 // Children of `generate`.
 Command add_generate_grid(CLI::App& generate);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -13,7 +14,10 @@
 
 #include "commands.hpp"
 #include "json_writer.hpp"
+#include "mosb/experiment.hpp"
 #include "mosb/internal/utf8.hpp"
+#include "mosb/pack.hpp"
+#include "mosb/report/report.hpp"
 #include "mosb/report/tables.hpp"
 #include "mosb/solution_verify.hpp"
 #include "mosb/solver_comparison.hpp"
@@ -23,6 +27,7 @@ namespace mosb::cli {
 namespace {
 
 struct EvalArgs {
+  std::string results;  // an experiment's results directory: the solver table mode
   std::string reference;
   std::vector<std::string> solutions;
   std::string epsilons = "0.01,0.05,0.1";
@@ -243,7 +248,76 @@ void complete_table(tables::Table& table, const SolverComparison& result,
   }
 }
 
+// A table as JSON: {"caption": ..., "rows": [{KEY: value, ...}, ...]}, an absent cell null.
+void print_table_json(const tables::Table& table) {
+  JsonWriter j(std::cout);
+  j.begin_object().key("caption").value(table.caption).key("rows").begin_array();
+  for (const auto& row : table.rows) {
+    j.begin_object();
+    for (std::size_t k = 0; k < table.columns.size(); ++k) {
+      j.key(table.columns[k].key);
+      const auto& cell = row.at(k);
+      switch (cell.kind) {
+        case tables::Cell::Kind::absent:
+          j.null();
+          break;
+        case tables::Cell::Kind::text:
+          j.value(cell.text);
+          break;
+        case tables::Cell::Kind::count:
+          j.value(cell.count);
+          break;
+        case tables::Cell::Kind::real:
+          j.value(cell.real);
+          break;
+      }
+    }
+    j.end_object();
+  }
+  j.end_array().end_object();
+  std::cout << '\n';
+}
+
+// `mosb eval RESULTS [--reference REFS]`: the report's solver table (the paper's Table 5) of an
+// experiment's results directory, its instances grouped into benchmarks as the report groups
+// them; with references, each solver's ε-coverage per benchmark.
+int run_eval_results(const EvalArgs& args) {
+  if (!args.solutions.empty()) throw UsageError("--solutions: not with a results directory");
+  if (args.per_query) throw UsageError("--per-query: not with a results directory");
+  pages::ReportOptions options;
+  options.epsilons = parse_epsilons(args.epsilons);
+  for (const auto& e : options.epsilons) options.epsilon_labels.push_back(e.to_decimal(18));
+  std::vector<GraphReader> instances;
+  for (const auto& path : result_instances(args.results))
+    instances.push_back(load(path, VerifyLevel::full));
+  std::vector<SolutionReader> solutions, references;
+  for (const auto& path : result_files(args.results))
+    solutions.push_back(SolutionReader::open_verified(path));
+  if (!args.reference.empty())
+    for (const auto& path : reference_files(args.reference))
+      references.push_back(SolutionReader::open_verified(path));
+  auto table = pages::solver_table(instances, solutions, references, options);
+  table.caption = "mosb eval " + args.results +
+                  (args.reference.empty() ? std::string() : ", references " + args.reference) +
+                  ": " + table.caption;
+  if (args.json)
+    print_table_json(table);
+  else if (args.csv)
+    tables::write_csv(std::cout, table);
+  else if (args.latex)
+    tables::write_latex(std::cout, table);
+  else
+    tables::write_text(std::cout, table);
+  return 0;
+}
+
 int run_eval(const EvalArgs& args) {
+  if (!args.results.empty()) return run_eval_results(args);
+  if (args.reference.empty() || args.solutions.empty())
+    throw UsageError("give a results directory, or --reference FILE and --solutions FILE...");
+  if (std::filesystem::is_directory(args.reference))
+    throw UsageError("--reference " + args.reference +
+                     ": a directory of references goes with a results directory");
   const auto eps = parse_epsilons(args.epsilons);
   std::vector<std::string> eps_text;
   eps_text.reserve(eps.size());
@@ -284,13 +358,17 @@ Command add_eval(CLI::App& app) {
   auto* sub = app.add_subcommand(
       "eval",
       "Compare solvers' solution files with reference fronts: coverage at each ε, achieved "
-      "ε, front sizes, runtimes");
-  sub->add_option("--reference", args->reference, "the reference solution file")
-      ->required()
-      ->check(CLI::ExistingFile);
+      "ε, front sizes, runtimes; or an experiment's results per benchmark and solver");
+  sub->add_option("RESULTS", args->results,
+                  "an experiment's results directory (mosb experiment run -o): per benchmark and "
+                  "solver the report's solver table, with --reference REFS/ the ε-coverage")
+      ->check(CLI::ExistingDirectory);
+  sub->add_option("--reference", args->reference,
+                  "the reference solution file, or with RESULTS a directory of references "
+                  "(mosb solutions reference -o)")
+      ->check(CLI::ExistingPath);
   sub->add_option("--solutions", args->solutions,
                   "the solvers' solution files (one or more), each compared with the reference")
-      ->required()
       ->expected(1, -1)
       ->check(CLI::ExistingFile);
   sub->add_option("--eps", args->epsilons, "comma-separated ε values")->capture_default_str();

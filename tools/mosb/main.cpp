@@ -51,7 +51,7 @@ int run(int argc, char** argv) {
       mosb::cli::add_export(app),    mosb::cli::add_store(app),   mosb::cli::add_suite(app),
       mosb::cli::add_plot(app),      mosb::cli::add_pack(app),    mosb::cli::add_unpack(app),
       mosb::cli::add_solutions(app), mosb::cli::add_eval(app),    mosb::cli::add_run(app),
-      mosb::cli::add_report(app),    mosb::cli::add_cache(app),
+      mosb::cli::add_report(app),    mosb::cli::add_cache(app),   mosb::cli::add_experiment(app),
   };
   try {
     app.parse(argc, argv);

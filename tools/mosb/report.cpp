@@ -12,6 +12,7 @@
 
 #include "commands.hpp"
 #include "mosb/atomic_file.hpp"
+#include "mosb/experiment.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/internal/utf8.hpp"
 #include "mosb/pack.hpp"
@@ -48,6 +49,7 @@ using Outputs = std::vector<std::pair<std::filesystem::path, std::string>>;
 // The tables as DIR/NAME.EXT.
 void add_tables(Outputs& out, const std::string& directory, const pages::Report& r, bool latex) {
   const std::pair<const char*, const tables::Table*> all[] = {{"suite", &r.suite},
+                                                              {"solvers", &r.solvers},
                                                               {"instance-space", &r.instance_space},
                                                               {"comparison", &r.comparison},
                                                               {"coverage", &r.coverage}};
@@ -110,17 +112,32 @@ int run_report(const ReportArgs& args) {
   for (const auto& e : options.epsilons) options.epsilon_labels.push_back(e.to_decimal(18));
   std::vector<std::filesystem::path> inputs;
   // Every input is opened and checked before anything is written.
-  std::vector<GraphReader> instances;
+  // An experiment's results directory stands for its instances and its cells' files; a
+  // directory of references for its .sol files (spec/EXPERIMENT.md §3).
+  std::vector<std::filesystem::path> instance_paths, solution_paths, reference_paths;
   for (const auto& path : args.instances) {
+    if (!std::filesystem::is_directory(path)) {
+      instance_paths.emplace_back(path);
+      continue;
+    }
+    for (auto& p : result_instances(path)) instance_paths.push_back(std::move(p));
+    for (auto& p : result_files(path)) solution_paths.push_back(std::move(p));
+  }
+  for (const auto& path : args.solutions)
+    for (auto& p : result_files(path)) solution_paths.push_back(std::move(p));
+  for (const auto& path : args.references)
+    for (auto& p : reference_files(path)) reference_paths.push_back(std::move(p));
+  std::vector<GraphReader> instances;
+  for (const auto& path : instance_paths) {
     instances.push_back(load(path, VerifyLevel::full));
     inputs.emplace_back(path);
   }
   std::vector<SolutionReader> solutions, references;
-  for (const auto& path : args.solutions) {
+  for (const auto& path : solution_paths) {
     solutions.push_back(SolutionReader::open_verified(path));
     inputs.emplace_back(path);
   }
-  for (const auto& path : args.references) {
+  for (const auto& path : reference_paths) {
     references.push_back(SolutionReader::open_verified(path));
     inputs.emplace_back(path);
   }
@@ -139,15 +156,19 @@ Command add_report(CLI::App& app) {
       "report",
       "Write instances and solvers' solution files as one self-contained HTML page: the suite "
       "table, the instance space, per benchmark its figures and fronts, the solvers' comparison");
-  sub->add_option("INSTANCES", args->instances, "the instances (.mosb, packed or not)")
+  sub->add_option("INSTANCES", args->instances,
+                  "the instances (.mosb, packed or not), or an experiment's results directory "
+                  "(its instances and every cell's solution file)")
       ->required()
-      ->check(CLI::ExistingFile);
+      ->check(CLI::ExistingPath);
   sub->add_option("--solutions", args->solutions,
-                  "solvers' solution files, each bound to one of the instances")
-      ->check(CLI::ExistingFile);
+                  "solvers' solution files, each bound to one of the instances, or results "
+                  "directories")
+      ->check(CLI::ExistingPath);
   sub->add_option("--reference", args->references,
-                  "reference solution files (at most one per instance, view and query set)")
-      ->check(CLI::ExistingFile);
+                  "reference solution files (at most one per instance, view and query set), or "
+                  "directories of them (mosb solutions reference -o DIR)")
+      ->check(CLI::ExistingPath);
   sub->add_option("--queries", args->queries,
                   "comma-separated query numbers whose fronts are drawn (default: the smallest, "
                   "median and largest solved front of each benchmark)");

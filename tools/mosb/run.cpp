@@ -61,26 +61,6 @@ extern "C" void request_stop(int) {
   g_stop.store(true);
 }
 
-// "60", "60s", "1.5m", "2h", "500ms": seconds; nullopt when malformed.
-std::optional<double> parse_duration(const std::string& text) {
-  std::size_t used = 0;
-  double value = 0;
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::exception&) {
-    return std::nullopt;
-  }
-  const std::string unit = text.substr(used);
-  double scale = 0;
-  if (unit.empty() || unit == "s") scale = 1;
-  if (unit == "ms") scale = 1e-3;
-  if (unit == "m" || unit == "min") scale = 60;
-  if (unit == "h") scale = 3600;
-  if (scale == 0 || !(value >= 0) || value > 1e9 || text.front() == '+' || text.front() == ' ')
-    return std::nullopt;
-  return value * scale;
-}
-
 CLI::Validator duration() {
   return {[](std::string& text) -> std::string {
             return parse_duration(text) ? "" : "not a duration (60, 60s, 500ms, 2m, 1h)";
@@ -557,6 +537,11 @@ int run_slurm_existing(const RunArgs& a) {
   if (a.status && a.resume) throw UsageError("--status: not with --resume");
   if (a.status && a.submit) throw UsageError("--submit: not with --status");
   const SlurmRun run = read_slurm_directory(a.slurm);
+  if (run.kind != kRunKind)
+    throw UsageError("--slurm " + a.slurm +
+                     ": the job array of an experiment; see it with mosb "
+                     "experiment run EXP.toml -o RESULTS --slurm " +
+                     a.slurm + " --status");
   const SlurmStatus status = slurm_status(run);
   if (a.status) {
     if (a.json)

@@ -370,7 +370,8 @@ Command add_solutions(CLI::App& app) {
                            {inspect, [inspect_args] { return run_inspect(*inspect_args); }},
                            {verify, [verify_args] { return run_verify(*verify_args); }},
                            add_solutions_compare(group_app),
-                           add_solutions_merge(group_app)});
+                           add_solutions_merge(group_app),
+                           add_solutions_reference(group_app)});
 }
 
 }  // namespace mosb::cli

@@ -21,6 +21,7 @@ struct SuiteBuildArgs {
   unsigned threads = 0;
   bool no_pack = false;
   bool no_generated = false;
+  bool replace = false;
   bool json = false;
 };
 
@@ -53,7 +54,7 @@ int run_suite_build(const SuiteBuildArgs& a) {
   });
   TerminalProgress progress;
   const auto entries = converters::run_suite(
-      a.directory, instances, {a.threads, progress.callback(), suite_pack(!a.no_pack)});
+      a.directory, instances, {a.threads, progress.callback(), suite_pack(!a.no_pack), a.replace});
   if (!a.json)
     for (const auto& s : raw)
       std::cout << s.name << ": "
@@ -111,6 +112,10 @@ Command add_suite(CLI::App& app) {
       ->group("");
   build->add_flag("--no-pack", args->no_pack,
                   "write the files unpacked (mosb pack makes the same packed files from them)");
+  build->add_flag("--replace", args->replace,
+                  "list only the instances this build writes (default: add them to DIR's "
+                  "MANIFEST, keeping, after checking them, the entries it lists and this build "
+                  "does not rebuild)");
   add_json_flag(build, args->json);
   return group(suite, {{build, [args] { return run_suite_build(*args); }}});
 }

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "commands.hpp"
+#include "mosb/internal/utf8.hpp"
 
 namespace mosb::cli {
 
@@ -83,6 +84,33 @@ void TerminalProgress::update(const RunProgress& p) {
                                              static_cast<double>(p.total - p.done))) +
             " s";
   line += "\x1b[K";  // erase what a longer line before left
+  std::fputs(line.c_str(), stderr);
+  std::fflush(stderr);
+  line_open_ = true;
+}
+
+void TerminalProgress::update(const ExperimentProgress& p) {
+  if (!enabled_) return;
+  std::lock_guard lock(mutex_);
+  const auto now = std::chrono::steady_clock::now();
+  if (p.queries_done != p.queries_total && now - last_draw_ < std::chrono::milliseconds(200))
+    return;
+  last_draw_ = now;
+  std::string line = "\rcells " + std::to_string(p.cells_done) + "/" +
+                     std::to_string(p.cells_total) + ", queries " + std::to_string(p.queries_done) +
+                     "/" + std::to_string(p.queries_total);
+  auto counts = p.counts;
+  counts[QueryStatus::not_run] = 0;
+  if (const auto text = status_counts_text(counts, true); !text.empty()) line += ", " + text;
+  if (p.queries_done_here != 0 && p.queries_done < p.queries_total)
+    line += ", ETA " +
+            std::to_string(
+                static_cast<long>(p.elapsed_seconds / static_cast<double>(p.queries_done_here) *
+                                  static_cast<double>(p.queries_total - p.queries_done))) +
+            " s";
+  if (!p.cell.empty() && p.queries_done < p.queries_total)
+    line += " (" + escape_for_terminal(p.cell) + ")";
+  line += "\x1b[K";
   std::fputs(line.c_str(), stderr);
   std::fflush(stderr);
   line_open_ = true;

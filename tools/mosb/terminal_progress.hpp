@@ -9,6 +9,7 @@
 #include <string>
 #include <string_view>
 
+#include "mosb/experiment.hpp"
 #include "mosb/progress.hpp"
 #include "mosb/run.hpp"
 
@@ -31,6 +32,8 @@ class TerminalProgress {
 
   // Redraws "done/total, status counts, ETA" of a run; the line stays open at the end (end_line).
   void update(const RunProgress& p);
+  // Redraws "cells a/b, queries c/d, status counts, ETA, the running cell" of an experiment.
+  void update(const ExperimentProgress& p);
   // Ends an open line, so that what is printed next starts on a line of its own.
   void end_line();
 

@@ -14,6 +14,7 @@
 #include "mosb/internal/parallel.hpp"
 #include "mosb/manifest.hpp"
 #include "mosb/random.hpp"
+#include "mosb/store.hpp"
 #include "suite_description.hpp"
 
 namespace mosb::converters {
@@ -25,6 +26,35 @@ std::vector<std::uint32_t> sorted_unique(std::vector<std::uint32_t> values) {
   std::sort(values.begin(), values.end());
   values.erase(std::unique(values.begin(), values.end()), values.end());
   return values;
+}
+
+// The earlier MANIFEST's entries that this build does not rebuild, each checked as a store checks
+// its entries; throws naming the first one with a problem, so a suite never lists a file that is
+// not what its entry says. Entries of a legacy (TSV) MANIFEST are described again from their bytes.
+std::vector<ManifestEntry> kept_entries(const std::filesystem::path& directory,
+                                        const std::vector<SuiteInstance>& instances,
+                                        const SuiteOptions& options) {
+  const auto manifest_path = directory / kManifestName;
+  std::error_code ec;
+  if (options.replace || !std::filesystem::exists(manifest_path, ec)) return {};
+  const auto manifest = read_manifest(manifest_path);
+  std::vector<std::pair<ManifestEntry, std::filesystem::path>> kept;
+  for (const auto& entry : manifest.entries)
+    if (std::none_of(instances.begin(), instances.end(),
+                     [&](const SuiteInstance& i) { return i.name + ".mosb" == entry.file; }))
+      kept.emplace_back(entry, directory / entry.file);
+  const auto checks = check_files(kept, {options.threads, {}, false});
+  std::vector<ManifestEntry> out;
+  for (std::size_t i = 0; i < checks.size(); ++i) {
+    if (!checks[i].ok())
+      throw Error(ErrorCode::invalid_argument,
+                  (directory / kManifestName).string() + " lists " + checks[i].file +
+                      ", which this build keeps but which fails its check (" +
+                      checks[i].problems.front().detail +
+                      "); rebuild it (--benchmark) or start over (--replace)");
+    out.push_back(manifest.legacy ? describe_file(kept[i].second) : kept[i].first);
+  }
+  return out;
 }
 
 }  // namespace
@@ -56,6 +86,7 @@ std::vector<SuiteEntry> run_suite(const std::filesystem::path& directory,
   std::error_code ec;
   std::filesystem::create_directories(directory, ec);
   if (ec) throw Error(directory.string() + ": cannot create the suite directory: " + ec.message());
+  const auto kept = kept_entries(directory, instances, options);
 
   std::vector<SuiteEntry> entries(instances.size());
   Manifest manifest;
@@ -91,6 +122,14 @@ std::vector<SuiteEntry> run_suite(const std::filesystem::path& directory,
     throw;
   }
 
+  for (const auto& entry : kept) {
+    manifest.entries.push_back(entry);
+    const auto stem =
+        entry.file.ends_with(".mosb") ? entry.file.substr(0, entry.file.size() - 5) : entry.file;
+    entries.push_back({stem, entry.file, entry.size, entry.digest, true});
+  }
+  std::sort(manifest.entries.begin(), manifest.entries.end(),
+            [](const ManifestEntry& a, const ManifestEntry& b) { return a.file < b.file; });
   std::sort(entries.begin(), entries.end(),
             [](const SuiteEntry& a, const SuiteEntry& b) { return a.name < b.name; });
   write_manifest(directory / kManifestName, manifest);

@@ -621,4 +621,57 @@ RunResult run_solver(const RunConfig& c, const RunCallbacks& callbacks,
   return result;
 }
 
+std::optional<double> parse_duration(std::string_view view) {
+  const std::string text(view);
+  // Decimal only: std::stod would also take "+1", " 1", "inf", "nan" and hex ("0x1p4").
+  if (text.empty() || !((text.front() >= '0' && text.front() <= '9') || text.front() == '.') ||
+      text.find_first_of("xX") != std::string::npos)
+    return std::nullopt;
+  std::size_t used = 0;
+  double value = 0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  const std::string unit = text.substr(used);
+  double scale = 0;
+  if (unit.empty() || unit == "s") scale = 1;
+  if (unit == "ms") scale = 1e-3;
+  if (unit == "m" || unit == "min") scale = 60;
+  if (unit == "h") scale = 3600;
+  if (scale == 0 || !(value >= 0) || !(value * scale <= 1e9)) return std::nullopt;
+  return value * scale;
+}
+
+std::optional<std::uint64_t> parse_memory_size(std::string_view text) {
+  std::uint64_t value = 0;
+  std::size_t i = 0;
+  for (; i < text.size() && text[i] >= '0' && text[i] <= '9'; ++i) {
+    const auto digit = static_cast<std::uint64_t>(text[i] - '0');
+    if (value > (UINT64_MAX - digit) / 10) return std::nullopt;
+    value = value * 10 + digit;
+  }
+  if (i == 0) return std::nullopt;
+  auto unit = text.substr(i);
+  // "B" alone (bytes), or after the multiplier: "KB", "KiB".
+  if (unit.size() == 3 && unit.ends_with("iB"))
+    unit.remove_suffix(2);
+  else if (unit.size() <= 2 && unit.ends_with("B"))
+    unit.remove_suffix(1);
+  int shift = 0;
+  if (unit == "K" || unit == "k")
+    shift = 10;
+  else if (unit == "M")
+    shift = 20;
+  else if (unit == "G")
+    shift = 30;
+  else if (unit == "T")
+    shift = 40;
+  else if (!unit.empty())
+    return std::nullopt;
+  if (shift > 0 && value > (UINT64_MAX >> shift)) return std::nullopt;
+  return value << shift;
+}
+
 }  // namespace mosb

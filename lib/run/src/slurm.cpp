@@ -105,7 +105,8 @@ std::uint64_t slurm_shard_count(std::uint64_t queries, std::optional<std::uint64
 
 std::optional<std::uint64_t> slurm_time_seconds(const SlurmRun& run) {
   if (run.time_limit_seconds <= 0) return std::nullopt;
-  const std::uint64_t largest = ceil_div(run.queries, run.shards);
+  const std::uint64_t largest =
+      run.largest_shard > 0 ? run.largest_shard : ceil_div(run.queries, run.shards);
   const std::uint64_t rounds = ceil_div(largest, std::max(1u, run.jobs));
   const double per_query = std::ceil(run.time_limit_seconds + run.grace_seconds) + 10;
   const auto seconds = static_cast<std::uint64_t>(static_cast<double>(rounds) * per_query) + 300;
@@ -142,12 +143,20 @@ std::string slurm_array_list(const std::vector<std::uint64_t>& shards) {
 std::string slurm_script(const SlurmRun& run) {
   std::ostringstream s;
   const std::string dir = run.directory;
-  s << "#!/bin/sh\n"
-    << "# mosb run --slurm (spec/RUN.md section 8): array task i runs shard i of " << run.shards
-    << "\n# of the " << run.queries << " queries of query set " << run.query_set
-    << " and writes shard-i.sol here. Written by mosb " << kVersion << ".\n"
-    << "# Resubmit what is missing: mosb run --slurm " << dir << " --resume --submit\n";
-  s << "#SBATCH --job-name=mosb-run\n";
+  const bool experiment = run.kind == kExperimentKind;
+  s << "#!/bin/sh\n";
+  if (experiment)
+    s << "# mosb experiment run --slurm (spec/EXPERIMENT.md section 4): array task i runs task i "
+      << "of " << run.shards << "\n# of the experiment's cells (" << run.queries
+      << " queries in all) into task-i/ here. Written by mosb " << kVersion << ".\n"
+      << "# Merge and resubmit: mosb experiment run " << shell_quote(run.instance)
+      << " -o RESULTS --slurm " << dir << " --resume --submit\n";
+  else
+    s << "# mosb run --slurm (spec/RUN.md section 8): array task i runs shard i of " << run.shards
+      << "\n# of the " << run.queries << " queries of query set " << run.query_set
+      << " and writes shard-i.sol here. Written by mosb " << kVersion << ".\n"
+      << "# Resubmit what is missing: mosb run --slurm " << dir << " --resume --submit\n";
+  s << "#SBATCH --job-name=mosb-" << (experiment ? "experiment" : "run") << "\n";
   s << "#SBATCH --array=" << slurm_array_list([&] {
     std::vector<std::uint64_t> all(run.shards);
     for (std::uint64_t i = 0; i < run.shards; ++i) all[i] = i + 1;
@@ -166,6 +175,13 @@ std::string slurm_script(const SlurmRun& run) {
   s << "set -eu\n";
   s << "cd " << shell_quote(run.working_directory) << "\n";
   s << "shard=\"$SLURM_ARRAY_TASK_ID\"\n";
+  if (experiment) {
+    s << "exec " << shell_quote(run.mosb) << " experiment run";
+    for (const auto& a : run.run_arguments) s << " " << shell_quote(a);
+    s << " --task \"$shard/" << run.shards << "\" -o " << shell_quote(dir + "/task-")
+      << "\"$shard\"\n";
+    return s.str();
+  }
   s << "exec " << shell_quote(run.mosb) << " run";
   for (const auto& a : run.run_arguments) s << " " << shell_quote(a);
   s << " --shard \"$shard/" << run.shards << "\" --resume -o " << shell_quote(dir + "/shard-")
@@ -177,6 +193,8 @@ namespace {
 
 nlohmann::json to_json(const SlurmRun& r) {
   return {{"mosb_slurm_run", 1},
+          {"kind", r.kind},
+          {"largest_shard", r.largest_shard},
           {"mosb", r.mosb},
           {"working_directory", r.working_directory},
           {"run_arguments", r.run_arguments},
@@ -236,6 +254,10 @@ SlurmRun read_slurm_directory(const std::string& directory) {
     SlurmRun r;
     r.directory = fs::absolute(directory).lexically_normal().string();
     while (r.directory.size() > 1 && r.directory.back() == '/') r.directory.pop_back();
+    r.kind = j.value("kind", std::string(kRunKind));  // absent before experiments
+    if (r.kind != kRunKind && r.kind != kExperimentKind)
+      throw Error("kind '" + r.kind + "' is neither run nor experiment");
+    r.largest_shard = j.value("largest_shard", std::uint64_t{0});
     r.mosb = j.at("mosb").get<std::string>();
     r.working_directory = j.at("working_directory").get<std::string>();
     r.run_arguments = j.at("run_arguments").get<std::vector<std::string>>();
@@ -338,9 +360,11 @@ std::optional<std::uint64_t> task_index(const std::string& id, const std::string
 
 }  // namespace
 
-SlurmStatus slurm_status(const SlurmRun& run) {
+SlurmStatus slurm_status(const SlurmRun& run,
+                         const std::function<ShardState(std::uint64_t)>& file_state) {
   SlurmStatus status;
-  for (std::uint64_t i = 1; i <= run.shards; ++i) status.shards.push_back(shard_file_state(run, i));
+  for (std::uint64_t i = 1; i <= run.shards; ++i)
+    status.shards.push_back(file_state ? file_state(i) : shard_file_state(run, i));
   const fs::path jobs_file = fs::path(run.directory) / kJobsFile;
   if (fs::exists(jobs_file))
     for (const auto& line : lines_of(read_whole_file(jobs_file))) {
@@ -429,6 +453,17 @@ std::string submit_shards(const SlurmRun& run, const std::vector<std::uint64_t>&
   return id;
 }
 
+SlurmRun slurm_run_here(const std::string& directory) {
+  SlurmRun run;
+  run.directory = fs::absolute(directory).lexically_normal().string();
+  while (run.directory.size() > 1 && run.directory.back() == '/') run.directory.pop_back();
+  std::error_code ec;
+  run.mosb = fs::read_symlink("/proc/self/exe", ec).string();
+  if (ec) throw Error(ErrorCode::io, "/proc/self/exe: cannot read: " + ec.message());
+  run.working_directory = fs::current_path().string();
+  return run;
+}
+
 SlurmRun plan_slurm_run(const RunConfig& config, const SlurmRequest& request) {
   const auto& instance = *config.instance;
   const View selection = solution_selection(instance, config.choice);
@@ -438,13 +473,7 @@ SlurmRun plan_slurm_run(const RunConfig& config, const SlurmRequest& request) {
     throw Error(ErrorCode::invalid_argument,
                 "--solver: " + words.front() + ": no such executable" +
                     (words.front().find('/') == std::string::npos ? " in PATH" : ""));
-  SlurmRun run;
-  run.directory = fs::absolute(request.directory).lexically_normal().string();
-  while (run.directory.size() > 1 && run.directory.back() == '/') run.directory.pop_back();
-  std::error_code ec;
-  run.mosb = fs::read_symlink("/proc/self/exe", ec).string();
-  if (ec) throw Error(ErrorCode::io, "/proc/self/exe: cannot read: " + ec.message());
-  run.working_directory = fs::current_path().string();
+  SlurmRun run = slurm_run_here(request.directory);
   run.instance = fs::absolute(config.instance_path).lexically_normal().string();
   run.instance_digest = instance.digest();
   run.view = selection.name;

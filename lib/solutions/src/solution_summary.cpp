@@ -50,7 +50,7 @@ std::optional<Distribution> distribution_of(std::vector<double> values,
 
 CompletedSummary summarize_completed(std::span<const SolutionReader* const> files) {
   CompletedSummary summary;
-  std::vector<double> sizes, runtimes;
+  std::vector<double> sizes, runtimes, reported;
   for (const auto* r : files)
     for (std::uint64_t q = 0; q < r->query_count(); ++q) {
       const auto status = r->status(q);
@@ -58,9 +58,11 @@ CompletedSummary summarize_completed(std::span<const SolutionReader* const> file
       if (!is_completed(status)) continue;
       sizes.push_back(static_cast<double>(r->front_size(q)));
       if (const auto runtime = r->runtime_seconds(q)) runtimes.push_back(*runtime);
+      if (const auto runtime = r->reported_runtime_seconds(q)) reported.push_back(*runtime);
     }
   summary.front_size = distribution_of(std::move(sizes));
   summary.runtime = distribution_of(std::move(runtimes));
+  summary.reported_runtime = distribution_of(std::move(reported));
   return summary;
 }
 

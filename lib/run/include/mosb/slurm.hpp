@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -20,6 +21,10 @@ namespace mosb {
 // What DIR/run.json records: enough to write the script again, to recognise the shard files, and
 // to resubmit.
 struct SlurmRun {
+  // What task i runs: kRunKind, shard i of a `mosb run` (into DIR/shard-i.sol); kExperimentKind,
+  // task i of an experiment's cells (`mosb experiment run EXP --task i/N`, spec/EXPERIMENT.md §4,
+  // into DIR/task-i/, a results directory of its own).
+  std::string kind = "run";
   std::string directory;          // absolute
   std::string mosb;               // absolute path of the mosb program every task runs
   std::string working_directory;  // absolute; the tasks run there (the template's relative paths)
@@ -30,6 +35,8 @@ struct SlurmRun {
   std::string instance, instance_digest, view, query_set;
   std::vector<std::string> objectives;
   std::uint64_t queries = 0, shards = 1;
+  // The queries of the largest task, for its --time; 0: ceil(queries / shards), a run's shards.
+  std::uint64_t largest_shard = 0;
   // Per-query limits and per-task resources, for --time, --mem and --cpus-per-task.
   double time_limit_seconds = 0, grace_seconds = 1;
   std::uint64_t memory_limit_bytes = 0;
@@ -37,6 +44,8 @@ struct SlurmRun {
   unsigned throttle = 0;  // at most this many tasks at once (%K); 0: no limit
   std::string account, partition;
 };
+
+inline constexpr std::string_view kRunKind = "run", kExperimentKind = "experiment";
 
 // What `mosb run --slurm DIR` asks beyond the run itself.
 struct SlurmRequest {
@@ -55,6 +64,11 @@ struct SlurmRequest {
 // mosb::Error: invalid_argument for a solver executable that is not there, or a shard count that
 // does not fit the query set; io when this program's path cannot be read.
 SlurmRun plan_slurm_run(const RunConfig& config, const SlurmRequest& request);
+
+// A SlurmRun with what every kind records alike: `directory` made absolute (no trailing '/'),
+// this program's own path (every task runs it) and the working directory. Throws mosb::Error
+// (io) when this program's path cannot be read.
+SlurmRun slurm_run_here(const std::string& directory);
 
 // N for `--shards N` or `--queries-per-task K` (ceil(Q / K)) over Q queries; throws mosb::Error
 // (invalid_argument) for 0, for more shards than queries, or both or neither given.
@@ -119,7 +133,10 @@ struct SlurmStatus {
 };
 
 // The shard files' states, and the scheduler's (squeue, sacct) when those programs exist.
-SlurmStatus slurm_status(const SlurmRun& run);
+// `file_state` says what task i (1-based) has written, for a kind whose outputs lib/run does not
+// know (an experiment's task directories); empty: a run's DIR/shard-i.sol.
+SlurmStatus slurm_status(const SlurmRun& run,
+                         const std::function<ShardState(std::uint64_t)>& file_state = {});
 
 // The sbatch command for `shards` (all: the script's own --array), as argv and as shell text that
 // also appends the job id to DIR/jobs (what --submit does).

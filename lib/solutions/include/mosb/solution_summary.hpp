@@ -41,6 +41,8 @@ struct CompletedSummary {
   StatusCounts statuses;                   // of every query of every file
   std::optional<Distribution> front_size;  // nullopt when no query completed
   std::optional<Distribution> runtime;     // runtime_seconds of the completed queries that have it
+  // reported_runtime_seconds (the solver's own) of the completed queries that have it
+  std::optional<Distribution> reported_runtime;
 };
 // O(Q log Q) over the statuses and front offsets; each file must be verified (open_verified).
 CompletedSummary summarize_completed(std::span<const SolutionReader* const> files);

@@ -41,6 +41,8 @@ struct Report {
   // instance space (ρ per benchmark), the solvers' comparison (the paper's two-solver table,
   // empty without two solvers) and the ε-coverage per solver (empty without a reference).
   tables::Table suite, instance_space, comparison, coverage;
+  // Per benchmark and solver, the paper's Table 5 (solver_table; empty without a solver).
+  tables::Table solvers;
   // What the page says about its inputs that a user should also be told where the report is
   // made: each instance given twice (the same content digest), left out and named with its twin.
   std::vector<std::string> notes;
@@ -56,5 +58,17 @@ struct Report {
 Report make_report(std::span<const GraphReader> instances,
                    std::span<const SolutionReader> solutions,
                    std::span<const SolutionReader> references, const ReportOptions& options);
+
+// The page's solver table, the paper's Table 5, alone (`mosb eval RESULTS`): one row per benchmark
+// (grouped as the page groups them) and solver, in the order first given: its files, queries,
+// solved (completed: solved or shown unreachable), timeouts, memory limits, failures and queries
+// not run, the median and max runtime over its completed queries, wall clock and as the solver
+// reported it (absent when none has one), and with references and options.epsilons the queries
+// evaluated against them and those covered at each ε. Binds the files as make_report does, with
+// its errors.
+tables::Table solver_table(std::span<const GraphReader> instances,
+                           std::span<const SolutionReader> solutions,
+                           std::span<const SolutionReader> references,
+                           const ReportOptions& options);
 
 }  // namespace mosb::pages

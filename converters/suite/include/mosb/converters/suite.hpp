@@ -38,6 +38,8 @@ struct SuiteEntry {
   std::string file;
   std::uint64_t size = 0;
   std::string digest;  // FORMAT.md §8 content digest
+  // Listed by the directory's MANIFEST before and not rebuilt: checked and kept.
+  bool kept = false;
 };
 
 struct SuiteOptions {
@@ -47,11 +49,18 @@ struct SuiteOptions {
   // Pack each file right after writing it (mosb::pack_file, in place); the MANIFEST then lists
   // the packed files. PackOptions::threads is ignored: instances are packed in parallel instead.
   std::optional<PackOptions> pack;
+  // False (the default): a directory that already has a MANIFEST is added to; its entries that
+  // are not rebuilt are checked (Store-level: size, SHA-256, verify --level full, digest) before
+  // anything is written and stay listed. True: the MANIFEST lists the built instances only.
+  bool replace = false;
 };
 
-// Creates `directory` if needed, writes every instance and then MANIFEST (replacing any earlier
-// one, of either format); returns one entry per instance, sorted by name. On failure throws the
-// error of the lowest-index failing instance (no MANIFEST is written).
+// Creates `directory` if needed, writes every instance and then MANIFEST (of the JSON Lines format
+// whatever the earlier one's): the built instances and, unless `options.replace`, every entry the
+// earlier MANIFEST listed that was not rebuilt. Returns one entry per listed file, sorted by name
+// (kept ones marked). A kept entry that fails its check throws mosb::Error naming it before
+// anything is built; on a build failure throws the error of the lowest-index failing instance (the
+// MANIFEST is left as it was).
 std::vector<SuiteEntry> run_suite(const std::filesystem::path& directory,
                                   const std::vector<SuiteInstance>& instances,
                                   const SuiteOptions& options);

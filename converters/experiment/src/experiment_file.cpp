@@ -1,0 +1,227 @@
+#include "mosb/converters/experiment_file.hpp"
+
+#include <toml++/toml.h>
+
+#include <set>
+#include <sstream>
+
+#include "mosb/converters/solver_output.hpp"
+#include "mosb/error.hpp"
+#include "mosb/internal/read_file.hpp"
+
+namespace mosb::converters {
+
+namespace {
+
+// toml++'s description of a syntax error may span lines: each line break (and the indentation
+// after it) becomes "; ", so that the error stays one line.
+std::string one_line(std::string_view text) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] != '\n' && text[i] != '\r') {
+      out += text[i];
+      continue;
+    }
+    while (i + 1 < text.size() && (text[i + 1] == '\n' || text[i + 1] == '\r' ||
+                                   text[i + 1] == ' ' || text[i + 1] == '\t'))
+      ++i;
+    if (!out.empty() && i + 1 < text.size()) out += "; ";
+  }
+  return out;
+}
+
+// Reads one table's keys, each once, refusing any key it was not asked for.
+class TableReader {
+ public:
+  TableReader(const toml::table& table, std::string prefix, const Experiment& e)
+      : table_(table), prefix_(std::move(prefix)), e_(e) {}
+
+  [[noreturn]] void fail(const toml::node& at, const std::string& key,
+                         const std::string& problem) const {
+    throw Error(ErrorCode::invalid_argument, experiment_error(e_, where(at, key), problem));
+  }
+  SourceLine where(const toml::node& at, const std::string& key) const {
+    return {static_cast<std::size_t>(at.source().begin.line), prefix_ + key};
+  }
+  SourceLine where(const std::string& key) const {
+    const auto* node = table_.get(key);
+    return where(node != nullptr ? *node : static_cast<const toml::node&>(table_), key);
+  }
+
+  const toml::node* get(const std::string& key) {
+    known_.insert(key);
+    return table_.get(key);
+  }
+  std::optional<std::string> text(const std::string& key) {
+    const auto* node = get(key);
+    if (node == nullptr) return std::nullopt;
+    if (!node->is_string()) fail(*node, key, "must be a string");
+    return node->value<std::string>();
+  }
+  std::string required_text(const std::string& key) {
+    auto value = text(key);
+    if (!value || value->empty()) fail(table_, key, "is required (a non-empty string)");
+    return *value;
+  }
+  // An array of strings, with each element's line.
+  std::vector<std::pair<std::string, SourceLine>> texts(const std::string& key) {
+    std::vector<std::pair<std::string, SourceLine>> out;
+    const auto* node = get(key);
+    if (node == nullptr) return out;
+    const auto* array = node->as_array();
+    if (array == nullptr) fail(*node, key, "must be an array of strings");
+    for (const auto& element : *array) {
+      if (!element.is_string()) fail(element, key, "must be an array of strings");
+      out.emplace_back(*element.value<std::string>(), where(element, key));
+    }
+    return out;
+  }
+  const toml::table* table(const std::string& key) {
+    const auto* node = get(key);
+    if (node == nullptr) return nullptr;
+    if (!node->is_table()) fail(*node, key, "must be a table");
+    return node->as_table();
+  }
+  // Call last: a key nobody asked for is a mistake (a typo), never ignored.
+  void refuse_unknown() const {
+    for (const auto& [key, node] : table_)
+      if (!known_.contains(std::string(key.str())))
+        fail(node, std::string(key.str()), "unknown key");
+  }
+
+ private:
+  const toml::table& table_;
+  std::string prefix_;
+  const Experiment& e_;
+  std::set<std::string> known_;
+};
+
+void read_limits(TableReader& root, Experiment& e) {
+  const auto* limits = root.table("limits");
+  if (limits == nullptr) return;
+  TableReader t(*limits, "limits.", e);
+  std::ostringstream canonical;
+  const auto duration = [&](const std::string& key, double& out) {
+    const auto text = t.text(key);
+    if (!text) return;
+    const auto seconds = parse_duration(*text);
+    if (!seconds)
+      t.fail(*t.get(key), key, "'" + *text + "' is not a duration (60, 60s, 500ms, 2m, 1h)");
+    out = *seconds;
+    canonical << key << '=' << *seconds << "s ";
+  };
+  const auto size = [&](const std::string& key, std::uint64_t& out) {
+    const auto text = t.text(key);
+    if (!text) return;
+    const auto bytes = parse_memory_size(*text);
+    if (!bytes) t.fail(*t.get(key), key, "'" + *text + "' is not a size (4294967296, 512M, 16G)");
+    out = *bytes;
+    canonical << key << '=' << *bytes << "B ";
+  };
+  auto& p = e.limits.process;
+  duration("time", p.wall_seconds);
+  size("memory", p.memory_bytes);
+  duration("cpu", p.cpu_seconds);
+  duration("grace", p.grace_seconds);
+  size("output", p.output_bytes);
+  t.refuse_unknown();
+  e.limits.text = canonical.str();
+  if (!e.limits.text.empty()) e.limits.text.pop_back();
+}
+
+ExperimentSolver read_solver(const toml::table& table, std::size_t index, const Experiment& e) {
+  TableReader t(table, "solver[" + std::to_string(index) + "].", e);
+  ExperimentSolver s;
+  s.source = {static_cast<std::size_t>(table.source().begin.line),
+              "solver[" + std::to_string(index) + "]"};
+  s.name = t.required_text("name");
+  s.solver_template = t.text("template").value_or("");
+  s.profile = t.text("profile").value_or("");
+  s.executable = t.text("executable").value_or("");
+  if (const auto* options = t.table("options")) {
+    for (const auto& [key, node] : *options) {
+      if (!node.is_string() && !node.is_integer() && !node.is_floating_point() &&
+          !node.is_boolean())
+        t.fail(node, "options." + std::string(key.str()), "must be a string, number or boolean");
+      std::ostringstream value;
+      node.visit([&](const auto& v) {
+        // Strings and numbers as written; booleans as true/false, not 1/0.
+        if constexpr (toml::is_boolean<decltype(v)>)
+          value << (v.get() ? "true" : "false");
+        else if constexpr (toml::is_string<decltype(v)> || toml::is_number<decltype(v)>)
+          value << v.get();
+      });
+      s.options[std::string(key.str())] = value.str();
+    }
+  }
+  if (auto format = t.text("output_format")) {
+    if (find_solver_output_format(*format) == nullptr)
+      t.fail(*t.get("output_format"), "output_format", "'" + *format + "': no such output format");
+    s.output_format = *format;
+  }
+  s.epsilon = t.text("epsilon").value_or("0");
+  for (auto& [pattern, line] : t.texts("benchmarks")) {
+    s.benchmarks.push_back(pattern);
+    s.benchmark_sources.push_back(line);
+  }
+  t.refuse_unknown();
+  if (s.solver_template.empty() == s.profile.empty())
+    t.fail(table, "template", "give exactly one of template and profile");
+  if (!s.profile.empty()) return s;
+  if (!s.executable.empty() || !s.options.empty())
+    t.fail(table, "executable", "executable and options go with a profile, not a template");
+  return s;
+}
+
+}  // namespace
+
+Experiment parse_experiment(std::string_view text, const std::string& display_name) {
+  Experiment e;
+  e.file = display_name;
+  toml::table root;
+  try {
+    root = toml::parse(text, display_name);
+  } catch (const toml::parse_error& err) {
+    throw Error(ErrorCode::invalid_argument,
+                display_name + ":" + std::to_string(err.source().begin.line) + ":" +
+                    std::to_string(err.source().begin.column) + ": " + one_line(err.description()));
+  }
+  TableReader t(root, "", e);
+  e.name = t.required_text("name");
+  if (auto store = t.text("store")) {
+    e.store = *store;
+    e.store_source = t.where("store");
+  }
+  for (auto& [path, line] : t.texts("instances")) e.instances.emplace_back(path);
+  if (e.store.empty()) e.store_source = t.where("instances");
+  for (auto& [pattern, line] : t.texts("benchmarks")) {
+    e.benchmarks.push_back(pattern);
+    e.benchmark_sources.push_back(line);
+  }
+  read_limits(t, e);
+  if (const auto* node = t.get("solver")) {
+    const auto* array = node->as_array();
+    if (array == nullptr || !array->is_array_of_tables())
+      t.fail(*node, "solver", "must be an array of tables ([[solver]])");
+    for (std::size_t i = 0; i < array->size(); ++i)
+      e.solvers.push_back(read_solver(*array->get(i)->as_table(), i + 1, e));
+  }
+  if (const auto* reference = t.table("reference")) {
+    TableReader r(*reference, "reference.", e);
+    e.reference_source = r.where("solvers");
+    for (auto& [name, line] : r.texts("solvers")) e.reference_solvers.push_back(name);
+    r.refuse_unknown();
+  }
+  t.refuse_unknown();
+  if (e.store.empty() == e.instances.empty())
+    t.fail(root, e.store.empty() ? "store" : "instances",
+           "give exactly one of store and instances");
+  if (e.solvers.empty()) t.fail(root, "solver", "no [[solver]]");
+  return e;
+}
+
+Experiment read_experiment_file(const std::filesystem::path& path) {
+  return parse_experiment(read_whole_file(path), path.string());
+}
+
+}  // namespace mosb::converters

@@ -1,0 +1,222 @@
+// `mosb experiment` (spec/EXPERIMENT.md): a matrix of solvers × instances × views run into one
+// results directory. The experiment arrives as a plain struct (converters/experiment parses the
+// TOML file); plan_experiment resolves it against the store or instance files into cells, each a
+// `mosb run` (lib/run's run_solver: its measurement, statuses and journal) writing one solution
+// file; results/MANIFEST lists the finished cells. A rerun continues: a finished cell is not run
+// again, a killed one resumes from its journal, and a cell whose solver executable or limits
+// changed is refused, by name, before anything runs.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mosb/enum_names.hpp"
+#include "mosb/run.hpp"
+#include "mosb/solution_file.hpp"
+
+namespace mosb {
+
+// Where a value came from in the experiment file, for one-line errors "FILE:LINE: KEY: problem".
+struct SourceLine {
+  std::size_t line = 0;  // 0: unknown
+  std::string key;
+};
+
+struct ExperimentSolver {
+  std::string name;  // [A-Za-z0-9_.+-]: a directory name under results/cells
+  // A `mosb run --solver` template; empty when the solver names a profile.
+  std::string solver_template;
+  // A solver profile (issue 34) and what it is filled with; kept, refused until profiles exist.
+  std::string profile, executable;
+  std::map<std::string, std::string> options;
+  std::string output_format = "protocol";
+  std::string epsilon = "0";
+  // Optional: the solver runs only the cells these patterns match (as Experiment::benchmarks), a
+  // bi-objective solver the 2-objective views; each must match a cell of the experiment.
+  std::vector<std::string> benchmarks;
+  std::vector<SourceLine> benchmark_sources;
+  SourceLine source;
+};
+
+struct ExperimentLimits {
+  ProcessLimits process;  // time, memory, cpu, grace, output
+  std::string text;       // the limits as the file wrote them, canonical: what a rerun compares
+};
+
+struct Experiment {
+  std::string file;  // the experiment file, for errors
+  std::string name;
+  std::filesystem::path store;  // or instances
+  std::vector<std::filesystem::path> instances;
+  std::vector<std::string> benchmarks;        // view or benchmark names, shell patterns
+  std::vector<SourceLine> benchmark_sources;  // per benchmarks entry
+  SourceLine store_source;
+  ExperimentLimits limits;
+  std::vector<ExperimentSolver> solvers;
+  std::vector<std::string> reference_solvers;
+  SourceLine reference_source;
+};
+
+// "FILE:LINE: KEY: problem" (or "FILE: problem" without a line), as every refusal of a plan says.
+std::string experiment_error(const Experiment& e, const SourceLine& at, const std::string& problem);
+
+// What `solver` runs as: its template, output format and ε. The one step from an experiment's
+// solver to lib/run's configuration, where solver profiles (issue 34) will be resolved; until then
+// a `profile` solver is refused ("profiles need ...").
+struct SolverCommand {
+  std::string solver_template, output_format, epsilon;
+};
+SolverCommand solver_command(const Experiment& e, const ExperimentSolver& solver);
+
+// One cell: one solver over the query set of one view of one instance.
+struct ExperimentCell {
+  std::string solver;    // ExperimentSolver::name
+  std::string instance;  // the file's name without .mosb
+  std::string view, query_set;
+  std::string instance_digest;
+  std::string instance_file;  // the store entry or instance file
+  std::uint64_t queries = 0;
+  std::string file;  // cells/SOLVER/INSTANCE.VIEW.sol, relative to the results directory
+  std::string id() const { return solver + "/" + instance + "/" + view; }
+};
+
+struct ExperimentPlan {
+  Experiment experiment;
+  std::vector<SolverCommand> commands;         // per solver
+  std::vector<std::string> executable_sha256;  // per solver: its executable's SHA-256
+  std::vector<ExperimentCell> cells;           // solver-major, then instance, then view
+};
+
+// Resolves the experiment: the store (or instance files), the benchmarks each matching some
+// (instance, view) (a pattern matches a view name, a benchmark name or BENCHMARK/VIEW), every
+// solver's command and executable, the reference solvers among the solvers. Throws mosb::Error
+// (invalid_argument) with experiment_error's line before anything runs.
+ExperimentPlan plan_experiment(const Experiment& experiment);
+
+// One record of results/MANIFEST: a finished cell.
+struct CellRecord {
+  ExperimentCell cell;
+  std::string sha256;             // of the solution file
+  std::string executable_sha256;  // of the solver's executable when it ran
+  std::string solver_template, limits;
+  StatusCounts counts;
+};
+
+inline constexpr std::string_view kResultsManifestFormat = "mosb-experiment-results";
+// results/MANIFEST's records, sorted by cell id; empty when there is none. Throws mosb::Error
+// naming the file and line on one that does not parse.
+std::vector<CellRecord> read_results_manifest(const std::filesystem::path& results);
+
+enum class CellState {
+  done,     // listed in MANIFEST, its file there with the listed SHA-256
+  running,  // a journal, and the experiment's lock held by a running process
+  stopped,  // a journal, nobody running it: the next run resumes it
+  missing,  // neither
+  failed,   // done, with failed queries (the solver crashed or its output was unreadable)
+  damaged,  // listed, but the file is absent or not the listed bytes
+};
+inline constexpr auto kCellStateNames = enum_names<CellState>({
+    {CellState::done, "done"},
+    {CellState::running, "running"},
+    {CellState::stopped, "stopped"},
+    {CellState::missing, "missing"},
+    {CellState::failed, "failed"},
+    {CellState::damaged, "damaged"},
+});
+std::string_view to_string(CellState state);
+
+struct CellStatus {
+  ExperimentCell cell;
+  CellState state = CellState::missing;
+  StatusCounts counts;          // done and failed: the file's
+  std::uint64_t journaled = 0;  // running and stopped: queries the journal holds
+  std::string detail;           // damaged: why
+};
+
+// Every cell of the experiment results/ holds (results/experiment.json, written by
+// run_experiment), in plan order. Throws mosb::Error naming the directory when it holds none.
+std::vector<CellStatus> experiment_status(const std::filesystem::path& results);
+
+struct ExperimentProgress {
+  std::uint64_t cells_done = 0, cells_total = 0;
+  std::uint64_t queries_done = 0, queries_total = 0;
+  std::uint64_t queries_done_here = 0;  // by this invocation, for an ETA
+  StatusCounts counts;                  // of the queries done
+  double elapsed_seconds = 0;
+  std::string cell;  // the one running
+};
+
+struct ExperimentOptions {
+  unsigned jobs = 1;  // queries at once within a cell
+  std::optional<Measurement> measurement;
+  // The adapter of a solver's output format ("protocol": lib/run's own); nullptr for an unknown
+  // format. The program passes converters/solutions' registry.
+  std::function<OutputAdapter(const std::string& format)> adapter;
+  std::function<void(const ExperimentProgress&)> progress;
+  std::function<void(const ExperimentCell&, const QueryRecord&, const Query&)> failed;
+};
+
+struct ExperimentResult {
+  std::uint64_t cells = 0, ran = 0, skipped = 0;  // skipped: done before
+  StatusCounts counts;                            // every cell's
+  bool interrupted = false;
+};
+
+// Runs every cell not done into results/ (created, with the plan recorded in
+// results/experiment.json). Refuses, before anything runs, naming every such cell: a done cell
+// whose executable or limits changed (remove its file to run it again), a damaged one, and a
+// results directory of another experiment. A packed store entry is run on the store's unpacked
+// copy (Store::instance). MANIFEST is rewritten atomically after each cell. With `stop` set, the
+// running cell keeps its journal and the run returns interrupted.
+ExperimentResult run_experiment(const ExperimentPlan& plan, const std::filesystem::path& results,
+                                const ExperimentOptions& options, const std::atomic<bool>& stop);
+
+// --- One SLURM job array for the whole matrix (spec/EXPERIMENT.md §4).
+
+// The experiment's cells as array tasks: consecutive cells (plan order) packed while a task holds
+// at most `queries_per_task` queries; a cell of more queries is a task of its own. Deterministic:
+// every task recomputes the packing from the plan. Throws mosb::Error (invalid_argument) for 0.
+std::vector<std::vector<std::size_t>> experiment_tasks(const ExperimentPlan& plan,
+                                                       std::uint64_t queries_per_task);
+// The plan of task `index` (1-based) of `tasks`: the same experiment, its cells only.
+ExperimentPlan task_plan(const ExperimentPlan& plan,
+                         const std::vector<std::vector<std::size_t>>& tasks, std::uint64_t index);
+
+// What a task's results directory holds, as lib/run's SLURM status counts a shard: done (every
+// cell of the task listed and intact), partial (some cells or a journal), missing (nothing),
+// damaged (a listed cell's file is not the listed bytes).
+struct TaskFiles {
+  enum class State { done, partial, missing, damaged } state = State::missing;
+  std::uint64_t cells_done = 0, queries_done = 0;
+  StatusCounts counts;
+  std::string problem;
+};
+TaskFiles task_files(const ExperimentPlan& task, const std::filesystem::path& directory);
+
+// Merges the finished cells of task results directories into `results` (created as
+// run_experiment creates it, the plan recorded): each cell of the plan that `results` does not
+// list and a part does is copied (its SHA-256 checked against the part's MANIFEST record) and
+// listed. Refuses, before copying anything, as run_experiment refuses a rerun: a part's cell whose
+// executable, template, limits or instance are not the plan's, or whose file is not the listed
+// bytes. Returns the cells merged.
+std::uint64_t merge_experiment_results(const ExperimentPlan& plan,
+                                       const std::filesystem::path& results,
+                                       const std::vector<std::filesystem::path>& parts);
+
+// The solution files of a results directory (its MANIFEST's, in cell order), or `path` itself
+// when it is a file: what `solutions reference`, `eval` and `report` take for RESULTS.
+std::vector<std::filesystem::path> result_files(const std::filesystem::path& path);
+// The instance files of a results directory's cells (results/experiment.json), each once, in cell
+// order: what `mosb report RESULTS` reports on.
+std::vector<std::filesystem::path> result_instances(const std::filesystem::path& results);
+// A reference directory's solution files (*.sol, sorted by name), or `path` itself when it is a
+// file (`--reference REFS/`).
+std::vector<std::filesystem::path> reference_files(const std::filesystem::path& path);
+
+}  // namespace mosb

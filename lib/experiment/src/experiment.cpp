@@ -1,0 +1,748 @@
+#include "mosb/experiment.hpp"
+
+#include <fcntl.h>
+#include <fnmatch.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <span>
+
+#include "mosb/atomic_file.hpp"
+#include "mosb/command_template.hpp"
+#include "mosb/error.hpp"
+#include "mosb/internal/read_file.hpp"
+#include "mosb/metadata.hpp"
+#include "mosb/sha256.hpp"
+#include "mosb/store.hpp"
+
+namespace mosb {
+
+namespace {
+
+using Json = nlohmann::json;
+namespace fs = std::filesystem;
+
+constexpr std::string_view kPlanFile = "experiment.json";
+constexpr std::string_view kPlanFormat = "mosb-experiment-plan";
+constexpr int kVersion = 1;
+
+[[noreturn]] void refuse(const Experiment& e, const SourceLine& at, const std::string& problem) {
+  throw Error(ErrorCode::invalid_argument, experiment_error(e, at, problem));
+}
+
+// An instance of the experiment with its views, as the plan sees it.
+struct PlannedInstance {
+  std::string name, file, digest;
+  std::string benchmark;
+  std::vector<View> views;
+  std::vector<std::uint64_t> queries;  // per view: its query set's size
+};
+
+PlannedInstance planned_instance(const fs::path& path, std::string file) {
+  const auto reader = GraphReader::open(path, VerifyLevel::checksums);
+  PlannedInstance out;
+  out.file = std::move(file);
+  out.name = fs::path(out.file).stem().string();
+  out.digest = reader.digest();
+  out.benchmark = reader.metadata().get("benchmark").value_or(out.name);
+  out.views = reader.views();
+  for (const auto& v : out.views)
+    out.queries.push_back(!v.query_set.empty() &&
+                                  reader.find(format::SectionKind::queries, v.query_set)
+                              ? reader.queries(v.query_set).size()
+                              : 0);
+  return out;
+}
+
+// The instances of the experiment, by file name: a store's entries (a packed one through the
+// store's unpacked copy) or the listed files.
+std::vector<PlannedInstance> planned_instances(const Experiment& e) {
+  std::vector<PlannedInstance> out;
+  if (!e.store.empty()) {
+    try {
+      const auto store = Store::open(e.store);
+      for (const auto& entry : store.manifest().entries)
+        out.push_back(planned_instance(
+            entry.packed ? store.unpack(entry.file) : store.directory() / entry.file,
+            (store.directory() / entry.file).string()));
+    } catch (const Error& err) {
+      refuse(e, e.store_source, err.what());
+    }
+    return out;
+  }
+  for (const auto& path : e.instances) {
+    try {
+      out.push_back(planned_instance(path, path.string()));
+    } catch (const Error& err) {
+      refuse(e, e.store_source, err.what());
+    }
+  }
+  return out;
+}
+
+bool matches(const std::string& pattern, const PlannedInstance& i, const View& v) {
+  const auto full = i.benchmark + "/" + v.name;
+  return ::fnmatch(pattern.c_str(), v.name.c_str(), 0) == 0 ||
+         ::fnmatch(pattern.c_str(), i.benchmark.c_str(), 0) == 0 ||
+         ::fnmatch(pattern.c_str(), i.name.c_str(), 0) == 0 ||
+         ::fnmatch(pattern.c_str(), full.c_str(), 0) == 0;
+}
+
+bool valid_name(const std::string& name) {
+  return !name.empty() && name != "." && name != ".." && Metadata::is_valid_key(name);
+}
+
+// The executable of a template: its first word, resolved as run_solver resolves it.
+std::string executable_digest(const Experiment& e, const ExperimentSolver& solver,
+                              const SolverCommand& command) {
+  const auto words = split_command(command.solver_template);
+  if (words.empty()) refuse(e, solver.source, "the solver's template is empty");
+  try {
+    return sha256_file(resolve_executable(words.front()));
+  } catch (const Error& err) {
+    refuse(e, solver.source, "solver '" + solver.name + "': " + err.what());
+  }
+}
+
+Json cell_json(const ExperimentCell& c) {
+  return {{"solver", c.solver},
+          {"instance", c.instance},
+          {"view", c.view},
+          {"query_set", c.query_set},
+          {"instance_digest", c.instance_digest},
+          {"instance_file", c.instance_file},
+          {"queries", c.queries},
+          {"file", c.file}};
+}
+
+ExperimentCell cell_of(const Json& j) {
+  ExperimentCell c;
+  c.solver = j.at("solver").get<std::string>();
+  c.instance = j.at("instance").get<std::string>();
+  c.view = j.at("view").get<std::string>();
+  c.query_set = j.at("query_set").get<std::string>();
+  c.instance_digest = j.at("instance_digest").get<std::string>();
+  c.instance_file = j.at("instance_file").get<std::string>();
+  c.queries = j.at("queries").get<std::uint64_t>();
+  c.file = j.at("file").get<std::string>();
+  return c;
+}
+
+Json counts_json(const StatusCounts& counts) {
+  Json j = Json::object();
+  for (const auto status : kQueryStatuses) j[std::string(to_string(status))] = counts[status];
+  return j;
+}
+
+void write_text_atomically(const fs::path& path, const std::string& text) {
+  AtomicFile file(path);
+  file.write(text);
+  file.commit();
+}
+
+void write_results_manifest(const fs::path& results, std::vector<CellRecord> records) {
+  std::sort(records.begin(), records.end(),
+            [](const CellRecord& a, const CellRecord& b) { return a.cell.id() < b.cell.id(); });
+  std::string text = Json{{"format", kResultsManifestFormat}, {"version", kVersion}}.dump() + "\n";
+  for (const auto& r : records) {
+    Json j = cell_json(r.cell);
+    j["sha256"] = r.sha256;
+    j["executable_sha256"] = r.executable_sha256;
+    j["solver_template"] = r.solver_template;
+    j["limits"] = r.limits;
+    j["counts"] = counts_json(r.counts);
+    text += j.dump(-1, ' ', false, Json::error_handler_t::replace) + "\n";
+  }
+  write_text_atomically(results / kManifestName, text);
+}
+
+Json plan_json(const ExperimentPlan& plan) {
+  Json solvers = Json::array();
+  for (std::size_t s = 0; s < plan.experiment.solvers.size(); ++s)
+    solvers.push_back({{"name", plan.experiment.solvers[s].name},
+                       {"template", plan.commands[s].solver_template},
+                       {"executable_sha256", plan.executable_sha256[s]}});
+  Json cells = Json::array();
+  for (const auto& c : plan.cells) cells.push_back(cell_json(c));
+  return {{"format", kPlanFormat},        {"version", kVersion},
+          {"name", plan.experiment.name}, {"limits", plan.experiment.limits.text},
+          {"solvers", solvers},           {"cells", cells}};
+}
+
+Json read_json_file(const fs::path& path) {
+  try {
+    return Json::parse(read_whole_file(path));
+  } catch (const Json::exception& e) {
+    throw Error(ErrorCode::invalid_argument, path.string() + ": not a JSON document: " + e.what());
+  }
+}
+
+}  // namespace
+
+std::string experiment_error(const Experiment& e, const SourceLine& at,
+                             const std::string& problem) {
+  std::string out = e.file;
+  if (at.line > 0) out += ":" + std::to_string(at.line);
+  if (!at.key.empty()) out += ": " + at.key;
+  return out + ": " + problem;
+}
+
+SolverCommand solver_command(const Experiment& e, const ExperimentSolver& solver) {
+  if (!solver.profile.empty())
+    refuse(e, solver.source,
+           "solver '" + solver.name +
+               "': profiles need the solver profiles of issue 34, which "
+               "this mosb does not have yet; give the solver's command as template = \"...\"");
+  if (solver.solver_template.empty())
+    refuse(e, solver.source, "solver '" + solver.name + "' has neither template nor profile");
+  return {solver.solver_template, solver.output_format, solver.epsilon};
+}
+
+ExperimentPlan plan_experiment(const Experiment& experiment) {
+  const auto& e = experiment;
+  ExperimentPlan plan;
+  plan.experiment = e;
+  if (e.solvers.empty()) refuse(e, {}, "no [[solver]]");
+  std::set<std::string> names;
+  for (const auto& solver : e.solvers) {
+    if (!valid_name(solver.name))
+      refuse(e, solver.source, "solver name '" + solver.name + "' is not from [A-Za-z0-9_.+-]");
+    if (!names.insert(solver.name).second)
+      refuse(e, solver.source, "solver '" + solver.name + "' is defined twice");
+    plan.commands.push_back(solver_command(e, solver));
+    plan.executable_sha256.push_back(executable_digest(e, solver, plan.commands.back()));
+  }
+  for (const auto& name : e.reference_solvers)
+    if (!names.contains(name))
+      refuse(e, e.reference_source, "'" + name + "' is none of the [[solver]] names");
+  const auto instances = planned_instances(e);
+  for (std::size_t b = 0; b < e.benchmarks.size(); ++b) {
+    const bool any = std::any_of(instances.begin(), instances.end(), [&](const PlannedInstance& i) {
+      return std::any_of(i.views.begin(), i.views.end(),
+                         [&](const View& v) { return matches(e.benchmarks[b], i, v); });
+    });
+    if (!any)
+      refuse(e, e.benchmark_sources[b],
+             "'" + e.benchmarks[b] + "' matches no view or benchmark of " +
+                 (e.store.empty() ? std::string("the instances") : e.store.string()));
+  }
+  std::vector<ExperimentCell> cells;  // instance-major, for the solvers to repeat
+  std::vector<std::pair<std::size_t, std::size_t>> cell_views;  // (instance, view) per cell
+  for (std::size_t n = 0; n < instances.size(); ++n) {
+    const auto& i = instances[n];
+    for (std::size_t k = 0; k < i.views.size(); ++k) {
+      const auto& v = i.views[k];
+      if (!e.benchmarks.empty() &&
+          std::none_of(e.benchmarks.begin(), e.benchmarks.end(),
+                       [&](const std::string& p) { return matches(p, i, v); }))
+        continue;
+      if (i.queries[k] == 0)
+        refuse(e, {}, i.file + ": view " + v.name + " names no query set with queries");
+      cells.push_back({"", i.name, v.name, v.query_set, i.digest, i.file, i.queries[k], ""});
+      cell_views.emplace_back(n, k);
+    }
+  }
+  if (cells.empty()) refuse(e, {}, "no instance view to run");
+  for (const auto& solver : e.solvers) {
+    const auto runs = [&](std::size_t c, const std::string& pattern) {
+      const auto& i = instances[cell_views[c].first];
+      return matches(pattern, i, i.views[cell_views[c].second]);
+    };
+    for (std::size_t b = 0; b < solver.benchmarks.size(); ++b) {
+      bool any = false;
+      for (std::size_t c = 0; c < cells.size() && !any; ++c) any = runs(c, solver.benchmarks[b]);
+      if (!any)
+        refuse(e, solver.benchmark_sources[b],
+               "'" + solver.benchmarks[b] + "' matches no cell of the experiment");
+    }
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      if (!solver.benchmarks.empty() &&
+          std::none_of(solver.benchmarks.begin(), solver.benchmarks.end(),
+                       [&](const std::string& p) { return runs(c, p); }))
+        continue;
+      auto cell = cells[c];
+      cell.solver = solver.name;
+      cell.file = "cells/" + solver.name + "/" + cell.instance + "." + cell.view + ".sol";
+      plan.cells.push_back(std::move(cell));
+    }
+  }
+  std::set<std::string> files;
+  for (const auto& c : plan.cells)
+    if (!files.insert(c.file).second)
+      refuse(e, {}, "two cells write " + c.file + " (two instances of one file name)");
+  return plan;
+}
+
+std::string_view to_string(CellState state) {
+  return kCellStateNames.name(state);
+}
+
+std::vector<CellRecord> read_results_manifest(const fs::path& results) {
+  const auto path = results / kManifestName;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) return {};
+  const auto text = read_whole_file(path);
+  std::vector<CellRecord> out;
+  std::size_t line_number = 0, start = 0;
+  while (start < text.size()) {
+    auto end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    const auto line = text.substr(start, end - start);
+    start = end + 1;
+    ++line_number;
+    try {
+      const auto j = Json::parse(line);
+      if (line_number == 1) {
+        if (j.at("format") != kResultsManifestFormat || j.at("version") != kVersion)
+          throw Error("not a results MANIFEST of this version");
+        continue;
+      }
+      CellRecord r;
+      r.cell = cell_of(j);
+      r.sha256 = j.at("sha256").get<std::string>();
+      r.executable_sha256 = j.at("executable_sha256").get<std::string>();
+      r.solver_template = j.at("solver_template").get<std::string>();
+      r.limits = j.at("limits").get<std::string>();
+      for (const auto status : kQueryStatuses)
+        r.counts[status] = j.at("counts").at(std::string(to_string(status))).get<std::uint64_t>();
+      out.push_back(std::move(r));
+    } catch (const std::exception& err) {
+      throw Error(ErrorCode::invalid_argument,
+                  path.string() + ":" + std::to_string(line_number) + ": " + err.what());
+    }
+  }
+  if (line_number == 0) throw Error(ErrorCode::invalid_argument, path.string() + ": empty");
+  return out;
+}
+
+namespace {
+
+// The state of one cell from the files alone.
+CellStatus cell_status(const ExperimentCell& cell, const fs::path& results,
+                       const std::vector<CellRecord>& records, bool lock_held) {
+  CellStatus s;
+  s.cell = cell;
+  const auto record = std::find_if(records.begin(), records.end(),
+                                   [&](const CellRecord& r) { return r.cell.file == cell.file; });
+  std::error_code ec;
+  if (record != records.end()) {
+    if (!fs::exists(results / cell.file, ec)) {
+      s.state = CellState::damaged;
+      s.detail = cell.file + " is listed but absent";
+    } else if (sha256_file(results / cell.file) != record->sha256) {
+      s.state = CellState::damaged;
+      s.detail = cell.file + " is not the listed bytes (SHA-256)";
+    } else {
+      s.counts = record->counts;
+      s.state = record->counts[QueryStatus::failed] > 0 ? CellState::failed : CellState::done;
+    }
+    return s;
+  }
+  const auto journal = journal_path((results / cell.file).string());
+  if (fs::exists(journal, ec)) {
+    s.state = lock_held ? CellState::running : CellState::stopped;
+    const auto text = read_whole_file(journal);
+    const auto lines = static_cast<std::uint64_t>(std::count(text.begin(), text.end(), '\n'));
+    s.journaled = lines > 0 ? lines - 1 : 0;  // line 1 is the binding
+  }
+  return s;
+}
+
+// results/.lock, held (flock) by the one `experiment run` writing the directory.
+class ResultsLock {
+ public:
+  explicit ResultsLock(const fs::path& results) {
+    const auto path = results / ".lock";
+    fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
+    if (fd_ < 0)
+      throw Error(ErrorCode::io, path.string() + ": cannot open: " + std::strerror(errno));
+    held_ = ::flock(fd_, LOCK_EX | LOCK_NB) == 0;
+  }
+  ~ResultsLock() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  ResultsLock(const ResultsLock&) = delete;
+  ResultsLock& operator=(const ResultsLock&) = delete;
+  bool held() const { return held_; }
+
+ private:
+  int fd_ = -1;
+  bool held_ = false;
+};
+
+// True when another process holds results/.lock (a running experiment).
+bool lock_is_held(const fs::path& results) {
+  std::error_code ec;
+  if (!fs::exists(results / ".lock", ec)) return false;
+  try {
+    return !ResultsLock(results).held();
+  } catch (const Error&) {
+    return false;
+  }
+}
+
+}  // namespace
+
+std::vector<CellStatus> experiment_status(const fs::path& results) {
+  const auto plan_path = results / kPlanFile;
+  std::error_code ec;
+  if (!fs::exists(plan_path, ec))
+    throw Error(ErrorCode::not_found,
+                results.string() + ": no experiment here (no " + std::string(kPlanFile) + ")");
+  const auto plan = read_json_file(plan_path);
+  const auto records = read_results_manifest(results);
+  const bool held = lock_is_held(results);
+  std::vector<CellStatus> out;
+  try {
+    for (const auto& c : plan.at("cells"))
+      out.push_back(cell_status(cell_of(c), results, records, held));
+  } catch (const Json::exception& err) {
+    throw Error(ErrorCode::invalid_argument, plan_path.string() + ": " + err.what());
+  }
+  return out;
+}
+
+std::vector<fs::path> result_files(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::is_directory(path, ec)) return {path};
+  if (!fs::exists(path / kManifestName, ec))
+    throw Error(ErrorCode::not_found,
+                path.string() + ": a directory without a results MANIFEST (mosb experiment run)");
+  std::vector<fs::path> out;
+  for (const auto& r : read_results_manifest(path)) out.push_back(path / r.cell.file);
+  return out;
+}
+
+std::vector<fs::path> result_instances(const fs::path& results) {
+  const auto plan_path = results / kPlanFile;
+  std::error_code ec;
+  if (!fs::exists(plan_path, ec))
+    throw Error(ErrorCode::not_found,
+                results.string() + ": no experiment here (no " + std::string(kPlanFile) + ")");
+  std::vector<fs::path> out;
+  const auto plan = read_json_file(plan_path);  // a range-for over a temporary's member dangles
+  try {
+    for (const auto& c : plan.at("cells")) {
+      const fs::path file = c.at("instance_file").get<std::string>();
+      if (std::find(out.begin(), out.end(), file) == out.end()) out.push_back(file);
+    }
+  } catch (const Json::exception& err) {
+    throw Error(ErrorCode::invalid_argument, plan_path.string() + ": " + err.what());
+  }
+  return out;
+}
+
+std::vector<fs::path> reference_files(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::is_directory(path, ec)) return {path};
+  std::vector<fs::path> out;
+  for (const auto& entry : fs::directory_iterator(path))
+    if (entry.path().extension() == ".sol" && entry.is_regular_file()) out.push_back(entry.path());
+  std::sort(out.begin(), out.end());
+  if (out.empty()) throw Error(ErrorCode::not_found, path.string() + ": no .sol file");
+  return out;
+}
+
+namespace {
+
+// Refuses, naming every cell, what a rerun must not continue: a done cell whose solver
+// executable, command or limits are not the plan's, a listed cell whose file is not the listed
+// bytes.
+void check_finished_cells(const ExperimentPlan& plan, const fs::path& results,
+                          const std::vector<CellRecord>& records) {
+  std::string refused;
+  for (std::size_t c = 0; c < plan.cells.size(); ++c) {
+    const auto& cell = plan.cells[c];
+    const auto r = std::find_if(records.begin(), records.end(),
+                                [&](const CellRecord& x) { return x.cell.file == cell.file; });
+    if (r == records.end()) continue;
+    const auto s = static_cast<std::size_t>(
+        std::find_if(plan.experiment.solvers.begin(), plan.experiment.solvers.end(),
+                     [&](const ExperimentSolver& x) { return x.name == cell.solver; }) -
+        plan.experiment.solvers.begin());
+    std::string why;
+    if (r->executable_sha256 != plan.executable_sha256[s])
+      why = "the solver's executable changed";
+    else if (r->solver_template != plan.commands[s].solver_template)
+      why = "the template changed";
+    else if (r->limits != plan.experiment.limits.text)
+      why = "the limits changed (" + r->limits + ", now " + plan.experiment.limits.text + ")";
+    else if (r->cell.instance_digest != cell.instance_digest)
+      why = "the instance changed";
+    else if (cell_status(cell, results, records, false).state == CellState::damaged)
+      why = "its file is not the listed one";
+    if (!why.empty()) refused += (refused.empty() ? "" : "; ") + cell.id() + ": " + why;
+  }
+  if (!refused.empty())
+    throw Error(ErrorCode::invalid_argument,
+                results.string() +
+                    ": finished cells that this run would not reproduce: " + refused +
+                    " (remove their files and MANIFEST records, or use another results "
+                    "directory)");
+}
+
+// Creates results/ and records the plan; refuses a directory of another experiment.
+void record_plan(const ExperimentPlan& plan, const fs::path& results) {
+  const auto path = results / kPlanFile;
+  std::error_code ec;
+  if (fs::exists(path, ec)) {
+    const auto recorded = read_json_file(path);
+    if (recorded.value("format", "") != kPlanFormat ||
+        recorded.value("name", "") != plan.experiment.name)
+      throw Error(ErrorCode::invalid_argument,
+                  results.string() + " holds the results of experiment '" +
+                      recorded.value("name", "?") + "', not '" + plan.experiment.name + "'");
+  } else if (fs::exists(results, ec) && !fs::is_empty(results, ec) &&
+             !fs::exists(results / ".lock", ec)) {
+    throw Error(ErrorCode::invalid_argument,
+                results.string() + ": not empty and not an experiment's results directory");
+  }
+  write_text_atomically(path, plan_json(plan).dump(2) + "\n");
+}
+
+}  // namespace
+
+ExperimentResult run_experiment(const ExperimentPlan& plan, const fs::path& results,
+                                const ExperimentOptions& options, const std::atomic<bool>& stop) {
+  std::error_code ec;
+  fs::create_directories(results, ec);
+  if (ec) throw Error(ErrorCode::io, results.string() + ": cannot create: " + ec.message());
+  const ResultsLock lock(results);
+  if (!lock.held())
+    throw Error(ErrorCode::invalid_argument,
+                results.string() + ": another `mosb experiment run` is writing it");
+  auto records = read_results_manifest(results);
+  check_finished_cells(plan, results, records);
+  record_plan(plan, results);
+
+  ExperimentResult result;
+  ExperimentProgress progress;
+  progress.cells_total = plan.cells.size();
+  for (const auto& c : plan.cells) progress.queries_total += c.queries;
+  std::vector<char> done(plan.cells.size(), 0);
+  for (std::size_t c = 0; c < plan.cells.size(); ++c) {
+    const auto r = std::find_if(records.begin(), records.end(), [&](const CellRecord& x) {
+      return x.cell.file == plan.cells[c].file;
+    });
+    if (r == records.end()) continue;
+    done[c] = 1;
+    ++progress.cells_done;
+    progress.queries_done += plan.cells[c].queries;
+    for (const auto status : kQueryStatuses) progress.counts[status] += r->counts[status];
+  }
+  result.cells = plan.cells.size();
+  result.skipped = progress.cells_done;
+  const auto started = std::chrono::steady_clock::now();
+  std::optional<Store> store;
+  if (!plan.experiment.store.empty()) store = Store::open(plan.experiment.store);
+  for (std::size_t c = 0; c < plan.cells.size() && !stop.load(); ++c) {
+    if (done[c]) continue;
+    const auto& cell = plan.cells[c];
+    const auto s = static_cast<std::size_t>(
+        std::find_if(plan.experiment.solvers.begin(), plan.experiment.solvers.end(),
+                     [&](const ExperimentSolver& x) { return x.name == cell.solver; }) -
+        plan.experiment.solvers.begin());
+    const auto& command = plan.commands[s];
+    // A packed store entry runs on the store's unpacked copy; the solver maps that file.
+    const auto file = fs::path(cell.instance_file);
+    const auto* entry = store ? store->manifest().find(file.filename().string()) : nullptr;
+    const auto instance_path =
+        entry != nullptr && entry->packed ? store->unpack(entry->file) : file;
+    const auto instance = open_run_instance(instance_path.string());
+    if (instance.digest() != cell.instance_digest)
+      throw Error(ErrorCode::invalid_argument,
+                  cell.id() + ": " + instance_path.string() + " is no longer the planned instance");
+    fs::create_directories((results / cell.file).parent_path(), ec);
+    RunConfig config;
+    config.instance = &instance;
+    config.instance_path = instance_path.string();
+    config.choice = {cell.view, {}, cell.query_set};
+    config.solver_template = command.solver_template;
+    config.output_format = command.output_format;
+    if (command.output_format != "protocol") {
+      if (options.adapter) config.adapter = options.adapter(command.output_format);
+      if (!config.adapter)
+        throw Error(ErrorCode::invalid_argument,
+                    cell.solver + ": no output format '" + command.output_format + "'");
+    }
+    config.limits = plan.experiment.limits.process;
+    config.epsilon = command.epsilon;
+    config.jobs = options.jobs;
+    config.measurement = options.measurement;
+    config.resume = true;
+    config.solver_name = cell.solver;
+    config.output = (results / cell.file).string();
+    config.sha256_file = [](const std::string& path) { return sha256_file(path); };
+    progress.cell = cell.id();
+    const auto before = progress;
+    RunCallbacks callbacks;
+    callbacks.progress = [&](const RunProgress& p) {
+      auto now = before;
+      now.queries_done += p.done;
+      now.queries_done_here += p.done_here;
+      for (const auto status : kQueryStatuses) now.counts[status] += p.counts[status];
+      now.elapsed_seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+      if (options.progress) options.progress(now);
+    };
+    callbacks.failed = [&](const QueryRecord& r, const Query& q) {
+      if (options.failed) options.failed(cell, r, q);
+    };
+    const auto run = run_solver(config, callbacks, stop);
+    if (run.interrupted) {
+      result.interrupted = true;
+      break;
+    }
+    records.push_back({cell, sha256_file(results / cell.file), plan.executable_sha256[s],
+                       command.solver_template, plan.experiment.limits.text, run.counts});
+    write_results_manifest(results, records);
+    ++result.ran;
+    ++progress.cells_done;
+    progress.queries_done = before.queries_done + cell.queries;
+    progress.queries_done_here = before.queries_done_here + run.ran;
+    for (const auto status : kQueryStatuses) progress.counts[status] += run.counts[status];
+    progress.elapsed_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    if (options.progress) options.progress(progress);
+  }
+  if (stop.load()) result.interrupted = true;
+  for (const auto& r : records)
+    for (const auto status : kQueryStatuses) result.counts[status] += r.counts[status];
+  return result;
+}
+
+}  // namespace mosb
+
+namespace mosb {
+
+std::vector<std::vector<std::size_t>> experiment_tasks(const ExperimentPlan& plan,
+                                                       std::uint64_t queries_per_task) {
+  if (queries_per_task == 0)
+    throw Error(ErrorCode::invalid_argument, "--queries-per-task 0: give at least 1");
+  std::vector<std::vector<std::size_t>> tasks;
+  std::uint64_t in_task = 0;
+  for (std::size_t c = 0; c < plan.cells.size(); ++c) {
+    const auto queries = plan.cells[c].queries;
+    if (tasks.empty() || in_task + queries > queries_per_task) {
+      if (tasks.empty() || !tasks.back().empty()) tasks.emplace_back();
+      in_task = 0;
+    }
+    tasks.back().push_back(c);
+    in_task += queries;
+  }
+  return tasks;
+}
+
+ExperimentPlan task_plan(const ExperimentPlan& plan,
+                         const std::vector<std::vector<std::size_t>>& tasks, std::uint64_t index) {
+  if (index < 1 || index > tasks.size())
+    throw Error(ErrorCode::invalid_argument, "task " + std::to_string(index) + " of " +
+                                                 std::to_string(tasks.size()) + ": no such task");
+  ExperimentPlan out = plan;
+  out.cells.clear();
+  for (const auto c : tasks[index - 1]) out.cells.push_back(plan.cells[c]);
+  return out;
+}
+
+TaskFiles task_files(const ExperimentPlan& task, const fs::path& directory) {
+  TaskFiles t;
+  std::error_code ec;
+  if (!fs::exists(directory, ec)) return t;
+  std::vector<CellRecord> records;
+  try {
+    records = read_results_manifest(directory);
+  } catch (const Error& e) {
+    t.state = TaskFiles::State::damaged;
+    t.problem = e.what();
+    return t;
+  }
+  bool started = false;
+  for (const auto& cell : task.cells) {
+    const auto s = cell_status(cell, directory, records, false);
+    if (s.state == CellState::damaged) {
+      t.state = TaskFiles::State::damaged;
+      t.problem = cell.id() + ": " + s.detail;
+      return t;
+    }
+    if (s.state == CellState::done || s.state == CellState::failed) {
+      ++t.cells_done;
+      t.queries_done += cell.queries;
+      for (const auto status : kQueryStatuses) t.counts[status] += s.counts[status];
+    } else {
+      t.queries_done += s.journaled;
+    }
+    started = started || s.state != CellState::missing;
+  }
+  t.state = t.cells_done == task.cells.size() ? TaskFiles::State::done
+            : started                         ? TaskFiles::State::partial
+                                              : TaskFiles::State::missing;
+  return t;
+}
+
+namespace {
+
+// The part's records of the plan's cells that `listed` does not hold, each checked as a rerun
+// checks a finished cell (check_finished_cells): throws naming every refused cell.
+std::vector<std::pair<fs::path, CellRecord>> records_to_merge(const ExperimentPlan& plan,
+                                                              const std::vector<CellRecord>& listed,
+                                                              const std::vector<fs::path>& parts) {
+  std::vector<std::pair<fs::path, CellRecord>> out;
+  std::set<std::string> taken;
+  for (const auto& r : listed) taken.insert(r.cell.file);
+  for (const auto& part : parts) {
+    std::error_code ec;
+    if (!fs::exists(part / kManifestName, ec)) continue;
+    const auto records = read_results_manifest(part);
+    ExperimentPlan mine = plan;
+    mine.cells.clear();
+    for (const auto& r : records) {
+      const auto in_plan =
+          std::find_if(plan.cells.begin(), plan.cells.end(),
+                       [&](const ExperimentCell& c) { return c.file == r.cell.file; });
+      if (in_plan == plan.cells.end() || taken.contains(r.cell.file)) continue;
+      mine.cells.push_back(*in_plan);
+      out.emplace_back(part, r);
+      taken.insert(r.cell.file);
+    }
+    check_finished_cells(mine, part, records);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::uint64_t merge_experiment_results(const ExperimentPlan& plan, const fs::path& results,
+                                       const std::vector<fs::path>& parts) {
+  std::error_code ec;
+  fs::create_directories(results, ec);
+  if (ec) throw Error(ErrorCode::io, results.string() + ": cannot create: " + ec.message());
+  const ResultsLock lock(results);
+  if (!lock.held())
+    throw Error(ErrorCode::invalid_argument,
+                results.string() + ": another `mosb experiment run` is writing it");
+  auto records = read_results_manifest(results);
+  check_finished_cells(plan, results, records);
+  const auto merged = records_to_merge(plan, records, parts);
+  record_plan(plan, results);
+  for (const auto& [part, record] : merged) {
+    const auto target = results / record.cell.file;
+    fs::create_directories(target.parent_path(), ec);
+    if (ec) throw Error(ErrorCode::io, target.parent_path().string() + ": " + ec.message());
+    const auto bytes = read_whole_file(part / record.cell.file);
+    if (sha256_hex(std::as_bytes(std::span(bytes.data(), bytes.size()))) != record.sha256)
+      throw Error(ErrorCode::invalid_argument,
+                  (part / record.cell.file).string() + ": not the bytes its MANIFEST lists");
+    write_text_atomically(target, bytes);
+    records.push_back(record);
+    write_results_manifest(results, records);  // after each cell, as run_experiment does
+  }
+  return merged.size();
+}
+
+}  // namespace mosb

@@ -1,0 +1,378 @@
+#!/usr/bin/python3
+"""End-to-end tests of `mosb experiment run|status` (spec/EXPERIMENT.md) and `mosb solutions
+reference` (spec/EVALUATION.md §6.1): a store of two 30x30 Grid views, a 1,000-vertex NetMaker and
+(with arena2 in the shared data) a GUARDS map, solved by the example NAMOA* and BOA* and by a
+third solver that is wrong on one query on purpose.
+
+    MOSB=build/release/tools/mosb EXAMPLES=build/release/examples /usr/bin/python3 tests/cli/test_experiment.py
+"""
+
+import csv
+import io
+import json
+import os
+import re
+import signal
+import subprocess
+import time
+import unittest
+
+import mosbtest
+import test_report
+import test_slurm
+from mosbtest import DATA, MOSB, CliTest, read, run, setUpModule  # noqa: F401
+
+EXAMPLES = os.path.abspath(os.environ.get("EXAMPLES", ""))
+ARENA = os.path.join(DATA, "movingai", "arena2.map")
+TEMPLATE = "%s {instance} --view {view} --query {source} {target} --protocol"
+
+
+class ExperimentFixture(CliTest):
+    """The store, the three solvers and the experiment file every test here starts from."""
+
+    def setUp(self):
+        super().setUp()
+        if not os.path.isfile(os.path.join(EXAMPLES, "namoa")):
+            raise mosbtest.missing("EXAMPLES (the example solvers' directory) is not set")
+        self.ok("generate", "grid", "--width", "30", "--height", "30", "--objectives", "3", "-o",
+                self.path("grid.mosb"))
+        self.ok("generate", "netmaker", "--vertices", "1000", "--amin", "1", "--amax", "10",
+                "--locality", "20", "-o", self.path("netmaker.mosb"))
+        instances = ["grid.mosb", "netmaker.mosb"]
+        self.benchmarks = ["Grid_2", "Grid_3", "NetMaker_3"]
+        self.bi_objective = ["Grid_2"]
+        if os.path.exists(ARENA):
+            self.write("guards.txt", "120 100 25\n")
+            self.ok("convert", "guards", "--map", ARENA, "--guards", self.path("guards.txt"),
+                    "-o", self.path("arena.mosb"))
+            instances.append("arena.mosb")
+            self.benchmarks.append("Games-GUARDS_2")
+            self.bi_objective.append("Games-GUARDS_2")
+        for instance in instances:
+            self.ok("queries", "generate", self.path(instance), "--set", "default", "--count",
+                    "5", "--seed", "3", "--in-place", "--replace")
+        self.ok("store", "init", self.path("store"))
+        self.ok("store", "add", self.path("store"), *[self.path(i) for i in instances], "--pack")
+        # The wrong solver: NAMOA* with the last vector of the grid's query 2 dropped, and slow
+        # (0.3 s a query), so that a run can be killed in the middle of its cells.
+        source, target = mosbtest.mosb_reader.open_instance(
+            self.path("grid.mosb")).queries()["default"][2]
+        self.wrong_query = 2
+        self.write("wrong.sh", "#!/bin/sh\nsleep 0.3\n"
+                   "if [ \"$5 $6\" = \"%d %d\" ]; then %s \"$@\" | sed '$d'; exit 0; fi\n"
+                   "exec %s \"$@\"\n" % (source, target, os.path.join(EXAMPLES, "namoa"),
+                                         os.path.join(EXAMPLES, "namoa")))
+        os.chmod(self.path("wrong.sh"), 0o755)
+        self.experiment = self.write_experiment("exp.toml")
+
+    def write_experiment(self, name, limits='{ time = "30s", memory = "2G" }', extra=""):
+        text = ('name = "ci"\nstore = "%s"\nbenchmarks = %s\nlimits = %s\n'
+                '[[solver]]\nname = "namoa"\ntemplate = "%s"\n'
+                '[[solver]]\nname = "boa"\ntemplate = "%s"\nbenchmarks = %s\n'
+                '[[solver]]\nname = "wrong"\ntemplate = "%s"\n'
+                '[reference]\nsolvers = ["namoa", "boa", "wrong"]\n%s'
+                % (self.path("store"), json.dumps(self.benchmarks), limits,
+                   TEMPLATE % os.path.join(EXAMPLES, "namoa"),
+                   TEMPLATE % os.path.join(EXAMPLES, "boa_star"), json.dumps(self.bi_objective),
+                   TEMPLATE % self.path("wrong.sh"), extra))
+        return self.write(name, text)
+
+    def cells(self, results):
+        lines = read(os.path.join(results, "MANIFEST")).decode().splitlines()
+        self.assertEqual(json.loads(lines[0])["format"], "mosb-experiment-results")
+        return {r["file"]: r for r in map(json.loads, lines[1:])}
+
+    def run_experiment(self, results, *more):
+        return json.loads(self.ok("experiment", "run", self.experiment, "-o", results, "--json",
+                                  *more).stdout)
+
+    def expected_cells(self):
+        per_solver = {"namoa": len(self.benchmarks), "boa": len(self.bi_objective),
+                      "wrong": len(self.benchmarks)}
+        return sum(per_solver.values())
+
+    def same_fronts(self, expected, actual):
+        """Every cell of `expected` in `actual`, with the same fronts and statuses."""
+        listed = self.cells(actual)
+        self.assertEqual(sorted(listed), sorted(self.cells(expected)))
+        for f, record in listed.items():
+            self.ok("solutions", "compare", os.path.join(expected, f), os.path.join(actual, f))
+            self.assertEqual(record["counts"], self.cells(expected)[f]["counts"], f)
+        status = json.loads(self.ok("experiment", "status", actual, "--json").stdout)
+        self.assertTrue(status["complete"])
+
+
+class ExperimentTest(ExperimentFixture):
+    def test_slurm_array_run_by_hand_merges_into_the_local_results(self):
+        """The array's script run task by task here (as SLURM would, SLURM_ARRAY_TASK_ID set),
+        then --resume merges the tasks' cells into RESULTS: the local run's fronts."""
+        local = self.path("local")
+        self.run_experiment(local)
+        array, results = self.path("array"), self.path("results")
+        r = self.ok("experiment", "run", self.experiment, "-o", results, "--slurm", array,
+                    "--queries-per-task", "10")
+        cells = self.expected_cells()
+        tasks = (cells + 1) // 2  # cells of 5 queries, two a task
+        self.assertIn("%d tasks of the %d cells" % (tasks, cells), r.stdout)
+        self.assertIn("submit it: sbatch --parsable %s/run.sbatch" % array, r.stdout)
+        script = read(os.path.join(array, "run.sbatch")).decode()
+        self.assertIn("#SBATCH --array=1-%d\n" % tasks, script)
+        self.assertIn('experiment run %s --queries-per-task 10' % self.experiment, script)
+        self.assertIn('--task "$shard/%d" -o %s/task-"$shard"' % (tasks, array), script)
+        status = json.loads(self.ok("experiment", "run", self.experiment, "-o", results,
+                                    "--slurm", array, "--status", "--json").stdout)
+        self.assertEqual([t["file"] for t in status["task_states"]], ["missing"] * tasks)
+        for task in range(1, tasks):  # the last task left out: resume must say so
+            subprocess.run(["sh", os.path.join(array, "run.sbatch")], check=True,
+                           env=dict(os.environ, SLURM_ARRAY_TASK_ID=str(task)),
+                           stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        r = json.loads(self.ok("experiment", "run", self.experiment, "-o", results, "--slurm",
+                               array, "--resume", "--json").stdout)
+        self.assertEqual(r["resubmit"], str(tasks))
+        self.assertEqual(r["merged"], 2 * (tasks - 1))
+        subprocess.run(["sh", os.path.join(array, "run.sbatch")], check=True,
+                       env=dict(os.environ, SLURM_ARRAY_TASK_ID=str(tasks)),
+                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        status = json.loads(self.ok("experiment", "run", self.experiment, "-o", results,
+                                    "--slurm", array, "--status", "--json").stdout)
+        self.assertTrue(status["complete"])
+        text = self.ok("experiment", "run", self.experiment, "-o", results, "--slurm", array,
+                       "--resume").stdout
+        self.assertIn("merged %d cells" % (cells - 2 * (tasks - 1)), text)
+        self.assertIn("nothing to resubmit", text)
+        self.same_fronts(local, results)
+        self.assertEqual(self.run_experiment(results)["ran"], 0)  # nothing left to run here
+        # Refusals, one line each: a task count the file no longer makes, the array given to
+        # `mosb run`, an array option without --slurm.
+        for args in (["experiment", "run", self.experiment, "-o", self.path("t"), "--task",
+                      "1/99", "--queries-per-task", "10"],
+                     ["run", "--slurm", array, "--status"],
+                     ["experiment", "run", self.experiment, "-o", results, "--submit"]):
+            r = run(*args)
+            self.assertEqual(r.returncode, 2, (args, r.stderr))
+            self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+
+    def test_killed_and_rerun_is_the_uninterrupted_run(self):
+        full = self.path("full")
+        summary = self.run_experiment(full)
+        self.assertEqual(summary["cells"], self.expected_cells())
+        self.assertEqual(summary["ran"], summary["cells"])
+        self.assertEqual(len(self.cells(full)), summary["cells"])
+
+        part = self.path("part")
+        p = subprocess.Popen([MOSB, "experiment", "run", self.experiment, "-o", part],
+                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        # Killed once every namoa and boa cell is finished and the slow wrong solver has begun.
+        first = len(self.benchmarks) + len(self.bi_objective)
+        deadline = time.time() + 120
+        while time.time() < deadline:
+            listed = self.cells(part) if os.path.exists(os.path.join(part, "MANIFEST")) else {}
+            journals = [f for f in os.listdir(os.path.join(part, "cells", "wrong"))] \
+                if os.path.isdir(os.path.join(part, "cells", "wrong")) else []
+            if len(listed) >= first and any(f.endswith(".journal") for f in journals):
+                break
+            time.sleep(0.05)
+        p.send_signal(signal.SIGKILL)
+        p.wait()
+        finished = self.cells(part)
+        self.assertGreaterEqual(len(finished), first)
+        self.assertLess(len(finished), summary["cells"])  # killed midway
+        status = json.loads(self.ok("experiment", "status", part, "--json").stdout)
+        states = [c["state"] for c in status["cells"]]
+        self.assertEqual(states.count("done"), len(finished))
+        self.assertIn("stopped", states)  # the killed cell's journal is kept
+        self.assertFalse(status["complete"])
+        mtimes = {f: os.stat(os.path.join(part, f)).st_mtime_ns for f in finished}
+
+        again = self.run_experiment(part)
+        self.assertEqual(again["skipped"], len(finished))
+        self.assertEqual(again["ran"], summary["cells"] - len(finished))
+        for f, mtime in mtimes.items():  # no finished cell ran again
+            self.assertEqual(os.stat(os.path.join(part, f)).st_mtime_ns, mtime, f)
+        listed = self.cells(part)
+        self.assertEqual(sorted(listed), sorted(self.cells(full)))
+        for f, record in listed.items():
+            self.ok("solutions", "compare", os.path.join(full, f), os.path.join(part, f))
+            self.assertEqual(record["counts"], self.cells(full)[f]["counts"], f)
+        status = json.loads(self.ok("experiment", "status", part, "--json").stdout)
+        self.assertTrue(status["complete"])
+        # A third run runs nothing.
+        self.assertEqual(self.run_experiment(part)["ran"], 0)
+
+        # The reference lists the wrong solver's query, and only it.
+        r = json.loads(self.ok("solutions", "reference", part, "--solvers", "namoa,boa,wrong",
+                               "-o", self.path("refs"), "--json").stdout)
+        grid = [x for x in r["references"] if x["file"].endswith("grid.Grid_2.sol")][0]
+        self.assertEqual([(d["query"], d["solvers"]) for d in grid["disagreements"]],
+                         [(self.wrong_query, ["namoa", "wrong"])])
+        self.assertEqual(grid["agreed"], 4)
+        for x in r["references"]:  # the grid's other view has the same queries: the same query
+            wrong = [self.wrong_query] if "/grid." in x["file"] else []
+            self.assertEqual([d["query"] for d in x["disagreements"]], wrong, x["file"])
+        info = self.ok("solutions", "inspect", self.path("refs", "grid.Grid_2.sol")).stdout
+        self.assertIn("parameter disagreement = %d" % self.wrong_query, info)
+        self.assertIn("parameter agreed.1 = 0-1,3-4", info)  # boa agreed everywhere but query 2
+        text = self.ok("solutions", "reference", part, "--solvers", "namoa,wrong", "--prefer",
+                       "namoa", "-o", self.path("refs2")).stdout
+        self.assertIn("query %d: namoa and wrong disagree" % self.wrong_query, text)
+        self.assertIn("kept namoa's (--prefer)", text)
+
+        # The report of the results: every benchmark and solver named.
+        out = self.path("csv")
+        self.ok("report", part, "--reference", self.path("refs"), "-o", self.path("r.html"),
+                "--csv", out)
+        comparison = read(os.path.join(out, "comparison.csv")).decode()
+        for name in self.benchmarks:
+            self.assertIn(name, comparison)
+        for solver in ("namoa", "boa", "wrong"):
+            self.assertIn("timeout@" + solver, comparison)
+        page = read(self.path("r.html")).decode()
+        for name in self.benchmarks + ["namoa", "boa", "wrong"]:
+            self.assertIn(name, page)
+        self.check_solver_table(read(os.path.join(out, "solvers.csv")).decode())
+        self.check_page_in_chromium(self.path("r.html"))
+        self.check_eval(part, self.path("refs"))
+
+    def solver_pairs(self):
+        return ({(b, s) for b in self.benchmarks for s in ("namoa", "wrong")}
+                | {(b, "boa") for b in self.bi_objective})
+
+    def check_solver_table(self, text):
+        """The paper's Table 5 as CSV: one row per benchmark and solver."""
+        rows = list(csv.DictReader(io.StringIO(text)))
+        self.assertEqual({(r["benchmark"], r["solver"]) for r in rows}, self.solver_pairs())
+        for r in rows:
+            self.assertEqual((r["queries"], r["solved"], r["timeout"], r["memory_limit"]),
+                             ("5", "5", "0", "0"), r)
+            self.assertGreater(float(r["runtime_max"]), 0, r)
+            self.assertLessEqual(float(r["runtime_median"]), float(r["runtime_max"]), r)
+
+    def check_page_in_chromium(self, html):
+        """The report's solver table as headless Chromium shows it (script off, so the table is
+        the page's own, not what a script made of it): every benchmark and solver named."""
+        if test_report.CHROMIUM is None:
+            raise mosbtest.missing("chromium")
+        copy = self.path("noscript.html")
+        with open(copy, "w", encoding="utf-8") as f:
+            f.write(re.sub(r"<script>.*?</script>", "", read(html).decode(), flags=re.S))
+        r = test_report.chromium("--dump-dom", "file://" + copy)
+        self.assertEqual(r.returncode, 0, r.stderr[-2000:])
+        table = test_report.parse(r.stdout).tables["solvers-table"]
+        headings = [c[1] for c in table[0]]
+        for column in ("benchmark", "solver", "solved", "timeout", "memory limit",
+                       "median runtime [s]", "max runtime [s]", "median reported runtime [s]",
+                       "max reported runtime [s]", "covered at ε = 0.01"):
+            self.assertIn(column, headings)
+        shown = {(row[headings.index("benchmark")][1], row[headings.index("solver")][1])
+                 for row in table[1:]}
+        self.assertEqual(shown, self.solver_pairs())
+
+    def check_eval(self, results, refs):
+        """`mosb eval RESULTS --reference REFS`: the same table, with the ε-coverage."""
+        table = json.loads(self.ok("eval", results, "--reference", refs, "--json").stdout)
+        rows = {(r["benchmark"], r["solver"]): r for r in table["rows"]}
+        self.assertEqual(set(rows), self.solver_pairs())
+        for (benchmark, solver), r in rows.items():
+            # The grid's query 2 is a disagreement: left out of its references.
+            evaluated = 4 if benchmark.startswith("Grid") else 5
+            self.assertEqual(r["evaluated"], evaluated, (benchmark, solver))
+            self.assertEqual(r["covered@0.01"], evaluated, (benchmark, solver))
+            self.assertEqual(r["solved"], 5)
+        text = self.ok("eval", results, "--reference", refs, "--csv").stdout
+        self.check_solver_table(text)
+        self.assertIn("covered@0.05", text.splitlines()[0])
+        latex = self.ok("eval", results, "--latex").stdout
+        self.assertIn("\\toprule", latex)
+        self.assertNotIn("covered", latex)  # no references, no coverage
+        plain = self.ok("eval", results).stdout
+        for benchmark, solver in self.solver_pairs():
+            self.assertIn(benchmark, plain)
+            self.assertIn(solver, plain)
+        for bad in (["eval", results, "--solutions", os.path.join(results, "MANIFEST")],
+                    ["eval", "--reference", refs, "--solutions",
+                     os.path.join(refs, os.listdir(refs)[0])]):
+            r = run(*bad)
+            self.assertEqual(r.returncode, 2, r.stderr)
+            self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+
+    def test_changed_limits_or_executable_refuse_the_cells_they_touch(self):
+        results = self.path("r")
+        self.run_experiment(results)
+        before = read(os.path.join(results, "MANIFEST"))
+        self.experiment = self.write_experiment("exp.toml", limits='{ time = "31s" }')
+        r = run("experiment", "run", self.experiment, "-o", results)
+        self.assertNotEqual(r.returncode, 0)
+        self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+        self.assertIn("namoa/grid/Grid_2: the limits changed", r.stderr)
+        self.assertIn("wrong/netmaker/NetMaker_3", r.stderr)
+        self.assertEqual(read(os.path.join(results, "MANIFEST")), before)
+        self.experiment = self.write_experiment("exp.toml")
+        with open(self.path("wrong.sh"), "a") as f:
+            f.write("# changed\n")
+        r = run("experiment", "run", self.experiment, "-o", results)
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn("wrong/grid/Grid_2: the solver's executable changed", r.stderr)
+        self.assertNotIn("namoa/", r.stderr)
+
+    def test_a_bad_file_is_one_line_naming_file_line_and_key(self):
+        cases = [
+            ('name = "x"\nstore = "%s"\ntypo = 1\n' % self.path("store"), ":3: typo: unknown key"),
+            ('name = "x"\nstore = "%s"\nlimits = { time = "1 hour" }\n'
+             '[[solver]]\nname = "a"\ntemplate = "%s"\n' % (self.path("store"), self.path("wrong.sh")),
+             ":3: limits.time: '1 hour' is not a duration"),
+            ('name = "x"\nstore = "%s"\nbenchmarks = ["Grid_2",\n  "Nope_*"]\n'
+             '[[solver]]\nname = "a"\ntemplate = "%s"\n' % (self.path("store"), self.path("wrong.sh")),
+             ":4: benchmarks: 'Nope_*' matches no view or benchmark"),
+            ('name = "x"\nstore = "%s"\n[[solver]]\nname = "apex"\nprofile = "apex"\n'
+             'executable = "/bin/true"\noptions = { algorithm = "Apex" }\n' % self.path("store"),
+             ":3: solver[1]: solver 'apex': profiles need"),
+            ('name = "x"\nstore = "%s"\n[[solver]]\nname = "a"\ntempalte = "x"\n' % self.path("store"),
+             ":5: solver[1].tempalte: unknown key"),
+            ('name = "x"\nstore = "%s"\n[[solver]]\nname = "a"\ntemplate = "%s"\n'
+             '[reference]\nsolvers = ["b"]\n' % (self.path("store"), self.path("wrong.sh")),
+             ":7: reference.solvers: 'b' is none of the [[solver]] names"),
+            ('name = "x"\nstore = [\n', ":2:11: "),
+        ]
+        for text, expected in cases:
+            with self.subTest(expected=expected):
+                path = self.write("bad.toml", text)
+                r = run("experiment", "run", path, "-o", self.path("never"))
+                self.assertEqual(r.returncode, 2, r.stderr)
+                self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+                self.assertIn(path + expected, r.stderr)
+                self.assertFalse(os.path.exists(self.path("never")))
+
+
+class ExperimentOnSlurm(ExperimentFixture, test_slurm.SlurmCluster):
+    """The same experiment as one job array on the one-node cluster tools/slurm-cluster.sh
+    starts (test_slurm.SlurmCluster's machinery): the same fronts as the local run."""
+
+    test_readme_then_a_cancelled_shard_resumed = None  # test_slurm's own test, run there
+
+    def test_one_array_for_the_matrix_has_the_local_fronts(self):
+        local = self.path("local")
+        self.run_experiment(local)
+        self.start_cluster()
+        array, results = self.path("array"), self.path("results")
+        r = self.m("experiment", "run", self.experiment, "-o", results, "--slurm", array,
+                   "--queries-per-task", "10", "--submit")
+        self.assertIn("submitted array job", r.stdout)
+        self.assertEqual(len(read(os.path.join(array, "jobs")).decode().split()), 1)
+        self.wait_until("the array's tasks finish",
+                        lambda: self.squeue().returncode == 0 and not self.squeue().stdout.strip(),
+                        array, seconds=300)
+        status = json.loads(self.m("experiment", "run", self.experiment, "-o", results,
+                                   "--slurm", array, "--status", "--json").stdout)
+        self.assertTrue(status["complete"], status)
+        self.assertTrue(set(status["scheduler"]) & {"squeue", "sacct"}, status)
+        self.assertEqual({t["state"] for t in status["task_states"]} - {"COMPLETED"}, set(),
+                         status)
+        r = json.loads(self.m("experiment", "run", self.experiment, "-o", results, "--slurm",
+                              array, "--resume", "--submit", "--json").stdout)
+        self.assertEqual((r["merged"], r["resubmit"], r["job"]),
+                         (self.expected_cells(), "", None))
+        self.same_fronts(local, results)
+
+
+if __name__ == "__main__":
+    mosbtest.main()

@@ -1,0 +1,418 @@
+// `mosb experiment run EXP.toml -o RESULTS` and `mosb experiment status RESULTS`
+// (spec/EXPERIMENT.md): the file read by converters/experiment, the cells planned and run by
+// lib/experiment.
+#include "mosb/experiment.hpp"
+
+#include <CLI/CLI.hpp>
+#include <csignal>
+#include <iostream>
+#include <memory>
+#include <optional>
+
+#include "commands.hpp"
+#include "json_writer.hpp"
+#include "mosb/converters/experiment_file.hpp"
+#include "mosb/converters/solver_output.hpp"
+#include "mosb/internal/utf8.hpp"
+#include "mosb/slurm.hpp"
+#include "mosb/solution_merge.hpp"
+#include "terminal_progress.hpp"
+
+namespace mosb::cli {
+
+namespace {
+
+std::atomic<bool> g_experiment_stop{false};
+
+extern "C" void request_experiment_stop(int) {
+  g_experiment_stop.store(true);
+}
+
+struct ExperimentRunArgs {
+  std::string file, output, measurement = "auto";
+  unsigned jobs = 1;
+  bool json = false;
+  // One SLURM job array for the matrix (spec/EXPERIMENT.md §4), and the task an array task runs.
+  std::string slurm, task, account, partition;
+  std::optional<std::uint64_t> queries_per_task;
+  bool submit = false, status = false, resume = false;
+};
+
+struct ExperimentStatusArgs {
+  std::string results;
+  bool json = false;
+};
+
+// Refusals of the file and of its plan are usage errors: nothing ran.
+ExperimentPlan read_plan(const std::string& file) {
+  try {
+    return plan_experiment(converters::read_experiment_file(file));
+  } catch (const Error& e) {
+    if (e.code() == ErrorCode::io) throw;
+    throw UsageError(e.what());
+  }
+}
+
+// Runs the plan's cells not done into -o (the whole experiment, or one array task's cells).
+int run_cells(const ExperimentPlan& plan, const ExperimentRunArgs& a) {
+  ExperimentOptions options;
+  options.jobs = a.jobs;
+  if (a.measurement != "auto") options.measurement = parse_measurement(a.measurement);
+  options.adapter = [](const std::string& name) -> OutputAdapter {
+    const auto* format = converters::find_solver_output_format(name);
+    return format != nullptr ? format->adapter() : OutputAdapter{};
+  };
+  struct sigaction action {};
+  action.sa_handler = request_experiment_stop;
+  sigemptyset(&action.sa_mask);
+  ::sigaction(SIGINT, &action, nullptr);
+  ::sigaction(SIGTERM, &action, nullptr);
+  ::signal(SIGPIPE, SIG_IGN);
+  TerminalProgress progress;
+  options.progress = [&](const ExperimentProgress& p) { progress.update(p); };
+  options.failed = [&](const ExperimentCell& cell, const QueryRecord& r, const Query&) {
+    progress.end_line();
+    std::cerr << "mosb: " << escape_for_terminal(cell.id()) << ": query " << r.query
+              << " failed: " << escape_for_terminal(r.message) << '\n';
+  };
+  const auto result = run_experiment(plan, a.output, options, g_experiment_stop);
+  progress.end_line();
+  if (result.interrupted) {
+    std::cerr << "mosb: interrupted; finished cells are listed in " << escape_for_terminal(a.output)
+              << "/MANIFEST, the running one keeps its journal; "
+              << "run the same command again to continue\n";
+    return 130;
+  }
+  if (a.json) {
+    JsonWriter out(std::cout);
+    out.begin_object();
+    out.key("results").value(a.output);
+    out.key("cells").value(result.cells);
+    out.key("ran").value(result.ran);
+    out.key("skipped").value(result.skipped);
+    out.key("statuses").begin_object();
+    for (const auto status : kQueryStatuses)
+      out.key(std::string(to_string(status))).value(result.counts[status]);
+    out.end_object();
+    out.end_object();
+    std::cout << '\n';
+    return 0;
+  }
+  std::cout << "experiment " << escape_for_terminal(plan.experiment.name) << ": " << result.cells
+            << " cells, " << result.ran << " run now, " << result.skipped << " done before; "
+            << status_counts_text(result.counts, true) << "; results in "
+            << escape_for_terminal(a.output) << '\n';
+  return 0;
+}
+
+// --- SLURM: one job array, task i running the cells of experiment_tasks' task i.
+
+// `--task i/N`: what array task i runs, its cells recomputed from the file and checked to be
+// those of the array (N tasks of --queries-per-task K).
+int run_experiment_task(const ExperimentRunArgs& a) {
+  if (!a.queries_per_task) throw UsageError("--task: give --queries-per-task K as well");
+  const auto task = parse_shard(a.task);
+  if (!task) throw UsageError("--task " + a.task + ": not i/N with 1 <= i <= N");
+  const auto plan = read_plan(a.file);
+  const auto tasks = experiment_tasks(plan, *a.queries_per_task);
+  if (tasks.size() != task->count)
+    throw UsageError("--task " + a.task + ": the experiment's cells make " +
+                     std::to_string(tasks.size()) + " tasks of at most " +
+                     std::to_string(*a.queries_per_task) + " queries, not " +
+                     std::to_string(task->count) + " (the experiment changed)");
+  return run_cells(task_plan(plan, tasks, task->index), a);
+}
+
+std::uint64_t queries_of(const ExperimentPlan& plan, const std::vector<std::size_t>& cells) {
+  std::uint64_t queries = 0;
+  for (const auto c : cells) queries += plan.cells[c].queries;
+  return queries;
+}
+
+int run_experiment_slurm_new(const ExperimentRunArgs& a) {
+  if (!a.queries_per_task) throw UsageError("--slurm DIR: give --queries-per-task K");
+  const auto plan = read_plan(a.file);
+  const auto tasks = experiment_tasks(plan, *a.queries_per_task);
+  if (tasks.empty()) throw UsageError(a.file + ": the experiment has no cell");
+  SlurmRun run = slurm_run_here(a.slurm);
+  run.kind = kExperimentKind;
+  run.instance = std::filesystem::absolute(a.file).lexically_normal().string();
+  for (const auto& cell_indices : tasks) {
+    const auto queries = queries_of(plan, cell_indices);
+    run.queries += queries;
+    run.largest_shard = std::max(run.largest_shard, queries);
+  }
+  run.shards = tasks.size();
+  run.time_limit_seconds = plan.experiment.limits.process.wall_seconds;
+  run.grace_seconds = plan.experiment.limits.process.grace_seconds;
+  run.memory_limit_bytes = plan.experiment.limits.process.memory_bytes;
+  run.jobs = a.jobs;
+  run.account = a.account;
+  run.partition = a.partition;
+  run.run_arguments = {run.instance, "--queries-per-task",   std::to_string(*a.queries_per_task),
+                       "--jobs",     std::to_string(a.jobs), "--measurement",
+                       a.measurement};
+  create_slurm_directory(run);
+  std::vector<std::uint64_t> all(run.shards);
+  for (std::uint64_t i = 0; i < run.shards; ++i) all[i] = i + 1;
+  const auto time = slurm_time_seconds(run);
+  std::cout << "wrote " << escape_for_terminal(run.directory) << "/run.sbatch: " << run.shards
+            << " tasks of the " << plan.cells.size() << " cells (" << run.queries
+            << " queries, at most " << run.largest_shard << " a task), --time "
+            << (time ? slurm_time_text(*time) : std::string("(the partition's default)")) << '\n';
+  if (a.submit)
+    std::cout << "submitted array job " << submit_shards(run, all) << " (" << run.shards
+              << " tasks)\n";
+  else
+    std::cout << "submit it: " << escape_for_terminal(sbatch_command_text(run, all)) << '\n';
+  return 0;
+}
+
+constexpr ShardFile shard_file_of(TaskFiles::State state) {
+  switch (state) {
+    case TaskFiles::State::done:
+      return ShardFile::done;
+    case TaskFiles::State::partial:
+      return ShardFile::partial;
+    case TaskFiles::State::damaged:
+      return ShardFile::damaged;
+    case TaskFiles::State::missing:
+      break;
+  }
+  return ShardFile::missing;
+}
+
+void print_task_states(const SlurmStatus& status,
+                       const std::vector<std::vector<std::size_t>>& tasks, bool json) {
+  std::uint64_t done = 0;
+  for (const auto& s : status.shards) done += s.file == ShardFile::done;
+  if (json) {
+    JsonWriter out(std::cout);
+    out.begin_object().key("tasks").value(std::uint64_t{tasks.size()});
+    out.key("done").value(done).key("complete").value(done == tasks.size());
+    out.key("scheduler").begin_array();
+    for (const auto& source : status.sources) out.value(source);
+    out.end_array().key("task_states").begin_array();
+    for (const auto& s : status.shards)
+      out.begin_object()
+          .key("task")
+          .value(s.index)
+          .key("cells")
+          .value(std::uint64_t{tasks[s.index - 1].size()})
+          .key("queries")
+          .value(s.queries)
+          .key("recorded")
+          .value(s.recorded)
+          .key("file")
+          .value(to_string(s.file))
+          .key("job")
+          .value(s.job)
+          .key("state")
+          .value(s.state)
+          .key("problem")
+          .value(s.problem)
+          .end_object();
+    out.end_array().end_object();
+    std::cout << '\n';
+    return;
+  }
+  for (const auto& s : status.shards) {
+    std::cout << "task " << s.index << "/" << tasks.size() << ": " << to_string(s.file) << ", "
+              << s.recorded << " of " << s.queries << " queries";
+    if (!s.job.empty()) std::cout << ", " << s.job << " " << escape_for_terminal(s.state);
+    if (!s.problem.empty()) std::cout << ": " << escape_for_terminal(s.problem);
+    std::cout << '\n';
+  }
+  std::cout << "summary: " << done << " of " << tasks.size() << " tasks done\n";
+}
+
+// The array's run.json and the experiment's tasks as the file now makes them, checked to be the
+// same array.
+std::pair<SlurmRun, std::vector<std::vector<std::size_t>>> existing_array(
+    const ExperimentRunArgs& a, const ExperimentPlan& plan) {
+  SlurmRun run = read_slurm_directory(a.slurm);
+  if (run.kind != kExperimentKind)
+    throw UsageError("--slurm " + a.slurm + ": the job array of a mosb run; use mosb run --slurm " +
+                     a.slurm);
+  const auto file = std::filesystem::absolute(a.file).lexically_normal().string();
+  if (file != run.instance) throw UsageError("--slurm " + a.slurm + " runs " + run.instance);
+  const auto k = std::find(run.run_arguments.begin(), run.run_arguments.end(),
+                           std::string("--queries-per-task"));
+  if (k == run.run_arguments.end() || k + 1 == run.run_arguments.end())
+    throw UsageError(run.directory + "/run.json: no --queries-per-task");
+  auto tasks = experiment_tasks(plan, std::stoull(*(k + 1)));
+  if (tasks.size() != run.shards)
+    throw UsageError(a.file + ": its cells no longer make the " + std::to_string(run.shards) +
+                     " tasks of " + run.directory + " (the experiment changed)");
+  return {std::move(run), std::move(tasks)};
+}
+
+// `--slurm DIR --status` and `--slurm DIR --resume [--submit]`: the tasks' states; with --resume
+// every finished cell merged into -o, and the tasks neither done nor queued resubmitted.
+int run_experiment_slurm_existing(const ExperimentRunArgs& a) {
+  const auto plan = read_plan(a.file);
+  // Named references, not a structured binding: the lambdas below capture them (C++20 clang
+  // refuses a structured binding there).
+  const auto array = existing_array(a, plan);
+  const SlurmRun& run = array.first;
+  const auto& tasks = array.second;
+  const auto task_directory = [&](std::uint64_t i) {
+    return std::filesystem::path(run.directory) / ("task-" + std::to_string(i));
+  };
+  const auto status = slurm_status(run, [&](std::uint64_t i) {
+    const auto t = task_files(task_plan(plan, tasks, i), task_directory(i));
+    ShardState s;
+    s.index = i;
+    s.queries = queries_of(plan, tasks[i - 1]);
+    s.file = shard_file_of(t.state);
+    s.recorded = t.queries_done;
+    s.counts = t.counts;
+    s.problem = t.problem;
+    return s;
+  });
+  if (a.status) {
+    print_task_states(status, tasks, a.json);
+    return 0;
+  }
+  std::vector<std::filesystem::path> parts;
+  for (std::uint64_t i = 1; i <= run.shards; ++i) parts.push_back(task_directory(i));
+  const auto merged = merge_experiment_results(plan, a.output, parts);
+  std::vector<std::uint64_t> resubmit;
+  for (const auto& s : status.shards)
+    if (s.file != ShardFile::done && !s.queued()) resubmit.push_back(s.index);
+  std::optional<std::string> job;
+  if (a.submit && !resubmit.empty()) job = submit_shards(run, resubmit);
+  if (a.json) {
+    JsonWriter out(std::cout);
+    out.begin_object().key("results").value(a.output).key("merged").value(merged);
+    out.key("resubmit").value(slurm_array_list(resubmit)).key("job").value(job);
+    out.end_object();
+    std::cout << '\n';
+    return 0;
+  }
+  std::cout << "merged " << merged << " cells into " << escape_for_terminal(a.output) << '\n';
+  if (resubmit.empty())
+    std::cout << "nothing to resubmit\n";
+  else if (job)
+    std::cout << "resubmitted tasks " << slurm_array_list(resubmit) << " as array job " << *job
+              << '\n';
+  else
+    std::cout << "resubmit tasks " << slurm_array_list(resubmit) << ": "
+              << escape_for_terminal(sbatch_command_text(run, resubmit)) << '\n';
+  return 0;
+}
+
+int run_experiment_command(const ExperimentRunArgs& a) {
+  if (!a.task.empty()) {
+    if (!a.slurm.empty() || a.submit || a.status || a.resume)
+      throw UsageError("--task: not with --slurm, --submit, --status or --resume");
+    return run_experiment_task(a);
+  }
+  if (!a.slurm.empty())
+    return a.status || a.resume ? run_experiment_slurm_existing(a) : run_experiment_slurm_new(a);
+  if (a.submit || a.status || a.resume || a.queries_per_task || !a.account.empty() ||
+      !a.partition.empty())
+    throw UsageError(
+        "--submit, --status, --resume, --queries-per-task, --account and --partition: only with "
+        "--slurm DIR");
+  return run_cells(read_plan(a.file), a);
+}
+
+int run_experiment_status(const ExperimentStatusArgs& a) {
+  const auto cells = experiment_status(a.results);
+  std::map<CellState, std::uint64_t> totals;
+  for (const auto& c : cells) ++totals[c.state];
+  const auto to_rerun = [](const CellStatus& c) {
+    return c.state != CellState::done && c.state != CellState::running;
+  };
+  if (a.json) {
+    JsonWriter out(std::cout);
+    out.begin_object();
+    out.key("cells").begin_array();
+    for (const auto& c : cells) {
+      out.begin_object();
+      out.key("cell").value(c.cell.id());
+      out.key("file").value(c.cell.file);
+      out.key("state").value(to_string(c.state));
+      out.key("queries").value(c.cell.queries);
+      out.key("journaled").value(c.journaled);
+      out.key("statuses").begin_object();
+      for (const auto status : kQueryStatuses)
+        out.key(std::string(to_string(status))).value(c.counts[status]);
+      out.end_object();
+      if (!c.detail.empty()) out.key("detail").value(c.detail);
+      out.end_object();
+    }
+    out.end_array();
+    out.key("complete").value(totals[CellState::done] == cells.size());
+    out.end_object();
+    std::cout << '\n';
+    return 0;
+  }
+  for (const auto& c : cells) {
+    std::cout << to_string(c.state) << ' ' << escape_for_terminal(c.cell.id());
+    if (c.state == CellState::done || c.state == CellState::failed)
+      std::cout << ": " << status_counts_text(c.counts, true);
+    if (c.state == CellState::running || c.state == CellState::stopped)
+      std::cout << ": " << c.journaled << '/' << c.cell.queries << " queries journaled";
+    if (!c.detail.empty()) std::cout << ": " << escape_for_terminal(c.detail);
+    std::cout << '\n';
+  }
+  std::cout << "summary: " << cells.size() << " cells";
+  for (const auto& [state, count] : totals) std::cout << ", " << count << ' ' << to_string(state);
+  std::cout << '\n';
+  const auto rerun = std::count_if(cells.begin(), cells.end(), to_rerun);
+  if (rerun > 0) {
+    std::cout << "to rerun: " << rerun << " cells: `mosb experiment run EXP.toml -o "
+              << escape_for_terminal(a.results) << "` runs the missing and stopped ones";
+    if (totals[CellState::failed] + totals[CellState::damaged] > 0)
+      std::cout << "; a failed or damaged cell runs again once its file and MANIFEST record are "
+                   "removed";
+    std::cout << '\n';
+  }
+  return 0;
+}
+
+}  // namespace
+
+Command add_experiment(CLI::App& app) {
+  auto* experiment = app.add_subcommand(
+      "experiment", "Run solvers x benchmarks from one experiment file (spec/EXPERIMENT.md)");
+  auto run_args = std::make_shared<ExperimentRunArgs>();
+  auto* run = experiment->add_subcommand(
+      "run", "Run every cell (solver x instance x view) not yet done into RESULTS");
+  run->add_option("EXP", run_args->file, "the experiment file (TOML)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  run->add_option("-o,--output", run_args->output, "the results directory")->required();
+  run->add_option("--slurm", run_args->slurm,
+                  "write one SLURM job array for the whole matrix into DIR (tasks: shards of "
+                  "cells); with --status or --resume, the array DIR holds");
+  run->add_option("--queries-per-task", run_args->queries_per_task,
+                  "with --slurm: consecutive cells packed into tasks of at most K queries");
+  run->add_flag("--submit", run_args->submit, "with --slurm: submit the array (sbatch)");
+  run->add_flag("--status", run_args->status, "with --slurm DIR: each task's state");
+  run->add_flag("--resume", run_args->resume,
+                "with --slurm DIR: merge the finished cells into -o, resubmit (--submit) the "
+                "tasks neither done nor queued");
+  run->add_option("--account", run_args->account, "with --slurm: sbatch --account");
+  run->add_option("--partition", run_args->partition, "with --slurm: sbatch --partition");
+  run->add_option("--task", run_args->task,
+                  "i/N: run array task i's cells only (what the job array's tasks run)");
+  run->add_option("--jobs,-j", run_args->jobs, "queries of a cell run at the same time")
+      ->check(CLI::Range(1u, 1024u));
+  run->add_option("--measurement", run_args->measurement,
+                  "how memory is limited and measured (auto, cgroup-v1, rlimit-poll)")
+      ->check(CLI::IsMember({"auto", "cgroup-v1", "rlimit-poll"}));
+  add_json_flag(run, run_args->json);
+  auto status_args = std::make_shared<ExperimentStatusArgs>();
+  auto* status = experiment->add_subcommand(
+      "status", "Per cell of RESULTS: done, running, stopped, missing, failed or damaged");
+  status->add_option("RESULTS", status_args->results, "the results directory")->required();
+  add_json_flag(status, status_args->json);
+  return group(experiment,
+               {{run, [run_args] { return run_experiment_command(*run_args); }},
+                {status, [status_args] { return run_experiment_status(*status_args); }}});
+}
+
+}  // namespace mosb::cli
