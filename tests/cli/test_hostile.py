@@ -467,6 +467,20 @@ class Hostile(CliTest):
 
     # --- 15. messages -------------------------------------------------------------------------
 
+    def test_a_solver_name_that_is_not_utf8_is_escaped_or_refused_before_anything_runs(self):
+        # The solution file's metadata is UTF-8: an executable named by bytes that are not is
+        # recorded escaped (the file reads back); a --solver-name that is not is refused at once.
+        solver = self.script("na\udce9ve", 'record %s\necho "$(($1 + 1)) 1"\n' % self.pids)
+        self.run_solver(solver)
+        self.assertEqual(self.inspect()["solver"], "na\\xe9ve")
+        os.remove(self.pids)
+        r = self.run_mosb("run", self.grid, "--view", "Grid_2", "--queries", "q", "--solver",
+                          solver + " {query}", "--solver-name", "x\udcff", "-o",
+                          self.path("named.sol"))
+        self.assert_one_line_error(r, "the solver's name or version is not valid UTF-8")
+        self.assertFalse(os.path.exists(self.pids), "a solver ran before the refusal")
+        self.assertFalse(os.path.exists(self.path("named.sol.journal")))
+
     def test_messages_say_what_happened(self):
         r = self.run_mosb("run", self.grid, "--view", "Grid_2", "--queries", "q", "--solver",
                           "{instance} x", "-o", self.path("out.sol"))

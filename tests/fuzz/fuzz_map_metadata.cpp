@@ -93,15 +93,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   fields.resize(5);
   auto g = base;
   const char* keys[] = {"map.width", "map.height", "map.guards"};
-  for (int k = 0; k < 3; ++k)
-    if (!fields[k].empty()) g.metadata.set(keys[k], fields[k]);
   g.costs[1].unit = fields[3];
   g.costs[0].unit = fields[4];
   const auto file = scratch() / "m.mosb";
   std::optional<mosb::GraphReader> opened;
   try {
     // Only a file that passes verify --level full is drawn: values the format does not allow
-    // (invalid UTF-8, say) are refused here, by the writer or the verifier.
+    // (invalid UTF-8, say) are refused here, by Metadata::set, the writer or the verifier.
+    for (int k = 0; k < 3; ++k)
+      if (!fields[k].empty()) g.metadata.set(keys[k], fields[k]);
     mosb::write_graph(g, file);
     opened.emplace(mosb::GraphReader::open(file, mosb::VerifyLevel::full));
   } catch (const mosb::Error&) {

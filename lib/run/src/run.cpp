@@ -24,6 +24,7 @@
 #include "mosb/eval.hpp"
 #include "mosb/internal/parallel.hpp"
 #include "mosb/internal/read_file.hpp"
+#include "mosb/internal/utf8.hpp"
 #include "mosb/solution_verify.hpp"
 #include "mosb/version.hpp"
 #include "process.hpp"
@@ -500,16 +501,22 @@ class Runner {
   double wall_ = 0, cpu_ = 0;
 };
 
+// A file name or command line as metadata, which is UTF-8: bytes that are not kept escaped.
+std::string metadata_text(const std::string& bytes) {
+  return is_valid_utf8(bytes) ? bytes : escape_for_terminal(bytes);
+}
+
 SolverInfo solver_info(const RunConfig& c, const Plan& p, unsigned jobs,
                        const std::vector<std::string>& executables) {
   SolverInfo info;
   info.epsilon = c.epsilon;
-  info.name = c.solver_name.empty() ? fs::path(p.words.front()).filename().string() : c.solver_name;
+  info.name = c.solver_name.empty() ? metadata_text(fs::path(p.words.front()).filename().string())
+                                    : c.solver_name;
   info.version = c.solver_version;
   info.machine = describe_machine();
   auto& m = info.parameters;
-  m["run.template"] = c.solver_template;
-  m["run.executable"] = p.executable;
+  m["run.template"] = metadata_text(c.solver_template);
+  m["run.executable"] = metadata_text(p.executable);
   if (!executables.empty()) {
     std::string digests;  // more than one: a run continued with --allow-new-executable
     for (const auto& digest : executables) digests += (digests.empty() ? "" : " | ") + digest;
@@ -584,6 +591,11 @@ std::optional<std::string> record_problem(const QueryRecord& r, const RunConfig&
 RunResult run_solver(const RunConfig& c, const RunCallbacks& callbacks,
                      const std::atomic<bool>& stop) {
   if (!c.instance) throw Error(ErrorCode::invalid_argument, "run_solver: no instance");
+  // Recorded in the solution file's metadata, which is UTF-8: refused before any solver starts.
+  if (!is_valid_utf8(c.solver_name) || !is_valid_utf8(c.solver_version))
+    throw Error(
+        ErrorCode::invalid_argument,
+        "the solver's name or version is not valid UTF-8 (--solver-name, --solver-version)");
   open_run_instance(c.instance_path);  // a packed file is refused before any solver starts
   check_output_is_not_input(c.output, {c.instance_path});
   const unsigned jobs = std::max(1u, c.jobs);
