@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "mosb/converters/profile_run.hpp"
+#include "mosb/converters/solver_output.hpp"
 #include "mosb/converters/text_input.hpp"
 #include "mosb/error.hpp"
 #include "placeholders.hpp"
@@ -199,13 +200,6 @@ void check_count(const OutputField& rule, OutputTexts& texts, std::uint64_t vect
                 std::to_string(vectors) + " vectors");
 }
 
-ParsedOutput stated(QueryStatus status, std::string statement) {
-  ParsedOutput out;
-  out.stated_status = status;
-  out.stated = std::move(statement);
-  return out;
-}
-
 }  // namespace
 
 ParsedOutput read_vectors_output(const SolverOutputFiles& files, const ProfileOutput& output,
@@ -226,7 +220,8 @@ ParsedOutput read_vectors_output(const SolverOutputFiles& files, const ProfileOu
     bool found = false;
     for_each_line(texts.text(rule.file),
                   [&](std::string_view line, std::size_t) { found |= trimmed(line) == rule.text; });
-    if (found) return stated(rule.status, texts.path(rule.file) + " says '" + rule.text + "'");
+    if (found)
+      return stated_output(rule.status, texts.path(rule.file) + " says '" + rule.text + "'");
   }
   for (const auto& rule : output.finished) {
     if (!applies(rule, context)) continue;
@@ -235,8 +230,9 @@ ParsedOutput read_vectors_output(const SolverOutputFiles& files, const ProfileOu
       found |= line.substr(0, rule.text.size()) == rule.text;
     });
     if (!found)
-      return stated(output.unfinished, texts.path(rule.file) + " has no line starting with '" +
-                                           rule.text + "': the search did not finish");
+      return stated_output(output.unfinished, texts.path(rule.file) +
+                                                  " has no line starting with '" + rule.text +
+                                                  "': the search did not finish");
   }
   ParsedOutput out;
   for_each_line(texts.text(OutputFile::front), [&](std::string_view line, std::size_t number) {

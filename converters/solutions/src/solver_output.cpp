@@ -17,15 +17,14 @@ SolutionImportOptions one_query_options(const SolverOutputFiles& files) {
   return options;
 }
 
-// The solver's own statement that it did not finish: never a front.
-ParsedOutput stated(QueryStatus status, std::string statement) {
+}  // namespace
+
+ParsedOutput stated_output(QueryStatus status, std::string statement) {
   ParsedOutput out;
   out.stated_status = status;
   out.stated = std::move(statement);
   return out;
 }
-
-}  // namespace
 
 ParsedOutput read_example_log_output(const SolverOutputFiles& files) {
   SolutionImportOptions options = one_query_options(files);
@@ -34,8 +33,9 @@ ParsedOutput read_example_log_output(const SolverOutputFiles& files) {
   const auto log = read_text_input(files.stdout_path, files.output_bytes);
   apply_example_run_log(log.text, files.stdout_path, options, results);
   if (results.size() == 1 && results.front().status_stated && !is_completed(results.front().status))
-    return stated(results.front().status, files.fronts_dir + "/0.txt says status " +
-                                              std::string(to_string(results.front().status)));
+    return stated_output(
+        results.front().status,
+        files.fronts_dir + "/0.txt says status " + std::string(to_string(results.front().status)));
   if (results.size() != 1 || results.front().status == QueryStatus::failed)
     throw Error(files.fronts_dir + ": no front file 0.txt");
   ParsedOutput out;
@@ -57,10 +57,10 @@ ParsedOutput read_json_log_output(const SolverOutputFiles& files) {
                 std::to_string(results.size()));
   const auto& result = results.front();
   if (!is_completed(result.status))
-    return stated(result.status,
-                  path + ": the record says " +
-                      (result.statement.empty() ? "status " + std::string(to_string(result.status))
-                                                : result.statement));
+    return stated_output(result.status, path + ": the record says " +
+                                            (result.statement.empty()
+                                                 ? "status " + std::string(to_string(result.status))
+                                                 : result.statement));
   ParsedOutput out;
   out.vectors = result.costs.size() / files.objectives;
   out.costs = result.costs;

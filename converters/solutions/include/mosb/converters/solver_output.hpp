@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 
 #include "mosb/run.hpp"
@@ -24,6 +25,10 @@ struct SolverOutputFormat {
 std::span<const SolverOutputFormat> solver_output_formats();
 // The format named `name`, or nullptr.
 const SolverOutputFormat* find_solver_output_format(std::string_view name);
+
+// The output of a solver that said it did not finish (`status`, because `statement`): never a
+// front, whatever else it printed. For every adapter that reads such statements.
+ParsedOutput stated_output(QueryStatus status, std::string statement);
 
 // The example-log adapter (apply_example_run_log on stdout, import_front_directory on {fronts}).
 ParsedOutput read_example_log_output(const SolverOutputFiles& files);
