@@ -132,6 +132,26 @@ class RunTest(CliTest):
                                  "--cpu-limit", "1s")
         self.assert_status(info, "solved")
 
+    def test_cpu_time_counts_what_the_solver_left(self):
+        # The solver ends after 0.6 s; its busy child, still running then, is killed by the
+        # query's launcher: its CPU time is the query's too (spec/RUN.md §4, CPU time).
+        for measurement in MEASUREMENTS:
+            with self.subTest(measurement=measurement):
+                if os.path.exists(self.pids):
+                    os.remove(self.pids)
+                self.ok("queries", "generate", self.grid, "--set", "one", "--count", "1",
+                        "--in-place", "--replace")
+                solver = self.script("busy", "record %s\n(record %s; while :; do :; done) &\n"
+                                     "sleep 0.6\necho 1 1\n" % (self.pids, self.pids))
+                r = self.run_solver(solver + " {source} {target}", "--measurement", measurement,
+                                    "--json", queries="one")
+                summary = json.loads(r.stdout)
+                self.assertEqual(summary["statuses"]["solved"], 1)
+                self.assertGreater(summary["solver_cpu_seconds"], 0.3, summary)
+                self.assertLess(summary["solver_cpu_seconds"],
+                                2 * summary["solver_wall_seconds"] + 0.1, summary)
+                self.assert_no_process_left()
+
     def test_memory_limit_in_the_solver_and_in_a_forked_child(self):
         for measurement in MEASUREMENTS:
             for forked in (False, True):

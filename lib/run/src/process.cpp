@@ -8,6 +8,7 @@
 #include <sys/resource.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
+#include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -136,8 +137,8 @@ Isolation detect_isolation() {
 
 std::string describe_measurement(Measurement m) {
   const std::string time =
-      "wall: steady clock from exec to reaping; cpu: user+system of the solver and every "
-      "descendant reaped (wait4)";
+      "wall: steady clock from the command to the launcher's report that the solver was reaped; "
+      "cpu: user+system of the solver and every descendant reaped (getrusage)";
   if (m == Measurement::cgroup_v1)
     return time +
            "; memory: cgroup v1 memory controller, one group per query (memory.limit_in_bytes "
@@ -365,10 +366,14 @@ int wait_for(pid_t pid, rusage* usage = nullptr) {
 }
 
 // What the launcher tells mosb when the solver has ended (on the command socket).
+// It is sent once nothing of the query is left, so mosb ends the query on it and reaps the
+// launcher's chain later, off the query's critical path.
 struct LauncherReport {
   std::int32_t status = 0;      // the solver's wait status
   std::int32_t leftovers = 0;   // 1: descendants outlived the solver and were killed
   std::int64_t max_rss_kb = 0;  // the solver's ru_maxrss (with its waited-for descendants)
+  // User + system time of every process the launcher reaped: the solver and what it left.
+  std::int64_t cpu_microseconds = 0;
 };
 
 // In a child: `count` bytes to `fd`, or false.
@@ -497,6 +502,10 @@ bool kill_what_is_left(Isolation isolation) {
     if (reaped < 0 && errno != EINTR) ::_exit(127);
   }
   report.leftovers = kill_what_is_left(isolation) ? 1 : 0;
+  rusage reaped{};
+  ::getrusage(RUSAGE_CHILDREN, &reaped);
+  report.cpu_microseconds = (reaped.ru_utime.tv_sec + reaped.ru_stime.tv_sec) * 1000000 +
+                            reaped.ru_utime.tv_usec + reaped.ru_stime.tv_usec;
   write_exactly(command_fd, &report, sizeof report);
   ::_exit(0);
 }
@@ -596,6 +605,10 @@ struct ProcessRunner::Parked {
   Isolation isolation = Isolation::subreaper;
   LaunchBuffer buffer;
   bool launched = false;
+  bool reaped = false;
+  // Readable when the child has ended (-1: this kernel has no pidfd_open; the query then ends on
+  // the child's end alone).
+  int pidfd = -1;
 
   Parked(Measurement measurement, std::uint64_t memory_bytes, const std::string& prefix,
          Isolation how, std::uint64_t sequence)
@@ -624,15 +637,17 @@ struct ProcessRunner::Parked {
     in_parent_after_fork(pid, {command[0], error[1]}, {command[1], error[0]});
     command_fd = command[1];
     error_fd = error[0];
+    // glibc 2.36's <sys/pidfd.h> declares pidfd_open without C linkage: the system call itself.
+    pidfd = static_cast<int>(::syscall(SYS_pidfd_open, pid, 0));
   }
-  // A child never launched is killed and reaped; a launched one is reaped by run().
+  // A child never launched is killed; one that was ends by itself once its launcher reported.
+  // Both are reaped here, before the memory group is removed.
   ~Parked() {
-    if (!launched) {
-      ::kill(pid, SIGKILL);
-      wait_for(pid);
-    }
+    if (!launched) ::kill(pid, SIGKILL);
+    if (!reaped) wait_for(pid);
     ::close(command_fd);
     ::close(error_fd);
+    if (pidfd >= 0) ::close(pidfd);
   }
   Parked(const Parked&) = delete;
   Parked& operator=(const Parked&) = delete;
@@ -684,11 +699,39 @@ struct ProcessRunner::Parked {
     return true;
   }
 
-  // After the child was reaped: the launcher's report, when it gave one.
-  std::optional<LauncherReport> report() const {
+  // Waits for the launcher's report, sent once nothing of the query is left, or for the child's
+  // end (a launcher that was killed sends none): the report when there is one. When the child
+  // ended first it is reaped here, its resource use in `usage`.
+  std::optional<LauncherReport> await_report(rusage& usage) {
     LauncherReport r;
-    if (!read_exactly_now(command_fd, &r, sizeof r)) return std::nullopt;
+    auto* bytes = reinterpret_cast<char*>(&r);
+    std::size_t have = 0;
+    pollfd ends[2] = {{command_fd, POLLIN, 0}, {pidfd, POLLIN, 0}};
+    while (pidfd >= 0 && have < sizeof r) {
+      if (::poll(ends, 2, -1) < 0) {
+        if (errno == EINTR) continue;
+        break;
+      }
+      if (ends[0].revents != 0) {
+        const ssize_t got = ::recv(command_fd, bytes + have, sizeof r - have, MSG_DONTWAIT);
+        if (got > 0) have += static_cast<std::size_t>(got);
+        if (got == 0) ends[0].fd = -1;  // every holder closed its end: no report
+      }
+      if (ends[1].revents != 0) break;
+    }
+    if (have == sizeof r) return r;
+    wait_for(pid, &usage);
+    reaped = true;
+    if (!read_exactly_now(command_fd, bytes + have, sizeof r - have)) return std::nullopt;
     return r;
+  }
+
+  // Whether the child has ended (then destroying this object costs no wait).
+  bool ended() const {
+    siginfo_t info{};
+    return reaped ||
+           (::waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOHANG | WNOWAIT) == 0 &&
+            info.si_pid == pid);
   }
 
   // Sends the command (fits(spec) holds); a child that has ended meanwhile is reaped as usual.
@@ -787,6 +830,7 @@ ProcessRunner::ProcessRunner(const std::atomic<bool>& stop)
 
 ProcessRunner::~ProcessRunner() {
   parked_.reset();
+  retired_.clear();
   {
     std::lock_guard lock(watch_->mutex);
     watch_->quit = true;
@@ -801,9 +845,9 @@ void classify_exit(int status, const MemoryGroup* g, ProcessOutcome& out);
 
 // How the query ended, from what the watchdog saw (`reason`), the child's error pipe and the
 // launcher's report; `out` holds the times already.
-ProcessOutcome outcome_of(const ProcessSpec& spec, int error_fd, const MemoryGroup* g,
-                          std::optional<Ending> reason, const std::optional<LauncherReport>& report,
-                          std::uint64_t peak, ProcessOutcome& out) {
+void outcome_of(const ProcessSpec& spec, int error_fd, const MemoryGroup* g,
+                std::optional<Ending> reason, const std::optional<LauncherReport>& report,
+                std::uint64_t peak, ProcessOutcome& out) {
   const auto failed_start = child_error(error_fd);
   if (failed_start && failed_start->stage == 3) {
     errno = failed_start->error;
@@ -833,7 +877,6 @@ ProcessOutcome outcome_of(const ProcessSpec& spec, int error_fd, const MemoryGro
     out.ending = Ending::not_started;
     out.error = "the solver's launcher ended without saying how the solver did";
   }
-  return out;
 }
 
 void classify_exit(int status, const MemoryGroup* g, ProcessOutcome& out) {
@@ -894,10 +937,12 @@ ProcessOutcome ProcessRunner::run(const ProcessSpec& spec, const ProcessLimits& 
     } catch (const Error&) {
       parked_.reset();
     }
+  retire_ended();
   rusage usage{};
-  wait_for(child->pid, &usage);
+  const auto report = child->await_report(usage);
   out.wall_seconds = std::chrono::duration<double>(Clock::now() - started).count();
-  out.cpu_seconds = seconds_of(usage.ru_utime) + seconds_of(usage.ru_stime);
+  out.cpu_seconds = report ? static_cast<double>(report->cpu_microseconds) / 1e6
+                           : seconds_of(usage.ru_utime) + seconds_of(usage.ru_stime);
   std::optional<Ending> reason;
   std::uint64_t peak = 0;
   {
@@ -907,9 +952,14 @@ ProcessOutcome ProcessRunner::run(const ProcessSpec& spec, const ProcessLimits& 
     reason = watch_->reason;
     peak = watch_->peak;
   }
-  const auto report = child->report();
   if (ready) kill_leftovers(child->solver, out);
-  return outcome_of(spec, child->error_fd, g, reason, report, peak, out);
+  outcome_of(spec, child->error_fd, g, reason, report, peak, out);
+  retired_.push_back(std::move(child));
+  return out;
+}
+
+void ProcessRunner::retire_ended() {
+  std::erase_if(retired_, [](const std::unique_ptr<Parked>& child) { return child->ended(); });
 }
 namespace {
 

@@ -69,7 +69,7 @@ enum class Ending {
 struct ProcessOutcome {
   Ending ending = Ending::exited;
   int exit_code = 0, signal = 0;
-  double wall_seconds = 0;  // from the exec to the reaping of the solver
+  double wall_seconds = 0;  // from the command to the launcher's report (spec/RUN.md §4)
   double cpu_seconds = 0;   // user + system of the solver and its reaped descendants
   std::optional<std::uint64_t> peak_memory_bytes;
   std::string error;
@@ -103,7 +103,11 @@ class ProcessRunner {
   const std::atomic<bool>& stop_;
   std::unique_ptr<Watch> watch_;
   std::unique_ptr<Parked> parked_;  // the next solver's process, forked ahead of its command
-  std::uint64_t sequence_ = 0;      // numbers the memory groups of this runner
+  // Children whose query has ended, reaped (and their memory groups removed) while the next
+  // solver runs: a query ends on its launcher's report, not on the exits that follow it.
+  std::vector<std::unique_ptr<Parked>> retired_;
+  void retire_ended();
+  std::uint64_t sequence_ = 0;  // numbers the memory groups of this runner
 };
 
 // What a program run to its end printed, and how it ended.
