@@ -715,7 +715,8 @@ struct ProcessRunner::Parked {
       if (ends[0].revents != 0) {
         const ssize_t got = ::recv(command_fd, bytes + have, sizeof r - have, MSG_DONTWAIT);
         if (got > 0) have += static_cast<std::size_t>(got);
-        if (got == 0) ends[0].fd = -1;  // every holder closed its end: no report
+        // Every holder closed its end, or the socket failed: no report comes.
+        if (got == 0 || (got < 0 && errno != EAGAIN && errno != EINTR)) ends[0].fd = -1;
       }
       if (ends[1].revents != 0) break;
     }
