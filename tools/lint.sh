@@ -13,11 +13,21 @@ clang-format --dry-run --Werror "${sources[@]}"
 mapfile -t units < <(git ls-files 'format/*.cpp' 'lib/*.cpp' 'converters/*.cpp' 'tools/*.cpp' 'capi/*.cpp' 'report/*.cpp')
 echo "clang-tidy: ${#units[@]} translation units"
 # The compile database is GCC's: clang must not stop at GCC-only warning flags.
-# Nor at GCC's precompiled headers (target_precompile_headers, tools/CMakeLists.txt): clang cannot
-# read a .gch, so it gets the database without them, and each file is checked with its own includes.
+# The program's sources are compiled as unity sources (tools/CMakeLists.txt), which the database
+# lists instead of them: each source gets its unity source's command, so each is checked alone.
 db=$(mktemp -d)
 trap 'rm -rf "$db"' EXIT
-sed -E 's# -Winvalid-pch##g; s# -include [^ "]*/cmake_pch\.hxx##g' "$build/compile_commands.json" \
-  >"$db/compile_commands.json"
+/usr/bin/python3 - "$build/compile_commands.json" >"$db/compile_commands.json" <<'EOF'
+import json, re, sys
+entries = []
+for entry in json.load(open(sys.argv[1])):
+    if "/Unity/unity_" not in entry["file"]:
+        entries.append(entry)
+        continue
+    for source in re.findall(r'#include "([^"]+)"', open(entry["file"]).read()):
+        entries.append(dict(entry, file=source,
+                            command=entry["command"].replace(entry["file"], source)))
+json.dump(entries, sys.stdout)
+EOF
 printf '%s\n' "${units[@]}" |
   xargs -P "$(nproc)" -n 4 clang-tidy -p "$db" --quiet --extra-arg=-Wno-unknown-warning-option

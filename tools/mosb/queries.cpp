@@ -81,7 +81,7 @@ int write_and_report(const GraphReader& reader, converters::QuerySetEdit edit, c
   return 0;
 }
 
-struct ImportArgs {
+struct QueryImportArgs {
   Target target;
   std::string file;
   InstanceIdBase id_base;
@@ -97,7 +97,7 @@ struct GenerateArgs {
 Command add_queries_import(CLI::App& queries) {
   auto* import = queries.add_subcommand(
       "import", "Import (start, goal) pairs from a text file (s t | s, t | s;t | graph-path s t)");
-  auto a = std::make_shared<ImportArgs>();
+  auto a = std::make_shared<QueryImportArgs>();
   add_target_options(import, a->target);
   import->add_option("QUERIES", a->file, "the query file (plain, gzip, bzip2, xz or zstd)")
       ->required()

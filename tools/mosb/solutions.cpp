@@ -23,7 +23,7 @@ namespace mosb::cli {
 
 namespace {
 
-struct ImportArgs {
+struct SolutionImportArgs {
   std::string instance, output;
   ViewChoice choice;
   std::string directory, table, json_log;  // exactly one
@@ -38,7 +38,7 @@ struct ImportArgs {
 
 // Every file the import reads: the instance, the input, and each regular file of --dir (a file
 // of the directory is a front file, the output among them).
-std::vector<std::filesystem::path> import_inputs(const ImportArgs& a) {
+std::vector<std::filesystem::path> import_inputs(const SolutionImportArgs& a) {
   std::vector<std::filesystem::path> inputs{a.instance, a.table, a.json_log, a.example_log};
   std::error_code error;
   if (!a.directory.empty())
@@ -47,7 +47,7 @@ std::vector<std::filesystem::path> import_inputs(const ImportArgs& a) {
   return inputs;
 }
 
-int run_import(const ImportArgs& a) {
+int run_import(const SolutionImportArgs& a) {
   const int inputs = !a.directory.empty() + !a.table.empty() + !a.json_log.empty();
   if (inputs != 1)
     throw Error(ErrorCode::invalid_argument, "give exactly one of --dir, --table, --json-log");
@@ -251,13 +251,13 @@ int run_inspect(const InspectArgs& a) {
   return 0;
 }
 
-struct VerifyArgs {
+struct SolutionVerifyArgs {
   std::string file;
   std::string instance;
   bool json = false;
 };
 
-int run_verify(const VerifyArgs& a) {
+int run_solution_verify(const SolutionVerifyArgs& a) {
   std::optional<std::string> problem;
   try {
     const auto r = SolutionReader::open(a.file);
@@ -294,7 +294,7 @@ int run_verify(const VerifyArgs& a) {
 
 Command add_solutions(CLI::App& app) {
   auto* group_app = app.add_subcommand("solutions", "Solution files: reference or solver fronts");
-  auto import_args = std::make_shared<ImportArgs>();
+  auto import_args = std::make_shared<SolutionImportArgs>();
   auto* import = group_app->add_subcommand(
       "import", "Write a solution file from solver output: per-query files, a table or a JSON log");
   import->add_option("--instance", import_args->instance, "the instance (.mosb)")->required();
@@ -357,7 +357,7 @@ Command add_solutions(CLI::App& app) {
       "inspect", "Summarise a solution file: binding, solver, statuses, front sizes");
   inspect->add_option("SOLUTIONS", inspect_args->file, "a solution file")->required();
   add_json_flag(inspect, inspect_args->json);
-  auto verify_args = std::make_shared<VerifyArgs>();
+  auto verify_args = std::make_shared<SolutionVerifyArgs>();
   auto* verify = group_app->add_subcommand(
       "verify",
       "Check a solution file: checksums and statuses; with --instance also the digest, "
@@ -368,7 +368,7 @@ Command add_solutions(CLI::App& app) {
   return group(group_app, {{import, [import_args] { return run_import(*import_args); }},
                            {export_, [export_args] { return run_export(*export_args); }},
                            {inspect, [inspect_args] { return run_inspect(*inspect_args); }},
-                           {verify, [verify_args] { return run_verify(*verify_args); }},
+                           {verify, [verify_args] { return run_solution_verify(*verify_args); }},
                            add_solutions_compare(group_app),
                            add_solutions_merge(group_app),
                            add_solutions_reference(group_app)});

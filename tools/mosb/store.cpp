@@ -74,7 +74,7 @@ std::string shown(const std::string& name) {
   return name.empty() ? "-" : escape_for_terminal(name);
 }
 
-std::string joined(const std::vector<std::string>& names) {
+std::string listed_or_dash(const std::vector<std::string>& names) {
   std::string out;
   for (const auto& n : names) out += (out.empty() ? "" : ",") + escape_for_terminal(n);
   return out.empty() ? "-" : out;
@@ -128,8 +128,8 @@ int run_list(const StoreArgs& a) {
   for (const auto& e : store.manifest().entries)
     std::cout << escape_for_terminal(e.file) << "  " << e.size << " bytes  "
               << (e.packed ? "packed  " : "") << "benchmark " << shown(e.benchmark) << "  views "
-              << joined(e.views) << "  queries " << joined(e.query_sets) << "  digest " << e.digest
-              << '\n';
+              << listed_or_dash(e.views) << "  queries " << listed_or_dash(e.query_sets)
+              << "  digest " << e.digest << '\n';
   std::cout << store.manifest().entries.size() << " entries"
             << (store.manifest().legacy ? " (older TSV MANIFEST: no SHA-256 listed)" : "") << '\n';
   return 0;

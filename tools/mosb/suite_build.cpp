@@ -25,7 +25,7 @@ struct SuiteBuildArgs {
   bool json = false;
 };
 
-std::string joined(const std::vector<std::string>& names) {
+std::string comma_separated(const std::vector<std::string>& names) {
   std::string out;
   for (const auto& name : names) out += (out.empty() ? "" : ", ") + name;
   return out;
@@ -59,7 +59,7 @@ int run_suite_build(const SuiteBuildArgs& a) {
     for (const auto& s : raw)
       std::cout << s.name << ": "
                 << (s.missing.empty() ? std::string("built")
-                                      : "skipped: missing " + joined(s.missing))
+                                      : "skipped: missing " + comma_separated(s.missing))
                 << '\n';
   return report_suite(a.directory, "suite", entries, a.json, [&](JsonWriter& out) {
     if (a.raw.empty()) return;
