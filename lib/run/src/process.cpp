@@ -145,8 +145,9 @@ std::string describe_measurement(Measurement m) {
            "and memory.memsw.limit_in_bytes limit, memory.max_usage_in_bytes is the peak, "
            "page cache included; an OOM kill in the group is memory-limit)";
   return time +
-         "; memory: RLIMIT_AS per process, and the resident set summed over the solver's "
-         "process group polled every 20 ms (peak = largest sum; a sum over the limit is "
+         "; memory: RLIMIT_AS per process, and the resident set summed over the query's "
+         "processes (the launcher's descendants) polled every 20 ms (peak = largest sum; a sum "
+         "over the limit is "
          "memory-limit)";
 }
 
@@ -183,49 +184,89 @@ void prepare_process_runner() {
 
 namespace {
 
-// What the processes of one process group use now: the resident set summed, and the CPU time summed
-// with that of the children each has reaped.
-struct GroupUsage {
+// What the processes of one query use now: the resident set summed, and the CPU time summed with
+// that of the children each has reaped.
+struct QueryUsage {
   std::uint64_t rss_bytes = 0;
   double cpu_seconds = 0;
 };
 
-// Called every 20 ms while a solver runs, so it reads each /proc/PID/stat with one read into a
-// stack buffer.
-GroupUsage group_usage(pid_t leader) {
+// A small /proc file's text into `text` (NUL-terminated; longer text is cut): its size, or -1.
+ssize_t read_proc_file(const char* path, char* text, std::size_t capacity) {
+  const int fd = ::open(path, O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return -1;
+  const ssize_t size = ::read(fd, text, capacity - 1);
+  ::close(fd);
+  if (size < 0) return -1;
+  text[size] = '\0';
+  return size;
+}
+
+// The children of every thread of `pid` (/proc/PID/task/TID/children), appended to `out`.
+void append_children(pid_t pid, std::vector<pid_t>& out) {
+  char path[300];
+  std::snprintf(path, sizeof path, "/proc/%d/task", static_cast<int>(pid));
+  DIR* tasks = ::opendir(path);
+  if (!tasks) return;
+  std::string list;
+  while (const dirent* entry = ::readdir(tasks)) {
+    if (entry->d_name[0] < '0' || entry->d_name[0] > '9') continue;
+    std::snprintf(path, sizeof path, "/proc/%d/task/%s/children", static_cast<int>(pid),
+                  entry->d_name);
+    try {
+      list = read_whole_file(path);
+    } catch (const Error&) {
+      continue;  // the thread has ended
+    }
+    const char* at = list.c_str();
+    char* next = nullptr;
+    for (long child = std::strtol(at, &next, 10); next != at; child = std::strtol(at, &next, 10)) {
+      out.push_back(static_cast<pid_t>(child));
+      at = next;
+    }
+  }
+  ::closedir(tasks);
+}
+
+// The usage of the query's processes: the descendants of `root` (mosb's PID numbers) from
+// `first_level` down (1: its children), found every 20 ms through the children lists, so a process
+// that left the solver's process group or session is still counted. The resident set comes from
+// /proc/PID/statm; the CPU time, only when `with_cpu`, from /proc/PID/stat, whose reading of a
+// running process's time takes that process's run-queue lock.
+QueryUsage query_usage(pid_t root, int first_level, bool with_cpu) {
   static const long page = ::sysconf(_SC_PAGESIZE);
   static const double tick = 1.0 / static_cast<double>(::sysconf(_SC_CLK_TCK));
-  GroupUsage usage;
-  DIR* proc = ::opendir("/proc");
-  if (!proc) return usage;
-  char path[300];
+  QueryUsage usage;
+  std::vector<pid_t> level, next;
+  append_children(root, level);
+  char path[64];
   char text[1024];
-  while (const dirent* entry = ::readdir(proc)) {
-    if (entry->d_name[0] < '0' || entry->d_name[0] > '9') continue;
-    std::snprintf(path, sizeof path, "/proc/%s/stat", entry->d_name);
-    const int fd = ::open(path, O_RDONLY | O_CLOEXEC);
-    if (fd < 0) continue;
-    const ssize_t size = ::read(fd, text, sizeof text - 1);
-    ::close(fd);
-    if (size <= 0) continue;
-    text[size] = '\0';
-    // After "pid (comm)": field 3 is the state, 5 the process group, 14-17 utime stime cutime
-    // cstime (clock ticks), 24 rss (pages).
-    const char* field = std::strrchr(text, ')');
-    if (!field) continue;
-    long pgrp = -1, rss = 0, ticks = 0;
-    for (int i = 3; i <= 24; ++i) {
-      field = std::strchr(field + 1, ' ');
-      if (!field) break;
-      if (i == 5) pgrp = std::strtol(field + 1, nullptr, 10);
-      if (i >= 14 && i <= 17) ticks += std::strtol(field + 1, nullptr, 10);
-      if (i == 24) rss = std::strtol(field + 1, nullptr, 10);
+  for (int depth = 1; !level.empty(); ++depth) {
+    next.clear();
+    for (const pid_t pid : level) {
+      append_children(pid, next);
+      if (depth < first_level) continue;
+      std::snprintf(path, sizeof path, "/proc/%d/statm", static_cast<int>(pid));
+      if (read_proc_file(path, text, sizeof text) > 0) {
+        // "size resident shared ...", in pages
+        const char* resident = std::strchr(text, ' ');
+        const long pages = resident ? std::strtol(resident + 1, nullptr, 10) : 0;
+        if (pages > 0) usage.rss_bytes += static_cast<std::uint64_t>(pages) * page;
+      }
+      if (!with_cpu) continue;
+      std::snprintf(path, sizeof path, "/proc/%d/stat", static_cast<int>(pid));
+      if (read_proc_file(path, text, sizeof text) <= 0) continue;
+      // After "pid (comm)": fields 14-17 are utime stime cutime cstime (clock ticks).
+      const char* field = std::strrchr(text, ')');
+      long ticks = 0;
+      for (int i = 3; field && i <= 17; ++i) {
+        field = std::strchr(field + 1, ' ');
+        if (field && i >= 14) ticks += std::strtol(field + 1, nullptr, 10);
+      }
+      if (ticks > 0) usage.cpu_seconds += static_cast<double>(ticks) * tick;
     }
-    if (pgrp != leader) continue;
-    if (rss > 0) usage.rss_bytes += static_cast<std::uint64_t>(rss) * page;
-    if (ticks > 0) usage.cpu_seconds += static_cast<double>(ticks) * tick;
+    level.swap(next);
   }
-  ::closedir(proc);
   return usage;
 }
 
@@ -496,6 +537,10 @@ bool kill_what_is_left(Isolation isolation) {
   const pid_t solver = ::vfork();  // NOLINT(clang-analyzer-security.insecureAPI.vfork)
   if (solver < 0) report_and_exit(error_fd, 5);
   if (solver == 0) solver_child(command_fd, error_fd, buffer);  // NOLINT(clang-analyzer-unix.Vfork)
+  // Here the solver's process has executed (or ended): from now on its memory is the solver's,
+  // not this one's, and mosb starts watching it.
+  const char executed = 1;
+  write_exactly(command_fd, &executed, 1);
   LauncherReport report;
   rusage usage{};
   while (true) {
@@ -612,6 +657,7 @@ struct ProcessRunner::Parked {
   Isolation isolation = Isolation::subreaper;
   LaunchBuffer buffer;
   bool launched = false;
+  bool executed = false;  // the launcher's byte saying the solver's process executed was read
   bool reaped = false;
   // Readable when the child has ended (-1: this kernel has no pidfd_open; the query then ends on
   // the child's end alone).
@@ -710,28 +756,47 @@ struct ProcessRunner::Parked {
   // end (a launcher that was killed sends none): the report when there is one. When the child
   // ended first it is reaped here, its resource use in `usage`.
   std::optional<LauncherReport> await_report(rusage& usage) {
+    // The byte saying the solver's process executed comes first, when it was not read yet.
+    char message[1 + sizeof(LauncherReport)];
+    const std::size_t size = executed ? sizeof(LauncherReport) : sizeof message;
+    const std::size_t have = await_bytes(message, size);
+    if (have < size) {
+      wait_for(pid, &usage);
+      reaped = true;
+      if (!read_exactly_now(command_fd, message + have, size - have)) return std::nullopt;
+    }
+    executed = true;
     LauncherReport r;
-    auto* bytes = reinterpret_cast<char*>(&r);
+    std::memcpy(&r, message + (size - sizeof r), sizeof r);
+    return r;
+  }
+
+  // Waits until the launcher says the solver's process has executed (or ended), or the child has
+  // ended; without a pidfd, returns at once (the report then reads the byte).
+  void await_exec() {
+    char byte = 0;
+    if (await_bytes(&byte, 1) == 1) executed = true;
+  }
+
+  // Reads `size` bytes from the launcher, or fewer when the child ends first (or cannot be
+  // waited for: no pidfd): how many.
+  std::size_t await_bytes(char* bytes, std::size_t size) {
     std::size_t have = 0;
     pollfd ends[2] = {{command_fd, POLLIN, 0}, {pidfd, POLLIN, 0}};
-    while (pidfd >= 0 && have < sizeof r) {
+    while (pidfd >= 0 && have < size) {
       if (::poll(ends, 2, -1) < 0) {
         if (errno == EINTR) continue;
         break;
       }
       if (ends[0].revents != 0) {
-        const ssize_t got = ::recv(command_fd, bytes + have, sizeof r - have, MSG_DONTWAIT);
+        const ssize_t got = ::recv(command_fd, bytes + have, size - have, MSG_DONTWAIT);
         if (got > 0) have += static_cast<std::size_t>(got);
-        // Every holder closed its end, or the socket failed: no report comes.
+        // Every holder closed its end, or the socket failed: nothing more comes.
         if (got == 0 || (got < 0 && errno != EAGAIN && errno != EINTR)) ends[0].fd = -1;
       }
-      if (ends[1].revents != 0) break;
+      if (ends[1].revents != 0 && have < size) break;
     }
-    if (have == sizeof r) return r;
-    wait_for(pid, &usage);
-    reaped = true;
-    if (!read_exactly_now(command_fd, bytes + have, sizeof r - have)) return std::nullopt;
-    return r;
+    return have;
   }
 
   // Whether the child has ended (then destroying this object costs no wait).
@@ -765,7 +830,7 @@ struct ProcessRunner::Parked {
 };
 
 // The per-job watchdog thread: every 20 ms it checks the running solver against the stop flag,
-// the deadline and (rlimit_poll) the process group's resident memory, and kills the tree when one
+// the deadline and (rlimit_poll) the query's resident memory, and kills the tree when one
 // is passed; the job's thread meanwhile sits in a blocking wait4, so a solver's exit costs no more
 // wake-ups than in a shell.
 struct ProcessRunner::Watch {
@@ -773,6 +838,9 @@ struct ProcessRunner::Watch {
   std::condition_variable wake;
   bool quit = false, active = false;
   pid_t pid = -1;  // the solver's process, leader of its process group
+  // The query's processes are the descendants of `root` from `first_level` down (query_usage).
+  pid_t root = -1;
+  int first_level = 1;
   Measurement m = Measurement::rlimit_poll;
   ProcessLimits limits;
   const std::vector<std::string>* files = nullptr;  // held to limits.output_bytes
@@ -785,9 +853,11 @@ struct ProcessRunner::Watch {
   // Under the lock: what to do now for the active solver.
   void check(const std::atomic<bool>& stop, std::unique_lock<std::mutex>& lock) {
     if (!reason && (m == Measurement::rlimit_poll || limits.cpu_seconds > 0)) {
-      const pid_t leader = pid;
+      const pid_t leader = pid, from = root;
+      const int level = first_level;
+      const bool with_cpu = limits.cpu_seconds > 0;
       lock.unlock();
-      const GroupUsage usage = group_usage(leader);
+      const QueryUsage usage = query_usage(from, level, with_cpu);
       lock.lock();
       if (!active || pid != leader) return;
       if (m == Measurement::rlimit_poll) {
@@ -920,13 +990,21 @@ ProcessOutcome ProcessRunner::run(const ProcessSpec& spec, const ProcessLimits& 
   child->wait_ready();
   const auto started = Clock::now();
   const bool ready = child->solver > 0;  // else the child ended: its error pipe says why
-  if (ready) child->launch(spec);
+  if (ready) {
+    child->launch(spec);
+    // Until it executes, the solver's process shares the launcher's memory (vfork): watched from
+    // then on, its memory is its own.
+    child->await_exec();
+  }
   const MemoryGroup* g = child->group.get();
   if (ready) {
     std::lock_guard lock(watch_->mutex);
     Watch& w = *watch_;
     w.active = true;
     w.pid = child->solver;
+    // The parked child is the launcher, or in a PID namespace the launcher's parent.
+    w.root = child->pid;
+    w.first_level = spec.isolation == Isolation::pid_namespace ? 2 : 1;
     w.m = m;
     w.limits = limits;
     w.files = &spec.watched_files;
