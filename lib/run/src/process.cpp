@@ -79,9 +79,9 @@ bool write_file(const std::string& path, const std::string& text) {
   return ok;
 }
 
-// A cgroup file's text; empty when it cannot be read (a file this kernel does not have is no
-// figure, not an error).
-std::string read_cgroup_file(const std::string& path) {
+// A cgroup or /proc file's text; empty when it cannot be read (a file this kernel does not have
+// is no figure, a process that has ended has no usage: neither is an error).
+std::string read_kernel_file(const std::string& path) {
   try {
     return read_whole_file(path);
   } catch (const Error&) {
@@ -90,7 +90,7 @@ std::string read_cgroup_file(const std::string& path) {
 }
 
 std::optional<std::uint64_t> read_number(const std::string& path) {
-  const std::string text = read_cgroup_file(path);
+  const std::string text = read_kernel_file(path);
   if (text.empty()) return std::nullopt;
   return std::strtoull(text.c_str(), nullptr, 10);
 }
@@ -191,33 +191,14 @@ struct QueryUsage {
   double cpu_seconds = 0;
 };
 
-// A small /proc file's text into `text` (NUL-terminated; longer text is cut): its size, or -1.
-ssize_t read_proc_file(const char* path, char* text, std::size_t capacity) {
-  const int fd = ::open(path, O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return -1;
-  const ssize_t size = ::read(fd, text, capacity - 1);
-  ::close(fd);
-  if (size < 0) return -1;
-  text[size] = '\0';
-  return size;
-}
-
 // The children of every thread of `pid` (/proc/PID/task/TID/children), appended to `out`.
 void append_children(pid_t pid, std::vector<pid_t>& out) {
-  char path[300];
-  std::snprintf(path, sizeof path, "/proc/%d/task", static_cast<int>(pid));
-  DIR* tasks = ::opendir(path);
+  const std::string tasks_dir = "/proc/" + std::to_string(pid) + "/task";
+  DIR* tasks = ::opendir(tasks_dir.c_str());
   if (!tasks) return;
-  std::string list;
   while (const dirent* entry = ::readdir(tasks)) {
     if (entry->d_name[0] < '0' || entry->d_name[0] > '9') continue;
-    std::snprintf(path, sizeof path, "/proc/%d/task/%s/children", static_cast<int>(pid),
-                  entry->d_name);
-    try {
-      list = read_whole_file(path);
-    } catch (const Error&) {
-      continue;  // the thread has ended
-    }
+    const std::string list = read_kernel_file(tasks_dir + "/" + entry->d_name + "/children");
     const char* at = list.c_str();
     char* next = nullptr;
     for (long child = std::strtol(at, &next, 10); next != at; child = std::strtol(at, &next, 10)) {
@@ -239,25 +220,21 @@ QueryUsage query_usage(pid_t root, int first_level, bool with_cpu) {
   QueryUsage usage;
   std::vector<pid_t> level, next;
   append_children(root, level);
-  char path[64];
-  char text[1024];
   for (int depth = 1; !level.empty(); ++depth) {
     next.clear();
     for (const pid_t pid : level) {
       append_children(pid, next);
       if (depth < first_level) continue;
-      std::snprintf(path, sizeof path, "/proc/%d/statm", static_cast<int>(pid));
-      if (read_proc_file(path, text, sizeof text) > 0) {
-        // "size resident shared ...", in pages
-        const char* resident = std::strchr(text, ' ');
-        const long pages = resident ? std::strtol(resident + 1, nullptr, 10) : 0;
-        if (pages > 0) usage.rss_bytes += static_cast<std::uint64_t>(pages) * page;
-      }
+      const std::string proc = "/proc/" + std::to_string(pid);
+      // "size resident shared ...", in pages
+      const std::string statm = read_kernel_file(proc + "/statm");
+      const char* resident = std::strchr(statm.c_str(), ' ');
+      const long pages = resident ? std::strtol(resident + 1, nullptr, 10) : 0;
+      if (pages > 0) usage.rss_bytes += static_cast<std::uint64_t>(pages) * page;
       if (!with_cpu) continue;
-      std::snprintf(path, sizeof path, "/proc/%d/stat", static_cast<int>(pid));
-      if (read_proc_file(path, text, sizeof text) <= 0) continue;
       // After "pid (comm)": fields 14-17 are utime stime cutime cstime (clock ticks).
-      const char* field = std::strrchr(text, ')');
+      const std::string stat = read_kernel_file(proc + "/stat");
+      const char* field = std::strrchr(stat.c_str(), ')');
       long ticks = 0;
       for (int i = 3; field && i <= 17; ++i) {
         field = std::strchr(field + 1, ' ');
@@ -306,7 +283,7 @@ class MemoryGroup {
     return read_number(dir_ + "/memory.max_usage_in_bytes");
   }
   bool oom_killed() const {
-    const std::string oom = read_cgroup_file(dir_ + "/memory.oom_control");
+    const std::string oom = read_kernel_file(dir_ + "/memory.oom_control");
     return keyed_value(oom, "oom_kill") > 0 || keyed_value(oom, "under_oom") > 0;
   }
   bool hit_limit() const { return read_number(dir_ + "/memory.failcnt").value_or(0) > 0; }
