@@ -52,6 +52,14 @@ def readme_programs(directory):
         f.write(re.search(r"```c\n(.*?)```", example, re.S).group(1))
 
 
+def search_path_entries(path):
+    """The directories of an ELF file's DT_RUNPATH and DT_RPATH entries, in order."""
+    entries = []
+    for paths in re.findall(r"Library (?:runpath|rpath): \[(.*)\]", run("readelf", "-d", path)):
+        entries += paths.split(":")
+    return entries
+
+
 def libdir(prefix):
     for name in ("lib", "lib64"):
         if os.path.isdir(os.path.join(prefix, name, "pkgconfig")):
@@ -229,6 +237,19 @@ class InstalledPackage(unittest.TestCase):
         self.assertFalse(os.path.exists(os.path.join(build, "mosb", "tools")))
         self.assertFalse(os.path.exists(os.path.join(build, "mosb", "tests")))
 
+    def assert_no_search_in_the_current_directory(self, path):
+        # The loader reads an empty or relative RUNPATH entry against the current directory: a
+        # library planted where mosb is run would be loaded (CMake pads a build-tree RUNPATH with
+        # empty entries when a target has an install RPATH longer than its build one).
+        for entry in search_path_entries(path):
+            self.assertTrue(entry.startswith("/") or entry.startswith("$ORIGIN"),
+                            "%s: library search path entry %r" % (path, entry))
+
+    def test_program_and_library_load_nothing_from_the_current_directory(self):
+        for path in (os.path.join(BUILD, "tools", "mosb"), os.path.join(BUILD, "lib", "c", "libmosb.so"),
+                     os.path.join(self.prefix, "bin", "mosb"), os.path.join(libdir(self.prefix), "libmosb.so")):
+            self.assert_no_search_in_the_current_directory(path)
+
     def test_shared_library_only_build(self):
         # mosb as a library only: no CLI11, Boost or doctest may be looked up, and the shared
         # libraries carry a SONAME of major.minor.
@@ -248,6 +269,9 @@ class InstalledPackage(unittest.TestCase):
             self.assertTrue(os.path.islink(path), path)
             dynamic = run("readelf", "-d", path)
             self.assertIn("Library soname: [%s.so.%s.%s]" % (lib, major, minor), dynamic)
+            self.assert_no_search_in_the_current_directory(path)
+            # Each finds mosb's other libraries beside itself (RUNPATH $ORIGIN), from any directory.
+            self.assertNotIn("not found", run("ldd", path, cwd=self.tmp))
         build_consumer = self.consumer(prefix, "pkg-config", "consumer-shared")
         self.assertIn("libmosb.so." + major, run("ldd", os.path.join(build_consumer, "readme_c")))
 
