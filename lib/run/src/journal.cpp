@@ -31,7 +31,6 @@ void write_all(int fd, const std::string& text, const std::string& path) {
     if (n < 0) io_error(path, "cannot write");
     done += static_cast<std::size_t>(n);
   }
-  if (::fsync(fd) != 0) io_error(path, "cannot sync");
 }
 
 // The first key whose value differs between two bindings, for the refusal.
@@ -181,6 +180,7 @@ Journal::Journal(std::string path, const JournalBinding& binding, bool resume,
               {"version", kJournalVersion},
               {"binding", binding.settings},
               {"executable_sha256", binding.executable_sha256}});
+  if (::fsync(fd_) != 0) io_error(path_, "cannot sync");
 }
 
 namespace {
@@ -259,11 +259,14 @@ void Journal::read_existing(const JournalBinding& binding, const RecordCheck& ch
   if (new_executable) {
     executables_.push_back(binding.executable_sha256);
     write_line({{"executable_sha256", binding.executable_sha256}});
+    if (::fsync(fd_) != 0) io_error(path_, "cannot sync");
   }
 }
 
 Journal::~Journal() {
-  if (fd_ >= 0) ::close(fd_);
+  if (fd_ < 0) return;
+  sync();
+  ::close(fd_);
 }
 
 void Journal::write_line(Json line) {
@@ -273,8 +276,17 @@ void Journal::write_line(Json line) {
 
 void Journal::append(const QueryRecord& record) {
   std::lock_guard lock(mutex_);
+  if (const int error = sync_error_.load(); error != 0) {
+    errno = error;
+    io_error(path_, "cannot sync");
+  }
   write_line(to_json(record));
+  unsynced_ = true;
   records_[record.query] = record;
+}
+
+void Journal::sync() noexcept {
+  if (unsynced_.exchange(false) && ::fsync(fd_) != 0) sync_error_ = errno;
 }
 
 void Journal::remove() {

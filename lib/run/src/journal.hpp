@@ -1,11 +1,14 @@
 // The journal of a run (spec/RUN.md §6): OUTPUT.journal, one JSON object per line, each with its
 // own checksum (`check`: XXH3-64 of the line's object without it), so a hand edit or a torn
 // write is detected, never believed. Line 1 is the binding and the solver executable's SHA-256;
-// every other line is one finished query, written whole, flushed and fsync'd before the next
-// query is recorded, or (with --allow-new-executable) the SHA-256 of a new executable. A last
-// line without its newline is a record torn by a kill: ignored and cut off before the next append.
+// every other line is one finished query, written whole by one write, or (with
+// --allow-new-executable) the SHA-256 of a new executable. A record is fsync'd by sync(), while
+// the next query runs, and when the journal closes: a killed run loses none (they are in the page
+// cache), a machine that fails only those of the queries that had just ended. A last line without
+// its newline is a record torn by a kill: ignored and cut off before the next append.
 #pragma once
 
+#include <atomic>
 #include <functional>
 #include <map>
 #include <mutex>
@@ -45,14 +48,19 @@ class Journal {
   // with --allow-new-executable).
   const std::vector<std::string>& executables() const { return executables_; }
   void append(const QueryRecord& record);  // thread-safe
+  // Makes the records appended so far durable (fsync), off the path from one query to the next:
+  // a job calls it while its next solver runs. Thread-safe; a failure is thrown by the next append.
+  void sync() noexcept;
   void remove();
 
  private:
   void read_existing(const JournalBinding& binding, const RecordCheck& check);
-  void write_line(nlohmann::json line);
+  void write_line(nlohmann::json line);  // with its checksum
 
   std::string path_;
   int fd_ = -1;
+  std::atomic<bool> unsynced_{false};  // a record was written since the last fsync
+  std::atomic<int> sync_error_{0};     // errno of a failed fsync
   std::mutex mutex_;
   std::map<std::uint64_t, QueryRecord> records_;
   std::vector<std::string> executables_;

@@ -1001,6 +1001,7 @@ ProcessOutcome ProcessRunner::run(const ProcessSpec& spec, const ProcessLimits& 
       parked_.reset();
     }
   retire_ended();
+  if (ready && spec.while_running) spec.while_running();
   rusage usage{};
   const auto report = child->await_report(usage);
   out.wall_seconds = std::chrono::duration<double>(Clock::now() - started).count();

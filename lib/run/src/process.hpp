@@ -8,6 +8,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -53,6 +54,10 @@ struct ProcessSpec {
   int cpu = -1;            // >= 0: pin the tree to this CPU (sched_setaffinity)
   std::string group_name;  // unique per concurrent process: the cgroup's name
   Isolation isolation = Isolation::subreaper;
+  // mosb's own work that need not wait for the solver (the previous query's cleanup): called once
+  // on the calling thread while the solver runs, off the path from one query to the next. Must
+  // not throw.
+  std::function<void()> while_running;
 };
 
 enum class Ending {

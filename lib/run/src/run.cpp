@@ -371,7 +371,7 @@ class Runner {
     parallel_for_with_state(
         todo_.size(), jobs, [this](unsigned job) { return JobSlot(temp_.path(), job, stop_); },
         [this](JobSlot& slot, std::size_t i) {
-          if (!stop_.load()) run_query(slot.runner, todo_[i], slot.job, slot.dir);
+          if (!stop_.load()) run_query(slot, todo_[i]);
         });
     result.ran = ran_;
     result.wall_seconds = wall_;
@@ -387,13 +387,25 @@ class Runner {
         : job(job_index),
           dir(created_directory(temp + "/job" + std::to_string(job_index))),
           runner(stop) {}
+    ~JobSlot() { remove_finished(); }
+    JobSlot(const JobSlot&) = delete;
+    JobSlot& operator=(const JobSlot&) = delete;
     static std::string created_directory(std::string path) {
       fs::create_directories(path);
       return path;
     }
+    void remove_finished() {
+      std::error_code ignored;
+      if (!finished.empty()) fs::remove_all(finished, ignored);
+      finished.clear();
+    }
     unsigned job;
     std::string dir;
     ProcessRunner runner;
+    // The directory of the slot's last query, read and recorded: removed while the next solver
+    // runs (removing a solver's files takes longer than a small query's whole record), or when
+    // the slot ends. Nothing of that query is left to write in it, and its name is never reused.
+    std::string finished;
   };
 
   std::map<std::string, std::string> values(std::uint64_t q, const SolverOutputFiles& f) const {
@@ -427,8 +439,9 @@ class Runner {
     return files;
   }
 
-  void run_query(ProcessRunner& runner, std::uint64_t q, unsigned job, const std::string& slot) {
-    const std::string dir = slot + "/q" + std::to_string(q);
+  void run_query(JobSlot& slot, std::uint64_t q) {
+    const unsigned job = slot.job;
+    const std::string dir = slot.dir + "/q" + std::to_string(q);
     if (::mkdir(dir.c_str(), 0700) != 0)
       throw Error(ErrorCode::io, dir + ": cannot create: " + std::strerror(errno));
     const SolverOutputFiles files = files_of(q, dir);
@@ -443,14 +456,16 @@ class Runner {
     if (c_.pin && !p_.cpus.empty()) spec.cpu = p_.cpus[job % p_.cpus.size()];
     spec.group_name = "mosb-run-" + std::to_string(::getpid()) + "-" + std::to_string(job);
     spec.isolation = p_.isolation;
-    const ProcessOutcome outcome = runner.run(spec, c_.limits, p_.measurement);
-    std::error_code ignored;
-    if (outcome.ending == Ending::interrupted || stopped_with_mosb(outcome)) {
-      fs::remove_all(dir, ignored);
+    spec.while_running = [this, &slot] {
+      journal_.sync();
+      slot.remove_finished();
+    };
+    const ProcessOutcome outcome = slot.runner.run(spec, c_.limits, p_.measurement);
+    slot.remove_finished();  // when the solver did not start
+    slot.finished = dir;
+    if (outcome.ending == Ending::interrupted || stopped_with_mosb(outcome))
       return;  // no record: --resume runs it again
-    }
     const QueryRecord record = classify(q, outcome, files, *judging_);
-    fs::remove_all(dir, ignored);
     journal_.append(record);
     std::lock_guard lock(mutex_);
     ++ran_;
