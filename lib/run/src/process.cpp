@@ -89,12 +89,6 @@ std::string read_kernel_file(const std::string& path) {
   }
 }
 
-std::optional<std::uint64_t> read_number(const std::string& path) {
-  const std::string text = read_kernel_file(path);
-  if (text.empty()) return std::nullopt;
-  return std::strtoull(text.c_str(), nullptr, 10);
-}
-
 // The value of `key` in a "key value" per line file (memory.oom_control), 0 when absent.
 std::uint64_t keyed_value(const std::string& text, std::string_view key) {
   std::stringstream in(text);
@@ -261,14 +255,21 @@ class MemoryGroup {
     }
     procs_ = ::open((dir_ + "/cgroup.procs").c_str(), O_WRONLY | O_CLOEXEC);
     if (procs_ < 0) fail(dir_ + "/cgroup.procs: cannot open");
+    // Opened now, ahead of the query: read once it has ended, on the path to the next one.
+    for (const char* file : {"memory.max_usage_in_bytes", "memory.oom_control", "memory.failcnt"})
+      figures_.push_back(::open((dir_ + "/" + file).c_str(), O_RDONLY | O_CLOEXEC));
   }
   // Removing the group is also the test that nothing is left in it (EBUSY): its member list is
-  // read only when something is, since every read of a v1 group's list costs milliseconds.
+  // read only when something is, and then every 10 ms, since every read of a v1 group's list costs
+  // milliseconds. The removal is tried every millisecond: a killed child's processes leave the
+  // group within a few (up to 2 s in all).
   ~MemoryGroup() {
     ::close(procs_);
-    for (int i = 0; i < 200 && ::rmdir(dir_.c_str()) != 0 && errno == EBUSY; ++i) {
-      kill_all();
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    for (const int fd : figures_)
+      if (fd >= 0) ::close(fd);
+    for (int i = 0; i < 2000 && ::rmdir(dir_.c_str()) != 0 && errno == EBUSY; ++i) {
+      if (i % 10 == 0) kill_all();
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
   }
   MemoryGroup(const MemoryGroup&) = delete;
@@ -280,17 +281,30 @@ class MemoryGroup {
     for (const pid_t pid : cgroup_members(dir_)) ::kill(pid, SIGKILL);
   }
   std::optional<std::uint64_t> peak() const {
-    return read_number(dir_ + "/memory.max_usage_in_bytes");
+    const std::string text = figure(kMaxUsage);
+    if (text.empty()) return std::nullopt;
+    return std::strtoull(text.c_str(), nullptr, 10);
   }
   bool oom_killed() const {
-    const std::string oom = read_kernel_file(dir_ + "/memory.oom_control");
+    const std::string oom = figure(kOomControl);
     return keyed_value(oom, "oom_kill") > 0 || keyed_value(oom, "under_oom") > 0;
   }
-  bool hit_limit() const { return read_number(dir_ + "/memory.failcnt").value_or(0) > 0; }
+  bool hit_limit() const { return std::strtoull(figure(kFailCount).c_str(), nullptr, 10) > 0; }
 
  private:
+  enum Figure : std::size_t { kMaxUsage, kOomControl, kFailCount };
+  // The figure's text now: a control file is generated afresh by each read from offset 0. Empty
+  // when this kernel has no such file.
+  std::string figure(Figure which) const {
+    char text[512];
+    const int fd = figures_[which];
+    const ssize_t size = fd < 0 ? -1 : ::pread(fd, text, sizeof text, 0);
+    return size > 0 ? std::string(text, static_cast<std::size_t>(size)) : std::string();
+  }
+
   std::string dir_;
   int procs_ = -1;
+  std::vector<int> figures_;  // by Figure; -1: the file could not be opened
 };
 
 // What the child reports through its error pipe when it cannot execute.
@@ -884,7 +898,7 @@ ProcessRunner::ProcessRunner(const std::atomic<bool>& stop)
 }
 
 ProcessRunner::~ProcessRunner() {
-  parked_.reset();
+  parked_.clear();
   retired_.clear();
   {
     std::lock_guard lock(watch_->mutex);
@@ -954,10 +968,14 @@ void classify_exit(int status, const MemoryGroup* g, ProcessOutcome& out) {
 ProcessOutcome ProcessRunner::run(const ProcessSpec& spec, const ProcessLimits& limits,
                                   Measurement m) {
   ProcessOutcome out;
-  if (!parked_ || !parked_->suits(m, limits.memory_bytes, spec.group_name, spec.isolation))
-    parked_ = std::make_unique<Parked>(m, limits.memory_bytes, spec.group_name, spec.isolation,
-                                       sequence_++);
-  std::unique_ptr<Parked> child = std::move(parked_);
+  if (!parked_.empty() &&
+      !parked_.front()->suits(m, limits.memory_bytes, spec.group_name, spec.isolation))
+    parked_.clear();
+  if (parked_.empty())
+    parked_.push_back(std::make_unique<Parked>(m, limits.memory_bytes, spec.group_name,
+                                               spec.isolation, sequence_++));
+  std::unique_ptr<Parked> child = std::move(parked_.front());
+  parked_.pop_front();
   if (!Parked::fits(spec)) {
     out.ending = Ending::not_started;
     out.error = spec.executable + ": cannot run: the command line is longer than " +
@@ -992,14 +1010,16 @@ ProcessOutcome ProcessRunner::run(const ProcessSpec& spec, const ProcessLimits& 
     w.reason.reset();
     w.peak = 0;
   }
-  // The next query's child joins its group while this solver runs. Should that fail, the next
-  // run() tries again and reports it; this solver is reaped first.
-  if (!stop_.load()) try {
-      parked_ = std::make_unique<Parked>(m, limits.memory_bytes, spec.group_name, spec.isolation,
-                                         sequence_++);
-    } catch (const Error&) {
-      parked_.reset();
-    }
+  // The next queries' children join their groups while this solver runs: two ahead under
+  // cgroup-v1, where a join waits for an RCU grace period, at times longer than a small query.
+  // Should that fail, the next run() tries again and reports it; this solver is reaped first.
+  const std::size_t ahead = m == Measurement::cgroup_v1 ? 2 : 1;
+  try {
+    while (!stop_.load() && parked_.size() < ahead)
+      parked_.push_back(std::make_unique<Parked>(m, limits.memory_bytes, spec.group_name,
+                                                 spec.isolation, sequence_++));
+  } catch (const Error&) {
+  }
   retire_ended();
   if (ready && spec.while_running) spec.while_running();
   rusage usage{};

@@ -8,6 +8,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -107,7 +108,8 @@ class ProcessRunner {
   struct Parked;
   const std::atomic<bool>& stop_;
   std::unique_ptr<Watch> watch_;
-  std::unique_ptr<Parked> parked_;  // the next solver's process, forked ahead of its command
+  // The next queries' solver processes, forked ahead of their commands, oldest first.
+  std::deque<std::unique_ptr<Parked>> parked_;
   // Children whose query has ended, reaped (and their memory groups removed) while the next
   // solver runs: a query ends on its launcher's report, not on the exits that follow it.
   std::vector<std::unique_ptr<Parked>> retired_;
