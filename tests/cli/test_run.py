@@ -10,6 +10,7 @@ in a file, and every test checks that none of them is still alive afterwards. Th
 
 import json
 import os
+import resource
 import signal
 import stat
 import subprocess
@@ -191,6 +192,28 @@ class RunTest(CliTest):
                     summary = json.loads(r.stdout)
                     self.assertEqual(summary["statuses"]["memory-limit"], 1, r)
                     self.assert_no_process_left()
+
+    def test_many_jobs_under_a_low_open_file_limit(self):
+        # Each job holds some thirty descriptors (the queries forked ahead, running and ending):
+        # mosb run raises its own soft limit to the hard one, and every solver still starts with
+        # the limit mosb was started with (spec/RUN.md §4).
+        _, hard = resource.getrlimit(resource.RLIMIT_NOFILE)
+        self.assertGreater(hard, 200, "the test needs a hard open-file limit above the soft one")
+        self.write("alloc.py", ALLOCATE)
+        limits = self.path("limits")
+        solver = self.script("solver", "ulimit -Sn >> %s\nexec /usr/bin/python3 %s\n" % (
+            limits, self.path("alloc.py")))
+        for measurement in MEASUREMENTS:
+            with self.subTest(measurement=measurement):
+                r = self.mosb("run", self.grid, "--view", "Grid_2", "--queries", "q", "--solver",
+                              solver, "--jobs", "4", "--memory-limit", "100M", "--measurement",
+                              measurement, "--json", "-o", self.path("fd-%s.sol" % measurement),
+                              timeout=120, preexec_fn=lambda: resource.setrlimit(
+                                  resource.RLIMIT_NOFILE, (40, hard)))
+                self.assertEqual(r.returncode, 0, r)
+                self.assertEqual(json.loads(r.stdout)["statuses"]["memory-limit"], 6, r)
+                self.assertEqual(mosbtest.read(limits, "r").split(), ["40"] * 6)
+                os.remove(limits)
 
     def test_crash_is_failed_with_the_signal(self):
         info, r = self.one_query("record %s\necho dying >&2\nkill -SEGV $$\n" % self.pids)

@@ -171,9 +171,23 @@ void remove_stale_groups() {
 
 }  // namespace
 
+namespace {
+
+// The open-file limit mosb was started with, which every program it starts gets back (execute):
+// mosb itself raises its soft limit to the hard one, since each job holds some thirty descriptors
+// (the sockets, pipes and memory-group files of the queries forked ahead, running and ending).
+rlimit started_file_limit{};
+
+}  // namespace
+
 void prepare_process_runner() {
   remove_stale_groups();
   ::prctl(PR_SET_CHILD_SUBREAPER, 1, 0, 0, 0);
+  // Once per process: a later run (an experiment runs many) finds the limit raised already.
+  if (started_file_limit.rlim_max != 0 || ::getrlimit(RLIMIT_NOFILE, &started_file_limit) != 0)
+    return;
+  const rlimit raised{started_file_limit.rlim_max, started_file_limit.rlim_max};
+  ::setrlimit(RLIMIT_NOFILE, &raised);
 }
 
 namespace {
@@ -253,20 +267,31 @@ class MemoryGroup {
       // With swap accounting, memory+swap gets the same limit: no escape into swap.
       write_file(dir_ + "/memory.memsw.limit_in_bytes", std::to_string(limit));
     }
-    procs_ = ::open((dir_ + "/cgroup.procs").c_str(), O_WRONLY | O_CLOEXEC);
-    if (procs_ < 0) fail(dir_ + "/cgroup.procs: cannot open");
-    // Opened now, ahead of the query: read once it has ended, on the path to the next one.
+    // The figures are opened now, ahead of the query, and read once it has ended, on the path to
+    // the next one. A file that cannot be opened (too many open files) fails the run: a query
+    // without them would lose its peak and its memory-limit status.
+    const auto open_file = [this](const char* file, int flags) {
+      const std::string path = dir_ + "/" + file;
+      const int fd = ::open(path.c_str(), flags | O_CLOEXEC);
+      if (fd < 0) {
+        const int error = errno;
+        close_all();
+        ::rmdir(dir_.c_str());
+        errno = error;
+        fail(path + ": cannot open");
+      }
+      fds_.push_back(fd);
+    };
+    open_file("cgroup.procs", O_WRONLY);  // kProcs, and then in the order of File
     for (const char* file : {"memory.max_usage_in_bytes", "memory.oom_control", "memory.failcnt"})
-      figures_.push_back(::open((dir_ + "/" + file).c_str(), O_RDONLY | O_CLOEXEC));
+      open_file(file, O_RDONLY);
   }
   // Removing the group is also the test that nothing is left in it (EBUSY): its member list is
   // read only when something is, and then every 10 ms, since every read of a v1 group's list costs
   // milliseconds. The removal is tried every millisecond: a killed child's processes leave the
   // group within a few (up to 2 s in all).
   ~MemoryGroup() {
-    ::close(procs_);
-    for (const int fd : figures_)
-      if (fd >= 0) ::close(fd);
+    close_all();
     for (int i = 0; i < 2000 && ::rmdir(dir_.c_str()) != 0 && errno == EBUSY; ++i) {
       if (i % 10 == 0) kill_all();
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
@@ -276,7 +301,7 @@ class MemoryGroup {
   MemoryGroup& operator=(const MemoryGroup&) = delete;
 
   // The child writes "0" here (itself) before it executes: no round trip through the parent.
-  int procs_fd() const { return procs_; }
+  int procs_fd() const { return fds_[kProcs]; }
   void kill_all() const {
     for (const pid_t pid : cgroup_members(dir_)) ::kill(pid, SIGKILL);
   }
@@ -292,19 +317,21 @@ class MemoryGroup {
   bool hit_limit() const { return std::strtoull(figure(kFailCount).c_str(), nullptr, 10) > 0; }
 
  private:
-  enum Figure : std::size_t { kMaxUsage, kOomControl, kFailCount };
+  enum File : std::size_t { kProcs, kMaxUsage, kOomControl, kFailCount };
   // The figure's text now: a control file is generated afresh by each read from offset 0. Empty
-  // when this kernel has no such file.
-  std::string figure(Figure which) const {
+  // when it cannot be read.
+  std::string figure(File which) const {
     char text[512];
-    const int fd = figures_[which];
-    const ssize_t size = fd < 0 ? -1 : ::pread(fd, text, sizeof text, 0);
+    const ssize_t size = ::pread(fds_[which], text, sizeof text, 0);
     return size > 0 ? std::string(text, static_cast<std::size_t>(size)) : std::string();
+  }
+  void close_all() {
+    for (const int fd : fds_) ::close(fd);
+    fds_.clear();
   }
 
   std::string dir_;
-  int procs_ = -1;
-  std::vector<int> figures_;  // by Figure; -1: the file could not be opened
+  std::vector<int> fds_;  // by File
 };
 
 // What the child reports through its error pipe when it cannot execute.
@@ -372,6 +399,7 @@ bool read_exactly(int fd, void* data, std::size_t size) {
                           int error_fd) {
   ::dup2(output, 1);
   ::dup2(errors, 2);
+  if (started_file_limit.rlim_max != 0) ::setrlimit(RLIMIT_NOFILE, &started_file_limit);
   ::execve(executable, argv, environ);
   report_and_exit(error_fd, 2);
 }
