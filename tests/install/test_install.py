@@ -240,14 +240,16 @@ class InstalledPackage(unittest.TestCase):
     def assert_no_search_in_the_current_directory(self, path):
         # The loader reads an empty or relative RUNPATH entry against the current directory: a
         # library planted where mosb is run would be loaded (CMake pads a build-tree RUNPATH with
-        # empty entries when a target has an install RPATH longer than its build one).
+        # empty entries to make room for a longer install RPATH).
         for entry in search_path_entries(path):
             self.assertTrue(entry.startswith("/") or entry.startswith("$ORIGIN"),
                             "%s: library search path entry %r" % (path, entry))
 
     def test_program_and_library_load_nothing_from_the_current_directory(self):
-        for path in (os.path.join(BUILD, "tools", "mosb"), os.path.join(BUILD, "lib", "c", "libmosb.so"),
-                     os.path.join(self.prefix, "bin", "mosb"), os.path.join(libdir(self.prefix), "libmosb.so")):
+        for path in (os.path.join(BUILD, "tools", "mosb"),
+                     os.path.join(BUILD, "lib", "c", "libmosb.so"),
+                     os.path.join(self.prefix, "bin", "mosb"),
+                     os.path.join(libdir(self.prefix), "libmosb.so")):
             self.assert_no_search_in_the_current_directory(path)
 
     def test_shared_library_only_build(self):

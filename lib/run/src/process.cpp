@@ -12,6 +12,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <array>
 #include <cerrno>
 #include <chrono>
 #include <condition_variable>
@@ -24,6 +25,7 @@
 #include <mutex>
 #include <sstream>
 #include <thread>
+#include <utility>
 
 #include "mosb/error.hpp"
 #include "mosb/internal/read_file.hpp"
@@ -141,8 +143,7 @@ std::string describe_measurement(Measurement m) {
   return time +
          "; memory: RLIMIT_AS per process, and the resident set summed over the query's "
          "processes (the launcher's descendants) polled every 20 ms (peak = largest sum; a sum "
-         "over the limit is "
-         "memory-limit)";
+         "over the limit is memory-limit)";
 }
 
 namespace {
@@ -270,21 +271,21 @@ class MemoryGroup {
     // The figures are opened now, ahead of the query, and read once it has ended, on the path to
     // the next one. A file that cannot be opened (too many open files) fails the run: a query
     // without them would lose its peak and its memory-limit status.
-    const auto open_file = [this](const char* file, int flags) {
+    const auto open_file = [this](File which, const char* file, int flags) {
       const std::string path = dir_ + "/" + file;
-      const int fd = ::open(path.c_str(), flags | O_CLOEXEC);
-      if (fd < 0) {
+      fds_[which] = ::open(path.c_str(), flags | O_CLOEXEC);
+      if (fds_[which] < 0) {
         const int error = errno;
         close_all();
         ::rmdir(dir_.c_str());
         errno = error;
         fail(path + ": cannot open");
       }
-      fds_.push_back(fd);
     };
-    open_file("cgroup.procs", O_WRONLY);  // kProcs, and then in the order of File
-    for (const char* file : {"memory.max_usage_in_bytes", "memory.oom_control", "memory.failcnt"})
-      open_file(file, O_RDONLY);
+    open_file(kProcs, "cgroup.procs", O_WRONLY);
+    open_file(kMaxUsage, "memory.max_usage_in_bytes", O_RDONLY);
+    open_file(kOomControl, "memory.oom_control", O_RDONLY);
+    open_file(kFailCount, "memory.failcnt", O_RDONLY);
   }
   // Removing the group is also the test that nothing is left in it (EBUSY): its member list is
   // read only when something is, and then every 10 ms, since every read of a v1 group's list costs
@@ -305,19 +306,15 @@ class MemoryGroup {
   void kill_all() const {
     for (const pid_t pid : cgroup_members(dir_)) ::kill(pid, SIGKILL);
   }
-  std::optional<std::uint64_t> peak() const {
-    const std::string text = figure(kMaxUsage);
-    if (text.empty()) return std::nullopt;
-    return std::strtoull(text.c_str(), nullptr, 10);
-  }
+  std::optional<std::uint64_t> peak() const { return number(kMaxUsage); }
   bool oom_killed() const {
     const std::string oom = figure(kOomControl);
     return keyed_value(oom, "oom_kill") > 0 || keyed_value(oom, "under_oom") > 0;
   }
-  bool hit_limit() const { return std::strtoull(figure(kFailCount).c_str(), nullptr, 10) > 0; }
+  bool hit_limit() const { return number(kFailCount).value_or(0) > 0; }
 
  private:
-  enum File : std::size_t { kProcs, kMaxUsage, kOomControl, kFailCount };
+  enum File : std::size_t { kProcs, kMaxUsage, kOomControl, kFailCount, kFiles };
   // The figure's text now: a control file is generated afresh by each read from offset 0. Empty
   // when it cannot be read.
   std::string figure(File which) const {
@@ -325,13 +322,18 @@ class MemoryGroup {
     const ssize_t size = ::pread(fds_[which], text, sizeof text, 0);
     return size > 0 ? std::string(text, static_cast<std::size_t>(size)) : std::string();
   }
+  std::optional<std::uint64_t> number(File which) const {
+    const std::string text = figure(which);
+    if (text.empty()) return std::nullopt;
+    return std::strtoull(text.c_str(), nullptr, 10);
+  }
   void close_all() {
-    for (const int fd : fds_) ::close(fd);
-    fds_.clear();
+    for (int& fd : fds_)
+      if (fd >= 0) ::close(std::exchange(fd, -1));
   }
 
   std::string dir_;
-  std::vector<int> fds_;  // by File
+  std::array<int, kFiles> fds_{-1, -1, -1, -1};  // by File, -1 when not open
 };
 
 // What the child reports through its error pipe when it cannot execute.
