@@ -75,21 +75,61 @@ solvers = ["namoa", "apex"]
   CHECK(e.limits.text == "time=3600s memory=17179869184B cpu=90s grace=0.5s output=536870912B");
   REQUIRE(e.solvers.size() == 2);
   CHECK(e.solvers[0].name == "namoa");
-  CHECK(e.solvers[0].solver_template == "namoa {instance} --view {view}");
-  CHECK(e.solvers[0].profile.empty());
-  CHECK(e.solvers[0].output_format == "protocol");
-  CHECK(e.solvers[0].epsilon == "0.01");
+  CHECK(e.solvers[0].spec.solver_template == "namoa {instance} --view {view}");
+  CHECK(e.solvers[0].spec.profile.empty());
+  CHECK(e.solvers[0].spec.output_format == "protocol");
+  CHECK(e.solvers[0].spec.epsilon == "0.01");
+  CHECK(e.solvers[0].spec.name == "namoa");  // recorded as the experiment names it
   CHECK(e.solvers[0].benchmarks == std::vector<std::string>{"*_2"});
   CHECK(e.solvers[0].source.line == 6);
   CHECK(e.solvers[0].source.key == "solver[1]");
-  CHECK(e.solvers[1].profile == "apex");
-  CHECK(e.solvers[1].executable == "/opt/A-pex/bin/multiobj");
-  CHECK(e.solvers[1].options ==
-        std::map<std::string, std::string>{
-            {"algorithm", "Apex"}, {"depth", "3"}, {"ratio", "0.5"}, {"merge", "true"}});
-  CHECK(e.solvers[1].epsilon == "0");
+  CHECK(e.solvers[1].spec.profile == "apex");
+  CHECK(e.solvers[1].spec.executable == "/opt/A-pex/bin/multiobj");
+  // Options in key order, as KEY=VALUE: numbers as written, booleans as words.
+  CHECK(e.solvers[1].spec.options ==
+        std::vector<std::string>{"algorithm=Apex", "depth=3", "merge=true", "ratio=0.5"});
+  CHECK(e.solvers[1].spec.epsilon == "0");
   CHECK(e.reference_solvers == std::vector<std::string>{"namoa", "apex"});
   CHECK(e.reference_source.line == 20);
+}
+
+TEST_CASE("parse_experiment: numbers where the specification says numbers, and ε sweeps") {
+  const auto e = parse_experiment(R"(name = "x"
+store = "s"
+limits = { time = 60, memory = 1073741824, grace = 0.5, output = "1m" }
+[[solver]]
+name = "namoa"
+template = "namoa {instance}"
+epsilon = 0
+[[solver]]
+name = "apex"
+profile = "apex"
+executable = "/bin/apex"
+epsilon = [0.01, "0.05", 0.1]
+)",
+                                  "exp.toml");
+  CHECK(e.limits.process.wall_seconds == 60);
+  CHECK(e.limits.process.memory_bytes == 1ULL << 30);
+  CHECK(e.limits.process.grace_seconds == 0.5);
+  CHECK(e.limits.process.output_bytes == 1ULL << 20);  // the command line's grammar: 1m is 1 MiB
+  CHECK(e.limits.text == "time=60s memory=1073741824B grace=0.5s output=1048576B");
+  REQUIRE(e.solvers.size() == 4);
+  CHECK(e.solvers[0].spec.epsilon == "0");
+  const std::vector<std::string> names{e.solvers[1].name, e.solvers[2].name, e.solvers[3].name};
+  CHECK(names == std::vector<std::string>{"apex-eps0.01", "apex-eps0.05", "apex-eps0.1"});
+  CHECK(e.solvers[2].spec.epsilon == "0.05");
+  CHECK(e.solvers[3].spec.name == "apex-eps0.1");
+  CHECK(e.solvers[3].spec.profile == "apex");
+}
+
+TEST_CASE("parse_experiment: limits keep their full precision") {
+  const auto a = parse_experiment("name = \"x\"\nstore = \"s\"\nlimits = { time = 1000000.4 }\n" +
+                                      std::string(kSolver),
+                                  "exp.toml");
+  const auto b = parse_experiment("name = \"x\"\nstore = \"s\"\nlimits = { time = 1000000 }\n" +
+                                      std::string(kSolver),
+                                  "exp.toml");
+  CHECK(a.limits.text != b.limits.text);
 }
 
 TEST_CASE("parse_experiment: instances instead of a store, no limits, no reference") {
@@ -138,8 +178,16 @@ TEST_CASE("parse_experiment: each refusal names the file, the line and the key")
   CHECK(error_of(head + "limits = 5\n" + kSolver) == "exp.toml:3: limits: must be a table");
   CHECK(error_of(head + "limits = { time = \"1 hour\" }\n" + kSolver) ==
         "exp.toml:3: limits.time: '1 hour' is not a duration (60, 60s, 500ms, 2m, 1h)");
-  CHECK(error_of(head + "limits = { time = 60 }\n" + kSolver) ==
-        "exp.toml:3: limits.time: must be a string");
+  CHECK(error_of(head + "limits = { time = true }\n" + kSolver) ==
+        "exp.toml:3: limits.time: must be a number of seconds or a duration text");
+  CHECK(error_of(head + "limits = { time = -5 }\n" + kSolver) ==
+        "exp.toml:3: limits.time: '-5' is not a duration (60, 60s, 500ms, 2m, 1h)");
+  CHECK(error_of(head + "limits = { memory = -1 }\n" + kSolver) ==
+        "exp.toml:3: limits.memory: '-1' is not a size (4294967296, 512M, 16G)");
+  // A value with a line break, quoted in the problem, stays one line (found by
+  // mosb_fuzz_experiment: memory = "512Mt\nce}").
+  CHECK(error_of(head + "limits = { memory = \"512Mt\\nce}\" }\n" + kSolver) ==
+        "exp.toml:3: limits.memory: '512Mt\\x0ace}' is not a size (4294967296, 512M, 16G)");
   CHECK(error_of(head + "[limits]\ncpu = \"-1s\"\n" + kSolver) ==
         "exp.toml:4: limits.cpu: '-1s' is not a duration (60, 60s, 500ms, 2m, 1h)");
   CHECK(error_of(head + "[limits]\ngrace = \"2d\"\n" + kSolver) ==
@@ -168,8 +216,14 @@ TEST_CASE("parse_experiment: each refusal names the file, the line and the key")
         "exp.toml:6: solver[1].options: must be a table");
   CHECK(error_of(head + kSolver + "output_format = \"nonesuch\"\n") ==
         "exp.toml:6: solver[1].output_format: 'nonesuch': no such output format");
-  CHECK(error_of(head + kSolver + "epsilon = 0.1\n") ==
-        "exp.toml:6: solver[1].epsilon: must be a string");
+  CHECK(error_of(head + kSolver + "epsilon = true\n") ==
+        "exp.toml:6: solver[1].epsilon: must be an ε (0.05 or \"0.05\") or an array of them");
+  CHECK(error_of(head + kSolver + "epsilon = -0.1\n").starts_with("exp.toml:6: solver[1].epsilon: "));
+  CHECK(error_of(head + kSolver + "epsilon = []\n") ==
+        "exp.toml:6: solver[1].epsilon: an empty array: give at least one ε");
+  CHECK(error_of(head + "[[solver]]\nname = \"a\"\nprofile = \"apex\"\nexecutable = \"/x\"\n"
+                        "output_format = \"json-log\"\n") ==
+        "exp.toml:7: solver[1].output_format: not with a profile (the profile says it)");
   CHECK(error_of(head + kSolver + "benchmarks = \"Grid_2\"\n") ==
         "exp.toml:6: solver[1].benchmarks: must be an array of strings");
   // The reference.

@@ -18,7 +18,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       __builtin_trap();
     if (e.benchmarks.size() != e.benchmark_sources.size()) __builtin_trap();
     for (const auto& s : e.solvers) {
-      if (s.name.empty() || s.solver_template.empty() == s.profile.empty()) __builtin_trap();
+      if (s.name.empty() || s.spec.solver_template.empty() == s.spec.profile.empty())
+        __builtin_trap();
       if (s.benchmarks.size() != s.benchmark_sources.size()) __builtin_trap();
     }
   } catch (const mosb::Error& error) {

@@ -13,6 +13,7 @@
 #include "mosb/eval.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/internal/utf8.hpp"
+#include "mosb/run.hpp"
 
 namespace mosb::cli {
 
@@ -38,6 +39,16 @@ CLI::Validator unsigned_integer(std::uint64_t max) {
             return {};
           },
           "UINT", "unsigned integer"};
+}
+
+CLI::Validator memory_size() {
+  return {[](std::string& text) -> std::string {
+            const auto bytes = parse_memory_size(text);
+            if (!bytes) return "'" + text + "' is not a size (bytes, or 512M, 4G: powers of 1024)";
+            text = std::to_string(*bytes);
+            return {};
+          },
+          "SIZE", "memory size"};
 }
 
 CLI::Validator non_negative_real() {
@@ -91,7 +102,7 @@ constexpr std::string_view kSizeUnits = " (bytes, or 512M, 4G: powers of 1024)";
 CLI::Option* add_memory_size_option(CLI::App* subcommand, const std::string& name,
                                     std::uint64_t& bytes, const std::string& what) {
   return subcommand->add_option(name, bytes, what + std::string(kSizeUnits))
-      ->transform(CLI::AsSizeValue(false))
+      ->transform(memory_size())
       ->capture_default_str();
 }
 }  // namespace
@@ -118,7 +129,7 @@ CLI::Option* add_check_disk_option(CLI::App* subcommand, std::optional<std::uint
               std::to_string(kCheckDiskPerFileByte) + " times the file's size or " +
               std::to_string(kCheckDiskPerMemoryByte) + " times --check-memory, whichever is more" +
               std::string(kSizeUnits))
-      ->transform(CLI::AsSizeValue(false));
+      ->transform(memory_size());
 }
 
 CLI::Option* add_id_base_option(CLI::App* subcommand, unsigned& id_base,

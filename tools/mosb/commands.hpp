@@ -60,6 +60,9 @@ CLI::Validator unsigned_integer(std::uint64_t max);
 // The one parser of every option that takes a non-negative real (a double): the whole text is a
 // decimal number (exponent allowed), finite and >= 0.
 CLI::Validator non_negative_real();
+// The one parser of every option that takes a memory size: parse_memory_size (mosb/run.hpp), the
+// grammar of an experiment file's sizes too; the text becomes the count of bytes.
+CLI::Validator memory_size();
 // Every option that takes an ε: a non-negative decimal as parse_epsilon (mosb/eval.hpp) reads it,
 // the form spec/EVALUATION.md §2 allows and `solution.epsilon` stores.
 CLI::Validator epsilon_value();

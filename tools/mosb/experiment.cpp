@@ -12,7 +12,7 @@
 #include "commands.hpp"
 #include "json_writer.hpp"
 #include "mosb/converters/experiment_file.hpp"
-#include "mosb/converters/solver_output.hpp"
+#include "mosb/converters/solver_resolver.hpp"
 #include "mosb/internal/utf8.hpp"
 #include "mosb/slurm.hpp"
 #include "mosb/solution_merge.hpp"
@@ -34,6 +34,7 @@ struct ExperimentRunArgs {
   bool json = false;
   // One SLURM job array for the matrix (spec/EXPERIMENT.md §4), and the task an array task runs.
   std::string slurm, task, account, partition;
+  std::vector<std::string> executables;  // --executable NAME=PATH
   std::optional<std::uint64_t> queries_per_task;
   bool submit = false, status = false, resume = false;
 };
@@ -44,9 +45,16 @@ struct ExperimentStatusArgs {
 };
 
 // Refusals of the file and of its plan are usage errors: nothing ran.
-ExperimentPlan read_plan(const std::string& file) {
+ExperimentPlan read_plan(const ExperimentRunArgs& a) {
   try {
-    return plan_experiment(converters::read_experiment_file(file));
+    auto experiment = converters::read_experiment_file(a.file);
+    for (const auto& given : a.executables) {
+      const auto eq = given.find('=');
+      if (eq == std::string::npos || eq == 0 || eq + 1 == given.size())
+        throw UsageError("--executable " + given + ": give NAME=PATH");
+      set_solver_executable(experiment, given.substr(0, eq), given.substr(eq + 1));
+    }
+    return plan_experiment(experiment, converters::solver_resolver());
   } catch (const Error& e) {
     if (e.code() == ErrorCode::io) throw;
     throw UsageError(e.what());
@@ -58,10 +66,6 @@ int run_cells(const ExperimentPlan& plan, const ExperimentRunArgs& a) {
   ExperimentOptions options;
   options.jobs = a.jobs;
   if (a.measurement != "auto") options.measurement = parse_measurement(a.measurement);
-  options.adapter = [](const std::string& name) -> OutputAdapter {
-    const auto* format = converters::find_solver_output_format(name);
-    return format != nullptr ? format->adapter() : OutputAdapter{};
-  };
   struct sigaction action {};
   action.sa_handler = request_experiment_stop;
   sigemptyset(&action.sa_mask);
@@ -113,7 +117,7 @@ int run_experiment_task(const ExperimentRunArgs& a) {
   if (!a.queries_per_task) throw UsageError("--task: give --queries-per-task K as well");
   const auto task = parse_shard(a.task);
   if (!task) throw UsageError("--task " + a.task + ": not i/N with 1 <= i <= N");
-  const auto plan = read_plan(a.file);
+  const auto plan = read_plan(a);
   const auto tasks = experiment_tasks(plan, *a.queries_per_task);
   if (tasks.size() != task->count)
     throw UsageError("--task " + a.task + ": the experiment's cells make " +
@@ -131,7 +135,7 @@ std::uint64_t queries_of(const ExperimentPlan& plan, const std::vector<std::size
 
 int run_experiment_slurm_new(const ExperimentRunArgs& a) {
   if (!a.queries_per_task) throw UsageError("--slurm DIR: give --queries-per-task K");
-  const auto plan = read_plan(a.file);
+  const auto plan = read_plan(a);
   const auto tasks = experiment_tasks(plan, *a.queries_per_task);
   if (tasks.empty()) throw UsageError(a.file + ": the experiment has no cell");
   SlurmRun run = slurm_run_here(a.slurm);
@@ -152,6 +156,8 @@ int run_experiment_slurm_new(const ExperimentRunArgs& a) {
   run.run_arguments = {run.instance, "--queries-per-task",   std::to_string(*a.queries_per_task),
                        "--jobs",     std::to_string(a.jobs), "--measurement",
                        a.measurement};
+  for (const auto& given : a.executables)
+    run.run_arguments.insert(run.run_arguments.end(), {"--executable", given});
   create_slurm_directory(run);
   std::vector<std::uint64_t> all(run.shards);
   for (std::uint64_t i = 0; i < run.shards; ++i) all[i] = i + 1;
@@ -250,7 +256,7 @@ std::pair<SlurmRun, std::vector<std::vector<std::size_t>>> existing_array(
 // `--slurm DIR --status` and `--slurm DIR --resume [--submit]`: the tasks' states; with --resume
 // every finished cell merged into -o, and the tasks neither done nor queued resubmitted.
 int run_experiment_slurm_existing(const ExperimentRunArgs& a) {
-  const auto plan = read_plan(a.file);
+  const auto plan = read_plan(a);
   // Named references, not a structured binding: the lambdas below capture them (C++20 clang
   // refuses a structured binding there).
   const auto array = existing_array(a, plan);
@@ -315,7 +321,7 @@ int run_experiment_command(const ExperimentRunArgs& a) {
     throw UsageError(
         "--submit, --status, --resume, --queries-per-task, --account and --partition: only with "
         "--slurm DIR");
-  return run_cells(read_plan(a.file), a);
+  return run_cells(read_plan(a), a);
 }
 
 int run_experiment_status(const ExperimentStatusArgs& a) {
@@ -399,6 +405,9 @@ Command add_experiment(CLI::App& app) {
   run->add_option("--partition", run_args->partition, "with --slurm: sbatch --partition");
   run->add_option("--task", run_args->task,
                   "i/N: run array task i's cells only (what the job array's tasks run)");
+  run->add_option("--executable", run_args->executables,
+                  "NAME=PATH: the executable of the profile solver NAME, over the file's "
+                  "(repeatable; one experiment file for every machine)");
   run->add_option("--jobs,-j", run_args->jobs, "queries of a cell run at the same time")
       ->check(CLI::Range(1u, 1024u));
   run->add_option("--measurement", run_args->measurement,

@@ -19,7 +19,8 @@
 #include "commands.hpp"
 #include "json_writer.hpp"
 #include "mosb/command_template.hpp"
-#include "mosb/converters/profile_run.hpp"
+#include "mosb/converters/profile.hpp"
+#include "mosb/converters/solver_resolver.hpp"
 #include "mosb/converters/solver_output.hpp"
 #include "mosb/internal/utf8.hpp"
 #include "mosb/sha256.hpp"
@@ -243,44 +244,45 @@ Arguments task_options(const RunArgs& a) {
   return out;
 }
 
-// --profile: the profile says the command and its output; the executable is given.
-void check_profile_options(const RunArgs& a) {
-  for (const char* option : {"--solver", "--output-format"})
-    if (given(a, option))
-      throw UsageError(std::string(option) + ": not with --profile (the profile says it)");
-  if (a.choice.view.empty() && a.choice.objectives.empty())
-    throw UsageError("give --view V or --objectives A,B,... (the objectives the solver optimizes)");
-  if (a.executable.empty()) throw UsageError("--profile: give --executable PATH (the solver)");
-  if (resolve_executable(a.executable).empty())
-    throw UsageError("--executable: " + a.executable + ": no such executable" +
-                     (a.executable.find('/') == std::string::npos ? " in PATH" : ""));
+// The solver the options name, as the solver resolver takes it.
+SolverSpec solver_spec(const RunArgs& a) {
+  SolverSpec spec;
+  spec.solver_template = a.solver;
+  spec.output_format = a.output_format;
+  spec.profile = a.profile;
+  spec.executable = a.executable;
+  spec.options = a.profile_options;
+  spec.scale = a.scale;
+  spec.export_cache = a.export_cache;
+  spec.epsilon = a.epsilon;
+  spec.name = a.solver_name;
+  spec.version = a.solver_version;
+  return spec;
 }
 
-// What the options of a run require, before the instance is opened.
+// What the options of a run require, before the instance is opened; the solver checked by the
+// solver resolver.
 void check_run_options(const RunArgs& a) {
   if (a.instance.empty()) throw UsageError("INSTANCE is required");
   if (!a.profile.empty()) {
-    check_profile_options(a);
-    return;
+    for (const char* option : {"--solver", "--output-format"})
+      if (given(a, option))
+        throw UsageError(std::string(option) + ": not with --profile (the profile says it)");
+    if (a.executable.empty()) throw UsageError("--profile: give --executable PATH (the solver)");
+  } else {
+    for (const char* option : {"--executable", "--profile-option", "--scale", "--export-cache"})
+      if (given(a, option)) throw UsageError(std::string(option) + ": only with --profile");
+    if (a.solver.empty()) throw UsageError("--solver is required (or --profile)");
   }
-  for (const char* option : {"--executable", "--profile-option", "--scale", "--export-cache"})
-    if (given(a, option)) throw UsageError(std::string(option) + ": only with --profile");
-  if (a.solver.empty()) throw UsageError("--solver is required (or --profile)");
   if (a.choice.view.empty() && a.choice.objectives.empty())
     throw UsageError("give --view V or --objectives A,B,... (the objectives the solver optimizes)");
-  std::vector<std::string> words;
   try {
-    words = split_command(a.solver);
-    template_placeholders(words, run_placeholders());
-    if (!template_placeholders(std::span(words.data(), 1), run_placeholders()).empty())
-      throw Error("--solver: the program '" + words.front() +
-                  "' is a placeholder: the template starts with the solver's executable");
+    converters::check_solver(solver_spec(a));
   } catch (const Error& e) {
-    throw UsageError(e.what());
+    if (e.code() == ErrorCode::io) throw;
+    throw UsageError((a.profile.empty() ? "--solver: " : "--profile " + a.profile + ": ") +
+                     std::string(e.what()));
   }
-  if (resolve_executable(words.front()).empty())
-    throw UsageError("--solver: " + words.front() + ": no such executable" +
-                     (words.front().find('/') == std::string::npos ? " in PATH" : ""));
 }
 
 // The instance's selection: a usage error when the choice does not fit it.
@@ -299,34 +301,17 @@ RunConfig run_config(const RunArgs& a, const GraphReader& instance) {
   config.instance = &instance;
   config.instance_path = a.instance;
   config.choice = a.choice;
-  config.solver_template = a.solver;
-  config.output_format = a.output_format;
-  const auto* format = converters::find_solver_output_format(a.output_format);
-  if (format == nullptr)
-    throw UsageError("--output-format " + a.output_format + ": no such format");
-  config.adapter = format->adapter();
   config.limits = {*parse_duration(a.time_limit), a.memory_limit, a.grace,
                    *parse_duration(a.cpu_limit), a.max_output};
-  config.epsilon = a.epsilon;
   config.allow_new_executable = a.allow_new_executable;
   config.jobs = a.jobs;
   config.pin = a.pin;
   config.threads = a.threads;
   if (a.measurement != "auto") config.measurement = parse_measurement(a.measurement);
   config.resume = a.resume;
-  config.solver_name = a.solver_name;
-  config.solver_version = a.solver_version;
   config.output = a.output;
   config.sha256_file = [](const std::string& path) { return sha256_file(path); };
-  if (!a.profile.empty()) {
-    converters::ProfileRunRequest request;
-    request.profile = converters::load_profile(a.profile);
-    request.executable = a.executable;
-    request.options = a.profile_options;
-    request.scale = a.scale;
-    request.export_cache = a.export_cache;
-    converters::apply_profile(config, request);
-  }
+  converters::configure_solver(config, solver_spec(a));
   return config;
 }
 
@@ -652,7 +637,7 @@ Command add_run(CLI::App& app) {
   sub->add_option("--memory-limit", a->memory_limit,
                   "memory limit per query for the whole process tree (bytes, or 512M, 4G: "
                   "powers of 1024; 0: none)")
-      ->transform(CLI::AsSizeValue(false));
+      ->transform(memory_size());
   sub->add_option("--grace", a->grace, "seconds between SIGTERM and SIGKILL on a timeout")
       ->check(non_negative_real());
   sub->add_option("--jobs,-j", a->jobs, "queries run at the same time (default 1)")
@@ -691,7 +676,7 @@ Command add_run(CLI::App& app) {
                   "the most a solver may write to any one output file (and a log may decompress "
                   "to), bytes or 512M, 4G; a front of more than SIZE/8 values is refused too "
                   "(default 1G)")
-      ->transform(CLI::AsSizeValue(false));
+      ->transform(memory_size());
   sub->add_flag("--allow-new-executable", a->allow_new_executable,
                 "with --resume: continue although the solver's executable changed (both SHA-256 "
                 "are recorded)");

@@ -2,11 +2,12 @@
 
 #include <toml++/toml.h>
 
+#include <charconv>
 #include <set>
-#include <sstream>
 
 #include "mosb/converters/solver_output.hpp"
 #include "mosb/error.hpp"
+#include "mosb/eval.hpp"
 #include "mosb/internal/read_file.hpp"
 
 namespace mosb::converters {
@@ -30,6 +31,13 @@ std::string one_line(std::string_view text) {
   return out;
 }
 
+// The shortest text that reads back as `value`: limits compared at full precision.
+std::string number_text(double value) {
+  char text[64];
+  const auto end = std::to_chars(text, text + sizeof text, value).ptr;
+  return {text, end};
+}
+
 // Reads one table's keys, each once, refusing any key it was not asked for.
 class TableReader {
  public:
@@ -51,6 +59,15 @@ class TableReader {
   const toml::node* get(const std::string& key) {
     known_.insert(key);
     return table_.get(key);
+  }
+  // A string, number or boolean as text: strings as written, numbers in their shortest form,
+  // booleans true/false.
+  std::string text_of(const toml::node& node) const {
+    if (const auto* v = node.as_string()) return v->get();
+    if (const auto* v = node.as_integer()) return std::to_string(v->get());
+    if (const auto* v = node.as_floating_point()) return number_text(v->get());
+    if (const auto* v = node.as_boolean()) return v->get() ? "true" : "false";
+    return "?";
   }
   std::optional<std::string> text(const std::string& key) {
     const auto* node = get(key);
@@ -100,23 +117,37 @@ void read_limits(TableReader& root, Experiment& e) {
   const auto* limits = root.table("limits");
   if (limits == nullptr) return;
   TableReader t(*limits, "limits.", e);
-  std::ostringstream canonical;
+  std::string canonical;
+  // A duration: a number of seconds, or text as parse_duration reads it.
   const auto duration = [&](const std::string& key, double& out) {
-    const auto text = t.text(key);
-    if (!text) return;
-    const auto seconds = parse_duration(*text);
+    const auto* node = t.get(key);
+    if (node == nullptr) return;
+    std::optional<double> seconds;
+    if (node->is_number())
+      seconds = parse_duration(number_text(*node->value<double>()));
+    else if (node->is_string())
+      seconds = parse_duration(*node->value<std::string>());
+    else
+      t.fail(*node, key, "must be a number of seconds or a duration text");
     if (!seconds)
-      t.fail(*t.get(key), key, "'" + *text + "' is not a duration (60, 60s, 500ms, 2m, 1h)");
+      t.fail(*node, key, "'" + t.text_of(*node) + "' is not a duration (60, 60s, 500ms, 2m, 1h)");
     out = *seconds;
-    canonical << key << '=' << *seconds << "s ";
+    canonical += key + '=' + number_text(*seconds) + "s ";
   };
+  // A size: a number of bytes, or text as parse_memory_size reads it (the command line's grammar).
   const auto size = [&](const std::string& key, std::uint64_t& out) {
-    const auto text = t.text(key);
-    if (!text) return;
-    const auto bytes = parse_memory_size(*text);
-    if (!bytes) t.fail(*t.get(key), key, "'" + *text + "' is not a size (4294967296, 512M, 16G)");
+    const auto* node = t.get(key);
+    if (node == nullptr) return;
+    std::optional<std::uint64_t> bytes;
+    if (node->is_integer() && *node->value<std::int64_t>() >= 0)
+      bytes = static_cast<std::uint64_t>(*node->value<std::int64_t>());
+    else if (node->is_string())
+      bytes = parse_memory_size(*node->value<std::string>());
+    else if (!node->is_integer())
+      t.fail(*node, key, "must be a number of bytes or a size text");
+    if (!bytes) t.fail(*node, key, "'" + t.text_of(*node) + "' is not a size (4294967296, 512M, 16G)");
     out = *bytes;
-    canonical << key << '=' << *bytes << "B ";
+    canonical += key + '=' + std::to_string(*bytes) + "B ";
   };
   auto& p = e.limits.process;
   duration("time", p.wall_seconds);
@@ -125,52 +156,87 @@ void read_limits(TableReader& root, Experiment& e) {
   duration("grace", p.grace_seconds);
   size("output", p.output_bytes);
   t.refuse_unknown();
-  e.limits.text = canonical.str();
+  e.limits.text = canonical;
   if (!e.limits.text.empty()) e.limits.text.pop_back();
 }
 
-ExperimentSolver read_solver(const toml::table& table, std::size_t index, const Experiment& e) {
+// A profile's options: strings, numbers and booleans, as KEY=VALUE in key order.
+std::vector<std::string> read_options(TableReader& t) {
+  std::vector<std::string> out;
+  const auto* options = t.table("options");
+  if (options == nullptr) return out;
+  for (const auto& [key, node] : *options) {
+    if (!node.is_string() && !node.is_integer() && !node.is_floating_point() && !node.is_boolean())
+      t.fail(node, "options." + std::string(key.str()), "must be a string, number or boolean");
+    out.push_back(std::string(key.str()) + "=" + t.text_of(node));
+  }
+  return out;
+}
+
+// `epsilon`: one ε (text or number), or an array of them, one solver per ε (a sweep).
+std::vector<std::pair<std::string, SourceLine>> read_epsilons(TableReader& t) {
+  std::vector<std::pair<std::string, SourceLine>> out;
+  const auto* node = t.get("epsilon");
+  if (node == nullptr) return {{"0", {}}};
+  const auto one = [&](const toml::node& value) {
+    if (!value.is_string() && !value.is_number())
+      t.fail(value, "epsilon", "must be an ε (0.05 or \"0.05\") or an array of them");
+    const auto text = t.text_of(value);
+    try {
+      parse_epsilon(text);
+    } catch (const Error& err) {
+      t.fail(value, "epsilon", err.what());
+    }
+    out.emplace_back(text, t.where(value, "epsilon"));
+  };
+  if (const auto* array = node->as_array()) {
+    if (array->empty()) t.fail(*node, "epsilon", "an empty array: give at least one ε");
+    for (const auto& value : *array) one(value);
+  } else {
+    one(*node);
+  }
+  return out;
+}
+
+// One [[solver]]; several with an ε sweep, named NAME-eps<ε>, one cell per ε.
+std::vector<ExperimentSolver> read_solver(const toml::table& table, std::size_t index,
+                                          const Experiment& e) {
   TableReader t(table, "solver[" + std::to_string(index) + "].", e);
   ExperimentSolver s;
   s.source = {static_cast<std::size_t>(table.source().begin.line),
               "solver[" + std::to_string(index) + "]"};
   s.name = t.required_text("name");
-  s.solver_template = t.text("template").value_or("");
-  s.profile = t.text("profile").value_or("");
-  s.executable = t.text("executable").value_or("");
-  if (const auto* options = t.table("options")) {
-    for (const auto& [key, node] : *options) {
-      if (!node.is_string() && !node.is_integer() && !node.is_floating_point() &&
-          !node.is_boolean())
-        t.fail(node, "options." + std::string(key.str()), "must be a string, number or boolean");
-      std::ostringstream value;
-      node.visit([&](const auto& v) {
-        // Strings and numbers as written; booleans as true/false, not 1/0.
-        if constexpr (toml::is_boolean<decltype(v)>)
-          value << (v.get() ? "true" : "false");
-        else if constexpr (toml::is_string<decltype(v)> || toml::is_number<decltype(v)>)
-          value << v.get();
-      });
-      s.options[std::string(key.str())] = value.str();
-    }
-  }
+  auto& spec = s.spec;
+  spec.solver_template = t.text("template").value_or("");
+  spec.profile = t.text("profile").value_or("");
+  spec.executable = t.text("executable").value_or("");
+  spec.options = read_options(t);
   if (auto format = t.text("output_format")) {
     if (find_solver_output_format(*format) == nullptr)
       t.fail(*t.get("output_format"), "output_format", "'" + *format + "': no such output format");
-    s.output_format = *format;
+    if (!spec.profile.empty())
+      t.fail(*t.get("output_format"), "output_format", "not with a profile (the profile says it)");
+    spec.output_format = *format;
   }
-  s.epsilon = t.text("epsilon").value_or("0");
+  const auto epsilons = read_epsilons(t);
   for (auto& [pattern, line] : t.texts("benchmarks")) {
     s.benchmarks.push_back(pattern);
     s.benchmark_sources.push_back(line);
   }
   t.refuse_unknown();
-  if (s.solver_template.empty() == s.profile.empty())
+  if (spec.solver_template.empty() == spec.profile.empty())
     t.fail(table, "template", "give exactly one of template and profile");
-  if (!s.profile.empty()) return s;
-  if (!s.executable.empty() || !s.options.empty())
+  if (spec.profile.empty() && (!spec.executable.empty() || !spec.options.empty()))
     t.fail(table, "executable", "executable and options go with a profile, not a template");
-  return s;
+  std::vector<ExperimentSolver> out;
+  for (const auto& [epsilon, line] : epsilons) {
+    auto solver = s;
+    solver.spec.epsilon = epsilon;
+    if (epsilons.size() > 1) solver.name += "-eps" + epsilon;
+    solver.spec.name = solver.name;
+    out.push_back(std::move(solver));
+  }
+  return out;
 }
 
 }  // namespace
@@ -204,7 +270,8 @@ Experiment parse_experiment(std::string_view text, const std::string& display_na
     if (array == nullptr || !array->is_array_of_tables())
       t.fail(*node, "solver", "must be an array of tables ([[solver]])");
     for (std::size_t i = 0; i < array->size(); ++i)
-      e.solvers.push_back(read_solver(*array->get(i)->as_table(), i + 1, e));
+      for (auto& solver : read_solver(*array->get(i)->as_table(), i + 1, e))
+        e.solvers.push_back(std::move(solver));
   }
   if (const auto* reference = t.table("reference")) {
     TableReader r(*reference, "reference.", e);

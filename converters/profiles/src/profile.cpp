@@ -9,8 +9,10 @@
 #include <set>
 #include <sstream>
 
+#include "mosb/checksum.hpp"
 #include "mosb/command_template.hpp"
 #include "mosb/error.hpp"
+#include "mosb/internal/hex.hpp"
 #include "placeholders.hpp"
 
 namespace mosb::converters {
@@ -383,6 +385,7 @@ SolverProfile parse_profile(std::string_view text, const std::string& file) {
   Fields root(table, file, "");
   SolverProfile p;
   p.file = file;
+  p.text_digest = hex64(xxh3_64(text.data(), text.size()));
   p.name = root.required_string("name");
   if (!is_name(p.name)) root.fail(*root.find("name"), "name", "letters, digits, - and _ only");
   p.solver = root.string("solver").value_or("");  // empty: the executable's file name

@@ -1,11 +1,14 @@
 #include "mosb/converters/profile_run.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 
 #include "mosb/command_template.hpp"
 #include "mosb/converters/solver_output.hpp"
 #include "mosb/error.hpp"
+#include "mosb/eval.hpp"
 #include "mosb/views.hpp"
 #include "placeholders.hpp"
 
@@ -33,20 +36,20 @@ std::map<std::string, std::string> option_values(const SolverProfile& p,
     if (eq == std::string::npos || option == p.options.end()) {
       std::string names;
       for (const auto& o : p.options) names += (names.empty() ? "" : ", ") + o.name;
-      refuse("--profile-option " + text + ": profile " + p.name + " has " +
+      refuse("option " + text + ": profile " + p.name + " has " +
              (names.empty() ? std::string("no options") : "the options " + names) + " (KEY=VALUE)");
     }
-    if (seen[key]) refuse("--profile-option " + key + ": given twice");
+    if (seen[key]) refuse("option " + key + ": given twice");
     seen[key] = true;
     const auto value = text.substr(eq + 1);
     if (!option->values.empty() &&
         std::find(option->values.begin(), option->values.end(), value) == option->values.end()) {
       std::string allowed;
       for (const auto& v : option->values) allowed += (allowed.empty() ? "" : ", ") + v;
-      refuse("--profile-option " + text + ": " + key + " is one of " + allowed);
+      refuse("option " + text + ": " + key + " is one of " + allowed);
     }
     if (value.empty() || value.find_first_of(" \t\n{}") != std::string::npos)
-      refuse("--profile-option " + text + ": a value without blanks or braces");
+      refuse("option " + text + ": a value without blanks or braces");
     values[key] = value;
   }
   return values;
@@ -94,9 +97,8 @@ struct RunInput {
   std::string query_set;
 };
 
-RunInput prepare_input(const RunConfig& config, const ProfileRunRequest& request,
+RunInput prepare_input(const RunConfig& config, const SolverProfile& p, const SolverSpec& request,
                        bool uses_coordinates) {
-  const auto& p = request.profile;
   const auto& instance = *config.instance;
   const View selection = solution_selection(instance, config.choice);
   RunInput in;
@@ -113,10 +115,10 @@ RunInput prepare_input(const RunConfig& config, const ProfileRunRequest& request
   }
   if (p.input.form == InputForm::mosb) {
     if (request.scale > 0)
-      refuse("--scale: profile " + p.name + "'s solver reads the .mosb itself");
+      refuse("scale: profile " + p.name + "'s solver reads the .mosb itself");
     return in;
   }
-  if (request.scale > 0 && !any_float) refuse("--scale: no objective of the run holds float costs");
+  if (request.scale > 0 && !any_float) refuse("scale: no objective of the run holds float costs");
   DimacsExportOptions o;
   o.selection.objectives = in.objective_names;
   o.selection.queries = in.query_set;
@@ -131,7 +133,8 @@ RunInput prepare_input(const RunConfig& config, const ProfileRunRequest& request
   o.collapse_parallel_arcs = p.input.parallel_arcs == ParallelArcs::collapse;
   o.append_dummy_arc = p.input.append_dummy_arc;
   o.coordinates = uses_coordinates;
-  const auto cache = request.export_cache.empty() ? default_export_cache() : request.export_cache;
+  const fs::path cache =
+      request.export_cache.empty() ? default_export_cache() : fs::path(request.export_cache);
   auto cached = cached_export(cache, config.instance_path, instance.digest(), o);
   if (uses_coordinates && cached.files.coordinates.empty())
     refuse(instance.display_name() + ": profile " + p.name +
@@ -144,13 +147,14 @@ RunInput prepare_input(const RunConfig& config, const ProfileRunRequest& request
 
 // The run-constant placeholders' values; nullopt for the per-query ones lib/run fills.
 std::optional<std::string> run_value(const std::string& name, const RunConfig& config,
-                                     const ProfileRunRequest& request, const RunInput& in,
+                                     const SolverProfile& p, const SolverSpec& request,
+                                     const RunInput& in,
                                      const std::map<std::string, std::string>& options) {
   if (name == "executable") return request.executable;
   if (name == "multi_gr") return in.files.multi_column.string();
   if (name == "co") return in.files.coordinates.string();
   if (name == "d") return std::to_string(in.objective_names.size());
-  if (name == "time_limit") return time_limit_text(request.profile.time_limit, config.limits);
+  if (name == "time_limit") return time_limit_text(p.time_limit, config.limits);
   if (name == "epsilon") return config.epsilon;
   if (name == "queries")
     for (const auto& [set, path] : in.files.queries)
@@ -158,7 +162,7 @@ std::optional<std::string> run_value(const std::string& name, const RunConfig& c
   if (name.rfind("gr:", 0) == 0) {
     for (std::size_t k = 0; k < in.objective_names.size(); ++k)
       if (in.objective_names[k] == name.substr(3)) return in.files.objectives[k].string();
-    refuse("profile " + request.profile.name + ": {" + name + "}: the run has no objective '" +
+    refuse("profile " + p.name + ": {" + name + "}: the run has no objective '" +
            name.substr(3) + "'");
   }
   if (const auto option = options.find(name); option != options.end()) return option->second;
@@ -184,42 +188,84 @@ OutputAdapter profile_adapter(const SolverProfile& p, const VectorsContext& cont
   };
 }
 
+// Whether the profile's command uses the placeholder `name`.
+bool command_uses(const SolverProfile& p, std::string_view name) {
+  for (const auto& word : split_command(p.command))
+    for (const auto& used : profile_internal::placeholder_names(word).value_or(
+             std::vector<std::string>{}))  // parse_profile refused a lone brace
+      if (used == name) return true;
+  return false;
+}
+
+// The name a profile solver is recorded under when the user gives none: the solver with each
+// option's value that is not its default, and ε when it is not 0, so that two algorithms or two
+// ε of one program never share a name.
+std::string profile_solver_name(const SolverProfile& p,
+                                const std::map<std::string, std::string>& options,
+                                const std::string& epsilon) {
+  std::string name = p.solver.empty() ? p.name : p.solver;
+  for (const auto& option : p.options)
+    if (options.at(option.name) != option.default_value) name += " " + options.at(option.name);
+  if (parse_epsilon(epsilon).num != 0) name += " \u03b5=" + epsilon;
+  return name;
+}
+
+// The profile, its options' values and its executable, checked as check_profile_solver says.
+struct CheckedProfile {
+  SolverProfile profile;
+  std::map<std::string, std::string> options;
+  ResolvedSolver resolved;
+};
+
+CheckedProfile checked_profile(const SolverSpec& spec) {
+  CheckedProfile out;
+  out.profile = load_profile(spec.profile);
+  const auto& p = out.profile;
+  out.options = option_values(p, spec.options);
+  if (spec.executable.empty())
+    refuse("profile " + p.name + ": give its solver's executable (the program it runs)");
+  out.resolved.executable = resolve_executable(spec.executable);
+  if (out.resolved.executable.empty() || ::access(out.resolved.executable.c_str(), X_OK) != 0)
+    refuse("executable " + spec.executable + ": no such executable" +
+           (spec.executable.find('/') == std::string::npos ? " in PATH" : ""));
+  if (parse_epsilon(spec.epsilon).num != 0 && !command_uses(p, "epsilon"))
+    refuse("epsilon " + spec.epsilon + ": profile " + p.name +
+           " gives its solver no epsilon (its command has no {epsilon})");
+  if (spec.scale < 0 || !std::isfinite(spec.scale)) refuse("scale: a positive number");
+  out.resolved.name = profile_solver_name(p, out.options, spec.epsilon);
+  auto& binding = out.resolved.binding;
+  binding = "profile " + p.name + " xxh3 " + p.text_digest;
+  for (const auto& [key, value] : out.options) binding += " " + key + "=" + value;
+  if (spec.scale > 0) binding += " scale=" + format_real_cost(spec.scale);
+  binding += " | output " + p.output.format + " | epsilon " + spec.epsilon;
+  return out;
+}
+
 }  // namespace
 
-PreparedProfileRun apply_profile(RunConfig& config, const ProfileRunRequest& request) {
-  const auto& p = request.profile;
-  const auto options = option_values(p, request.options);
-  const auto words = split_command(p.command);
-  bool uses_epsilon = false, uses_coordinates = false;
-  for (const auto& word : words) {
-    const auto names = profile_internal::placeholder_names(word).value_or(
-        std::vector<std::string>{});  // parse_profile refused a lone brace
-    for (const auto& name : names) {
-      uses_epsilon |= name == "epsilon";
-      uses_coordinates |= name == "co";
-    }
-  }
-  if (!uses_epsilon && config.epsilon != "0")
-    refuse("--epsilon " + config.epsilon + ": profile " + p.name +
-           " gives its solver no epsilon (its command has no {epsilon})");
-  const auto in = prepare_input(config, request, uses_coordinates);
+ResolvedSolver check_profile_solver(const SolverSpec& spec) {
+  return checked_profile(spec).resolved;
+}
+
+void apply_profile(RunConfig& config, const SolverSpec& spec) {
+  const auto checked = checked_profile(spec);
+  const auto& p = checked.profile;
+  const auto& options = checked.options;
+  config.epsilon = spec.epsilon;
+  const auto in = prepare_input(config, p, spec, command_uses(p, "co"));
   check_objective_count(p, in.objective_names.size(), options);
 
-  PreparedProfileRun prepared;
-  prepared.export_directory = in.directory;
-  prepared.export_reused = in.reused;
   std::string command;
   const auto add = [&](const std::string& word) {
     command += (command.empty() ? "" : " ") + quoted(word);
-    prepared.words.push_back(word);
   };
-  for (const auto& word : words) {
+  for (const auto& word : split_command(p.command)) {
     if (word == "{gr}") {
       for (const auto& path : in.files.objectives) add(path.string());
       continue;
     }
     add(profile_internal::fill_placeholders(word, [&](const std::string& name) {
-      return run_value(name, config, request, in, options);
+      return run_value(name, config, p, spec, in, options);
     }));
   }
 
@@ -227,7 +273,7 @@ PreparedProfileRun apply_profile(RunConfig& config, const ProfileRunRequest& req
   context.id_base = p.input.id_base;
   context.objectives = in.objective_names.size();
   context.padded_columns = p.input.pad_columns;
-  context.scale = request.scale;
+  context.scale = spec.scale;
   context.options = options;
   for (const auto& name : in.objective_names)
     context.scaled.push_back(std::find(in.files.scaled_objectives.begin(),
@@ -238,8 +284,8 @@ PreparedProfileRun apply_profile(RunConfig& config, const ProfileRunRequest& req
   config.adapter = profile_adapter(p, context);
   config.success_exit_codes = p.success_exit_codes;
   config.id_base = p.input.id_base;
-  if (config.solver_name.empty() && !p.solver.empty()) config.solver_name = p.solver;
-  if (config.solver_version.empty()) config.solver_version = p.version;
+  config.solver_name = spec.name.empty() ? checked.resolved.name : spec.name;
+  config.solver_version = spec.version.empty() ? p.version : spec.version;
   auto& m = config.parameters;
   m["profile.name"] = p.name;
   m["profile.file"] = p.file;
@@ -248,7 +294,7 @@ PreparedProfileRun apply_profile(RunConfig& config, const ProfileRunRequest& req
   m["profile.id_base"] = std::to_string(p.input.id_base);
   for (const auto& [key, value] : options) m["profile.option." + key] = value;
   if (!in.files.scaled_objectives.empty()) {
-    m["profile.scale"] = format_real_cost(request.scale);
+    m["profile.scale"] = format_real_cost(spec.scale);
     std::string names;
     for (const auto& name : in.files.scaled_objectives) names += (names.empty() ? "" : ",") + name;
     m["profile.scaled_objectives"] = names;
@@ -257,7 +303,6 @@ PreparedProfileRun apply_profile(RunConfig& config, const ProfileRunRequest& req
     m["profile.parallel_arcs"] =
         "collapsed: dominated parallel arcs dropped, the others subdivided";
   if (p.input.append_dummy_arc) m["profile.dummy_arc"] = "appended to every .gr";
-  return prepared;
 }
 
 }  // namespace mosb::converters

@@ -30,7 +30,7 @@ namespace fs = std::filesystem;
 
 constexpr std::string_view kPlanFile = "experiment.json";
 constexpr std::string_view kPlanFormat = "mosb-experiment-plan";
-constexpr int kVersion = 1;
+constexpr int kVersion = 2;  // 2: cells bound to the solver binding
 
 [[noreturn]] void refuse(const Experiment& e, const SourceLine& at, const std::string& problem) {
   throw Error(ErrorCode::invalid_argument, experiment_error(e, at, problem));
@@ -98,18 +98,6 @@ bool valid_name(const std::string& name) {
   return !name.empty() && name != "." && name != ".." && Metadata::is_valid_key(name);
 }
 
-// The executable of a template: its first word, resolved as run_solver resolves it.
-std::string executable_digest(const Experiment& e, const ExperimentSolver& solver,
-                              const SolverCommand& command) {
-  const auto words = split_command(command.solver_template);
-  if (words.empty()) refuse(e, solver.source, "the solver's template is empty");
-  try {
-    return sha256_file(resolve_executable(words.front()));
-  } catch (const Error& err) {
-    refuse(e, solver.source, "solver '" + solver.name + "': " + err.what());
-  }
-}
-
 Json cell_json(const ExperimentCell& c) {
   return {{"solver", c.solver},
           {"instance", c.instance},
@@ -154,7 +142,7 @@ void write_results_manifest(const fs::path& results, std::vector<CellRecord> rec
     Json j = cell_json(r.cell);
     j["sha256"] = r.sha256;
     j["executable_sha256"] = r.executable_sha256;
-    j["solver_template"] = r.solver_template;
+    j["solver_binding"] = r.solver_binding;
     j["limits"] = r.limits;
     j["counts"] = counts_json(r.counts);
     text += j.dump(-1, ' ', false, Json::error_handler_t::replace) + "\n";
@@ -166,7 +154,7 @@ Json plan_json(const ExperimentPlan& plan) {
   Json solvers = Json::array();
   for (std::size_t s = 0; s < plan.experiment.solvers.size(); ++s)
     solvers.push_back({{"name", plan.experiment.solvers[s].name},
-                       {"template", plan.commands[s].solver_template},
+                       {"binding", plan.solvers[s].binding},
                        {"executable_sha256", plan.executable_sha256[s]}});
   Json cells = Json::array();
   for (const auto& c : plan.cells) cells.push_back(cell_json(c));
@@ -190,24 +178,39 @@ std::string experiment_error(const Experiment& e, const SourceLine& at,
   std::string out = e.file;
   if (at.line > 0) out += ":" + std::to_string(at.line);
   if (!at.key.empty()) out += ": " + at.key;
-  return out + ": " + problem;
+  out += ": " + problem;
+  // A refusal is one line, whatever the file's values hold (a string with a line break quoted in
+  // a problem): control characters as \xHH.
+  std::string line;
+  for (const char c : out) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte >= 0x20 && byte != 0x7f) {
+      line += c;
+      continue;
+    }
+    static constexpr char kDigits[] = "0123456789abcdef";
+    line += {'\\', 'x', kDigits[byte >> 4], kDigits[byte & 0xf]};
+  }
+  return line;
 }
 
-SolverCommand solver_command(const Experiment& e, const ExperimentSolver& solver) {
-  if (!solver.profile.empty())
-    refuse(e, solver.source,
-           "solver '" + solver.name +
-               "': profiles need the solver profiles of issue 34, which "
-               "this mosb does not have yet; give the solver's command as template = \"...\"");
-  if (solver.solver_template.empty())
-    refuse(e, solver.source, "solver '" + solver.name + "' has neither template nor profile");
-  return {solver.solver_template, solver.output_format, solver.epsilon};
+void set_solver_executable(Experiment& e, const std::string& name, const std::string& path) {
+  for (auto& solver : e.solvers)
+    if (solver.name == name) {
+      solver.spec.executable = path;
+      return;
+    }
+  std::string names;
+  for (const auto& solver : e.solvers) names += (names.empty() ? "" : ", ") + solver.name;
+  throw Error(ErrorCode::invalid_argument,
+              "executable for solver '" + name + "': the experiment's solvers are " + names);
 }
 
-ExperimentPlan plan_experiment(const Experiment& experiment) {
+ExperimentPlan plan_experiment(const Experiment& experiment, const SolverResolver& resolver) {
   const auto& e = experiment;
   ExperimentPlan plan;
   plan.experiment = e;
+  plan.resolver = resolver;
   if (e.solvers.empty()) refuse(e, {}, "no [[solver]]");
   std::set<std::string> names;
   for (const auto& solver : e.solvers) {
@@ -215,8 +218,12 @@ ExperimentPlan plan_experiment(const Experiment& experiment) {
       refuse(e, solver.source, "solver name '" + solver.name + "' is not from [A-Za-z0-9_.+-]");
     if (!names.insert(solver.name).second)
       refuse(e, solver.source, "solver '" + solver.name + "' is defined twice");
-    plan.commands.push_back(solver_command(e, solver));
-    plan.executable_sha256.push_back(executable_digest(e, solver, plan.commands.back()));
+    try {
+      plan.solvers.push_back(resolver.check(solver.spec));
+      plan.executable_sha256.push_back(sha256_file(plan.solvers.back().executable));
+    } catch (const Error& err) {
+      refuse(e, solver.source, "solver '" + solver.name + "': " + err.what());
+    }
   }
   for (const auto& name : e.reference_solvers)
     if (!names.contains(name))
@@ -307,7 +314,7 @@ std::vector<CellRecord> read_results_manifest(const fs::path& results) {
       r.cell = cell_of(j);
       r.sha256 = j.at("sha256").get<std::string>();
       r.executable_sha256 = j.at("executable_sha256").get<std::string>();
-      r.solver_template = j.at("solver_template").get<std::string>();
+      r.solver_binding = j.at("solver_binding").get<std::string>();
       r.limits = j.at("limits").get<std::string>();
       for (const auto status : kQueryStatuses)
         r.counts[status] = j.at("counts").at(std::string(to_string(status))).get<std::uint64_t>();
@@ -469,8 +476,9 @@ void check_finished_cells(const ExperimentPlan& plan, const fs::path& results,
     std::string why;
     if (r->executable_sha256 != plan.executable_sha256[s])
       why = "the solver's executable changed";
-    else if (r->solver_template != plan.commands[s].solver_template)
-      why = "the template changed";
+    else if (r->solver_binding != plan.solvers[s].binding)
+      why = "the solver's command changed (" + r->solver_binding + ", now " +
+            plan.solvers[s].binding + ")";
     else if (r->limits != plan.experiment.limits.text)
       why = "the limits changed (" + r->limits + ", now " + plan.experiment.limits.text + ")";
     else if (r->cell.instance_digest != cell.instance_digest)
@@ -548,7 +556,6 @@ ExperimentResult run_experiment(const ExperimentPlan& plan, const fs::path& resu
         std::find_if(plan.experiment.solvers.begin(), plan.experiment.solvers.end(),
                      [&](const ExperimentSolver& x) { return x.name == cell.solver; }) -
         plan.experiment.solvers.begin());
-    const auto& command = plan.commands[s];
     // A packed store entry runs on the store's unpacked copy; the solver maps that file.
     const auto file = fs::path(cell.instance_file);
     const auto* entry = store ? store->manifest().find(file.filename().string()) : nullptr;
@@ -563,20 +570,11 @@ ExperimentResult run_experiment(const ExperimentPlan& plan, const fs::path& resu
     config.instance = &instance;
     config.instance_path = instance_path.string();
     config.choice = {cell.view, {}, cell.query_set};
-    config.solver_template = command.solver_template;
-    config.output_format = command.output_format;
-    if (command.output_format != "protocol") {
-      if (options.adapter) config.adapter = options.adapter(command.output_format);
-      if (!config.adapter)
-        throw Error(ErrorCode::invalid_argument,
-                    cell.solver + ": no output format '" + command.output_format + "'");
-    }
     config.limits = plan.experiment.limits.process;
-    config.epsilon = command.epsilon;
+    plan.resolver.configure(config, plan.experiment.solvers[s].spec);
     config.jobs = options.jobs;
     config.measurement = options.measurement;
     config.resume = true;
-    config.solver_name = cell.solver;
     config.output = (results / cell.file).string();
     config.sha256_file = [](const std::string& path) { return sha256_file(path); };
     progress.cell = cell.id();
@@ -600,7 +598,7 @@ ExperimentResult run_experiment(const ExperimentPlan& plan, const fs::path& resu
       break;
     }
     records.push_back({cell, sha256_file(results / cell.file), plan.executable_sha256[s],
-                       command.solver_template, plan.experiment.limits.text, run.counts});
+                       plan.solvers[s].binding, plan.experiment.limits.text, run.counts});
     write_results_manifest(results, records);
     ++result.ran;
     ++progress.cells_done;

@@ -165,4 +165,21 @@ std::string resolve_executable(const std::string& name) {
   return {};
 }
 
+std::string template_executable(std::string_view solver_template) {
+  const auto words = split_command(solver_template);
+  template_placeholders(words, run_placeholders());
+  if (!template_placeholders(std::span(words.data(), 1), run_placeholders()).empty())
+    throw Error(ErrorCode::invalid_argument,
+                "the program '" + words.front() +
+                    "' is a placeholder: the template starts with the solver's executable");
+  const auto executable = resolve_executable(words.front());
+  if (executable.empty())
+    throw Error(ErrorCode::invalid_argument,
+                words.front() + ": no such executable" +
+                    (words.front().find('/') == std::string::npos ? " in PATH" : ""));
+  if (::access(executable.c_str(), X_OK) != 0)
+    throw Error(ErrorCode::invalid_argument, executable + ": not an executable file");
+  return executable;
+}
+
 }  // namespace mosb

@@ -256,13 +256,7 @@ Plan make_plan(const RunConfig& c, const View& selection, const SolutionWriter& 
   const auto used = template_placeholders(p.words, run_placeholders());
   p.front_in_file = std::find(used.begin(), used.end(), "front") != used.end();
   p.fronts_used = std::find(used.begin(), used.end(), "fronts") != used.end();
-  p.executable = resolve_executable(p.words.front());
-  if (p.executable.empty())
-    throw Error(ErrorCode::invalid_argument,
-                "--solver: " + p.words.front() + ": no such executable in PATH");
-  if (::access(p.executable.c_str(), X_OK) != 0)
-    throw Error(ErrorCode::invalid_argument,
-                "--solver: " + p.executable + ": not an executable file");
+  p.executable = template_executable(c.solver_template);
   if (c.sha256_file) p.executable_sha256 = c.sha256_file(p.executable);
   p.measurement = c.measurement ? *c.measurement : run_internal::detect_measurement();
   p.isolation = run_internal::detect_isolation();
@@ -682,21 +676,18 @@ std::optional<std::uint64_t> parse_memory_size(std::string_view text) {
   if (i == 0) return std::nullopt;
   auto unit = text.substr(i);
   // "B" alone (bytes), or after the multiplier: "KB", "KiB".
-  if (unit.size() == 3 && unit.ends_with("iB"))
+  if (unit.size() == 3 && (unit.ends_with("iB") || unit.ends_with("ib")))
     unit.remove_suffix(2);
-  else if (unit.size() <= 2 && unit.ends_with("B"))
+  else if (unit.size() <= 2 && (unit.ends_with("B") || unit.ends_with("b")))
     unit.remove_suffix(1);
   int shift = 0;
-  if (unit == "K" || unit == "k")
-    shift = 10;
-  else if (unit == "M")
-    shift = 20;
-  else if (unit == "G")
-    shift = 30;
-  else if (unit == "T")
-    shift = 40;
-  else if (!unit.empty())
+  if (unit.size() == 1) {
+    const auto at = std::string_view("KMGT").find(static_cast<char>(unit.front() & ~0x20));
+    if (at == std::string_view::npos) return std::nullopt;
+    shift = 10 * static_cast<int>(at + 1);
+  } else if (!unit.empty()) {
     return std::nullopt;
+  }
   if (shift > 0 && value > (UINT64_MAX >> shift)) return std::nullopt;
   return value << shift;
 }

@@ -467,12 +467,7 @@ SlurmRun slurm_run_here(const std::string& directory) {
 SlurmRun plan_slurm_run(const RunConfig& config, const SlurmRequest& request) {
   const auto& instance = *config.instance;
   const View selection = solution_selection(instance, config.choice);
-  const auto words = split_command(config.solver_template);
-  const std::string executable = resolve_executable(words.front());
-  if (executable.empty() || ::access(executable.c_str(), X_OK) != 0)
-    throw Error(ErrorCode::invalid_argument,
-                "--solver: " + words.front() + ": no such executable" +
-                    (words.front().find('/') == std::string::npos ? " in PATH" : ""));
+  template_executable(config.solver_template);  // checked before DIR is written
   SlurmRun run = slurm_run_here(request.directory);
   run.instance = fs::absolute(config.instance_path).lexically_normal().string();
   run.instance_digest = instance.digest();

@@ -19,6 +19,7 @@
 #include "mosb/enum_names.hpp"
 #include "mosb/run.hpp"
 #include "mosb/solution_file.hpp"
+#include "mosb/solver_spec.hpp"
 
 namespace mosb {
 
@@ -29,14 +30,9 @@ struct SourceLine {
 };
 
 struct ExperimentSolver {
-  std::string name;  // [A-Za-z0-9_.+-]: a directory name under results/cells
-  // A `mosb run --solver` template; empty when the solver names a profile.
-  std::string solver_template;
-  // A solver profile (issue 34) and what it is filled with; kept, refused until profiles exist.
-  std::string profile, executable;
-  std::map<std::string, std::string> options;
-  std::string output_format = "protocol";
-  std::string epsilon = "0";
+  std::string name;  // [A-Za-z0-9_.+-]: a directory name under results/cells; also spec.name
+  // A template with its output format, or a profile with its executable and options; and ε.
+  SolverSpec spec;
   // Optional: the solver runs only the cells these patterns match (as Experiment::benchmarks), a
   // bi-objective solver the 2-objective views; each must match a cell of the experiment.
   std::vector<std::string> benchmarks;
@@ -66,13 +62,9 @@ struct Experiment {
 // "FILE:LINE: KEY: problem" (or "FILE: problem" without a line), as every refusal of a plan says.
 std::string experiment_error(const Experiment& e, const SourceLine& at, const std::string& problem);
 
-// What `solver` runs as: its template, output format and ε. The one step from an experiment's
-// solver to lib/run's configuration, where solver profiles (issue 34) will be resolved; until then
-// a `profile` solver is refused ("profiles need ...").
-struct SolverCommand {
-  std::string solver_template, output_format, epsilon;
-};
-SolverCommand solver_command(const Experiment& e, const ExperimentSolver& solver);
+// Gives the solver `name` the executable `path` (`--executable NAME=PATH`: one experiment file
+// for every machine). Throws mosb::Error (invalid_argument) when no solver has that name.
+void set_solver_executable(Experiment& e, const std::string& name, const std::string& path);
 
 // One cell: one solver over the query set of one view of one instance.
 struct ExperimentCell {
@@ -88,23 +80,26 @@ struct ExperimentCell {
 
 struct ExperimentPlan {
   Experiment experiment;
-  std::vector<SolverCommand> commands;         // per solver
+  SolverResolver resolver;                     // what the solvers were checked with, and run by
+  std::vector<ResolvedSolver> solvers;         // per solver: executable, binding
   std::vector<std::string> executable_sha256;  // per solver: its executable's SHA-256
   std::vector<ExperimentCell> cells;           // solver-major, then instance, then view
 };
 
 // Resolves the experiment: the store (or instance files), the benchmarks each matching some
 // (instance, view) (a pattern matches a view name, a benchmark name or BENCHMARK/VIEW), every
-// solver's command and executable, the reference solvers among the solvers. Throws mosb::Error
-// (invalid_argument) with experiment_error's line before anything runs.
-ExperimentPlan plan_experiment(const Experiment& experiment);
+// solver checked by `resolver` (converters/profiles' solver_resolver() for the program), the
+// reference solvers among the solvers. Throws mosb::Error (invalid_argument) with
+// experiment_error's line before anything runs.
+ExperimentPlan plan_experiment(const Experiment& experiment, const SolverResolver& resolver);
 
 // One record of results/MANIFEST: a finished cell.
 struct CellRecord {
   ExperimentCell cell;
   std::string sha256;             // of the solution file
   std::string executable_sha256;  // of the solver's executable when it ran
-  std::string solver_template, limits;
+  std::string solver_binding;     // ResolvedSolver::binding
+  std::string limits;
   StatusCounts counts;
 };
 
@@ -155,9 +150,6 @@ struct ExperimentProgress {
 struct ExperimentOptions {
   unsigned jobs = 1;  // queries at once within a cell
   std::optional<Measurement> measurement;
-  // The adapter of a solver's output format ("protocol": lib/run's own); nullptr for an unknown
-  // format. The program passes converters/solutions' registry.
-  std::function<OutputAdapter(const std::string& format)> adapter;
   std::function<void(const ExperimentProgress&)> progress;
   std::function<void(const ExperimentCell&, const QueryRecord&, const Query&)> failed;
 };

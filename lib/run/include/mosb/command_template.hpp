@@ -38,4 +38,10 @@ std::vector<std::string> expand_command(std::span<const std::string> words,
 // executable file of that name in $PATH (empty when none).
 std::string resolve_executable(const std::string& name);
 
+// The program `solver_template` runs: its first word, which must not be a placeholder, resolved
+// (resolve_executable) to an executable file; every placeholder must be one of
+// run_placeholders(). Throws mosb::Error (invalid_argument) naming what is wrong. The one check
+// of a template, for `mosb run`, its SLURM tasks and experiments alike.
+std::string template_executable(std::string_view solver_template);
+
 }  // namespace mosb

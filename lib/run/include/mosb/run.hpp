@@ -62,8 +62,9 @@ struct ProcessLimits {
 // "60", "60s", "1.5m", "2h", "500ms": seconds (the limits' text of `mosb run` and of an
 // experiment file), decimal only; nullopt when malformed, negative or above 1e9 s.
 std::optional<double> parse_duration(std::string_view text);
-// "4294967296", "100B", "512M", "16G", "1T" (K, M, G, T: powers of 1024; an optional "B" or "iB"
-// after the multiplier, "B" alone for bytes): bytes; nullopt when malformed or above 2^64 - 1.
+// "4294967296", "100B", "512M", "16g", "1T" (K, M, G, T in either case: powers of 1024; an
+// optional "B" or "iB" after the multiplier, "B" alone for bytes): bytes; nullopt when malformed
+// or above 2^64 - 1. The one size grammar: every size option and an experiment file's sizes.
 std::optional<std::uint64_t> parse_memory_size(std::string_view text);
 
 // "CPU MODEL, N cores, memory M kB, Linux RELEASE ARCH" from /proc and uname.

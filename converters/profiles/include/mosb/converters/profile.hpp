@@ -114,6 +114,8 @@ struct ProfileOutput {
 
 struct SolverProfile {
   std::string file;  // where it was read from (messages)
+  // XXH3-64 of the profile's text, hex: a changed profile changes what a finished run is bound to.
+  std::string text_digest;
   std::string name, solver, description, repository, version;
   std::string command;  // a template of words with placeholders (spec/RUN.md §10)
   std::vector<int> success_exit_codes{0};

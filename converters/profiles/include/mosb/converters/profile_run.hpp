@@ -1,7 +1,8 @@
 // A solver profile applied to a run (spec/RUN.md §10): the text input prepared (through the
 // export cache), the profile's command rendered into the run's solver template, its output read
-// by the adapter it declares, and what it is recorded in the solution file. `mosb run --profile`
-// calls this; the run itself is lib/run's.
+// by the adapter it declares, and what it is recorded in the solution file. The solver resolver
+// (solver_resolver.hpp) calls this for `mosb run --profile` and experiments alike; the run itself
+// is lib/run's.
 #pragma once
 
 #include <filesystem>
@@ -12,29 +13,21 @@
 #include "mosb/converters/export_cache.hpp"
 #include "mosb/converters/profile.hpp"
 #include "mosb/run.hpp"
+#include "mosb/solver_spec.hpp"
 
 namespace mosb::converters {
 
-struct ProfileRunRequest {
-  SolverProfile profile;
-  std::string executable;              // what {executable} becomes
-  std::vector<std::string> options;    // --profile-option KEY=VALUE, in order
-  double scale = 0;                    // --scale K (0: none)
-  std::filesystem::path export_cache;  // empty: default_export_cache()
-};
+// Checks a profile solver before anything runs (spec.profile, its options, its executable, an ε
+// its command takes) and says its name and binding (mosb/solver_spec.hpp). Throws mosb::Error
+// (invalid_argument for what the user can change).
+ResolvedSolver check_profile_solver(const SolverSpec& spec);
 
-struct PreparedProfileRun {
-  std::filesystem::path export_directory;  // empty for a solver that reads the .mosb
-  bool export_reused = false;
-  std::vector<std::string> words;  // the command as the first query would run it (for messages)
-};
-
-// Fills `config` (instance, instance_path, choice, limits and epsilon already set): the solver
-// template, output format and adapter, success exit codes, id base, solver name and version (when
-// the caller left them empty), and the profile's parameters. Throws mosb::Error (invalid_argument
-// for what the user can change: an unknown option or value, too many objectives, a float
-// objective for an integer solver without --scale, an ε the solver is not given).
-PreparedProfileRun apply_profile(RunConfig& config, const ProfileRunRequest& request);
+// Fills `config` (instance, instance_path, choice and limits already set) for a profile solver:
+// the text input exported (through the export cache), the solver template, output format and
+// adapter, success exit codes, id base, ε, solver name and version, and the profile's parameters.
+// Throws as check_profile_solver does, and for what the instance shows: too many objectives, a
+// float objective for an integer solver without a scale.
+void apply_profile(RunConfig& config, const SolverSpec& spec);
 
 // The vectors adapter (spec/RUN.md §10.4) of `profile` for a run of `objectives` objectives.
 struct VectorsContext {
