@@ -324,8 +324,16 @@ class ExperimentTest(ExperimentFixture):
              '[[solver]]\nname = "a"\ntemplate = "%s"\n' % (self.path("store"), self.path("wrong.sh")),
              ":4: benchmarks: 'Nope_*' matches no view or benchmark"),
             ('name = "x"\nstore = "%s"\n[[solver]]\nname = "apex"\nprofile = "apex"\n'
-             'executable = "/bin/true"\noptions = { algorithm = "Apex" }\n' % self.path("store"),
-             ":3: solver[1]: solver 'apex': profiles need"),
+             'executable = "/nonexistent/multiobj"\noptions = { algorithm = "Apex" }\n'
+             % self.path("store"),
+             ":3: solver[1]: solver 'apex': executable /nonexistent/multiobj: no such executable"),
+            ('name = "x"\nstore = "%s"\n[[solver]]\nname = "apex"\nprofile = "apex"\n'
+             'executable = "/bin/true"\noptions = { algorithm = "Dijkstra" }\n'
+             % self.path("store"),
+             ":3: solver[1]: solver 'apex': option algorithm=Dijkstra: algorithm is one of"),
+            ('name = "x"\nstore = "%s"\n[[solver]]\nname = "tmda"\nprofile = "tmda"\n'
+             'executable = "/bin/true"\nepsilon = 0.1\n' % self.path("store"),
+             ":3: solver[1]: solver 'tmda': epsilon 0.1: profile tmda gives its solver no epsilon"),
             ('name = "x"\nstore = "%s"\n[[solver]]\nname = "a"\ntempalte = "x"\n' % self.path("store"),
              ":5: solver[1].tempalte: unknown key"),
             ('name = "x"\nstore = "%s"\n[[solver]]\nname = "a"\ntemplate = "%s"\n'
@@ -341,6 +349,73 @@ class ExperimentTest(ExperimentFixture):
                 self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
                 self.assertIn(path + expected, r.stderr)
                 self.assertFalse(os.path.exists(self.path("never")))
+
+    def test_published_solvers_by_profile_with_an_epsilon_sweep(self):
+        """The paper's protocol as one file: an exact solver by template and one by profile
+        (cross-validated), an approximate one by profile at two ε; stand-ins of the published
+        programs (standin_solvers.py)."""
+        standin = os.path.join(os.path.dirname(os.path.abspath(__file__)), "standin_solvers.py")
+        bins = {}
+        for solver in ("apex", "mohs"):
+            bins[solver] = self.write("bin/" + solver, "#!/bin/sh\nexec /usr/bin/python3 %s %s "
+                                      "\"$@\"\n" % (standin, solver))
+            os.chmod(bins[solver], 0o755)
+        env = dict(os.environ, MOSB_EXPORT_CACHE=self.path("cache"))
+        # A grid small enough for the stand-ins' plain Python search.
+        self.ok("generate", "grid", "--width", "6", "--height", "6", "--objectives", "3", "-o",
+                self.path("small-bare.mosb"))
+        self.ok("queries", "generate", self.path("small-bare.mosb"), "--set", "default",
+                "--count", "5", "--seed", "3", "--replace", "-o", self.path("small.mosb"))
+        text = ('name = "paper"\ninstances = ["%s"]\nbenchmarks = ["Grid_2", "Grid_3"]\n'
+                'limits = { time = 60, memory = "2g" }\n'
+                '[[solver]]\nname = "namoa"\ntemplate = "%s"\n'
+                '[[solver]]\nname = "ltmoa"\nprofile = "mohs"\nexecutable = "/nonexistent"\n'
+                'options = { algorithm = "LTMOA" }\n'
+                '[[solver]]\nname = "apex"\nprofile = "apex"\nexecutable = "%s"\n'
+                'options = { merge = "RANDOM" }\nepsilon = [0.01, "0.1"]\n'
+                '[reference]\nsolvers = ["namoa", "ltmoa"]\n'
+                % (self.path("small.mosb"), TEMPLATE % os.path.join(EXAMPLES, "namoa"),
+                   bins["apex"]))
+        exp = self.write("paper.toml", text)
+        results = self.path("paper")
+        # The file's executable is this machine's; --executable gives another's.
+        r = run("experiment", "run", exp, "-o", results, env=env)
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("solver 'ltmoa': executable /nonexistent: no such executable", r.stderr)
+        self.assertFalse(os.path.exists(results))
+        argv = ["experiment", "run", exp, "-o", results, "--executable", "ltmoa=" + bins["mohs"],
+                "--json"]
+        r = run(*argv, env=env)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        summary = json.loads(r.stdout)
+        self.assertEqual((summary["cells"], summary["ran"]), (8, 8))  # 2 views x 4 solvers
+        self.assertEqual(summary["statuses"]["solved"], 40, r.stderr)
+        cells = self.cells(results)
+        self.assertEqual(sorted({f.split("/")[1] for f in cells}),
+                         ["apex-eps0.01", "apex-eps0.1", "ltmoa", "namoa"])
+        sol = os.path.join(results, "cells", "apex-eps0.1", "small.Grid_3.sol")
+        info = json.loads(self.ok("solutions", "inspect", "--json", sol).stdout)
+        self.assertEqual(info["solver"], "apex-eps0.1")  # the experiment's name
+        self.assertEqual(info["epsilon"], "0.1")
+        self.assertEqual(info["parameters"]["profile.option.merge"], "RANDOM")
+        self.assertEqual(info["parameters"]["profile.name"], "apex")
+        # The exact solvers agree on every query; the approximate ones are covered at their ε.
+        refs = json.loads(self.ok("solutions", "reference", results, "--solvers", "namoa,ltmoa",
+                                  "-o", self.path("refs"), "--json").stdout)
+        for x in refs["references"]:
+            self.assertEqual((x["agreed"], x["disagreements"]), (5, []), x["file"])
+        table = json.loads(self.ok("eval", results, "--reference", self.path("refs"),
+                                   "--json").stdout)
+        for row in table["rows"]:
+            self.assertEqual(row["covered@0.1"], 5, row)
+        # A rerun runs nothing; another merge strategy is another solver: its cells are refused.
+        self.assertEqual(json.loads(run(*argv, env=env).stdout)["ran"], 0)
+        self.write("paper.toml", text.replace('"RANDOM"', '"MORE_SLACK"'))
+        r = run(*argv, env=env)
+        self.assertEqual(r.returncode, 1, r.stderr)
+        self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+        self.assertIn("apex-eps0.01/small/Grid_2: the solver's command changed", r.stderr)
+        self.assertNotIn("ltmoa/", r.stderr)
 
 
 class ExperimentOnSlurm(ExperimentFixture, test_slurm.SlurmCluster):

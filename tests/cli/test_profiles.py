@@ -347,7 +347,7 @@ for c in s.pareto(n, arcs, source, target):
         r = self.mosb("run", self.path("g2.mosb"), "--view", "Grid_2", "--profile", "mohs",
                       "--executable", self.standins["mohs"], "--scale", "10", "-o",
                       self.path("y.sol"), env=self.env)
-        self.assert_one_line_error(r, "--scale: no objective of the run holds float costs")
+        self.assert_one_line_error(r, "scale: no objective of the run holds float costs")
 
     def test_malformed_profile_is_one_line_with_file_line_and_key(self):
         self.write("bad.toml", 'name = "bad"\ncommand = "{executable} {source} {target}"\n'

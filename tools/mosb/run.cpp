@@ -279,9 +279,10 @@ void check_run_options(const RunArgs& a) {
   try {
     converters::check_solver(solver_spec(a));
   } catch (const Error& e) {
-    if (e.code() == ErrorCode::io) throw;
-    throw UsageError((a.profile.empty() ? "--solver: " : "--profile " + a.profile + ": ") +
-                     std::string(e.what()));
+    // A template that does not parse or run is a usage error; a profile's problems (its file,
+    // its options) say which themselves.
+    if (e.code() == ErrorCode::io || !a.profile.empty()) throw;
+    throw UsageError("--solver: " + std::string(e.what()));
   }
 }
 
