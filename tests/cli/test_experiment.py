@@ -404,6 +404,17 @@ class ExperimentTest(ExperimentFixture):
                                   "-o", self.path("refs"), "--json").stdout)
         for x in refs["references"]:
             self.assertEqual((x["agreed"], x["disagreements"]), (5, []), x["file"])
+        # A name that matches no file (a typo) and an approximate solver are refused.
+        for solvers, expected in (("namoa,ltmao", "solver 'ltmao' has no file among the inputs"),
+                                  ("namoa,apex-eps0.01",
+                                   "solver 'apex-eps0.01' claims epsilon 0.01; a reference "
+                                   "takes exact solvers (epsilon 0) only")):
+            r = run("solutions", "reference", results, "--solvers", solvers, "-o",
+                    self.path("bad-refs"))
+            self.assertNotEqual(r.returncode, 0, r.stderr)
+            self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+            self.assertIn(expected, r.stderr)
+            self.assertFalse(os.path.exists(self.path("bad-refs")))
         table = json.loads(self.ok("eval", results, "--reference", self.path("refs"),
                                    "--json").stdout)
         for row in table["rows"]:

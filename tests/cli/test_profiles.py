@@ -137,6 +137,20 @@ class ProfileTest(CliTest):
             self.assertAlmostEqual(reported["reported_runtime_seconds"]["total"], 8 * seconds,
                                    places=9, msg=profile)
 
+    def test_a_profile_run_is_named_by_its_options_and_epsilon(self):
+        """Two algorithms, or two ε, of one program never share a recorded name."""
+        for extra, name in (([], "A*pex"),
+                            (["--profile-option", "algorithm=NAMOAdr"], "A*pex NAMOAdr"),
+                            (["--profile-option", "merge=RANDOM", "--epsilon", "0.05"],
+                             "A*pex RANDOM \u03b5=0.05"),
+                            (["--profile-option", "algorithm=NAMOAdr", "--solver-name", "mine"],
+                             "mine")):
+            with self.subTest(extra=extra):
+                self.run_profile("g3.mosb", "Grid_3", "apex", self.standins["apex"], *extra,
+                                 output="named.sol")
+                self.assertEqual(self.inspect("named.sol")["solver"], name)
+                os.remove(self.path("named.sol"))
+
     def test_arguments_as_the_solvers_take_them(self):
         self.run_profile("g3.mosb", "Grid_3", "apex", self.standins["apex"], "--time-limit", "10s",
                          "--profile-option", "algorithm=NAMOAdr")

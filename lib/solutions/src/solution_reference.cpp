@@ -1,5 +1,7 @@
 #include "mosb/solution_reference.hpp"
 
+#include "mosb/eval.hpp"
+
 #include <algorithm>
 
 #include "mosb/error.hpp"
@@ -200,11 +202,30 @@ void write_reference(std::span<const SolutionReader* const> files,
 std::vector<ReferenceGroup> reference_groups(std::span<const SolutionReader> files,
                                              const ReferenceOptions& options) {
   std::vector<ReferenceGroup> groups;
+  // A named solver without a file is a typo or a missing run: refused, never an empty column.
+  std::vector<std::string> present;
+  for (const auto& file : files)
+    if (const auto name = solver_name(file);
+        std::find(present.begin(), present.end(), name) == present.end())
+      present.push_back(name);
+  for (const auto& name : options.solvers)
+    if (std::find(present.begin(), present.end(), name) == present.end()) {
+      std::string listed;
+      for (const auto& p : present) listed += (listed.empty() ? "" : ", ") + p;
+      throw Error(ErrorCode::invalid_argument,
+                  "solver '" + name + "' has no file among the inputs (their solvers: " + listed +
+                      ")");
+    }
   for (std::size_t f = 0; f < files.size(); ++f) {
     const auto name = solver_name(files[f]);
     if (std::find(options.solvers.begin(), options.solvers.end(), name) == options.solvers.end())
       continue;
     const auto& file = files[f];
+    // A reference is exact: an approximate front is never cross-validated into one.
+    if (const auto epsilon = file.solver().epsilon; parse_epsilon(epsilon).num != 0)
+      throw Error(ErrorCode::invalid_argument,
+                  file.display_name() + ": solver '" + name + "' claims epsilon " + epsilon +
+                      "; a reference takes exact solvers (epsilon 0) only");
     auto group = std::find_if(groups.begin(), groups.end(), [&](const ReferenceGroup& g) {
       const auto& first = files[g.files.front()];
       return first.instance_digest() == file.instance_digest() &&
