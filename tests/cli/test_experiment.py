@@ -350,6 +350,30 @@ class ExperimentTest(ExperimentFixture):
                 self.assertIn(path + expected, r.stderr)
                 self.assertFalse(os.path.exists(self.path("never")))
 
+    def test_a_directory_it_did_not_make_is_never_written(self):
+        # The user's files: refused before anything (the lock included) is made there.
+        mine = self.path("mine")
+        self.write("mine/notes.txt", "mine\n")
+        r = run("experiment", "run", self.experiment, "-o", mine)
+        self.assertEqual(r.returncode, 1, r.stderr)
+        self.assertIn("not empty and not an experiment's results directory", r.stderr)
+        self.assertEqual(os.listdir(mine), ["notes.txt"])
+        os.symlink(mine, self.path("link"))
+        r = run("experiment", "run", self.experiment, "-o", self.path("link"))
+        self.assertIn("a symbolic link", r.stderr)
+        # A link planted where a solver's cells go is not followed.
+        results = self.path("planted")
+        os.makedirs(os.path.join(results, "cells"))
+        self.write("planted/experiment.json",
+                   json.dumps({"format": "mosb-experiment-plan", "name": "ci"}))
+        os.symlink(self.path("elsewhere"), os.path.join(results, "cells", "namoa"))
+        os.makedirs(self.path("elsewhere"))
+        r = run("experiment", "run", self.experiment, "-o", results)
+        self.assertEqual(r.returncode, 1, r.stderr)
+        self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+        self.assertIn("cells/namoa: not a directory of the results", r.stderr)
+        self.assertEqual(os.listdir(self.path("elsewhere")), [])
+
     def test_published_solvers_by_profile_with_an_epsilon_sweep(self):
         """The paper's protocol as one file: an exact solver by template and one by profile
         (cross-validated), an approximate one by profile at two ε; stand-ins of the published
@@ -415,6 +439,15 @@ class ExperimentTest(ExperimentFixture):
             self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
             self.assertIn(expected, r.stderr)
             self.assertFalse(os.path.exists(self.path("bad-refs")))
+        # Its outputs never replace its inputs.
+        namoa = os.path.join(results, "cells", "namoa")
+        before = read(os.path.join(namoa, "small.Grid_2.sol"))
+        r = run("solutions", "reference", os.path.join(namoa, "small.Grid_2.sol"),
+                os.path.join(results, "cells", "ltmoa", "small.Grid_2.sol"), "--solvers",
+                "namoa,ltmoa", "-o", namoa)
+        self.assertEqual(r.returncode, 1, r.stderr)
+        self.assertIn("is one of the inputs", r.stderr)
+        self.assertEqual(read(os.path.join(namoa, "small.Grid_2.sol")), before)
         table = json.loads(self.ok("eval", results, "--reference", self.path("refs"),
                                    "--json").stdout)
         for row in table["rows"]:

@@ -52,6 +52,7 @@ int run_reference(const ReferenceArgs& a) {
     for (auto f : groups[g].files) members[g].push_back(&files[f]);
     validations.push_back(cross_validate(members[g], options));
   }
+  check_reference_outputs(files, groups, a.output);
   std::error_code ec;
   std::filesystem::create_directories(a.output, ec);
   if (ec) throw Error(ErrorCode::io, a.output + ": cannot create: " + ec.message());

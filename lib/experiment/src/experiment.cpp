@@ -495,7 +495,45 @@ void check_finished_cells(const ExperimentPlan& plan, const fs::path& results,
                     "directory)");
 }
 
-// Creates results/ and records the plan; refuses a directory of another experiment.
+// Creates results/ when it is not there; takes it when it is an experiment's results directory
+// (its plan, or nothing but the lock of a run killed before it wrote one). Anything else is
+// refused before anything is created in it: a link, a file, a directory of the user's files.
+void claim_results_directory(const fs::path& results) {
+  std::error_code ec;
+  const auto status = fs::symlink_status(results, ec);
+  if (fs::is_symlink(status))
+    throw Error(ErrorCode::invalid_argument,
+                results.string() + ": a symbolic link; give the results directory itself");
+  if (fs::exists(status)) {
+    if (!fs::is_directory(status))
+      throw Error(ErrorCode::invalid_argument, results.string() + ": not a directory");
+    for (const auto& entry : fs::directory_iterator(results)) {
+      const auto name = entry.path().filename().string();
+      if (name != ".lock" && !fs::exists(results / kPlanFile, ec))
+        throw Error(ErrorCode::invalid_argument,
+                    results.string() + ": not empty and not an experiment's results directory");
+    }
+  }
+  fs::create_directories(results, ec);
+  if (ec) throw Error(ErrorCode::io, results.string() + ": cannot create: " + ec.message());
+}
+
+// results/cells/SOLVER, created; a link on the way (planted to write elsewhere) is refused.
+void make_cell_directory(const fs::path& results, const ExperimentCell& cell) {
+  auto directory = results;
+  for (const auto& part : fs::path(cell.file).parent_path()) {
+    directory /= part;
+    std::error_code ec;
+    const auto status = fs::symlink_status(directory, ec);
+    if (fs::is_symlink(status) || (fs::exists(status) && !fs::is_directory(status)))
+      throw Error(ErrorCode::invalid_argument,
+                  directory.string() + ": not a directory of the results (a link or a file)");
+    if (!fs::exists(status) && !fs::create_directory(directory, ec) && ec)
+      throw Error(ErrorCode::io, directory.string() + ": cannot create: " + ec.message());
+  }
+}
+
+// Records the plan; refuses a directory of another experiment.
 void record_plan(const ExperimentPlan& plan, const fs::path& results) {
   const auto path = results / kPlanFile;
   std::error_code ec;
@@ -506,10 +544,6 @@ void record_plan(const ExperimentPlan& plan, const fs::path& results) {
       throw Error(ErrorCode::invalid_argument,
                   results.string() + " holds the results of experiment '" +
                       recorded.value("name", "?") + "', not '" + plan.experiment.name + "'");
-  } else if (fs::exists(results, ec) && !fs::is_empty(results, ec) &&
-             !fs::exists(results / ".lock", ec)) {
-    throw Error(ErrorCode::invalid_argument,
-                results.string() + ": not empty and not an experiment's results directory");
   }
   write_text_atomically(path, plan_json(plan).dump(2) + "\n");
 }
@@ -519,8 +553,7 @@ void record_plan(const ExperimentPlan& plan, const fs::path& results) {
 ExperimentResult run_experiment(const ExperimentPlan& plan, const fs::path& results,
                                 const ExperimentOptions& options, const std::atomic<bool>& stop) {
   std::error_code ec;
-  fs::create_directories(results, ec);
-  if (ec) throw Error(ErrorCode::io, results.string() + ": cannot create: " + ec.message());
+  claim_results_directory(results);
   const ResultsLock lock(results);
   if (!lock.held())
     throw Error(ErrorCode::invalid_argument,
@@ -565,7 +598,7 @@ ExperimentResult run_experiment(const ExperimentPlan& plan, const fs::path& resu
     if (instance.digest() != cell.instance_digest)
       throw Error(ErrorCode::invalid_argument,
                   cell.id() + ": " + instance_path.string() + " is no longer the planned instance");
-    fs::create_directories((results / cell.file).parent_path(), ec);
+    make_cell_directory(results, cell);
     RunConfig config;
     config.instance = &instance;
     config.instance_path = instance_path.string();
@@ -717,9 +750,7 @@ std::vector<std::pair<fs::path, CellRecord>> records_to_merge(const ExperimentPl
 
 std::uint64_t merge_experiment_results(const ExperimentPlan& plan, const fs::path& results,
                                        const std::vector<fs::path>& parts) {
-  std::error_code ec;
-  fs::create_directories(results, ec);
-  if (ec) throw Error(ErrorCode::io, results.string() + ": cannot create: " + ec.message());
+  claim_results_directory(results);
   const ResultsLock lock(results);
   if (!lock.held())
     throw Error(ErrorCode::invalid_argument,
@@ -730,8 +761,7 @@ std::uint64_t merge_experiment_results(const ExperimentPlan& plan, const fs::pat
   record_plan(plan, results);
   for (const auto& [part, record] : merged) {
     const auto target = results / record.cell.file;
-    fs::create_directories(target.parent_path(), ec);
-    if (ec) throw Error(ErrorCode::io, target.parent_path().string() + ": " + ec.message());
+    make_cell_directory(results, record.cell);
     const auto bytes = read_whole_file(part / record.cell.file);
     if (sha256_hex(std::as_bytes(std::span(bytes.data(), bytes.size()))) != record.sha256)
       throw Error(ErrorCode::invalid_argument,

@@ -250,4 +250,17 @@ std::vector<ReferenceGroup> reference_groups(std::span<const SolutionReader> fil
   return groups;
 }
 
+void check_reference_outputs(std::span<const SolutionReader> files,
+                             std::span<const ReferenceGroup> groups,
+                             const std::filesystem::path& directory) {
+  for (const auto& group : groups)
+    for (const auto& file : files) {
+      std::error_code ec;
+      if (std::filesystem::equivalent(directory / group.name, file.display_name(), ec))
+        throw Error(ErrorCode::invalid_argument,
+                    (directory / group.name).string() + " is one of the inputs (" +
+                        file.display_name() + "): write the references into another directory");
+    }
+}
+
 }  // namespace mosb

@@ -92,9 +92,14 @@ struct ReferenceGroup {
 };
 // The files of the named solvers (solver_name; others are left out) grouped by binding, in the
 // order of their first file. Throws mosb::Error (invalid_argument) when two groups would have one
-// name, or for no file of a named solver.
+// name, for a named solver without a file, and for a file of a named solver that claims ε > 0.
 std::vector<ReferenceGroup> reference_groups(std::span<const SolutionReader> files,
                                              const ReferenceOptions& options);
+// Throws mosb::Error (invalid_argument, naming it) when the reference of a group, written into
+// `directory`, would replace one of `files`: a reference never overwrites its inputs.
+void check_reference_outputs(std::span<const SolutionReader> files,
+                             std::span<const ReferenceGroup> groups,
+                             const std::filesystem::path& directory);
 
 // "0-4,7,9-12": ascending distinct numbers as ranges; "" for none.
 std::string query_ranges(std::span<const std::uint64_t> queries);
