@@ -84,11 +84,25 @@ class ParallelArcsAndLoops(DimacsCase):
         # GRAPH lists 1->2 twice (one parallel copy) and 2->2 (one self-loop).
         self.write("g.gr", GRAPH)
         self.ok("convert", "dimacs", "--gr", "g.gr", "-o", "g.mosb")
-        report = json.loads(self.ok("inspect", "--json", "g.mosb").stdout)
+        report = json.loads(self.ok("inspect", "--json", "g.mosb", "--verify", "full").stdout)
         self.assertEqual((report["arcs"], report["self_loops"], report["parallel_arcs"]), (7, 1, 1))
-        text = self.ok("inspect", "g.mosb").stdout
+        self.assertEqual(report["verified"], "full")
+        text = self.ok("inspect", "g.mosb", "--verify", "full").stdout
         self.assertIn("self-loops  1", text)
         self.assertIn("parallel    1", text)
+        # Without --verify, a look at the header, the table and the metadata only, which it says.
+        report = json.loads(self.ok("inspect", "--json", "g.mosb").stdout)
+        self.assertEqual((report["verified"], report["self_loops"]), (None, None))
+        self.assertIn("verified    no (", self.ok("inspect", "g.mosb").stdout)
+        # So a damaged payload is not seen by a look, and is by --verify.
+        data = bytearray(read(self.path("g.mosb")))
+        payload = [x for x in report["sections"] if x["kind"] != "metadata"][-1]
+        data[payload["offset"]] ^= 0xFF
+        with open(self.path("bad.mosb"), "wb") as f:
+            f.write(data)
+        self.ok("inspect", "bad.mosb")
+        r = self.mosb("inspect", "bad.mosb", "--verify", "checksums")
+        self.assertEqual(r.returncode, 1, r)
 
 
 class Extended(DimacsCase):

@@ -25,18 +25,35 @@ std::string shown(const std::optional<std::string>& value) {
   return escape_for_terminal(value.value_or(""));
 }
 
-// The counts walk the CSR: only on a reader verified in full (nullopt for a packed file, which
-// cannot be verified in place and is shown from its table alone).
-std::optional<ArcMultiplicity> loops_and_parallel_arcs(const GraphReader& r) {
-  if (format::is_packed(r.header())) return std::nullopt;
-  return count_loops_and_parallel_arcs(r);
+// What inspect checked: nothing past the header, the section table and the metadata unless
+// --verify LEVEL was given.
+struct Inspection {
+  GraphReader reader;
+  std::optional<VerifyLevel> verified;
+};
+
+// The counts walk the CSR: only on a reader verified in full (nullopt otherwise, and
+// for a packed file, which cannot be verified in place and is shown from its table alone).
+std::optional<ArcMultiplicity> loops_and_parallel_arcs(const Inspection& i) {
+  if (format::is_packed(i.reader.header()) || !i.verified ||
+      !covers(*i.verified, VerifyLevel::full))
+    return std::nullopt;
+  return count_loops_and_parallel_arcs(i.reader);
+}
+
+std::string verified_text(const Inspection& i) {
+  if (!i.verified)
+    return "no (the header, the section table and the metadata only; --verify LEVEL or mosb "
+           "verify checks the rest)";
+  return std::string(kVerifyLevelNames.name(*i.verified));
 }
 
 std::string version(const GraphReader& r) {
   return std::to_string(r.header().version_major) + "." + std::to_string(r.header().version_minor);
 }
 
-void print_text(const GraphReader& r) {
+void print_text(const Inspection& inspection) {
+  const auto& r = inspection.reader;
   const auto& metadata = r.metadata();
   std::cout << "file        " << r.display_name() << '\n'
             << "format      " << version(r) << "\n"
@@ -44,13 +61,17 @@ void print_text(const GraphReader& r) {
             << "benchmark   " << shown(metadata.get("benchmark")) << '\n'
             << "family      " << shown(metadata.get("family")) << '\n'
             << "vertices    " << r.vertex_count() << '\n'
-            << "arcs        " << r.arc_count() << '\n';
-  if (const auto multiplicity = loops_and_parallel_arcs(r))
+            << "arcs        " << r.arc_count() << '\n'
+            << "verified    " << verified_text(inspection) << '\n';
+  const bool packed = format::is_packed(r.header());
+  if (const auto multiplicity = loops_and_parallel_arcs(inspection))
     std::cout << "self-loops  " << multiplicity->self_loops << '\n'
               << "parallel    " << multiplicity->parallel_arcs << " (extra copies of an arc)\n";
   else
-    std::cout << "self-loops  n/a (packed file)\n"
-              << "parallel    n/a (packed file)\n";
+    std::cout << "self-loops  n/a (" << (packed ? "packed file" : "--verify full counts them")
+              << ")\n"
+              << "parallel    n/a (" << (packed ? "packed file" : "--verify full counts them")
+              << ")\n";
   std::cout << "objectives  " << r.objective_count() << '\n';
   for (std::size_t i = 0; i < r.objective_count(); ++i) {
     const auto& s = r.objective(i);
@@ -90,7 +111,8 @@ void print_text(const GraphReader& r) {
     std::cout << "  " << key << " = " << escape_for_terminal(value) << '\n';
 }
 
-void print_json(const GraphReader& r) {
+void print_json(const Inspection& inspection) {
+  const auto& r = inspection.reader;
   const auto& metadata = r.metadata();
   JsonWriter json(std::cout);
   json.begin_object();
@@ -99,7 +121,11 @@ void print_json(const GraphReader& r) {
   json.key("digest").value(r.digest());
   json.key("vertices").value(r.vertex_count());
   json.key("arcs").value(r.arc_count());
-  if (const auto multiplicity = loops_and_parallel_arcs(r)) {
+  if (inspection.verified)
+    json.key("verified").value(std::string(kVerifyLevelNames.name(*inspection.verified)));
+  else
+    json.key("verified").null();
+  if (const auto multiplicity = loops_and_parallel_arcs(inspection)) {
     json.key("self_loops").value(multiplicity->self_loops);
     json.key("parallel_arcs").value(multiplicity->parallel_arcs);
   } else {
@@ -159,18 +185,25 @@ Command add_inspect(CLI::App& app) {
   auto* sub = app.add_subcommand("inspect", "Show a file's version, digest, sections and metadata");
   auto file = std::make_shared<std::string>();
   auto as_json = std::make_shared<bool>(false);
+  auto level = std::make_shared<std::string>();
   sub->add_option("INSTANCE", *file, "a .mosb instance")->required();
+  sub->add_option("--verify", *level,
+                  "verify the file to LEVEL (" + kVerifyLevelNames.choices_text() +
+                      ") before showing it; full also counts self-loops and "
+                      "parallel arcs. Without it, nothing past the header, the section table and "
+                      "the metadata is read")
+      ->check(CLI::IsMember(kVerifyLevelNames.names()));
   add_json_flag(sub, *as_json);
-  return {sub, [file, as_json] {
-            // The loop counts walk the CSR, so a file is verified in full before anything is
-            // printed; a packed file cannot be, and is shown without the counts.
-            auto reader = GraphReader::open(*file);
-            if (!format::is_packed(reader.header()))
-              reader = GraphReader::open(*file, VerifyLevel::full);
+  return {sub, [file, as_json, level] {
+            Inspection inspection{GraphReader::open(*file), std::nullopt};
+            if (!level->empty()) {
+              inspection.verified = kVerifyLevelNames.parse(*level);
+              inspection.reader = GraphReader::open(*file, *inspection.verified);
+            }
             if (*as_json)
-              print_json(reader);
+              print_json(inspection);
             else
-              print_text(reader);
+              print_text(inspection);
             return 0;
           }};
 }
