@@ -17,10 +17,27 @@ std::string shortest(double x) {
   return {buffer.data(), std::to_chars(buffer.data(), buffer.data() + buffer.size(), x).ptr};
 }
 
-std::string significant(double x, int digits) {
+// `digits` significant digits, never an exponent for a number of `digits` or more digits before
+// the point: those are written whole (rounded to an integer; a front size is never 6.4e+03), the
+// thousands separated by `separator` from 1,000 on when it is not empty.
+std::string significant(double x, int digits, std::string_view separator = {}) {
+  if (std::isfinite(x) && std::abs(x) >= std::pow(10.0, digits - 1) && std::abs(x) < 1e18) {
+    const auto whole = std::to_string(std::llabs(std::llround(x)));
+    std::string out = x < 0 ? "-" : "";
+    for (std::size_t i = 0; i < whole.size(); ++i) {
+      if (i > 0 && (whole.size() - i) % 3 == 0) out += separator;
+      out += whole[i];
+    }
+    return out;
+  }
   std::array<char, 48> buffer{};
   std::snprintf(buffer.data(), buffer.size(), "%.*g", digits, x);
   return buffer.data();
+}
+
+// A count as LaTeX shows it: thousands separated by {,} (a comma that adds no space in math).
+std::string latex_count(std::uint64_t n) {
+  return significant(static_cast<double>(n), 1, "{,}");
 }
 
 // The one CSV field writer (RFC 4180, and OWASP's guard against formulas: tables.hpp).
@@ -59,9 +76,9 @@ std::string latex_cell(const Cell& c) {
     case Cell::Kind::text:
       return latex_escape(c.text);
     case Cell::Kind::count:
-      return std::to_string(c.count);
+      return c.count < (std::uint64_t{1} << 53) ? latex_count(c.count) : std::to_string(c.count);
     case Cell::Kind::real:
-      return std::isinf(c.real) ? "$\\infty$" : significant(c.real, 3);
+      return std::isinf(c.real) ? "$\\infty$" : significant(c.real, 3, "{,}");
     case Cell::Kind::absent:
       break;
   }

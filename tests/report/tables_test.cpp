@@ -120,6 +120,24 @@ TEST_CASE("write_latex: a booktabs tabular of the paper's columns, escaped, thre
   CHECK(tex.ends_with("\\bottomrule\n\\end{tabular}\n"));
 }
 
+TEST_CASE("write_latex and write_text: large numbers whole, never with an exponent") {
+  Table table;
+  table.columns = {{"count", "count"}, {"size", "size"}, {"small", "small"}};
+  table.rows = {{Cell::of(std::uint64_t{1160000}), Cell::of(6400.5), Cell::of(0.000173)},
+                {Cell::of(std::uint64_t{999}), Cell::of(999.6), Cell::of(12.345)},
+                {Cell::of(std::uint64_t{0}), Cell::of(-12345.0), Cell::of(0.0)}};
+  std::ostringstream latex;
+  write_latex(latex, table);
+  CHECK(latex.str().find("1{,}160{,}000 & 6{,}401 & 0.000173 \\\\\n") != std::string::npos);
+  CHECK(latex.str().find("999 & 1{,}000 & 12.3 \\\\\n") != std::string::npos);
+  CHECK(latex.str().find("0 & -12{,}345 & 0 \\\\\n") != std::string::npos);
+  CHECK(latex.str().find("e+") == std::string::npos);
+  std::ostringstream text;
+  write_text(text, table);
+  CHECK(text.str().find("6401") != std::string::npos);
+  CHECK(text.str().find("e+") == std::string::npos);
+}
+
 TEST_CASE("write_text: names left-aligned, numbers right-aligned under their headings") {
   std::ostringstream out;
   write_text(out, comparison_summary(two_solvers(), kLabels));
