@@ -67,7 +67,16 @@ TEST_CASE("a minimal profile takes the defaults") {
   CHECK(p.input.form == InputForm::mosb);
   CHECK(p.input.id_base == 0);
   CHECK(p.output.format == "protocol");
+  CHECK(p.output.runtime_clock == RuntimeClock::wall);
   CHECK(p.success_exit_codes == std::vector<int>{0});
+  // The digest of the text, which a finished experiment cell is bound to: another text, another.
+  CHECK(p.text_digest.size() == 16);
+  CHECK(parse_profile(std::string(kMinimal) + "# changed\n", "p.toml").text_digest !=
+        p.text_digest);
+  CHECK(parse_profile(std::string(kMinimal) + "[output]\nruntime_clock = \"cpu\"\n", "p.toml")
+            .output.runtime_clock == RuntimeClock::cpu);
+  CHECK_THROWS(parse_profile(std::string(kMinimal) + "[output]\nruntime_clock = \"sun\"\n",
+                             "p.toml"));
 }
 
 TEST_CASE("a malformed profile is one line with file, line, column and key") {

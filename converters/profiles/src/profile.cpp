@@ -329,6 +329,7 @@ ProfileOutput parse_output(Fields& root) {
   if (is_completed(output.unfinished))
     f.fail(*f.find("unfinished"), "unfinished", "expected a status of a search that did not end");
   output.runtime = parse_runtime(f);
+  output.runtime_clock = f.choice("runtime_clock", kRuntimeClockNames).value_or(RuntimeClock::wall);
   output.count = parse_count(f);
   f.finish();
   return output;

@@ -291,6 +291,7 @@ void apply_profile(RunConfig& config, const SolverSpec& spec) {
   m["profile.file"] = p.file;
   if (!p.repository.empty()) m["profile.repository"] = p.repository;
   m["profile.input"] = std::string(kInputFormNames.name(p.input.form));
+  m["profile.runtime_clock"] = std::string(kRuntimeClockNames.name(p.output.runtime_clock));
   m["profile.id_base"] = std::to_string(p.input.id_base);
   for (const auto& [key, value] : options) m["profile.option." + key] = value;
   if (!in.files.scaled_objectives.empty()) {

@@ -71,6 +71,13 @@ struct ProfileOption {
   std::map<std::string, unsigned> max_objectives;
 };
 
+// What the solver's own runtime measures: the time passed, or its CPU time.
+enum class RuntimeClock { wall, cpu };
+inline constexpr auto kRuntimeClockNames = enum_names<RuntimeClock>({
+    {RuntimeClock::wall, "wall"},
+    {RuntimeClock::cpu, "cpu"},
+});
+
 // A line of the output that says something: a status (`timeout: 1`), or that the solver finished.
 struct OutputLine {
   OutputFile file = OutputFile::front;
@@ -107,6 +114,9 @@ struct ProfileOutput {
   std::vector<OutputLine> finished;  // a line that must be there, else `unfinished`
   QueryStatus unfinished = QueryStatus::failed;
   std::optional<OutputRuntime> runtime;
+  // What the runtime the solver reports (here, or in its log) measures, recorded with the run
+  // (profile.runtime_clock) so that a table of reported runtimes says which clocks it mixes.
+  RuntimeClock runtime_clock = RuntimeClock::wall;
   // The number of vectors the solver says it found (T-MDA's summary): a front of another size
   // fails the query, so a build that does not print its front is never read as disconnected.
   std::optional<OutputField> count;
