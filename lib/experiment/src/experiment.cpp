@@ -607,6 +607,7 @@ ExperimentResult run_experiment(const ExperimentPlan& plan, const fs::path& resu
     plan.resolver.configure(config, plan.experiment.solvers[s].spec);
     config.jobs = options.jobs;
     config.measurement = options.measurement;
+    config.seal = options.seal;
     config.resume = true;
     config.output = (results / cell.file).string();
     config.sha256_file = [](const std::string& path) { return sha256_file(path); };

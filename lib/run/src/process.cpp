@@ -4,6 +4,10 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <sched.h>
+#include <linux/capability.h>
+#include <net/if.h>
+#include <sys/ioctl.h>
+#include <sys/mount.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/socket.h>
@@ -339,7 +343,7 @@ class MemoryGroup {
 // What the child reports through its error pipe when it cannot execute.
 struct ChildError {
   // 1: joining the cgroup, 2: execve, 3: opening /dev/null, stdout or stderr, 4: creating the PID
-  // namespace, 5: forking the launcher or the solver
+  // namespace, 5: forking the launcher or the solver, 6: sealing the query
   int stage = 0;
   int error = 0;
 };
@@ -427,6 +431,113 @@ int wait_for(pid_t pid, rusage* usage = nullptr) {
   return status;
 }
 
+// What a parked child needs to seal its query (spec/RUN.md §4.1), made before the fork: the child
+// of a threaded process must not allocate.
+struct SealSetup {
+  bool on = false;
+  bool user_namespace = false;   // not root: a user namespace that maps the user alone
+  std::string queries_directory;  // where the query directories are made
+  std::string uid_map, gid_map;   // "ID ID 1" for the user namespace
+  int queries_fd = -1;            // in the child: the queries directory, before anything is hidden
+
+  SealSetup(Seal seal, const std::string& directory)
+      : on(seal == Seal::sealed), user_namespace(::geteuid() != 0), queries_directory(directory) {
+    uid_map = std::to_string(::geteuid()) + " " + std::to_string(::geteuid()) + " 1";
+    gid_map = std::to_string(::getegid()) + " " + std::to_string(::getegid()) + " 1";
+  }
+};
+
+// In a forked child: `text` written to the kernel file `path`. Async-signal-safe.
+bool write_kernel_file(const char* path, const std::string& text) {
+  const int fd = ::open(path, O_WRONLY | O_CLOEXEC);
+  if (fd < 0) return false;
+  const bool written = ::write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size());
+  ::close(fd);
+  return written;
+}
+
+// The network namespace's loopback interface, up: a solver (or its helper processes) may talk to
+// itself, to nothing else.
+bool loopback_up() {
+  const int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+  if (fd < 0) return false;
+  ifreq request{};
+  std::memcpy(request.ifr_name, "lo", 3);
+  request.ifr_flags = IFF_UP | IFF_RUNNING;
+  const bool up = ::ioctl(fd, SIOCSIFFLAGS, &request) == 0;
+  ::close(fd);
+  return up;
+}
+
+// In the parked child, ahead of its query: the mount and network namespaces every process of the
+// query inherits, with every mount read-only (and nosuid) and a private /dev/shm. The query's own
+// directory is made writable once the command names it (open_query_directory). False, errno set,
+// when the kernel refuses. Async-signal-safe calls only.
+bool seal_namespaces(SealSetup& s) {
+  if (s.user_namespace) {
+    if (::unshare(CLONE_NEWUSER | CLONE_NEWNS | CLONE_NEWNET) != 0 ||
+        !write_kernel_file("/proc/self/setgroups", "deny") ||
+        !write_kernel_file("/proc/self/uid_map", s.uid_map) ||
+        !write_kernel_file("/proc/self/gid_map", s.gid_map))
+      return false;
+  } else if (::unshare(CLONE_NEWNS | CLONE_NEWNET) != 0) {
+    return false;
+  }
+  if (::mount(nullptr, "/", nullptr, MS_REC | MS_PRIVATE, nullptr) != 0) return false;
+  mount_attr read_only{};
+  read_only.attr_set = MOUNT_ATTR_RDONLY | MOUNT_ATTR_NOSUID;
+  if (::mount_setattr(AT_FDCWD, "/", AT_RECURSIVE, &read_only, sizeof read_only) != 0)
+    return false;
+  if (::access("/dev/shm", F_OK) == 0 &&
+      ::mount("tmpfs", "/dev/shm", "tmpfs", MS_NOSUID | MS_NODEV, "mode=1777") != 0)
+    return false;
+  // Opened in the new namespace: open_tree clones only a mount of the caller's own namespace.
+  s.queries_fd = ::open(s.queries_directory.c_str(), O_PATH | O_DIRECTORY | O_CLOEXEC);
+  return s.queries_fd >= 0 && loopback_up();
+}
+
+// Every capability dropped, for good: a solver run by root cannot undo its seal (remount, unshare,
+// trace mosb). Async-signal-safe.
+bool drop_capabilities() {
+  for (int capability = 0; capability < 64; ++capability)
+    ::prctl(PR_CAPBSET_DROP, capability, 0, 0, 0);  // EINVAL past the kernel's last: nothing
+  __user_cap_header_struct header{_LINUX_CAPABILITY_VERSION_3, 0};
+  std::array<__user_cap_data_struct, 2> none{};
+  return ::syscall(SYS_capset, &header, none.data()) == 0 &&
+         ::prctl(PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0) == 0;
+}
+
+// In the solver's process, once its command is known: the query's directory (that of its stdout
+// file, a subdirectory of the queries directory) writable at its place, then every capability
+// dropped. Async-signal-safe.
+bool open_query_directory(const SealSetup& s, const char* stdout_path) {
+  std::array<char, 4096> directory{};
+  const std::size_t length = std::strlen(stdout_path);
+  if (length >= directory.size()) {
+    errno = ENAMETOOLONG;
+    return false;
+  }
+  std::memcpy(directory.data(), stdout_path, length + 1);
+  char* slash = std::strrchr(directory.data(), '/');
+  if (slash == nullptr || slash == directory.data()) {
+    errno = EINVAL;
+    return false;
+  }
+  *slash = '\0';
+  const char* name = std::strrchr(directory.data(), '/') + 1;
+  const int tree = ::open_tree(s.queries_fd, name, OPEN_TREE_CLONE | OPEN_TREE_CLOEXEC);
+  if (tree < 0) return false;
+  mount_attr writable{};
+  writable.attr_clr = MOUNT_ATTR_RDONLY;
+  const bool attached =
+      ::mount_setattr(tree, "", AT_EMPTY_PATH, &writable, sizeof writable) == 0 &&
+      ::move_mount(tree, "", AT_FDCWD, directory.data(), MOVE_MOUNT_F_EMPTY_PATH) == 0;
+  const int error = errno;
+  ::close(tree);
+  errno = error;
+  return attached && drop_capabilities();
+}
+
 // What the launcher tells mosb when the solver has ended (on the command socket).
 // It is sent once nothing of the query is left, so mosb ends the query on it and reaps the
 // launcher's chain later, off the query's critical path.
@@ -500,7 +611,8 @@ bool kill_what_is_left(Isolation isolation) {
 // (mosb learns its pid, in mosb's PID namespace, from the message's credentials), waits for its
 // command and executes it. Async-signal-safe calls only; it runs in the launcher's memory until it
 // executes (vfork, see launcher) and writes only `buffer` and its own stack there.
-[[noreturn]] void solver_child(int command_fd, int error_fd, LaunchBuffer& buffer) {
+[[noreturn]] void solver_child(int command_fd, int error_fd, const SealSetup& seal,
+                               LaunchBuffer& buffer) {
   ::setpgid(0, 0);
   ::prctl(PR_SET_PDEATHSIG, SIGKILL, 0, 0, 0);  // the launcher's end is the solver's
   const char ready = 1;
@@ -538,6 +650,7 @@ bool kill_what_is_left(Isolation isolation) {
     const rlimit limit{header.rlimit_as, header.rlimit_as};
     ::setrlimit(RLIMIT_AS, &limit);
   }
+  if (seal.on && !open_query_directory(seal, buffer.words[1])) report_and_exit(error_fd, 6);
   // Exclusively: a file that exists is another query's, and never this one's output.
   const int output = ::open(buffer.words[1], O_WRONLY | O_CREAT | O_EXCL, 0600);
   const int errors = ::open(buffer.words[2], O_WRONLY | O_CREAT | O_EXCL, 0600);
@@ -548,7 +661,12 @@ bool kill_what_is_left(Isolation isolation) {
 // The launcher of one query: forks the solver's process, reaps it (and meanwhile any orphan
 // reparented here), kills what the solver left, tells mosb how the solver ended, and exits.
 [[noreturn]] void launcher(int command_fd, int error_fd, Isolation isolation,
-                           LaunchBuffer& buffer) {
+                           const SealSetup& seal, LaunchBuffer& buffer) {
+  // A sealed query's processes see their PID namespace alone in /proc, read-only: not mosb's
+  // memory, not another query's processes.
+  if (seal.on && isolation == Isolation::pid_namespace &&
+      ::mount("proc", "/proc", "proc", MS_RDONLY | MS_NOSUID | MS_NODEV | MS_NOEXEC, nullptr) != 0)
+    report_and_exit(error_fd, 6);
   // vfork: the solver's process shares this memory (a copy of mosb's, hundreds of mappings) until
   // it executes, so its execve has no copy to tear down: 0.35 ms per query instead of 1 ms
   // (BENCHMARKS.md). The launcher has nothing to do before the solver executes anyway. The
@@ -557,7 +675,8 @@ bool kill_what_is_left(Isolation isolation) {
   // never returns.
   const pid_t solver = ::vfork();  // NOLINT(clang-analyzer-security.insecureAPI.vfork)
   if (solver < 0) report_and_exit(error_fd, 5);
-  if (solver == 0) solver_child(command_fd, error_fd, buffer);  // NOLINT(clang-analyzer-unix.Vfork)
+  if (solver == 0)
+    solver_child(command_fd, error_fd, seal, buffer);  // NOLINT(clang-analyzer-unix.Vfork)
   // Here the solver's process has executed (or ended): from now on its memory is the solver's,
   // not this one's, and mosb starts watching it.
   const char executed = 1;
@@ -589,7 +708,7 @@ bool kill_what_is_left(Isolation isolation) {
 // group join, which takes milliseconds under cgroup v1 on a loaded machine, and these forks happen
 // while the previous solver still runs.
 [[noreturn]] void parked_child(int command_fd, int mosb_end, int error_fd, int procs_fd, pid_t mosb,
-                               Isolation isolation, LaunchBuffer& buffer) {
+                               Isolation isolation, SealSetup& seal, LaunchBuffer& buffer) {
   ::close(mosb_end);  // mosb's end closes when mosb ends: an end of file here
   // A process group, not a session: on Linux a new session is a new scheduler autogroup, which
   // costs time per query and gives the solver another CPU share than a shell loop gives it.
@@ -604,6 +723,7 @@ bool kill_what_is_left(Isolation isolation) {
   for (int fd = 0; fd < 3; ++fd) ::dup2(null, fd);
   if (null > 2) ::close(null);
   if (procs_fd >= 0 && ::write(procs_fd, "0", 1) != 1) report_and_exit(error_fd, 1);
+  if (seal.on && !seal_namespaces(seal)) report_and_exit(error_fd, 6);
   // The watchdog's SIGTERM is for the solver: the launcher waits for its end (the solver
   // unblocks them before it executes).
   sigset_t stops;
@@ -612,14 +732,14 @@ bool kill_what_is_left(Isolation isolation) {
   ::sigprocmask(SIG_BLOCK, &stops, nullptr);
   if (isolation == Isolation::subreaper) {
     ::prctl(PR_SET_CHILD_SUBREAPER, 1, 0, 0, 0);
-    launcher(command_fd, error_fd, isolation, buffer);
+    launcher(command_fd, error_fd, isolation, seal, buffer);
   }
   if (::unshare(CLONE_NEWPID) != 0) report_and_exit(error_fd, 4);
   const pid_t init = ::fork();  // the namespace's first process, its init
   if (init < 0) report_and_exit(error_fd, 5);
   if (init == 0) {
     ::prctl(PR_SET_PDEATHSIG, SIGKILL, 0, 0, 0);
-    launcher(command_fd, error_fd, isolation, buffer);
+    launcher(command_fd, error_fd, isolation, seal, buffer);
   }
   ::close(command_fd);
   int status = 0;
@@ -676,6 +796,7 @@ struct ProcessRunner::Parked {
   std::uint64_t memory = 0;
   std::string group_prefix;
   Isolation isolation = Isolation::subreaper;
+  SealSetup seal;
   LaunchBuffer buffer;
   bool launched = false;
   bool executed = false;  // the launcher's byte saying the solver's process executed was read
@@ -684,9 +805,14 @@ struct ProcessRunner::Parked {
   // the child's end alone).
   int pidfd = -1;
 
-  Parked(Measurement measurement, std::uint64_t memory_bytes, const std::string& prefix,
-         Isolation how, std::uint64_t sequence)
-      : m(measurement), memory(memory_bytes), group_prefix(prefix), isolation(how) {
+  Parked(Measurement measurement, std::uint64_t memory_bytes, const ProcessSpec& spec,
+         std::uint64_t sequence)
+      : m(measurement),
+        memory(memory_bytes),
+        group_prefix(spec.group_name),
+        isolation(spec.isolation),
+        seal(spec.seal, spec.queries_directory) {
+    const auto& prefix = group_prefix;
     if (m == Measurement::cgroup_v1)
       group = std::make_unique<MemoryGroup>(prefix + "-" + std::to_string(sequence), memory);
     int command[2], error[2];
@@ -707,7 +833,7 @@ struct ProcessRunner::Parked {
     pid = ::fork();
     if (pid == 0)
       parked_child(command[0], command[1], error[1], group ? group->procs_fd() : -1, mosb,
-                   isolation, buffer);
+                   isolation, seal, buffer);
     in_parent_after_fork(pid, {command[0], error[1]}, {command[1], error[0]});
     command_fd = command[1];
     error_fd = error[0];
@@ -726,9 +852,10 @@ struct ProcessRunner::Parked {
   Parked(const Parked&) = delete;
   Parked& operator=(const Parked&) = delete;
 
-  bool suits(Measurement measurement, std::uint64_t memory_bytes, const std::string& prefix,
-             Isolation how) const {
-    return m == measurement && memory == memory_bytes && group_prefix == prefix && isolation == how;
+  bool suits(Measurement measurement, std::uint64_t memory_bytes, const ProcessSpec& spec) const {
+    return m == measurement && memory == memory_bytes && group_prefix == spec.group_name &&
+           isolation == spec.isolation && seal.on == (spec.seal == Seal::sealed) &&
+           seal.queries_directory == spec.queries_directory;
   }
 
   static bool fits(const ProcessSpec& spec) {
@@ -962,9 +1089,10 @@ void outcome_of(const ProcessSpec& spec, int error_fd, const MemoryGroup* g,
                                               "cannot run: ",
                                               "cannot open its output files: ",
                                               "cannot create a PID namespace: ",
-                                              "cannot fork: "};
+                                              "cannot fork: ",
+                                              "cannot seal the query: "};
     const int stage =
-        failed_start->stage >= 1 && failed_start->stage <= 5 ? failed_start->stage : 2;
+        failed_start->stage >= 1 && failed_start->stage <= 6 ? failed_start->stage : 2;
     out.ending = Ending::not_started;
     out.error = (stage == 2 ? spec.executable + ": " : std::string()) + kStages[stage] +
                 errno_text(failed_start->error);
@@ -995,15 +1123,31 @@ void classify_exit(int status, const MemoryGroup* g, ProcessOutcome& out) {
 
 }  // namespace
 
+std::string seal_refusal() {
+  SealSetup probe(Seal::sealed, "/");
+  int report[2];
+  if (::pipe2(report, O_CLOEXEC) != 0) return errno_text(errno);
+  const pid_t child = ::fork();
+  if (child < 0) return errno_text(errno);
+  if (child == 0) {
+    const int error = seal_namespaces(probe) ? 0 : errno;
+    (void)!::write(report[1], &error, sizeof error);
+    ::_exit(0);
+  }
+  ::close(report[1]);
+  int error = EIO;
+  (void)!::read(report[0], &error, sizeof error);
+  ::close(report[0]);
+  wait_for(child);
+  return error == 0 ? std::string() : errno_text(error);
+}
+
 ProcessOutcome ProcessRunner::run(const ProcessSpec& spec, const ProcessLimits& limits,
                                   Measurement m) {
   ProcessOutcome out;
-  if (!parked_.empty() &&
-      !parked_.front()->suits(m, limits.memory_bytes, spec.group_name, spec.isolation))
-    parked_.clear();
+  if (!parked_.empty() && !parked_.front()->suits(m, limits.memory_bytes, spec)) parked_.clear();
   if (parked_.empty())
-    parked_.push_back(std::make_unique<Parked>(m, limits.memory_bytes, spec.group_name,
-                                               spec.isolation, sequence_++));
+    parked_.push_back(std::make_unique<Parked>(m, limits.memory_bytes, spec, sequence_++));
   std::unique_ptr<Parked> child = std::move(parked_.front());
   parked_.pop_front();
   if (!Parked::fits(spec)) {
@@ -1046,8 +1190,7 @@ ProcessOutcome ProcessRunner::run(const ProcessSpec& spec, const ProcessLimits& 
   const std::size_t ahead = m == Measurement::cgroup_v1 ? 2 : 1;
   try {
     while (!stop_.load() && parked_.size() < ahead)
-      parked_.push_back(std::make_unique<Parked>(m, limits.memory_bytes, spec.group_name,
-                                                 spec.isolation, sequence_++));
+      parked_.push_back(std::make_unique<Parked>(m, limits.memory_bytes, spec, sequence_++));
   } catch (const Error&) {
   }
   retire_ended();

@@ -44,6 +44,9 @@ inline constexpr auto kIsolationNames = enum_names<Isolation>({
 // pid_namespace when this process may create one, else subreaper.
 Isolation detect_isolation();
 
+// Whether this process can seal a query: an empty text when it can, else the kernel's refusal.
+std::string seal_refusal();
+
 struct ProcessSpec {
   std::string executable;         // resolved path (resolve_executable)
   std::vector<std::string> argv;  // argv[0] as the template gave it
@@ -55,6 +58,10 @@ struct ProcessSpec {
   int cpu = -1;            // >= 0: pin the tree to this CPU (sched_setaffinity)
   std::string group_name;  // unique per concurrent process: the cgroup's name
   Isolation isolation = Isolation::subreaper;
+  Seal seal = Seal::none;
+  // With a seal: the directory holding every query directory of this runner (the directory of
+  // stdout_path is a subdirectory of it, the one the solver may write).
+  std::string queries_directory;
   // mosb's own work that need not wait for the solver (the previous query's cleanup): called once
   // on the calling thread while the solver runs, off the path from one query to the next. Must
   // not throw.

@@ -239,6 +239,7 @@ struct Plan {
   bool exact = true;  // the solver claims ε = 0
   Measurement measurement = Measurement::rlimit_poll;
   run_internal::Isolation isolation = run_internal::Isolation::subreaper;
+  Seal seal = Seal::sealed;
   std::vector<int> cpus;  // --pin: the CPUs this process may use
 };
 
@@ -260,6 +261,13 @@ Plan make_plan(const RunConfig& c, const View& selection, const SolutionWriter& 
   if (c.sha256_file) p.executable_sha256 = c.sha256_file(p.executable);
   p.measurement = c.measurement ? *c.measurement : run_internal::detect_measurement();
   p.isolation = run_internal::detect_isolation();
+  p.seal = c.seal;
+  if (p.seal == Seal::sealed)
+    if (const auto refusal = run_internal::seal_refusal(); !refusal.empty())
+      throw Error(ErrorCode::invalid_argument,
+                  "this system cannot seal a query (a mount and network namespace: " + refusal +
+                      "); run with isolation 'none' to let the solver reach the whole "
+                      "filesystem and network, which the file then records");
   cpu_set_t set;
   if (::sched_getaffinity(0, sizeof set, &set) == 0)
     for (int cpu = 0; cpu < CPU_SETSIZE; ++cpu)
@@ -450,6 +458,8 @@ class Runner {
     if (c_.pin && !p_.cpus.empty()) spec.cpu = p_.cpus[job % p_.cpus.size()];
     spec.group_name = "mosb-run-" + std::to_string(::getpid()) + "-" + std::to_string(job);
     spec.isolation = p_.isolation;
+    spec.seal = p_.seal;
+    spec.queries_directory = slot.dir;
     spec.while_running = [this, &slot] {
       journal_.sync();
       slot.remove_finished();
@@ -542,6 +552,7 @@ SolverInfo solver_info(const RunConfig& c, const Plan& p, unsigned jobs,
   m["run.measurement"] = std::string(to_string(p.measurement));
   m["run.measurement.detail"] = run_internal::describe_measurement(p.measurement);
   m["run.isolation"] = std::string(run_internal::kIsolationNames.name(p.isolation));
+  m["run.seal"] = std::string(kSealNames.name(p.seal));
   m["run.output_limit_bytes"] = std::to_string(c.limits.output_bytes);
   if (c.success_exit_codes != std::vector<int>{0}) {
     std::string codes;

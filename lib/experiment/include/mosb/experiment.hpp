@@ -150,6 +150,7 @@ struct ExperimentProgress {
 struct ExperimentOptions {
   unsigned jobs = 1;  // queries at once within a cell
   std::optional<Measurement> measurement;
+  Seal seal = Seal::sealed;
   std::function<void(const ExperimentProgress&)> progress;
   std::function<void(const ExperimentCell&, const QueryRecord&, const Query&)> failed;
 };

@@ -44,6 +44,22 @@ inline constexpr auto kMeasurementNames = enum_names<Measurement>({
 std::string_view to_string(Measurement m);  // kMeasurementNames
 std::optional<Measurement> parse_measurement(std::string_view text);
 
+// What a query's processes may reach of the filesystem and the network (spec/RUN.md §4.1).
+enum class Seal {
+  // A mount namespace of their own (root's; otherwise in a user namespace that maps the user
+  // alone): every mount read-only but the query's own directory, a private tmpfs on /dev/shm,
+  // a read-only /proc of their PID namespace (root), a network namespace with loopback alone,
+  // and no capabilities. The instance, the export cache, the journal, the results, other queries
+  // and other runs stay readable, and no solver can write them.
+  sealed,
+  // The user's filesystem and network as they are.
+  none,
+};
+inline constexpr auto kSealNames = enum_names<Seal>({
+    {Seal::sealed, "seal"},
+    {Seal::none, "none"},
+});
+
 inline constexpr std::uint64_t kDefaultOutputBytes = std::uint64_t{1} << 30;  // 1 GiB
 
 struct ProcessLimits {
@@ -134,6 +150,8 @@ struct RunConfig {
   // nullopt: the best this process can use, cgroup_v1 when a child group can be created in its
   // memory cgroup, else rlimit_poll.
   std::optional<Measurement> measurement;
+  // sealed: refused before any solver starts where the kernel cannot seal a query.
+  Seal seal = Seal::sealed;
   bool resume = false;
   // With resume: run on although the solver's executable is not the one the journal records
   // (both digests are then recorded); without it such a journal is refused.
