@@ -220,6 +220,7 @@ class ShardsAndMerge(CliTest):
         "--memory-limit": ("run", ["3G"]), "--grace": ("run", ["2.5"]), "--jobs": ("run", ["2"]),
         "--pin": ("run", []), "--threads": ("run", ["3"]),
         "--output-format": ("run", ["json-log"]), "--measurement": ("run", ["rlimit-poll"]),
+        "--isolation": ("run", ["none"]),
         "--solver-name": ("run", ["boa-x"]), "--solver-version": ("run", ["v9"]),
         "--epsilon": ("run", ["0.05"]), "--max-output": ("run", ["2G"]),
         "--allow-new-executable": ("run", []),

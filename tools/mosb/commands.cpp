@@ -1,6 +1,7 @@
 #include "commands.hpp"
 
 #include <CLI/CLI.hpp>
+#include <cstdlib>
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -49,6 +50,24 @@ CLI::Validator memory_size() {
             return {};
           },
           "SIZE", "memory size"};
+}
+
+CLI::Option* add_isolation_option(CLI::App* subcommand, std::string& isolation) {
+  const char* from_environment = std::getenv("MOSB_ISOLATION");
+  isolation = from_environment != nullptr && *from_environment != '\0' ? from_environment : "seal";
+  return subcommand
+      ->add_option("--isolation", isolation,
+                   "seal (default, or $MOSB_ISOLATION): each query sees the filesystem read-only "
+                   "but its own directory, a private /dev/shm and loopback alone, without "
+                   "capabilities (spec/RUN.md section 4.1); none: the whole filesystem and "
+                   "network, recorded as run.seal = none")
+      ->check(CLI::IsMember(kSealNames.names()));
+}
+
+Seal parse_isolation(const std::string& isolation) {
+  const auto seal = kSealNames.parse(isolation);
+  if (!seal) throw UsageError("MOSB_ISOLATION=" + isolation + ": give seal or none");
+  return *seal;
 }
 
 CLI::Validator non_negative_real() {

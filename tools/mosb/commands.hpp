@@ -14,6 +14,7 @@
 #include "mosb/error.hpp"
 #include "mosb/eval.hpp"
 #include "mosb/pack.hpp"
+#include "mosb/run.hpp"
 #include "mosb/solution_file.hpp"
 #include "mosb/solution_summary.hpp"
 #include "mosb/views.hpp"
@@ -63,6 +64,11 @@ CLI::Validator non_negative_real();
 // The one parser of every option that takes a memory size: parse_memory_size (mosb/run.hpp), the
 // grammar of an experiment file's sizes too; the text becomes the count of bytes.
 CLI::Validator memory_size();
+// `--isolation seal|none` of `mosb run` and `mosb experiment run` (spec/RUN.md §4.1): its default
+// is $MOSB_ISOLATION when set (a cluster's or a test suite's), else seal.
+CLI::Option* add_isolation_option(CLI::App* subcommand, std::string& isolation);
+// The choice, or a UsageError naming $MOSB_ISOLATION when that holds neither word.
+Seal parse_isolation(const std::string& isolation);
 // Every option that takes an ε: a non-negative decimal as parse_epsilon (mosb/eval.hpp) reads it,
 // the form spec/EVALUATION.md §2 allows and `solution.epsilon` stores.
 CLI::Validator epsilon_value();

@@ -29,7 +29,7 @@ extern "C" void request_experiment_stop(int) {
 }
 
 struct ExperimentRunArgs {
-  std::string file, output, measurement = "auto", isolation = "seal";
+  std::string file, output, measurement = "auto", isolation;
   unsigned jobs = 1;
   bool json = false;
   // One SLURM job array for the matrix (spec/EXPERIMENT.md §4), and the task an array task runs.
@@ -66,7 +66,7 @@ int run_cells(const ExperimentPlan& plan, const ExperimentRunArgs& a) {
   ExperimentOptions options;
   options.jobs = a.jobs;
   if (a.measurement != "auto") options.measurement = parse_measurement(a.measurement);
-  options.seal = *kSealNames.parse(a.isolation);
+  options.seal = parse_isolation(a.isolation);
   struct sigaction action {};
   action.sa_handler = request_experiment_stop;
   sigemptyset(&action.sa_mask);
@@ -414,9 +414,7 @@ Command add_experiment(CLI::App& app) {
   run->add_option("--measurement", run_args->measurement,
                   "how memory is limited and measured (auto, cgroup-v1, rlimit-poll)")
       ->check(CLI::IsMember({"auto", "cgroup-v1", "rlimit-poll"}));
-  run->add_option("--isolation", run_args->isolation,
-                  "seal (default) or none: what each query may reach (mosb run --isolation)")
-      ->check(CLI::IsMember(kSealNames.names()));
+  add_isolation_option(run, run_args->isolation);
   add_json_flag(run, run_args->json);
   auto status_args = std::make_shared<ExperimentStatusArgs>();
   auto* status = experiment->add_subcommand(

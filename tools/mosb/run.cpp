@@ -35,7 +35,7 @@ struct RunArgs {
   std::string instance, output, solver, time_limit = "0", cpu_limit = "0",
                                         output_format = "protocol";
   std::string measurement = "auto", solver_name, solver_version, epsilon = "0";
-  std::string isolation = "seal";
+  std::string isolation;  // add_isolation_option's default
   ViewChoice choice;
   std::uint64_t memory_limit = 0, max_output = kDefaultOutputBytes;
   bool allow_new_executable = false;
@@ -312,7 +312,7 @@ RunConfig run_config(const RunArgs& a, const GraphReader& instance) {
   config.pin = a.pin;
   config.threads = a.threads;
   if (a.measurement != "auto") config.measurement = parse_measurement(a.measurement);
-  config.seal = *kSealNames.parse(a.isolation);
+  config.seal = parse_isolation(a.isolation);
   config.resume = a.resume;
   config.output = a.output;
   config.sha256_file = [](const std::string& path) { return sha256_file(path); };
@@ -666,12 +666,7 @@ Command add_run(CLI::App& app) {
                   "auto (default: the first that works), " + kMeasurementNames.choices_text() +
                       ": how memory is limited and measured")
       ->check(CLI::IsMember(measurements));
-  sub->add_option("--isolation", a->isolation,
-                  "seal (default): each query sees the filesystem read-only but its own "
-                  "directory, a private /dev/shm and loopback alone, without capabilities "
-                  "(spec/RUN.md section 4.1); none: the whole filesystem and network, recorded "
-                  "as run.seal = none")
-      ->check(CLI::IsMember(kSealNames.names()));
+  add_isolation_option(sub, a->isolation);
   sub->add_flag("--resume", a->resume,
                 "continue the run the journal OUTPUT.journal records; with --slurm DIR, resubmit "
                 "the shards whose file is missing or incomplete");
