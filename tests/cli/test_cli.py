@@ -189,7 +189,8 @@ class ChecksumLevel(GridTest):
 
     def test_flipped_metadata_byte_is_found_lazily(self):
         # Metadata is parsed on first use, not at open: header level passes, checksums names
-        # the section, structure reports the parse error, inspect (which prints it) fails.
+        # the section, structure reports the parse error; inspect, which reads the metadata to
+        # print it, fails on the parse, and with --verify on the checksum.
         data = self.grid_bytes()
         e = entry(data, "metadata")
         middle = e["offset"] + e["stored_length"] // 2
@@ -200,6 +201,11 @@ class ChecksumLevel(GridTest):
         self.assert_fail(path, "checksums", "section 'metadata': [checksum] mismatch")
         self.assert_fail(path, "structure", "section 'metadata': [metadata]", "invalid key")
         r = self.mosb("inspect", path)
+        line = self.assert_one_line_error(r)
+        self.assertEqual(r.stdout, "")
+        self.assertTrue(line.startswith("mosb: %s: section 'metadata': metadata line " % path), r)
+        self.assertIn("invalid key", line)
+        r = self.mosb("inspect", "--verify", "checksums", path)
         line = self.assert_one_line_error(r)
         self.assertEqual(r.stdout, "")
         self.assertTrue(line.startswith(
@@ -525,9 +531,12 @@ class SectionsFoundByKind(GridTest):
         # The view still names query set 'default', which is now no queries section.
         self.assert_ok(path, "checksums")
         self.assert_fail(path, "structure", "section 'metadata': [metadata-views]", "'default'")
-        # inspect verifies in full before printing (its loop counts walk the CSR): the broken view
-        # makes it refuse the file, naming the problem.
-        r = self.mosb("inspect", "--json", path)
+        # A plain inspect shows the table (the unknown kind included) without judging it;
+        # verified in full, the broken view makes it refuse the file, naming the problem.
+        shown = json.loads(self.ok("inspect", "--json", path).stdout)
+        self.assertIn("unknown(99)", [s["kind"] for s in shown["sections"]])
+        self.assertIsNone(shown["verified"])
+        r = self.mosb("inspect", "--json", "--verify", "full", path)
         self.assertEqual(r.returncode, 1, r)
         self.assertEqual(r.stdout, "", r)
         self.assertIn("file is damaged: section 'metadata': [metadata-views]", r.stderr)

@@ -51,8 +51,9 @@ class DamagedPayload(GridTest):
             f.write("1 2\n3 4\n")
         commands = [
             ["export", "dimacs", name, "-o", "out"],
-            ["inspect", name],
-            ["inspect", "--json", name],
+            # A plain inspect reads no payload (a look, not a check); with --verify it checks.
+            ["inspect", "--verify", "checksums", name],
+            ["inspect", "--json", "--verify", "full", name],
             ["stats", name],
             ["stats", "--json", name],
             ["queries", "generate", name, "--set", "fresh", "--in-place"],

@@ -24,6 +24,16 @@ bool is_value_separator(char c) {
 
 constexpr std::uint64_t kMaxExactInteger = std::uint64_t{1} << 53;
 
+// Why a cost written with a point or an exponent is not read exactly, or empty. From 2^53 on every
+// double is an integer and the text is rounded to one (9007199254740993.0 and
+// 9.007199254740993e15 to ...992): an integer cost could silently change, so it is refused.
+std::string inexact_problem(double value, std::string_view text) {
+  if (value < static_cast<double>(kMaxExactInteger)) return {};
+  return "the cost " + std::string(text) +
+         " is at or above 2^53 and written with a point or an exponent: it cannot be read "
+         "exactly (write an integer cost as digits alone)";
+}
+
 // Why `token` is no cost, or empty when it is one (stored in `value`). An integer of digits alone
 // is read exactly: one above 2^53 would be rounded to another (…993 to …992), so it is refused.
 std::string cost_problem(std::string_view token, double& value) {
@@ -46,6 +56,7 @@ std::string cost_problem(std::string_view token, double& value) {
   }
   if (!std::isfinite(*parsed)) return "non-finite cost " + quoted(token);
   if (*parsed < 0) return "negative cost " + quoted(token);
+  if (auto problem = inexact_problem(*parsed, quoted(token)); !problem.empty()) return problem;
   value = *parsed;
   return {};
 }
@@ -231,6 +242,9 @@ void json_record_front(const Json& record, const std::string& record_at, const s
       const double v = value.template get<double>();
       if (!std::isfinite(v)) throw at(value_at, "non-finite cost " + value.dump());
       if (v < 0) throw at(value_at, "negative cost " + value.dump());
+      if (value.is_number_float())
+        if (auto problem = inexact_problem(v, "written as " + value.dump()); !problem.empty())
+          throw at(value_at, problem);
       row.push_back(v);
     }
     if (const auto problem = width_problem(row.size(), o); !problem.empty())
