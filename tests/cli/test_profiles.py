@@ -453,8 +453,8 @@ import os, sys
 path = sys.argv[1]
 os.chmod(path, 0o644)  # read-only stops another user's solver; its owner may change the mode
 lines = open(path).read().split("\\n")
-k = next(i for i, line in enumerate(lines) if line.startswith("a "))
-lines[k] = lines[k][:-1] + ("8" if lines[k][-1] == "9" else str(int(lines[k][-1]) + 1))
+lines = [line[:-1] + "9" if line.startswith("a ") and line[-1] in "12345678" else line
+         for line in lines]
 open(path, "r+").write("\\n".join(lines))
 EDIT
 exec /usr/bin/python3 %s mohs "$@"
@@ -462,10 +462,11 @@ exec /usr/bin/python3 %s mohs "$@"
         os.chmod(hostile, 0o755)
         self.reference("g2.mosb", "Grid_2")
         self.run_profile("g2.mosb", "Grid_2", "mohs", hostile, output="hostile.sol")
+        self.assertFalse(self.compare("ref.sol", "hostile.sol")["ok"])  # the edit bites
         (directory,) = self.exports()
         gr = os.path.join(self.cache, directory,
-                          [f for f in os.listdir(os.path.join(self.cache, directory))
-                           if f.endswith(".gr")][0])
+                          sorted(f for f in os.listdir(os.path.join(self.cache, directory))
+                                 if f.endswith(".gr"))[0])  # the first objective's, {gr}'s first
         size = os.path.getsize(gr)
         r = self.run_profile("g2.mosb", "Grid_2", "mohs", self.standins["mohs"], output="ok.sol")
         self.assertIn("mosb: warning: export cache: %s: its content changed since it was exported"
