@@ -6,12 +6,15 @@
 #include <doctest/doctest.h>
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <map>
 #include <string>
 #include <vector>
 
 #include "mosb/converters/grid_generator.hpp"
+#include "mosb/converters/netmaker_generator.hpp"
 #include "mosb/graph_reader.hpp"
 #include "temp_dir.hpp"
 #include "test_files.hpp"
@@ -177,4 +180,43 @@ TEST_CASE("cache clear removes the cache's own entries and nothing else") {
   CHECK(slurp(cache / "notes.txt") == "mine\n");
   CHECK(!fs::exists(cache / ".tmp-4194305-00112233aabbccdd"));
   CHECK(fs::exists(cache / "0123456789abcdef-0123456789abcdef"));
+}
+
+// BENCHMARKS.md, "Export cache verified (issue 43 §3)": the check a reused export costs (reading
+// and hashing every file) against making the export. Skipped unless asked for by name.
+TEST_CASE("export cache: the check against the export, timed" * doctest::skip()) {
+  TempDir dir;
+  const auto median_seconds = [](int runs, const auto& once) {
+    std::vector<double> seconds;
+    for (int k = 0; k < runs; ++k) {
+      const auto start = std::chrono::steady_clock::now();
+      once();
+      seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+                            .count());
+    }
+    std::sort(seconds.begin(), seconds.end());
+    return seconds[seconds.size() / 2];
+  };
+  const std::pair<const char*, GraphInput> instances[] = {
+      {"NetMaker 10k", generate_netmaker({})}, {"Grid 300x300", generate_grid({300, 300, 2, 1})}};
+  for (const auto& [name, input] : instances) {
+    const auto instance = dir / "i.mosb";
+    const auto cache = dir / "cache";
+    write_graph(input, instance);
+    const auto digest = GraphReader::open(instance).digest();
+    const DimacsExportOptions options;
+    const auto exported = median_seconds(7, [&] {
+      clear_export_cache(cache);
+      CHECK(!cached_export(cache, instance, digest, options).reused);
+    });
+    std::uint64_t bytes = 0;
+    for (const auto& path : cached_export(cache, instance, digest, options).files.written)
+      bytes += fs::file_size(path);
+    const auto checked = median_seconds(
+        21, [&] { CHECK(cached_export(cache, instance, digest, options).reused); });
+    std::printf("%s: %.1f MB of text; export %.1f ms, check of a reused export %.2f ms (%.1f%%)\n",
+                name, static_cast<double>(bytes) / 1e6, exported * 1e3, checked * 1e3,
+                100 * checked / exported);
+    clear_export_cache(cache);
+  }
 }
