@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <map>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "mosb/converters/grid_generator.hpp"
@@ -150,6 +151,25 @@ TEST_CASE("export cache: an edited manifest, a stray FIFO in the entry") {
   f.check_reexported(directory / "stray");
 }
 
+TEST_CASE("export cache: runs at once on a damaged entry all get the whole export") {
+  CacheFixture f;
+  const auto gr = f.gr();
+  edit_in_place(gr);
+  std::vector<std::map<std::string, std::string>> seen(4);
+  std::vector<std::thread> runs;
+  for (auto& texts : seen)
+    runs.emplace_back([&f, &texts] { texts = CacheFixture::texts(f.export_once()); });
+  for (auto& run : runs) run.join();
+  for (const auto& texts : seen) CHECK(texts == f.fresh);
+  CHECK(!f.warnings.empty());
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(f.cache))
+    names.push_back(entry.path().filename().string());
+  CHECK(names == std::vector<std::string>{gr.parent_path().filename().string()});
+  f.warnings.clear();
+  CHECK(f.export_once().reused);
+}
+
 TEST_CASE("cache clear removes the cache's own entries and nothing else") {
   CacheFixture f;
   const auto cache = f.cache;
@@ -191,8 +211,8 @@ TEST_CASE("export cache: the check against the export, timed" * doctest::skip())
     for (int k = 0; k < runs; ++k) {
       const auto start = std::chrono::steady_clock::now();
       once();
-      seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
-                            .count());
+      seconds.push_back(
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     }
     std::sort(seconds.begin(), seconds.end());
     return seconds[seconds.size() / 2];
@@ -212,8 +232,8 @@ TEST_CASE("export cache: the check against the export, timed" * doctest::skip())
     std::uint64_t bytes = 0;
     for (const auto& path : cached_export(cache, instance, digest, options).files.written)
       bytes += fs::file_size(path);
-    const auto checked = median_seconds(
-        21, [&] { CHECK(cached_export(cache, instance, digest, options).reused); });
+    const auto checked =
+        median_seconds(21, [&] { CHECK(cached_export(cache, instance, digest, options).reused); });
     std::printf("%s: %.1f MB of text; export %.1f ms, check of a reused export %.2f ms (%.1f%%)\n",
                 name, static_cast<double>(bytes) / 1e6, exported * 1e3, checked * 1e3,
                 100 * checked / exported);

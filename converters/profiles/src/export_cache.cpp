@@ -30,7 +30,7 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr std::string_view kManifest = "export.txt";
-constexpr std::string_view kLayout = "mosb export cache 2";  // bumped when the text changes
+constexpr std::string_view kLayout = "mosb export cache 2";      // bumped when the text changes
 constexpr std::string_view kLayoutWords = "mosb export cache ";  // of every layout ever written
 // No manifest is near this size; a larger export.txt (or /dev/zero in its place) is not read.
 constexpr std::size_t kManifestCap = std::size_t{1} << 20;
@@ -44,7 +44,9 @@ void warn(const std::string& line) {
   std::cerr << "mosb: warning: " << escape_for_terminal(line) << '\n';
 }
 
-std::string errno_text() { return std::error_code(errno, std::system_category()).message(); }
+std::string errno_text() {
+  return std::error_code(errno, std::system_category()).message();
+}
 
 // A file descriptor, closed when it goes.
 class Fd {
@@ -97,7 +99,9 @@ std::string export_key(const std::string& digest, const DimacsExportOptions& o) 
   return key.str();
 }
 
-std::uint64_t hash_of(std::string_view text) { return XXH3_64bits(text.data(), text.size()); }
+std::uint64_t hash_of(std::string_view text) {
+  return XXH3_64bits(text.data(), text.size());
+}
 
 // An entry's name: DIGEST16-KEYHASH (16 hex digits each).
 std::string entry_name(const std::string& digest, const std::string& key) {
@@ -303,7 +307,8 @@ std::string odd_file(int dir_fd, const fs::path& dir) {
     if (name == "." || name == ".." || ::fstatat(dir_fd, e->d_name, &st, AT_SYMLINK_NOFOLLOW) != 0)
       continue;
     if (!S_ISREG(st.st_mode)) {
-      why = (dir / name).string() + (S_ISLNK(st.st_mode) ? ": a symbolic link" : ": not a regular file");
+      why = (dir / name).string() +
+            (S_ISLNK(st.st_mode) ? ": a symbolic link" : ": not a regular file");
       break;
     }
   }
@@ -326,9 +331,8 @@ std::string check_files(int dir_fd, const fs::path& dir, const Manifest& m) {
     const auto content = content_of(fd.get());
     if (!content) return where + errno_text();
     if (content->size != r.content.size || content->hash != r.content.hash)
-      return where + "its content changed since it was exported (XXH3-64 " +
-             hex64(content->hash) + ", " + std::string(kManifest) + " says " +
-             hex64(r.content.hash) + ")";
+      return where + "its content changed since it was exported (XXH3-64 " + hex64(content->hash) +
+             ", " + std::string(kManifest) + " says " + hex64(r.content.hash) + ")";
   }
   return odd_file(dir_fd, dir);
 }
@@ -343,10 +347,10 @@ Found look_up(const fs::path& dir, const std::string& key) {
   const Fd dir_fd(::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC));
   if (!dir_fd && errno == ENOENT) return {};
   if (!dir_fd)
-    return {std::nullopt, dir.string() + ": " +
-                              (errno == ELOOP || errno == ENOTDIR
-                                   ? "not a directory (a symbolic link or a file)"
-                                   : errno_text())};
+    return {std::nullopt,
+            dir.string() + ": " +
+                (errno == ELOOP || errno == ENOTDIR ? "not a directory (a symbolic link or a file)"
+                                                    : errno_text())};
   const auto file = (dir / kManifest).string() + ": ";
   struct stat st {};
   std::string why;
@@ -385,9 +389,8 @@ void seal(const fs::path& temporary, const DimacsExportFiles& files) {
 // Renames `from` to `to` unless something is at `to` (false, errno EEXIST); where the file
 // system cannot say so in one step, checks first.
 bool rename_noreplace(const fs::path& from, const fs::path& to) {
-  if (::renameat2(AT_FDCWD, from.c_str(), AT_FDCWD, to.c_str(), RENAME_NOREPLACE) == 0)
-    return true;
-  if (errno != EINVAL) return false;
+  if (::renameat2(AT_FDCWD, from.c_str(), AT_FDCWD, to.c_str(), RENAME_NOREPLACE) == 0) return true;
+  if (errno != EINVAL && errno != ENOSYS) return false;
   struct stat st {};
   if (::lstat(to.c_str(), &st) == 0) {
     errno = EEXIST;
@@ -405,10 +408,10 @@ DimacsExportFiles place(const fs::path& temporary, const fs::path& dir, const st
   std::string why;
   const auto ours = [&] { return std::move(parse_manifest(manifest, key, dir, why)->files); };
   if (rename_noreplace(temporary, dir)) return ours();
-  const auto cannot = Error(ErrorCode::io, dir.string() +
-                                               ": cannot place the export in the cache: " +
-                                               errno_text());
-  if (errno != EEXIST && errno != ENOTEMPTY) {
+  const int error = errno;
+  const Error cannot(ErrorCode::io,
+                     dir.string() + ": cannot place the export in the cache: " + errno_text());
+  if (error != EEXIST && error != ENOTEMPTY) {
     remove_tree(temporary);
     throw cannot;
   }
@@ -429,7 +432,9 @@ DimacsExportFiles place(const fs::path& temporary, const fs::path& dir, const st
   throw cannot;
 }
 
-bool process_alive(pid_t pid) { return ::kill(pid, 0) == 0 || errno == EPERM; }
+bool process_alive(pid_t pid) {
+  return ::kill(pid, 0) == 0 || errno == EPERM;
+}
 
 // Whether `dir` (a real directory) holds an export.txt, a regular file, whose first line is a
 // layout line this code writes: the mark of an export of this cache, of any version.
@@ -442,7 +447,8 @@ bool has_layout_line(const fs::path& dir) {
   if (!head) return false;
   const auto line = std::string_view(*head).substr(0, head->find('\n'));
   unsigned version = 0;
-  return head->find('\n') != std::string::npos && line.substr(0, kLayoutWords.size()) == kLayoutWords &&
+  return head->find('\n') != std::string::npos &&
+         line.substr(0, kLayoutWords.size()) == kLayoutWords &&
          parse_number(line.substr(kLayoutWords.size()), version);
 }
 

@@ -37,7 +37,7 @@ CachedExport cached_export(const std::filesystem::path& cache,
 void set_export_cache_warning_handler(std::function<void(const std::string&)> handler);
 
 struct ClearedExports {
-  std::uint64_t removed = 0;               // exports and temporaries of finished runs
+  std::uint64_t removed = 0;      // exports and temporaries of finished runs
   std::vector<std::string> left;  // one line per entry left alone: "PATH: why"
 };
 
