@@ -5,6 +5,8 @@
 
 #include <doctest/doctest.h>
 #include <sys/stat.h>
+#include <sys/sysmacros.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -149,6 +151,26 @@ TEST_CASE("export cache: an edited manifest, a stray FIFO in the entry") {
   fs::permissions(directory, fs::perms::owner_all, fs::perm_options::add);
   REQUIRE(::mkfifo((directory / "stray").c_str(), 0644) == 0);
   f.check_reexported(directory / "stray");
+}
+
+TEST_CASE("export cache: the entry itself a symlink to a whole copy, a device as export.txt") {
+  CacheFixture f;
+  const auto directory = f.gr().parent_path();
+  const auto copy = f.dir / "copy";
+  fs::create_directory(copy);
+  for (const auto& entry : fs::directory_iterator(directory))
+    fs::copy_file(entry.path(), copy / entry.path().filename());
+  fs::permissions(directory, fs::perms::owner_all, fs::perm_options::add);
+  fs::remove_all(directory);
+  fs::create_directory_symlink(copy, directory);
+  f.check_reexported(directory);
+  CHECK(fs::exists(copy / "export.txt"));  // the link was removed, not what it points to
+  if (::geteuid() == 0) {                  // /dev/zero's device: never read (it would never end)
+    fs::permissions(directory, fs::perms::owner_all, fs::perm_options::add);
+    fs::remove(directory / "export.txt");
+    REQUIRE(::mknod((directory / "export.txt").c_str(), S_IFCHR | 0444, ::makedev(1, 5)) == 0);
+    f.check_reexported(directory / "export.txt");
+  }
 }
 
 TEST_CASE("export cache: runs at once on a damaged entry all get the whole export") {
