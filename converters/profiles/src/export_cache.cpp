@@ -6,8 +6,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -150,7 +152,8 @@ Fd open_regular(int dir, const std::string& name, struct stat& st, std::string& 
   return why.empty() ? std::move(fd) : Fd();
 }
 
-// At most cap + 1 bytes of `fd` (so a longer file shows); nullopt on a read error.
+// `fd`'s content, read no further than just past `cap` bytes (so a longer file shows as longer
+// than `cap`); nullopt on a read error.
 std::optional<std::string> read_at_most(int fd, std::size_t cap) {
   std::string text;
   char buffer[1 << 16];
@@ -169,13 +172,15 @@ struct Content {
   std::uint64_t hash = 0;  // XXH3-64
 };
 
-// The size and XXH3-64 of what is left to read of `fd`; nullopt on a read error.
-std::optional<Content> content_of(int fd) {
+// The size and XXH3-64 of `fd`'s content, read no further than `limit` bytes (a file that grows
+// while it is read is never followed far); nullopt on a read error.
+std::optional<Content> content_of(int fd, std::uint64_t limit = UINT64_MAX) {
   Xxh3Stream hash;
   std::vector<char> buffer(std::size_t{1} << 20);
   Content c;
-  for (;;) {
-    const auto n = ::read(fd, buffer.data(), buffer.size());
+  while (c.size < limit) {
+    const auto n =
+        ::read(fd, buffer.data(), std::min<std::uint64_t>(buffer.size(), limit - c.size));
     if (n < 0 && errno == EINTR) continue;
     if (n < 0) return std::nullopt;
     if (n == 0) break;
@@ -328,7 +333,7 @@ std::string check_files(int dir_fd, const fs::path& dir, const Manifest& m) {
     if (static_cast<std::uint64_t>(st.st_size) != r.content.size)
       return where + std::to_string(st.st_size) + " bytes, " + std::string(kManifest) + " says " +
              std::to_string(r.content.size);
-    const auto content = content_of(fd.get());
+    const auto content = content_of(fd.get(), r.content.size + 1);
     if (!content) return where + errno_text();
     if (content->size != r.content.size || content->hash != r.content.hash)
       return where + "its content changed since it was exported (XXH3-64 " + hex64(content->hash) +
