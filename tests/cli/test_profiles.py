@@ -423,9 +423,12 @@ for c in s.pareto(n, arcs, source, target):
         self.run_profile("g3.mosb", "Grid_3", "tmda", self.standins["tmda"], output="c.sol")
         self.assertEqual(len(self.exports()), 2)
         gr = [f for f in files if f.endswith(".gr")][0]
+        self.assertEqual(stat.S_IMODE(before[gr].st_mode), 0o444)
+        os.chmod(os.path.join(self.cache, directory, gr), 0o644)  # its owner may, and root does
         with open(os.path.join(self.cache, directory, gr), "r+") as f:
             f.truncate(10)
-        self.run_profile("g3.mosb", "Grid_3", "mohs", self.standins["mohs"], output="d.sol")
+        r = self.run_profile("g3.mosb", "Grid_3", "mohs", self.standins["mohs"], output="d.sol")
+        self.assertIn("%s: 10 bytes, export.txt says" % gr, r.stderr)
         self.assertTrue(self.compare("a.sol", "d.sol")["ok"])
         r = self.ok("cache", "clear", "--export-cache", self.cache, "--json")
         self.assertEqual(json.loads(r.stdout)["removed"], 2)
@@ -437,6 +440,57 @@ for c in s.pareto(n, arcs, source, target):
                          env=env)
         self.assertEqual(len(os.listdir(self.path("xdg", "mosb", "exports"))), 1)
         self.assertIn("removed 1 export", self.ok("cache", "clear", env=env).stdout)
+
+    def test_a_solver_that_edits_its_input_spoils_no_later_run(self):
+        """Issue 43 §3: a careless solver rewrites a value of its cached {gr} in place, the size
+        unchanged; the next run of an honest solver on the same export finds the hash changed,
+        exports it again (saying so) and gets the right front."""
+        hostile = self.write("bin/hostile", """#!/bin/sh
+gr=; previous=
+for a in "$@"; do [ "$previous" = "-m" ] && gr=$a; previous=$a; done
+/usr/bin/python3 - "$gr" <<'EDIT'
+import os, sys
+path = sys.argv[1]
+os.chmod(path, 0o644)  # read-only stops another user's solver; its owner may change the mode
+lines = open(path).read().split("\\n")
+lines = [line[:-1] + "9" if line.startswith("a ") and line[-1] in "12345678" else line
+         for line in lines]
+open(path, "r+").write("\\n".join(lines))
+EDIT
+exec /usr/bin/python3 %s mohs "$@"
+""" % STANDIN)
+        os.chmod(hostile, 0o755)
+        self.reference("g2.mosb", "Grid_2")
+        self.run_profile("g2.mosb", "Grid_2", "mohs", hostile, output="hostile.sol")
+        self.assertFalse(self.compare("ref.sol", "hostile.sol")["ok"])  # the edit bites
+        (directory,) = self.exports()
+        gr = os.path.join(self.cache, directory,
+                          sorted(f for f in os.listdir(os.path.join(self.cache, directory))
+                                 if f.endswith(".gr"))[0])  # the first objective's, {gr}'s first
+        size = os.path.getsize(gr)
+        r = self.run_profile("g2.mosb", "Grid_2", "mohs", self.standins["mohs"], output="ok.sol")
+        self.assertIn("mosb: warning: export cache: %s: its content changed since it was exported"
+                      % gr, r.stderr)
+        self.assertEqual(len([line for line in r.stderr.splitlines() if "warning" in line]), 1)
+        self.assertEqual(os.path.getsize(gr), size)
+        result = self.compare("ref.sol", "ok.sol")
+        self.assertTrue(result["ok"], result)
+        self.assertEqual(result["equal"], 8, result)
+        # The export is whole again: a third run reuses it without a word.
+        r = self.run_profile("g2.mosb", "Grid_2", "mohs", self.standins["mohs"], output="ok2.sol")
+        self.assertNotIn("warning", r.stderr)
+
+    def test_cache_clear_leaves_what_is_not_its_own(self):
+        self.run_profile("g2.mosb", "Grid_2", "mohs", self.standins["mohs"], output="a.sol")
+        self.write("cache/notes.txt", "mine\n")
+        self.write("cache/0123456789abcdef-0123456789abcdef/export.txt", "not the cache's\n")
+        r = self.ok("cache", "clear", "--export-cache", self.cache, "--json")
+        self.assertEqual(json.loads(r.stdout)["removed"], 1)
+        self.assertEqual(sorted(os.listdir(self.cache)),
+                         ["0123456789abcdef-0123456789abcdef", "notes.txt"])
+        self.assertEqual(sorted(r.stderr.splitlines()),
+                         ["mosb: %s: not an export of mosb, left alone" % self.path("cache", f)
+                          for f in ("0123456789abcdef-0123456789abcdef", "notes.txt")])
 
     def test_slurm_tasks_get_the_profile(self):
         self.ok("run", self.path("g2.mosb"), "--view", "Grid_2", "--profile", "mohs",

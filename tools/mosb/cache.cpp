@@ -21,12 +21,16 @@ struct CacheArgs {
 int run_cache_clear(const CacheArgs& a) {
   const auto directory =
       a.directory.empty() ? converters::default_export_cache() : std::filesystem::path(a.directory);
-  const auto removed = converters::clear_export_cache(directory);
+  const auto [removed, left] = converters::clear_export_cache(directory);
+  for (const auto& line : left) std::cerr << "mosb: " << escape_for_terminal(line) << "\n";
   if (a.json) {
     JsonWriter json(std::cout);
     json.begin_object();
     json.key("directory").value(directory.string());
     json.key("removed").value(removed);
+    json.key("left").begin_array();
+    for (const auto& line : left) json.value(line);
+    json.end_array();
     json.end_object();
   } else {
     std::cout << "removed " << removed << " export" << (removed == 1 ? "" : "s") << " from "
@@ -37,7 +41,9 @@ int run_cache_clear(const CacheArgs& a) {
 
 Command add_cache_clear(CLI::App& parent) {
   auto* clear = parent.add_subcommand(
-      "clear", "remove every text export solver profiles made (they are made again when needed)");
+      "clear",
+      "remove the text exports solver profiles made (made again when needed) and temporaries of "
+      "killed runs; anything else in the directory is left alone and named on stderr");
   auto args = std::make_shared<CacheArgs>();
   clear
       ->add_option("--export-cache", args->directory,
