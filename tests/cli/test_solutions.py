@@ -97,12 +97,16 @@ class SolutionsTest(CliTest):
         # Written with a point or an exponent, it would be rounded just the same: refused too.
         for text in ("9007199254740993.0", "9.007199254740993e15"):
             d = self.front_dir({"0.txt": text + " 1\n"})
-            self.assert_refused(["--dir", d], "%s/0.txt:1:1: the cost '%s' is at or above 2^53 "
-                                "and written with a point or an exponent" % (d, text))
+            self.assert_refused(["--dir", d], "%s/0.txt:1:1: the cost '%s' is read as 2^53, to "
+                                "which a point or an exponent may have rounded it: write an "
+                                "integer cost as digits alone" % (d, text))
             log = self.write("big.json", '[{"source": %d, "target": %d, "finish_info": '
                              '{"solutions": [{"cost_until_now": [%s, 1]}]}}]'
                              % (QUERIES[0][0], QUERIES[0][1], text))
-            self.assert_refused(["--json-log", log], "cost_until_now/0: the cost written as")
+            self.assert_refused(["--json-log", log], "%s: /0/finish_info/solutions/0/cost_until_now"
+                                "/0: the cost 9.007199254740992e+15 is read as 2^53, to which a point "
+                                "or an exponent may have rounded it: write an integer cost as "
+                                "digits alone" % log)
         # A record whose search says it did not succeed: failed, its partial front dropped.
         log = self.write("failed.json", '[{"source": %d, "target": %d, "finish_info": {"solutions":'
                                         ' [{"cost_until_now": [1, 9]}], "status": "Failed"}}]'

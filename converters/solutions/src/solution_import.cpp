@@ -24,14 +24,15 @@ bool is_value_separator(char c) {
 
 constexpr std::uint64_t kMaxExactInteger = std::uint64_t{1} << 53;
 
-// Why a cost written with a point or an exponent is not read exactly, or empty. From 2^53 on every
-// double is an integer and the text is rounded to one (9007199254740993.0 and
-// 9.007199254740993e15 to ...992): an integer cost could silently change, so it is refused.
+// Why a cost written with a point or an exponent is not read exactly, or empty. Text that rounds
+// to 2^53 (9007199254740993.0, 9.007199254740993e15) passes every later check of an integer cost
+// (at most 2^53) as another integer than the solver wrote, so it is refused; one that rounds above
+// is refused for an integer objective by the solution writer, and is a float objective's value.
 std::string inexact_problem(double value, std::string_view text) {
-  if (value < static_cast<double>(kMaxExactInteger)) return {};
+  if (value != static_cast<double>(kMaxExactInteger)) return {};
   return "the cost " + std::string(text) +
-         " is at or above 2^53 and written with a point or an exponent: it cannot be read "
-         "exactly (write an integer cost as digits alone)";
+         " is read as 2^53, to which a point or an exponent may have rounded it: write an "
+         "integer cost as digits alone";
 }
 
 // Why `token` is no cost, or empty when it is one (stored in `value`). An integer of digits alone
@@ -243,7 +244,7 @@ void json_record_front(const Json& record, const std::string& record_at, const s
       if (!std::isfinite(v)) throw at(value_at, "non-finite cost " + value.dump());
       if (v < 0) throw at(value_at, "negative cost " + value.dump());
       if (value.is_number_float())
-        if (auto problem = inexact_problem(v, "written as " + value.dump()); !problem.empty())
+        if (auto problem = inexact_problem(v, value.dump()); !problem.empty())
           throw at(value_at, problem);
       row.push_back(v);
     }
