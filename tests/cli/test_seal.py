@@ -27,7 +27,7 @@ instance=$1; shift
 echo 1 >> "$instance"
 echo poisoned >> "$CACHE_FILE"
 echo '{"query": 0, "status": "solved"}' >> "$JOURNAL"
-own=$(readlink /proc/self/fd/1)
+own=$(readlink /proc/$$/fd/1)
 for f in "$RUNS"/mosb-run-*/job*/q*/stdout; do
   [ "$f" != "$own" ] && echo "0 0" >> "$f"
 done
@@ -185,6 +185,33 @@ class Seal(CliTest):
         self.assertFalse(os.path.exists(self.path("cwd-file")))
         self.assertFalse(os.path.exists("/tmp/mosb-seal-probe"))
         self.assertFalse(os.path.exists("/dev/shm/mosb-seal-probe"))
+
+    def test_output_files_replaced_by_a_fifo_a_device_or_a_link_fail_the_query(self):
+        # The solver's own directory is its to change: what it leaves there that is not a regular
+        # file is the query's failure, read by nobody (a FIFO would block mosb, /dev/zero never
+        # end, a link make mosb read another file as the query's front).
+        cases = {
+            "fifo": ('d=$(dirname "$(readlink /proc/$$/fd/1)"); echo "1 1"; rm "$d/stdout"; '
+                     'mkfifo "$d/stdout"', "stdout is a FIFO"),
+            "zero": ('d=$(dirname "$(readlink /proc/$$/fd/1)"); echo "1 1"; rm "$d/stderr"; '
+                     'ln -s /dev/zero "$d/stderr"', "stderr is a symbolic link"),
+            "link": ('ln -s "%s" "$1"' % self.path("reference.sol"), "front.txt is a symbolic link"),
+        }
+        env = dict(os.environ)
+        env.pop("MOSB_ISOLATION", None)
+        for name, (body, reason) in cases.items():
+            with self.subTest(name=name):
+                script = self.write(name + ".sh", "#!/bin/bash\n" + body + "\n")
+                os.chmod(script, 0o755)
+                output = self.path(name + ".sol")
+                r = subprocess.run([mosbtest.MOSB, "run", self.path("grid.mosb"), "--view",
+                                    "Grid_2", "--queries", "q", "--time-limit", "20s", "--solver",
+                                    script + " {front}", "-o", output], capture_output=True,
+                                   text=True, timeout=120, cwd=self.dir, env=env)
+                self.assertEqual(r.returncode, 0, r)
+                self.assertIn(reason + ", not a regular file", r.stderr)
+                info = json.loads(self.ok("solutions", "inspect", "--json", output).stdout)
+                self.assertEqual(info["statuses"]["failed"], 4, r.stderr)
 
     def test_a_bad_isolation_is_a_usage_error(self):
         r = self.mosb("run", self.path("grid.mosb"), "--view", "Grid_2", "--solver", "/bin/true",

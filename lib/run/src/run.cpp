@@ -65,10 +65,16 @@ std::vector<std::string> tail_lines(const std::string& path, std::size_t count) 
 template <class Consume>
 void read_output(const std::string& path, const std::string& name, std::uint64_t limit,
                  Consume&& consume) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  // Never through a link, never waiting for a FIFO's writer: query_files_problem refused both
+  // already; this is the backstop.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK);
   if (fd < 0) throw Error(ErrorCode::io, name + ": cannot read: " + std::strerror(errno));
   struct stat st {};
-  if (::fstat(fd, &st) == 0 && static_cast<std::uint64_t>(st.st_size) > limit) {
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd);
+    throw Error(name + ": not a regular file");
+  }
+  if (static_cast<std::uint64_t>(st.st_size) > limit) {
     ::close(fd);
     throw Error(name + ": " + std::to_string(st.st_size) + " bytes, over the output limit of " +
                 std::to_string(limit) + " bytes (--max-output)");
@@ -174,6 +180,28 @@ QueryRecord judge_output(QueryRecord r, const ProcessOutcome& o, const SolverOut
   return r;
 }
 
+// Why the files a query's processes left cannot be read safely, or empty: every entry of its
+// directory must be a regular file or a directory. A FIFO would block mosb, a device or a link to
+// one (/dev/zero) would never end, a link could make mosb read another file as the query's. The
+// query's processes are all gone (§4), so nothing changes the directory after this look.
+std::string query_files_problem(const SolverOutputFiles& files) {
+  const auto directory = fs::path(files.stdout_path).parent_path();
+  std::error_code ec;
+  fs::recursive_directory_iterator entries(directory, ec), end;
+  for (; !ec && entries != end; entries.increment(ec)) {
+    const auto status = entries->symlink_status(ec);
+    if (ec || fs::is_regular_file(status) || fs::is_directory(status)) continue;
+    const char* kind = fs::is_symlink(status) ? "a symbolic link"
+                       : fs::is_fifo(status)  ? "a FIFO"
+                       : fs::is_socket(status) ? "a socket"
+                                               : "a device";
+    return entries->path().lexically_relative(directory).string() + " is " + kind +
+           ", not a regular file: the query's output is not read";
+  }
+  if (ec) return directory.string() + ": cannot list: " + ec.message();
+  return {};
+}
+
 // The status and statistics of a finished solver (spec/RUN.md §4–§5).
 QueryRecord classify(std::uint64_t q, const ProcessOutcome& o, const SolverOutputFiles& files,
                      const Judging& j) {
@@ -182,11 +210,12 @@ QueryRecord classify(std::uint64_t q, const ProcessOutcome& o, const SolverOutpu
   r.wall_seconds = o.wall_seconds;
   r.cpu_seconds = o.cpu_seconds;
   r.peak_memory_bytes = o.peak_memory_bytes;
+  const auto unsafe = query_files_problem(files);
   const auto failed = [&](std::uint64_t exit_status, std::string message) {
     r.status = QueryStatus::failed;
     r.statistics.exit_status = exit_status;
     r.message = std::move(message);
-    r.stderr_tail = tail_lines(files.stderr_path, 5);
+    if (unsafe.empty()) r.stderr_tail = tail_lines(files.stderr_path, 5);
     return r;
   };
   switch (o.ending) {
@@ -218,6 +247,7 @@ QueryRecord classify(std::uint64_t q, const ProcessOutcome& o, const SolverOutpu
       j.success_exit_codes.end())
     return failed(static_cast<std::uint64_t>(o.exit_code),
                   "exit status " + std::to_string(o.exit_code) + backstop_note(j));
+  if (!unsafe.empty()) return failed(static_cast<std::uint64_t>(o.exit_code), unsafe);
   return judge_output(std::move(r), o, files, j);
 }
 
