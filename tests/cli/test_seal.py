@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Sealed queries (spec/RUN.md §4.1): from inside a query, a hostile solver tries to write the
+"""Sealed queries (spec/RUN.md §4.1) and pinned programs (§6): from inside a query, a hostile solver tries to write the
 instance, the export cache, the journal, another query's stdout, another run's directory and
 $HOME, and to reach a server on the machine's loopback. Sealed (the default), all fail and each
 query's front is its own; with --isolation none the same solver succeeds at every one of them (so
@@ -14,6 +14,7 @@ import shutil
 import socket
 import subprocess
 import threading
+import time
 
 import mosbtest
 from mosbtest import CliTest, setUpModule  # noqa: F401
@@ -217,6 +218,63 @@ class Seal(CliTest):
         r = self.mosb("run", self.path("grid.mosb"), "--view", "Grid_2", "--solver", "/bin/true",
                       "-o", self.path("x.sol"), env=dict(os.environ, MOSB_ISOLATION="lax"))
         self.assert_one_line_error(r, "MOSB_ISOLATION=lax: give seal or none", code=2)
+
+
+class PinnedPrograms(CliTest):
+    """Every query runs the program the run started with (spec/RUN.md §6): a binary through the
+    descriptor opened at the start, a script and the files its template names watched."""
+
+    def setUp(self):
+        super().setUp()
+        self.ok("generate", "grid", "--width", "5", "--height", "5", "--objectives", "2", "-o",
+                self.path("bare.mosb"))
+        self.ok("queries", "generate", self.path("bare.mosb"), "--set", "q", "--count", "10",
+                "-o", self.path("grid.mosb"))
+
+    def start(self, template, output):
+        return subprocess.Popen([mosbtest.MOSB, "run", self.path("grid.mosb"), "--view", "Grid_2",
+                                 "--queries", "q", "--solver", template, "-o", output],
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                                cwd=self.dir)
+
+    def wait_for_queries(self, output, count):
+        journal = output + ".journal"
+        for _ in range(1000):
+            if os.path.exists(journal) and len(mosbtest.read(journal, "r").splitlines()) > count:
+                return
+            time.sleep(0.01)
+        self.fail("the run did not get going")
+
+    def test_a_binary_replaced_during_the_run_changes_no_query(self):
+        program = self.path("prog")
+        shutil.copy("/bin/sleep", program)
+        output = self.path("pinned.sol")
+        run = self.start(program + " 0.1", output)
+        self.wait_for_queries(output, 2)
+        shutil.copy("/bin/false", self.path("other"))
+        os.rename(self.path("other"), program)  # what `mv` does: a new file at the path
+        out, err = run.communicate(timeout=120)
+        self.assertEqual(run.returncode, 0, err)
+        info = json.loads(self.ok("solutions", "inspect", "--json", output).stdout)
+        self.assertEqual(info["statuses"]["disconnected"], 10, err)  # sleep's, every one
+
+    def test_a_script_changed_during_the_run_writes_no_file(self):
+        script = self.write("solver.sh", "sleep 0.1\necho 1 1\n")
+        output = self.path("script.sol")
+        run = self.start("/bin/bash " + script, output)
+        self.wait_for_queries(output, 2)
+        with open(script, "a") as f:
+            f.write("echo 2 2\n")
+        out, err = run.communicate(timeout=120)
+        self.assertEqual(run.returncode, 1, err)
+        self.assertIn(script + " changed during the run", err.splitlines()[-1])
+        self.assertFalse(os.path.exists(output))
+        # Resumed with the changed script: refused, naming what differs.
+        r = self.mosb("run", self.path("grid.mosb"), "--view", "Grid_2", "--queries", "q",
+                      "--solver", "/bin/bash " + script, "-o", output, "--resume")
+        self.assertNotEqual(r.returncode, 0, r)
+        self.assertIn("files", r.stderr)
+        self.assertFalse(os.path.exists(output))
 
 
 if __name__ == "__main__":

@@ -354,6 +354,7 @@ struct LaunchHeader {
   std::uint32_t size = 0;
   std::int32_t cpu = -1;
   std::uint64_t rlimit_as = 0;
+  std::int32_t executable_fd = -1;  // ProcessSpec::executable_fd
 };
 
 // Where a parked child receives its command: allocated before the fork, since the child of a
@@ -402,11 +403,14 @@ bool read_exactly(int fd, void* data, std::size_t size) {
 // program replaces the child (async-signal-safe calls only). Every program lib/run starts is
 // executed here; one that cannot be is reported as stage 2.
 [[noreturn]] void execute(const char* executable, char* const argv[], int output, int errors,
-                          int error_fd) {
+                          int error_fd, int executable_fd = -1) {
   ::dup2(output, 1);
   ::dup2(errors, 2);
   if (started_file_limit.rlim_max != 0) ::setrlimit(RLIMIT_NOFILE, &started_file_limit);
-  ::execve(executable, argv, environ);
+  if (executable_fd >= 0)
+    ::fexecve(executable_fd, argv, environ);
+  else
+    ::execve(executable, argv, environ);
   report_and_exit(error_fd, 2);
 }
 
@@ -655,7 +659,7 @@ bool kill_what_is_left(Isolation isolation) {
   const int output = ::open(buffer.words[1], O_WRONLY | O_CREAT | O_EXCL, 0600);
   const int errors = ::open(buffer.words[2], O_WRONLY | O_CREAT | O_EXCL, 0600);
   if (output < 0 || errors < 0) report_and_exit(error_fd, 3);
-  execute(executable, argv, output, errors, error_fd);
+  execute(executable, argv, output, errors, error_fd, header.executable_fd);
 }
 
 // The launcher of one query: forks the solver's process, reaps it (and meanwhile any orphan
@@ -963,6 +967,7 @@ struct ProcessRunner::Parked {
     header.size = static_cast<std::uint32_t>(text.size());
     header.cpu = spec.cpu;
     header.rlimit_as = m == Measurement::rlimit_poll ? rlimit_backstop(memory) : 0;
+    header.executable_fd = spec.executable_fd;
     text.insert(0, reinterpret_cast<const char*>(&header), sizeof header);
     const char* at = text.data();
     std::size_t left = text.size();

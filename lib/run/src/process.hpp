@@ -49,6 +49,9 @@ std::string seal_refusal();
 
 struct ProcessSpec {
   std::string executable;         // resolved path (resolve_executable)
+  // >= 0: the executable opened once for the whole run, executed through this descriptor
+  // (fexecve), so every query runs that very file whatever happens to its path meanwhile.
+  int executable_fd = -1;
   std::vector<std::string> argv;  // argv[0] as the template gave it
   // Created by the solver's process, exclusively: a path is never reused for another query.
   std::string stdout_path, stderr_path;

@@ -257,6 +257,89 @@ std::string format_seconds(double s) {
   return out.str();
 }
 
+// The solver's program and the files its template names, as the run found them (spec/RUN.md §6,
+// "Programs pinned"). A binary is opened once and every query executes that descriptor, so a
+// program replaced at its path during the run changes nothing; a script (#!) runs by its path (its
+// interpreter opens the path, and a script finds its siblings through $0), so it is watched
+// instead, as is every regular file the template names literally (a script given to an
+// interpreter, a configuration): a change during the run fails the run, naming the file.
+struct WatchedFile {
+  std::string path, sha256;
+  struct stat found {};
+};
+
+class PinnedProgram {
+ public:
+  PinnedProgram() = default;
+  explicit PinnedProgram(const std::string& path) {
+    fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd_ < 0)
+      throw Error(ErrorCode::invalid_argument, path + ": cannot open: " + std::strerror(errno));
+    char magic[4] = {};
+    binary_ = ::pread(fd_, magic, sizeof magic, 0) == 4 && std::memcmp(magic, "\x7f" "ELF", 4) == 0;
+  }
+  ~PinnedProgram() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  PinnedProgram(PinnedProgram&& other) noexcept
+      : fd_(std::exchange(other.fd_, -1)), binary_(other.binary_) {}
+  PinnedProgram& operator=(PinnedProgram&& other) noexcept {
+    std::swap(fd_, other.fd_);
+    binary_ = other.binary_;
+    return *this;
+  }
+  // What a query executes: the descriptor of a binary, -1 for a script (run by its path).
+  int executable_fd() const { return binary_ ? fd_ : -1; }
+  // The path that reads the very file opened (its digest is the pinned program's).
+  std::string opened_path() const { return "/proc/self/fd/" + std::to_string(fd_); }
+
+ private:
+  int fd_ = -1;
+  bool binary_ = false;
+};
+
+WatchedFile watched_file(const std::string& path, const RunConfig& c) {
+  WatchedFile file;
+  file.path = path;
+  if (::stat(path.c_str(), &file.found) != 0)
+    throw Error(ErrorCode::invalid_argument, path + ": cannot read: " + std::strerror(errno));
+  if (c.sha256_file) file.sha256 = c.sha256_file(path);
+  return file;
+}
+
+// The program (when a script) and every regular file the template's words name literally.
+std::vector<WatchedFile> watched_files(const std::vector<std::string>& words,
+                                       const std::string& executable, bool script,
+                                       const RunConfig& c) {
+  std::vector<WatchedFile> out;
+  if (script) out.push_back(watched_file(executable, c));
+  for (std::size_t w = 1; w < words.size(); ++w) {
+    struct stat st {};
+    if (words[w].find('{') != std::string::npos || ::stat(words[w].c_str(), &st) != 0 ||
+        !S_ISREG(st.st_mode))
+      continue;
+    if (std::none_of(out.begin(), out.end(), [&](const WatchedFile& f) { return f.path == words[w]; }))
+      out.push_back(watched_file(words[w], c));
+  }
+  return out;
+}
+
+// Throws naming the first watched file that is no longer what the run started with.
+void check_unchanged(const std::vector<WatchedFile>& files) {
+  for (const auto& file : files) {
+    struct stat now {};
+    const bool same = ::stat(file.path.c_str(), &now) == 0 && now.st_dev == file.found.st_dev &&
+                      now.st_ino == file.found.st_ino && now.st_size == file.found.st_size &&
+                      now.st_mtim.tv_sec == file.found.st_mtim.tv_sec &&
+                      now.st_mtim.tv_nsec == file.found.st_mtim.tv_nsec;
+    if (!same)
+      throw Error(ErrorCode::invalid_argument,
+                  file.path + " changed during the run: its queries may come from two versions "
+                              "of it, so no solution file is written (the journal is kept; "
+                              "remove it to run them again)");
+  }
+}
+
 // Everything fixed for the whole run.
 struct Plan {
   std::string view, query_set;
@@ -266,6 +349,8 @@ struct Plan {
   std::vector<std::string> words;
   bool front_in_file = false, fronts_used = false;
   std::string executable, executable_sha256;
+  PinnedProgram program;
+  std::vector<WatchedFile> files;
   bool exact = true;  // the solver claims ε = 0
   Measurement measurement = Measurement::rlimit_poll;
   run_internal::Isolation isolation = run_internal::Isolation::subreaper;
@@ -288,7 +373,9 @@ Plan make_plan(const RunConfig& c, const View& selection, const SolutionWriter& 
   p.front_in_file = std::find(used.begin(), used.end(), "front") != used.end();
   p.fronts_used = std::find(used.begin(), used.end(), "fronts") != used.end();
   p.executable = template_executable(c.solver_template);
-  if (c.sha256_file) p.executable_sha256 = c.sha256_file(p.executable);
+  p.program = PinnedProgram(p.executable);
+  if (c.sha256_file) p.executable_sha256 = c.sha256_file(p.program.opened_path());
+  p.files = watched_files(p.words, p.executable, p.program.executable_fd() < 0, c);
   p.measurement = c.measurement ? *c.measurement : run_internal::detect_measurement();
   p.isolation = run_internal::detect_isolation();
   p.seal = c.seal;
@@ -323,6 +410,10 @@ nlohmann::json binding_of(const RunConfig& c, const Plan& p) {
   if (c.shard) binding["shard"] = c.shard->text();
   if (c.id_base != 0) binding["id_base"] = c.id_base;
   if (!c.parameters.empty()) binding["parameters"] = c.parameters;
+  // The files the template names: a resumed run whose script or configuration changed is refused
+  // (the program itself is bound through its own digest, see --allow-new-executable).
+  for (const auto& file : p.files)
+    if (file.path != p.executable) binding["files"][file.path] = file.sha256;
   return binding;
 }
 
@@ -480,6 +571,7 @@ class Runner {
     if (p_.fronts_used) fs::create_directories(files.fronts_dir);
     ProcessSpec spec;
     spec.executable = p_.executable;
+    spec.executable_fd = p_.program.executable_fd();
     spec.argv = expand_command(p_.words, values(q, files));
     spec.stdout_path = files.stdout_path;
     spec.stderr_path = files.stderr_path;
@@ -571,6 +663,10 @@ SolverInfo solver_info(const RunConfig& c, const Plan& p, unsigned jobs,
     for (const auto& digest : executables) digests += (digests.empty() ? "" : " | ") + digest;
     m["run.executable_sha256"] = digests;
   }
+  for (const auto& file : p.files)
+    if (file.path != p.executable)
+      m["run.file." + std::to_string(&file - p.files.data())] =
+          metadata_text(file.path) + " sha256 " + file.sha256;
   m["run.output_format"] = c.output_format;
   m["run.time_limit_seconds"] = format_seconds(c.limits.wall_seconds);
   m["run.cpu_limit_seconds"] = format_seconds(c.limits.cpu_seconds);
@@ -675,6 +771,7 @@ RunResult run_solver(const RunConfig& c, const RunCallbacks& callbacks,
     result.interrupted = true;
     return result;
   }
+  check_unchanged(plan.files);
   for (const auto& [q, record] : journal.records())
     writer.set_query(q, record.status, record.costs, record.statistics);
   writer.set_solver(solver_info(c, plan, jobs, journal.executables()));
