@@ -461,12 +461,15 @@ exec /usr/bin/python3 %s mohs "$@"
 """ % STANDIN)
         os.chmod(hostile, 0o755)
         self.reference("g2.mosb", "Grid_2")
-        self.run_profile("g2.mosb", "Grid_2", "mohs", hostile, output="hostile.sol")
-        self.assertFalse(self.compare("ref.sol", "hostile.sol")["ok"])  # the edit bites
+        # Unsealed, the edit lands; the run notices its input changed under it (spec/RUN.md §6,
+        # "Programs pinned") and writes no file rather than fronts of two graphs.
+        r = self.run_profile("g2.mosb", "Grid_2", "mohs", hostile, output="hostile.sol", code=1)
         (directory,) = self.exports()
         gr = os.path.join(self.cache, directory,
                           sorted(f for f in os.listdir(os.path.join(self.cache, directory))
                                  if f.endswith(".gr"))[0])  # the first objective's, {gr}'s first
+        self.assertIn(gr + " changed during the run", r.stderr)
+        self.assertFalse(os.path.exists(self.path("hostile.sol")))
         size = os.path.getsize(gr)
         r = self.run_profile("g2.mosb", "Grid_2", "mohs", self.standins["mohs"], output="ok.sol")
         self.assertIn("mosb: warning: export cache: %s: its content changed since it was exported"

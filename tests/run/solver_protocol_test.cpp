@@ -36,8 +36,6 @@ TEST_CASE("protocol statistics on stderr") {
   CHECK(s.expanded == 12u);
   CHECK(s.generated == 30u);
   CHECK(s.runtime_seconds == 0.5);
-  REQUIRE(s.other.size() == 1);
-  CHECK(s.other[0].first == "colour");
   CHECK_FALSE(mosb::parse_protocol_statistics("nothing\n", "err").expanded.has_value());
   CHECK_THROWS_WITH_AS(mosb::parse_protocol_statistics("a\nmosb: expanded=-1\n", "err"),
                        "err:2: expanded is not an unsigned integer below 2^64 - 1", mosb::Error);

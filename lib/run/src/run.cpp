@@ -703,18 +703,26 @@ void reap_all() {
 
 }  // namespace
 
+namespace {
+
+[[noreturn]] void refuse_packed(const std::string& path) {
+  throw Error(ErrorCode::invalid_argument,
+              path +
+                  ": a packed instance (mosb pack, mosb suite build): a solver maps the file and "
+                  "cannot read it; unpack it first (mosb unpack " +
+                  path +
+                  " -o FILE), or run on a store's unpacked copy (mosb store instance "
+                  "STORE NAME)");
+}
+
+}  // namespace
+
 GraphReader open_run_instance(const std::string& path) {
   try {
     return GraphReader::open(path, VerifyLevel::checksums);
   } catch (const Error& e) {
     if (e.code() != ErrorCode::packed) throw;
-    throw Error(ErrorCode::invalid_argument,
-                path +
-                    ": a packed instance (mosb pack, mosb suite build): a solver maps the file and "
-                    "cannot read it; unpack it first (mosb unpack " +
-                    path +
-                    " -o FILE), or run on a store's unpacked copy (mosb store instance "
-                    "STORE NAME)");
+    refuse_packed(path);
   }
 }
 
@@ -742,7 +750,9 @@ RunResult run_solver(const RunConfig& c, const RunCallbacks& callbacks,
     throw Error(
         ErrorCode::invalid_argument,
         "the solver's name or version is not valid UTF-8 (--solver-name, --solver-version)");
-  open_run_instance(c.instance_path);  // a packed file is refused before any solver starts
+  // The caller's reader is the one open of the instance (open_run_instance verified it): a packed
+  // file is refused before any solver starts, without a second read of the payload.
+  if (format::is_packed(c.instance->header())) refuse_packed(c.instance_path);
   check_output_is_not_input(c.output, {c.instance_path});
   const unsigned jobs = std::max(1u, c.jobs);
   const auto selection = solution_selection(*c.instance, c.choice);

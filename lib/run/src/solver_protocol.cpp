@@ -214,8 +214,6 @@ void ProtocolStatisticsParser::parse_line(std::string_view content) {
     stats_.generated = parse_count(value, name_, line_, key);
   else if (key == "runtime_seconds")
     stats_.runtime_seconds = parse_seconds(value, name_, line_);
-  else
-    stats_.other.emplace_back(key, value);
 }
 
 ReportedStatistics parse_protocol_statistics(std::string_view text, const std::string& name) {

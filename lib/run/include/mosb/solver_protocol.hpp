@@ -51,12 +51,11 @@ ProtocolFront parse_protocol_front(std::string_view text, std::size_t objectives
 
 // What a solver reported on standard error. Lines starting with "mosb: " hold one key=value each;
 // known keys: expanded, generated (unsigned integers, below 2^64 - 1), runtime_seconds (a finite
-// number >= 0). Other keys are kept in `other` (spec/RUN.md says they are ignored); other lines
-// are the solver's own messages and ignored.
+// number >= 0). Other keys are ignored, as spec/RUN.md says, and not kept: mosb's memory does not
+// grow with what a solver prints. Other lines are the solver's own messages and ignored.
 struct ReportedStatistics {
   std::optional<std::uint64_t> expanded, generated;
   std::optional<double> runtime_seconds;
-  std::vector<std::pair<std::string, std::string>> other;
 };
 
 // Errors are mosb::Error "NAME:LINE: message" on a `mosb: ` line that is not key=value or a known
