@@ -2,6 +2,9 @@
 #include <csignal>
 #include <cstdio>
 #include <iostream>
+#include <set>
+#include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "mosb/atomic_file.hpp"
@@ -38,6 +41,40 @@ int usage_error(const CLI::App& app, std::string message) {
   return kUsageError;
 }
 
+// An option's value as help shows it: CLI11 joins the value's C++ type and each check's name
+// ("UINT:UINT:UINT in [1 - 1024]", "TEXT:DURATION"); the most specific of them is what a user
+// types ("UINT in [1 - 1024]", "DURATION"), the rest is noise.
+std::string value_name(const std::string& joined) {
+  static const std::set<std::string> generic{"TEXT", "UINT", "INT", "FLOAT", "BOOLEAN"};
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  for (std::size_t colon = joined.find(':'); ; colon = joined.find(':', start)) {
+    parts.push_back(joined.substr(start, colon - start));
+    if (colon == std::string::npos) break;
+    start = colon + 1;
+  }
+  for (auto part = parts.rbegin(); part != parts.rend(); ++part)
+    if (!part->empty() && !generic.contains(*part)) return *part;
+  return parts.front();
+}
+
+// Every option's value name tidied (value_name), in every subcommand.
+void tidy_help(CLI::App& app) {
+  for (auto* option : app.get_options()) {
+    const auto joined = option->get_type_name();
+    if (joined.empty()) continue;
+    for (int v = 0;; ++v) {
+      try {
+        option->get_validator(v)->description("");
+      } catch (const CLI::OptionNotFound&) {
+        break;
+      }
+    }
+    option->type_name(value_name(joined));
+  }
+  for (auto* sub : app.get_subcommands([](CLI::App*) { return true; })) tidy_help(*sub);
+}
+
 int run(int argc, char** argv) {
   CLI::App app{"mosb: multi-objective search benchmark instances in a checksummed binary format"};
   app.set_version_flag("-V,--version", std::string("mosb ") + mosb::kVersion);
@@ -53,6 +90,7 @@ int run(int argc, char** argv) {
       mosb::cli::add_solutions(app), mosb::cli::add_eval(app),    mosb::cli::add_run(app),
       mosb::cli::add_report(app),    mosb::cli::add_cache(app),   mosb::cli::add_experiment(app),
   };
+  tidy_help(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
