@@ -683,6 +683,17 @@ class UsageErrors(GridTest):
     def test_unknown_subcommand(self):
         self.check_usage_error("frobnicate", "x.mosb")
 
+    def test_a_mistyped_command_is_named_with_the_one_meant(self):
+        for args, expected in ((["rnu"], "mosb: unknown command 'rnu' (did you mean 'run'?)"),
+                               (["generate", "gird"], "mosb: generate: unknown command 'gird' "
+                                                      "(did you mean 'grid'?)"),
+                               (["solutions", "inspcet", "x.sol"],
+                                "mosb: solutions: unknown command 'inspcet' (did you mean "
+                                "'inspect'?)")):
+            with self.subTest(args=args):
+                r = self.check_usage_error(*args)
+                self.assertTrue(r.stderr.startswith(expected), r.stderr)
+
     def test_unknown_option(self):
         r = self.check_usage_error("inspect", "--frobnicate", "x.mosb")
         self.assertIn("--frobnicate", r.stderr)

@@ -1,4 +1,5 @@
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <iostream>
@@ -30,8 +31,50 @@ std::string command_path(const CLI::App& app) {
   }
 }
 
+// The edit distance of two words (insertions, deletions, substitutions), for "did you mean".
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+// For a word the deepest command given did not take, the subcommand it may have meant:
+// "unknown command 'rnu' (did you mean 'run'?)", or "" when the word is nothing like one.
+std::string did_you_mean(const CLI::App& app) {
+  const CLI::App* current = &app;
+  for (bool deeper = true; deeper;) {
+    deeper = false;
+    for (const auto* sub : current->get_subcommands())
+      if (sub->count() > 0) {
+        current = sub;
+        deeper = true;
+      }
+  }
+  const auto words = current->remaining();
+  if (words.empty() || words.front().starts_with("-")) return {};
+  std::string best;
+  std::size_t best_distance = 3;  // two typos at most
+  for (const auto* sub : current->get_subcommands([](const CLI::App*) { return true; }))
+    if (const auto d = edit_distance(words.front(), sub->get_name()); d < best_distance) {
+      best = sub->get_name();
+      best_distance = d;
+    }
+  if (best.empty()) return {};
+  return "unknown command '" + words.front() + "' (did you mean '" + best + "'?)";
+}
+
 // A usage error is one line: what is wrong, and where to read how it should be.
 int usage_error(const CLI::App& app, std::string message) {
+  if (auto suggestion = did_you_mean(app); !suggestion.empty()) message = std::move(suggestion);
   for (auto& c : message)  // CLI11 breaks some of its messages into lines
     if (c == '\n' || c == '\r') c = ' ';
   message = mosb::escape_for_terminal(message);  // what the user typed may hold other controls

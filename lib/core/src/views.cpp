@@ -169,9 +169,14 @@ std::optional<View> select_view(const GraphReader& reader, const ViewChoice& cho
     for (std::size_t j = 0; j < reader.objective_count(); ++j) selected.objectives.push_back(j);
   }
   if (!choice.queries.empty()) {
-    if (!reader.find(format::SectionKind::queries, choice.queries))
-      throw Error(ErrorCode::not_found,
-                  reader.display_name() + ": no query set '" + choice.queries + "'");
+    if (!reader.find(format::SectionKind::queries, choice.queries)) {
+      std::string sets;
+      for (const auto* set : reader.all(format::SectionKind::queries))
+        sets += (sets.empty() ? "" : ", ") + set->name;
+      throw Error(ErrorCode::not_found, reader.display_name() + ": no query set '" +
+                                            choice.queries + "' (query sets: " +
+                                            (sets.empty() ? std::string("none") : sets) + ")");
+    }
     selected.query_set = choice.queries;
   }
   return selected;
