@@ -288,11 +288,11 @@ class ExperimentTest(ExperimentFixture):
         for benchmark, solver in self.solver_pairs():
             self.assertIn(benchmark, plain)
             self.assertIn(solver, plain)
-        for bad in (["eval", results, "--solutions", os.path.join(results, "MANIFEST")],
-                    ["eval", "--reference", refs, "--solutions",
-                     os.path.join(refs, os.listdir(refs)[0])]):
+        for bad, code in ((["eval", results, "--solutions", os.path.join(results, "MANIFEST")], 1),
+                          (["eval", "--reference", refs, "--solutions",
+                            os.path.join(refs, os.listdir(refs)[0])], 2)):
             r = run(*bad)
-            self.assertEqual(r.returncode, 2, r.stderr)
+            self.assertEqual(r.returncode, code, r.stderr)
             self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
 
     def test_changed_limits_or_executable_refuse_the_cells_they_touch(self):
@@ -448,10 +448,15 @@ class ExperimentTest(ExperimentFixture):
         self.assertEqual(r.returncode, 1, r.stderr)
         self.assertIn("is one of the inputs", r.stderr)
         self.assertEqual(read(os.path.join(namoa, "small.Grid_2.sol")), before)
+        # A solver run by hand on the experiment's instance joins its table.
+        self.ok("run", self.path("small.mosb"), "--view", "Grid_2", "--solver",
+                TEMPLATE % os.path.join(EXAMPLES, "boa_star"), "--solver-name", "by-hand",
+                "-o", self.path("by-hand.sol"))
         table = json.loads(self.ok("eval", results, "--reference", self.path("refs"),
-                                   "--json").stdout)
+                                   "--solutions", self.path("by-hand.sol"), "--json").stdout)
         for row in table["rows"]:
             self.assertEqual(row["covered@0.1"], 5, row)
+        self.assertIn(("Grid_2", "by-hand"), {(r["benchmark"], r["solver"]) for r in table["rows"]})
         # A rerun runs nothing; another merge strategy is another solver: its cells are refused.
         self.assertEqual(json.loads(run(*argv, env=env).stdout)["ran"], 0)
         self.write("paper.toml", text.replace('"RANDOM"', '"MORE_SLACK"'))

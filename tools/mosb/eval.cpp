@@ -282,7 +282,6 @@ void print_table_json(const tables::Table& table) {
 // experiment's results directory, its instances grouped into benchmarks as the report groups
 // them; with references, each solver's ε-coverage per benchmark.
 int run_eval_results(const EvalArgs& args) {
-  if (!args.solutions.empty()) throw UsageError("--solutions: not with a results directory");
   if (args.per_query) throw UsageError("--per-query: not with a results directory");
   pages::ReportOptions options;
   options.epsilons = parse_epsilons(args.epsilons);
@@ -293,6 +292,8 @@ int run_eval_results(const EvalArgs& args) {
   std::vector<SolutionReader> solutions, references;
   for (const auto& path : result_files(args.results))
     solutions.push_back(SolutionReader::open_verified(path));
+  // Files from outside the experiment (a solver run by hand on its instances) join its table.
+  for (const auto& path : args.solutions) solutions.push_back(SolutionReader::open_verified(path));
   if (!args.reference.empty())
     for (const auto& path : reference_files(args.reference))
       references.push_back(SolutionReader::open_verified(path));
@@ -368,7 +369,8 @@ Command add_eval(CLI::App& app) {
                   "(mosb solutions reference -o)")
       ->check(CLI::ExistingPath);
   sub->add_option("--solutions", args->solutions,
-                  "the solvers' solution files (one or more), each compared with the reference")
+                  "the solvers' solution files (one or more), each compared with the reference; "
+                  "with RESULTS, files from outside the experiment that join its table")
       ->expected(1, -1)
       ->check(CLI::ExistingFile);
   sub->add_option("--eps", args->epsilons, "comma-separated ε values")->capture_default_str();
