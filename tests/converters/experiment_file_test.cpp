@@ -123,12 +123,12 @@ epsilon = [0.01, "0.05", 0.1]
 }
 
 TEST_CASE("parse_experiment: limits keep their full precision") {
-  const auto a = parse_experiment("name = \"x\"\nstore = \"s\"\nlimits = { time = 1000000.4 }\n" +
-                                      std::string(kSolver),
-                                  "exp.toml");
-  const auto b = parse_experiment("name = \"x\"\nstore = \"s\"\nlimits = { time = 1000000 }\n" +
-                                      std::string(kSolver),
-                                  "exp.toml");
+  const auto a = parse_experiment(
+      "name = \"x\"\nstore = \"s\"\nlimits = { time = 1000000.4 }\n" + std::string(kSolver),
+      "exp.toml");
+  const auto b = parse_experiment(
+      "name = \"x\"\nstore = \"s\"\nlimits = { time = 1000000 }\n" + std::string(kSolver),
+      "exp.toml");
   CHECK(a.limits.text != b.limits.text);
 }
 
@@ -218,7 +218,8 @@ TEST_CASE("parse_experiment: each refusal names the file, the line and the key")
         "exp.toml:6: solver[1].output_format: 'nonesuch': no such output format");
   CHECK(error_of(head + kSolver + "epsilon = true\n") ==
         "exp.toml:6: solver[1].epsilon: must be an ε (0.05 or \"0.05\") or an array of them");
-  CHECK(error_of(head + kSolver + "epsilon = -0.1\n").starts_with("exp.toml:6: solver[1].epsilon: "));
+  CHECK(
+      error_of(head + kSolver + "epsilon = -0.1\n").starts_with("exp.toml:6: solver[1].epsilon: "));
   CHECK(error_of(head + kSolver + "epsilon = []\n") ==
         "exp.toml:6: solver[1].epsilon: an empty array: give at least one ε");
   CHECK(error_of(head + "[[solver]]\nname = \"a\"\nprofile = \"apex\"\nexecutable = \"/x\"\n"

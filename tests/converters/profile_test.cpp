@@ -75,8 +75,8 @@ TEST_CASE("a minimal profile takes the defaults") {
         p.text_digest);
   CHECK(parse_profile(std::string(kMinimal) + "[output]\nruntime_clock = \"cpu\"\n", "p.toml")
             .output.runtime_clock == RuntimeClock::cpu);
-  CHECK_THROWS(parse_profile(std::string(kMinimal) + "[output]\nruntime_clock = \"sun\"\n",
-                             "p.toml"));
+  CHECK_THROWS(
+      parse_profile(std::string(kMinimal) + "[output]\nruntime_clock = \"sun\"\n", "p.toml"));
 }
 
 TEST_CASE("a malformed profile is one line with file, line, column and key") {

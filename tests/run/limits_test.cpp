@@ -30,25 +30,9 @@ TEST_CASE("parse_memory_size: bytes, K M G T as powers of 1024, an optional B or
 }
 
 TEST_CASE("parse_memory_size: malformed or out of range is nullopt, never a wrapped value") {
-  for (const char* bad : {"",
-                          "G",
-                          "B",
-                          "iB",
-                          "-1",
-                          "+1",
-                          " 1",
-                          "1 ",
-                          "1.5G",
-                          "16Q",
-                          "16GiBB",
-                          "100iB",
-                          "1KBB",
-                          "1e9",
-                          "0x10",
-                          "18446744073709551616",
-                          "99999999999999999999",
-                          "16777216T",
-                          "17179869184G"})
+  for (const char* bad :
+       {"", "G", "B", "iB", "-1", "+1", " 1", "1 ", "1.5G", "16Q", "16GiBB", "100iB", "1KBB", "1e9",
+        "0x10", "18446744073709551616", "99999999999999999999", "16777216T", "17179869184G"})
     CHECK_MESSAGE(!parse_memory_size(bad), bad);
 }
 

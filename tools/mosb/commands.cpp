@@ -1,10 +1,10 @@
 #include "commands.hpp"
 
 #include <CLI/CLI.hpp>
-#include <cstdlib>
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <iostream>
 #include <sstream>
 

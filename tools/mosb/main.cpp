@@ -91,13 +91,13 @@ std::string value_name(const std::string& joined) {
   static const std::set<std::string> generic{"TEXT", "UINT", "INT", "FLOAT", "BOOLEAN"};
   std::vector<std::string> parts;
   std::size_t start = 0;
-  for (std::size_t colon = joined.find(':'); ; colon = joined.find(':', start)) {
+  for (std::size_t colon = joined.find(':');; colon = joined.find(':', start)) {
     parts.push_back(joined.substr(start, colon - start));
     if (colon == std::string::npos) break;
     start = colon + 1;
   }
-  for (auto part = parts.rbegin(); part != parts.rend(); ++part)
-    if (!part->empty() && !generic.contains(*part)) return *part;
+  for (std::size_t k = parts.size(); k-- > 0;)  // the last check names it most precisely
+    if (!parts[k].empty() && !generic.contains(parts[k])) return parts[k];
   return parts.front();
 }
 

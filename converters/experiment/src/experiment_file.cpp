@@ -145,7 +145,8 @@ void read_limits(TableReader& root, Experiment& e) {
       bytes = parse_memory_size(*node->value<std::string>());
     else if (!node->is_integer())
       t.fail(*node, key, "must be a number of bytes or a size text");
-    if (!bytes) t.fail(*node, key, "'" + t.text_of(*node) + "' is not a size (4294967296, 512M, 16G)");
+    if (!bytes)
+      t.fail(*node, key, "'" + t.text_of(*node) + "' is not a size (4294967296, 512M, 16G)");
     out = *bytes;
     canonical += key + '=' + std::to_string(*bytes) + "B ";
   };

@@ -2,13 +2,13 @@
 
 #include <dirent.h>
 #include <fcntl.h>
-#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <charconv>
+#include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -301,7 +301,7 @@ std::string odd_file(int dir_fd, const fs::path& dir) {
   const int own = ::openat(dir_fd, ".", O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   DIR* listing = own < 0 ? nullptr : ::fdopendir(own);
   if (!listing) {
-    const auto why = dir.string() + ": " + errno_text();
+    auto why = dir.string() + ": " + errno_text();
     if (own >= 0) ::close(own);
     return why;
   }

@@ -114,8 +114,7 @@ RunInput prepare_input(const RunConfig& config, const SolverProfile& p, const So
     }
   }
   if (p.input.form == InputForm::mosb) {
-    if (request.scale > 0)
-      refuse("scale: profile " + p.name + "'s solver reads the .mosb itself");
+    if (request.scale > 0) refuse("scale: profile " + p.name + "'s solver reads the .mosb itself");
     return in;
   }
   if (request.scale > 0 && !any_float) refuse("scale: no objective of the run holds float costs");
@@ -162,8 +161,8 @@ std::optional<std::string> run_value(const std::string& name, const RunConfig& c
   if (name.rfind("gr:", 0) == 0) {
     for (std::size_t k = 0; k < in.objective_names.size(); ++k)
       if (in.objective_names[k] == name.substr(3)) return in.files.objectives[k].string();
-    refuse("profile " + p.name + ": {" + name + "}: the run has no objective '" +
-           name.substr(3) + "'");
+    refuse("profile " + p.name + ": {" + name + "}: the run has no objective '" + name.substr(3) +
+           "'");
   }
   if (const auto option = options.find(name); option != options.end()) return option->second;
   return std::nullopt;

@@ -173,9 +173,9 @@ std::optional<View> select_view(const GraphReader& reader, const ViewChoice& cho
       std::string sets;
       for (const auto* set : reader.all(format::SectionKind::queries))
         sets += (sets.empty() ? "" : ", ") + set->name;
-      throw Error(ErrorCode::not_found, reader.display_name() + ": no query set '" +
-                                            choice.queries + "' (query sets: " +
-                                            (sets.empty() ? std::string("none") : sets) + ")");
+      throw Error(ErrorCode::not_found,
+                  reader.display_name() + ": no query set '" + choice.queries +
+                      "' (query sets: " + (sets.empty() ? std::string("none") : sets) + ")");
     }
     selected.query_set = choice.queries;
   }

@@ -172,7 +172,7 @@ std::string template_executable(std::string_view solver_template) {
     throw Error(ErrorCode::invalid_argument,
                 "the program '" + words.front() +
                     "' is a placeholder: the template starts with the solver's executable");
-  const auto executable = resolve_executable(words.front());
+  auto executable = resolve_executable(words.front());
   if (executable.empty())
     throw Error(ErrorCode::invalid_argument,
                 words.front() + ": no such executable" +

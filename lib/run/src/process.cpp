@@ -2,10 +2,10 @@
 
 #include <dirent.h>
 #include <fcntl.h>
-#include <poll.h>
-#include <sched.h>
 #include <linux/capability.h>
 #include <net/if.h>
+#include <poll.h>
+#include <sched.h>
 #include <sys/ioctl.h>
 #include <sys/mount.h>
 #include <sys/prctl.h>
@@ -439,13 +439,15 @@ int wait_for(pid_t pid, rusage* usage = nullptr) {
 // of a threaded process must not allocate.
 struct SealSetup {
   bool on = false;
-  bool user_namespace = false;   // not root: a user namespace that maps the user alone
+  bool user_namespace = false;    // not root: a user namespace that maps the user alone
   std::string queries_directory;  // where the query directories are made
   std::string uid_map, gid_map;   // "ID ID 1" for the user namespace
   int queries_fd = -1;            // in the child: the queries directory, before anything is hidden
 
-  SealSetup(Seal seal, const std::string& directory)
-      : on(seal == Seal::sealed), user_namespace(::geteuid() != 0), queries_directory(directory) {
+  SealSetup(Seal seal, std::string directory)
+      : on(seal == Seal::sealed),
+        user_namespace(::geteuid() != 0),
+        queries_directory(std::move(directory)) {
     uid_map = std::to_string(::geteuid()) + " " + std::to_string(::geteuid()) + " 1";
     gid_map = std::to_string(::getegid()) + " " + std::to_string(::getegid()) + " 1";
   }
@@ -490,8 +492,7 @@ bool seal_namespaces(SealSetup& s) {
   if (::mount(nullptr, "/", nullptr, MS_REC | MS_PRIVATE, nullptr) != 0) return false;
   mount_attr read_only{};
   read_only.attr_set = MOUNT_ATTR_RDONLY | MOUNT_ATTR_NOSUID;
-  if (::mount_setattr(AT_FDCWD, "/", AT_RECURSIVE, &read_only, sizeof read_only) != 0)
-    return false;
+  if (::mount_setattr(AT_FDCWD, "/", AT_RECURSIVE, &read_only, sizeof read_only) != 0) return false;
   if (::access("/dev/shm", F_OK) == 0 &&
       ::mount("tmpfs", "/dev/shm", "tmpfs", MS_NOSUID | MS_NODEV, "mode=1777") != 0)
     return false;
@@ -664,8 +665,8 @@ bool kill_what_is_left(Isolation isolation) {
 
 // The launcher of one query: forks the solver's process, reaps it (and meanwhile any orphan
 // reparented here), kills what the solver left, tells mosb how the solver ended, and exits.
-[[noreturn]] void launcher(int command_fd, int error_fd, Isolation isolation,
-                           const SealSetup& seal, LaunchBuffer& buffer) {
+[[noreturn]] void launcher(int command_fd, int error_fd, Isolation isolation, const SealSetup& seal,
+                           LaunchBuffer& buffer) {
   // A sealed query's processes see their PID namespace alone in /proc, read-only: not mosb's
   // memory, not another query's processes.
   if (seal.on && isolation == Isolation::pid_namespace &&

@@ -48,7 +48,7 @@ Isolation detect_isolation();
 std::string seal_refusal();
 
 struct ProcessSpec {
-  std::string executable;         // resolved path (resolve_executable)
+  std::string executable;  // resolved path (resolve_executable)
   // >= 0: the executable opened once for the whole run, executed through this descriptor
   // (fexecve), so every query runs that very file whatever happens to its path meanwhile.
   int executable_fd = -1;

@@ -191,8 +191,8 @@ std::string query_files_problem(const SolverOutputFiles& files) {
   for (; !ec && entries != end; entries.increment(ec)) {
     const auto status = entries->symlink_status(ec);
     if (ec || fs::is_regular_file(status) || fs::is_directory(status)) continue;
-    const char* kind = fs::is_symlink(status) ? "a symbolic link"
-                       : fs::is_fifo(status)  ? "a FIFO"
+    const char* kind = fs::is_symlink(status)  ? "a symbolic link"
+                       : fs::is_fifo(status)   ? "a FIFO"
                        : fs::is_socket(status) ? "a socket"
                                                : "a device";
     return entries->path().lexically_relative(directory).string() + " is " + kind +
@@ -276,7 +276,10 @@ class PinnedProgram {
     if (fd_ < 0)
       throw Error(ErrorCode::invalid_argument, path + ": cannot open: " + std::strerror(errno));
     char magic[4] = {};
-    binary_ = ::pread(fd_, magic, sizeof magic, 0) == 4 && std::memcmp(magic, "\x7f" "ELF", 4) == 0;
+    binary_ = ::pread(fd_, magic, sizeof magic, 0) == 4 && std::memcmp(magic,
+                                                                       "\x7f"
+                                                                       "ELF",
+                                                                       4) == 0;
   }
   ~PinnedProgram() {
     if (fd_ >= 0) ::close(fd_);
@@ -318,7 +321,8 @@ std::vector<WatchedFile> watched_files(const std::vector<std::string>& words,
     if (words[w].find('{') != std::string::npos || ::stat(words[w].c_str(), &st) != 0 ||
         !S_ISREG(st.st_mode))
       continue;
-    if (std::none_of(out.begin(), out.end(), [&](const WatchedFile& f) { return f.path == words[w]; }))
+    if (std::none_of(out.begin(), out.end(),
+                     [&](const WatchedFile& f) { return f.path == words[w]; }))
       out.push_back(watched_file(words[w], c));
   }
   return out;
@@ -334,9 +338,10 @@ void check_unchanged(const std::vector<WatchedFile>& files) {
                       now.st_mtim.tv_nsec == file.found.st_mtim.tv_nsec;
     if (!same)
       throw Error(ErrorCode::invalid_argument,
-                  file.path + " changed during the run: its queries may come from two versions "
-                              "of it, so no solution file is written (the journal is kept; "
-                              "remove it to run them again)");
+                  file.path +
+                      " changed during the run: its queries may come from two versions "
+                      "of it, so no solution file is written (the journal is kept; "
+                      "remove it to run them again)");
   }
 }
 

@@ -197,7 +197,7 @@ ReportedStatistics ProtocolStatisticsParser::finish() {
     parse_line(partial_);
   }
   partial_.clear();
-  return std::move(stats_);
+  return stats_;
 }
 
 void ProtocolStatisticsParser::parse_line(std::string_view content) {

@@ -1,10 +1,9 @@
 #include "mosb/solution_reference.hpp"
 
-#include "mosb/eval.hpp"
-
 #include <algorithm>
 
 #include "mosb/error.hpp"
+#include "mosb/eval.hpp"
 #include "mosb/solution_summary.hpp"
 #include "mosb/solver_comparison.hpp"
 
@@ -212,9 +211,9 @@ std::vector<ReferenceGroup> reference_groups(std::span<const SolutionReader> fil
     if (std::find(present.begin(), present.end(), name) == present.end()) {
       std::string listed;
       for (const auto& p : present) listed += (listed.empty() ? "" : ", ") + p;
-      throw Error(ErrorCode::invalid_argument,
-                  "solver '" + name + "' has no file among the inputs (their solvers: " + listed +
-                      ")");
+      throw Error(
+          ErrorCode::invalid_argument,
+          "solver '" + name + "' has no file among the inputs (their solvers: " + listed + ")");
     }
   for (std::size_t f = 0; f < files.size(); ++f) {
     const auto name = solver_name(files[f]);
