@@ -78,7 +78,7 @@ template <class T>
 std::size_t FrontIndex<T>::build(std::vector<std::size_t>& order, std::size_t begin,
                                  std::size_t end) {
   const std::size_t index = nodes_.size();
-  nodes_.push_back({begin, end, 0, SIZE_MAX, key_[order[begin]]});
+  nodes_.push_back({begin, end, 0, 0, SIZE_MAX, key_[order[begin]]});
   boxes_.resize(boxes_.size() + 2 * d_);
   T* low = boxes_.data() + index * 2 * d_;
   T* high = low + d_;
@@ -102,6 +102,7 @@ std::size_t FrontIndex<T>::build(std::vector<std::size_t>& order, std::size_t be
   build(order, begin, middle);
   const std::size_t right = build(order, middle, end);
   nodes_[index].right = right;
+  nodes_[index].axis = axis;
   return index;
 }
 
@@ -153,7 +154,12 @@ bool FrontIndex<T>::any_below(std::size_t node, const T* bound, double key,
     }
     return false;
   }
-  return any_below(node + 1, bound, key, limit) || any_below(n.right, bound, key, limit);
+  // First the child on the bound's side of the split: the vectors nearest the bound are there,
+  // and a vector just below the bound, if any, is most likely among them.
+  const bool right_first = low(n.right)[n.axis] <= bound[n.axis];
+  const std::size_t first = right_first ? n.right : node + 1,
+                    second = right_first ? node + 1 : n.right;
+  return any_below(first, bound, key, limit) || any_below(second, bound, key, limit);
 }
 
 template class FrontIndex<std::uint64_t>;

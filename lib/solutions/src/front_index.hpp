@@ -38,6 +38,7 @@ class FrontIndex {
   static constexpr std::size_t kLeaf = 8;
   struct Node {
     std::size_t begin, end, right;  // the left child, if any, is the next node
+    std::size_t axis;               // split at the right child's lowest value on it
     std::size_t first_rank;
     double min_key;
   };
