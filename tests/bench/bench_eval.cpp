@@ -3,7 +3,8 @@
 // against 1,000,000 in 8 objectives under 60 s and 2 GB).
 //
 //   mosb_bench_eval [--quick]
-//   mosb_bench_eval --scaling [MAX_N [NAIVE_MAX_N]]
+//   mosb_bench_eval --scaling [MAX_N [NAIVE_MAX_N [D]]]
+//   mosb_bench_eval --small
 //
 // Reference: mutually non-dominated integer vectors (coordinates summing to a constant). Solution:
 // each reference vector scaled up by a random factor in [1, 1.08) per coordinate, plus random
@@ -11,10 +12,10 @@
 // test and of the whole evaluation (ε = 0, 0.01, 0.05, 0.1 and the achieved ε), for d = 2 and 3.
 // Figures only; exit 1 only when a result is wrong (the achieved ε must be below 0.08).
 //
-// --scaling (issue 44): for d = 2, 3, 5, 8 and n = 10^4, 10^5, 10^6 (up to MAX_N), a reference
-// of n vectors on the plane "sum of costs = constant" and a solution holding each of them + 1 in
-// one coordinate (the two fronts are mutually non-dominated); evaluate_front at ε = 0, 0.01, 0.1
-// as `mosb eval --eps 0,0.01,0.1` runs it. Each case runs in a child process: its wall time and
+// --scaling (issue 44): for d = 2, 3, 5, 8 (or D alone) and n = 10^4, 10^5, 10^6 (up to MAX_N), a
+// reference of n vectors on the plane "sum of costs = constant" and a solution holding each of them
+// + 1 in one coordinate (the two fronts are mutually non-dominated); evaluate_front at ε = 0, 0.01,
+// 0.1 as `mosb eval --eps 0,0.01,0.1` runs it. Each case runs in a child process: its wall time and
 // peak RSS (fronts included). Up to NAIVE_MAX_N (default 10^4) the naive definitions (a scan of
 // one front per vector of the other) also run, in another child, and must give the same results.
 
@@ -208,13 +209,14 @@ ChildRun in_child(Work work) {
   return run;
 }
 
-int scaling(std::size_t max_n, std::size_t naive_max_n) {
+int scaling(std::size_t max_n, std::size_t naive_max_n, std::size_t only_d) {
   std::printf(
       "| d | n | evaluate_front | peak RSS | naive | results (per eps: covered, uncovered; "
       "achieved eps; dominated) |\n");
   std::printf("|---|---|---|---|---|---|\n");
   int status = 0;
   for (std::size_t d : {2u, 3u, 5u, 8u}) {
+    if (only_d != 0 && d != only_d) continue;
     for (std::size_t n = 10'000; n <= max_n; n *= 10) {
       // The fronts are generated before the clock starts: the time is the evaluation's.
       double eval_seconds = 0;
@@ -252,12 +254,33 @@ int scaling(std::size_t max_n, std::size_t naive_max_n) {
   return status;
 }
 
+// --small: many queries with small fronts, as a real eval has them (10,000 pairs of 8 to 64
+// vectors, the same plane fronts): the per-call cost of the structures, not their scaling.
+int small_fronts() {
+  for (std::size_t d : {2u, 3u, 5u, 8u}) {
+    std::vector<Fronts> pairs;
+    for (std::size_t k = 0; k < 10'000; ++k) pairs.push_back(plane_fronts(d, 8 + k % 57));
+    const auto start = Clock::now();
+    std::size_t uncovered = 0;
+    for (const Fronts& f : pairs)
+      uncovered += evaluate_front(FrontView<std::uint64_t>{f.solution, d},
+                                  FrontView<std::uint64_t>{f.reference, d}, kScalingEpsilons)
+                       .coverage[1]
+                       .uncovered;
+    std::printf("d=%zu: 10,000 evaluations of 8-64 vectors: %.3f s (%zu uncovered at 0.01)\n", d,
+                seconds_since(start), uncovered);
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc > 1 && std::strcmp(argv[1], "--small") == 0) return small_fronts();
   if (argc > 1 && std::strcmp(argv[1], "--scaling") == 0)
     return scaling(argc > 2 ? std::strtoull(argv[2], nullptr, 10) : 1'000'000,
-                   argc > 3 ? std::strtoull(argv[3], nullptr, 10) : 10'000);
+                   argc > 3 ? std::strtoull(argv[3], nullptr, 10) : 10'000,
+                   argc > 4 ? std::strtoull(argv[4], nullptr, 10) : 0);
   const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
   const std::size_t r = quick ? 10'000 : 100'000, s = quick ? 100'000 : 1'000'000;
   int status = 0;
