@@ -46,8 +46,7 @@ FrontIndex<T>::FrontIndex(std::span<const T> rows, std::size_t d, std::span<cons
   if (n == 0) return;
   weight_ = key_weights(rows, d);
   points_.assign(rows.begin(), rows.end());
-  rank_ = rank.empty() ? std::vector<std::size_t>(n, 0)
-                       : std::vector<std::size_t>(rank.begin(), rank.end());
+  rank_.assign(rank.begin(), rank.end());  // empty: every vector has rank 0
   key_.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
     key_[k] = key_of(point(k));
@@ -59,12 +58,12 @@ FrontIndex<T>::FrontIndex(std::span<const T> rows, std::size_t d, std::span<cons
   build(order, 0, n);
   // Lay the vectors, ranks and keys out in tree order, so that a leaf's are contiguous.
   std::vector<T> points(n * d);
-  std::vector<std::size_t> ranks(n);
+  std::vector<std::size_t> ranks(rank_.empty() ? 0 : n);
   std::vector<double> keys(n);
   for (std::size_t p = 0; p < n; ++p) {
     std::copy(point(order[p]), point(order[p]) + d,
               points.begin() + static_cast<std::ptrdiff_t>(p * d));
-    ranks[p] = rank_[order[p]];
+    if (!rank_.empty()) ranks[p] = rank_[order[p]];
     keys[p] = key_[order[p]];
   }
   points_ = std::move(points);
@@ -90,7 +89,7 @@ std::size_t FrontIndex<T>::build(std::vector<std::size_t>& order, std::size_t be
       low[i] = std::min(low[i], x[i]);
       high[i] = std::max(high[i], x[i]);
     }
-    nodes_[index].first_rank = std::min(nodes_[index].first_rank, rank_[order[p]]);
+    nodes_[index].first_rank = std::min(nodes_[index].first_rank, rank_of(order[p]));
     nodes_[index].min_key = std::min(nodes_[index].min_key, key_[order[p]]);
   }
   if (end - begin <= kLeaf) return index;
@@ -148,7 +147,7 @@ bool FrontIndex<T>::any_below(std::size_t node, const T* bound, double key,
   if (inside) return true;
   if (leaf(node)) {
     for (std::size_t p = n.begin; p < n.end; ++p) {
-      if (rank_[p] >= limit || key_[p] > key) continue;
+      if (rank_of(p) >= limit || key_[p] > key) continue;
       const T* x = point(p);
       if (std::equal(x, x + d_, bound, [](T a, T b) { return a <= b; })) return true;
     }

@@ -53,6 +53,7 @@ class FrontIndex {
   const T* low(std::size_t node) const { return boxes_.data() + node * 2 * d_; }
   const T* high(std::size_t node) const { return low(node) + d_; }
   bool leaf(std::size_t node) const { return nodes_[node].right == 0; }
+  std::size_t rank_of(std::size_t p) const { return rank_.empty() ? 0 : rank_[p]; }
 
   std::size_t d_;
   std::vector<T> points_;  // the vectors in tree order, each leaf's contiguous
