@@ -45,61 +45,65 @@ FrontIndex<T>::FrontIndex(std::span<const T> rows, std::size_t d, std::span<cons
   const std::size_t n = d == 0 ? 0 : rows.size() / d;
   if (n == 0) return;
   weight_ = key_weights(rows, d);
-  points_.assign(rows.begin(), rows.end());
-  rank_.assign(rank.begin(), rank.end());  // empty: every vector has rank 0
-  key_.resize(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    key_[k] = key_of(point(k));
-    if (std::isnan(key_[k])) key_[k] = -std::numeric_limits<double>::infinity();
-  }
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), std::size_t{0});
-  nodes_.reserve(2 * (n / kLeaf) + 1);
-  build(order, 0, n);
-  // Lay the vectors, ranks and keys out in tree order, so that a leaf's are contiguous.
-  std::vector<T> points(n * d);
-  std::vector<std::size_t> ranks(rank_.empty() ? 0 : n);
-  std::vector<double> keys(n);
+  nodes_.reserve(n / 2 + 1);  // a leaf holds at least kLeaf / 2 vectors
+  boxes_.reserve(nodes_.capacity() * 2 * d);
+  build(rows, order, 0, n);
+  // The vectors, keys and ranks in tree order, so that a leaf's are contiguous.
+  points_.resize(n * d);
+  key_.resize(n);
+  if (!rank.empty()) rank_.resize(n);
   for (std::size_t p = 0; p < n; ++p) {
-    std::copy(point(order[p]), point(order[p]) + d,
-              points.begin() + static_cast<std::ptrdiff_t>(p * d));
-    if (!rank_.empty()) ranks[p] = rank_[order[p]];
-    keys[p] = key_[order[p]];
+    std::copy_n(rows.begin() + static_cast<std::ptrdiff_t>(order[p] * d), d,
+                points_.begin() + static_cast<std::ptrdiff_t>(p * d));
+    key_[p] = key_of(point(p));
+    if (std::isnan(key_[p])) key_[p] = -std::numeric_limits<double>::infinity();
+    if (!rank.empty()) rank_[p] = rank[order[p]];
   }
-  points_ = std::move(points);
-  rank_ = std::move(ranks);
-  key_ = std::move(keys);
+  // Children follow their parent: in reverse, each node's smallest key and rank from theirs.
+  for (std::size_t node = nodes_.size(); node-- > 0;) {
+    Node& here = nodes_[node];
+    if (leaf(node)) {
+      for (std::size_t p = here.begin; p < here.end; ++p) {
+        here.min_key = std::min(here.min_key, key_[p]);
+        here.first_rank = std::min(here.first_rank, rank_of(p));
+      }
+    } else {
+      here.min_key = std::min(nodes_[node + 1].min_key, nodes_[here.right].min_key);
+      here.first_rank = std::min(nodes_[node + 1].first_rank, nodes_[here.right].first_rank);
+    }
+  }
 }
 
-// Nodes in depth-first order; a node's box, smallest rank and smallest key are those of its
-// vectors. Split at the median of the axis of widest weighted spread.
+// Nodes in depth-first order, each with the bounding box of its vectors; split at the median of
+// the axis of widest weighted spread.
 template <class T>
-std::size_t FrontIndex<T>::build(std::vector<std::size_t>& order, std::size_t begin,
-                                 std::size_t end) {
+std::size_t FrontIndex<T>::build(std::span<const T> rows, std::vector<std::size_t>& order,
+                                 std::size_t begin, std::size_t end) {
+  const auto row = [&](std::size_t k) { return rows.data() + k * d_; };
   const std::size_t index = nodes_.size();
-  nodes_.push_back({begin, end, 0, 0, SIZE_MAX, key_[order[begin]]});
+  nodes_.push_back({begin, end, 0, 0, SIZE_MAX, std::numeric_limits<double>::infinity()});
   boxes_.resize(boxes_.size() + 2 * d_);
   T* low = boxes_.data() + index * 2 * d_;
   T* high = low + d_;
-  std::copy(point(order[begin]), point(order[begin]) + d_, low);
-  std::copy(point(order[begin]), point(order[begin]) + d_, high);
-  for (std::size_t p = begin; p < end; ++p) {
-    const T* x = point(order[p]);
+  std::copy_n(row(order[begin]), d_, low);
+  std::copy_n(row(order[begin]), d_, high);
+  for (std::size_t p = begin + 1; p < end; ++p) {
+    const T* x = row(order[p]);
     for (std::size_t i = 0; i < d_; ++i) {
       low[i] = std::min(low[i], x[i]);
       high[i] = std::max(high[i], x[i]);
     }
-    nodes_[index].first_rank = std::min(nodes_[index].first_rank, rank_of(order[p]));
-    nodes_[index].min_key = std::min(nodes_[index].min_key, key_[order[p]]);
   }
   if (end - begin <= kLeaf) return index;
   const std::size_t axis = widest_axis(index), middle = begin + (end - begin) / 2;
   std::nth_element(order.begin() + static_cast<std::ptrdiff_t>(begin),
                    order.begin() + static_cast<std::ptrdiff_t>(middle),
                    order.begin() + static_cast<std::ptrdiff_t>(end),
-                   [&](std::size_t a, std::size_t b) { return point(a)[axis] < point(b)[axis]; });
-  build(order, begin, middle);
-  const std::size_t right = build(order, middle, end);
+                   [&](std::size_t a, std::size_t b) { return row(a)[axis] < row(b)[axis]; });
+  build(rows, order, begin, middle);
+  const std::size_t right = build(rows, order, middle, end);
   nodes_[index].right = right;
   nodes_[index].axis = axis;
   return index;

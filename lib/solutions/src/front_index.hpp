@@ -43,7 +43,8 @@ class FrontIndex {
     double min_key;
   };
 
-  std::size_t build(std::vector<std::size_t>& order, std::size_t begin, std::size_t end);
+  std::size_t build(std::span<const T> rows, std::vector<std::size_t>& order, std::size_t begin,
+                    std::size_t end);
   std::size_t widest_axis(std::size_t node) const;
   bool any_below(std::size_t node, const T* bound, double key, std::size_t limit) const;
   template <class Score, class Value, class Less>
