@@ -514,9 +514,9 @@ Bracket<T> test_requested(FrontView<T> solution, FrontView<T> reference,
 // need not exist: it is an infimum). It is the largest ε a reference vector needs, and the
 // coverage test at ε returns exactly the vectors that need more than ε. One vector's need costs
 // at most a scan of the solution, O(|S|·d) (for d ≥ 4 a branch and bound over its front index),
-// far less than a coverage test. So: while many vectors
-// are open, take the largest need of a sample of them and test it (what stays open needs more:
-// about 1/(sample+1) of them); once few are open, the largest of their needs is the answer.
+// far less than a coverage test. So: while many vectors are open, take the largest need of a
+// sample of them and test it (what stays open needs more: about 1/(sample+1) of them); once few
+// are open, the largest of their needs is the answer.
 // Sets result.worst_reference.
 template <class T>
 typename Arith<T>::Eps search_achieved(CoverageTest<T>& weak, Bracket<T> bracket,
