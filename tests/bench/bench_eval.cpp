@@ -4,7 +4,7 @@
 //
 //   mosb_bench_eval [--quick]
 //   mosb_bench_eval --scaling [MAX_N [NAIVE_MAX_N [D]]]
-//   mosb_bench_eval --small
+//   mosb_bench_eval --small [D]
 //
 // Reference: mutually non-dominated integer vectors (coordinates summing to a constant). Solution:
 // each reference vector scaled up by a random factor in [1, 1.08) per coordinate, plus random
@@ -256,8 +256,9 @@ int scaling(std::size_t max_n, std::size_t naive_max_n, std::size_t only_d) {
 
 // --small: many queries with small fronts, as a real eval has them (10,000 pairs of 8 to 64
 // vectors, the same plane fronts): the per-call cost of the structures, not their scaling.
-int small_fronts() {
+int small_fronts(std::size_t only_d) {
   for (std::size_t d : {2u, 3u, 5u, 8u}) {
+    if (only_d != 0 && d != only_d) continue;
     std::vector<Fronts> pairs;
     for (std::size_t k = 0; k < 10'000; ++k) pairs.push_back(plane_fronts(d, 8 + k % 57));
     const auto start = Clock::now();
@@ -276,7 +277,8 @@ int small_fronts() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc > 1 && std::strcmp(argv[1], "--small") == 0) return small_fronts();
+  if (argc > 1 && std::strcmp(argv[1], "--small") == 0)
+    return small_fronts(argc > 2 ? std::strtoull(argv[2], nullptr, 10) : 0);
   if (argc > 1 && std::strcmp(argv[1], "--scaling") == 0)
     return scaling(argc > 2 ? std::strtoull(argv[2], nullptr, 10) : 1'000'000,
                    argc > 3 ? std::strtoull(argv[3], nullptr, 10) : 10'000,

@@ -230,22 +230,6 @@ class DominanceIndex {
   std::vector<T> second_, tree_;
 };
 
-// The smallest over the points p of max over i of need(p_i, q_i), the ε q needs. Stops a vector's
-// maximum once it reaches the best so far; the need only grows with each p_i, so the front index
-// may skip whole subtrees by it.
-template <class T>
-typename Arith<T>::Need need_score(const T* p, const T* q, std::size_t d,
-                                   const typename Arith<T>::Need& best) {
-  using A = Arith<T>;
-  typename A::Need worst = A::no_need();
-  for (std::size_t i = 0; i < d; ++i) {
-    const auto e = A::need(p[i], q[i]);
-    if (A::less(worst, e)) worst = e;
-    if (!A::less(worst, best)) break;
-  }
-  return worst;
-}
-
 // The offline coverage test ("which targets t have no point p ≤ (1+ε)·t?") and the need of one
 // target. d ≤ 3: points and targets sorted once by coordinate 0 (scaling by 1+ε keeps that
 // order), then each test is one merge sweep with a DominanceIndex. d ≥ 4: the front index of the
@@ -271,19 +255,28 @@ class Sweeper {
     return tree_ ? uncovered_by_tree(e) : uncovered_by_sweep(e);
   }
 
-  // The ε target t needs: min over the points p of max over i of need(p_i, t_i).
+  // The ε target t needs: min over the points p of max over i of need(p_i, t_i). A vector's
+  // maximum stops once it reaches the best so far; the need only grows with each p_i, so the
+  // front index may skip whole subtrees by it.
   Eps need(const T* t) const {
+    using Need = typename A::Need;
     const std::size_t d = points_.dimension;
-    const auto score = [&](const T* p, const typename A::Need& best) {
-      return need_score(p, t, d, best);
+    const auto score = [t, d](const T* p, const Need& best) {
+      Need worst = A::no_need();
+      for (std::size_t i = 0; i < d; ++i) {
+        const Need e = A::need(p[i], t[i]);
+        if (A::less(worst, e)) worst = e;
+        if (!A::less(worst, best)) break;
+      }
+      return worst;
     };
-    const auto less = [](const typename A::Need& a, const typename A::Need& b) {
-      return A::less(a, b);
-    };
+    const auto less = [](const Need& a, const Need& b) { return A::less(a, b); };
     if (tree_) return A::from_need(tree_->minimum(score, A::unreachable(), less));
-    typename A::Need best = A::unreachable();
-    for (std::size_t k = 0; k < points_.size(); ++k) {
-      const auto worst = score(points_[k], best);
+    // A local copy: the calls of the comparison would otherwise reload the member every time.
+    const FrontView<T> points = points_;
+    Need best = A::unreachable();
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const Need worst = score(points[k], best);
       if (A::less(worst, best)) best = worst;
     }
     return A::from_need(best);
