@@ -1,5 +1,5 @@
 // find_weakly_dominated (lib/solutions/src/nondominance.hpp) against the quadratic definition on
-// random small fronts: d = 1..6, values from tiny ranges (ties and duplicates), mutually
+// random small fronts: d = 1..8, values from tiny ranges (ties and duplicates), mutually
 // non-dominated fronts on a plane, and the three value types solution files store.
 #include "nondominance.hpp"
 
@@ -73,7 +73,9 @@ void compare_on_random_fronts(std::uint64_t seed) {
   SplitMix64 rng(seed);
   std::size_t found = 0, clean = 0;
   for (int round = 0; round < 3000; ++round) {
-    const std::size_t d = 1 + round % 6, n = rng.uniform(0, 40);
+    // Every 10th front large enough for a front index several levels deep (d >= 4).
+    const std::size_t d = 1 + round % 8,
+                      n = round % 10 == 9 ? rng.uniform(100, 300) : rng.uniform(0, 40);
     const auto rows = random_front<T>(rng, n, d, rng.uniform(1, 12), round % 3 != 0);
     const auto expected = brute_force(rows, d);
     const auto got = find_weakly_dominated<T>(rows, d);

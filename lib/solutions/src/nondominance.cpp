@@ -5,6 +5,8 @@
 #include <numeric>
 #include <vector>
 
+#include "front_index.hpp"
+
 namespace mosb::solutions_internal {
 
 namespace {
@@ -77,91 +79,15 @@ void sweep_three(const Rows<T>& rows, const std::vector<std::size_t>& order, Fou
   }
 }
 
-// d >= 4: a static k-d tree over the last d - 1 values of every vector; each node keeps its
-// bounding box and the smallest sweep position below it, so a query for position j skips subtrees
-// holding only later vectors or lying outside the orthant below v.
-template <class T>
-class DominanceTree {
- public:
-  DominanceTree(const Rows<T>& rows, const std::vector<std::size_t>& order)
-      : rows_(rows), k_(rows.d - 1) {
-    position_.resize(order.size());
-    for (std::size_t j = 0; j < order.size(); ++j) position_[order[j]] = j;
-    items_ = order;
-    build(0, items_.size(), 0);
-  }
-
-  // Whether a vector at a sweep position before j is no worse than `row` in objectives 1..d-1.
-  bool any_before(std::size_t j, std::size_t row) const { return query(0, j, rows_.at(row) + 1); }
-
- private:
-  static constexpr std::size_t kLeaf = 16;
-  struct Node {
-    std::size_t begin, end, left = 0, right = 0, first_position;
-  };
-
-  std::size_t build(std::size_t begin, std::size_t end, std::size_t depth) {
-    const std::size_t index = nodes_.size();
-    nodes_.push_back({begin, end, 0, 0, SIZE_MAX});
-    low_.resize(low_.size() + k_);
-    high_.resize(high_.size() + k_);
-    for (std::size_t i = 0; i < k_; ++i) {
-      low_[index * k_ + i] = high_[index * k_ + i] = value(items_[begin], i);
-      for (std::size_t p = begin; p < end; ++p) {
-        low_[index * k_ + i] = std::min(low_[index * k_ + i], value(items_[p], i));
-        high_[index * k_ + i] = std::max(high_[index * k_ + i], value(items_[p], i));
-      }
-    }
-    for (std::size_t p = begin; p < end; ++p)
-      nodes_[index].first_position = std::min(nodes_[index].first_position, position_[items_[p]]);
-    if (end - begin <= kLeaf) return index;
-    const std::size_t axis = depth % k_, middle = begin + (end - begin) / 2;
-    std::nth_element(items_.begin() + static_cast<std::ptrdiff_t>(begin),
-                     items_.begin() + static_cast<std::ptrdiff_t>(middle),
-                     items_.begin() + static_cast<std::ptrdiff_t>(end),
-                     [&](std::size_t a, std::size_t b) { return value(a, axis) < value(b, axis); });
-    const std::size_t left = build(begin, middle, depth + 1);
-    const std::size_t right = build(middle, end, depth + 1);
-    nodes_[index].left = left;
-    nodes_[index].right = right;
-    return index;
-  }
-
-  bool query(std::size_t index, std::size_t j, const T* v) const {
-    const Node& node = nodes_[index];
-    if (node.first_position >= j) return false;
-    bool inside = true;
-    for (std::size_t i = 0; i < k_; ++i) {
-      if (low_[index * k_ + i] > v[i]) return false;
-      inside = inside && high_[index * k_ + i] <= v[i];
-    }
-    if (inside) return true;  // the node's first vector is before j and no worse than v
-    if (node.left == 0) {
-      for (std::size_t p = node.begin; p < node.end; ++p) {
-        const std::size_t row = items_[p];
-        if (position_[row] >= j) continue;
-        const T* x = rows_.at(row) + 1;
-        if (std::equal(x, x + k_, v, [](T a, T b) { return a <= b; })) return true;
-      }
-      return false;
-    }
-    return query(node.left, j, v) || query(node.right, j, v);
-  }
-
-  T value(std::size_t row, std::size_t i) const { return rows_.at(row)[i + 1]; }
-
-  const Rows<T>& rows_;
-  std::size_t k_;
-  std::vector<std::size_t> position_, items_;
-  std::vector<Node> nodes_;
-  std::vector<T> low_, high_;
-};
-
+// d >= 4: the front index (front_index.hpp) over every vector, ranked by sweep position: a query
+// for position j sees only the vectors before it.
 template <class T, class Found>
 void sweep_tree(const Rows<T>& rows, const std::vector<std::size_t>& order, Found found) {
-  const DominanceTree<T> tree(rows, order);
+  std::vector<std::size_t> position(order.size());
+  for (std::size_t j = 0; j < order.size(); ++j) position[order[j]] = j;
+  const FrontIndex<T> index(rows.values, rows.d, position);
   for (std::size_t j = 1; j < order.size(); ++j)
-    if (tree.any_before(j, order[j]) && !found(j)) return;
+    if (index.any_at_most(rows.at(order[j]), j) && !found(j)) return;
 }
 
 template <class T, class Found>
@@ -212,6 +138,8 @@ std::vector<std::size_t> weakly_dominated_rows(std::span<const T> values, std::s
   return dominated;
 }
 
+template std::vector<std::size_t> weakly_dominated_rows<std::uint64_t>(
+    std::span<const std::uint64_t>, std::size_t);
 template std::vector<std::size_t> weakly_dominated_rows<double>(std::span<const double>,
                                                                 std::size_t);
 template std::optional<DominatedPair> find_weakly_dominated<std::uint64_t>(

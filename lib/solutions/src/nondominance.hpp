@@ -21,8 +21,8 @@ struct DominatedPair {
 // vector weakly dominated by a vector at or before it, and `by` the lexicographically smallest
 // such vector (among equal vectors, the first in that order). nullopt when the vectors are
 // mutually non-dominated and distinct. Cost: O(n log n) for d <= 3 (a sort and a sweep; d = 3
-// keeps the staircase of (second, third) values in a balanced tree); for d >= 4 the sweep asks a
-// k-d tree over the last d - 1 values, pruned by bounding boxes and the insertion order.
+// keeps the staircase of (second, third) values in a balanced tree); for d >= 4 the sweep asks the
+// front index (front_index.hpp), restricted to the vectors before the one asked.
 // Defined for std::uint64_t, std::int64_t and double (no NaN).
 template <class T>
 std::optional<DominatedPair> find_weakly_dominated(std::span<const T> rows, std::size_t d);
@@ -33,6 +33,8 @@ std::optional<DominatedPair> find_weakly_dominated(std::span<const T> rows, std:
 template <class T>
 std::vector<std::size_t> weakly_dominated_rows(std::span<const T> rows, std::size_t d);
 
+extern template std::vector<std::size_t> weakly_dominated_rows<std::uint64_t>(
+    std::span<const std::uint64_t>, std::size_t);
 extern template std::vector<std::size_t> weakly_dominated_rows<double>(std::span<const double>,
                                                                        std::size_t);
 extern template std::optional<DominatedPair> find_weakly_dominated<std::uint64_t>(

@@ -87,10 +87,12 @@ std::string achieved_epsilon_text(const FrontEvaluation& front, bool exact);
 // Both fronts must have the same dimension ≥ 1 (throws mosb::Error otherwise); values must be
 // non-negative (double: finite and ≥ 0), which the caller checks. Values are compared as given
 // (a tolerance is applied before, by evaluate_solutions and compare_fronts).
-// Time: O((|S| + |R|) log(|S| + |R|)) per coverage test for d ≤ 3, O(|S|·|R|·d) worst case for
-// d ≥ 4; the achieved ε takes expected O(log |R|) coverage tests plus at most 256 + 64 per test
-// scans of S, each coordinate's need found in O(1) expected and O(64) worst-case steps
-// (spec/EVALUATION.md §3), whatever the values, integer or double.
+// Time: O((|S| + |R|) log(|S| + |R|)) per coverage test for d ≤ 3; for d ≥ 4 one query of a
+// k-d tree per vector (tens of nodes on fronts near a plane, every node, O(|S|·|R|·d) per
+// test, at worst); the achieved ε takes expected O(log |R|) coverage tests plus at most 256 + 64
+// per test scans of S (for d ≥ 4 branch and bound searches of the tree), each coordinate's need
+// found in O(1) expected and O(64) worst-case steps (spec/EVALUATION.md §3), whatever the values,
+// integer or double.
 FrontEvaluation evaluate_front(FrontView<std::uint64_t> solution,
                                FrontView<std::uint64_t> reference, std::span<const Ratio> epsilons,
                                const EvalOptions& options = {});

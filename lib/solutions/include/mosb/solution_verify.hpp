@@ -72,7 +72,7 @@ std::optional<std::string> front_problem(std::span<const double> rows, std::size
 // The first problem, as one line naming the query (and both vectors, or the path step), or
 // nullopt. `instance` must be opened with VerifyLevel::full (paths walk its CSR). Cost: the
 // payload, plus O(k log k) per front of k vectors for d <= 3 (a lexicographic sort and a sweep;
-// for d >= 4 the sweep asks a k-d tree, src/nondominance.hpp), plus the path lengths times the
+// for d >= 4 the sweep asks a k-d tree, src/front_index.hpp), plus the path lengths times the
 // out-degrees along them, plus O(n + m) per distinct start of the queries claimed `disconnected`
 // (one breadth-first search each over the forward CSR: a reachable goal is "[disconnected] ... (a
 // wrong answer)"). Integer path costs are summed exactly in u64 and compared exactly with the
