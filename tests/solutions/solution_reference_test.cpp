@@ -262,9 +262,10 @@ TEST_CASE("reference_groups: one group per binding, the other solvers' files lef
   REQUIRE(groups.size() == 1);
   CHECK(groups[0].files == std::vector<std::size_t>{0, 1});
   CHECK(groups[0].name == "a.sol");
-  options.solvers = {"q"};
+  // A named solver without a file (a typo) is refused, naming the solvers there are.
+  options.solvers = {"a", "q"};
   CHECK_THROWS_WITH_AS((void)reference_groups(readers, options),
-                       "no solution file of the named solvers", Error);
+                       "solver 'q' has no file among the inputs (their solvers: a, b, z)", Error);
 }
 
 TEST_CASE("query_ranges: ascending numbers as ranges") {
