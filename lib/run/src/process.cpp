@@ -443,11 +443,14 @@ struct SealSetup {
   std::string queries_directory;  // where the query directories are made
   std::string uid_map, gid_map;   // "ID ID 1" for the user namespace
   int queries_fd = -1;            // in the child: the queries directory, before anything is hidden
+  // As root: the runner's network namespace (loopback up), joined instead of making one per query.
+  int network_fd = -1;
 
-  SealSetup(Seal seal, std::string directory)
+  SealSetup(Seal seal, std::string directory, int network)
       : on(seal == Seal::sealed),
         user_namespace(::geteuid() != 0),
-        queries_directory(std::move(directory)) {
+        queries_directory(std::move(directory)),
+        network_fd(network) {
     uid_map = std::to_string(::geteuid()) + " " + std::to_string(::geteuid()) + " 1";
     gid_map = std::to_string(::getegid()) + " " + std::to_string(::getegid()) + " 1";
   }
@@ -486,6 +489,8 @@ bool seal_namespaces(SealSetup& s) {
         !write_kernel_file("/proc/self/uid_map", s.uid_map) ||
         !write_kernel_file("/proc/self/gid_map", s.gid_map))
       return false;
+  } else if (s.network_fd >= 0) {
+    if (::unshare(CLONE_NEWNS) != 0 || ::setns(s.network_fd, CLONE_NEWNET) != 0) return false;
   } else if (::unshare(CLONE_NEWNS | CLONE_NEWNET) != 0) {
     return false;
   }
@@ -498,7 +503,7 @@ bool seal_namespaces(SealSetup& s) {
     return false;
   // Opened in the new namespace: open_tree clones only a mount of the caller's own namespace.
   s.queries_fd = ::open(s.queries_directory.c_str(), O_PATH | O_DIRECTORY | O_CLOEXEC);
-  return s.queries_fd >= 0 && loopback_up();
+  return s.queries_fd >= 0 && (s.network_fd >= 0 || loopback_up());
 }
 
 // Every capability dropped, for good: a solver run by root cannot undo its seal (remount, unshare,
@@ -811,12 +816,12 @@ struct ProcessRunner::Parked {
   int pidfd = -1;
 
   Parked(Measurement measurement, std::uint64_t memory_bytes, const ProcessSpec& spec,
-         std::uint64_t sequence)
+         std::uint64_t sequence, int network_fd)
       : m(measurement),
         memory(memory_bytes),
         group_prefix(spec.group_name),
         isolation(spec.isolation),
-        seal(spec.seal, spec.queries_directory) {
+        seal(spec.seal, spec.queries_directory, network_fd) {
     const auto& prefix = group_prefix;
     if (m == Measurement::cgroup_v1)
       group = std::make_unique<MemoryGroup>(prefix + "-" + std::to_string(sequence), memory);
@@ -1063,6 +1068,7 @@ ProcessRunner::ProcessRunner(const std::atomic<bool>& stop)
 ProcessRunner::~ProcessRunner() {
   parked_.clear();
   retired_.clear();
+  if (network_fd_ >= 0) ::close(network_fd_);
   {
     std::lock_guard lock(watch_->mutex);
     watch_->quit = true;
@@ -1130,7 +1136,7 @@ void classify_exit(int status, const MemoryGroup* g, ProcessOutcome& out) {
 }  // namespace
 
 std::string seal_refusal() {
-  SealSetup probe(Seal::sealed, "/");
+  SealSetup probe(Seal::sealed, "/", -1);
   int report[2];
   if (::pipe2(report, O_CLOEXEC) != 0) return errno_text(errno);
   const pid_t child = ::fork();
@@ -1153,7 +1159,8 @@ ProcessOutcome ProcessRunner::run(const ProcessSpec& spec, const ProcessLimits& 
   ProcessOutcome out;
   if (!parked_.empty() && !parked_.front()->suits(m, limits.memory_bytes, spec)) parked_.clear();
   if (parked_.empty())
-    parked_.push_back(std::make_unique<Parked>(m, limits.memory_bytes, spec, sequence_++));
+    parked_.push_back(
+        std::make_unique<Parked>(m, limits.memory_bytes, spec, sequence_++, network(spec)));
   std::unique_ptr<Parked> child = std::move(parked_.front());
   parked_.pop_front();
   if (!Parked::fits(spec)) {
@@ -1196,7 +1203,8 @@ ProcessOutcome ProcessRunner::run(const ProcessSpec& spec, const ProcessLimits& 
   const std::size_t ahead = m == Measurement::cgroup_v1 ? 2 : 1;
   try {
     while (!stop_.load() && parked_.size() < ahead)
-      parked_.push_back(std::make_unique<Parked>(m, limits.memory_bytes, spec, sequence_++));
+      parked_.push_back(
+          std::make_unique<Parked>(m, limits.memory_bytes, spec, sequence_++, network(spec)));
   } catch (const Error&) {
   }
   retire_ended();
@@ -1219,6 +1227,20 @@ ProcessOutcome ProcessRunner::run(const ProcessSpec& spec, const ProcessLimits& 
   outcome_of(spec, child->error_fd, g, reason, report, peak, out);
   retired_.push_back(std::move(child));
   return out;
+}
+
+int ProcessRunner::network(const ProcessSpec& spec) {
+  // Per runner, not per query: making and tearing down a network namespace costs a query's worth
+  // of milliseconds (BENCHMARKS.md), and the runner's queries run one after the other, each ended
+  // with every process it had, so none can talk to another. Made on a thread of its own, since a
+  // namespace is a thread's. Root only: an unprivileged query's network lives in its user
+  // namespace, so it makes its own.
+  if (spec.seal != Seal::sealed || ::geteuid() != 0 || network_fd_ >= 0) return network_fd_;
+  std::thread([this] {
+    if (::unshare(CLONE_NEWNET) == 0 && loopback_up())
+      network_fd_ = ::open("/proc/thread-self/ns/net", O_RDONLY | O_CLOEXEC);
+  }).join();
+  return network_fd_;  // -1: each query makes its own, as unprivileged
 }
 
 void ProcessRunner::retire_ended() {

@@ -124,6 +124,9 @@ class ProcessRunner {
   // solver runs: a query ends on its launcher's report, not on the exits that follow it.
   std::vector<std::unique_ptr<Parked>> retired_;
   void retire_ended();
+  // The network namespace the sealed queries of this runner share (root), made on first use.
+  int network(const ProcessSpec& spec);
+  int network_fd_ = -1;
   std::uint64_t sequence_ = 0;  // numbers the memory groups of this runner
 };
 
