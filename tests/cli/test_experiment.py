@@ -350,6 +350,18 @@ class ExperimentTest(ExperimentFixture):
                 self.assertIn(path + expected, r.stderr)
                 self.assertFalse(os.path.exists(self.path("never")))
 
+    def test_an_experiment_file_that_is_no_regular_file_is_refused_at_once(self):
+        # A FIFO would block the read for ever, /dev/zero never end.
+        fifo = self.path("exp.fifo")
+        os.mkfifo(fifo)
+        for path in (fifo, "/dev/zero"):
+            with self.subTest(path=path):
+                r = run("experiment", "run", path, "-o", self.path("never"), timeout=60)
+                self.assertEqual(r.returncode, 2, r.stderr)
+                self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+                self.assertIn(path + ": not a regular file", r.stderr)
+                self.assertFalse(os.path.exists(self.path("never")))
+
     def test_a_directory_it_did_not_make_is_never_written(self):
         # The user's files: refused before anything (the lock included) is made there.
         mine = self.path("mine")

@@ -122,5 +122,7 @@ TEST_CASE("a shipped name and a file are told apart") {
   CHECK_THROWS_WITH_AS(load_profile("nosuch"), doctest::Contains("no shipped profile of that name"),
                        Error);
   CHECK_THROWS_WITH_AS(load_profile("/nonexistent/p.toml"),
-                       doctest::Contains("/nonexistent/p.toml: cannot open the profile"), Error);
+                       doctest::Contains("/nonexistent/p.toml: cannot read"), Error);
+  // A device is never read to its end (nor a FIFO waited for): not a regular file.
+  CHECK_THROWS_WITH_AS(load_profile("/dev/null"), "/dev/null: not a regular file", Error);
 }

@@ -289,7 +289,8 @@ Experiment parse_experiment(std::string_view text, const std::string& display_na
 }
 
 Experiment read_experiment_file(const std::filesystem::path& path) {
-  return parse_experiment(read_whole_file(path), path.string());
+  // An experiment file is a page of TOML: 16 MiB is far beyond any, and no FIFO is waited for.
+  return parse_experiment(read_regular_file(path, std::uint64_t{16} << 20), path.string());
 }
 
 }  // namespace mosb::converters

@@ -5,14 +5,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <fstream>
 #include <set>
-#include <sstream>
 
 #include "mosb/checksum.hpp"
 #include "mosb/command_template.hpp"
 #include "mosb/error.hpp"
 #include "mosb/internal/hex.hpp"
+#include "mosb/internal/read_file.hpp"
 #include "placeholders.hpp"
 
 namespace mosb::converters {
@@ -429,12 +428,7 @@ SolverProfile load_profile(const std::string& name_or_path) {
                 "--profile " + name_or_path + ": no shipped profile of that name (shipped: " +
                     names + "; a file's path has a / or ends in .toml)");
   }
-  std::ifstream in(name_or_path, std::ios::binary);
-  if (!in) throw Error(ErrorCode::io, name_or_path + ": cannot open the profile");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (text.str().size() > (1u << 20)) throw Error(name_or_path + ": a profile of more than 1 MiB");
-  return parse_profile(text.str(), name_or_path);
+  return parse_profile(read_regular_file(name_or_path, std::uint64_t{1} << 20), name_or_path);
 }
 
 }  // namespace mosb::converters

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <span>
@@ -33,5 +34,11 @@ void read_chunks(int fd, const std::filesystem::path& path, std::span<char> buff
 // The whole text of the file at `path`, read to its end (a size from stat is a hint only: the
 // kernel's /proc and /sys files report 0 or 4096).
 std::string read_whole_file(const std::filesystem::path& path);
+
+// The whole text of a file a user names (an experiment file, a solver profile): a regular file of
+// at most `max_bytes`, opened without waiting (a FIFO would block for ever, a device such as
+// /dev/zero never end). Throws mosb::Error (invalid_argument) "PATH: not a regular file" or "PATH:
+// more than N bytes", (io) when it cannot be read.
+std::string read_regular_file(const std::filesystem::path& path, std::uint64_t max_bytes);
 
 }  // namespace mosb
