@@ -34,7 +34,8 @@ struct BoundFile {
 
 struct Benchmark {
   std::string name, family;
-  std::string anchor;                  // its section's id, unique on the page
+  std::string key;                     // [a-z0-9_.], unique on the page (unique_keys)
+  std::string anchor;                  // its section's id: "b-" and its key
   std::vector<std::size_t> instances;  // indices, in the order given
   std::vector<View> views;             // per entry of `instances`
   std::vector<BoundFile> references;
@@ -123,7 +124,10 @@ std::vector<Benchmark> benchmarks_of(std::span<const GraphReader> instances) {
   names.reserve(out.size());
   for (const auto& b : out) names.push_back(b.name);
   const auto keys = unique_keys(names);
-  for (std::size_t b = 0; b < out.size(); ++b) out[b].anchor = "b-" + keys[b];
+  for (std::size_t b = 0; b < out.size(); ++b) {
+    out[b].key = keys[b];
+    out[b].anchor = "b-" + keys[b];
+  }
   return out;
 }
 
@@ -222,8 +226,9 @@ class Page {
   void note(const std::string& text) {
     out << "<p class=\"note\">" << Svg::escape(text) << "</p>\n";
   }
-  void figure(const std::string& kind, const std::string& svg, const std::string& caption) {
-    report_.figures.push_back({kind, svg});
+  void figure(const std::string& kind, const std::string& svg, const std::string& caption,
+              const std::string& name = {}) {
+    report_.figures.push_back({kind, svg, name.empty() ? kind : name});
     out << "<figure data-figure=\"" << Svg::escape(kind) << "\">\n"
         << inline_svg(svg) << "<figcaption>" << Svg::escape(caption)
         << "</figcaption>\n</figure>\n";
@@ -257,7 +262,8 @@ struct Context {
   std::vector<Benchmark> benchmarks;          // each with its solution and reference files
   std::span<const std::string> notes;         // about the inputs, under the head's paragraph
   std::vector<std::string> solver_names;      // every solver, in the order first given
-  std::vector<std::string> solver_keys;       // of each solver: unique_keys of solver_names
+  std::vector<std::string> solver_keys;  // of each solver, for file names: unique_keys
+  RuntimeSource runtime = RuntimeSource::wall;  // what every runtime shown is (choose_runtime)
   std::vector<std::vector<ViewStats>> stats;  // per benchmark, per instance
   Outcomes outcomes;
   // Per benchmark, per solver its ε-coverage (one entry per options.epsilons) summed over the
@@ -292,6 +298,18 @@ void bind_files(Context& c) {
       c.solver_names.push_back(name);
   }
   c.solver_keys = unique_keys(c.solver_names);
+  std::vector<const SolutionReader*> files;
+  for (const auto& f : c.solutions) files.push_back(&f);
+  c.runtime = choose_runtime(files, c.options.runtime);
+  const auto& baseline = c.options.baseline;
+  if (!baseline.empty() && std::find(c.solver_names.begin(), c.solver_names.end(), baseline) ==
+                               c.solver_names.end()) {
+    std::string names;
+    for (const auto& n : c.solver_names) names += (names.empty() ? "" : ", ") + n;
+    throw Error(ErrorCode::invalid_argument, "baseline " + baseline +
+                                                 ": no solution file of that solver (the solvers: " +
+                                                 (names.empty() ? "none" : names) + ")");
+  }
 }
 
 // Computed once: the instance space and each benchmark's ρ matrix read them.
@@ -317,7 +335,8 @@ Outcomes outcomes_of(const Context& c) {
       for (const auto& f : files) {
         const auto& r = c.solutions[f.file];
         for (std::uint64_t q = 0; q < r.query_count(); ++q)
-          outcomes[{b, f.instance, r.query_set(), q}][name] = {r.status(q), r.runtime_seconds(q)};
+          outcomes[{b, f.instance, r.query_set(), q}][name] = {
+              r.status(q), r.seconds_statistic(runtime_statistic(c.runtime), q)};
       }
   return outcomes;
 }
@@ -468,8 +487,8 @@ std::vector<Cell> solver_row(const Context& c, std::size_t b, const std::string&
       Cell::of(statuses[QueryStatus::memory_limit]),
       Cell::of(statuses[QueryStatus::failed]),
       Cell::of(statuses[QueryStatus::not_run])};
-  add_median_and_max(row, summary.runtime);
-  add_median_and_max(row, summary.reported_runtime);
+  add_median_and_max(row, c.runtime == RuntimeSource::reported ? summary.reported_runtime
+                                                               : summary.runtime);
   if (c.references.empty() || c.options.epsilons.empty()) return row;
   const auto it = c.coverage[b].find(name);
   if (it == c.coverage[b].end()) {
@@ -482,13 +501,13 @@ std::vector<Cell> solver_row(const Context& c, std::size_t b, const std::string&
 }
 
 // One row per benchmark and solver (in the order first given): its files, queries and their
-// statuses, the median and max wall-clock and reported runtime over its completed queries, and
-// with references its ε-coverage against them.
+// statuses, the median and max runtime (c.runtime) over its completed queries, and with
+// references its ε-coverage against them.
 Table solver_table(const Context& c) {
   Table t;
-  t.caption =
-      "Solvers per benchmark (the paper's Table 5): statuses of each solver's queries; median and "
-      "max runtime, wall clock and as the solver reported it, over the queries it completed";
+  t.caption = "Solvers per benchmark (the paper's Table 5): statuses of each solver's queries; "
+              "median and max " +
+              std::string(runtime_caption(c.runtime)) + ", over the queries it completed";
   t.columns = {{"family", "Family", "family"},
                {"benchmark", "Benchmark", "benchmark"},
                {"solver", "Solver", "solver"},
@@ -500,9 +519,7 @@ Table solver_table(const Context& c) {
                {"failed", "Failed", "failed"},
                {"not_run", "Not run", "not run"},
                {"runtime_median", "Med.\\ (s)", "median runtime [s]"},
-               {"runtime_max", "Max (s)", "max runtime [s]"},
-               {"reported_median", "Rep.\\ med.\\ (s)", "median reported runtime [s]"},
-               {"reported_max", "Rep.\\ max (s)", "max reported runtime [s]"}};
+               {"runtime_max", "Max (s)", "max runtime [s]"}};
   if (!c.references.empty() && !c.options.epsilons.empty()) {
     t.columns.push_back({"evaluated", "Evaluated", "queries evaluated against the reference"});
     for (const auto& e : c.options.epsilon_labels)
@@ -599,13 +616,15 @@ void correlation_figure(const Context& c, std::size_t b) {
   auto rho = plots::correlation_of(c.stats[b].front().all);
   rho.title = c.benchmarks[b].name + ": objective correlation";
   if (rho.names.size() >= 2)
-    c.page.figure("correlation", plots::plot_correlation(rho), "Pearson ρ over all arcs");
+    c.page.figure("correlation", plots::plot_correlation(rho), "Pearson ρ over all arcs",
+                  "correlation-" + c.benchmarks[b].key);
 }
 
 void degrees_figure(const Context& c, const Benchmark& bm) {
   auto degrees = plots::degrees_of(c.instances[bm.instances.front()]);
   degrees.title = bm.name + ": out-degree distribution";
-  c.page.figure("degrees", plots::plot_degrees(degrees), "Vertices per out-degree");
+  c.page.figure("degrees", plots::plot_degrees(degrees), "Vertices per out-degree",
+                "degrees-" + bm.key);
 }
 
 // The queries whose fronts are drawn: the chosen ones that the file solved, or its smallest,
@@ -699,7 +718,8 @@ void map_figure(const Context& c, const Benchmark& bm, const DrawnFronts& fronts
                       "records each cell's exposure, not where guards stand (converted from an "
                       "exposure grid, or before mosb 0.2.0 wrote map.guards)."
                     : "Blocked cells dark grey, passable cells shaded by exposure, guards black "
-                      "dots; starts and goals of the queries drawn below.");
+                      "dots; starts and goals of the queries drawn below.",
+                "map-" + bm.key);
 }
 
 // Query q's fronts as the figures draw them: the reference's set under the solver's, from the
@@ -707,7 +727,7 @@ void map_figure(const Context& c, const Benchmark& bm, const DrawnFronts& fronts
 struct QueryFronts {
   std::vector<std::vector<double>> reference, solution;  // rows of objective values
   std::string reference_name = "reference", solver_name = "solver";
-  std::string title, caption;
+  std::string title, caption, name;
 };
 
 QueryFronts query_fronts(const Context& c, const Benchmark& bm, const DrawnFronts& fronts,
@@ -721,7 +741,11 @@ QueryFronts query_fronts(const Context& c, const Benchmark& bm, const DrawnFront
   const std::string what = "query " + std::to_string(q) + " of " + shown.query_set() + " on " +
                            c.instances[fronts.instance].display_name();
   QueryFronts f;
-  f.title = bm.name + ", " + what;
+  // The title names no path: it is drawn in the figure, at its width.
+  f.title = bm.name + ", query " + std::to_string(q) +
+            (bm.instances.size() > 1 ? " on " + instance_name(c.instances[fronts.instance])
+                                     : std::string());
+  f.name = "front-" + bm.key + "-q" + std::to_string(q);
   f.caption =
       "Front of " + what + " (" + std::to_string(rows.size()) + " vectors" +
       (fronts.overlay ? ", " + solver_name(*fronts.overlay) + " " + std::to_string(other.size())
@@ -733,7 +757,6 @@ QueryFronts query_fronts(const Context& c, const Benchmark& bm, const DrawnFront
     return f;
   }
   f.reference = std::move(rows);
-  f.reference_name = "reference " + solver_name(shown);
   if (fronts.overlay) {
     f.solution = std::move(other);
     f.solver_name = solver_name(*fronts.overlay);
@@ -759,7 +782,9 @@ void pair_figures(const Context& c, const SolutionReader& shown, std::size_t d,
     front.solver_name = f.solver_name;
     c.page.figure("front", plots::plot_front(front),
                   f.caption + (d == 3 ? ": projection on " + front.x_label + ", " + front.y_label
-                                      : std::string()));
+                                      : std::string()),
+                  f.name + (d == 3 ? "-" + std::to_string(a + 1) + std::to_string(b + 1)
+                                   : std::string()));
   }
 }
 
@@ -773,7 +798,7 @@ void parallel_figure(const Context& c, const SolutionReader& shown, std::size_t 
   par.solution = std::move(f.solution);
   par.reference_name = f.reference_name;
   par.solver_name = f.solver_name;
-  c.page.figure("front", plots::plot_parallel(par), f.caption);
+  c.page.figure("front", plots::plot_parallel(par), f.caption, f.name);
 }
 
 void front_figures(const Context& c, const Benchmark& bm, const DrawnFronts& fronts) {
@@ -823,8 +848,8 @@ void write_benchmark(const Context& c, std::size_t b) {
 
 // --- Solver comparison, with two or more solvers.
 
-// A benchmark's row of comparison_table.
-std::vector<Cell> comparison_row(const Context& c, std::size_t b) {
+// Benchmark b's rows of comparison_table, one per solver of it in the order first given.
+void comparison_rows(const Context& c, std::size_t b, std::vector<std::vector<Cell>>& rows) {
   const auto& bm = c.benchmarks[b];
   std::map<std::string, StatusCounts> statuses;
   std::map<std::string, std::vector<double>> runtimes;
@@ -841,55 +866,67 @@ std::vector<Cell> comparison_row(const Context& c, std::size_t b) {
     ++common;
     for (const auto& [name, o] : by_solver) runtimes[name].push_back(*o.runtime);
   }
-  std::vector<Cell> row{Cell::of(bm.family), Cell::of(bm.name), Cell::of(queries),
-                        Cell::of(common)};
-  for (const auto& s : c.solver_names) {
-    if (!bm.solvers.contains(s)) {
-      row.resize(row.size() + 4);
-      continue;
-    }
-    row.push_back(Cell::of(statuses[s][QueryStatus::timeout]));
-    row.push_back(Cell::of(statuses[s][QueryStatus::memory_limit]));
+  for (const auto& s : bm.solver_order) {
+    std::vector<Cell> row{Cell::of(bm.family), Cell::of(bm.name), Cell::of(s), Cell::of(queries),
+                          Cell::of(common), Cell::of(statuses[s][QueryStatus::timeout]),
+                          Cell::of(statuses[s][QueryStatus::memory_limit])};
     add_median_and_max(row, distribution_of(runtimes[s]));
+    rows.push_back(std::move(row));
   }
-  return row;
 }
 
-// The paper's two-solver table: per benchmark its queries, those every solver of it completed,
-// and per solver timeouts, memory limits and runtimes over those common queries.
+// The paper's comparison of exact solvers (its appendix table), one row per benchmark and solver
+// so that it reads at any number of solvers: the benchmark's queries, those every solver of it
+// completed, the solver's timeouts and memory limits over its queries, and its median and max
+// runtime over the common queries (the only runtimes that compare).
 Table comparison_table(const Context& c) {
   Table t;
-  t.caption =
-      "Solvers per benchmark: timeouts and memory limits over each solver's queries; "
-      "median and max runtime over the queries every solver of the benchmark completed";
+  t.caption = "Solvers per benchmark: timeouts and memory limits over each solver's queries; "
+              "median and max " +
+              std::string(runtime_caption(c.runtime)) +
+              " over the queries every solver of the benchmark completed";
   t.columns = {{"family", "Family", "family"},
                {"benchmark", "Benchmark", "benchmark"},
+               {"solver", "Solver", "solver"},
                {"queries", "Queries", "queries"},
-               {"common", "Common", "completed by all"}};
-  for (std::size_t i = 0; i < c.solver_names.size(); ++i) {
-    const auto& s = c.solver_names[i];
-    const auto& k = c.solver_keys[i];
-    const auto latex = tables::latex_escape(s);
-    t.columns.push_back({"timeout@" + k, latex + " Timeout", s + " timeout"});
-    t.columns.push_back({"memory_limit@" + k, latex + " Mem-limit", s + " memory limit"});
-    t.columns.push_back({"runtime_median@" + k, latex + " Med.\\ (s)", s + " median [s]"});
-    t.columns.push_back({"runtime_max@" + k, latex + " Max (s)", s + " max [s]"});
-  }
-  for (std::size_t b = 0; b < c.benchmarks.size(); ++b)
-    if (!c.benchmarks[b].solvers.empty()) t.rows.push_back(comparison_row(c, b));
+               {"common", "Common", "completed by all"},
+               {"timeout", "Timeout", "timeout"},
+               {"memory_limit", "Mem-limit", "memory limit"},
+               {"runtime_median", "Med.\\ (s)", "median runtime [s]"},
+               {"runtime_max", "Max (s)", "max runtime [s]"}};
+  for (std::size_t b = 0; b < c.benchmarks.size(); ++b) comparison_rows(c, b, t.rows);
   return t;
 }
 
+// The solvers and queries one figure of the comparison shows: one benchmark's (its solvers in
+// the order first given), or every benchmark's pooled.
+struct Scope {
+  std::optional<std::size_t> benchmark;  // nullopt: pooled
+  const std::vector<std::string>* solvers = nullptr;
+  std::string title_suffix, name_suffix;
+  bool holds(const QueryKey& key) const { return !benchmark || key.benchmark == *benchmark; }
+};
+
+Scope benchmark_scope(const Context& c, std::size_t b) {
+  const auto& bm = c.benchmarks[b];
+  return {b, &bm.solver_order, ", " + bm.name, "-" + bm.key};
+}
+
+Scope pooled_scope(const Context& c) {
+  return {std::nullopt, &c.solver_names, ", every benchmark", ""};
+}
+
 // Each solver's solved queries by runtime.
-void cactus_figure(const Context& c) {
+void cactus_figure(const Context& c, const Scope& scope) {
   plots::LinePlot cactus;
-  cactus.title = "Cactus plot: queries solved within a time";
+  cactus.title = "Cactus plot" + scope.title_suffix;
   cactus.x_label = "queries solved";
   cactus.y_label = "runtime [s] (log scale)";
   cactus.y_log = true;
-  for (const auto& s : c.solver_names) {
+  for (const auto& s : *scope.solvers) {
     std::vector<double> times;
     for (const auto& [key, by_solver] : c.outcomes) {
+      if (!scope.holds(key)) continue;
       const auto it = by_solver.find(s);
       if (it != by_solver.end() && it->second.status == QueryStatus::solved && it->second.runtime)
         times.push_back(*it->second.runtime);
@@ -901,15 +938,17 @@ void cactus_figure(const Context& c) {
     cactus.series.push_back(std::move(series));
   }
   c.page.figure("cactus", plots::plot_lines(cactus),
-                "Each solver's solved queries sorted by runtime: a point (k, t) says k queries "
-                "were solved within t seconds each. Lower and further right is better.");
+                "Each solver's solved queries sorted by " + std::string(runtime_caption(c.runtime)) +
+                    ": a point (k, t) says k queries were solved within t seconds each. Lower "
+                    "and further right is better.",
+                "cactus" + scope.name_suffix);
 }
 
-// The Dolan–Moré performance profile over the queries every solver has a file for and some
-// solver solved.
-void profile_figure(const Context& c) {
+// The Dolan–Moré performance profile over the queries every solver of the scope has a file for
+// and some solver solved.
+void profile_figure(const Context& c, const Scope& scope) {
   plots::LinePlot profile;
-  profile.title = "Performance profile (Dolan–Moré)";
+  profile.title = "Performance profile" + scope.title_suffix;
   profile.x_label = "τ: runtime / best runtime (log scale)";
   profile.y_label = "fraction of queries within τ";
   profile.x_log = true;
@@ -919,7 +958,7 @@ void profile_figure(const Context& c) {
   std::map<std::string, std::vector<double>> ratios;
   std::size_t profiled = 0;
   for (const auto& [key, by_solver] : c.outcomes) {
-    if (by_solver.size() != c.solver_names.size()) continue;
+    if (!scope.holds(key) || by_solver.size() != scope.solvers->size()) continue;
     double best = std::numeric_limits<double>::infinity();
     for (const auto& [name, o] : by_solver)
       if (o.status == QueryStatus::solved && o.runtime) best = std::min(best, *o.runtime);
@@ -930,7 +969,7 @@ void profile_figure(const Context& c) {
       if (o.status == QueryStatus::solved && o.runtime)
         ratios[name].push_back(std::max(*o.runtime, kFloor) / std::max(best, kFloor));
   }
-  for (const auto& s : c.solver_names) {
+  for (const auto& s : *scope.solvers) {
     auto r = ratios[s];
     std::sort(r.begin(), r.end());
     plots::LineSeries series{s, {}};
@@ -942,17 +981,23 @@ void profile_figure(const Context& c) {
     profile.series.push_back(std::move(series));
   }
   c.page.figure("profile", plots::plot_lines(profile),
-                "Over the " + std::to_string(profiled) +
+                "Dolan–Moré, over the " + std::to_string(profiled) +
                     " queries every solver ran and some solver solved: the fraction of them a "
-                    "solver solved within τ times the best solver's runtime. Unsolved queries "
-                    "never count.");
+                    "solver solved within τ times the best solver's " +
+                    std::string(runtime_caption(c.runtime)) + ". Unsolved queries never count.",
+                "profile" + scope.name_suffix);
 }
 
-// The first solver's runtime against each other one's, per query both completed.
+// The baseline solver's runtime (ReportOptions::baseline, else the first solver's) against each
+// other one's, per query both completed, the benchmarks told apart.
 void scatter_figures(const Context& c) {
-  const auto& a = c.solver_names.front();
-  for (std::size_t k = 1; k < c.solver_names.size(); ++k) {
-    const auto& other = c.solver_names[k];
+  const auto& a = c.options.baseline.empty() ? c.solver_names.front() : c.options.baseline;
+  const auto file_key = [&](const std::string& name) {
+    return c.solver_keys[static_cast<std::size_t>(
+        std::find(c.solver_names.begin(), c.solver_names.end(), name) - c.solver_names.begin())];
+  };
+  for (const auto& other : c.solver_names) {
+    if (other == a) continue;
     plots::ScatterPlot scatter;
     scatter.title = "Runtime per query: " + a + " against " + other;
     scatter.x_label = a + " runtime [s]";
@@ -976,9 +1021,10 @@ void scatter_figures(const Context& c) {
     if (one_only > 0)
       scatter.note = std::to_string(one_only) + " quer" + (one_only == 1 ? "y" : "ies") +
                      " completed by one of the two only, not drawn";
-    c.page.figure(
-        "scatter", plots::plot_runtime_scatter(scatter),
-        "One dot per query both completed, log–log; above the diagonal " + a + " was faster.");
+    c.page.figure("scatter", plots::plot_runtime_scatter(scatter),
+                  "One dot per query both completed, " + std::string(runtime_caption(c.runtime)) +
+                      ", log–log; above the diagonal " + a + " was faster.",
+                  "scatter-" + file_key(a) + "-" + file_key(other));
   }
 }
 
@@ -1072,8 +1118,15 @@ void write_comparison(const Context& c) {
   if (c.solver_names.size() < 2) return;
   c.page.section("comparison", "Solver comparison");
   c.page.table(&Report::comparison, comparison_table(c), "comparison-table");
-  cactus_figure(c);
-  profile_figure(c);
+  for (std::size_t b = 0; b < c.benchmarks.size(); ++b)
+    if (c.benchmarks[b].solver_order.size() >= 2) {
+      cactus_figure(c, benchmark_scope(c, b));
+      profile_figure(c, benchmark_scope(c, b));
+    }
+  if (c.options.pooled_figures) {
+    cactus_figure(c, pooled_scope(c));
+    profile_figure(c, pooled_scope(c));
+  }
   scatter_figures(c);
   coverage_figure(c);
   c.page.end_section();
@@ -1105,7 +1158,8 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
   report.notes = notes;
   Page page(report);
   Context c{instances, solutions, references, options, page, benchmarks_of(instances),
-            notes,     {},        {},         {},      {},   {}};
+            notes,     {},        {},         {},      {},   {},
+            {}};
   bind_files(c);
   c.stats = view_stats(c);
   c.outcomes = outcomes_of(c);
@@ -1126,15 +1180,20 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
 tables::Table solver_table(std::span<const GraphReader> instances,
                            std::span<const SolutionReader> solutions,
                            std::span<const SolutionReader> references,
-                           const ReportOptions& options) {
+                           const ReportOptions& options, SolverTable kind) {
   if (instances.empty()) throw Error(ErrorCode::invalid_argument, "no instance");
   std::vector<std::string> notes;
   const auto distinct = distinct_instances(instances, notes);
   Report unused;
   Page page(unused);
   Context c{distinct, solutions, references, options, page, benchmarks_of(distinct),
-            notes,    {},        {},         {},      {},   {}};
+            notes,    {},        {},         {},      {},   {},
+            {}};
   bind_files(c);
+  if (kind == SolverTable::common_queries) {
+    c.outcomes = outcomes_of(c);
+    return comparison_table(c);
+  }
   c.coverage = coverage_by_benchmark(c);
   return solver_table(c);
 }

@@ -15,6 +15,7 @@
 #include "mosb/eval.hpp"
 #include "mosb/pack.hpp"
 #include "mosb/run.hpp"
+#include "mosb/solution_eval.hpp"
 #include "mosb/solution_file.hpp"
 #include "mosb/solution_summary.hpp"
 #include "mosb/views.hpp"
@@ -30,7 +31,6 @@ struct SuiteEntry;
 }
 
 namespace mosb {
-struct ComparisonOptions;
 struct FileCheck;
 class GraphReader;
 }  // namespace mosb
@@ -75,8 +75,11 @@ CLI::Validator epsilon_value();
 // A comma-separated list of ε (`--eps` of eval and report), each as epsilon_value takes one;
 // throws UsageError naming the item.
 std::vector<Ratio> parse_epsilons(const std::string& list);
-// `--tolerance REL` and `--runtime wall|reported` of every command that compares solution files
-// (`eval`, `solutions compare`; in solutions_compare.cpp), into the library's ComparisonOptions.
+// `--runtime wall|reported` of every command that summarises runtimes (unset: choose_runtime's
+// default), and with `--tolerance REL` of every command that compares solution files (`eval`,
+// `solutions compare`, `solutions reference`; in solutions_compare.cpp), into the library's
+// ComparisonOptions.
+void add_runtime_option(CLI::App* subcommand, std::optional<RuntimeSource>& runtime);
 void add_comparison_options(CLI::App* subcommand, ComparisonOptions& options);
 // Free text that ends up in text, JSON and SVG output (--solver, --title, ...): no control
 // character, so a newline cannot forge a line of text output and a NUL or escape cannot reach SVG.

@@ -32,7 +32,7 @@ struct EvalArgs {
   std::vector<std::string> solutions;
   std::string epsilons = "0.01,0.05,0.1";
   ComparisonOptions options;
-  bool json = false, csv = false, latex = false, per_query = false;
+  bool json = false, csv = false, latex = false, per_query = false, common_queries = false;
 };
 
 // "covered", or "NOT covered (k uncovered[, m extra])".
@@ -284,6 +284,7 @@ void print_table_json(const tables::Table& table) {
 int run_eval_results(const EvalArgs& args) {
   if (args.per_query) throw UsageError("--per-query: not with a results directory");
   pages::ReportOptions options;
+  options.runtime = args.options.runtime;
   options.epsilons = parse_epsilons(args.epsilons);
   for (const auto& e : options.epsilons) options.epsilon_labels.push_back(e.to_decimal(18));
   std::vector<GraphReader> instances;
@@ -297,7 +298,9 @@ int run_eval_results(const EvalArgs& args) {
   if (!args.reference.empty())
     for (const auto& path : reference_files(args.reference))
       references.push_back(SolutionReader::open_verified(path));
-  auto table = pages::solver_table(instances, solutions, references, options);
+  auto table = pages::solver_table(
+      instances, solutions, references, options,
+      args.common_queries ? pages::SolverTable::common_queries : pages::SolverTable::own_queries);
   table.caption = "mosb eval " + args.results +
                   (args.reference.empty() ? std::string() : ", references " + args.reference) +
                   ": " + table.caption;
@@ -314,6 +317,7 @@ int run_eval_results(const EvalArgs& args) {
 
 int run_eval(const EvalArgs& args) {
   if (!args.results.empty()) return run_eval_results(args);
+  if (args.common_queries) throw UsageError("--common-queries: with a results directory only");
   if (args.reference.empty() || args.solutions.empty())
     throw UsageError("give a results directory, or --reference FILE and --solutions FILE...");
   if (std::filesystem::is_directory(args.reference))
@@ -383,6 +387,10 @@ Command add_eval(CLI::App& app) {
       ->check(non_negative_real())
       ->capture_default_str();
   add_comparison_options(sub, args->options);
+  sub->add_flag("--common-queries", args->common_queries,
+                "with RESULTS: per benchmark and solver the runtimes over the queries every "
+                "solver of the benchmark completed (the paper's comparison table), not over each "
+                "solver's own");
   add_json_flag(sub, args->json);
   auto* json = sub->get_option("--json");
   auto* csv = sub->add_flag("--csv", args->csv, "print the summary table as CSV (RFC 4180)");

@@ -28,6 +28,9 @@ struct ReportArgs {
   std::string queries, epsilons = "0,0.01,0.05,0.1", output, title = "mosb report", latex, csv;
   std::string figures, figure_format = "svg";
   std::size_t max_points = 1000, max_size = 5'000'000;
+  std::optional<RuntimeSource> runtime;
+  std::string baseline;
+  bool pooled = false;
 };
 
 std::vector<std::uint64_t> parse_queries(const std::string& list) {
@@ -66,7 +69,7 @@ void add_tables(Outputs& out, const std::string& directory, const pages::Report&
   }
 }
 
-// Every figure alone as DIR/NN-KIND.EXT, in page order.
+// Every figure alone as DIR/NN-NAME.EXT (pages::Figure::name), numbered in page order.
 void add_figures(Outputs& out, const std::string& directory, const std::string& extension,
                  const pages::Report& r) {
   const auto format = *plots::kImageFormatNames.parse(extension);
@@ -74,7 +77,7 @@ void add_figures(Outputs& out, const std::string& directory, const std::string& 
     char number[32];
     std::snprintf(number, sizeof number, "%02zu-", k + 1);
     out.emplace_back(
-        std::filesystem::path(directory) / (number + r.figures[k].kind + "." + extension),
+        std::filesystem::path(directory) / (number + r.figures[k].name + "." + extension),
         plots::render_svg(r.figures[k].svg, format, {}));
   }
 }
@@ -107,6 +110,9 @@ int run_report(const ReportArgs& args) {
   if (args.max_points == 0) throw UsageError("--max-points: at least 1");
   options.max_points = args.max_points;
   options.max_bytes = args.max_size;
+  options.runtime = args.runtime;
+  options.baseline = args.baseline;
+  options.pooled_figures = args.pooled;
   if (!args.queries.empty()) options.queries = parse_queries(args.queries);
   options.epsilons = parse_epsilons(args.epsilons);
   for (const auto& e : options.epsilons) options.epsilon_labels.push_back(e.to_decimal(18));
@@ -185,12 +191,19 @@ Command add_report(CLI::App& app) {
                   "the page's largest size in bytes: fronts are thinned further to stay under it")
       ->check(unsigned_integer(std::numeric_limits<std::size_t>::max()))
       ->capture_default_str();
+  add_runtime_option(sub, args->runtime);
+  sub->add_option("--baseline", args->baseline,
+                  "the solver whose runtimes the scatter plots set against each other one's "
+                  "(default: the first)");
+  sub->add_flag("--pooled", args->pooled,
+                "also the cactus plot and performance profile of every benchmark pooled");
   add_output_option(sub, args->output, "the HTML file to write")->required();
   sub->add_option("--latex", args->latex,
                   "also write the tables as LaTeX booktabs tabulars into this directory");
   sub->add_option("--csv", args->csv, "also write the tables as CSV into this directory");
   sub->add_option("--figures", args->figures,
-                  "also write every figure alone into this directory (NN-KIND.svg|pdf|png)");
+                  "also write every figure alone into this directory (NN-NAME.svg|pdf|png, the name "
+                  "saying the figure's kind, benchmark and query: 07-front-grid_2-q3.svg)");
   sub->add_option("--figure-format", args->figure_format, "the format of --figures' files")
       ->check(CLI::IsMember(plots::kImageFormatNames.names()))
       ->capture_default_str();

@@ -98,6 +98,18 @@ int run_compare(const CompareArgs& args) {
 
 }  // namespace
 
+void add_runtime_option(CLI::App* sub, std::optional<RuntimeSource>& runtime) {
+  sub->add_option_function<std::string>(
+         "--runtime",
+         [&runtime](const std::string& name) {
+           runtime = *kRuntimeSourceNames.parse(name);  // checked by CLI11
+         },
+         "the runtime summarised: wall (mosb's wall clock, runtime_seconds) or reported (the "
+         "solver's own figure, reported_runtime_seconds); default: reported when every file "
+         "records it, else wall")
+      ->check(CLI::IsMember(kRuntimeSourceNames.names()));
+}
+
 void add_comparison_options(CLI::App* sub, ComparisonOptions& options) {
   sub->add_option("--tolerance", options.tolerance,
                   "relative tolerance within which float objective values are equal (integer "
@@ -109,15 +121,7 @@ void add_comparison_options(CLI::App* sub, ComparisonOptions& options) {
           },
           "REL", "relative tolerance"))
       ->capture_default_str();
-  sub->add_option_function<std::string>(
-         "--runtime",
-         [&options](const std::string& name) {
-           options.runtime = *kRuntimeSourceNames.parse(name);  // checked by CLI11
-         },
-         "the runtime summarised: wall (mosb's wall clock, runtime_seconds) or reported (the "
-         "solver's own figure, reported_runtime_seconds)")
-      ->check(CLI::IsMember(kRuntimeSourceNames.names()))
-      ->default_str(std::string(to_string(options.runtime)));
+  add_runtime_option(sub, options.runtime);
 }
 
 Command add_solutions_compare(CLI::App* solutions) {

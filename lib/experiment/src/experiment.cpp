@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <map>
 #include <cstring>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -421,8 +422,29 @@ std::vector<fs::path> result_files(const fs::path& path) {
   if (!fs::exists(path / kManifestName, ec))
     throw Error(ErrorCode::not_found,
                 path.string() + ": a directory without a results MANIFEST (mosb experiment run)");
+  // In the plan's cell order (solver-major, as the experiment file names the solvers), not the
+  // order cells finished in, so that every table and figure lists the solvers as the experiment
+  // does, and the same results give the same report whatever --jobs was.
+  auto records = read_results_manifest(path);
+  std::map<std::string, std::size_t> position;
+  if (fs::exists(path / kPlanFile, ec)) {
+    const auto plan = read_json_file(path / kPlanFile);
+    try {
+      for (const auto& c : plan.at("cells"))
+        position.emplace(c.at("file").get<std::string>(), position.size());
+    } catch (const Json::exception& err) {
+      throw Error(ErrorCode::invalid_argument,
+                  (path / kPlanFile).string() + ": " + err.what());
+    }
+  }
+  const auto rank = [&](const CellRecord& r) {
+    const auto at = position.find(r.cell.file);
+    return at == position.end() ? position.size() : at->second;
+  };
+  std::stable_sort(records.begin(), records.end(),
+                   [&](const CellRecord& a, const CellRecord& b) { return rank(a) < rank(b); });
   std::vector<fs::path> out;
-  for (const auto& r : read_results_manifest(path)) out.push_back(path / r.cell.file);
+  for (const auto& r : records) out.push_back(path / r.cell.file);
   return out;
 }
 

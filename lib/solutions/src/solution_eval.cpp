@@ -52,6 +52,21 @@ std::string_view to_string(RuntimeSource source) {
   return kRuntimeSourceNames.name(source);
 }
 
+RuntimeSource choose_runtime(std::span<const SolutionReader* const> files,
+                             std::optional<RuntimeSource> chosen) {
+  if (chosen) return *chosen;
+  const bool all_reported =
+      !files.empty() && std::all_of(files.begin(), files.end(), [](const SolutionReader* f) {
+        return f->has_statistic(Statistic::reported_runtime_seconds);
+      });
+  return all_reported ? RuntimeSource::reported : RuntimeSource::wall;
+}
+
+std::string_view runtime_caption(RuntimeSource source) {
+  return source == RuntimeSource::reported ? "runtime as each solver reported it"
+                                           : "wall-clock runtime (mosb's measurement)";
+}
+
 std::string_view to_string(QueryOutcome outcome) {
   return kQueryOutcomeNames.name(outcome);
 }

@@ -118,9 +118,11 @@ SolverComparison compare_solvers(const SolutionReader& reference,
   if (solutions.empty())
     throw Error(ErrorCode::invalid_argument, "no solution file to compare with the reference");
   solutions_internal::check_tolerance(options.tolerance);
+  std::vector<const SolutionReader*> files;
+  for (const auto& s : solutions) files.push_back(&s);
   SolverComparison result;
   result.runtime_shift_seconds = options.runtime_shift_seconds;
-  result.runtime = options.runtime;
+  result.runtime = choose_runtime(files, options.runtime);
   result.tolerance = options.tolerance;
   for (const auto& solution : solutions) {
     auto evaluation = evaluate_solutions(reference, solution, epsilons, options);
@@ -138,7 +140,7 @@ SolverComparison compare_solvers(const SolutionReader& reference,
     });
     if (all) result.common_queries.push_back(q);
   }
-  const auto statistic = runtime_statistic(options.runtime);
+  const auto statistic = runtime_statistic(result.runtime);
   for (std::size_t i = 0; i < solutions.size(); ++i) {
     std::vector<double> times;
     for (const auto q : result.common_queries)
@@ -154,9 +156,10 @@ FrontAgreement compare_fronts(const SolutionReader& a, const SolutionReader& b,
   check_same_binding(a, b);
   solutions_internal::check_tolerance(options.tolerance);
   const auto is_float = solutions_internal::float_objectives(a, b);
-  const auto statistic = runtime_statistic(options.runtime);
+  const SolutionReader* const files[] = {&a, &b};
   FrontAgreement result;
-  result.runtime = options.runtime;
+  result.runtime = choose_runtime(files, options.runtime);
+  const auto statistic = runtime_statistic(result.runtime);
   result.tolerance = options.tolerance;
   std::vector<double> ratios;
   for (std::uint64_t q = 0; q < a.query_count(); ++q) {

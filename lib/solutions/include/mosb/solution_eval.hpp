@@ -28,6 +28,13 @@ constexpr Statistic runtime_statistic(RuntimeSource source) {
   return source == RuntimeSource::reported ? Statistic::reported_runtime_seconds
                                            : Statistic::runtime_seconds;
 }
+// The runtime a comparison summarises when the user chose none (spec/EVALUATION.md §4.1):
+// `reported` when there is a file and every file records the solver's own runtime, else `wall`
+// (so that solvers are never ranked by two different clocks). `chosen`, when given, wins.
+RuntimeSource choose_runtime(std::span<const SolutionReader* const> files,
+                             std::optional<RuntimeSource> chosen = std::nullopt);
+// How a caption says it: "wall-clock runtime (mosb's)" or "runtime as each solver reported it".
+std::string_view runtime_caption(RuntimeSource source);
 
 // The default relative tolerance of float objectives (spec/EVALUATION.md §2.1): the per-arc
 // tolerance `solutions verify` allows a float path sum.
@@ -42,7 +49,8 @@ struct ComparisonOptions {
   // (1 + tolerance) times its first, and each value is compared as its group's first
   // (spec/EVALUATION.md §2.1). 0: exact. Integer objectives are always compared exactly.
   double tolerance = kDefaultTolerance;
-  RuntimeSource runtime = RuntimeSource::wall;  // the runtimes summarised
+  // The runtimes summarised; nullopt: choose_runtime of the files compared.
+  std::optional<RuntimeSource> runtime;
   double runtime_shift_seconds = 1;             // s of the shifted geometric mean
 };
 

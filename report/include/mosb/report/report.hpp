@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -11,6 +12,7 @@
 #include "mosb/eval.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/report/tables.hpp"
+#include "mosb/solution_eval.hpp"
 #include "mosb/solution_file.hpp"
 
 namespace mosb::pages {
@@ -27,11 +29,20 @@ struct ReportOptions {
   // and past it then make_report throws (ErrorCode::invalid_argument).
   std::size_t max_bytes = 5'000'000;
   std::uint32_t max_map_side = 160;  // squares per map side (plots::MapSquares)
+  // The runtime every table and figure shows; nullopt: choose_runtime of the solution files.
+  std::optional<RuntimeSource> runtime;
+  // The solver the runtime scatter plots set against each other one; empty: the first given.
+  std::string baseline;
+  // Also the cactus plot and performance profile of every benchmark pooled (each benchmark's
+  // own are always drawn): solvers limited to different benchmarks then look unequal.
+  bool pooled_figures = false;
 };
 
-// A figure of the page as a document of its own, named by its kind ("front", "cactus", ...).
+// A figure of the page as a document of its own: its kind ("front", "cactus", ...) and its name,
+// what --figures calls its file: the kind, then the benchmark (its key) and query it shows
+// ("front-grid_2-q3", "cactus-grid_2"; a pooled figure's name is its kind).
 struct Figure {
-  std::string kind, svg;
+  std::string kind, svg, name;
 };
 
 struct Report {
@@ -62,13 +73,15 @@ Report make_report(std::span<const GraphReader> instances,
 // The page's solver table, the paper's Table 5, alone (`mosb eval RESULTS`): one row per benchmark
 // (grouped as the page groups them) and solver, in the order first given: its files, queries,
 // solved (completed: solved or shown unreachable), timeouts, memory limits, failures and queries
-// not run, the median and max runtime over its completed queries, wall clock and as the solver
-// reported it (absent when none has one), and with references and options.epsilons the queries
-// evaluated against them and those covered at each ε. Binds the files as make_report does, with
-// its errors.
+// not run, the median and max runtime (options.runtime) over its completed queries, and with
+// references and options.epsilons the queries evaluated against them and those covered at each
+// ε. With SolverTable::common_queries the page's comparison table instead: per benchmark and
+// solver, the queries every solver of the benchmark completed and the runtimes over those.
+// Binds the files as make_report does, with its errors.
+enum class SolverTable { own_queries, common_queries };
 tables::Table solver_table(std::span<const GraphReader> instances,
                            std::span<const SolutionReader> solutions,
-                           std::span<const SolutionReader> references,
-                           const ReportOptions& options);
+                           std::span<const SolutionReader> references, const ReportOptions& options,
+                           SolverTable kind = SolverTable::own_queries);
 
 }  // namespace mosb::pages
