@@ -397,6 +397,34 @@ void add_median_and_max(std::vector<Cell>& row, const std::optional<Distribution
   row.push_back(d ? Cell::of(d->max) : Cell{});
 }
 
+// Bytes as megabytes (10^6), as the paper states memory.
+std::optional<Distribution> megabytes(std::optional<Distribution> d) {
+  if (!d) return d;
+  for (double* v : {&d->median, &d->mean, &d->max, &d->min}) *v /= 1e6;
+  return d;
+}
+
+// Whose fronts and statistics a file of the suite table holds: a reference from `solutions
+// reference` names the solvers that agreed and the one whose statistics it carries
+// (solution.solver.param.solvers and .statistics); any other file is one solver's, both its own.
+struct FrontsSource {
+  std::string fronts, statistics;
+};
+
+FrontsSource fronts_source(const SolutionReader& file, bool of_reference) {
+  const auto name = solver_name(file);
+  if (!of_reference) return {name, name};
+  const auto info = file.solver();
+  const auto solvers = info.parameters.find("solvers");
+  if (solvers == info.parameters.end()) return {"reference (" + name + ")", name};
+  std::string names = solvers->second;
+  for (std::size_t at = 0; (at = names.find(',', at)) != std::string::npos; at += 2)
+    names.replace(at, 1, ", ");
+  const auto statistics = info.parameters.find("statistics");
+  return {"reference (" + names + ")",
+          statistics == info.parameters.end() ? std::string() : statistics->second};
+}
+
 // A benchmark's row: its size, then the fronts and runtimes of its front_files.
 std::vector<Cell> suite_row(const Context& c, const Benchmark& bm, std::size_t columns) {
   std::uint64_t n_lo = UINT64_MAX, n_hi = 0, m_lo = UINT64_MAX, m_hi = 0, set_queries = 0;
@@ -424,8 +452,9 @@ std::vector<Cell> suite_row(const Context& c, const Benchmark& bm, std::size_t c
   for (const auto& f : *fronts.files) pooled.push_back(&fronts.readers[f.file]);
   const auto summary = summarize_completed(pooled);
   row.push_back(Cell::of(summary.statuses.total()));
-  row.push_back(Cell::of(fronts.of_reference ? "reference (" + solver_name(*pooled.front()) + ")"
-                                             : bm.solver_order.front()));
+  const auto fronts_of = fronts_source(*pooled.front(), fronts.of_reference);
+  row.push_back(Cell::of(fronts_of.fronts));
+  row.push_back(fronts_of.statistics.empty() ? Cell{} : Cell::of(fronts_of.statistics));
   row.push_back(Cell::of(summary.statuses[QueryStatus::timeout]));
   row.push_back(Cell::of(summary.statuses[QueryStatus::memory_limit]));
   if (const auto& d = summary.front_size) {
@@ -436,15 +465,17 @@ std::vector<Cell> suite_row(const Context& c, const Benchmark& bm, std::size_t c
   } else {
     row.resize(row.size() + 4);
   }
-  add_median_and_max(row, summary.runtime);
+  add_median_and_max(row, summary.runtime_of(c.runtime));
+  add_median_and_max(row, megabytes(summary.peak_memory_bytes));
   return row;
 }
 
 void write_suite(const Context& c) {
   Table t;
-  t.caption =
-      "Benchmarks: size, and the fronts and runtimes of the reference (else the first "
-      "solver); front sizes and runtimes over completed queries";
+  t.caption = "Benchmarks (the paper's Table 1): size, and the fronts of the reference (else the "
+              "first solver) with the " +
+              std::string(runtime_caption(c.runtime)) +
+              " and peak memory of the solver whose statistics it carries, over completed queries";
   t.columns = {{"family", "Family", "family"},
                {"benchmark", "Benchmark", "benchmark"},
                {"instances", "Inst.", "instances"},
@@ -453,6 +484,7 @@ void write_suite(const Context& c) {
                {"objectives", "$d$", "d"},
                {"queries", "Queries", "queries"},
                {"fronts_of", "Fronts of", "fronts of"},
+               {"statistics_of", "Runtimes of", "runtimes of"},
                {"timeout", "Timeout", "timeout"},
                {"memory_limit", "Mem-limit", "memory limit"},
                {"front_min", "$|\\Pi^*|$ min", "front min"},
@@ -460,7 +492,9 @@ void write_suite(const Context& c) {
                {"front_mean", "$|\\Pi^*|$ mean", "front mean"},
                {"front_median", "$|\\Pi^*|$ med.", "front median"},
                {"runtime_median", "Med.\\ (s)", "median runtime [s]"},
-               {"runtime_max", "Max (s)", "max runtime [s]"}};
+               {"runtime_max", "Max (s)", "max runtime [s]"},
+               {"memory_median", "Mem.\\ med.\\ (MB)", "median peak memory [MB]"},
+               {"memory_max", "Mem.\\ max (MB)", "max peak memory [MB]"}};
   for (const auto& bm : c.benchmarks) t.rows.push_back(suite_row(c, bm, t.columns.size()));
   c.page.section("suite", "Suite");
   c.page.table(&Report::suite, std::move(t), "suite-table");
@@ -487,8 +521,10 @@ std::vector<Cell> solver_row(const Context& c, std::size_t b, const std::string&
       Cell::of(statuses[QueryStatus::memory_limit]),
       Cell::of(statuses[QueryStatus::failed]),
       Cell::of(statuses[QueryStatus::not_run])};
-  add_median_and_max(row, c.runtime == RuntimeSource::reported ? summary.reported_runtime
-                                                               : summary.runtime);
+  add_median_and_max(row, summary.runtime_of(c.runtime));
+  const auto memory = megabytes(summary.peak_memory_bytes);
+  row.push_back(memory ? Cell::of(memory->median) : Cell{});
+  row.push_back(summary.expanded ? Cell::of(summary.expanded->median) : Cell{});
   if (c.references.empty() || c.options.epsilons.empty()) return row;
   const auto it = c.coverage[b].find(name);
   if (it == c.coverage[b].end()) {
@@ -519,7 +555,9 @@ Table solver_table(const Context& c) {
                {"failed", "Failed", "failed"},
                {"not_run", "Not run", "not run"},
                {"runtime_median", "Med.\\ (s)", "median runtime [s]"},
-               {"runtime_max", "Max (s)", "max runtime [s]"}};
+               {"runtime_max", "Max (s)", "max runtime [s]"},
+               {"memory_median", "Mem.\\ med.\\ (MB)", "median peak memory [MB]"},
+               {"expanded_median", "Exp.\\ med.", "median expanded"}};
   if (!c.references.empty() && !c.options.epsilons.empty()) {
     t.columns.push_back({"evaluated", "Evaluated", "queries evaluated against the reference"});
     for (const auto& e : c.options.epsilon_labels)

@@ -221,6 +221,23 @@ class ExperimentTest(ExperimentFixture):
         out = self.path("csv")
         self.ok("report", part, "--reference", self.path("refs"), "-o", self.path("r.html"),
                 "--csv", out)
+        # Table 1: the references' fronts with the first reference solver's statistics.
+        suite = {r["benchmark"]: r for r in csv.DictReader(
+            io.StringIO(read(os.path.join(out, "suite.csv")).decode()))}
+        for name in self.benchmarks:
+            self.assertEqual(suite[name]["fronts_of"], "reference (namoa, boa, wrong)")
+            self.assertEqual(suite[name]["statistics_of"], "namoa")
+            self.assertGreater(float(suite[name]["runtime_max"]), 0)
+            self.assertGreater(float(suite[name]["memory_max"]), 0)
+        # Where every query agreed, the reference's statistics are namoa's, query for query.
+        for name in os.listdir(self.path("refs")):
+            if name.startswith("grid."):
+                continue  # the wrong query is left out there, with its statistics
+            ref, own = (json.loads(self.ok("solutions", "inspect", f, "--json").stdout)
+                        for f in (self.path("refs", name), os.path.join(part, "cells", "namoa",
+                                                                        name)))
+            self.assertEqual(ref["parameters"]["statistics"], "namoa")
+            self.assertEqual(ref["statistics"], own["statistics"], name)
         comparison = read(os.path.join(out, "comparison.csv")).decode()
         for name in self.benchmarks:
             self.assertIn(name, comparison)

@@ -181,6 +181,11 @@ void write_reference(std::span<const SolutionReader* const> files,
         given.push_back(q.query);
     info.parameters["agreed." + std::to_string(k)] = query_ranges(given);
   }
+  // The paper publishes its references with the statistics of the one solver that computed them
+  // (NWMOA's runtime, expansions, memory): here the first solver named, on the queries it
+  // completed with the reference's status. Another solver's figures never fill a gap.
+  const SolutionReader* statistics_of = by_solver.front();
+  if (statistics_of) info.parameters["statistics"] = options.solvers.front();
   writer.set_solver(std::move(info));
   std::vector<double> costs;
   for (const auto& q : validation.queries) {
@@ -193,7 +198,11 @@ void write_reference(std::span<const SolutionReader* const> files,
         for (std::size_t i = 0; i < file.objective_count(); ++i)
           costs.push_back(file.value_as_double(i, row));
     }
-    writer.set_query(q.query, q.status, costs);
+    QueryStatistics statistics;
+    if (statistics_of && is_completed(q.status) && statistics_of->status(q.query) == q.status) {
+      statistics = statistics_of->statistics(q.query);
+    }
+    writer.set_query(q.query, q.status, costs, statistics);
   }
   writer.write(target);
 }

@@ -50,7 +50,7 @@ std::optional<Distribution> distribution_of(std::vector<double> values,
 
 CompletedSummary summarize_completed(std::span<const SolutionReader* const> files) {
   CompletedSummary summary;
-  std::vector<double> sizes, runtimes, reported;
+  std::vector<double> sizes, runtimes, reported, memory, expanded;
   for (const auto* r : files)
     for (std::uint64_t q = 0; q < r->query_count(); ++q) {
       const auto status = r->status(q);
@@ -59,11 +59,20 @@ CompletedSummary summarize_completed(std::span<const SolutionReader* const> file
       sizes.push_back(static_cast<double>(r->front_size(q)));
       if (const auto runtime = r->runtime_seconds(q)) runtimes.push_back(*runtime);
       if (const auto runtime = r->reported_runtime_seconds(q)) reported.push_back(*runtime);
+      if (const auto bytes = r->statistic_as_double(Statistic::peak_memory_bytes, q))
+        memory.push_back(*bytes);
+      if (const auto n = r->statistic_as_double(Statistic::expanded, q)) expanded.push_back(*n);
     }
   summary.front_size = distribution_of(std::move(sizes));
   summary.runtime = distribution_of(std::move(runtimes));
   summary.reported_runtime = distribution_of(std::move(reported));
+  summary.peak_memory_bytes = distribution_of(std::move(memory));
+  summary.expanded = distribution_of(std::move(expanded));
   return summary;
+}
+
+const std::optional<Distribution>& CompletedSummary::runtime_of(RuntimeSource source) const {
+  return source == RuntimeSource::reported ? reported_runtime : runtime;
 }
 
 SolutionSummary summarize(const SolutionReader& r) {

@@ -76,8 +76,11 @@ CrossValidation cross_validate(std::span<const SolutionReader* const> files,
                                const ReferenceOptions& options);
 
 // The reference as a solution file of the files' binding: each query's status and the front of its
-// `source` (no statistics, no paths), solver name "reference", exact (ε 0), and the metadata
-// `solution.solver.param.solvers` (the names, comma-separated), `.param.prefer` (when given) and
+// `source` (no paths), solver name "reference", exact (ε 0); the statistics (runtimes, expanded,
+// generated, peak memory) of the first solver named, on the queries it completed with the
+// reference's status, and no others; and the metadata `solution.solver.param.solvers` (the names,
+// comma-separated), `.param.statistics` (the first solver's name, when it has a file),
+// `.param.prefer` (when given) and
 // per kind K other than unsolved `.param.K` (the queries, as ranges "0-4,7"), per solver i
 // `.param.agreed.<i>` (the queries whose front it gave). Written atomically.
 void write_reference(std::span<const SolutionReader* const> files,

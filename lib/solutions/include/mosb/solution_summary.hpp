@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "mosb/solution_eval.hpp"
 #include "mosb/solution_file.hpp"
 
 namespace mosb {
@@ -43,6 +44,9 @@ struct CompletedSummary {
   std::optional<Distribution> runtime;     // runtime_seconds of the completed queries that have it
   // reported_runtime_seconds (the solver's own) of the completed queries that have it
   std::optional<Distribution> reported_runtime;
+  // peak_memory_bytes and expanded of the completed queries that have them
+  std::optional<Distribution> peak_memory_bytes, expanded;
+  const std::optional<Distribution>& runtime_of(RuntimeSource source) const;
 };
 // O(Q log Q) over the statuses and front offsets; each file must be verified (open_verified).
 CompletedSummary summarize_completed(std::span<const SolutionReader* const> files);
