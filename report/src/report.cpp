@@ -264,6 +264,7 @@ struct Context {
   std::vector<std::string> solver_names;      // every solver, in the order first given
   std::vector<std::string> solver_keys;  // of each solver, for file names: unique_keys
   RuntimeSource runtime = RuntimeSource::wall;  // what every runtime shown is (choose_runtime)
+  std::string runtime_text;                     // how captions name it (runtime_caption)
   std::vector<std::vector<ViewStats>> stats;  // per benchmark, per instance
   Outcomes outcomes;
   // Per benchmark, per solver its ε-coverage (one entry per options.epsilons) summed over the
@@ -301,6 +302,7 @@ void bind_files(Context& c) {
   std::vector<const SolutionReader*> files;
   for (const auto& f : c.solutions) files.push_back(&f);
   c.runtime = choose_runtime(files, c.options.runtime);
+  c.runtime_text = runtime_caption(c.runtime, files);
   const auto& baseline = c.options.baseline;
   if (!baseline.empty() && std::find(c.solver_names.begin(), c.solver_names.end(), baseline) ==
                                c.solver_names.end()) {
@@ -474,7 +476,7 @@ void write_suite(const Context& c) {
   Table t;
   t.caption = "Benchmarks (the paper's Table 1): size, and the fronts of the reference (else the "
               "first solver) with the " +
-              std::string(runtime_caption(c.runtime)) +
+              c.runtime_text +
               " and peak memory of the solver whose statistics it carries, over completed queries";
   t.columns = {{"family", "Family", "family"},
                {"benchmark", "Benchmark", "benchmark"},
@@ -543,7 +545,7 @@ Table solver_table(const Context& c) {
   Table t;
   t.caption = "Solvers per benchmark (the paper's Table 5): statuses of each solver's queries; "
               "median and max " +
-              std::string(runtime_caption(c.runtime)) + ", over the queries it completed";
+              c.runtime_text + ", over the queries it completed";
   t.columns = {{"family", "Family", "family"},
                {"benchmark", "Benchmark", "benchmark"},
                {"solver", "Solver", "solver"},
@@ -921,7 +923,7 @@ Table comparison_table(const Context& c) {
   Table t;
   t.caption = "Solvers per benchmark: timeouts and memory limits over each solver's queries; "
               "median and max " +
-              std::string(runtime_caption(c.runtime)) +
+              c.runtime_text +
               " over the queries every solver of the benchmark completed";
   t.columns = {{"family", "Family", "family"},
                {"benchmark", "Benchmark", "benchmark"},
@@ -976,7 +978,7 @@ void cactus_figure(const Context& c, const Scope& scope) {
     cactus.series.push_back(std::move(series));
   }
   c.page.figure("cactus", plots::plot_lines(cactus),
-                "Each solver's solved queries sorted by " + std::string(runtime_caption(c.runtime)) +
+                "Each solver's solved queries sorted by " + c.runtime_text +
                     ": a point (k, t) says k queries were solved within t seconds each. Lower "
                     "and further right is better.",
                 "cactus" + scope.name_suffix);
@@ -1022,7 +1024,7 @@ void profile_figure(const Context& c, const Scope& scope) {
                 "Dolan–Moré, over the " + std::to_string(profiled) +
                     " queries every solver ran and some solver solved: the fraction of them a "
                     "solver solved within τ times the best solver's " +
-                    std::string(runtime_caption(c.runtime)) + ". Unsolved queries never count.",
+                    c.runtime_text + ". Unsolved queries never count.",
                 "profile" + scope.name_suffix);
 }
 
@@ -1060,7 +1062,7 @@ void scatter_figures(const Context& c) {
       scatter.note = std::to_string(one_only) + " quer" + (one_only == 1 ? "y" : "ies") +
                      " completed by one of the two only, not drawn";
     c.page.figure("scatter", plots::plot_runtime_scatter(scatter),
-                  "One dot per query both completed, " + std::string(runtime_caption(c.runtime)) +
+                  "One dot per query both completed, " + c.runtime_text +
                       ", log–log; above the diagonal " + a + " was faster.",
                   "scatter-" + file_key(a) + "-" + file_key(other));
   }
@@ -1197,7 +1199,7 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
   Page page(report);
   Context c{instances, solutions, references, options, page, benchmarks_of(instances),
             notes,     {},        {},         {},      {},   {},
-            {}};
+            {},        {}};
   bind_files(c);
   c.stats = view_stats(c);
   c.outcomes = outcomes_of(c);
@@ -1226,7 +1228,7 @@ tables::Table solver_table(std::span<const GraphReader> instances,
   Page page(unused);
   Context c{distinct, solutions, references, options, page, benchmarks_of(distinct),
             notes,    {},        {},         {},      {},   {},
-            {}};
+            {},       {}};
   bind_files(c);
   if (kind == SolverTable::common_queries) {
     c.outcomes = outcomes_of(c);

@@ -2,6 +2,8 @@
 
 #include <doctest/doctest.h>
 
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "golden_input.hpp"
@@ -100,4 +102,45 @@ TEST_CASE("solver_name: the recorded name, else the file name without directory 
   named.set_solver(info);
   named.write(dir / "named.sol");
   CHECK(solver_name(SolutionReader::open_verified(dir / "named.sol")) == "BOA*");
+}
+
+TEST_CASE(
+    "choose_runtime and runtime_caption: the solvers' own runtimes only where every file has one "
+    "of one clock, and a mix of clocks named") {
+  testing::TempDir dir;
+  write_graph(testing::golden_input(), dir / "g.mosb");
+  const auto instance = GraphReader::open(dir / "g.mosb", VerifyLevel::full);
+  const auto file = [&](const std::string& name, std::optional<double> reported,
+                        const std::string& clock) {
+    SolutionWriter w(instance, "Small_2");
+    SolverInfo info;
+    info.name = name;
+    if (!clock.empty()) info.parameters["profile.runtime_clock"] = clock;
+    w.set_solver(info);
+    QueryStatistics s;
+    s.runtime_seconds = 1.0;
+    s.reported_runtime_seconds = reported;
+    w.set_query(0, QueryStatus::solved, std::vector<double>{60, 5.25}, s);
+    w.write(dir / (name + ".sol"));
+    return SolutionReader::open_verified(dir / (name + ".sol"));
+  };
+  const auto namoa = file("namoa", 0.5, ""), apex = file("apex", 0.25, "wall"),
+             emoa = file("emoa", 0.75, "cpu"), plain = file("plain", std::nullopt, "");
+  using Files = std::vector<const SolutionReader*>;
+  CHECK(choose_runtime(Files{&namoa, &apex}) == RuntimeSource::reported);
+  CHECK(runtime_caption(RuntimeSource::reported, Files{&namoa, &apex}) ==
+        "runtime as each solver reported it");
+  CHECK(choose_runtime(Files{&emoa}) == RuntimeSource::reported);
+  CHECK(runtime_caption(RuntimeSource::reported, Files{&emoa}) ==
+        "runtime as each solver reported it (cpu time)");
+  // CPU time beside wall time: not compared unless asked, and then said.
+  CHECK(choose_runtime(Files{&namoa, &emoa}) == RuntimeSource::wall);
+  CHECK(runtime_caption(RuntimeSource::wall, Files{&namoa, &emoa}) ==
+        "wall-clock runtime (mosb's measurement)");
+  CHECK(choose_runtime(Files{&namoa, &emoa}, RuntimeSource::reported) == RuntimeSource::reported);
+  CHECK(runtime_caption(RuntimeSource::reported, Files{&namoa, &emoa, &apex}) ==
+        "runtime as each solver reported it (clocks differ: namoa wall, emoa cpu, apex wall)");
+  // A file without the solver's own runtime makes the wall clock the only common one.
+  CHECK(choose_runtime(Files{&namoa, &plain}) == RuntimeSource::wall);
+  CHECK(choose_runtime(Files{}) == RuntimeSource::wall);
 }

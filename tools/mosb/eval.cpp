@@ -186,7 +186,7 @@ void print_text(const SolverComparison& result, const std::vector<Ratio>& eps,
     for (std::size_t k = 0; k < eps.size(); ++k)
       std::cout << "  ε=" << eps_text[k] << ": " << s.per_epsilon[k].covered << " covered, "
                 << s.per_epsilon[k].not_covered << " not covered, " << s.per_epsilon[k].dominated
-                << " with vectors the reference dominates (solver claims ε = 0), " << s.not_solved
+                << " with vectors the reference dominates while claiming ε = 0, " << s.not_solved
                 << " not solved\n";
     const auto count = [](const std::optional<Distribution>& d) { return d ? d->count : 0; };
     std::cout << "  front size over " << count(s.own.front_size)

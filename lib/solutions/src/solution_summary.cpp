@@ -71,6 +71,25 @@ CompletedSummary summarize_completed(std::span<const SolutionReader* const> file
   return summary;
 }
 
+std::string runtime_caption(RuntimeSource source, std::span<const SolutionReader* const> files) {
+  if (source == RuntimeSource::wall) return "wall-clock runtime (mosb's measurement)";
+  std::string caption = "runtime as each solver reported it";
+  std::vector<std::pair<std::string, std::string>> clocks;  // (solver, clock), each solver once
+  bool one_clock = true;
+  for (const auto* f : files) {
+    const auto name = solver_name(*f);
+    const auto clock = reported_clock(*f);
+    one_clock = one_clock && (clocks.empty() || clocks.front().second == clock);
+    if (std::none_of(clocks.begin(), clocks.end(), [&](const auto& c) { return c.first == name; }))
+      clocks.emplace_back(name, clock);
+  }
+  if (clocks.empty() || (one_clock && clocks.front().second == "wall")) return caption;
+  if (one_clock) return caption + " (" + clocks.front().second + " time)";
+  std::string listed;
+  for (const auto& [name, clock] : clocks) listed += (listed.empty() ? "" : ", ") + name + " " + clock;
+  return caption + " (clocks differ: " + listed + ")";
+}
+
 const std::optional<Distribution>& CompletedSummary::runtime_of(RuntimeSource source) const {
   return source == RuntimeSource::reported ? reported_runtime : runtime;
 }

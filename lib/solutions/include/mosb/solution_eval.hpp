@@ -28,13 +28,16 @@ constexpr Statistic runtime_statistic(RuntimeSource source) {
   return source == RuntimeSource::reported ? Statistic::reported_runtime_seconds
                                            : Statistic::runtime_seconds;
 }
-// The runtime a comparison summarises when the user chose none (spec/EVALUATION.md §4.1):
-// `reported` when there is a file and every file records the solver's own runtime, else `wall`
-// (so that solvers are never ranked by two different clocks). `chosen`, when given, wins.
+// What the solver's own runtime of a file measures: its profile's `runtime_clock` (metadata
+// solution.solver.param.profile.runtime_clock: "wall" or "cpu"), else "wall" (the protocol line
+// `mosb: runtime_seconds=` is the solver's wall clock, spec/RUN.md).
+std::string reported_clock(const SolutionReader& file);
+// The runtime a comparison summarises when the user chose none (spec/EVALUATION.md §4): `reported`
+// when there is a file, every file records the solver's own runtime and every one's
+// reported_clock is the same, else `wall` (so that solvers are never ranked by two different
+// clocks unasked). `chosen`, when given, wins.
 RuntimeSource choose_runtime(std::span<const SolutionReader* const> files,
                              std::optional<RuntimeSource> chosen = std::nullopt);
-// How a caption says it: "wall-clock runtime (mosb's)" or "runtime as each solver reported it".
-std::string_view runtime_caption(RuntimeSource source);
 
 // The default relative tolerance of float objectives (spec/EVALUATION.md §2.1): the per-arc
 // tolerance `solutions verify` allows a float path sum.
@@ -77,8 +80,9 @@ struct QueryEvaluation {
   std::vector<double> worst_reference_values;
   // The solver claims exactness and returned vectors the reference strictly dominates.
   bool dominated = false;
-  // Uncovered at some requested ε, not solved, dominated, or solved where the reference found
-  // the goal unreachable.
+  // Uncovered at some requested ε not below the solver's own (an ε-approximate solver promises
+  // nothing finer), not solved, dominated, or solved where the reference found the goal
+  // unreachable.
   bool failed = false;
 
   // The outcome at requested ε number k; nullopt when the reference did not solve the query.
@@ -91,7 +95,9 @@ struct SolutionEvaluation {
   bool failed = false;
   // All objectives integer: achieved ε is the exact Ratio; otherwise only achieved_value.
   bool exact_arithmetic = false;
-  // The solver's own ε (SolverInfo::epsilon) is 0: a vector the reference dominates is a bug.
+  // The solver's own ε (SolverInfo::epsilon), and whether it is 0: a vector the reference
+  // dominates is then a bug.
+  Ratio solver_epsilon;
   bool solver_claims_exact = true;
 };
 

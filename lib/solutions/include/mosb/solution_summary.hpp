@@ -19,6 +19,12 @@ namespace mosb {
 // directory and extension ("boa" for results/boa.sol).
 std::string solver_name(const SolutionReader& solutions);
 
+// How a table's or figure's caption names the runtime it shows: "wall-clock runtime (mosb's
+// measurement)", or "runtime as each solver reported it", followed by the clock where that is
+// not the wall clock (reported_clock): "(cpu time)" when every file's is cpu, "(clocks differ:
+// namoa wall, emoa cpu)" when the files mix them.
+std::string runtime_caption(RuntimeSource source, std::span<const SolutionReader* const> files);
+
 // A distribution of non-negative values. The median of an even count is the mean of the two
 // middle values. The shifted geometric mean is exp(mean(ln(x + s))) − s, solver papers' usual
 // runtime average: one slow query does not dominate it, and the shift s keeps near-zero times
