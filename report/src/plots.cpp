@@ -255,6 +255,17 @@ void value_range(double& lo, double& hi) {
   widen(lo, hi);
 }
 
+// A front's axis: the data's own range with a 5 % margin (never below 0 for values that are not),
+// rounded to ticks; a front at 36-39 is drawn on 35-40, not squeezed into a 0-40 axis.
+void data_range(double& lo, double& hi) {
+  if (!std::isfinite(lo)) lo = 0, hi = 1;
+  hi = std::min(hi, std::numeric_limits<double>::max());
+  const double pad = (hi - lo) * 0.05;
+  lo = lo >= 0 ? std::max(0.0, lo - pad) : lo - pad;
+  hi = finite_or(hi + pad, hi);
+  widen(lo, hi);
+}
+
 }  // namespace
 
 std::string plot_front(const FrontPlot& plot) {
@@ -273,8 +284,8 @@ std::string plot_front(const FrontPlot& plot) {
   for (const auto& p : plot.reference) extend({box(p.x), box(p.y)}), extend(p);
   for (const auto& p : plot.solution) extend(p);
   if (!std::isfinite(y_lo)) y_lo = 0, y_hi = 1;
-  value_range(x_lo, x_hi);
-  value_range(y_lo, y_hi);
+  data_range(x_lo, x_hi);
+  data_range(y_lo, y_hi);
   Svg svg(kWidth, kHeight);
   const Axis x{x_lo, x_hi, kLeft, kWidth - kRight};
   const Axis y{y_lo, y_hi, kHeight - kBottom, kTop};
@@ -691,7 +702,7 @@ std::string plot_lines(const LinePlot& plot) {
   std::vector<LegendEntry> entries;
   for (std::size_t k = 0; k < plot.series.size(); ++k) {
     const auto& s = plot.series[k];
-    const char* colour = category_colour(k);
+    const char* colour = category_colour(s.colour < 0 ? k : static_cast<std::size_t>(s.colour));
     std::vector<Point2> points = s.points;
     if (plot.steps) {  // horizontal, then vertical, and on to the right edge
       std::vector<Point2> stepped;
@@ -702,10 +713,10 @@ std::string plot_lines(const LinePlot& plot) {
       if (!stepped.empty()) stepped.push_back({x_hi, stepped.back().y});
       points = std::move(stepped);
     }
-    svg.polyline(polyline_points(x, y, points), colour, 2);
+    if (s.joined) svg.polyline(polyline_points(x, y, points), colour, 2);
     if (!plot.steps)
-      for (const auto& p : s.points) svg.circle(x.map(p.x), y.map(p.y), 2.5, colour);
-    entries.push_back({'r', colour, s.name, ""});
+      for (const auto& p : s.points) svg.circle(x.map(p.x), y.map(p.y), s.joined ? 2.5 : 1.5, colour);
+    if (!s.name.empty()) entries.push_back({'r', colour, s.name, ""});
   }
   capped_legend(svg, entries);
   return svg.str();

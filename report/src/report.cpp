@@ -270,6 +270,7 @@ struct Context {
   // Per benchmark, per solver its ε-coverage (one entry per options.epsilons) summed over the
   // benchmark's bindings that have a reference; empty without references or ε.
   std::vector<std::map<std::string, std::vector<EpsilonOutcome>>> coverage;
+  bool approximation = false;  // some benchmark has an approximate solver and a reference
 };
 
 // Binds every file to its benchmark (one file per solver, or reference, and binding) and names
@@ -388,7 +389,62 @@ void write_head(const Context& c) {
     c.page.out << "<li><a href=\"#" << b.anchor << "\">" << Svg::escape(b.name) << "</a></li>";
   if (c.solver_names.size() >= 2)
     c.page.out << "<li><a href=\"#comparison\">Solver comparison</a></li>";
+  if (c.approximation) c.page.out << "<li><a href=\"#approximation\">Approximation</a></li>";
   c.page.out << "</ul></nav>\n";
+}
+
+// --- The fronts' spread per objective (the paper's spread table).
+
+// Per objective of benchmark b, the spread max/min of each front of its front_files along it, over
+// the solved queries whose front has two vectors or more and a minimum above 0 there (a spread is
+// otherwise not defined: degenerate).
+void spread_rows(const Context& c, std::size_t b, std::vector<std::vector<Cell>>& rows) {
+  const auto& bm = c.benchmarks[b];
+  const auto fronts = front_files(c, bm);
+  if (!fronts.files) return;
+  const auto& first = fronts.readers[fronts.files->front().file];
+  const std::size_t d = first.objective_count();
+  std::vector<std::vector<double>> spreads(d);
+  for (const auto& f : *fronts.files) {
+    const auto& r = fronts.readers[f.file];
+    for (std::uint64_t q = 0; q < r.query_count(); ++q) {
+      if (r.status(q) != QueryStatus::solved || r.front_size(q) < 2) continue;
+      const auto begin = r.front_begin(q), end = begin + r.front_size(q);
+      for (std::size_t i = 0; i < d; ++i) {
+        double lo = std::numeric_limits<double>::infinity(), hi = 0;
+        for (auto row = begin; row < end; ++row) {
+          const double v = r.value_as_double(i, row);
+          lo = std::min(lo, v), hi = std::max(hi, v);
+        }
+        if (lo > 0) spreads[i].push_back(hi / lo);
+      }
+    }
+  }
+  for (std::size_t i = 0; i < d; ++i) {
+    const auto dist = distribution_of(spreads[i]);
+    rows.push_back({Cell::of(bm.family), Cell::of(bm.name), Cell::of(first.objective_name(i)),
+                    Cell::of(std::uint64_t{spreads[i].size()}),
+                    dist ? Cell::of(dist->mean) : Cell{}, dist ? Cell::of(dist->median) : Cell{},
+                    dist ? Cell::of(dist->max) : Cell{}});
+  }
+}
+
+void write_spread(const Context& c) {
+  Table t;
+  t.caption = "Spread (max/min ratio) of the fronts (of the reference, else the first solver) "
+              "along each objective, over the solved queries with a defined spread (two vectors "
+              "or more, a minimum above 0)";
+  t.columns = {{"family", "Family", "family"},
+               {"benchmark", "Benchmark", "benchmark"},
+               {"objective", "Objective", "objective"},
+               {"queries", "Queries", "queries"},
+               {"spread_mean", "Avg.\\ spread", "mean spread"},
+               {"spread_median", "Med.\\ spread", "median spread"},
+               {"spread_max", "Max spread", "max spread"}};
+  for (std::size_t b = 0; b < c.benchmarks.size(); ++b) spread_rows(c, b, t.rows);
+  if (t.rows.empty()) return;
+  c.page.paragraph("How far each objective varies along the fronts:");
+  c.page.table(&Report::spread, std::move(t), "spread-table");
 }
 
 // --- The suite table: the paper's Table 1.
@@ -500,6 +556,7 @@ void write_suite(const Context& c) {
   for (const auto& bm : c.benchmarks) t.rows.push_back(suite_row(c, bm, t.columns.size()));
   c.page.section("suite", "Suite");
   c.page.table(&Report::suite, std::move(t), "suite-table");
+  write_spread(c);
   c.page.end_section();
 }
 
@@ -1154,6 +1211,138 @@ void coverage_figure(const Context& c) {
   c.page.table(&Report::coverage, std::move(t), "coverage-table");
 }
 
+// --- Approximation: Pareto-set size against ε (the paper's figure), per benchmark.
+
+// The sweep a solver belongs to: its name without the "-epsE" an experiment's ε array appends
+// (spec/EXPERIMENT.md), E its file's ε; else its name.
+std::string sweep_of(const std::string& name, const std::string& epsilon) {
+  const auto suffix = "-eps" + epsilon;
+  return name.size() > suffix.size() && name.ends_with(suffix)
+             ? name.substr(0, name.size() - suffix.size())
+             : name;
+}
+
+// One approximate solver's front sizes on a benchmark, beside the reference's, per query both
+// solved.
+struct SweepPoint {
+  std::string solver, epsilon_text;
+  double epsilon = 0;
+  std::vector<double> sizes, exact_sizes;
+};
+
+// Per sweep (in the order first given), its solvers' points on benchmark b.
+std::vector<std::pair<std::string, std::vector<SweepPoint>>> sweeps_of(const Context& c,
+                                                                       std::size_t b) {
+  const auto& bm = c.benchmarks[b];
+  std::vector<std::pair<std::string, std::vector<SweepPoint>>> sweeps;
+  for (const auto& name : bm.solver_order) {
+    const auto& files = bm.solvers.at(name);
+    const auto epsilon_text = c.solutions[files.front().file].solver().epsilon;
+    const auto epsilon = parse_epsilon(epsilon_text);
+    if (epsilon.num == 0) continue;
+    SweepPoint point{name, epsilon_text, epsilon.to_double(), {}, {}};
+    for (const auto& f : files)
+      for (const auto& ref : bm.references) {
+        const auto& r = c.references[ref.file];
+        const auto& s = c.solutions[f.file];
+        if (ref.instance != f.instance || r.query_set() != s.query_set()) continue;
+        for (std::uint64_t q = 0; q < s.query_count() && q < r.query_count(); ++q)
+          if (s.status(q) == QueryStatus::solved && r.status(q) == QueryStatus::solved) {
+            point.sizes.push_back(static_cast<double>(s.front_size(q)));
+            point.exact_sizes.push_back(static_cast<double>(r.front_size(q)));
+          }
+      }
+    if (point.sizes.empty()) continue;
+    const auto sweep = sweep_of(name, epsilon_text);
+    auto at = std::find_if(sweeps.begin(), sweeps.end(),
+                           [&](const auto& x) { return x.first == sweep; });
+    if (at == sweeps.end()) at = sweeps.insert(sweeps.end(), {sweep, {}});
+    at->second.push_back(std::move(point));
+  }
+  for (auto& [sweep, points] : sweeps)
+    std::stable_sort(points.begin(), points.end(),
+                     [](const SweepPoint& x, const SweepPoint& y) { return x.epsilon < y.epsilon; });
+  return sweeps;
+}
+
+double median_of(std::vector<double> values) {
+  return distribution_of(std::move(values))->median;  // never empty here
+}
+
+// The figure (front size per query against ε, log scale, each sweep's median joined from the
+// exact fronts at ε = 0) and its table rows.
+void epsilon_figure(const Context& c, std::size_t b, Table& table) {
+  const auto& bm = c.benchmarks[b];
+  const auto sweeps = sweeps_of(c, b);
+  if (sweeps.empty()) return;
+  plots::LinePlot plot;
+  plot.title = "Pareto-set size against ε, " + bm.name;
+  plot.x_label = "ε";
+  plot.y_label = "front size (log scale)";
+  plot.y_log = true;
+  plot.x_min = 0;
+  std::string reductions;
+  std::vector<plots::LineSeries> lines;  // drawn over every sweep's dots
+  for (std::size_t k = 0; k < sweeps.size(); ++k) {
+    const auto& [sweep, points] = sweeps[k];
+    const auto colour = static_cast<int>(k);
+    plots::LineSeries dots{"", {}, false, colour};
+    plots::LineSeries medians{sweep, {}, true, colour};
+    // ε = 0: the reference's sizes over the queries the first point also solved.
+    for (double size : points.front().exact_sizes) dots.points.push_back({0, size});
+    const double exact_median = median_of(points.front().exact_sizes);
+    medians.points.push_back({0, exact_median});
+    table.rows.push_back({Cell::of(bm.family), Cell::of(bm.name), Cell::of(sweep),
+                          Cell::of(std::string("reference")), Cell::of(0.0),
+                          Cell::of(std::uint64_t{points.front().exact_sizes.size()}),
+                          Cell::of(exact_median), Cell{}});
+    for (const auto& p : points) {
+      for (double size : p.sizes) dots.points.push_back({p.epsilon, size});
+      const double median = median_of(p.sizes), exact = median_of(p.exact_sizes);
+      const double reduction = exact > 0 ? 100 * (1 - median / exact) : 0;
+      medians.points.push_back({p.epsilon, median});
+      table.rows.push_back({Cell::of(bm.family), Cell::of(bm.name), Cell::of(sweep),
+                            Cell::of(p.solver), Cell::of(p.epsilon),
+                            Cell::of(std::uint64_t{p.sizes.size()}), Cell::of(median),
+                            Cell::of(reduction)});
+    }
+    const auto& last = points.back();
+    char text[64];
+    std::snprintf(text, sizeof text, "%.1f%%",
+                  100 * (1 - median_of(last.sizes) / median_of(last.exact_sizes)));
+    reductions += (reductions.empty() ? "" : "; ") + sweep + ": the median front size at ε = " +
+                  last.epsilon_text + " is " + text + " below the exact one over the " +
+                  std::to_string(last.sizes.size()) + " queries both solved";
+    plot.series.push_back(std::move(dots));
+    lines.push_back(std::move(medians));
+  }
+  for (auto& line : lines) plot.series.push_back(std::move(line));
+  c.page.figure("epsilon", plots::plot_lines(plot),
+                "One dot per query and ε (at ε = 0 the reference's exact fronts), each sweep's "
+                "median joined. " + reductions + ".",
+                "epsilon-" + bm.key);
+}
+
+void write_approximation(const Context& c) {
+  Table t;
+  t.caption = "Front size against ε: per benchmark, sweep (a solver's ε array) and ε, the "
+              "queries it and the reference solved, the median front size, and its reduction "
+              "against the exact median over the same queries";
+  t.columns = {{"family", "Family", "family"},
+               {"benchmark", "Benchmark", "benchmark"},
+               {"sweep", "Sweep", "sweep"},
+               {"solver", "Solver", "solver"},
+               {"epsilon", "$\\varepsilon$", "ε"},
+               {"queries", "Queries", "queries"},
+               {"front_median", "$|\\Pi|$ med.", "median front size"},
+               {"reduction_percent", "Red.\\ (\\%)", "reduction [%]"}};
+  if (!c.approximation) return;
+  c.page.section("approximation", "Approximation");
+  for (std::size_t b = 0; b < c.benchmarks.size(); ++b) epsilon_figure(c, b, t);
+  c.page.table(&Report::epsilon_sizes, std::move(t), "epsilon-table");
+  c.page.end_section();
+}
+
 void write_comparison(const Context& c) {
   if (c.solver_names.size() < 2) return;
   c.page.section("comparison", "Solver comparison");
@@ -1199,17 +1388,20 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
   Page page(report);
   Context c{instances, solutions, references, options, page, benchmarks_of(instances),
             notes,     {},        {},         {},      {},   {},
-            {},        {}};
+            {},        {},        false};
   bind_files(c);
   c.stats = view_stats(c);
   c.outcomes = outcomes_of(c);
   c.coverage = coverage_by_benchmark(c);
+  for (std::size_t b = 0; b < c.benchmarks.size() && !c.approximation; ++b)
+    c.approximation = !sweeps_of(c, b).empty();
   write_head(c);
   write_suite(c);
   write_solvers(c);
   write_instance_space(c);
   for (std::size_t b = 0; b < c.benchmarks.size(); ++b) write_benchmark(c, b);
   write_comparison(c);
+  write_approximation(c);
   page.out << "<script>\n" << kScript << "</script>\n</body>\n</html>\n";
   report.html = page.out.str();
   return report;
@@ -1228,7 +1420,7 @@ tables::Table solver_table(std::span<const GraphReader> instances,
   Page page(unused);
   Context c{distinct, solutions, references, options, page, benchmarks_of(distinct),
             notes,    {},        {},         {},      {},   {},
-            {},       {}};
+            {},       {},        false};
   bind_files(c);
   if (kind == SolverTable::common_queries) {
     c.outcomes = outcomes_of(c);

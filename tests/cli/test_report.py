@@ -455,6 +455,40 @@ class HostileInputTest(mosbtest.CliTest):
     def report(self, *args, **options):
         return self.mosb("report", *args, timeout=300, **options)
 
+    def test_front_size_against_epsilon_and_spread(self):
+        """An experiment's ε sweep (files named NAME-epsE, each of its ε) against the exact
+        reference: the median front size per ε and its reduction, as a figure and a table; and
+        the reference fronts' spread per objective, a one-vector front left out."""
+        def write(name, solver, spec, epsilon):
+            env = dict(os.environ, MOSB_TEST_SOLVER_NAME=solver)
+            return mosbtest.write_solution(self.path(name), self.grid, "Grid_2", spec, epsilon,
+                                           env=env)
+        ref = write("ref.sol", "namoa", "0 solved 10,40 20,20 40,10\n", "0")
+        sweep = [write("a1.sol", "apx-eps0.05", "0 solved 10,40 40,10\n", "0.05"),
+                 write("a2.sol", "apx-eps0.1", "0 solved 20,20\n", "0.1")]
+        out, html, figures = self.path("csv"), self.path("r.html"), self.path("figures")
+        self.ok("report", self.grid, "--solutions", *reversed(sweep), "--reference", ref, "-o",
+                html, "--csv", out, "--figures", figures)
+        rows = [(r["sweep"], r["solver"], r["epsilon"], r["queries"], r["front_median"],
+                 r["reduction_percent"][:5]) for r in csv_rows(os.path.join(out, "epsilon.csv"))]
+        self.assertEqual(rows, [("apx", "reference", "0", "1", "3", ""),
+                                ("apx", "apx-eps0.05", "0.05", "1", "2", "33.33"),
+                                ("apx", "apx-eps0.1", "0.1", "1", "1", "66.66")])
+        page = read(html, "r")
+        self.assertIn('<section id="approximation">', page)
+        self.assertIn("apx: the median front size at ε = 0.1 is 66.7% below the exact one", page)
+        self.assertTrue([f for f in os.listdir(figures) if f.endswith("-epsilon-grid_2.svg")])
+        spread = [(r["objective"], r["queries"], r["spread_mean"])
+                  for r in csv_rows(os.path.join(out, "spread.csv"))]
+        self.assertEqual(spread, [("c1", "1", "4"), ("c2", "1", "4")])
+        # Exact solvers only: no approximation section. A one-vector front has no spread.
+        one = write("one.sol", "namoa", "0 solved 5,5\n", "0")
+        self.ok("report", self.grid, "--reference", one, "-o", html, "--csv", out + "2")
+        self.assertNotIn('id="approximation"', read(html, "r"))
+        self.assertEqual([(r["queries"], r["spread_mean"])
+                          for r in csv_rows(os.path.join(out + "2", "spread.csv"))],
+                         [("0", ""), ("0", "")])
+
     def test_benchmarks_are_named_as_the_suite_groups_them(self):
         """A suite view (NAME_d) groups its instances; a Moving AI map's view `length` is the map's
         own benchmark, named by its `benchmark` metadata; each section lists its instances."""

@@ -139,7 +139,7 @@ TEST_CASE(
         "wall-clock runtime (mosb's measurement)");
   CHECK(choose_runtime(Files{&namoa, &emoa}, RuntimeSource::reported) == RuntimeSource::reported);
   CHECK(runtime_caption(RuntimeSource::reported, Files{&namoa, &emoa, &apex}) ==
-        "runtime as each solver reported it (clocks differ: namoa wall, emoa cpu, apex wall)");
+        "runtime as each solver reported it (clocks differ: emoa cpu; the others wall)");
   // A file without the solver's own runtime makes the wall clock the only common one.
   CHECK(choose_runtime(Files{&namoa, &plain}) == RuntimeSource::wall);
   CHECK(choose_runtime(Files{}) == RuntimeSource::wall);

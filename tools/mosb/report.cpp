@@ -55,7 +55,9 @@ void add_tables(Outputs& out, const std::string& directory, const pages::Report&
                                                               {"solvers", &r.solvers},
                                                               {"instance-space", &r.instance_space},
                                                               {"comparison", &r.comparison},
-                                                              {"coverage", &r.coverage}};
+                                                              {"coverage", &r.coverage},
+                                                              {"spread", &r.spread},
+                                                              {"epsilon", &r.epsilon_sizes}};
   for (const auto& [name, table] : all) {
     if (table->rows.empty()) continue;
     std::ostringstream text;

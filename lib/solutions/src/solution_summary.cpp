@@ -85,9 +85,18 @@ std::string runtime_caption(RuntimeSource source, std::span<const SolutionReader
   }
   if (clocks.empty() || (one_clock && clocks.front().second == "wall")) return caption;
   if (one_clock) return caption + " (" + clocks.front().second + " time)";
+  // The most common clock (the first solver's on a tie) is "the others'".
+  std::string common;
+  std::size_t most = 0;
+  for (const auto& [name, clock] : clocks) {
+    const auto n = static_cast<std::size_t>(std::count_if(
+        clocks.begin(), clocks.end(), [&](const auto& c) { return c.second == clock; }));
+    if (n > most) most = n, common = clock;
+  }
   std::string listed;
-  for (const auto& [name, clock] : clocks) listed += (listed.empty() ? "" : ", ") + name + " " + clock;
-  return caption + " (clocks differ: " + listed + ")";
+  for (const auto& [name, clock] : clocks)
+    if (clock != common) listed += (listed.empty() ? "" : ", ") + name + " " + clock;
+  return caption + " (clocks differ: " + listed + "; the others " + common + ")";
 }
 
 const std::optional<Distribution>& CompletedSummary::runtime_of(RuntimeSource source) const {

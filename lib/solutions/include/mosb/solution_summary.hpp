@@ -22,7 +22,7 @@ std::string solver_name(const SolutionReader& solutions);
 // How a table's or figure's caption names the runtime it shows: "wall-clock runtime (mosb's
 // measurement)", or "runtime as each solver reported it", followed by the clock where that is
 // not the wall clock (reported_clock): "(cpu time)" when every file's is cpu, "(clocks differ:
-// namoa wall, emoa cpu)" when the files mix them.
+// emoa cpu; the others wall)" when the files mix them (the others: the most common clock).
 std::string runtime_caption(RuntimeSource source, std::span<const SolutionReader* const> files);
 
 // A distribution of non-negative values. The median of an even count is the mean of the two

@@ -149,8 +149,10 @@ std::string plot_degrees(const DegreePlot& plot);
 // solved against runtime) and the Dolan–Moré performance profile (steps). A log axis where asked;
 // `y_max` fixes the top of a linear y axis (a fraction: 1).
 struct LineSeries {
-  std::string name;
+  std::string name;            // its legend entry; none when empty
   std::vector<Point2> points;  // in drawing order
+  bool joined = true;          // false: small dots only (one per query, beside a joined median)
+  int colour = -1;             // the category colour's index; -1: the series' position
 };
 struct LinePlot {
   std::string title, x_label, y_label;

@@ -54,6 +54,10 @@ struct Report {
   tables::Table suite, instance_space, comparison, coverage;
   // Per benchmark and solver, the paper's Table 5 (solver_table; empty without a solver).
   tables::Table solvers;
+  // Per benchmark and objective, the spread (max/min) of the fronts (of the reference, else the
+  // first solver) along that objective; per benchmark, sweep and ε the median front size and its
+  // reduction against the reference (empty without an approximate solver and a reference).
+  tables::Table spread, epsilon_sizes;
   // What the page says about its inputs that a user should also be told where the report is
   // made: each instance given twice (the same content digest), left out and named with its twin.
   std::vector<std::string> notes;
