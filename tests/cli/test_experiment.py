@@ -337,6 +337,20 @@ class ExperimentTest(ExperimentFixture):
         self.assertIn("namoa/grid/Grid_2: the limits changed", r.stderr)
         self.assertIn("wrong/netmaker/NetMaker_3", r.stderr)
         self.assertEqual(read(os.path.join(results, "MANIFEST")), before)
+        # Other limits for one benchmark ([[benchmark_limits]]) touch its cells only.
+        grid3 = '[[benchmark_limits]]\nbenchmarks = ["Grid_3"]\ntime = 31\n'
+        self.experiment = self.write_experiment("exp.toml", extra=grid3)
+        r = run("experiment", "run", self.experiment, "-o", results)
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn("namoa/grid/Grid_3: the limits changed (time=30s memory=2147483648B, now "
+                      "time=31s memory=2147483648B)", r.stderr)
+        self.assertNotIn("Grid_2:", r.stderr)
+        self.assertEqual(read(os.path.join(results, "MANIFEST")), before)
+        fresh = self.path("r-grid3")
+        self.run_experiment(fresh)
+        limits = {f: c["limits"] for f, c in self.cells(fresh).items()}
+        self.assertEqual(limits["cells/namoa/grid.Grid_3.sol"], "time=31s memory=2147483648B")
+        self.assertEqual(limits["cells/namoa/grid.Grid_2.sol"], "time=30s memory=2147483648B")
         self.experiment = self.write_experiment("exp.toml")
         with open(self.path("wrong.sh"), "a") as f:
             f.write("# changed\n")
@@ -371,6 +385,14 @@ class ExperimentTest(ExperimentFixture):
              '[reference]\nsolvers = ["b"]\n' % (self.path("store"), self.path("wrong.sh")),
              ":7: reference.solvers: 'b' is none of the [[solver]] names"),
             ('name = "x"\nstore = [\n', ":2:11: "),
+            ('name = "x"\nstore = "%s"\n[[solver]]\nname = "a"\ntemplate = "%s"\n'
+             '[[benchmark_limits]]\nbenchmarks = ["Grid_2",\n "Nope"]\nmemory = "1G"\n'
+             % (self.path("store"), self.path("wrong.sh")),
+             ":8: benchmark_limits[1].benchmarks: 'Nope' matches no cell of the experiment"),
+            ('name = "x"\nstore = "%s"\n[[solver]]\nname = "a"\ntemplate = "%s"\n'
+             '[[benchmark_limits]]\nbenchmarks = ["Grid_2"]\nmem = "1G"\n'
+             % (self.path("store"), self.path("wrong.sh")),
+             ":8: benchmark_limits[1].mem: unknown key"),
         ]
         for text, expected in cases:
             with self.subTest(expected=expected):

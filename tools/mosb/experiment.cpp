@@ -148,9 +148,10 @@ int run_experiment_slurm_new(const ExperimentRunArgs& a) {
     run.largest_shard = std::max(run.largest_shard, queries);
   }
   run.shards = tasks.size();
-  run.time_limit_seconds = plan.experiment.limits.process.wall_seconds;
-  run.grace_seconds = plan.experiment.limits.process.grace_seconds;
-  run.memory_limit_bytes = plan.experiment.limits.process.memory_bytes;
+  const auto largest = largest_cell_limits(plan);  // what the array's tasks request
+  run.time_limit_seconds = largest.wall_seconds;
+  run.grace_seconds = largest.grace_seconds;
+  run.memory_limit_bytes = largest.memory_bytes;
   run.jobs = a.jobs;
   run.account = a.account;
   run.partition = a.partition;

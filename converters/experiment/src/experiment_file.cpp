@@ -3,6 +3,7 @@
 #include <toml++/toml.h>
 
 #include <charconv>
+#include <map>
 #include <set>
 
 #include "mosb/converters/solver_output.hpp"
@@ -113,11 +114,11 @@ class TableReader {
   std::set<std::string> known_;
 };
 
-void read_limits(TableReader& root, Experiment& e) {
-  const auto* limits = root.table("limits");
-  if (limits == nullptr) return;
-  TableReader t(*limits, "limits.", e);
-  std::string canonical;
+// The keys of a limits table, each replacing the same key of `limits` (the experiment's, for a
+// [[benchmark_limits]] entry); `given` keeps each key's canonical text, so that the limits' text
+// is the same whichever table a value came from.
+void read_limit_keys(TableReader& t, ExperimentLimits& limits,
+                     std::map<std::string, std::string>& given) {
   // A duration: a number of seconds, or text as parse_duration reads it.
   const auto duration = [&](const std::string& key, double& out) {
     const auto* node = t.get(key);
@@ -132,7 +133,7 @@ void read_limits(TableReader& root, Experiment& e) {
     if (!seconds)
       t.fail(*node, key, "'" + t.text_of(*node) + "' is not a duration (60, 60s, 500ms, 2m, 1h)");
     out = *seconds;
-    canonical += key + '=' + number_text(*seconds) + "s ";
+    given[key] = key + '=' + number_text(*seconds) + "s";
   };
   // A size: a number of bytes, or text as parse_memory_size reads it (the command line's grammar).
   const auto size = [&](const std::string& key, std::uint64_t& out) {
@@ -148,17 +149,50 @@ void read_limits(TableReader& root, Experiment& e) {
     if (!bytes)
       t.fail(*node, key, "'" + t.text_of(*node) + "' is not a size (4294967296, 512M, 16G)");
     out = *bytes;
-    canonical += key + '=' + std::to_string(*bytes) + "B ";
+    given[key] = key + '=' + std::to_string(*bytes) + "B";
   };
-  auto& p = e.limits.process;
+  auto& p = limits.process;
   duration("time", p.wall_seconds);
   size("memory", p.memory_bytes);
   duration("cpu", p.cpu_seconds);
   duration("grace", p.grace_seconds);
   size("output", p.output_bytes);
-  t.refuse_unknown();
-  e.limits.text = canonical;
-  if (!e.limits.text.empty()) e.limits.text.pop_back();
+  limits.text.clear();
+  for (const char* key : {"time", "memory", "cpu", "grace", "output"})
+    if (const auto at = given.find(key); at != given.end())
+      limits.text += (limits.text.empty() ? "" : " ") + at->second;
+}
+
+// `limits`, then each [[benchmark_limits]] entry: its patterns and the keys it replaces.
+void read_limits(TableReader& root, Experiment& e) {
+  std::map<std::string, std::string> given;
+  if (const auto* limits = root.table("limits")) {
+    TableReader t(*limits, "limits.", e);
+    read_limit_keys(t, e.limits, given);
+    t.refuse_unknown();
+  }
+  const auto* node = root.get("benchmark_limits");
+  if (node == nullptr) return;
+  const auto* array = node->as_array();
+  if (array == nullptr || !array->is_array_of_tables())
+    root.fail(*node, "benchmark_limits", "must be an array of tables ([[benchmark_limits]])");
+  for (std::size_t i = 0; i < array->size(); ++i) {
+    const auto& table = *array->get(i)->as_table();
+    const auto prefix = "benchmark_limits[" + std::to_string(i + 1) + "].";
+    TableReader t(table, prefix, e);
+    BenchmarkLimits b;
+    b.source = {static_cast<std::size_t>(table.source().begin.line), prefix + "benchmarks"};
+    for (auto& [pattern, line] : t.texts("benchmarks")) {
+      b.benchmarks.push_back(pattern);
+      b.benchmark_sources.push_back(line);
+    }
+    if (b.benchmarks.empty()) t.fail(table, "benchmarks", "is required (an array of patterns)");
+    b.limits = e.limits;
+    auto own = given;
+    read_limit_keys(t, b.limits, own);
+    t.refuse_unknown();
+    e.benchmark_limits.push_back(std::move(b));
+  }
 }
 
 // A profile's options: strings, numbers and booleans, as KEY=VALUE in key order.

@@ -280,11 +280,54 @@ ExperimentPlan plan_experiment(const Experiment& experiment, const SolverResolve
       plan.cells.push_back(std::move(cell));
     }
   }
+  for (std::size_t k = 0; k < e.benchmark_limits.size(); ++k) {
+    const auto& limits = e.benchmark_limits[k];
+    for (std::size_t p = 0; p < limits.benchmarks.size(); ++p) {
+      bool any = false;
+      for (std::size_t c = 0; c < cells.size() && !any; ++c) {
+        const auto& i = instances[cell_views[c].first];
+        any = matches(limits.benchmarks[p], i, i.views[cell_views[c].second]);
+      }
+      if (!any)
+        refuse(e, limits.benchmark_sources[p],
+               "'" + limits.benchmarks[p] + "' matches no cell of the experiment");
+    }
+  }
+  // Each cell's limits: those of the first [[benchmark_limits]] that matches it.
+  for (auto& cell : plan.cells) {
+    const auto at = std::find_if(cells.begin(), cells.end(), [&](const ExperimentCell& x) {
+      return x.instance_file == cell.instance_file && x.view == cell.view;
+    });
+    const auto& i = instances[cell_views[static_cast<std::size_t>(at - cells.begin())].first];
+    const auto& v = i.views[cell_views[static_cast<std::size_t>(at - cells.begin())].second];
+    for (std::size_t k = 0; k < e.benchmark_limits.size() && cell.limits == 0; ++k)
+      for (const auto& pattern : e.benchmark_limits[k].benchmarks)
+        if (matches(pattern, i, v)) cell.limits = k + 1;
+  }
   std::set<std::string> files;
   for (const auto& c : plan.cells)
     if (!files.insert(c.file).second)
       refuse(e, {}, "two cells write " + c.file + " (two instances of one file name)");
   return plan;
+}
+
+const ExperimentLimits& cell_limits(const ExperimentPlan& plan, const ExperimentCell& cell) {
+  return cell.limits == 0 ? plan.experiment.limits
+                          : plan.experiment.benchmark_limits.at(cell.limits - 1).limits;
+}
+
+ProcessLimits largest_cell_limits(const ExperimentPlan& plan) {
+  ProcessLimits largest = plan.experiment.limits.process;
+  bool unlimited_memory = largest.memory_bytes == 0;
+  for (const auto& cell : plan.cells) {
+    const auto& p = cell_limits(plan, cell).process;
+    largest.wall_seconds = std::max(largest.wall_seconds, p.wall_seconds);
+    largest.grace_seconds = std::max(largest.grace_seconds, p.grace_seconds);
+    largest.memory_bytes = std::max(largest.memory_bytes, p.memory_bytes);
+    unlimited_memory = unlimited_memory || p.memory_bytes == 0;
+  }
+  if (unlimited_memory) largest.memory_bytes = 0;
+  return largest;
 }
 
 std::string_view to_string(CellState state) {
@@ -501,8 +544,8 @@ void check_finished_cells(const ExperimentPlan& plan, const fs::path& results,
     else if (r->solver_binding != plan.solvers[s].binding)
       why = "the solver's command changed (" + r->solver_binding + ", now " +
             plan.solvers[s].binding + ")";
-    else if (r->limits != plan.experiment.limits.text)
-      why = "the limits changed (" + r->limits + ", now " + plan.experiment.limits.text + ")";
+    else if (r->limits != cell_limits(plan, cell).text)
+      why = "the limits changed (" + r->limits + ", now " + cell_limits(plan, cell).text + ")";
     else if (r->cell.instance_digest != cell.instance_digest)
       why = "the instance changed";
     else if (cell_status(cell, results, records, false).state == CellState::damaged)
@@ -625,7 +668,7 @@ ExperimentResult run_experiment(const ExperimentPlan& plan, const fs::path& resu
     config.instance = &instance;
     config.instance_path = instance_path.string();
     config.choice = {cell.view, {}, cell.query_set};
-    config.limits = plan.experiment.limits.process;
+    config.limits = cell_limits(plan, cell).process;
     plan.resolver.configure(config, plan.experiment.solvers[s].spec);
     config.jobs = options.jobs;
     config.measurement = options.measurement;
@@ -654,7 +697,7 @@ ExperimentResult run_experiment(const ExperimentPlan& plan, const fs::path& resu
       break;
     }
     records.push_back({cell, sha256_file(results / cell.file), plan.executable_sha256[s],
-                       plan.solvers[s].binding, plan.experiment.limits.text, run.counts});
+                       plan.solvers[s].binding, cell_limits(plan, cell).text, run.counts});
     write_results_manifest(results, records);
     ++result.ran;
     ++progress.cells_done;

@@ -45,6 +45,16 @@ struct ExperimentLimits {
   std::string text;       // the limits as the file wrote them, canonical: what a rerun compares
 };
 
+// `[[benchmark_limits]]`: other limits for the cells some benchmark patterns match (the paper's
+// memory caps for DIMACS-Extended and Grid_3 only), the experiment's limits with these keys
+// replaced.
+struct BenchmarkLimits {
+  std::vector<std::string> benchmarks;  // patterns, as Experiment::benchmarks
+  std::vector<SourceLine> benchmark_sources;
+  ExperimentLimits limits;  // complete: the experiment's, overridden
+  SourceLine source;
+};
+
 struct Experiment {
   std::string file;  // the experiment file, for errors
   std::string name;
@@ -54,6 +64,7 @@ struct Experiment {
   std::vector<SourceLine> benchmark_sources;  // per benchmarks entry
   SourceLine store_source;
   ExperimentLimits limits;
+  std::vector<BenchmarkLimits> benchmark_limits;  // the first whose patterns match a cell wins
   std::vector<ExperimentSolver> solvers;
   std::vector<std::string> reference_solvers;
   SourceLine reference_source;
@@ -75,6 +86,8 @@ struct ExperimentCell {
   std::string instance_file;  // the store entry or instance file
   std::uint64_t queries = 0;
   std::string file;  // cells/SOLVER/INSTANCE.VIEW.sol, relative to the results directory
+  // 0: the experiment's limits; k > 0: those of its benchmark_limits[k - 1] (cell_limits)
+  std::size_t limits = 0;
   std::string id() const { return solver + "/" + instance + "/" + view; }
 };
 
@@ -86,8 +99,15 @@ struct ExperimentPlan {
   std::vector<ExperimentCell> cells;           // solver-major, then instance, then view
 };
 
+// The limits a cell runs under (ExperimentCell::limits). `cell` must be of the plan's experiment.
+const ExperimentLimits& cell_limits(const ExperimentPlan& plan, const ExperimentCell& cell);
+// The largest limits of any cell (a SLURM array's request): the longest time and grace, and the
+// largest memory, none (0) when some cell has none.
+ProcessLimits largest_cell_limits(const ExperimentPlan& plan);
+
 // Resolves the experiment: the store (or instance files), the benchmarks each matching some
-// (instance, view) (a pattern matches a view name, a benchmark name or BENCHMARK/VIEW), every
+// (instance, view) (a pattern matches a view name, a benchmark name or BENCHMARK/VIEW), and each
+// pattern of benchmark_limits some cell, giving each cell its limits, every
 // solver checked by `resolver` (converters/profiles' solver_resolver() for the program), the
 // reference solvers among the solvers. Throws mosb::Error (invalid_argument) with
 // experiment_error's line before anything runs.
