@@ -460,13 +460,21 @@ class ExperimentTest(ExperimentFixture):
                 '[[solver]]\nname = "namoa"\ntemplate = "%s"\n'
                 '[[solver]]\nname = "ltmoa"\nprofile = "mohs"\nexecutable = "/nonexistent"\n'
                 'options = { algorithm = "LTMOA" }\n'
-                '[[solver]]\nname = "apex"\nprofile = "apex"\nexecutable = "%s"\n'
+                '[[solver]]\nname = "apex"\nprofile = "apex"\nexecutable = "${MOSB_TEST_APEX}"\n'
                 'options = { merge = "RANDOM" }\nepsilon = [0.01, "0.1"]\n'
                 '[reference]\nsolvers = ["namoa", "ltmoa"]\n'
-                % (self.path("small.mosb"), TEMPLATE % os.path.join(EXAMPLES, "namoa"),
-                   bins["apex"]))
+                % (self.path("small.mosb"), TEMPLATE % os.path.join(EXAMPLES, "namoa")))
         exp = self.write("paper.toml", text)
         results = self.path("paper")
+        # A machine's path from its environment.
+        env.pop("MOSB_TEST_APEX", None)
+        r = run("experiment", "run", exp, "-o", results, env=env)
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+        self.assertIn("paper.toml:13: solver[3]: solver 'apex-eps0.01': executable "
+                      "${MOSB_TEST_APEX}: the environment variable MOSB_TEST_APEX is not set",
+                      r.stderr)
+        env["MOSB_TEST_APEX"] = bins["apex"]
         # The file's executable is this machine's; --executable gives another's.
         r = run("experiment", "run", exp, "-o", results, env=env)
         self.assertEqual(r.returncode, 2, r.stderr)

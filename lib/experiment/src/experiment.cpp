@@ -9,6 +9,7 @@
 #include <cerrno>
 #include <chrono>
 #include <map>
+#include <cstdlib>
 #include <cstring>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -207,12 +208,37 @@ void set_solver_executable(Experiment& e, const std::string& name, const std::st
               "executable for solver '" + name + "': the experiment's solvers are " + names);
 }
 
+// `text` with each ${NAME} replaced by the environment variable NAME; throws mosb::Error naming
+// the first variable that is not set (or empty), or a ${ without its }.
+std::string expand_variables(const std::string& text) {
+  std::string out;
+  std::size_t at = 0;
+  for (std::size_t start; (start = text.find("${", at)) != std::string::npos;) {
+    const auto end = text.find('}', start);
+    if (end == std::string::npos) throw Error(ErrorCode::invalid_argument, "'${' without its '}'");
+    const auto name = text.substr(start + 2, end - start - 2);
+    const char* value = std::getenv(name.c_str());
+    if (name.empty() || value == nullptr || *value == '\0')
+      throw Error(ErrorCode::invalid_argument, "executable " + text + ": the environment variable " +
+                                                   name + " is not set");
+    out += text.substr(at, start - at) + value;
+    at = end + 1;
+  }
+  return out + text.substr(at);
+}
+
 ExperimentPlan plan_experiment(const Experiment& experiment, const SolverResolver& resolver) {
-  const auto& e = experiment;
   ExperimentPlan plan;
-  plan.experiment = e;
+  plan.experiment = experiment;
+  const auto& e = plan.experiment;
   plan.resolver = resolver;
   if (e.solvers.empty()) refuse(e, {}, "no [[solver]]");
+  // A machine's paths from its environment: one experiment file for every machine.
+  for (auto& solver : plan.experiment.solvers) try {
+      solver.spec.executable = expand_variables(solver.spec.executable);
+    } catch (const Error& err) {
+      refuse(e, solver.source, "solver '" + solver.name + "': " + err.what());
+    }
   std::set<std::string> names;
   for (const auto& solver : e.solvers) {
     if (!valid_name(solver.name))
