@@ -260,6 +260,7 @@ void value_range(double& lo, double& hi) {
 void data_range(double& lo, double& hi) {
   if (!std::isfinite(lo)) lo = 0, hi = 1;
   hi = std::min(hi, std::numeric_limits<double>::max());
+  if (lo == 0 && hi <= 0) hi = 1;  // all zero: 0 to 1, not −1 to 1
   const double pad = (hi - lo) * 0.05;
   lo = lo >= 0 ? std::max(0.0, lo - pad) : lo - pad;
   hi = finite_or(hi + pad, hi);

@@ -5,6 +5,9 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <optional>
+#include <string>
+#include <utility>
 
 #include "mosb/report/svg.hpp"
 
@@ -111,11 +114,77 @@ std::string status_key(QueryStatus s) {
 
 }  // namespace
 
+namespace {
+
+// The code point of the UTF-8 sequence at text[at] and its length; nullopt for a byte that starts
+// no valid sequence (a stray continuation, an overlong or truncated one).
+std::optional<std::pair<char32_t, std::size_t>> utf8_at(std::string_view text, std::size_t at) {
+  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[at + k]); };
+  const unsigned char lead = byte(0);
+  const std::size_t length = lead >= 0xF0 && lead < 0xF5   ? 4
+                             : lead >= 0xE0                ? 3
+                             : lead >= 0xC2 && lead < 0xE0 ? 2
+                                                           : 0;
+  if (length == 0 || at + length > text.size()) return std::nullopt;
+  char32_t cp = lead & (0x7F >> length);
+  for (std::size_t k = 1; k < length; ++k) {
+    if ((byte(k) & 0xC0) != 0x80) return std::nullopt;
+    cp = (cp << 6) | (byte(k) & 0x3F);
+  }
+  const char32_t smallest[] = {0, 0, 0x80, 0x800, 0x10000};
+  if (cp < smallest[length] || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return std::nullopt;
+  return std::pair{cp, length};
+}
+
+// A code point beyond ASCII as pdflatex (utf8 input, the default encodings) typesets it: Latin-1
+// letters as they are; Greek letters, dashes, × and … as their commands (a profile's default
+// name says "ε=0.05"); anything else as \textbackslash{}uXXXX, so that no table fails to compile.
+std::string latex_code_point(char32_t cp, std::string_view bytes) {
+  static constexpr const char* kGreek[] = {
+      "alpha", "beta", "gamma", "delta", "varepsilon", "zeta", "eta", "theta", "iota", "kappa",
+      "lambda", "mu", "nu", "xi", "o", "pi", "rho", "varsigma", "sigma", "tau", "upsilon", "phi",
+      "chi", "psi", "omega"};
+  if (cp >= 0xA0 && cp <= 0xFF && cp != 0xD7 && cp != 0xF7) return std::string(bytes);
+  if (cp >= 0x3B1 && cp <= 0x3C9 && cp != 0x3BF)
+    return std::string("\\ensuremath{\\") + kGreek[cp - 0x3B1] + "}";
+  switch (cp) {
+    case 0xD7:
+      return "\\ensuremath{\\times}";
+    case 0xF7:
+      return "\\ensuremath{\\div}";
+    case 0x3BF:
+      return "o";
+    case 0x2013:
+      return "--";
+    case 0x2014:
+      return "---";
+    case 0x2026:
+      return "\\ldots{}";
+    case 0x2212:
+      return "\\ensuremath{-}";
+    default:
+      break;
+  }
+  char hex[16];
+  std::snprintf(hex, sizeof hex, "u%04X", static_cast<unsigned>(cp));
+  return std::string("\\textbackslash{}") + hex;
+}
+
+}  // namespace
+
 std::string latex_escape(std::string_view text) {
   std::string out;
-  for (const char c : text) {
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
     const auto byte = static_cast<unsigned char>(c);
-    if (byte < 0x20 || byte == 0x7f) {
+    if (byte >= 0x80) {
+      if (const auto decoded = utf8_at(text, i)) {
+        out += latex_code_point(decoded->first, text.substr(i, decoded->second));
+        i += decoded->second - 1;
+        continue;
+      }
+    }
+    if (byte < 0x20 || byte >= 0x7f) {  // a control character, or a byte of no UTF-8 sequence
       std::array<char, 8> hex{};
       std::snprintf(hex.data(), hex.size(), "x%02X", byte);
       out += std::string("\\textbackslash{}") + hex.data();
@@ -173,7 +242,15 @@ void write_csv(std::ostream& out, const Table& table) {
 
 void write_latex(std::ostream& out, const Table& table) {
   if (!table.caption.empty()) out << "% " << latex_escape(table.caption) << '\n';
-  out << "\\begin{tabular}{l" << std::string(table.columns.size() - 1, 'r') << "}\n\\toprule\n";
+  // Text columns (names, ranges) left, numbers right.
+  std::string align;
+  for (std::size_t i = 0; i < table.columns.size(); ++i) {
+    const bool text = i == 0 || std::any_of(table.rows.begin(), table.rows.end(), [&](const auto& r) {
+                        return r.at(i).kind == Cell::Kind::text;
+                      });
+    align += text ? 'l' : 'r';
+  }
+  out << "\\begin{tabular}{" << align << "}\n\\toprule\n";
   for (std::size_t i = 0; i < table.columns.size(); ++i)
     out << (i ? " & " : "") << table.columns[i].latex;
   out << " \\\\\n\\midrule\n";

@@ -32,6 +32,26 @@ ARENA = os.path.join(DATA, "movingai", "arena2.map")
 run = functools.partial(mosbtest.run, check=True)
 
 
+def compile_latex(test, directory):
+    """Every .tex table of `directory` compiled by pdflatex in a document as a paper has it
+    (booktabs), each on its own: a table that does not compile is not ready to \\input."""
+    pdflatex = shutil.which("pdflatex")
+    if pdflatex is None:
+        raise mosbtest.missing("pdflatex (texlive-latex-base, texlive-latex-recommended)")
+    tables = sorted(f for f in os.listdir(directory) if f.endswith(".tex"))
+    test.assertTrue(tables)
+    for table in tables:
+        document = os.path.join(directory, "doc-" + table)
+        with open(document, "w") as f:
+            f.write("\\documentclass{article}\n\\usepackage{booktabs}\n\\begin{document}\n"
+                    "\\input{%s}\n\\end{document}\n" % table)
+        r = subprocess.run([pdflatex, "-interaction=nonstopmode", "-halt-on-error",
+                            "-no-shell-escape", os.path.basename(document)], cwd=directory,
+                           capture_output=True, text=True, errors="replace", timeout=120)
+        test.assertEqual(r.returncode, 0, table + ":\n" + r.stdout[-3000:])
+        test.assertTrue(os.path.exists(document[:-4] + ".pdf"), table)
+
+
 def chromium(*args, timeout=120):
     return subprocess.run([CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu",
                            "--hide-scrollbars", "--no-first-run", "--disable-extensions",
@@ -397,6 +417,9 @@ class ReportTest(unittest.TestCase):
         self.assertEqual(r.returncode, 2, r.stderr)
         self.assertIn("--queries: 'x' is not a query number", r.stderr)
 
+    def test_every_latex_table_compiles(self):
+        compile_latex(self, self.path("latex"))
+
     def test_latex_and_csv_tables(self):
         tex = read(self.path("latex/suite.tex"), "r")
         self.assertIn("\\toprule", tex)
@@ -566,6 +589,17 @@ class HostileInputTest(mosbtest.CliTest):
         for text in (read(os.path.join(tex, f), "r") for f in os.listdir(tex)):
             self.assertNotIn("\\input", text)
             self.assertEqual(text.count("\\end{tabular}"), 1)
+        compile_latex(self, tex)
+        # Beyond ASCII: a profile's default name, Greek, dashes, a Latin-1 letter.
+        names = ["A*pex RANDOM ε=0.05", "αβ–ω × 2 … Müller"]
+        files = [self.solution("u%d.sol" % k, n) for k, n in enumerate(names)]
+        self.ok("report", self.grid, "--solutions", *files, "-o", self.path("u.html"), "--latex",
+                self.path("utex"))
+        body = read(os.path.join(self.path("utex"), "comparison.tex"), "r")
+        self.assertIn("A*pex RANDOM \\ensuremath{\\varepsilon}=0.05", body)
+        self.assertIn("\\ensuremath{\\alpha}\\ensuremath{\\beta}--\\ensuremath{\\omega} "
+                      "\\ensuremath{\\times} 2 \\ldots{} Müller", body)
+        compile_latex(self, self.path("utex"))
 
     def test_csv_names_a_spreadsheet_would_run_are_quoted_after_a_quote(self):
         names = ["=HYPERLINK(\"http://x\")", "+1", "-1", "@SUM(A1)"]

@@ -94,7 +94,13 @@ TEST_CASE("latex_escape: no name can end the tabular, run a command or take an a
         "\\$ \\_ \\# \\% \\& \\textasciitilde{} \\textasciicircum{} \\{ \\}");
   CHECK(latex_escape("[1cm]<a|b>") == "{[}1cm{]}\\textless{}a\\textbar{}b\\textgreater{}");
   CHECK(latex_escape("a\nb\x7f") == "a\\textbackslash{}x0Ab\\textbackslash{}x7F");
-  CHECK(latex_escape("ε-solver") == "ε-solver");
+  // Beyond ASCII, what pdflatex typesets: Latin-1 letters kept, Greek and dashes as commands,
+  // any other code point and any byte of no UTF-8 sequence spelled out.
+  CHECK(latex_escape("ε-solver") == "\\ensuremath{\\varepsilon}-solver");
+  CHECK(latex_escape("Müller – ρ") == "Müller -- \\ensuremath{\\rho}");
+  CHECK(latex_escape("\xe2\x9c\x93 ok") == "\\textbackslash{}u2713 ok");
+  CHECK(latex_escape("a\xff\xc3") == "a\\textbackslash{}xFF\\textbackslash{}xC3");
+  CHECK(latex_escape("\xc0\x80") == "\\textbackslash{}xC0\\textbackslash{}x80");  // overlong NUL
   // The comparison's headings carry each ε through it as well.
   std::ostringstream out;
   auto c = two_solvers();

@@ -8,6 +8,7 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <sstream>
 
 #include "commands.hpp"
 #include "json_writer.hpp"
@@ -35,6 +36,8 @@ struct ExperimentRunArgs {
   // One SLURM job array for the matrix (spec/EXPERIMENT.md §4), and the task an array task runs.
   std::string slurm, task, account, partition;
   std::vector<std::string> executables;  // --executable NAME=PATH
+  // The command line's narrowing of the file: another store, fewer benchmarks, a shorter time.
+  std::string store, benchmarks, time_limit;
   std::optional<std::uint64_t> queries_per_task;
   bool submit = false, status = false, resume = false;
 };
@@ -54,6 +57,18 @@ ExperimentPlan read_plan(const ExperimentRunArgs& a) {
         throw UsageError("--executable " + given + ": give NAME=PATH");
       set_solver_executable(experiment, given.substr(0, eq), given.substr(eq + 1));
     }
+    if (!a.store.empty()) {
+      experiment.store = a.store;
+      experiment.instances.clear();
+    }
+    if (!a.benchmarks.empty()) {
+      std::vector<std::string> patterns;
+      std::stringstream list(a.benchmarks);
+      for (std::string p; std::getline(list, p, ',');)
+        if (!p.empty()) patterns.push_back(p);
+      restrict_benchmarks(experiment, patterns);
+    }
+    if (!a.time_limit.empty()) set_time_limit(experiment, *parse_duration(a.time_limit));
     return plan_experiment(experiment, converters::solver_resolver());
   } catch (const Error& e) {
     if (e.code() == ErrorCode::io) throw;
@@ -160,6 +175,10 @@ int run_experiment_slurm_new(const ExperimentRunArgs& a) {
                        a.measurement, "--isolation",          a.isolation};
   for (const auto& given : a.executables)
     run.run_arguments.insert(run.run_arguments.end(), {"--executable", given});
+  for (const auto& [option, value] : {std::pair{"--store", &a.store},
+                                      std::pair{"--benchmarks", &a.benchmarks},
+                                      std::pair{"--time-limit", &a.time_limit}})
+    if (!value->empty()) run.run_arguments.insert(run.run_arguments.end(), {option, *value});
   create_slurm_directory(run);
   std::vector<std::uint64_t> all(run.shards);
   for (std::uint64_t i = 0; i < run.shards; ++i) all[i] = i + 1;
@@ -410,6 +429,15 @@ Command add_experiment(CLI::App& app) {
   run->add_option("--executable", run_args->executables,
                   "NAME=PATH: the executable of the profile solver NAME, over the file's "
                   "(repeatable; one experiment file for every machine)");
+  run->add_option("--store", run_args->store,
+                  "the store to run on, instead of the file's (a small one on a laptop)")
+      ->check(CLI::ExistingDirectory);
+  run->add_option("--benchmarks", run_args->benchmarks,
+                  "comma-separated patterns: only the cells they match, each must match one "
+                  "(the file's per-solver and [[benchmark_limits]] patterns may then match none)");
+  run->add_option("--time-limit", run_args->time_limit,
+                  "the time limit of every cell, over the file's (60, 60s, 2m, 1h)")
+      ->check(duration());
   run->add_option("--jobs,-j", run_args->jobs, "queries of a cell run at the same time")
       ->check(CLI::Range(1u, 1024u));
   run->add_option("--measurement", run_args->measurement,

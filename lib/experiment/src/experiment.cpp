@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <sstream>
+#include <charconv>
 #include <map>
 #include <cstdlib>
 #include <cstring>
@@ -197,15 +199,44 @@ std::string experiment_error(const Experiment& e, const SourceLine& at,
 }
 
 void set_solver_executable(Experiment& e, const std::string& name, const std::string& path) {
+  bool found = false;
   for (auto& solver : e.solvers)
-    if (solver.name == name) {
+    if (solver.name == name || solver.name.starts_with(name + "-eps")) {
       solver.spec.executable = path;
-      return;
+      found = true;
     }
+  if (found) return;
   std::string names;
   for (const auto& solver : e.solvers) names += (names.empty() ? "" : ", ") + solver.name;
   throw Error(ErrorCode::invalid_argument,
               "executable for solver '" + name + "': the experiment's solvers are " + names);
+}
+
+void restrict_benchmarks(Experiment& e, const std::vector<std::string>& patterns) {
+  e.benchmarks = patterns;
+  e.benchmark_sources.assign(patterns.size(), SourceLine{0, "--benchmarks"});
+  e.restricted = true;
+}
+
+namespace {
+
+// The limits' text with its time=...s token replaced (or put first): the text a rerun compares.
+void replace_time(ExperimentLimits& limits, double seconds) {
+  char number[64];
+  const auto end = std::to_chars(number, number + sizeof number, seconds).ptr;
+  std::string token = "time=" + std::string(number, end) + "s", text;
+  std::istringstream words(limits.text);
+  for (std::string word; words >> word;)
+    if (!word.starts_with("time=")) text += " " + word;
+  limits.text = token + text;
+  limits.process.wall_seconds = seconds;
+}
+
+}  // namespace
+
+void set_time_limit(Experiment& e, double seconds) {
+  replace_time(e.limits, seconds);
+  for (auto& b : e.benchmark_limits) replace_time(b.limits, seconds);
 }
 
 // `text` with each ${NAME} replaced by the environment variable NAME; throws mosb::Error naming
@@ -288,7 +319,7 @@ ExperimentPlan plan_experiment(const Experiment& experiment, const SolverResolve
       const auto& i = instances[cell_views[c].first];
       return matches(pattern, i, i.views[cell_views[c].second]);
     };
-    for (std::size_t b = 0; b < solver.benchmarks.size(); ++b) {
+    for (std::size_t b = 0; b < solver.benchmarks.size() && !e.restricted; ++b) {
       bool any = false;
       for (std::size_t c = 0; c < cells.size() && !any; ++c) any = runs(c, solver.benchmarks[b]);
       if (!any)
@@ -306,7 +337,7 @@ ExperimentPlan plan_experiment(const Experiment& experiment, const SolverResolve
       plan.cells.push_back(std::move(cell));
     }
   }
-  for (std::size_t k = 0; k < e.benchmark_limits.size(); ++k) {
+  for (std::size_t k = 0; k < e.benchmark_limits.size() && !e.restricted; ++k) {
     const auto& limits = e.benchmark_limits[k];
     for (std::size_t p = 0; p < limits.benchmarks.size(); ++p) {
       bool any = false;

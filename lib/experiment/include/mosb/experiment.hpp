@@ -68,14 +68,23 @@ struct Experiment {
   std::vector<ExperimentSolver> solvers;
   std::vector<std::string> reference_solvers;
   SourceLine reference_source;
+  // The benchmarks were narrowed on the command line (restrict_benchmarks): a solver's or a
+  // [[benchmark_limits]] pattern may then match no cell (a laptop run of the paper's file).
+  bool restricted = false;
 };
 
 // "FILE:LINE: KEY: problem" (or "FILE: problem" without a line), as every refusal of a plan says.
 std::string experiment_error(const Experiment& e, const SourceLine& at, const std::string& problem);
 
 // Gives the solver `name` the executable `path` (`--executable NAME=PATH`: one experiment file
-// for every machine). Throws mosb::Error (invalid_argument) when no solver has that name.
+// for every machine); a sweep's name (`apex` of apex-eps0.01, ...) gives it to every ε of it.
+// Throws mosb::Error (invalid_argument) when no solver has that name.
 void set_solver_executable(Experiment& e, const std::string& name, const std::string& path);
+// The command line's narrowing of an experiment (`experiment run --benchmarks`, `--time-limit`):
+// only the cells these patterns match (each must match one, as the file's benchmarks must); the
+// time limit of every cell, the file's [[benchmark_limits]] included.
+void restrict_benchmarks(Experiment& e, const std::vector<std::string>& patterns);
+void set_time_limit(Experiment& e, double seconds);
 
 // One cell: one solver over the query set of one view of one instance.
 struct ExperimentCell {
