@@ -9,6 +9,8 @@ program under test) and `build/release` in the scratch directory pointing at the
 the example solvers). What the README's commands read but a user would have downloaded is made
 here, in `downloads/`:
 
+* `solvers/multiobj`, `solvers/mohs`: A*pex and mohs as a user builds them, here their stand-ins
+  (standin_solvers.py), which speak the same interfaces;
 * `USA-road-NY-queries`: the real query file of PPA*'s repository (shared/data);
 * `USA-road-d.NY.gr.gz`, `USA-road-t.NY.gr.gz`, `USA-road-d.NY.co.gz`: a synthetic stand-in for
   the DIMACS NY road network with the real file's vertex count (264,346), so that the real queries
@@ -174,6 +176,16 @@ class Readme(unittest.TestCase):
         write_synthetic_ny(downloads)
         os.makedirs(os.path.join(self.dir, "build"))
         os.symlink(BUILD, os.path.join(self.dir, "build", "release"))
+        os.symlink(os.path.join(SOURCE, "examples"), os.path.join(self.dir, "examples"))
+        # The published solvers a user builds (docs/SOLVERS.md): here their stand-ins, which speak
+        # the same interfaces (standin_solvers.py).
+        os.makedirs(os.path.join(self.dir, "solvers"))
+        standin = os.path.join(SOURCE, "tests", "cli", "standin_solvers.py")
+        for program, solver in (("multiobj", "apex"), ("mohs", "mohs")):
+            path = os.path.join(self.dir, "solvers", program)
+            with open(path, "w") as f:
+                f.write("#!/bin/sh\nexec /usr/bin/python3 %s %s \"$@\"\n" % (standin, solver))
+            os.chmod(path, 0o755)
         self.url = self.serve_published()
         ran = 0
         for heading, line, text in sh_blocks():
