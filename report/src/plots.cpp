@@ -626,15 +626,18 @@ std::string plot_instance_space(const InstanceSpacePlot& plot) {
     d_lo = std::min(d_lo, s.objectives), d_hi = std::max(d_hi, s.objectives);
   if (d_lo > d_hi) d_lo = d_hi = 2;
   Svg svg(kWidth, kHeight);
-  const Axis x{-1, 1, kLeft, kWidth - kRight};
+  const Axis x{plot.absolute ? 0.0 : -1.0, 1, kLeft, kWidth - kRight};
   const Axis y{static_cast<double>(d_lo) - 0.5,
                static_cast<double>(d_hi) + 0.5,
                kHeight - kBottom,
                kTop,
                false,
                true};
-  frame(svg, x, y, plot.title, "pairwise Pearson correlation ρ of the objectives", "objectives d");
-  svg.line(x.map(0), y.p0, x.map(0), y.p1, "#999");
+  frame(svg, x, y, plot.title,
+        plot.absolute ? "pairwise Pearson correlation |ρ| of the objectives"
+                      : "pairwise Pearson correlation ρ of the objectives",
+        "objectives d");
+  if (!plot.absolute) svg.line(x.map(0), y.p0, x.map(0), y.p1, "#999");
   std::vector<LegendEntry> entries;
   for (std::size_t k = 0; k < plot.series.size(); ++k) {
     const auto& s = plot.series[k];
@@ -716,7 +719,8 @@ std::string plot_lines(const LinePlot& plot) {
     }
     if (s.joined) svg.polyline(polyline_points(x, y, points), colour, 2);
     if (!plot.steps)
-      for (const auto& p : s.points) svg.circle(x.map(p.x), y.map(p.y), s.joined ? 2.5 : 1.5, colour);
+      for (const auto& p : s.points)
+        svg.circle(x.map(p.x), y.map(p.y), s.joined ? 2.5 : 1.5, colour);
     if (!s.name.empty()) entries.push_back({'r', colour, s.name, ""});
   }
   capped_legend(svg, entries);

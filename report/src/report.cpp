@@ -259,13 +259,13 @@ struct Context {
   std::span<const SolutionReader> solutions, references;
   const ReportOptions& options;
   Page& page;
-  std::vector<Benchmark> benchmarks;          // each with its solution and reference files
-  std::span<const std::string> notes;         // about the inputs, under the head's paragraph
-  std::vector<std::string> solver_names;      // every solver, in the order first given
-  std::vector<std::string> solver_keys;  // of each solver, for file names: unique_keys
+  std::vector<Benchmark> benchmarks;            // each with its solution and reference files
+  std::span<const std::string> notes;           // about the inputs, under the head's paragraph
+  std::vector<std::string> solver_names;        // every solver, in the order first given
+  std::vector<std::string> solver_keys;         // of each solver, for file names: unique_keys
   RuntimeSource runtime = RuntimeSource::wall;  // what every runtime shown is (choose_runtime)
   std::string runtime_text;                     // how captions name it (runtime_caption)
-  std::vector<std::vector<ViewStats>> stats;  // per benchmark, per instance
+  std::vector<std::vector<ViewStats>> stats;    // per benchmark, per instance
   Outcomes outcomes;
   // Per benchmark, per solver its ε-coverage (one entry per options.epsilons) summed over the
   // benchmark's bindings that have a reference; empty without references or ε.
@@ -305,13 +305,13 @@ void bind_files(Context& c) {
   c.runtime = choose_runtime(files, c.options.runtime);
   c.runtime_text = runtime_caption(c.runtime, files);
   const auto& baseline = c.options.baseline;
-  if (!baseline.empty() && std::find(c.solver_names.begin(), c.solver_names.end(), baseline) ==
-                               c.solver_names.end()) {
+  if (!baseline.empty() &&
+      std::find(c.solver_names.begin(), c.solver_names.end(), baseline) == c.solver_names.end()) {
     std::string names;
     for (const auto& n : c.solver_names) names += (names.empty() ? "" : ", ") + n;
-    throw Error(ErrorCode::invalid_argument, "baseline " + baseline +
-                                                 ": no solution file of that solver (the solvers: " +
-                                                 (names.empty() ? "none" : names) + ")");
+    throw Error(ErrorCode::invalid_argument,
+                "baseline " + baseline + ": no solution file of that solver (the solvers: " +
+                    (names.empty() ? "none" : names) + ")");
   }
 }
 
@@ -431,9 +431,10 @@ void spread_rows(const Context& c, std::size_t b, std::vector<std::vector<Cell>>
 
 void write_spread(const Context& c) {
   Table t;
-  t.caption = "Spread (max/min ratio) of the fronts (of the reference, else the first solver) "
-              "along each objective, over the solved queries with a defined spread (two vectors "
-              "or more, a minimum above 0)";
+  t.caption =
+      "Spread (max/min ratio) of the fronts (of the reference, else the first solver) "
+      "along each objective, over the solved queries with a defined spread (two vectors "
+      "or more, a minimum above 0)";
   t.columns = {{"family", "Family", "family"},
                {"benchmark", "Benchmark", "benchmark"},
                {"objective", "Objective", "objective"},
@@ -530,10 +531,11 @@ std::vector<Cell> suite_row(const Context& c, const Benchmark& bm, std::size_t c
 
 void write_suite(const Context& c) {
   Table t;
-  t.caption = "Benchmarks (the paper's Table 1): size, and the fronts of the reference (else the "
-              "first solver) with the " +
-              c.runtime_text +
-              " and peak memory of the solver whose statistics it carries, over completed queries";
+  t.caption =
+      "Benchmarks (the paper's Table 1): size, and the fronts of the reference (else the "
+      "first solver) with the " +
+      c.runtime_text +
+      " and peak memory of the solver whose statistics it carries, over completed queries";
   t.columns = {{"family", "Family", "family"},
                {"benchmark", "Benchmark", "benchmark"},
                {"instances", "Inst.", "instances"},
@@ -600,9 +602,10 @@ std::vector<Cell> solver_row(const Context& c, std::size_t b, const std::string&
 // references its ε-coverage against them.
 Table solver_table(const Context& c) {
   Table t;
-  t.caption = "Solvers per benchmark (the paper's Table 5): statuses of each solver's queries; "
-              "median and max " +
-              c.runtime_text + ", over the queries it completed";
+  t.caption =
+      "Solvers per benchmark (the paper's Table 5): statuses of each solver's queries; "
+      "median and max " +
+      c.runtime_text + ", over the queries it completed";
   t.columns = {{"family", "Family", "family"},
                {"benchmark", "Benchmark", "benchmark"},
                {"solver", "Solver", "solver"},
@@ -656,6 +659,9 @@ std::vector<plots::InstanceSpaceSeries> rho_series(const Context& c, std::size_t
   if (by_kind.size() > 1)
     for (auto& [kind, rho] : by_kind)
       series.push_back({bm.name + ", arcs of kind " + std::to_string(kind), d, std::move(rho)});
+  if (!c.options.signed_rho)
+    for (auto& s : series)
+      for (double& r : s.rho) r = std::fabs(r);
   return series;
 }
 
@@ -676,18 +682,22 @@ std::vector<Cell> rho_row(const plots::InstanceSpaceSeries& s, std::size_t colum
 
 // The figure and its table of ρ min, mean and max per series.
 void instance_space_figure(const Context& c) {
+  const bool absolute = !c.options.signed_rho;
   plots::InstanceSpacePlot plot;
   plot.title = "Instance space: objective correlation against d";
+  plot.absolute = absolute;
   Table t;
-  t.caption =
-      "Pairwise Pearson correlation of the objectives over the arcs of each benchmark's "
-      "instances (and over the arcs of each kind where an instance has arc kinds)";
+  t.caption = std::string(absolute ? "Absolute pairwise" : "Pairwise") +
+              " Pearson correlation of the objectives over the arcs of each benchmark's "
+              "instances (and over the arcs of each kind where an instance has arc kinds)";
+  const std::string rho = absolute ? "|ρ|" : "ρ", latex = absolute ? "$|\\rho|$" : "$\\rho$";
+  const std::string key = absolute ? "abs_rho" : "rho";
   t.columns = {{"series", "Benchmark", "benchmark"},
                {"objectives", "$d$", "d"},
                {"pairs", "Pairs", "pairs"},
-               {"rho_min", "$\\rho$ min", "ρ min"},
-               {"rho_mean", "$\\rho$ mean", "ρ mean"},
-               {"rho_max", "$\\rho$ max", "ρ max"}};
+               {key + "_min", latex + " min", rho + " min"},
+               {key + "_mean", latex + " mean", rho + " mean"},
+               {key + "_max", latex + " max", rho + " max"}};
   for (std::size_t b = 0; b < c.benchmarks.size(); ++b)
     for (auto& s : rho_series(c, b)) {
       t.rows.push_back(rho_row(s, t.columns.size()));
@@ -695,9 +705,11 @@ void instance_space_figure(const Context& c) {
     }
   c.page.figure("instance-space", plots::plot_instance_space(plot),
                 "Each benchmark at its number of objectives d: the line spans its smallest to "
-                "largest pairwise ρ (ends marked), each faint dot is one pair of one instance. "
-                "Benchmarks with arc kinds (NetMaker: kind 0 the Hamiltonian cycle, kind 1 the "
-                "locality arcs) also have a series per kind.");
+                "largest pairwise " +
+                    rho +
+                    " (ends marked), each faint dot is one pair of one instance. "
+                    "Benchmarks with arc kinds (NetMaker: kind 0 the Hamiltonian cycle, kind 1 the "
+                    "locality arcs) also have a series per kind.");
   c.page.table(&Report::instance_space, std::move(t), "instance-space-table");
 }
 
@@ -877,11 +889,11 @@ void pair_figures(const Context& c, const SolutionReader& shown, std::size_t d,
     front.solution = plots::pair_points(f.solution, a, b);
     front.reference_name = f.reference_name;
     front.solver_name = f.solver_name;
-    c.page.figure("front", plots::plot_front(front),
-                  f.caption + (d == 3 ? ": projection on " + front.x_label + ", " + front.y_label
-                                      : std::string()),
-                  f.name + (d == 3 ? "-" + std::to_string(a + 1) + std::to_string(b + 1)
-                                   : std::string()));
+    c.page.figure(
+        "front", plots::plot_front(front),
+        f.caption +
+            (d == 3 ? ": projection on " + front.x_label + ", " + front.y_label : std::string()),
+        f.name + (d == 3 ? "-" + std::to_string(a + 1) + std::to_string(b + 1) : std::string()));
   }
 }
 
@@ -964,8 +976,12 @@ void comparison_rows(const Context& c, std::size_t b, std::vector<std::vector<Ce
     for (const auto& [name, o] : by_solver) runtimes[name].push_back(*o.runtime);
   }
   for (const auto& s : bm.solver_order) {
-    std::vector<Cell> row{Cell::of(bm.family), Cell::of(bm.name), Cell::of(s), Cell::of(queries),
-                          Cell::of(common), Cell::of(statuses[s][QueryStatus::timeout]),
+    std::vector<Cell> row{Cell::of(bm.family),
+                          Cell::of(bm.name),
+                          Cell::of(s),
+                          Cell::of(queries),
+                          Cell::of(common),
+                          Cell::of(statuses[s][QueryStatus::timeout]),
                           Cell::of(statuses[s][QueryStatus::memory_limit])};
     add_median_and_max(row, distribution_of(runtimes[s]));
     rows.push_back(std::move(row));
@@ -978,10 +994,10 @@ void comparison_rows(const Context& c, std::size_t b, std::vector<std::vector<Ce
 // runtime over the common queries (the only runtimes that compare).
 Table comparison_table(const Context& c) {
   Table t;
-  t.caption = "Solvers per benchmark: timeouts and memory limits over each solver's queries; "
-              "median and max " +
-              c.runtime_text +
-              " over the queries every solver of the benchmark completed";
+  t.caption =
+      "Solvers per benchmark: timeouts and memory limits over each solver's queries; "
+      "median and max " +
+      c.runtime_text + " over the queries every solver of the benchmark completed";
   t.columns = {{"family", "Family", "family"},
                {"benchmark", "Benchmark", "benchmark"},
                {"solver", "Solver", "solver"},
@@ -1254,14 +1270,15 @@ std::vector<std::pair<std::string, std::vector<SweepPoint>>> sweeps_of(const Con
       }
     if (point.sizes.empty()) continue;
     const auto sweep = sweep_of(name, epsilon_text);
-    auto at = std::find_if(sweeps.begin(), sweeps.end(),
-                           [&](const auto& x) { return x.first == sweep; });
+    auto at =
+        std::find_if(sweeps.begin(), sweeps.end(), [&](const auto& x) { return x.first == sweep; });
     if (at == sweeps.end()) at = sweeps.insert(sweeps.end(), {sweep, {}});
     at->second.push_back(std::move(point));
   }
   for (auto& [sweep, points] : sweeps)
-    std::stable_sort(points.begin(), points.end(),
-                     [](const SweepPoint& x, const SweepPoint& y) { return x.epsilon < y.epsilon; });
+    std::stable_sort(points.begin(), points.end(), [](const SweepPoint& x, const SweepPoint& y) {
+      return x.epsilon < y.epsilon;
+    });
   return sweeps;
 }
 
@@ -1310,24 +1327,27 @@ void epsilon_figure(const Context& c, std::size_t b, Table& table) {
     char text[64];
     std::snprintf(text, sizeof text, "%.1f%%",
                   100 * (1 - median_of(last.sizes) / median_of(last.exact_sizes)));
-    reductions += (reductions.empty() ? "" : "; ") + sweep + ": the median front size at ε = " +
-                  last.epsilon_text + " is " + text + " below the exact one over the " +
-                  std::to_string(last.sizes.size()) + " queries both solved";
+    reductions += (reductions.empty() ? "" : "; ") + sweep +
+                  ": the median front size at ε = " + last.epsilon_text + " is " + text +
+                  " below the exact one over the " + std::to_string(last.sizes.size()) +
+                  " queries both solved";
     plot.series.push_back(std::move(dots));
     lines.push_back(std::move(medians));
   }
   for (auto& line : lines) plot.series.push_back(std::move(line));
   c.page.figure("epsilon", plots::plot_lines(plot),
                 "One dot per query and ε (at ε = 0 the reference's exact fronts), each sweep's "
-                "median joined. " + reductions + ".",
+                "median joined. " +
+                    reductions + ".",
                 "epsilon-" + bm.key);
 }
 
 void write_approximation(const Context& c) {
   Table t;
-  t.caption = "Front size against ε: per benchmark, sweep (a solver's ε array) and ε, the "
-              "queries it and the reference solved, the median front size, and its reduction "
-              "against the exact median over the same queries";
+  t.caption =
+      "Front size against ε: per benchmark, sweep (a solver's ε array) and ε, the "
+      "queries it and the reference solved, the median front size, and its reduction "
+      "against the exact median over the same queries";
   t.columns = {{"family", "Family", "family"},
                {"benchmark", "Benchmark", "benchmark"},
                {"sweep", "Sweep", "sweep"},
@@ -1411,8 +1431,8 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
 
 tables::Table solver_table(std::span<const GraphReader> instances,
                            std::span<const SolutionReader> solutions,
-                           std::span<const SolutionReader> references,
-                           const ReportOptions& options, SolverTable kind) {
+                           std::span<const SolutionReader> references, const ReportOptions& options,
+                           SolverTable kind) {
   if (instances.empty()) throw Error(ErrorCode::invalid_argument, "no instance");
   std::vector<std::string> notes;
   const auto distinct = distinct_instances(instances, notes);

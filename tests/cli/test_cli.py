@@ -689,7 +689,10 @@ class UsageErrors(GridTest):
                                                       "(did you mean 'grid'?)"),
                                (["solutions", "inspcet", "x.sol"],
                                 "mosb: solutions: unknown command 'inspcet' (did you mean "
-                                "'inspect'?)")):
+                                "'inspect'?)"),
+                               (["solutions", "show", "x.sol"],
+                                "mosb: solutions: unknown command 'show' (the commands: import, "
+                                "export, inspect, verify, compare, merge, reference)")):
             with self.subTest(args=args):
                 r = self.check_usage_error(*args)
                 self.assertTrue(r.stderr.startswith(expected), r.stderr)

@@ -183,9 +183,16 @@ class ExperimentTest(ExperimentFixture):
         self.assertIn("stopped", states)  # the killed cell's journal is kept
         self.assertFalse(status["complete"])
         mtimes = {f: os.stat(os.path.join(part, f)).st_mtime_ns for f in finished}
+        journaled = sum(c["journaled"] for c in status["cells"] if c["state"] == "stopped")
+        text = self.ok("experiment", "status", part).stdout
+        self.assertIn("`mosb experiment run %s -o %s` runs the missing and stopped ones"
+                      % (self.experiment, part), text)  # the file the run read, to copy
 
         again = self.run_experiment(part)
         self.assertEqual(again["skipped"], len(finished))
+        # The stopped cell resumed from its journal, and the summary says so.
+        self.assertEqual((again["resumed"], again["queries_from_journal"]),
+                         (1 if journaled else 0, journaled))
         self.assertEqual(again["ran"], summary["cells"] - len(finished))
         for f, mtime in mtimes.items():  # no finished cell ran again
             self.assertEqual(os.stat(os.path.join(part, f)).st_mtime_ns, mtime, f)
@@ -538,6 +545,17 @@ class ExperimentTest(ExperimentFixture):
         self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
         self.assertIn("apex-eps0.01/small/Grid_2: the solver's command changed", r.stderr)
         self.assertNotIn("ltmoa/", r.stderr)
+        # A solver removed from the file: its finished cells stay listed but are no longer the
+        # experiment's, so eval leaves them out, and says so.
+        start = text.index('[[solver]]\nname = "apex"')
+        self.write("paper.toml", text[:start] + text[text.index("[reference]"):])
+        self.assertEqual(json.loads(run(*argv, env=env).stdout)["ran"], 0)
+        r = run("eval", results, "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("4 finished cells no longer in the experiment, left out: "
+                      "apex-eps0.01/small/Grid_2", r.stderr)
+        self.assertEqual({row["solver"] for row in json.loads(r.stdout)["rows"]},
+                         {"namoa", "ltmoa"})
 
 
 class ExperimentOnSlurm(ExperimentFixture, test_slurm.SlurmCluster):

@@ -347,7 +347,8 @@ class AgainstNginx(Published):
         for name, shown in (("g\u0085.mosb", "g\\u{0085}.mosb"),
                             ("g\u009b2J.mosb", "g\\u{009b}2J.mosb"),
                             ("g\u202ebsom.exe", "g\\u{202e}bsom.exe"),
-                            ("g\u2066.mosb", "g\\u{2066}.mosb"), ("g\u2069.mosb", "g\\u{2069}.mosb")):
+                            ("g\u2066.mosb", "g\\u{2066}.mosb"), ("g\u2069.mosb", "g\\u{2069}.mosb"),
+                            ("g\u200bid.mosb", "g\\u{200b}id.mosb")):
             with self.subTest(name=shown):
                 self.published_with_name(name)
                 before = len(self.requests())

@@ -114,6 +114,20 @@ class SolutionsTest(CliTest):
         self.import_("--json-log", log)
         info = self.inspect()
         self.assertEqual((info["statuses"]["failed"], info["vectors"]), (1, 0))
+        # The failure wins over a "status": "solved" beside it, in either order.
+        for record in ('"status": "solved", "finish_info": {"solutions": [{"cost_until_now": '
+                       '[1, 9]}], "status": "Failed"}',
+                       '"finish_info": {"status": "Timeout", "solutions": []}, "status": "solved"'):
+            log = self.write("contradiction.json", '[{"source": %d, "target": %d, %s}]'
+                             % (QUERIES[0][0], QUERIES[0][1], record))
+            self.import_("--json-log", log)
+            info = self.inspect()
+            self.assertEqual((info["statuses"]["failed"], info["vectors"]), (1, 0), record)
+        # A key twice in one object is refused, naming where: never the last one silently.
+        log = self.write("twice.json", '[{"source": %d, "target": %d,\n "status": "failed", '
+                         '"status": "solved", "finish_info": {"solutions": []}}]' % QUERIES[0])
+        self.assert_refused(["--json-log", log], '%s:2:22: invalid JSON: the key "status" twice in '
+                            'one object' % log)
 
     def test_directory_import_and_inspect(self):
         d = self.front_dir({"0.txt": "# a comment\n1 9\n[2, 7]\n\n3;5\r\n", "q1.front": "4,4\n",

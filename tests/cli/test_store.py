@@ -578,7 +578,10 @@ class Safety(Base):
         header, entries = self.records(manifest)
         for name, shown in (("g\u0085.mosb", "g\\u{0085}.mosb"),
                             ("g\u202egsom.exe", "g\\u{202e}gsom.exe"),
-                            ("g\u2066.mosb", "g\\u{2066}.mosb"), ("g\u200f.mosb", "g\\u{200f}.mosb")):
+                            ("g\u2066.mosb", "g\\u{2066}.mosb"), ("g\u200f.mosb", "g\\u{200f}.mosb"),
+                            # Invisible format characters: a name that prints like another.
+                            ("g\u200b.mosb", "g\\u{200b}.mosb"), ("g\ufeff.mosb", "g\\u{feff}.mosb"),
+                            ("g\u00ad.mosb", "g\\u{00ad}.mosb")):
             entries[0]["file"] = name
             with open(manifest, "w", encoding="utf-8") as f:
                 f.write("".join(json.dumps(x) + "\n" for x in [header] + entries))

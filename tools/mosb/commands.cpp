@@ -12,6 +12,7 @@
 #include "mosb/converters/movingai.hpp"
 #include "mosb/converters/suite.hpp"
 #include "mosb/eval.hpp"
+#include "mosb/experiment.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/internal/utf8.hpp"
 #include "mosb/run.hpp"
@@ -380,6 +381,19 @@ std::vector<Ratio> parse_epsilons(const std::string& list) {
   }
   if (result.empty()) throw UsageError("--eps: no ε given");
   return result;
+}
+
+std::vector<std::filesystem::path> experiment_result_files(const std::filesystem::path& path) {
+  std::vector<std::string> left_out;
+  auto files = result_files(path, &left_out);
+  if (!left_out.empty()) {
+    std::string ids;
+    for (const auto& id : left_out) ids += (ids.empty() ? "" : ", ") + id;
+    std::cerr << "mosb: warning: " << escape_for_terminal(path.string()) << ": " << left_out.size()
+              << " finished cells no longer in the experiment, left out: "
+              << escape_for_terminal(ids) << '\n';
+  }
+  return files;
 }
 
 }  // namespace mosb::cli

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -75,6 +76,11 @@ CLI::Validator epsilon_value();
 // A comma-separated list of ε (`--eps` of eval and report), each as epsilon_value takes one;
 // throws UsageError naming the item.
 std::vector<Ratio> parse_epsilons(const std::string& list);
+// An experiment's results directory's solution files (mosb::result_files), or the path itself when
+// it is a file; a line on stderr names the listed cells it leaves out (no longer in the
+// experiment).
+std::vector<std::filesystem::path> experiment_result_files(const std::filesystem::path& path);
+
 // `--runtime wall|reported` of every command that summarises runtimes (unset: choose_runtime's
 // default), and with `--tolerance REL` of every command that compares solution files (`eval`,
 // `solutions compare`, `solutions reference`; in solutions_compare.cpp), into the library's

@@ -291,7 +291,7 @@ int run_eval_results(const EvalArgs& args) {
   for (const auto& path : result_instances(args.results))
     instances.push_back(load(path, VerifyLevel::full));
   std::vector<SolutionReader> solutions, references;
-  for (const auto& path : result_files(args.results))
+  for (const auto& path : experiment_result_files(args.results))
     solutions.push_back(SolutionReader::open_verified(path));
   // Files from outside the experiment (a solver run by hand on its instances) join its table.
   for (const auto& path : args.solutions) solutions.push_back(SolutionReader::open_verified(path));

@@ -110,6 +110,8 @@ int run_cells(const ExperimentPlan& plan, const ExperimentRunArgs& a) {
     out.key("cells").value(result.cells);
     out.key("ran").value(result.ran);
     out.key("skipped").value(result.skipped);
+    out.key("resumed").value(result.resumed);
+    out.key("queries_from_journal").value(result.queries_from_journal);
     out.key("statuses").begin_object();
     for (const auto status : kQueryStatuses)
       out.key(std::string(to_string(status))).value(result.counts[status]);
@@ -119,9 +121,12 @@ int run_cells(const ExperimentPlan& plan, const ExperimentRunArgs& a) {
     return 0;
   }
   std::cout << "experiment " << escape_for_terminal(plan.experiment.name) << ": " << result.cells
-            << " cells, " << result.ran << " run now, " << result.skipped << " done before; "
-            << status_counts_text(result.counts, true) << "; results in "
-            << escape_for_terminal(a.output) << '\n';
+            << " cells, " << result.ran << " run now";
+  if (result.resumed > 0)
+    std::cout << " (" << result.resumed << " resumed, " << result.queries_from_journal
+              << " queries from their journals)";
+  std::cout << ", " << result.skipped << " done before; " << status_counts_text(result.counts, true)
+            << "; results in " << escape_for_terminal(a.output) << '\n';
   return 0;
 }
 
@@ -175,9 +180,9 @@ int run_experiment_slurm_new(const ExperimentRunArgs& a) {
                        a.measurement, "--isolation",          a.isolation};
   for (const auto& given : a.executables)
     run.run_arguments.insert(run.run_arguments.end(), {"--executable", given});
-  for (const auto& [option, value] : {std::pair{"--store", &a.store},
-                                      std::pair{"--benchmarks", &a.benchmarks},
-                                      std::pair{"--time-limit", &a.time_limit}})
+  for (const auto& [option, value] :
+       {std::pair{"--store", &a.store}, std::pair{"--benchmarks", &a.benchmarks},
+        std::pair{"--time-limit", &a.time_limit}})
     if (!value->empty()) run.run_arguments.insert(run.run_arguments.end(), {option, *value});
   create_slurm_directory(run);
   std::vector<std::uint64_t> all(run.shards);
@@ -390,7 +395,9 @@ int run_experiment_status(const ExperimentStatusArgs& a) {
   std::cout << '\n';
   const auto rerun = std::count_if(cells.begin(), cells.end(), to_rerun);
   if (rerun > 0) {
-    std::cout << "to rerun: " << rerun << " cells: `mosb experiment run EXP.toml -o "
+    auto file = recorded_experiment_file(a.results);
+    std::cout << "to rerun: " << rerun << " cells: `mosb experiment run "
+              << (file.empty() ? "EXP.toml" : escape_for_terminal(shell_quote(file))) << " -o "
               << escape_for_terminal(a.results) << "` runs the missing and stopped ones";
     if (totals[CellState::failed] + totals[CellState::damaged] > 0)
       std::cout << "; a failed or damaged cell runs again once its file and MANIFEST record are "

@@ -66,12 +66,14 @@ Command add_generate_grid(CLI::App& generate) {
   auto* directory = grid->add_option(
       "--suite", args->suite,
       "write the paper's 49 Grid graphs (3 objectives) and a MANIFEST into this directory");
-  // Hidden: a subset of widths/heights (tests), and the worker count.
-  auto* sizes = grid->add_option("--sizes", args->sizes, "suite widths and heights")
+  auto* sizes = grid->add_option("--sizes", args->sizes,
+                                 "with --suite: only grids of these comma-separated widths and "
+                                 "heights, each pair (a small suite; default: the paper's 300, "
+                                 "350, ..., 600)")
                     ->delimiter(',')
                     ->check(unsigned_integer(std::numeric_limits<std::uint32_t>::max()))
-                    ->check(CLI::Range(1u, 60000u))
-                    ->group("");
+                    ->check(CLI::Range(1u, 60000u));
+  // Hidden: the worker count (tests).
   auto* threads = grid->add_option("--threads", args->threads, "suite worker threads")
                       ->check(unsigned_integer(std::numeric_limits<unsigned>::max()))
                       ->group("");

@@ -48,7 +48,8 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
 }
 
 // For a word the deepest command given did not take, the subcommand it may have meant:
-// "unknown command 'rnu' (did you mean 'run'?)", or "" when the word is nothing like one.
+// "unknown command 'rnu' (did you mean 'run'?)", else its subcommands ("unknown command 'show'
+// (the commands: import, export, ...)"); "" when there is no such word or command.
 std::string did_you_mean(const CLI::App& app) {
   const CLI::App* current = &app;
   for (bool deeper = true; deeper;) {
@@ -61,15 +62,18 @@ std::string did_you_mean(const CLI::App& app) {
   }
   const auto words = current->remaining();
   if (words.empty() || words.front().starts_with("-")) return {};
-  std::string best;
+  std::string best, all;
   std::size_t best_distance = 3;  // two typos at most
-  for (const auto* sub : current->get_subcommands([](const CLI::App*) { return true; }))
+  for (const auto* sub : current->get_subcommands([](const CLI::App*) { return true; })) {
+    all += (all.empty() ? "" : ", ") + sub->get_name();
     if (const auto d = edit_distance(words.front(), sub->get_name()); d < best_distance) {
       best = sub->get_name();
       best_distance = d;
     }
-  if (best.empty()) return {};
-  return "unknown command '" + words.front() + "' (did you mean '" + best + "'?)";
+  }
+  if (all.empty()) return {};
+  return "unknown command '" + words.front() + "' (" +
+         (best.empty() ? "the commands: " + all : "did you mean '" + best + "'?") + ")";
 }
 
 // A usage error is one line: what is wrong, and where to read how it should be.

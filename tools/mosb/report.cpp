@@ -30,7 +30,7 @@ struct ReportArgs {
   std::size_t max_points = 1000, max_size = 5'000'000;
   std::optional<RuntimeSource> runtime;
   std::string baseline;
-  bool pooled = false;
+  bool pooled = false, signed_rho = false;
 };
 
 std::vector<std::uint64_t> parse_queries(const std::string& list) {
@@ -115,6 +115,7 @@ int run_report(const ReportArgs& args) {
   options.runtime = args.runtime;
   options.baseline = args.baseline;
   options.pooled_figures = args.pooled;
+  options.signed_rho = args.signed_rho;
   if (!args.queries.empty()) options.queries = parse_queries(args.queries);
   options.epsilons = parse_epsilons(args.epsilons);
   for (const auto& e : options.epsilons) options.epsilon_labels.push_back(e.to_decimal(18));
@@ -129,10 +130,10 @@ int run_report(const ReportArgs& args) {
       continue;
     }
     for (auto& p : result_instances(path)) instance_paths.push_back(std::move(p));
-    for (auto& p : result_files(path)) solution_paths.push_back(std::move(p));
+    for (auto& p : experiment_result_files(path)) solution_paths.push_back(std::move(p));
   }
   for (const auto& path : args.solutions)
-    for (auto& p : result_files(path)) solution_paths.push_back(std::move(p));
+    for (auto& p : experiment_result_files(path)) solution_paths.push_back(std::move(p));
   for (const auto& path : args.references)
     for (auto& p : reference_files(path)) reference_paths.push_back(std::move(p));
   std::vector<GraphReader> instances;
@@ -151,6 +152,13 @@ int run_report(const ReportArgs& args) {
   }
   const auto result = pages::make_report(instances, solutions, references, options);
   write_outputs(args, result, inputs);
+  std::cout << "wrote " << escape_for_terminal(args.output) << " (" << result.html.size()
+            << " bytes, " << result.figures.size() << " figures)";
+  for (const auto& [what, directory] :
+       {std::pair{"LaTeX tables", &args.latex}, std::pair{"CSV tables", &args.csv},
+        std::pair{"figures", &args.figures}})
+    if (!directory->empty()) std::cout << "; " << what << " in " << escape_for_terminal(*directory);
+  std::cout << '\n';
   for (const auto& note : result.notes)
     std::cerr << "mosb: warning: " << escape_for_terminal(note) << '\n';
   return 0;
@@ -199,13 +207,16 @@ Command add_report(CLI::App& app) {
                   "(default: the first)");
   sub->add_flag("--pooled", args->pooled,
                 "also the cactus plot and performance profile of every benchmark pooled");
+  sub->add_flag("--signed-rho", args->signed_rho,
+                "the instance space in signed ρ (default: |ρ|, as the paper's figure)");
   add_output_option(sub, args->output, "the HTML file to write")->required();
   sub->add_option("--latex", args->latex,
                   "also write the tables as LaTeX booktabs tabulars into this directory");
   sub->add_option("--csv", args->csv, "also write the tables as CSV into this directory");
-  sub->add_option("--figures", args->figures,
-                  "also write every figure alone into this directory (NN-NAME.svg|pdf|png, the name "
-                  "saying the figure's kind, benchmark and query: 07-front-grid_2-q3.svg)");
+  sub->add_option(
+      "--figures", args->figures,
+      "also write every figure alone into this directory (NN-NAME.svg|pdf|png, the name "
+      "saying the figure's kind, benchmark and query: 07-front-grid_2-q3.svg)");
   sub->add_option("--figure-format", args->figure_format, "the format of --figures' files")
       ->check(CLI::IsMember(plots::kImageFormatNames.names()))
       ->capture_default_str();

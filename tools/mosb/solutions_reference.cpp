@@ -39,7 +39,7 @@ std::string disagreement_line(const std::string& name, const ReferenceQuery& q) 
 int run_reference(const ReferenceArgs& a) {
   std::vector<SolutionReader> files;
   for (const auto& input : a.inputs)
-    for (const auto& path : result_files(input))
+    for (const auto& path : experiment_result_files(input))
       files.push_back(SolutionReader::open_verified(path));
   ReferenceOptions options;
   options.solvers = a.solvers;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "mosb/converters/text_input.hpp"
 #include "mosb/converters/text_scan.hpp"
@@ -203,15 +204,17 @@ void json_record_front(const Json& record, const std::string& record_at, const s
   const auto info = record.find("finish_info");
   const bool has_info = info != record.end() && info->is_object();
   // A solver that says its search did not succeed (A*pex's own time-out is "Failed") did not
-  // finish: its solutions are a partial front, never kept.
-  if (has_info && !result.status_stated)
+  // finish: its solutions are a partial front, never kept, whatever else the record says (a
+  // "status": "solved" beside it is a contradiction, and the failure wins).
+  if (has_info && (!result.status_stated || result.status == QueryStatus::solved))
     if (const auto status = info->find("status"); status != info->end()) {
       if (!status->is_string())
         throw at(record_at + "/finish_info/status", "expected a word, found " + status->dump());
       if (status->template get<std::string>() != "Success") {
+        result.statement = "finish_info.status " + status->dump() +
+                           (result.status_stated ? " (beside status \"solved\")" : "");
         result.status = QueryStatus::failed;
         result.status_stated = true;
-        result.statement = "finish_info.status " + status->dump();
         return;
       }
     }
@@ -537,11 +540,40 @@ namespace {
   fail(name, line, column, message);
 }
 
-// The JSON text parsed; a syntax error is FILE:LINE:COLUMN: invalid JSON: REASON.
+// A key given twice in one object: nlohmann keeps the last silently, so `"status": "failed",
+// "status": "solved"` would read as solved. Thrown by the parser callback below.
+struct DuplicateKey {
+  std::string key;
+  std::size_t occurrence = 0;  // of the quoted key in the whole text, 1-based
+};
+
+// The JSON text parsed; a syntax error is FILE:LINE:COLUMN: invalid JSON: REASON, and so is a key
+// given twice in one object.
 nlohmann::json parse_json_text(std::string_view text, const std::string& name) {
   using Json = nlohmann::json;
+  std::vector<std::set<std::string>> keys;  // of each object being read, outermost first
+  std::map<std::string, std::size_t> seen;  // times each key appeared anywhere
+  const Json::parser_callback_t no_duplicates = [&](int, Json::parse_event_t event, Json& parsed) {
+    if (event == Json::parse_event_t::object_start) keys.emplace_back();
+    if (event == Json::parse_event_t::object_end && !keys.empty()) keys.pop_back();
+    if (event == Json::parse_event_t::key) {
+      const auto key = parsed.get<std::string>();
+      const auto occurrence = ++seen[key];
+      if (!keys.empty() && !keys.back().insert(key).second) throw DuplicateKey{key, occurrence};
+    }
+    return true;
+  };
   try {
-    return Json::parse(text.begin(), text.end());
+    return Json::parse(text.begin(), text.end(), no_duplicates);
+  } catch (const DuplicateKey& d) {
+    // The key's position: its occurrence-th appearance as a quoted string (an escaped key, rare,
+    // is located at the text's start).
+    const auto quoted = Json(d.key).dump();
+    std::size_t at = std::string_view::npos;
+    for (std::size_t n = 0, from = 0; n < d.occurrence; ++n, from = at + 1)
+      if ((at = text.find(quoted, from)) == std::string_view::npos) break;
+    fail_at_offset(text, name, at == std::string_view::npos ? 0 : at,
+                   "invalid JSON: the key " + quoted + " twice in one object");
   } catch (const Json::parse_error& e) {
     std::string what = e.what();
     // nlohmann's message: "[json.exception.parse_error.101] parse error at ...: REASON"

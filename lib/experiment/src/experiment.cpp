@@ -7,15 +7,15 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <chrono>
-#include <sstream>
 #include <charconv>
-#include <map>
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <span>
+#include <sstream>
 
 #include "mosb/atomic_file.hpp"
 #include "mosb/command_template.hpp"
@@ -162,9 +162,15 @@ Json plan_json(const ExperimentPlan& plan) {
                        {"executable_sha256", plan.executable_sha256[s]}});
   Json cells = Json::array();
   for (const auto& c : plan.cells) cells.push_back(cell_json(c));
-  return {{"format", kPlanFormat},        {"version", kVersion},
-          {"name", plan.experiment.name}, {"limits", plan.experiment.limits.text},
-          {"solvers", solvers},           {"cells", cells}};
+  std::error_code ec;
+  const auto file = fs::absolute(plan.experiment.file, ec).lexically_normal().string();
+  return {{"format", kPlanFormat},
+          {"version", kVersion},
+          {"name", plan.experiment.name},
+          {"file", file},
+          {"limits", plan.experiment.limits.text},
+          {"solvers", solvers},
+          {"cells", cells}};
 }
 
 Json read_json_file(const fs::path& path) {
@@ -250,8 +256,8 @@ std::string expand_variables(const std::string& text) {
     const auto name = text.substr(start + 2, end - start - 2);
     const char* value = std::getenv(name.c_str());
     if (name.empty() || value == nullptr || *value == '\0')
-      throw Error(ErrorCode::invalid_argument, "executable " + text + ": the environment variable " +
-                                                   name + " is not set");
+      throw Error(ErrorCode::invalid_argument,
+                  "executable " + text + ": the environment variable " + name + " is not set");
     out += text.substr(at, start - at) + value;
     at = end + 1;
   }
@@ -516,7 +522,15 @@ std::vector<CellStatus> experiment_status(const fs::path& results) {
   return out;
 }
 
-std::vector<fs::path> result_files(const fs::path& path) {
+std::string recorded_experiment_file(const fs::path& results) {
+  std::error_code ec;
+  if (!fs::exists(results / kPlanFile, ec)) return {};
+  const auto plan = read_json_file(results / kPlanFile);
+  const auto file = plan.find("file");
+  return file != plan.end() && file->is_string() ? file->get<std::string>() : std::string();
+}
+
+std::vector<fs::path> result_files(const fs::path& path, std::vector<std::string>* left_out) {
   std::error_code ec;
   if (!fs::is_directory(path, ec)) return {path};
   if (!fs::exists(path / kManifestName, ec))
@@ -533,8 +547,7 @@ std::vector<fs::path> result_files(const fs::path& path) {
       for (const auto& c : plan.at("cells"))
         position.emplace(c.at("file").get<std::string>(), position.size());
     } catch (const Json::exception& err) {
-      throw Error(ErrorCode::invalid_argument,
-                  (path / kPlanFile).string() + ": " + err.what());
+      throw Error(ErrorCode::invalid_argument, (path / kPlanFile).string() + ": " + err.what());
     }
   }
   const auto rank = [&](const CellRecord& r) {
@@ -544,7 +557,15 @@ std::vector<fs::path> result_files(const fs::path& path) {
   std::stable_sort(records.begin(), records.end(),
                    [&](const CellRecord& a, const CellRecord& b) { return rank(a) < rank(b); });
   std::vector<fs::path> out;
-  for (const auto& r : records) out.push_back(path / r.cell.file);
+  for (const auto& r : records) {
+    // A cell the last run's plan no longer has (its solver or benchmark removed from the file)
+    // is not part of the experiment: left out, and said.
+    if (!position.empty() && !position.contains(r.cell.file)) {
+      if (left_out) left_out->push_back(r.cell.id());
+      continue;
+    }
+    out.push_back(path / r.cell.file);
+  }
   return out;
 }
 
@@ -757,6 +778,8 @@ ExperimentResult run_experiment(const ExperimentPlan& plan, const fs::path& resu
                        plan.solvers[s].binding, cell_limits(plan, cell).text, run.counts});
     write_results_manifest(results, records);
     ++result.ran;
+    result.resumed += run.from_journal > 0;
+    result.queries_from_journal += run.from_journal;
     ++progress.cells_done;
     progress.queries_done = before.queries_done + cell.queries;
     progress.queries_done_here = before.queries_done_here + run.ran;

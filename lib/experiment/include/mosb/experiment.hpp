@@ -186,7 +186,9 @@ struct ExperimentOptions {
 
 struct ExperimentResult {
   std::uint64_t cells = 0, ran = 0, skipped = 0;  // skipped: done before
-  StatusCounts counts;                            // every cell's
+  // Of the cells run: those a killed run had begun, and the queries taken from their journals.
+  std::uint64_t resumed = 0, queries_from_journal = 0;
+  StatusCounts counts;  // every cell's
   bool interrupted = false;
 };
 
@@ -231,9 +233,15 @@ std::uint64_t merge_experiment_results(const ExperimentPlan& plan,
                                        const std::filesystem::path& results,
                                        const std::vector<std::filesystem::path>& parts);
 
-// The solution files of a results directory (its MANIFEST's, in cell order), or `path` itself
-// when it is a file: what `solutions reference`, `eval` and `report` take for RESULTS.
-std::vector<std::filesystem::path> result_files(const std::filesystem::path& path);
+// The experiment file the last run of `results` read (absolute, as results/experiment.json
+// records it), or "" when it records none.
+std::string recorded_experiment_file(const std::filesystem::path& results);
+// The solution files of a results directory (its MANIFEST's, in the plan's cell order), or `path`
+// itself when it is a file: what `solutions reference`, `eval` and `report` take for RESULTS. A
+// listed cell that the last run's plan (results/experiment.json) no longer has, its solver or
+// benchmark since removed from the file, is left out, its id added to `left_out`.
+std::vector<std::filesystem::path> result_files(const std::filesystem::path& path,
+                                                std::vector<std::string>* left_out = nullptr);
 // The instance files of a results directory's cells (results/experiment.json), each once, in cell
 // order: what `mosb report RESULTS` reports on.
 std::vector<std::filesystem::path> result_instances(const std::filesystem::path& results);

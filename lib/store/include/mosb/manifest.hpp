@@ -79,7 +79,8 @@ std::vector<SourceInput> source_inputs(const Metadata& metadata, const std::stri
 bool is_valid_manifest_file_name(std::string_view name);
 // That rule in words, for the messages that refuse a name.
 inline constexpr std::string_view kManifestFileNameRule =
-    "a base name: UTF-8, no '/', no control or bidirectional formatting character, not '.', "
+    "a base name: UTF-8, no '/', no control, bidirectional or invisible formatting character, "
+    "not '.', "
     "'..' or 'MANIFEST'";
 
 }  // namespace mosb

@@ -135,6 +135,7 @@ struct InstanceSpaceSeries {
 struct InstanceSpacePlot {
   std::string title;
   std::vector<InstanceSpaceSeries> series;
+  bool absolute = false;  // the series hold |ρ|: the axis is 0 to 1, labelled |ρ|
 };
 std::string plot_instance_space(const InstanceSpacePlot& plot);
 

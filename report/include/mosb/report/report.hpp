@@ -36,6 +36,9 @@ struct ReportOptions {
   // Also the cactus plot and performance profile of every benchmark pooled (each benchmark's
   // own are always drawn): solvers limited to different benchmarks then look unequal.
   bool pooled_figures = false;
+  // The instance space in signed ρ; by default |ρ|, as the paper's figure caption has it (its
+  // text also quotes signed values: spec/EVALUATION.md §7).
+  bool signed_rho = false;
 };
 
 // A figure of the page as a document of its own: its kind ("front", "cactus", ...) and its name,

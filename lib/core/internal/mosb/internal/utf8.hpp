@@ -61,7 +61,13 @@ inline std::uint32_t utf8_code_point(std::string_view s, std::size_t i, std::siz
 inline bool is_hidden_code_point(std::uint32_t code) {
   return (code >= 0x80 && code <= 0x9F) || code == 0x2028 || code == 0x2029 ||
          (code >= 0x202A && code <= 0x202E) || (code >= 0x2066 && code <= 0x2069) ||
-         code == 0x200E || code == 0x200F || code == 0x061C;
+         code == 0x200E || code == 0x200F || code == 0x061C ||
+         // Invisible format characters (Unicode Cf): zero-width space, joiners, word joiner and
+         // invisible operators, the byte order mark, the soft hyphen and the Mongolian vowel
+         // separator. A name holding one prints like another name.
+         (code >= 0x200B && code <= 0x200D) || (code >= 0x2060 && code <= 0x2064) ||
+         (code >= 0x206A && code <= 0x206F) || code == 0xFEFF || code == 0x00AD || code == 0x180E ||
+         (code >= 0xFFF9 && code <= 0xFFFB);
 }
 
 // Text from a file, made safe to print on a terminal as one line: `\` becomes `\\`, LF `\n`, CR
