@@ -141,9 +141,9 @@ std::optional<std::pair<char32_t, std::size_t>> utf8_at(std::string_view text, s
 // name says "ε=0.05"); anything else as \textbackslash{}uXXXX, so that no table fails to compile.
 std::string latex_code_point(char32_t cp, std::string_view bytes) {
   static constexpr const char* kGreek[] = {
-      "alpha", "beta", "gamma", "delta", "varepsilon", "zeta", "eta", "theta", "iota", "kappa",
-      "lambda", "mu", "nu", "xi", "o", "pi", "rho", "varsigma", "sigma", "tau", "upsilon", "phi",
-      "chi", "psi", "omega"};
+      "alpha", "beta",   "gamma",   "delta", "varepsilon", "zeta", "eta",  "theta", "iota",
+      "kappa", "lambda", "mu",      "nu",    "xi",         "o",    "pi",   "rho",   "varsigma",
+      "sigma", "tau",    "upsilon", "phi",   "chi",        "psi",  "omega"};
   if (cp >= 0xA0 && cp <= 0xFF && cp != 0xD7 && cp != 0xF7) return std::string(bytes);
   if (cp >= 0x3B1 && cp <= 0x3C9 && cp != 0x3BF)
     return std::string("\\ensuremath{\\") + kGreek[cp - 0x3B1] + "}";
@@ -245,9 +245,9 @@ void write_latex(std::ostream& out, const Table& table) {
   // Text columns (names, ranges) left, numbers right.
   std::string align;
   for (std::size_t i = 0; i < table.columns.size(); ++i) {
-    const bool text = i == 0 || std::any_of(table.rows.begin(), table.rows.end(), [&](const auto& r) {
-                        return r.at(i).kind == Cell::Kind::text;
-                      });
+    const bool text =
+        i == 0 || std::any_of(table.rows.begin(), table.rows.end(),
+                              [&](const auto& r) { return r.at(i).kind == Cell::Kind::text; });
     align += text ? 'l' : 'r';
   }
   out << "\\begin{tabular}{" << align << "}\n\\toprule\n";

@@ -54,7 +54,7 @@ struct ComparisonOptions {
   double tolerance = kDefaultTolerance;
   // The runtimes summarised; nullopt: choose_runtime of the files compared.
   std::optional<RuntimeSource> runtime;
-  double runtime_shift_seconds = 1;             // s of the shifted geometric mean
+  double runtime_shift_seconds = 1;  // s of the shifted geometric mean
 };
 
 // Why a query the reference solved passes or fails at one requested ε: one answer per query and
