@@ -92,12 +92,16 @@ std::string instance_name(const GraphReader& g) {
 // (is_suite_benchmark_view) groups the instances that have it under the view's name; any other
 // view is the benchmark of its instance, named by the instance (INSTANCE/VIEW when the instance
 // has more than one such view); an instance without views is one benchmark of all its objectives.
-std::vector<Benchmark> benchmarks_of(std::span<const GraphReader> instances) {
+std::vector<Benchmark> benchmarks_of(std::span<const GraphReader> instances,
+                                     const ReportOptions& options) {
   std::vector<Benchmark> out;
   std::map<std::string, std::size_t> by_name;
   for (std::size_t i = 0; i < instances.size(); ++i) {
     const auto& g = instances[i];
     auto views = g.views();
+    // An experiment's instances: only the views it ran (ReportOptions::views).
+    if (const auto only = options.views.find(g.digest()); only != options.views.end())
+      std::erase_if(views, [&](const View& v) { return !only->second.contains(v.name); });
     if (views.empty()) {
       View all;
       all.name = instance_name(g);
@@ -476,9 +480,15 @@ FrontsSource fronts_source(const SolutionReader& file, bool of_reference) {
   const auto info = file.solver();
   const auto solvers = info.parameters.find("solvers");
   if (solvers == info.parameters.end()) return {"reference (" + name + ")", name};
-  std::string names = solvers->second;
-  for (std::size_t at = 0; (at = names.find(',', at)) != std::string::npos; at += 2)
-    names.replace(at, 1, ", ");
+  // The solvers that gave or agreed with some front (param agreed.<i> not empty), not merely
+  // those named: a solver that ran none of the queries is no part of these fronts.
+  std::string names;
+  std::stringstream named(solvers->second);
+  std::size_t i = 0;
+  for (std::string solver; std::getline(named, solver, ','); ++i)
+    if (const auto agreed = info.parameters.find("agreed." + std::to_string(i));
+        agreed == info.parameters.end() || !agreed->second.empty())
+      names += (names.empty() ? "" : ", ") + solver;
   const auto statistics = info.parameters.find("statistics");
   return {"reference (" + names + ")",
           statistics == info.parameters.end() ? std::string() : statistics->second};
@@ -1406,7 +1416,7 @@ Report draw(std::span<const GraphReader> instances, std::span<const SolutionRead
   Report report;
   report.notes = notes;
   Page page(report);
-  Context c{instances, solutions, references, options, page, benchmarks_of(instances),
+  Context c{instances, solutions, references, options, page, benchmarks_of(instances, options),
             notes,     {},        {},         {},      {},   {},
             {},        {},        false};
   bind_files(c);
@@ -1438,7 +1448,7 @@ tables::Table solver_table(std::span<const GraphReader> instances,
   const auto distinct = distinct_instances(instances, notes);
   Report unused;
   Page page(unused);
-  Context c{distinct, solutions, references, options, page, benchmarks_of(distinct),
+  Context c{distinct, solutions, references, options, page, benchmarks_of(distinct, options),
             notes,    {},        {},         {},      {},   {},
             {},       {},        false};
   bind_files(c);

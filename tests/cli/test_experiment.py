@@ -232,7 +232,9 @@ class ExperimentTest(ExperimentFixture):
         suite = {r["benchmark"]: r for r in csv.DictReader(
             io.StringIO(read(os.path.join(out, "suite.csv")).decode()))}
         for name in self.benchmarks:
-            self.assertEqual(suite[name]["fronts_of"], "reference (namoa, boa, wrong)")
+            # The solvers that gave its fronts: boa runs the bi-objective benchmarks only.
+            self.assertEqual(suite[name]["fronts_of"], "reference (namoa, boa, wrong)"
+                             if name in self.bi_objective else "reference (namoa, wrong)")
             self.assertEqual(suite[name]["statistics_of"], "namoa")
             self.assertGreater(float(suite[name]["runtime_max"]), 0)
             self.assertGreater(float(suite[name]["memory_max"]), 0)
@@ -410,6 +412,36 @@ class ExperimentTest(ExperimentFixture):
                 self.assertIn(path + expected, r.stderr)
                 self.assertFalse(os.path.exists(self.path("never")))
 
+    def test_float_costs_for_an_integer_solver_are_refused_before_any_cell_runs(self):
+        """A cell whose objectives the solver cannot take is refused at planning (exit 2,
+        nothing made), not when its turn comes after other cells ran; `scale` makes it run."""
+        graphml = os.path.join(DATA, "roadmap-graphml", "roadmap.xml")
+        if not os.path.exists(graphml):
+            raise mosbtest.missing("shared/data/roadmap-graphml")
+        roadmap = self.path("roadmap.mosb")
+        self.ok("convert", "roadmap", "--graphml", graphml, "--weight", "--clearance", "none",
+                "--view", "Roadmap_2=length,weight", "-o", roadmap)
+        self.ok("queries", "generate", roadmap, "--set", "default", "--count", "2", "--in-place")
+        text = ('name = "x"\ninstances = ["%s", "%s"]\n[[solver]]\nname = "apex"\n'
+                'profile = "apex"\nexecutable = "/bin/true"\n' % (self.path("grid.mosb"), roadmap))
+        r = run("experiment", "run", self.write("float.toml", text), "-o", self.path("never"))
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+        self.assertIn("float.toml:3: solver[1]: solver 'apex', cell roadmap/Roadmap_2: objective "
+                      "'length' holds float costs and profile apex's solver reads integers only: "
+                      "give a scale K", r.stderr)
+        self.assertFalse(os.path.exists(self.path("never")))
+        # With a scale, the cells are planned (a scale where no cost is a float is refused).
+        scaled = self.write("scaled.toml", text + "scale = 1000\n")
+        r = run("experiment", "run", scaled, "-o", self.path("never"))
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("cell grid/Grid_2: scale: no objective of the run holds float costs",
+                      r.stderr)
+        scaled = self.write("scaled.toml", text.replace('"%s", ' % self.path("grid.mosb"), "")
+                            + "scale = 1000\n")
+        r = run("experiment", "run", scaled, "-o", self.path("scaled"), "--time-limit", "5s")
+        self.assertEqual(r.returncode, 0, r.stderr)
+
     def test_an_experiment_file_that_is_no_regular_file_is_refused_at_once(self):
         # A FIFO would block the read for ever, /dev/zero never end.
         fifo = self.path("exp.fifo")
@@ -545,17 +577,27 @@ class ExperimentTest(ExperimentFixture):
         self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
         self.assertIn("apex-eps0.01/small/Grid_2: the solver's command changed", r.stderr)
         self.assertNotIn("ltmoa/", r.stderr)
-        # A solver removed from the file: its finished cells stay listed but are no longer the
-        # experiment's, so eval leaves them out, and says so.
+        # A solver and a benchmark removed from the file: their finished cells stay listed but
+        # are no longer the experiment's, so eval and report leave them out, and say so; the
+        # view the experiment no longer runs is no benchmark of its report.
         start = text.index('[[solver]]\nname = "apex"')
-        self.write("paper.toml", text[:start] + text[text.index("[reference]"):])
+        narrowed = text[:start] + text[text.index("[reference]"):]
+        self.write("paper.toml", narrowed.replace('["Grid_2", "Grid_3"]', '["Grid_2"]'))
         self.assertEqual(json.loads(run(*argv, env=env).stdout)["ran"], 0)
         r = run("eval", results, "--json")
         self.assertEqual(r.returncode, 0, r.stderr)
-        self.assertIn("4 finished cells no longer in the experiment, left out: "
-                      "apex-eps0.01/small/Grid_2", r.stderr)
-        self.assertEqual({row["solver"] for row in json.loads(r.stdout)["rows"]},
-                         {"namoa", "ltmoa"})
+        self.assertIn("6 finished cells no longer in the experiment, left out: "
+                      "apex-eps0.01/small/Grid_2, apex-eps0.01/small/Grid_3, "
+                      "apex-eps0.1/small/Grid_2, apex-eps0.1/small/Grid_3, ltmoa/small/Grid_3, "
+                      "namoa/small/Grid_3\n", r.stderr)
+        self.assertEqual({(row["benchmark"], row["solver"]) for row in
+                          json.loads(r.stdout)["rows"]}, {("Grid_2", "namoa"), ("Grid_2", "ltmoa")})
+        out = self.path("narrowed-csv")
+        r = run("report", results, "-o", self.path("narrowed.html"), "--csv", out)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        suite = read(os.path.join(out, "suite.csv")).decode()
+        self.assertEqual([row["benchmark"] for row in csv.DictReader(io.StringIO(suite))],
+                         ["Grid_2"])
 
 
 class ExperimentOnSlurm(ExperimentFixture, test_slurm.SlurmCluster):

@@ -208,8 +208,10 @@ TEST_CASE("parse_experiment: each refusal names the file, the line and the key")
   CHECK(error_of(head + "[[solver]]\nname = \"a\"\ntemplate = \"a\"\nprofile = \"p\"\n") ==
         "exp.toml:3: solver[1].template: give exactly one of template and profile");
   CHECK(error_of(head + "[[solver]]\nname = \"a\"\ntemplate = \"a\"\nexecutable = \"/bin/a\"\n") ==
-        "exp.toml:3: solver[1].executable: executable and options go with a profile, not a "
-        "template");
+        "exp.toml:3: solver[1].executable: executable, options and scale go with a profile, "
+        "not a template");
+  CHECK(error_of(head + "[[solver]]\nname = \"a\"\nprofile = \"p\"\nscale = -1\n") ==
+        "exp.toml:6: solver[1].scale: must be a positive number (float costs × scale, rounded)");
   CHECK(error_of(head + "[[solver]]\nname = \"a\"\nprofile = \"p\"\noptions = { x = [1] }\n") ==
         "exp.toml:6: solver[1].options.x: must be a string, number or boolean");
   CHECK(error_of(head + "[[solver]]\nname = \"a\"\nprofile = \"p\"\noptions = 3\n") ==

@@ -290,6 +290,7 @@ int run_eval_results(const EvalArgs& args) {
   std::vector<GraphReader> instances;
   for (const auto& path : result_instances(args.results))
     instances.push_back(load(path, VerifyLevel::full));
+  options.views = result_views(args.results);
   std::vector<SolutionReader> solutions, references;
   for (const auto& path : experiment_result_files(args.results))
     solutions.push_back(SolutionReader::open_verified(path));

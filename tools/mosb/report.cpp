@@ -130,6 +130,7 @@ int run_report(const ReportArgs& args) {
       continue;
     }
     for (auto& p : result_instances(path)) instance_paths.push_back(std::move(p));
+    for (auto& [digest, views] : result_views(path)) options.views[digest].merge(views);
     for (auto& p : experiment_result_files(path)) solution_paths.push_back(std::move(p));
   }
   for (const auto& path : args.solutions)

@@ -3,6 +3,7 @@
 #include <toml++/toml.h>
 
 #include <charconv>
+#include <cmath>
 #include <map>
 #include <set>
 
@@ -246,6 +247,12 @@ std::vector<ExperimentSolver> read_solver(const toml::table& table, std::size_t 
   spec.profile = t.text("profile").value_or("");
   spec.executable = t.text("executable").value_or("");
   spec.options = read_options(t);
+  if (const auto* scale = t.get("scale")) {
+    if (!scale->is_number() || !(*scale->value<double>() > 0) ||
+        !std::isfinite(*scale->value<double>()))
+      t.fail(*scale, "scale", "must be a positive number (float costs × scale, rounded)");
+    spec.scale = *scale->value<double>();
+  }
   if (auto format = t.text("output_format")) {
     if (find_solver_output_format(*format) == nullptr)
       t.fail(*t.get("output_format"), "output_format", "'" + *format + "': no such output format");
@@ -261,8 +268,8 @@ std::vector<ExperimentSolver> read_solver(const toml::table& table, std::size_t 
   t.refuse_unknown();
   if (spec.solver_template.empty() == spec.profile.empty())
     t.fail(table, "template", "give exactly one of template and profile");
-  if (spec.profile.empty() && (!spec.executable.empty() || !spec.options.empty()))
-    t.fail(table, "executable", "executable and options go with a profile, not a template");
+  if (spec.profile.empty() && (!spec.executable.empty() || !spec.options.empty() || spec.scale))
+    t.fail(table, "executable", "executable, options and scale go with a profile, not a template");
   std::vector<ExperimentSolver> out;
   for (const auto& [epsilon, line] : epsilons) {
     auto solver = s;

@@ -246,6 +246,24 @@ ResolvedSolver check_profile_solver(const SolverSpec& spec) {
   return checked_profile(spec).resolved;
 }
 
+void check_profile_cell(const SolverSpec& spec, const CellObjectives& objectives) {
+  const auto checked = checked_profile(spec);
+  const auto& p = checked.profile;
+  check_objective_count(p, objectives.names.size(), checked.options);
+  bool any_float = false;
+  for (std::size_t j = 0; j < objectives.names.size(); ++j) {
+    if (!objectives.is_float[j]) continue;
+    any_float = true;
+    if (p.input.integer_costs && (p.input.form == InputForm::mosb || spec.scale <= 0))
+      refuse("objective '" + objectives.names[j] + "' holds float costs and profile " + p.name +
+             "'s solver reads integers only" +
+             (p.input.form == InputForm::mosb ? std::string() : ": give a scale K"));
+  }
+  if (spec.scale > 0 && p.input.form == InputForm::mosb)
+    refuse("scale: profile " + p.name + "'s solver reads the .mosb itself");
+  if (spec.scale > 0 && !any_float) refuse("scale: no objective of the run holds float costs");
+}
+
 void apply_profile(RunConfig& config, const SolverSpec& spec) {
   const auto checked = checked_profile(spec);
   const auto& p = checked.profile;

@@ -55,8 +55,12 @@ void configure_solver(RunConfig& config, const SolverSpec& spec) {
   config.solver_version = spec.version;
 }
 
+void check_solver_cell(const SolverSpec& spec, const CellObjectives& objectives) {
+  if (!spec.profile.empty()) check_profile_cell(spec, objectives);
+}
+
 SolverResolver solver_resolver() {
-  return {check_solver, configure_solver};
+  return {check_solver, configure_solver, check_solver_cell};
 }
 
 }  // namespace mosb::converters

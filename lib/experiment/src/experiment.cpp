@@ -45,7 +45,8 @@ struct PlannedInstance {
   std::string name, file, digest;
   std::string benchmark;
   std::vector<View> views;
-  std::vector<std::uint64_t> queries;  // per view: its query set's size
+  std::vector<std::uint64_t> queries;      // per view: its query set's size
+  std::vector<CellObjectives> objectives;  // per view
 };
 
 PlannedInstance planned_instance(const fs::path& path, std::string file) {
@@ -56,11 +57,18 @@ PlannedInstance planned_instance(const fs::path& path, std::string file) {
   out.digest = reader.digest();
   out.benchmark = reader.metadata().get("benchmark").value_or(out.name);
   out.views = reader.views();
-  for (const auto& v : out.views)
+  for (const auto& v : out.views) {
     out.queries.push_back(!v.query_set.empty() &&
                                   reader.find(format::SectionKind::queries, v.query_set)
                               ? reader.queries(v.query_set).size()
                               : 0);
+    CellObjectives objectives;
+    for (const auto j : v.objectives) {
+      objectives.names.push_back(reader.objective(j).name);
+      objectives.is_float.push_back(format::is_float(reader.objective(j).type));
+    }
+    out.objectives.push_back(std::move(objectives));
+  }
   return out;
 }
 
@@ -337,6 +345,16 @@ ExperimentPlan plan_experiment(const Experiment& experiment, const SolverResolve
           std::none_of(solver.benchmarks.begin(), solver.benchmarks.end(),
                        [&](const std::string& p) { return runs(c, p); }))
         continue;
+      // What only the cell's objectives show (a float cost for an integer solver) is refused
+      // now, before any cell runs, not when this one's turn comes.
+      if (plan.resolver.check_cell) try {
+          const auto& i = instances[cell_views[c].first];
+          plan.resolver.check_cell(solver.spec, i.objectives[cell_views[c].second]);
+        } catch (const Error& err) {
+          refuse(e, solver.source,
+                 "solver '" + solver.name + "', cell " + cells[c].instance + "/" + cells[c].view +
+                     ": " + err.what());
+        }
       auto cell = cells[c];
       cell.solver = solver.name;
       cell.file = "cells/" + solver.name + "/" + cell.instance + "." + cell.view + ".sol";
@@ -582,6 +600,19 @@ std::vector<fs::path> result_instances(const fs::path& results) {
       const fs::path file = c.at("instance_file").get<std::string>();
       if (std::find(out.begin(), out.end(), file) == out.end()) out.push_back(file);
     }
+  } catch (const Json::exception& err) {
+    throw Error(ErrorCode::invalid_argument, plan_path.string() + ": " + err.what());
+  }
+  return out;
+}
+
+std::map<std::string, std::set<std::string>> result_views(const fs::path& results) {
+  const auto plan_path = results / kPlanFile;
+  std::map<std::string, std::set<std::string>> out;
+  const auto plan = read_json_file(plan_path);
+  try {
+    for (const auto& c : plan.at("cells"))
+      out[c.at("instance_digest").get<std::string>()].insert(c.at("view").get<std::string>());
   } catch (const Json::exception& err) {
     throw Error(ErrorCode::invalid_argument, plan_path.string() + ": " + err.what());
   }

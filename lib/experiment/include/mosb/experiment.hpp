@@ -13,6 +13,7 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -245,6 +246,9 @@ std::vector<std::filesystem::path> result_files(const std::filesystem::path& pat
 // The instance files of a results directory's cells (results/experiment.json), each once, in cell
 // order: what `mosb report RESULTS` reports on.
 std::vector<std::filesystem::path> result_instances(const std::filesystem::path& results);
+// Per instance (content digest) the views a results directory's cells ran (results/
+// experiment.json): what `mosb report RESULTS` reports its instances by.
+std::map<std::string, std::set<std::string>> result_views(const std::filesystem::path& results);
 // A reference directory's solution files (*.sol, sorted by name), or `path` itself when it is a
 // file (`--reference REFS/`).
 std::vector<std::filesystem::path> reference_files(const std::filesystem::path& path);

@@ -39,6 +39,13 @@ struct ResolvedSolver {
   std::string binding;
 };
 
+// What a cell's view shows a solver before anything runs: its objectives, in order, and whether
+// each holds float costs.
+struct CellObjectives {
+  std::vector<std::string> names;
+  std::vector<bool> is_float;
+};
+
 struct SolverResolver {
   // Checks a spec before anything runs. Throws mosb::Error (invalid_argument) saying what is
   // wrong: a template that does not parse, an unknown placeholder or output format, a program
@@ -49,6 +56,10 @@ struct SolverResolver {
   // a profile's text input is exported first. Throws as check does, and for what only the
   // instance shows (too many objectives, float costs for an integer solver).
   std::function<void(RunConfig& config, const SolverSpec& spec)> configure;
+  // What configure would refuse for a cell's objectives, checked before any cell runs (an
+  // experiment's plan): too many or too few objectives, float costs for a solver that reads
+  // integers without a scale, a scale without float costs. Throws as check does.
+  std::function<void(const SolverSpec& spec, const CellObjectives& objectives)> check_cell;
 };
 
 }  // namespace mosb

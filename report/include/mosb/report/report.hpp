@@ -4,7 +4,9 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
+#include <set>
 #include <span>
 #include <string>
 #include <vector>
@@ -29,6 +31,10 @@ struct ReportOptions {
   // and past it then make_report throws (ErrorCode::invalid_argument).
   std::size_t max_bytes = 5'000'000;
   std::uint32_t max_map_side = 160;  // squares per map side (plots::MapSquares)
+  // Per instance (content digest), the views it is reported by; an instance not listed, by all
+  // of its views. An experiment's report lists the views its cells ran (result_views), so that
+  // a view of its instances it did not run makes no empty benchmark.
+  std::map<std::string, std::set<std::string>> views;
   // The runtime every table and figure shows; nullopt: choose_runtime of the solution files.
   std::optional<RuntimeSource> runtime;
   // The solver the runtime scatter plots set against each other one; empty: the first given.

@@ -28,6 +28,10 @@ ResolvedSolver check_profile_solver(const SolverSpec& spec);
 // Throws as check_profile_solver does, and for what the instance shows: too many objectives, a
 // float objective for an integer solver without a scale.
 void apply_profile(RunConfig& config, const SolverSpec& spec);
+// apply_profile's refusals that a cell's objectives alone show, without exporting anything
+// (SolverResolver::check_cell): the objective count, float costs without a scale for a solver
+// that reads integers, a scale without float costs.
+void check_profile_cell(const SolverSpec& spec, const CellObjectives& objectives);
 
 // The vectors adapter (spec/RUN.md §10.4) of `profile` for a run of `objectives` objectives.
 struct VectorsContext {

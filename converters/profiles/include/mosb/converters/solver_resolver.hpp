@@ -15,7 +15,10 @@ ResolvedSolver check_solver(const SolverSpec& spec);
 // SolverResolver::configure: the template and its output format's adapter, or apply_profile.
 void configure_solver(RunConfig& config, const SolverSpec& spec);
 
-// The two above, for lib/experiment.
+// SolverResolver::check_cell: a profile's check_profile_cell; a template takes any objectives.
+void check_solver_cell(const SolverSpec& spec, const CellObjectives& objectives);
+
+// The three above, for lib/experiment.
 SolverResolver solver_resolver();
 
 }  // namespace mosb::converters
