@@ -802,7 +802,7 @@ DrawnFronts drawn_fronts(const Context& c, const Benchmark& bm) {
 plots::MapPlot marked_map(const Context& c, const Benchmark& bm, const DrawnFronts& fronts) {
   const auto& g = c.instances[bm.instances.front()];
   auto map = plots::map_of(g, "exposure", c.options.max_map_side);
-  map.title = bm.name + ": map of " + g.display_name();
+  map.title = bm.name + ": map of " + instance_name(g);  // no path: it would be clipped
   const bool drawn_here = fronts.shown && fronts.instance == bm.instances.front();
   std::string set = drawn_here ? fronts.shown->query_set() : bm.views.front().query_set;
   if (const auto sets = g.all(format::SectionKind::queries); set.empty() && !sets.empty())
@@ -1055,8 +1055,15 @@ void cactus_figure(const Context& c, const Scope& scope) {
         times.push_back(*it->second.runtime);
     }
     std::sort(times.begin(), times.end());
-    plots::LineSeries series{s + " (" + std::to_string(times.size()) + " solved)", {}};
-    for (std::size_t k = 0; k < times.size(); ++k)
+    // A runtime of 0 (below the clock's resolution: A*pex reports whole milliseconds) has no
+    // place on a log axis: counted, not drawn at some made-up height.
+    const auto zeros = static_cast<std::size_t>(
+        std::find_if(times.begin(), times.end(), [](double t) { return t > 0; }) - times.begin());
+    plots::LineSeries series{s + " (" + std::to_string(times.size()) + " solved" +
+                                 (zeros ? ", " + std::to_string(zeros) + " in 0 s not drawn" : "") +
+                                 ")",
+                             {}};
+    for (std::size_t k = zeros; k < times.size(); ++k)
       series.points.push_back({static_cast<double>(k + 1), times[k]});
     cactus.series.push_back(std::move(series));
   }
@@ -1126,7 +1133,7 @@ void scatter_figures(const Context& c) {
     scatter.x_label = a + " runtime [s]";
     scatter.y_label = other + " runtime [s]";
     std::map<std::size_t, plots::LineSeries> groups;  // by benchmark
-    std::uint64_t one_only = 0;
+    std::uint64_t one_only = 0, at_zero = 0;
     for (const auto& [key, by_solver] : c.outcomes) {
       const auto ia = by_solver.find(a), io = by_solver.find(other);
       if (ia == by_solver.end() || io == by_solver.end()) continue;
@@ -1134,6 +1141,10 @@ void scatter_figures(const Context& c) {
                         io->second.runtime;
       if (!both) {
         one_only += ia->second.completed() || io->second.completed();
+        continue;
+      }
+      if (*ia->second.runtime <= 0 || *io->second.runtime <= 0) {
+        ++at_zero;  // no place on a log–log plot
         continue;
       }
       auto& group = groups[key.benchmark];
@@ -1144,6 +1155,9 @@ void scatter_figures(const Context& c) {
     if (one_only > 0)
       scatter.note = std::to_string(one_only) + " quer" + (one_only == 1 ? "y" : "ies") +
                      " completed by one of the two only, not drawn";
+    if (at_zero > 0)
+      scatter.note += (scatter.note.empty() ? "" : "; ") + std::to_string(at_zero) + " quer" +
+                      (at_zero == 1 ? "y" : "ies") + " with a runtime of 0 s, not drawn";
     c.page.figure("scatter", plots::plot_runtime_scatter(scatter),
                   "One dot per query both completed, " + c.runtime_text +
                       ", log–log; above the diagonal " + a + " was faster.",

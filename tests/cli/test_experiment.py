@@ -412,6 +412,19 @@ class ExperimentTest(ExperimentFixture):
                 self.assertIn(path + expected, r.stderr)
                 self.assertFalse(os.path.exists(self.path("never")))
 
+    def test_a_narrowed_run_is_recorded_and_its_idle_solvers_said(self):
+        results = self.path("narrow")
+        r = run("experiment", "run", self.experiment, "-o", results, "--benchmarks",
+                "NetMaker_3", "--time-limit", "20s", "--json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertIn("mosb: note: solver 'boa' runs no cell: its benchmarks match none of those "
+                      "run", r.stderr)
+        self.assertEqual(json.loads(r.stdout)["cells"], 2)  # namoa and wrong on NetMaker_3
+        plan = json.loads(read(os.path.join(results, "experiment.json")))
+        self.assertEqual(plan["arguments"], ["--benchmarks", "NetMaker_3", "--time-limit", "20s"])
+        self.assertEqual({c["limits"] for c in self.cells(results).values()},
+                         {"time=20s memory=2147483648B"})
+
     def test_float_costs_for_an_integer_solver_are_refused_before_any_cell_runs(self):
         """A cell whose objectives the solver cannot take is refused at planning (exit 2,
         nothing made), not when its turn comes after other cells ran; `scale` makes it run."""

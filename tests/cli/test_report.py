@@ -583,6 +583,19 @@ class HostileInputTest(mosbtest.CliTest):
                              figure["kind"])
         self.assertIn("front", [f["kind"] for f in page.figures])
 
+    def test_runtimes_of_zero_are_counted_not_drawn_on_log_axes(self):
+        """A*pex reports whole milliseconds: a fast query's runtime is 0, which a log axis cannot
+        show; the cactus legend and the scatter's note count it instead."""
+        files = [self.solution("z%d.sol" % k, n, spec="0 solved 1,2 2,1 t=0\n")
+                 for k, n in enumerate(["a", "b"])]
+        html = self.path("zero.html")
+        self.ok("report", self.grid, "--solutions", *files, "-o", html)
+        page = parse(read(html, "r"))
+        cactus = [f for f in page.figures if f["kind"] == "cactus"]
+        self.assertIn("a (1 solved, 1 in 0 s not drawn)", cactus[0]["texts"])
+        (scatter,) = [f for f in page.figures if f["kind"] == "scatter"]
+        self.assertIn("1 query with a runtime of 0 s, not drawn", scatter["texts"])
+
     def test_latex_names_escaped_headings_included(self):
         names = ["\\end{tabular}\\input{/etc/passwd}", "$ _ # % & ~ ^ { }"]
         files = [self.solution("s%d.sol" % k, n) for k, n in enumerate(names)]

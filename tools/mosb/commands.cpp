@@ -43,6 +43,13 @@ CLI::Validator unsigned_integer(std::uint64_t max) {
           "UINT", "unsigned integer"};
 }
 
+CLI::Validator duration() {
+  return {[](std::string& text) -> std::string {
+            return parse_duration(text) ? "" : "not a duration (60, 60s, 500ms, 2m, 1h)";
+          },
+          "DURATION", "duration"};
+}
+
 CLI::Validator memory_size() {
   return {[](std::string& text) -> std::string {
             const auto bytes = parse_memory_size(text);

@@ -65,6 +65,8 @@ CLI::Validator non_negative_real();
 // The one parser of every option that takes a memory size: parse_memory_size (mosb/run.hpp), the
 // grammar of an experiment file's sizes too; the text becomes the count of bytes.
 CLI::Validator memory_size();
+// Every option that takes a duration: parse_duration (mosb/run.hpp), 60, 60s, 500ms, 2m, 1h.
+CLI::Validator duration();
 // `--isolation seal|none` of `mosb run` and `mosb experiment run` (spec/RUN.md §4.1): its default
 // is $MOSB_ISOLATION when set (a cluster's or a test suite's), else seal.
 CLI::Option* add_isolation_option(CLI::App* subcommand, std::string& isolation);

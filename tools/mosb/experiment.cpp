@@ -69,7 +69,17 @@ ExperimentPlan read_plan(const ExperimentRunArgs& a) {
       restrict_benchmarks(experiment, patterns);
     }
     if (!a.time_limit.empty()) set_time_limit(experiment, *parse_duration(a.time_limit));
-    return plan_experiment(experiment, converters::solver_resolver());
+    for (const auto& [option, value] :
+         {std::pair{"--store", &a.store}, std::pair{"--benchmarks", &a.benchmarks},
+          std::pair{"--time-limit", &a.time_limit}})
+      if (!value->empty())
+        experiment.command_line.insert(experiment.command_line.end(), {option, *value});
+    for (const auto& given : a.executables)
+      experiment.command_line.insert(experiment.command_line.end(), {"--executable", given});
+    auto plan = plan_experiment(experiment, converters::solver_resolver());
+    for (const auto& note : plan.notes)
+      std::cerr << "mosb: note: " << escape_for_terminal(note) << '\n';
+    return plan;
   } catch (const Error& e) {
     if (e.code() == ErrorCode::io) throw;
     throw UsageError(e.what());
@@ -395,10 +405,12 @@ int run_experiment_status(const ExperimentStatusArgs& a) {
   std::cout << '\n';
   const auto rerun = std::count_if(cells.begin(), cells.end(), to_rerun);
   if (rerun > 0) {
-    auto file = recorded_experiment_file(a.results);
+    const auto recorded = recorded_run(a.results);
+    std::string command = recorded.file.empty() ? "EXP.toml" : shell_quote(recorded.file);
+    for (const auto& argument : recorded.arguments) command += " " + shell_quote(argument);
     std::cout << "to rerun: " << rerun << " cells: `mosb experiment run "
-              << (file.empty() ? "EXP.toml" : escape_for_terminal(shell_quote(file))) << " -o "
-              << escape_for_terminal(a.results) << "` runs the missing and stopped ones";
+              << escape_for_terminal(command) << " -o " << escape_for_terminal(a.results)
+              << "` runs the missing and stopped ones";
     if (totals[CellState::failed] + totals[CellState::damaged] > 0)
       std::cout << "; a failed or damaged cell runs again once its file and MANIFEST record are "
                    "removed";

@@ -63,13 +63,6 @@ extern "C" void request_stop(int) {
   g_stop.store(true);
 }
 
-CLI::Validator duration() {
-  return {[](std::string& text) -> std::string {
-            return parse_duration(text) ? "" : "not a duration (60, 60s, 500ms, 2m, 1h)";
-          },
-          "DURATION", "duration"};
-}
-
 void print_summary(const RunArgs& a, const RunResult& r) {
   if (a.json) {
     JsonWriter json(std::cout);

@@ -176,6 +176,7 @@ Json plan_json(const ExperimentPlan& plan) {
           {"version", kVersion},
           {"name", plan.experiment.name},
           {"file", file},
+          {"arguments", plan.experiment.command_line},
           {"limits", plan.experiment.limits.text},
           {"solvers", solvers},
           {"cells", cells}};
@@ -385,6 +386,12 @@ ExperimentPlan plan_experiment(const Experiment& experiment, const SolverResolve
       for (const auto& pattern : e.benchmark_limits[k].benchmarks)
         if (matches(pattern, i, v)) cell.limits = k + 1;
   }
+  if (e.restricted)
+    for (const auto& solver : e.solvers)
+      if (std::none_of(plan.cells.begin(), plan.cells.end(),
+                       [&](const ExperimentCell& c) { return c.solver == solver.name; }))
+        plan.notes.push_back("solver '" + solver.name +
+                             "' runs no cell: its benchmarks match none of those run");
   std::set<std::string> files;
   for (const auto& c : plan.cells)
     if (!files.insert(c.file).second)
@@ -540,12 +547,17 @@ std::vector<CellStatus> experiment_status(const fs::path& results) {
   return out;
 }
 
-std::string recorded_experiment_file(const fs::path& results) {
+RecordedRun recorded_run(const fs::path& results) {
   std::error_code ec;
   if (!fs::exists(results / kPlanFile, ec)) return {};
   const auto plan = read_json_file(results / kPlanFile);
-  const auto file = plan.find("file");
-  return file != plan.end() && file->is_string() ? file->get<std::string>() : std::string();
+  RecordedRun run;
+  if (const auto file = plan.find("file"); file != plan.end() && file->is_string())
+    run.file = file->get<std::string>();
+  if (const auto args = plan.find("arguments"); args != plan.end() && args->is_array())
+    for (const auto& a : *args)
+      if (a.is_string()) run.arguments.push_back(a.get<std::string>());
+  return run;
 }
 
 std::vector<fs::path> result_files(const fs::path& path, std::vector<std::string>* left_out) {

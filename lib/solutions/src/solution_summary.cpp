@@ -88,10 +88,10 @@ std::string runtime_caption(RuntimeSource source, std::span<const SolutionReader
   // The most common clock (the first solver's on a tie) is "the others'".
   std::string common;
   std::size_t most = 0;
-  for (const auto& [name, clock] : clocks) {
+  for (const auto& entry : clocks) {
     const auto n = static_cast<std::size_t>(std::count_if(
-        clocks.begin(), clocks.end(), [&](const auto& c) { return c.second == clock; }));
-    if (n > most) most = n, common = clock;
+        clocks.begin(), clocks.end(), [&](const auto& c) { return c.second == entry.second; }));
+    if (n > most) most = n, common = entry.second;
   }
   std::string listed;
   for (const auto& [name, clock] : clocks)

@@ -72,6 +72,10 @@ struct Experiment {
   // The benchmarks were narrowed on the command line (restrict_benchmarks): a solver's or a
   // [[benchmark_limits]] pattern may then match no cell (a laptop run of the paper's file).
   bool restricted = false;
+  // The command line's narrowing as given (`--store DIR`, `--benchmarks ...`, `--time-limit T`,
+  // `--executable NAME=PATH`): recorded with the plan, so that `experiment status` can say the
+  // whole command that continues the run.
+  std::vector<std::string> command_line;
 };
 
 // "FILE:LINE: KEY: problem" (or "FILE: problem" without a line), as every refusal of a plan says.
@@ -107,6 +111,9 @@ struct ExperimentPlan {
   std::vector<ResolvedSolver> solvers;         // per solver: executable, binding
   std::vector<std::string> executable_sha256;  // per solver: its executable's SHA-256
   std::vector<ExperimentCell> cells;           // solver-major, then instance, then view
+  // What the plan did that the file alone does not say: a solver that runs no cell of a run
+  // narrowed by --benchmarks.
+  std::vector<std::string> notes;
 };
 
 // The limits a cell runs under (ExperimentCell::limits). `cell` must be of the plan's experiment.
@@ -234,9 +241,13 @@ std::uint64_t merge_experiment_results(const ExperimentPlan& plan,
                                        const std::filesystem::path& results,
                                        const std::vector<std::filesystem::path>& parts);
 
-// The experiment file the last run of `results` read (absolute, as results/experiment.json
-// records it), or "" when it records none.
-std::string recorded_experiment_file(const std::filesystem::path& results);
+// The experiment file the last run of `results` read (absolute) and its command line's narrowing,
+// as results/experiment.json records them; an empty file when it records none.
+struct RecordedRun {
+  std::string file;
+  std::vector<std::string> arguments;
+};
+RecordedRun recorded_run(const std::filesystem::path& results);
 // The solution files of a results directory (its MANIFEST's, in the plan's cell order), or `path`
 // itself when it is a file: what `solutions reference`, `eval` and `report` take for RESULTS. A
 // listed cell that the last run's plan (results/experiment.json) no longer has, its solver or
