@@ -350,7 +350,7 @@ for c in s.pareto(n, arcs, source, target):
                           "--profile", profile, "--executable", self.standins[profile], "-o",
                           self.path("x.sol"), env=self.env)
             self.assert_one_line_error(r, "objective 'c1' holds float costs",
-                                       "reads integer costs only: give --scale K")
+                                       "reads integers only: give a scale K (--scale")
             self.assertFalse(os.path.exists(self.path("x.sol")))
         # --scale 10: 15 + 27 = 42 -> 4.2, and 45 -> 4.5; the factor is recorded.
         self.mosb("run", self.path("f.mosb"), "--objectives", "c1,c2", "--queries", "q",

@@ -89,6 +89,27 @@ std::string quoted(const std::string& word) {
   return out + "'";
 }
 
+// The one check of cost types against a profile, for a run (prepare_input) and an experiment's
+// plan (check_profile_cell): float costs for a solver that reads integers need a scale (none for
+// one that reads the .mosb itself), and a scale needs a float cost.
+void check_cost_types(const SolverProfile& p, const SolverSpec& spec,
+                      const CellObjectives& objectives) {
+  bool any_float = false;
+  for (std::size_t j = 0; j < objectives.names.size(); ++j) {
+    if (!objectives.is_float[j]) continue;
+    any_float = true;
+    if (p.input.integer_costs && (p.input.form == InputForm::mosb || spec.scale <= 0))
+      refuse("objective '" + objectives.names[j] + "' holds float costs and profile " + p.name +
+             "'s solver reads integers only" +
+             (p.input.form == InputForm::mosb
+                  ? std::string()
+                  : ": give a scale K (--scale, or scale in an experiment file)"));
+  }
+  if (spec.scale > 0 && p.input.form == InputForm::mosb)
+    refuse("scale: profile " + p.name + "'s solver reads the .mosb itself");
+  if (spec.scale > 0 && !any_float) refuse("scale: no objective of the run holds float costs");
+}
+
 struct RunInput {
   DimacsExportFiles files;
   fs::path directory;
@@ -103,21 +124,18 @@ RunInput prepare_input(const RunConfig& config, const SolverProfile& p, const So
   const View selection = solution_selection(instance, config.choice);
   RunInput in;
   in.query_set = selection.query_set;
-  bool any_float = false;
+  CellObjectives objectives;
   for (const auto j : selection.objectives) {
-    in.objective_names.push_back(instance.objective(j).name);
-    if (format::is_float(instance.objective(j).type)) {
-      any_float = true;
-      if (p.input.integer_costs && p.input.form == InputForm::mosb)
-        refuse(instance.display_name() + ": objective '" + instance.objective(j).name +
-               "' holds float costs and profile " + p.name + "'s solver reads integers only");
-    }
+    objectives.names.push_back(instance.objective(j).name);
+    objectives.is_float.push_back(format::is_float(instance.objective(j).type));
   }
-  if (p.input.form == InputForm::mosb) {
-    if (request.scale > 0) refuse("scale: profile " + p.name + "'s solver reads the .mosb itself");
-    return in;
+  try {
+    check_cost_types(p, request, objectives);
+  } catch (const Error& err) {
+    refuse(instance.display_name() + ": " + err.what());
   }
-  if (request.scale > 0 && !any_float) refuse("scale: no objective of the run holds float costs");
+  in.objective_names = std::move(objectives.names);
+  if (p.input.form == InputForm::mosb) return in;
   DimacsExportOptions o;
   o.selection.objectives = in.objective_names;
   o.selection.queries = in.query_set;
@@ -248,20 +266,8 @@ ResolvedSolver check_profile_solver(const SolverSpec& spec) {
 
 void check_profile_cell(const SolverSpec& spec, const CellObjectives& objectives) {
   const auto checked = checked_profile(spec);
-  const auto& p = checked.profile;
-  check_objective_count(p, objectives.names.size(), checked.options);
-  bool any_float = false;
-  for (std::size_t j = 0; j < objectives.names.size(); ++j) {
-    if (!objectives.is_float[j]) continue;
-    any_float = true;
-    if (p.input.integer_costs && (p.input.form == InputForm::mosb || spec.scale <= 0))
-      refuse("objective '" + objectives.names[j] + "' holds float costs and profile " + p.name +
-             "'s solver reads integers only" +
-             (p.input.form == InputForm::mosb ? std::string() : ": give a scale K"));
-  }
-  if (spec.scale > 0 && p.input.form == InputForm::mosb)
-    refuse("scale: profile " + p.name + "'s solver reads the .mosb itself");
-  if (spec.scale > 0 && !any_float) refuse("scale: no objective of the run holds float costs");
+  check_objective_count(checked.profile, objectives.names.size(), checked.options);
+  check_cost_types(checked.profile, spec, objectives);
 }
 
 void apply_profile(RunConfig& config, const SolverSpec& spec) {
