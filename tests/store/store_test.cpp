@@ -65,7 +65,8 @@ TEST_CASE("a manifest serializes deterministically and parses back to the same e
                   "B",
                   {"V_2"},
                   {"default"},
-                  {{"b.gr", 5, std::string(16, 'c')}}};
+                  {{"b.gr", 5, std::string(16, 'c')}},
+                  std::nullopt};
   ManifestEntry a = b;
   a.file = "a.mosb";
   a.packed = false;
@@ -86,6 +87,50 @@ TEST_CASE("a manifest serializes deterministically and parses back to the same e
   CHECK_THROWS_AS(serialize_manifest(Manifest{{a}, false}), Error);
 }
 
+TEST_CASE(
+    "a solution file's entry round-trips in a version-2 manifest, and bad ones name the line") {
+  ManifestEntry instance{
+      "g.mosb",    10, std::string(64, 'a'), std::string(32, 'b'), "1.0", false, "G", {"G_2"},
+      {"default"}, {}, std::nullopt};
+  ManifestEntry reference = instance;
+  reference.file = "g.ref.sol";
+  reference.digest = std::string(32, 'c');
+  reference.solutions = SolutionsEntry{
+      instance.digest, "0", "reference", {"namoa", "ltmoa"}, {{"solved", 9}, {"timeout", 1}}, 1234};
+  const auto text = serialize_manifest(Manifest{{instance, reference}, false});
+  CHECK(text.starts_with("{\"format\":\"mosb-manifest\",\"version\":2}\n"));
+  CHECK(text.find("\"kind\":\"solutions\"") != std::string::npos);
+  const auto back = parse_manifest(text, "M");
+  REQUIRE(back.entries.size() == 2);
+  CHECK(back.entries[0] == instance);
+  CHECK(back.entries[1] == reference);
+  // Without a solution file the manifest stays version 1, byte for byte what mosb wrote before.
+  CHECK(serialize_manifest(Manifest{{instance}, false})
+            .starts_with("{\"format\":\"mosb-manifest\",\"version\":1}\n"));
+  const auto line = text.substr(text.find('\n', text.find('\n') + 1) + 1);
+  const auto header = text.substr(0, text.find('\n') + 1);
+  auto edited = [&](const std::string& from, const std::string& to) {
+    auto changed = line;
+    REQUIRE(changed.find(from) != std::string::npos);
+    changed.replace(changed.find(from), from.size(), to);
+    return header + changed;
+  };
+  CHECK_THROWS_WITH_AS(
+      parse_manifest(edited("\"kind\":\"solutions\"", "\"kind\":\"frontier\""), "M"),
+      "M:2: kind 'frontier' is neither \"instance\" nor \"solutions\"", Error);
+  CHECK_THROWS_WITH_AS(
+      parse_manifest(edited("\"instance\":\"" + instance.digest, "\"instance\":\"xyz"), "M"),
+      "M:2: instance is not 32 lowercase hex digits", Error);
+  CHECK_THROWS_WITH_AS(parse_manifest(edited("\"epsilon\":\"0\"", "\"epsilon\":\"\""), "M"),
+                       "M:2: epsilon '' is not a decimal number", Error);
+  CHECK_THROWS_WITH_AS(parse_manifest(edited("\"timeout\"", "\"lost\""), "M"),
+                       "M:2: statuses: 'lost' is no status", Error);
+  CHECK_THROWS_WITH_AS(parse_manifest(edited("\"solved\":9", "\"solved\":-9"), "M"),
+                       "M:2: key 'solved' is not an integer in range", Error);
+  CHECK_THROWS_WITH_AS(parse_manifest(edited(",\"epsilon\":\"0\"", ""), "M"),
+                       "M:2: missing key 'epsilon'", Error);
+}
+
 TEST_CASE("the older TSV MANIFEST is read and bad manifests name the line") {
   const auto legacy = parse_manifest("G-2\tg2.mosb\t20\t" + std::string(32, '1') +
                                          "\nG-1\tg1.mosb\t10\t" + std::string(32, '2') + "\n",
@@ -102,8 +147,8 @@ TEST_CASE("the older TSV MANIFEST is read and bad manifests name the line") {
                        "M:1: size 'ten' is not a number", Error);
   CHECK_THROWS_WITH_AS(parse_manifest("{\"format\":\"other\",\"version\":1}\n", "M"),
                        doctest::Contains("M:1:"), Error);
-  CHECK_THROWS_WITH_AS(parse_manifest("{\"format\":\"mosb-manifest\",\"version\":2}\n", "M"),
-                       "M:1: manifest version 2, this mosb reads 1", Error);
+  CHECK_THROWS_WITH_AS(parse_manifest("{\"format\":\"mosb-manifest\",\"version\":3}\n", "M"),
+                       "M:1: manifest version 3, this mosb reads 1 to 2", Error);
   CHECK_THROWS_WITH_AS(
       parse_manifest("{\"format\":\"mosb-manifest\",\"version\":1}\n{\"file\":\"a\",\"size\":1,"
                      "\"sha256\":\"zz\",\"digest\":\"" +

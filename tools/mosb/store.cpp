@@ -36,6 +36,7 @@ struct StoreArgs {
   std::vector<std::string> globs;
   unsigned jobs = PullOptions{}.jobs;
   bool unpack = false;
+  bool no_references = false;
   bool dry_run = false;
   unsigned stall_timeout = PullOptions{}.stall_timeout_seconds;
   std::uint64_t check_memory = StreamingVerifyOptions{}.memory;
@@ -66,6 +67,19 @@ void write_entry(JsonWriter& json, const ManifestEntry& e) {
     json.end_object();
   }
   json.end_array();
+  json.key("kind").value(e.solutions ? "solutions" : "instance");
+  if (const auto& s = e.solutions) {
+    json.key("instance").value(s->instance);
+    json.key("epsilon").value(s->epsilon);
+    json.key("solver").value(s->solver);
+    json.key("solvers").begin_array();
+    for (const auto& name : s->solvers) json.value(name);
+    json.end_array();
+    json.key("statuses").begin_object();
+    for (const auto& [status, count] : s->statuses) json.key(status).value(count);
+    json.end_object();
+    json.key("vectors").value(s->vectors);
+  }
   json.end_object();
 }
 
@@ -125,11 +139,21 @@ int run_list(const StoreArgs& a) {
     json.end_object();
     return 0;
   }
-  for (const auto& e : store.manifest().entries)
+  for (const auto& e : store.manifest().entries) {
     std::cout << escape_for_terminal(e.file) << "  " << e.size << " bytes  "
               << (e.packed ? "packed  " : "") << "benchmark " << shown(e.benchmark) << "  views "
               << listed_or_dash(e.views) << "  queries " << listed_or_dash(e.query_sets)
-              << "  digest " << e.digest << '\n';
+              << "  digest " << e.digest;
+    if (const auto& s = e.solutions) {
+      std::string statuses;
+      for (const auto& [status, count] : s->statuses)
+        statuses += (statuses.empty() ? "" : ", ") + std::to_string(count) + " " + status;
+      std::cout << "  fronts of " << s->instance << " by " << listed_or_dash(s->solvers)
+                << (s->epsilon == "0" ? ", exact" : ", epsilon " + escape_for_terminal(s->epsilon))
+                << ": " << (statuses.empty() ? "no query" : statuses);
+    }
+    std::cout << '\n';
+  }
   std::cout << store.manifest().entries.size() << " entries"
             << (store.manifest().legacy ? " (older TSV MANIFEST: no SHA-256 listed)" : "") << '\n';
   return 0;
@@ -187,6 +211,7 @@ int run_pull(const StoreArgs& a) {
   options.files = a.globs;
   options.jobs = a.jobs;
   options.unpack = a.unpack;
+  options.references = !a.no_references;
   options.dry_run = a.dry_run;
   options.stall_timeout_seconds = a.stall_timeout;
   options.check_memory = a.check_memory;
@@ -322,8 +347,8 @@ int report_checks(const std::vector<FileCheck>& checks, bool json) {
 }
 
 Command add_store(CLI::App& app) {
-  auto* store =
-      app.add_subcommand("store", "A directory of instances and the MANIFEST listing them");
+  auto* store = app.add_subcommand(
+      "store", "A directory of instances, their reference fronts and the MANIFEST listing them");
   auto args = std::make_shared<StoreArgs>();
   auto directory = [&](CLI::App* sub) {
     sub->add_option("DIR", args->directory, "the store directory")->required();
@@ -331,13 +356,18 @@ Command add_store(CLI::App& app) {
   auto* init = store->add_subcommand("init", "Create an empty store (a MANIFEST) in DIR");
   directory(init);
   auto* add = store->add_subcommand(
-      "add", "Copy (or move) .mosb files into the store; the MANIFEST is rewritten last");
+      "add",
+      "Copy (or move) .mosb files into the store: instances, and solution files (references) "
+      "checked against their instance in the store or in the same add; the MANIFEST is "
+      "rewritten last");
   directory(add);
-  add->add_option("FILE", args->files, "the .mosb files to add")->required();
+  add->add_option("FILE", args->files, "the files to add (instances, solution files)")->required();
   add->add_flag("--move", args->move, "move the files instead of copying them");
   add_check_memory_option(add, args->check_memory);
   add_check_disk_option(add, args->check_disk);
-  add->add_flag("--pack", args->pack, "store each unpacked file packed (as mosb pack does)");
+  add->add_flag("--pack", args->pack,
+                "store each unpacked instance packed (as mosb pack does); solution files are "
+                "stored as they are");
   add->add_option("--level", args->level,
                   "zstd level for --pack (fixed, so the bytes are reproducible)")
       ->check(unsigned_integer(std::numeric_limits<int>::max()))
@@ -380,6 +410,8 @@ Command add_store(CLI::App& app) {
       ->check(unsigned_integer(256))
       ->check(CLI::Range(1, 256))
       ->capture_default_str();
+  pull_command->add_flag("--no-references", args->no_references,
+                         "instances alone: leave the published solution files (references)");
   pull_command->add_flag("--unpack", args->unpack,
                          "unpack packed entries into DIR/.cache once they are listed");
   pull_command->add_flag("--dry-run", args->dry_run,

@@ -888,7 +888,8 @@ bool matches_any(const std::vector<std::string>& patterns, const std::vector<std
 }
 
 bool selected(const ManifestEntry& e, const PullOptions& options) {
-  return (options.benchmarks.empty() || matches_any(options.benchmarks, {e.benchmark})) &&
+  return (options.references || !e.solutions) &&
+         (options.benchmarks.empty() || matches_any(options.benchmarks, {e.benchmark})) &&
          (options.views.empty() || matches_any(options.views, e.views)) &&
          (options.files.empty() || matches_any(options.files, {e.file}));
 }
@@ -976,17 +977,25 @@ PullResult pull(const fs::path& store, std::string_view url, const PullOptions& 
   const auto connect = [&](unsigned) {
     return where.http ? std::make_unique<Http>(options.stall_timeout_seconds) : nullptr;
   };
-  parallel_for_with_state(
-      to_fetch.size(), std::max(1U, options.jobs), connect,
-      [&](std::unique_ptr<Http>& http, std::size_t i) {
-        try {
-          fetch_entry(puller, http.get(), *to_fetch[i]);
-        } catch (const std::exception& error) {  // the store's own trouble (I/O, a planted link)
-          to_fetch[i]->status = PullStatus::refused;
-          to_fetch[i]->reason = error.what();
-        }
-        puller.settled(*to_fetch[i]);
-      });
+  // Instances first: a solution file is checked against its instance in the store.
+  std::stable_partition(to_fetch.begin(), to_fetch.end(),
+                        [](const PulledEntry* p) { return !p->entry.solutions; });
+  const auto instances = static_cast<std::size_t>(std::count_if(
+      to_fetch.begin(), to_fetch.end(), [](const PulledEntry* p) { return !p->entry.solutions; }));
+  for (const auto& range :
+       {std::pair{std::size_t{0}, instances}, std::pair{instances, to_fetch.size()}})
+    parallel_for_with_state(
+        range.second - range.first, std::max(1U, options.jobs), connect,
+        [&](std::unique_ptr<Http>& http, std::size_t k) {
+          auto& pulled = *to_fetch[range.first + k];
+          try {
+            fetch_entry(puller, http.get(), pulled);
+          } catch (const std::exception& error) {  // the store's own trouble (I/O, a planted link)
+            pulled.status = PullStatus::refused;
+            pulled.reason = error.what();
+          }
+          puller.settled(pulled);
+        });
   if (puller.total > 0) report(options.progress, "pull", puller.total, puller.total);
   sweep_stale_partials(store, where, published);
   ::rmdir((store / kStagingDirectory / kPullDirectory).c_str());  // when empty

@@ -13,6 +13,8 @@
 #include "mosb/internal/utf8.hpp"
 #include "mosb/metadata.hpp"
 #include "mosb/sha256.hpp"
+#include "mosb/solution_file.hpp"
+#include "mosb/solution_summary.hpp"
 
 namespace mosb {
 
@@ -30,16 +32,26 @@ Json to_json(const ManifestEntry& e) {
   Json sources = Json::array();
   for (const auto& s : e.sources)
     sources.push_back(Json{{"name", s.name}, {"size", s.size}, {"xxh3", s.xxh3}});
-  return Json{{"file", e.file},
-              {"size", e.size},
-              {"sha256", e.sha256},
-              {"digest", e.digest},
-              {"format_version", e.format_version},
-              {"packed", e.packed},
-              {"benchmark", e.benchmark},
-              {"views", e.views},
-              {"query_sets", e.query_sets},
-              {"sources", sources}};
+  Json out{{"file", e.file},
+           {"size", e.size},
+           {"sha256", e.sha256},
+           {"digest", e.digest},
+           {"format_version", e.format_version},
+           {"packed", e.packed},
+           {"benchmark", e.benchmark},
+           {"views", e.views},
+           {"query_sets", e.query_sets},
+           {"sources", sources}};
+  if (const auto& s = e.solutions) {
+    out["kind"] = "solutions";
+    out["instance"] = s->instance;
+    out["epsilon"] = s->epsilon;
+    out["solver"] = s->solver;
+    out["solvers"] = s->solvers;
+    out["statuses"] = s->statuses;
+    out["vectors"] = s->vectors;
+  }
+  return out;
 }
 
 struct LineError {
@@ -71,6 +83,28 @@ T field(const Json& object, const char* key, bool required, T fallback = {}) {
   }
 }
 
+// The keys of a solution file's entry (`kind` "solutions").
+SolutionsEntry solutions_from_json(const Json& object) {
+  SolutionsEntry s;
+  s.instance = field<std::string>(object, "instance", true);
+  if (!is_lower_hex(s.instance, 32)) throw LineError{"instance is not 32 lowercase hex digits"};
+  s.epsilon = field<std::string>(object, "epsilon", true);
+  if (s.epsilon.empty() || s.epsilon.find_first_not_of("0123456789.eE+-") != std::string::npos)
+    throw LineError{"epsilon '" + s.epsilon + "' is not a decimal number"};
+  s.solver = field<std::string>(object, "solver", false);
+  s.solvers = field<std::vector<std::string>>(object, "solvers", false);
+  const auto statuses = object.find("statuses");
+  if (statuses != object.end()) {
+    if (!statuses->is_object()) throw LineError{"key 'statuses' has the wrong type"};
+    for (const auto& [name, count] : statuses->items()) {
+      if (!parse_query_status(name)) throw LineError{"statuses: '" + name + "' is no status"};
+      s.statuses[name] = field<std::uint64_t>(*statuses, name.c_str(), true);
+    }
+  }
+  s.vectors = field<std::uint64_t>(object, "vectors", false);
+  return s;
+}
+
 ManifestEntry entry_from_json(const Json& object) {
   if (!object.is_object()) throw LineError{"not a JSON object"};
   ManifestEntry e;
@@ -98,6 +132,12 @@ ManifestEntry entry_from_json(const Json& object) {
                            field<std::string>(s, "xxh3", true)});
     }
   }
+  // An unknown kind is a later version's file, never an instance.
+  const auto kind = field<std::string>(object, "kind", false, "instance");
+  if (kind == "solutions")
+    e.solutions = solutions_from_json(object);
+  else if (kind != "instance")
+    throw LineError{"kind '" + kind + "' is neither \"instance\" nor \"solutions\""};
   return e;
 }
 
@@ -204,9 +244,9 @@ Manifest parse_manifest(std::string_view text, const std::string& display_name) 
         if (!record.is_object() || field<std::string>(record, "format", true) != kManifestFormat)
           throw LineError{"the header record does not name format \"mosb-manifest\""};
         const auto version = field<int>(record, "version", true);
-        if (version != kManifestVersion)
-          throw LineError{"manifest version " + std::to_string(version) + ", this mosb reads " +
-                          std::to_string(kManifestVersion)};
+        if (version < 1 || version > kManifestVersion)
+          throw LineError{"manifest version " + std::to_string(version) +
+                          ", this mosb reads 1 to " + std::to_string(kManifestVersion)};
         continue;
       }
       manifest.entries.push_back(entry_from_json(record));
@@ -226,7 +266,12 @@ std::string serialize_manifest(const Manifest& manifest) {
   auto entries = manifest.entries;
   Manifest sorted{std::move(entries), false};
   sort_and_check_unique(sorted, std::string(kManifestName));
-  std::string text = Json{{"format", kManifestFormat}, {"version", kManifestVersion}}.dump() + '\n';
+  const bool lists_solutions = std::any_of(sorted.entries.begin(), sorted.entries.end(),
+                                           [](const ManifestEntry& e) { return e.solutions; });
+  std::string text =
+      Json{{"format", kManifestFormat}, {"version", lists_solutions ? kManifestVersion : 1}}
+          .dump() +
+      '\n';
   for (const auto& e : sorted.entries) {
     if (!is_valid_manifest_file_name(e.file))
       throw Error(std::string(kManifestName) + ": invalid file name '" + e.file + "' (" +
@@ -260,7 +305,49 @@ std::vector<SourceInput> source_inputs(const Metadata& metadata, const std::stri
   return inputs;
 }
 
+namespace {
+
+// The entry of a solution file: its binding and summary, read from the file (payload unchecked:
+// the store checks it before it lists the file).
+ManifestEntry describe_solutions(const std::filesystem::path& path,
+                                 std::optional<std::string> sha256) {
+  const auto reader = SolutionReader::open(path);
+  ManifestEntry e;
+  e.file = path.filename().string();
+  e.size = reader.bytes().size();
+  e.sha256 = sha256 ? std::move(*sha256) : sha256_file(path);
+  e.digest = reader.digest();
+  e.format_version = std::to_string(reader.header().version_major) + "." +
+                     std::to_string(reader.header().version_minor);
+  if (!reader.view_name().empty()) e.views.push_back(reader.view_name());
+  e.query_sets.push_back(reader.query_set());
+  SolutionsEntry s;
+  s.instance = reader.instance_digest();
+  const auto solver = reader.solver();
+  s.epsilon = solver.epsilon;
+  s.solver = solver.name;
+  if (const auto agreed = solver.parameters.find("solvers");
+      solver.name == "reference" && agreed != solver.parameters.end()) {
+    for (std::size_t begin = 0; begin <= agreed->second.size();) {
+      const auto comma = std::min(agreed->second.find(',', begin), agreed->second.size());
+      s.solvers.push_back(agreed->second.substr(begin, comma - begin));
+      begin = comma + 1;
+    }
+  } else {
+    s.solvers.push_back(solver_name(reader));
+  }
+  for (std::uint64_t q = 0; q < reader.query_count(); ++q)
+    ++s.statuses[std::string(to_string(reader.status(q)))];
+  s.vectors = reader.vector_count();
+  e.solutions = std::move(s);
+  return e;
+}
+
+}  // namespace
+
 ManifestEntry describe_file(const std::filesystem::path& path, std::optional<std::string> sha256) {
+  if (stated_file_kind(map_file(path).bytes) == format::FileKind::solutions)
+    return describe_solutions(path, std::move(sha256));
   const auto reader = GraphReader::open(path);
   ManifestEntry e;
   e.file = path.filename().string();

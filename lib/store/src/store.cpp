@@ -20,6 +20,8 @@
 #include "mosb/internal/xxh3.hpp"
 #include "mosb/pack.hpp"
 #include "mosb/sha256.hpp"
+#include "mosb/solution_file.hpp"
+#include "mosb/solution_verify.hpp"
 #include "mosb/store_lock.hpp"
 #include "mosb/verify.hpp"
 
@@ -50,7 +52,70 @@ struct InputFd {
   int fd;
 };
 
-FileCheck check_one(const ManifestEntry& e, const fs::path& path, bool accept_other_form) {
+// The instance a solution file's fronts belong to, opened for verify_solutions: mapped, or
+// decoded into memory when packed.
+GraphReader open_instance(const fs::path& path) {
+  return mosb::load(path, VerifyLevel::full);
+}
+
+// The first problem of a solution file as a store takes it: its payload, then its fronts against
+// the instance it binds to (verify_solutions: the binding, dominance, paths), or nullopt.
+std::optional<std::string> solutions_problem(const SolutionReader& solutions,
+                                             const fs::path& instance) {
+  if (auto found = solutions.verify_payload()) return found;
+  return verify_solutions(solutions, open_instance(instance));
+}
+
+// The checks of a listed instance file past its size and SHA-256.
+void check_instance(FileCheck& c, const ManifestEntry& e, const fs::path& path,
+                    bool accept_other_form) {
+  auto problem = [&](std::string kind, std::string detail) {
+    c.problems.push_back({std::move(kind), path.string() + ": " + std::move(detail)});
+  };
+  const auto reader = GraphReader::open(path);
+  const auto digest = reader.digest();
+  if (digest != e.digest)
+    problem("wrong-digest", "content digest " + digest + ", the manifest says " + e.digest);
+  // A packed file is checked as it will be used: unpacked (every frame decoded and checked
+  // against its section checksum), then verified in full.
+  const bool packed = is_packed(reader.header());
+  const auto checked = packed ? mosb::load(path) : reader;
+  if (const auto found = verify(checked, VerifyLevel::full)) {
+    problem("damaged", *found);
+  } else if (accept_other_form && digest == e.digest && packed != e.packed) {
+    // `mosb unpack` (or `pack`) of the listed file: other bytes, the same content, which the
+    // digest proves and the full verification has just checked.
+    std::erase_if(c.problems, [](const FileProblem& p) {
+      return p.kind == "wrong-size" || p.kind == "wrong-sha256";
+    });
+    c.note = packed ? "packed form of the listed unpacked file"
+                    : "unpacked form of the listed packed file";
+  }
+}
+
+// The checks of a listed solution file past its size and SHA-256: a solution file of the listed
+// content, bound to an instance the manifest lists (`unbound` otherwise), whose fronts that
+// instance verifies.
+void check_solutions(FileCheck& c, const ManifestEntry& e, const fs::path& path,
+                     const InstancePaths& instances) {
+  auto problem = [&](std::string kind, std::string detail) {
+    c.problems.push_back({std::move(kind), path.string() + ": " + std::move(detail)});
+  };
+  const auto reader = SolutionReader::open(path);
+  if (const auto digest = reader.digest(); digest != e.digest)
+    problem("wrong-digest", "content digest " + digest + ", the manifest says " + e.digest);
+  const auto instance = instances.find(reader.instance_digest());
+  if (instance == instances.end()) {
+    if (auto found = reader.verify_payload()) problem("damaged", *found);
+    problem("unbound", "solutions of instance " + reader.instance_digest() +
+                           ", which the manifest does not list");
+  } else if (auto found = solutions_problem(reader, instance->second)) {
+    problem("damaged", *found);
+  }
+}
+
+FileCheck check_one(const ManifestEntry& e, const fs::path& path, bool accept_other_form,
+                    const InstancePaths& instances) {
   FileCheck c{e.file, path, {}, {}};
   auto problem = [&](std::string kind, std::string detail) {
     c.problems.push_back({std::move(kind), path.string() + ": " + std::move(detail)});
@@ -79,25 +144,10 @@ FileCheck check_one(const ManifestEntry& e, const fs::path& path, bool accept_ot
   if (!e.sha256.empty() && sha != e.sha256)
     problem("wrong-sha256", "SHA-256 " + sha + ", the manifest says " + e.sha256);
   try {
-    const auto reader = GraphReader::open(path);
-    const auto digest = reader.digest();
-    if (digest != e.digest)
-      problem("wrong-digest", "content digest " + digest + ", the manifest says " + e.digest);
-    // A packed file is checked as it will be used: unpacked (every frame decoded and checked
-    // against its section checksum), then verified in full.
-    const bool packed = is_packed(reader.header());
-    const auto checked = packed ? mosb::load(path) : reader;
-    if (const auto found = verify(checked, VerifyLevel::full)) {
-      problem("damaged", *found);
-    } else if (accept_other_form && digest == e.digest && packed != e.packed) {
-      // `mosb unpack` (or `pack`) of the listed file: other bytes, the same content, which the
-      // digest proves and the full verification has just checked.
-      std::erase_if(c.problems, [](const FileProblem& p) {
-        return p.kind == "wrong-size" || p.kind == "wrong-sha256";
-      });
-      c.note = packed ? "packed form of the listed unpacked file"
-                      : "unpacked form of the listed packed file";
-    }
+    if (e.solutions)
+      check_solutions(c, e, path, instances);
+    else
+      check_instance(c, e, path, accept_other_form);
   } catch (const Error& error) {
     // Out of memory (or past the memory available) is this machine's limit, not damage.
     const bool unreadable = error.code() == ErrorCode::io || error.code() == ErrorCode::no_memory;
@@ -248,17 +298,29 @@ std::pair<GraphReader, fs::path> open_packed(const fs::path& directory, const Ma
   return {GraphReader::open(copy, VerifyLevel::full), copy};
 }
 
+// The instance entries of a manifest, by content digest, in `directory`; a symlink is left out
+// (the store follows none), so a solution file bound to it is reported unbound.
+InstancePaths instance_paths(const Manifest& manifest, const fs::path& directory) {
+  InstancePaths out;
+  for (const auto& e : manifest.entries) {
+    std::error_code ec;
+    if (!e.solutions && !fs::is_symlink(fs::symlink_status(directory / e.file, ec)))
+      out.emplace(e.digest, directory / e.file);
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<FileCheck> check_files(const std::vector<std::pair<ManifestEntry, fs::path>>& files,
-                                   const CheckOptions& options) {
+                                   const CheckOptions& options, const InstancePaths& instances) {
   std::vector<FileCheck> checks(files.size());
   std::mutex progress_mutex;
   std::size_t done = 0;
   report(options.progress, "verify", 0, files.size());
   parallel_for(files.size(), thread_count(options.threads), [&](std::size_t i) {
     try {
-      checks[i] = check_one(files[i].first, files[i].second, options.accept_other_form);
+      checks[i] = check_one(files[i].first, files[i].second, options.accept_other_form, instances);
     } catch (const std::exception& error) {  // bad_alloc, filesystem_error: a report, not a crash
       checks[i] = {files[i].first.file, files[i].second, {{"unreadable", error.what()}}, {}};
     }
@@ -272,11 +334,11 @@ std::vector<FileCheck> check_against_manifest(const fs::path& manifest_path,
                                               const std::vector<fs::path>& paths,
                                               const CheckOptions& options) {
   const auto manifest = read_manifest(manifest_path);
+  const auto directory = manifest_path.parent_path();
   std::vector<std::pair<ManifestEntry, fs::path>> files;
   std::vector<FileCheck> unlisted;
   if (paths.empty()) {
-    for (const auto& e : manifest.entries)
-      files.emplace_back(e, manifest_path.parent_path() / e.file);
+    for (const auto& e : manifest.entries) files.emplace_back(e, directory / e.file);
   } else {
     for (const auto& path : paths) {
       const auto name = path.filename().string();
@@ -290,7 +352,7 @@ std::vector<FileCheck> check_against_manifest(const fs::path& manifest_path,
              {}});
     }
   }
-  auto checks = check_files(files, options);
+  auto checks = check_files(files, options, instance_paths(manifest, directory));
   checks.insert(checks.end(), unlisted.begin(), unlisted.end());
   return checks;
 }
@@ -387,6 +449,15 @@ void check_expected(const fs::path& source, const ManifestEntry& found,
     differs = "SHA-256 " + found.sha256 + ", the manifest says " + expected.sha256;
   else if (found.digest != expected.digest)
     differs = "content digest " + found.digest + ", the manifest says " + expected.digest;
+  else if (found.solutions.has_value() != expected.solutions.has_value())
+    differs = found.solutions ? "a solution file, which the manifest lists as an instance"
+                              : "an instance, which the manifest lists as a solution file";
+  else if (found.solutions &&
+           (*found.solutions != *expected.solutions || found.views != expected.views ||
+            found.query_sets != expected.query_sets))
+    differs =
+        "the manifest describes other fronts (instance, view, query set, epsilon, solvers or "
+        "statuses) than the file holds";
   if (!differs.empty()) throw Error(ErrorCode::damaged, source.string() + ": " + differs);
 }
 
@@ -411,12 +482,60 @@ Placement prepare(const fs::path& source, const Store::AddOptions& options,
   return p;
 }
 
+// A solution file of an add: checked against its instance, which is listed in the store or added
+// by the same add (`added`), and given that instance's benchmark. Stored as it is (--pack packs
+// instances only: a solution file has no packed form).
+Placement prepare_solutions(const fs::path& source, const ManifestEntry* expected,
+                            const std::string* sha256, const fs::path& directory,
+                            const Manifest& manifest, const std::vector<Placement>& added) {
+  Placement p{describe_file(source, sha256 ? std::optional(*sha256) : std::nullopt), source, source,
+              false, sha256 != nullptr};
+  if (expected != nullptr) check_expected(source, p.entry, *expected);
+  const auto& digest = p.entry.solutions->instance;
+  const ManifestEntry* instance = nullptr;
+  fs::path instance_path;
+  for (const auto& a : added)
+    if (!a.entry.solutions && a.entry.digest == digest) instance = &a.entry, instance_path = a.from;
+  if (instance == nullptr)
+    for (const auto& e : manifest.entries)
+      if (!e.solutions && e.digest == digest) instance = &e, instance_path = directory / e.file;
+  if (instance == nullptr)
+    throw Error(ErrorCode::not_found,
+                source.string() + ": solutions of instance " + digest +
+                    ", which the store does not list (add the instance first, or with it)");
+  refuse_symlink(instance_path);
+  const auto solutions = SolutionReader::open(source);
+  if (const auto problem = solutions_problem(solutions, instance_path))
+    throw Error(ErrorCode::damaged, source.string() + ": " + *problem);
+  p.entry.benchmark = instance->benchmark;
+  return p;
+}
+
+// Whose fronts a store keeps once: the exact ones (ε = 0) of one instance, view and query set, so
+// that "the reference of this instance" has one answer.
+bool same_exact_fronts(const ManifestEntry& a, const ManifestEntry& b) {
+  return a.solutions && b.solutions && a.file != b.file && a.solutions->epsilon == "0" &&
+         b.solutions->epsilon == "0" && a.solutions->instance == b.solutions->instance &&
+         a.views == b.views && a.query_sets == b.query_sets;
+}
+
 void check_conflicts(const Manifest& manifest, const std::vector<Placement>& placements) {
-  for (const auto& p : placements)
+  for (const auto& p : placements) {
     if (const auto* listed = manifest.find(p.entry.file);
         listed && (listed->sha256.empty() || listed->sha256 != p.entry.sha256))
       throw Error(p.source.string() + ": the store already lists a different '" + p.entry.file +
                   "'");
+    auto exact_twice = [&](const ManifestEntry& other) {
+      if (same_exact_fronts(p.entry, other))
+        throw Error(p.source.string() + ": exact fronts of instance " +
+                    p.entry.solutions->instance +
+                    (p.entry.views.empty() ? "" : ", view " + p.entry.views.front()) +
+                    ", query set " + p.entry.query_sets.front() + ", which '" + other.file +
+                    "' already holds (a store keeps one reference per binding)");
+    };
+    for (const auto& e : manifest.entries) exact_twice(e);
+    for (const auto& other : placements) exact_twice(other.entry);
+  }
 }
 
 // True when the file was renamed into place (the bytes checked are the bytes placed).
@@ -508,13 +627,22 @@ std::vector<ManifestEntry> Store::add(const std::vector<fs::path>& files,
   sweep_staging(directory_ / kStagingDirectory);
   sweep_empty_cache(directory_ / kCacheDirectory);
   Staging staging(directory_);  // removed, with anything not placed, on every way out
+  // Instances first: a solution file is checked against its instance, which may come with it.
+  std::vector<std::size_t> solution_files;
   std::vector<Placement> placements;
   for (std::size_t i = 0; i < files.size(); ++i) {
     if (options.pack) report(options.progress, "pack", i, files.size());
-    placements.push_back(prepare(files[i], options,
-                                 options.expect.empty() ? nullptr : &options.expect[i],
-                                 options.sha256.empty() ? nullptr : &options.sha256[i], staging));
+    const auto* expected = options.expect.empty() ? nullptr : &options.expect[i];
+    const auto* sha256 = options.sha256.empty() ? nullptr : &options.sha256[i];
+    if (stated_file_kind(map_file(files[i]).bytes) == format::FileKind::solutions)
+      solution_files.push_back(i);
+    else
+      placements.push_back(prepare(files[i], options, expected, sha256, staging));
   }
+  for (const auto i : solution_files)
+    placements.push_back(prepare_solutions(
+        files[i], options.expect.empty() ? nullptr : &options.expect[i],
+        options.sha256.empty() ? nullptr : &options.sha256[i], directory_, manifest_, placements));
   if (options.pack) report(options.progress, "pack", files.size(), files.size());
   check_conflicts(manifest_, placements);  // refused at once, without waiting for the lock
   {
@@ -552,7 +680,7 @@ std::vector<FileCheck> Store::verify(const CheckOptions& options) const {
     else
       files.emplace_back(e, path);
   }
-  auto checks = check_files(files, options);
+  auto checks = check_files(files, options, instance_paths(manifest_, directory_));
   checks.insert(checks.end(), links.begin(), links.end());
   std::sort(checks.begin(), checks.end(),
             [](const FileCheck& a, const FileCheck& b) { return a.file < b.file; });

@@ -55,6 +55,11 @@ struct Container {
 Container parse_container(std::span<const std::byte> bytes, std::string_view display_name,
                           format::FileKind kind);
 
+// The file kind a file's header states, read from its first 128 bytes without any check but the
+// magic: nullopt for bytes that do not start as a mosb file. Which reader to open it with, not a
+// check (the reader of that kind runs §9).
+std::optional<format::FileKind> stated_file_kind(std::span<const std::byte> bytes);
+
 // What a reader of any file kind holds and offers: the bytes it reads (a mapping, memory it owns,
 // or memory the caller keeps alive), the name its messages carry, the header and the table, and
 // checked zero-copy access to a section's elements. GraphReader and SolutionReader add the checks

@@ -54,6 +54,8 @@ struct PullOptions {
   std::vector<std::string> benchmarks;
   std::vector<std::string> views;
   std::vector<std::string> files;
+  // Solution files (references) too, each placed once its instance is: after every instance.
+  bool references = true;
   unsigned jobs = 4;  // transfers at once
   // Unpack each packed entry into the store's cache once it is listed (Store::unpack), so that
   // Store::instance maps it at once.

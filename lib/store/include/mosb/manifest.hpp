@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -20,6 +21,21 @@ struct SourceInput {
   bool operator==(const SourceInput&) const = default;
 };
 
+// What a MANIFEST says of a solution file (spec/SOLUTIONS.md) it lists: the instance, objectives
+// and query set its fronts answer, who made them and how their queries ended. Read from the file's
+// bytes (describe_file), so two entries of equal SHA-256 say the same.
+struct SolutionsEntry {
+  std::string instance;  // the instance's content digest (`solution.instance_digest`)
+  std::string epsilon;   // `solution.epsilon` as written; "0": the fronts claim to be exact
+  std::string solver;    // `solution.solver.name`
+  // The solvers whose fronts these are: a reference's agreeing solvers (its parameter `solvers`),
+  // else the one solver.
+  std::vector<std::string> solvers;
+  std::map<std::string, std::uint64_t> statuses;  // query count per status name, those present
+  std::uint64_t vectors = 0;                      // F: the vectors of every front together
+  bool operator==(const SolutionsEntry&) const = default;
+};
+
 struct ManifestEntry {
   std::string file;            // base name, no directory
   std::uint64_t size = 0;      // bytes of the file as stored (packed or not)
@@ -31,6 +47,10 @@ struct ManifestEntry {
   std::vector<std::string> views;       // names of the §7 views, sorted
   std::vector<std::string> query_sets;  // names of the queries sections, sorted
   std::vector<SourceInput> sources;     // in input order
+  // Set for a solution file (file kind 2): then `views` holds its view (empty: bound to its
+  // objectives alone), `query_sets` its query set, and `benchmark` its instance's, which a store
+  // fills in from the instance's entry (the solution file does not carry it).
+  std::optional<SolutionsEntry> solutions;
   bool operator==(const ManifestEntry&) const = default;
 };
 
@@ -44,7 +64,9 @@ struct Manifest {
 };
 
 inline constexpr std::string_view kManifestFormat = "mosb-manifest";
-inline constexpr int kManifestVersion = 1;
+// Version 2 adds solution files (`kind`, spec/MANIFEST.md); a manifest that lists none is written
+// as version 1, byte for byte what earlier mosb wrote, so that every reader still reads it.
+inline constexpr int kManifestVersion = 2;
 inline constexpr std::string_view kManifestName = "MANIFEST";
 
 // Parses either format; throws mosb::Error "NAME:LINE: problem" on text that is neither.
@@ -58,11 +80,11 @@ std::string serialize_manifest(const Manifest& manifest);
 void write_manifest(const std::filesystem::path& path, const Manifest& manifest);
 
 // The entry for one mosb file, read from its bytes: opens it (header level), hashes it, and reads
-// its metadata (for a packed file whose metadata cannot be read without unpacking, the
-// metadata-derived fields stay empty). `file` in the entry is the path's base name. `sha256`: the
-// file's SHA-256 when the caller already has it (store pull computes it as the bytes arrive);
-// otherwise it is computed from a read of the file, not its mapping, so that hashing a large file
-// takes no memory of its size.
+// its metadata (a solution file: SolutionsEntry, its view and query set; `benchmark` left empty)
+// (for a packed file whose metadata cannot be read without unpacking, the metadata-derived fields
+// stay empty). `file` in the entry is the path's base name. `sha256`: the file's SHA-256 when the
+// caller already has it (store pull computes it as the bytes arrive); otherwise it is computed from
+// a read of the file, not its mapping, so that hashing a large file takes no memory of its size.
 ManifestEntry describe_file(const std::filesystem::path& path,
                             std::optional<std::string> sha256 = std::nullopt);
 

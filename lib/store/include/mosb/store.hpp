@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -19,7 +20,7 @@
 namespace mosb {
 
 // One problem found with one file. `kind` is one of: missing, extra, wrong-size, wrong-sha256,
-// wrong-digest, unreadable, damaged.
+// wrong-digest, unreadable, damaged, unbound (a solution file whose instance is not listed).
 struct FileProblem {
   std::string kind;
   std::string detail;  // one line, names the file
@@ -44,12 +45,17 @@ struct CheckOptions {
   bool accept_other_form = false;
 };
 
-// Checks each (entry, path) pair: existence, size, SHA-256 (when listed), readability, that it is
-// a mosb file passing verify --level full (a packed file is unpacked in memory first, so every
-// frame is decoded and checked), and its content digest. Results in input order.
+// Where the instances that solution files bind to are: content digest -> path.
+using InstancePaths = std::map<std::string, std::filesystem::path>;
+
+// Checks each (entry, path) pair: existence, size, SHA-256 (when listed), readability, its content
+// digest, and that it is a mosb file passing verify --level full (a packed file is unpacked in
+// memory first, so every frame is decoded and checked). A solution file's entry (`solutions`) is
+// checked as `solutions verify --instance` checks it, against its instance in `instances`; one
+// whose instance is not there is `unbound`. Results in input order.
 std::vector<FileCheck> check_files(
     const std::vector<std::pair<ManifestEntry, std::filesystem::path>>& files,
-    const CheckOptions& options);
+    const CheckOptions& options, const InstancePaths& instances = {});
 
 // The published manifest at `manifest_path` against files: with `paths` empty, every entry in the
 // manifest's directory (a file missing there is reported); otherwise exactly those paths, each
