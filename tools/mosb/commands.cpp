@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
+#include <set>
 #include <sstream>
 
 #include "json_writer.hpp"
@@ -15,6 +16,7 @@
 #include "mosb/experiment.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/internal/utf8.hpp"
+#include "mosb/pull.hpp"
 #include "mosb/run.hpp"
 
 namespace mosb::cli {
@@ -48,6 +50,15 @@ CLI::Validator duration() {
             return parse_duration(text) ? "" : "not a duration (60, 60s, 500ms, 2m, 1h)";
           },
           "DURATION", "duration"};
+}
+
+CLI::Validator reference_source() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        if (is_store_url(text)) return {};
+        return CLI::ExistingPath(text);
+      },
+      "PATH|URL");
 }
 
 CLI::Validator memory_size() {
@@ -401,6 +412,38 @@ std::vector<std::filesystem::path> experiment_result_files(const std::filesystem
               << escape_for_terminal(ids) << '\n';
   }
   return files;
+}
+
+std::vector<std::filesystem::path> reference_files_of(const std::string& source,
+                                                      std::span<const GraphReader> instances) {
+  std::set<std::string> digests;
+  for (const auto& instance : instances) digests.insert(instance.digest());
+  std::filesystem::path local = source;
+  if (is_store_url(source)) {
+    local = store_cache(source);
+    PullOptions options;
+    options.references_of = digests;
+    const auto pulled = pull(local, source, options);
+    std::size_t fetched = 0;
+    for (const auto& e : pulled.entries) {
+      if (e.status == PullStatus::refused)
+        throw Error(ErrorCode::damaged, source + ": refused " + e.entry.file + ": " + e.reason);
+      fetched += e.status == PullStatus::fetched ? 1 : 0;
+    }
+    if (fetched > 0)
+      std::cerr << "mosb: note: pulled " << fetched << " files (" << pulled.bytes << " bytes) of "
+                << escape_for_terminal(source) << " into " << escape_for_terminal(local.string())
+                << '\n';
+  }
+  auto found = reference_files_for(local, digests);
+  for (const auto& digest : found.missing) {
+    std::string name = digest;
+    for (const auto& instance : instances)
+      if (instance.digest() == digest) name = instance.display_name() + " (digest " + digest + ")";
+    std::cerr << "mosb: note: " << escape_for_terminal(source) << " has no reference for "
+              << escape_for_terminal(name) << '\n';
+  }
+  return std::move(found.files);
 }
 
 }  // namespace mosb::cli

@@ -67,6 +67,8 @@ CLI::Validator non_negative_real();
 CLI::Validator memory_size();
 // Every option that takes a duration: parse_duration (mosb/run.hpp), 60, 60s, 500ms, 2m, 1h.
 CLI::Validator duration();
+// `--reference SOURCE`: a path that exists, or a published store's URL (is_store_url).
+CLI::Validator reference_source();
 // `--isolation seal|none` of `mosb run` and `mosb experiment run` (spec/RUN.md §4.1): its default
 // is $MOSB_ISOLATION when set (a cluster's or a test suite's), else seal.
 CLI::Option* add_isolation_option(CLI::App* subcommand, std::string& isolation);
@@ -82,6 +84,12 @@ std::vector<Ratio> parse_epsilons(const std::string& list);
 // it is a file; a line on stderr names the listed cells it leaves out (no longer in the
 // experiment).
 std::vector<std::filesystem::path> experiment_result_files(const std::filesystem::path& path);
+// The references `--reference SOURCE` gives for these instances (reference_files_for): a solution
+// file, a directory of them, a store, or a store's URL, whose references of these instances are
+// pulled first (with the instances they are checked against) into store_cache(URL). A line on
+// stderr names each instance a store has no reference for.
+std::vector<std::filesystem::path> reference_files_of(const std::string& source,
+                                                      std::span<const GraphReader> instances);
 
 // `--runtime wall|reported` of every command that summarises runtimes (unset: choose_runtime's
 // default), and with `--tolerance REL` of every command that compares solution files (`eval`,

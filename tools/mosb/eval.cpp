@@ -17,6 +17,7 @@
 #include "mosb/experiment.hpp"
 #include "mosb/internal/utf8.hpp"
 #include "mosb/pack.hpp"
+#include "mosb/pull.hpp"
 #include "mosb/report/report.hpp"
 #include "mosb/report/tables.hpp"
 #include "mosb/solution_verify.hpp"
@@ -297,7 +298,7 @@ int run_eval_results(const EvalArgs& args) {
   // Files from outside the experiment (a solver run by hand on its instances) join its table.
   for (const auto& path : args.solutions) solutions.push_back(SolutionReader::open_verified(path));
   if (!args.reference.empty())
-    for (const auto& path : reference_files(args.reference))
+    for (const auto& path : reference_files_of(args.reference, instances))
       references.push_back(SolutionReader::open_verified(path));
   auto table = pages::solver_table(
       instances, solutions, references, options,
@@ -321,9 +322,10 @@ int run_eval(const EvalArgs& args) {
   if (args.common_queries) throw UsageError("--common-queries: with a results directory only");
   if (args.reference.empty() || args.solutions.empty())
     throw UsageError("give a results directory, or --reference FILE and --solutions FILE...");
-  if (std::filesystem::is_directory(args.reference))
+  if (std::filesystem::is_directory(args.reference) || is_store_url(args.reference))
     throw UsageError("--reference " + args.reference +
-                     ": a directory of references goes with a results directory");
+                     ": a directory of references, a store or its URL goes with a results "
+                     "directory");
   const auto eps = parse_epsilons(args.epsilons);
   std::vector<std::string> eps_text;
   eps_text.reserve(eps.size());
@@ -371,8 +373,9 @@ Command add_eval(CLI::App& app) {
       ->check(CLI::ExistingDirectory);
   sub->add_option("--reference", args->reference,
                   "the reference solution file, or with RESULTS a directory of references "
-                  "(mosb solutions reference -o)")
-      ->check(CLI::ExistingPath);
+                  "(mosb solutions reference -o), a store or a store's URL (its references of "
+                  "RESULTS' instances, pulled and checked first)")
+      ->check(reference_source());
   sub->add_option("--solutions", args->solutions,
                   "the solvers' solution files (one or more), each compared with the reference; "
                   "with RESULTS, files from outside the experiment that join its table")

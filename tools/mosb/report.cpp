@@ -135,13 +135,13 @@ int run_report(const ReportArgs& args) {
   }
   for (const auto& path : args.solutions)
     for (auto& p : experiment_result_files(path)) solution_paths.push_back(std::move(p));
-  for (const auto& path : args.references)
-    for (auto& p : reference_files(path)) reference_paths.push_back(std::move(p));
   std::vector<GraphReader> instances;
   for (const auto& path : instance_paths) {
     instances.push_back(load(path, VerifyLevel::full));
     inputs.emplace_back(path);
   }
+  for (const auto& source : args.references)
+    for (auto& p : reference_files_of(source, instances)) reference_paths.push_back(std::move(p));
   std::vector<SolutionReader> solutions, references;
   for (const auto& path : solution_paths) {
     solutions.push_back(SolutionReader::open_verified(path));
@@ -182,10 +182,12 @@ Command add_report(CLI::App& app) {
                   "solvers' solution files, each bound to one of the instances, or results "
                   "directories")
       ->check(CLI::ExistingPath);
-  sub->add_option("--reference", args->references,
-                  "reference solution files (at most one per instance, view and query set), or "
-                  "directories of them (mosb solutions reference -o DIR)")
-      ->check(CLI::ExistingPath);
+  sub->add_option(
+         "--reference", args->references,
+         "reference solution files (at most one per instance, view and query set), or "
+         "directories of them (mosb solutions reference -o DIR), stores or their URLs (the "
+         "references of the report's instances)")
+      ->check(reference_source());
   sub->add_option("--queries", args->queries,
                   "comma-separated query numbers whose fronts are drawn (default: the smallest, "
                   "median and largest solved front of each benchmark)");

@@ -642,6 +642,13 @@ std::vector<fs::path> reference_files(const fs::path& path) {
   return out;
 }
 
+ReferenceFiles reference_files_for(const fs::path& source, const std::set<std::string>& digests) {
+  std::error_code ec;
+  if (!fs::exists(source / std::string(kManifestName), ec)) return {reference_files(source), {}};
+  auto found = Store::open(source).references(digests);
+  return {std::move(found.files), std::move(found.missing)};
+}
+
 namespace {
 
 // Refuses, naming every cell, what a rerun must not continue: a done cell whose solver

@@ -13,6 +13,7 @@
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
+#include <cstdlib>
 #include <cstring>
 #include <ctime>
 #include <deque>
@@ -887,7 +888,14 @@ bool matches_any(const std::vector<std::string>& patterns, const std::vector<std
   });
 }
 
-bool selected(const ManifestEntry& e, const PullOptions& options) {
+// `bound`: with options.references_of, those of its instances the published store has solution
+// files of.
+bool selected(const ManifestEntry& e, const PullOptions& options,
+              const std::set<std::string>& bound) {
+  if (!options.references_of.empty() &&
+      !(e.solutions ? options.references_of.contains(e.solutions->instance)
+                    : bound.contains(e.digest)))
+    return false;
   return (options.references || !e.solutions) &&
          (options.benchmarks.empty() || matches_any(options.benchmarks, {e.benchmark})) &&
          (options.views.empty() || matches_any(options.views, e.views)) &&
@@ -934,8 +942,12 @@ PullResult pull(const fs::path& store, std::string_view url, const PullOptions& 
     if (is_reserved_store_name(e.file))
       throw Error(result.manifest_url + ": lists '" + e.file +
                   "', a name a store keeps for itself (MANIFEST, names starting with '.')");
+  std::set<std::string> bound;
   for (const auto& e : published.entries)
-    if (selected(e, options)) {
+    if (e.solutions && options.references_of.contains(e.solutions->instance))
+      bound.insert(e.solutions->instance);
+  for (const auto& e : published.entries)
+    if (selected(e, options, bound)) {
       PulledEntry pulled;
       pulled.entry = e;
       result.entries.push_back(std::move(pulled));
@@ -1016,6 +1028,25 @@ PullResult pull(const fs::path& store, std::string_view url, const PullOptions& 
   result.bytes += puller.received;
   result.seconds = std::chrono::duration<double>(Clock::now() - started).count();
   return result;
+}
+
+bool is_store_url(std::string_view source) {
+  return source.starts_with("http://") || source.starts_with("https://") ||
+         source.starts_with("file://");
+}
+
+fs::path store_cache(std::string_view url) {
+  while (url.size() > 1 && url.back() == '/') url.remove_suffix(1);
+  const auto key = sha256_hex(std::as_bytes(std::span(url.data(), url.size()))).substr(0, 16);
+  if (const char* dir = std::getenv("MOSB_STORE_CACHE"); dir && *dir) return fs::path(dir) / key;
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
+    return fs::path(xdg) / "mosb" / "stores" / key;
+  if (const char* home = std::getenv("HOME"); home && *home)
+    return fs::path(home) / ".cache" / "mosb" / "stores" / key;
+  throw Error(ErrorCode::invalid_argument,
+              "no place to pull " + std::string(url) +
+                  " into: set MOSB_STORE_CACHE, XDG_CACHE_HOME or HOME, or pull it with mosb "
+                  "store pull DIR URL and give DIR");
 }
 
 }  // namespace mosb

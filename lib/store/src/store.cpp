@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <cstring>
 #include <ctime>
+#include <iterator>
 #include <mutex>
 #include <optional>
 #include <set>
@@ -751,6 +752,35 @@ StoreInstance Store::instance(std::string_view name) const {
     out.view = out.reader.view(view);
     out.query_set = out.view->query_set;
   }
+  return out;
+}
+
+Store::References Store::references(const std::set<std::string>& instance_digests) const {
+  References out;
+  std::set<std::string> found;
+  for (const auto& e : manifest_.entries) {
+    if (!e.solutions || e.solutions->epsilon != "0" ||
+        !instance_digests.contains(e.solutions->instance))
+      continue;
+    const auto path = directory_ / e.file;
+    refuse_symlink(path);
+    std::error_code ec;
+    const auto size = fs::file_size(path, ec);
+    std::string differs;
+    if (ec)
+      differs = "cannot read: " + ec.message();
+    else if (size != e.size)
+      differs = std::to_string(size) + " bytes, the manifest says " + std::to_string(e.size);
+    else if (const auto sha = sha256_file(path); sha != e.sha256)
+      differs = "SHA-256 " + sha + ", the manifest says " + e.sha256;
+    if (!differs.empty())
+      throw Error(ErrorCode::damaged,
+                  path.string() + ": " + differs + "; not used as a reference (mosb store verify)");
+    out.files.push_back(path);
+    found.insert(e.solutions->instance);
+  }
+  std::set_difference(instance_digests.begin(), instance_digests.end(), found.begin(), found.end(),
+                      std::back_inserter(out.missing));
   return out;
 }
 

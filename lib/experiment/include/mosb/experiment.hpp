@@ -263,5 +263,15 @@ std::map<std::string, std::set<std::string>> result_views(const std::filesystem:
 // A reference directory's solution files (*.sol, sorted by name), or `path` itself when it is a
 // file (`--reference REFS/`).
 std::vector<std::filesystem::path> reference_files(const std::filesystem::path& path);
+// The references `source` holds for the instances of these content digests: a store (a directory
+// with a MANIFEST) gives its exact solution file of each, checked against its entry
+// (Store::references), and names in `missing` the instances it has none for; a solution file or
+// a directory of them gives every file (reference_files), `missing` empty.
+struct ReferenceFiles {
+  std::vector<std::filesystem::path> files;
+  std::vector<std::string> missing;  // content digests, sorted
+};
+ReferenceFiles reference_files_for(const std::filesystem::path& source,
+                                   const std::set<std::string>& instance_digests);
 
 }  // namespace mosb

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <functional>
 #include <optional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -56,6 +57,10 @@ struct PullOptions {
   std::vector<std::string> files;
   // Solution files (references) too, each placed once its instance is: after every instance.
   bool references = true;
+  // Not empty: only the solution files bound to instances of these content digests, and those
+  // instances (a solution file is checked against its instance): a published store's references
+  // of one's own instances (`eval --reference URL`).
+  std::set<std::string> references_of;
   unsigned jobs = 4;  // transfers at once
   // Unpack each packed entry into the store's cache once it is listed (Store::unpack), so that
   // Store::instance maps it at once.
@@ -101,5 +106,14 @@ struct PullResult {
 // If-Range. An entry that fails is refused (PullStatus::refused) and the others go on.
 PullResult pull(const std::filesystem::path& store, std::string_view url,
                 const PullOptions& options);
+
+// True for what pull() fetches from a server (http://, https://, file://), not a directory path.
+bool is_store_url(std::string_view source);
+
+// Where the store published at `url` is pulled to be read, not kept: $MOSB_STORE_CACHE/KEY, else
+// $XDG_CACHE_HOME/mosb/stores/KEY, else $HOME/.cache/mosb/stores/KEY, KEY the first 16 hex digits
+// of the SHA-256 of the URL without its trailing slashes. What `eval` and `report` pull a
+// published store's references into (`--reference URL`).
+std::filesystem::path store_cache(std::string_view url);
 
 }  // namespace mosb

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -166,6 +167,17 @@ class Store {
   // refused (mosb::Error naming it), never followed; a .cache this call made and could not fill is
   // removed again.
   StoreInstance instance(std::string_view name) const;
+
+  // The reference (the exact solution file, ε = 0) the store lists for each instance given by
+  // content digest, for every view and query set it has one of, each checked against its entry
+  // before it is returned (a regular file, not a symlink, of the listed size and SHA-256: bytes
+  // that are not the listed ones are never read as a reference; mosb::Error naming the file and
+  // `mosb store verify` otherwise). `missing`: the digests the store has no reference for.
+  struct References {
+    std::vector<std::filesystem::path> files;  // in manifest order
+    std::vector<std::string> missing;          // sorted
+  };
+  References references(const std::set<std::string>& instance_digests) const;
 
   // The unpacked copy DIR/.cache/FILE of the packed entry `file`, made as instance() makes it
   // (verified in full against the entry's digest, made again when it does not match), so the
