@@ -1,0 +1,295 @@
+#!/usr/bin/python3
+"""References in a store (spec/MANIFEST.md, "Solution files"): `store add` of solution files,
+`store verify` of their bindings, `store pull` of references after their instances (from Debian's
+nginx on 127.0.0.1, as test_pull serves stores), and `eval RESULTS --reference STORE|URL` against
+the table made from the local references. Every way a reference can be wrong is refused in one
+line naming the file, with nothing placed.
+
+    MOSB=build/release/tools/mosb EXAMPLES=build/release/examples \
+        /usr/bin/python3 tests/cli/test_published.py
+"""
+
+import json
+import os
+import shutil
+import subprocess
+import tempfile
+import unittest
+
+import mosbtest
+import test_pull
+from mosbtest import CliTest, read, run, setUpModule  # noqa: F401
+
+EXAMPLES = os.environ.get("EXAMPLES", "")
+TEMPLATE = "%s {instance} --view {view} --query {source} {target} --protocol"
+
+
+def ok(*args, cwd=None):
+    r = run(*args, cwd=cwd)
+    assert r.returncode == 0, r
+    return r
+
+
+class Published(CliTest):
+    """Once per class: a suite of four grids, an experiment of the example NAMOA* and BOA* on
+    it, the references of three of the four instances (the fourth has none), and an approximate
+    file (NAMOA* claiming ε = 0.1)."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.base = tempfile.mkdtemp(prefix="mosb-published-")
+        b = cls.base
+        ok("generate", "grid", "--suite", os.path.join(b, "suite"), "--sizes", "10,12", "--seed",
+           "1")
+        with open(os.path.join(b, "exp.toml"), "w") as f:
+            f.write('name = "t"\nstore = "%s"\nbenchmarks = ["Grid_2"]\n'
+                    'limits = { time = "20s" }\n'
+                    '[[solver]]\nname = "namoa"\ntemplate = "%s"\n'
+                    '[[solver]]\nname = "boa"\ntemplate = "%s"\n'
+                    % (os.path.join(b, "suite"), TEMPLATE % os.path.join(EXAMPLES, "namoa"),
+                       TEMPLATE % os.path.join(EXAMPLES, "boa_star")))
+        ok("experiment", "run", "exp.toml", "-o", "res", cwd=b)
+        ok("solutions", "reference", "res", "--solvers", "namoa,boa", "-o", "refs", cwd=b)
+        cls.instances = sorted(os.path.join(b, "suite", n) for n in os.listdir(os.path.join(
+            b, "suite")) if n.endswith(".mosb"))
+        cls.refs = sorted(os.path.join(b, "refs", n) for n in os.listdir(os.path.join(b, "refs")))
+        assert len(cls.instances) == 4 and len(cls.refs) == 4, (cls.instances, cls.refs)
+        first = cls.instances[0]
+        cls.approximate = os.path.join(b, "approx.sol")
+        ok("run", first, "--view", "Grid_2", "--solver", TEMPLATE % os.path.join(EXAMPLES, "namoa"),
+           "--solver-name", "namoa", "--epsilon", "0.1", "-o", cls.approximate)
+        cls.local = ok("eval", "res", "--reference", "refs", "--eps", "0,0.1", "--csv",
+                       cwd=b).stdout
+
+    @classmethod
+    def tearDownClass(cls):
+        shutil.rmtree(cls.base, ignore_errors=True)
+
+    def store(self, name="store", references=3):
+        """A store of the four instances and the first `references` references."""
+        path = self.path(name)
+        self.ok("store", "init", path)
+        self.ok("store", "add", path, *self.instances, *self.refs[:references])
+        return path
+
+    def manifest(self, store):
+        lines = read(os.path.join(store, "MANIFEST"), "r").splitlines()
+        return json.loads(lines[0]), [json.loads(x) for x in lines[1:]]
+
+    def eval_table(self, reference):
+        return self.ok("eval", os.path.join(self.base, "res"), "--reference", reference, "--eps",
+                       "0,0.1", "--csv")
+
+
+@unittest.skipUnless(os.path.isfile(os.path.join(EXAMPLES, "namoa")),
+                     mosbtest.MISSING + "the example solvers (EXAMPLES)")
+class InAStore(Published):
+    def test_references_are_listed_with_their_binding_and_verified(self):
+        store = self.store()
+        header, entries = self.manifest(store)
+        self.assertEqual(header, {"format": "mosb-manifest", "version": 2})
+        solutions = [e for e in entries if e.get("kind") == "solutions"]
+        self.assertEqual(len(solutions), 3)
+        digests = {e["digest"]: e for e in entries if "kind" not in e}
+        for e in solutions:
+            self.assertIn(e["instance"], digests)
+            self.assertEqual(e["benchmark"], digests[e["instance"]]["benchmark"])
+            self.assertEqual((e["epsilon"], e["solver"], e["solvers"]),
+                             ("0", "reference", ["namoa", "boa"]))
+            self.assertEqual(e["views"], ["Grid_2"])
+            self.assertEqual(sum(e["statuses"].values()), 1)
+        listed = json.loads(self.ok("store", "list", "--json", store).stdout)["entries"]
+        self.assertEqual(sorted(e["kind"] for e in listed), ["instance"] * 4 + ["solutions"] * 3)
+        self.assertIn("exact", self.ok("store", "list", store).stdout)
+        self.assertTrue(json.loads(self.ok("store", "verify", "--json", store).stdout)["ok"])
+        # The same files again are a retry: accepted, the MANIFEST unchanged.
+        before = read(os.path.join(store, "MANIFEST"))
+        self.ok("store", "add", store, *self.refs[:3])
+        self.assertEqual(read(os.path.join(store, "MANIFEST")), before)
+
+    def test_a_reference_without_its_instance_is_refused_and_nothing_placed(self):
+        store = self.path("s")
+        self.ok("store", "init", store)
+        before = sorted(os.listdir(store)), read(os.path.join(store, "MANIFEST"))
+        r = self.mosb("store", "add", store, self.instances[1], self.refs[0])
+        self.assert_one_line_error(r, self.refs[0], "which the store does not list")
+        self.assertEqual((sorted(os.listdir(store)), read(os.path.join(store, "MANIFEST"))),
+                         before)
+
+    def test_a_second_exact_file_of_one_binding_is_refused(self):
+        store = self.store()
+        # NAMOA*'s own exact fronts of the instance the first reference answers.
+        namoa = shutil.copy(os.path.join(self.base, "res", "cells", "namoa",
+                                         os.path.basename(self.refs[0])), self.path("namoa.sol"))
+        before = read(os.path.join(store, "MANIFEST"))
+        r = self.mosb("store", "add", store, namoa)
+        self.assert_one_line_error(r, "exact fronts of instance", "already holds")
+        self.assertEqual(read(os.path.join(store, "MANIFEST")), before)
+
+    def test_damaged_or_truncated_references_are_refused_and_nothing_placed(self):
+        data = read(self.refs[0])
+        meta = data.find(b"solution.instance_digest")
+        # Every class of byte the instance tests flip: header, section table, a payload (the
+        # statuses and fronts at the end), the metadata; and three truncations.
+        cases = {"header": 30, "table": 130, "payload": len(data) - 9, "metadata": meta + 3}
+        files = []
+        for what, at in cases.items():
+            bad = bytearray(data)
+            bad[at] ^= 0x01
+            files.append((what, self.write("bad/%s/%s" % (what, os.path.basename(self.refs[0])),
+                                           bytes(bad))))
+        for size in (0, 100, len(data) - 1):
+            files.append(("truncated to %d" % size,
+                          self.write("cut/%d/%s" % (size, os.path.basename(self.refs[0])),
+                                     data[:size])))
+        store = self.store(references=0)
+        before = read(os.path.join(store, "MANIFEST"))
+        for what, path in files:
+            with self.subTest(what):
+                r = self.mosb("store", "add", store, path)
+                self.assert_one_line_error(r, path)
+                self.assertEqual(read(os.path.join(store, "MANIFEST")), before)
+                self.assertNotIn(os.path.basename(path), os.listdir(store))
+
+    def test_store_verify_finds_a_changed_reference_and_an_unbound_one(self):
+        store = self.store()
+        name = os.path.basename(self.refs[0])
+        data = bytearray(read(os.path.join(store, name)))
+        data[-9] ^= 0x01
+        with open(os.path.join(store, name), "wb") as f:
+            f.write(data)
+        # A hand-edited MANIFEST that no longer lists the instance of the second reference.
+        header, entries = self.manifest(store)
+        second = next(e for e in entries if e["file"] == os.path.basename(self.refs[1]))
+        kept = [e for e in entries if e["digest"] != second["instance"]]
+        with open(os.path.join(store, "MANIFEST"), "w") as f:
+            for record in [header] + kept:
+                f.write(json.dumps(record, sort_keys=True, separators=(",", ":")) + "\n")
+        r = self.mosb("store", "verify", "--json", store)
+        self.assertEqual(r.returncode, 1, r)
+        problems = {f["file"]: sorted(p["kind"] for p in f["problems"])
+                    for f in json.loads(r.stdout)["files"] if f["problems"]}
+        self.assertEqual(problems[name], ["damaged", "wrong-sha256"])
+        self.assertEqual(problems[second["file"]], ["unbound"])
+        # eval refuses the changed file rather than reading it.
+        r = self.mosb("eval", os.path.join(self.base, "res"), "--reference", store)
+        self.assert_one_line_error(r, name, "not used as a reference")
+
+    def test_eval_against_a_store_is_the_table_of_the_local_references(self):
+        def body(text):  # the table without its caption, which names the source
+            return text.splitlines()[1:]
+        full = self.store("full", references=4)
+        r = self.eval_table(full)
+        self.assertEqual(body(r.stdout), body(self.local))
+        self.assertEqual(r.stderr, "")
+        # The fourth instance has no reference in this store: said, not skipped silently.
+        r = self.eval_table(self.store())
+        self.assertEqual(r.stderr.count("has no reference for"), 1, r.stderr)
+        self.assertIn(os.path.basename(self.instances[3]), r.stderr)
+        self.assertNotEqual(body(r.stdout), body(self.local))
+
+
+@unittest.skipUnless(os.path.isfile(os.path.join(EXAMPLES, "namoa")),
+                     mosbtest.MISSING + "the example solvers (EXAMPLES)")
+@unittest.skipIf(test_pull.NGINX is None, mosbtest.MISSING + "nginx is not installed "
+                 "(Debian package nginx-light; tools/install-deps.sh installs it)")
+class Served(Published):
+    def setUp(self):
+        super().setUp()
+        # nginx serves self.dir/www/ (the published store) at /pub/, as in test_pull.
+        self.published = self.store("www", references=4)
+        os.remove(os.path.join(self.published, ".lock"))
+        os.makedirs(self.path("tmp"))
+        self.port = test_pull.free_port()
+        with open(test_pull.NGINX_CONF) as f:
+            conf = f.read()
+        conf = conf.replace("@DIR@", self.dir).replace("@PORT@", str(self.port))
+        conf = conf.replace("@USER@", "user root;" if os.geteuid() == 0 else "")
+        with open(self.path("nginx.conf"), "w") as f:
+            f.write(conf)
+        nginx = subprocess.Popen(
+            [test_pull.NGINX, "-p", self.dir, "-e", self.path("error.log"), "-c",
+             self.path("nginx.conf")],
+            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        self.addCleanup(test_pull.stop, nginx)
+        test_pull.wait_for_port(self.port, nginx, "nginx")
+        self.url = "http://127.0.0.1:%d/pub/" % self.port
+        self.env = dict(os.environ, MOSB_STORE_CACHE=self.path("cache"))
+
+    def test_pulled_verified_and_evaluated_by_url_as_from_the_local_references(self):
+        store = self.path("pulled")
+        r = self.ok("store", "pull", store, self.url, "--json")
+        fetched = [e["file"] for e in json.loads(r.stdout)["fetched"]]
+        self.assertEqual(len(fetched), 8)
+        self.assertTrue(json.loads(self.ok("store", "verify", "--json", store).stdout)["ok"])
+        for name in fetched:
+            self.assertEqual(read(os.path.join(store, name)),
+                             read(os.path.join(self.published, name)), name)
+        # Graphs alone.
+        bare = self.path("bare")
+        r = self.ok("store", "pull", bare, self.url, "--no-references", "--json")
+        self.assertEqual(sorted(e["file"] for e in json.loads(r.stdout)["fetched"]),
+                         sorted(os.path.basename(p) for p in self.instances))
+        # eval by URL: the references of the results' instances pulled into the cache, checked,
+        # and the table equal to the one of the local references; a second eval fetches nothing.
+        r = self.ok("eval", os.path.join(self.base, "res"), "--reference", self.url, "--eps",
+                    "0,0.1", "--csv", env=self.env)
+        self.assertEqual(r.stdout.splitlines()[1:], self.local.splitlines()[1:])
+        self.assertIn("pulled 8 files", r.stderr)
+        again = self.ok("eval", os.path.join(self.base, "res"), "--reference", self.url, "--eps",
+                        "0,0.1", "--csv", env=self.env)
+        self.assertEqual(again.stdout, r.stdout)
+        self.assertEqual(again.stderr, "")
+
+    def test_a_published_manifest_that_lies_about_a_reference_is_refused(self):
+        header, entries = self.manifest(self.published)
+        name = os.path.basename(self.refs[0])
+        for what, edit, expected in (
+                ("an approximate file offered as exact", None, "describes other fronts"),
+                ("another epsilon", ("epsilon", "0.5"), "describes other fronts"),
+                ("an instance called a solution file", "kind", "lists as an instance")):
+            with self.subTest(what):
+                listed = [dict(e) for e in entries]
+                if edit is None:
+                    # approx.sol under the reference's name, listed with its own size, SHA-256
+                    # and digest (as a store of its own lists it), as the exact reference.
+                    own = self.path("own-%d" % len(what))
+                    self.ok("store", "init", own)
+                    self.ok("store", "add", own, self.instances[0], self.approximate)
+                    mine = next(x for x in self.manifest(own)[1] if x["file"] == "approx.sol")
+                    self.assertEqual(mine["epsilon"], "0.1")
+                    shutil.copy(self.approximate, os.path.join(self.published, name))
+                    e = next(x for x in listed if x["file"] == name)
+                    e.update({k: mine[k] for k in ("size", "sha256", "digest")})
+                elif edit == "kind":
+                    shutil.copy(self.refs[0], os.path.join(self.published, name))
+                    e = next(x for x in listed if x["file"] == name)
+                    del e["kind"]
+                else:
+                    shutil.copy(self.refs[0], os.path.join(self.published, name))
+                    e = next(x for x in listed if x["file"] == name)
+                    e[edit[0]] = edit[1]
+                with open(os.path.join(self.published, "MANIFEST"), "w") as f:
+                    for record in [header] + listed:
+                        f.write(json.dumps(record, sort_keys=True, separators=(",", ":")) + "\n")
+                store = self.path("pulled-%d" % len(what))
+                r = self.mosb("store", "pull", store, self.url)
+                self.assertEqual(r.returncode, 1, r)
+                refused = [x for x in r.stderr.splitlines() if x.startswith("mosb: refused")]
+                self.assertEqual(len(refused), 1, r.stderr)
+                self.assertIn(name, refused[0])
+                self.assertIn(expected, refused[0])
+                self.assertNotIn(name, os.listdir(store))
+
+    def test_a_manifest_listing_a_reference_twice_is_refused_before_any_fetch(self):
+        lines = read(os.path.join(self.published, "MANIFEST"), "r").splitlines()
+        twice = next(x for x in lines if '"kind":"solutions"' in x)
+        with open(os.path.join(self.published, "MANIFEST"), "w") as f:
+            f.write("\n".join(lines + [twice]) + "\n")
+        r = self.mosb("store", "pull", self.path("s"), self.url)
+        self.assert_one_line_error(r, "MANIFEST", "listed twice")
+        self.assertFalse(os.path.exists(self.path("s")))
+
+
+if __name__ == "__main__":
+    mosbtest.main()
