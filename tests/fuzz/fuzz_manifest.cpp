@@ -1,7 +1,9 @@
 // libFuzzer target: arbitrary bytes as a MANIFEST (a download, so untrusted): parse_manifest, and
-// serialize_manifest of what it accepts. Any outcome but success or a clean mosb::Error is a bug,
-// and so is an accepted file name that a terminal would not show as itself (the name rule,
-// spec/MANIFEST.md: escape_for_terminal may only double its backslashes).
+// serialize_manifest of what it accepts, which must parse back to the same solution entries. Any
+// outcome but success or a clean mosb::Error is a bug, and so is an accepted file name that a
+// terminal would not show as itself (the name rule, spec/MANIFEST.md: escape_for_terminal may only
+// double its backslashes).
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -19,7 +21,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       for (const char c : e.file) shown += c == '\\' ? std::string("\\\\") : std::string(1, c);
       if (mosb::escape_for_terminal(e.file) != shown) __builtin_trap();
     }
-    (void)mosb::serialize_manifest(manifest);
+    // A solution file's entry (version 2) reads back as it was written.
+    const auto again = mosb::parse_manifest(mosb::serialize_manifest(manifest), "again");
+    if (again.entries.size() != manifest.entries.size()) __builtin_trap();
+    for (std::size_t i = 0; i < again.entries.size(); ++i)
+      if (again.entries[i].solutions != manifest.entries[i].solutions) __builtin_trap();
   } catch (const mosb::Error&) {
   }
   return 0;

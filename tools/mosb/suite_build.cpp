@@ -25,12 +25,6 @@ struct SuiteBuildArgs {
   bool json = false;
 };
 
-std::string comma_separated(const std::vector<std::string>& names) {
-  std::string out;
-  for (const auto& name : names) out += (out.empty() ? "" : ", ") + name;
-  return out;
-}
-
 int run_suite_build(const SuiteBuildArgs& a) {
   if (a.no_generated && a.raw.empty()) throw UsageError("--no-generated needs --raw RAWDIR");
   std::vector<converters::SuiteInstance> instances;
@@ -41,9 +35,13 @@ int run_suite_build(const SuiteBuildArgs& a) {
     for (auto& instance : plan.instances) instances.push_back(std::move(instance));
     raw = std::move(plan.statuses);
   }
+  std::vector<std::pair<std::string, std::string>> unbuilt;
+  for (const auto& s : raw)
+    if (!s.missing.empty()) unbuilt.emplace_back(s.name, converters::raw_status_text(s));
   try {
-    instances = converters::select_suite_instances(std::move(instances), a.benchmarks);
+    instances = converters::select_suite_instances(std::move(instances), a.benchmarks, unbuilt);
   } catch (const Error& e) {
+    if (e.code() != ErrorCode::invalid_argument) throw;
     throw UsageError(e.what());
   }
   // Raw recipes left out by --benchmark are not reported as built.
@@ -56,11 +54,7 @@ int run_suite_build(const SuiteBuildArgs& a) {
   const auto entries = converters::run_suite(
       a.directory, instances, {a.threads, progress.callback(), suite_pack(!a.no_pack), a.replace});
   if (!a.json)
-    for (const auto& s : raw)
-      std::cout << s.name << ": "
-                << (s.missing.empty() ? std::string("built")
-                                      : "skipped: missing " + comma_separated(s.missing))
-                << '\n';
+    for (const auto& s : raw) std::cout << converters::raw_status_text(s) << '\n';
   return report_suite(a.directory, "suite", entries, a.json, [&](JsonWriter& out) {
     if (a.raw.empty()) return;
     out.key("raw").begin_array();
@@ -71,6 +65,7 @@ int run_suite_build(const SuiteBuildArgs& a) {
       out.key("missing").begin_array();
       for (const auto& m : s.missing) out.value(m);
       out.end_array();
+      out.key("source").value(s.source);
       out.end_object();
     }
     out.end_array();

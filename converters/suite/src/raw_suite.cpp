@@ -194,6 +194,7 @@ std::vector<RawRecipe> raw_recipes(const std::filesystem::path& raw_dir) {
   std::vector<RawRecipe> out;
   for (const auto& d : description::root().at("raw")) {
     const auto converter = description::text(d, "converter");
+    const auto first = out.size();
     if (converter == "dimacs")
       out.push_back(dimacs_recipe(d));
     else if (converter == "fmi")
@@ -204,10 +205,19 @@ std::vector<RawRecipe> raw_recipes(const std::filesystem::path& raw_dir) {
       out.push_back(roadmap_recipe(d));
     else
       throw Error("spec/suite.json (built in): unknown converter '" + converter + "'");
+    for (auto r = out.begin() + static_cast<std::ptrdiff_t>(first); r != out.end(); ++r)
+      r->source = description::text(d, "source");
   }
   std::sort(out.begin(), out.end(),
             [](const RawRecipe& a, const RawRecipe& b) { return a.name < b.name; });
   return out;
+}
+
+std::string raw_status_text(const RawStatus& status) {
+  if (status.missing.empty()) return status.name + ": built";
+  std::string missing;
+  for (const auto& name : status.missing) missing += (missing.empty() ? "" : ", ") + name;
+  return status.name + ": skipped: missing " + missing + " (from: " + status.source + ")";
 }
 
 RawPlan plan_raw_suite(const std::filesystem::path& raw_dir) {
@@ -216,7 +226,7 @@ RawPlan plan_raw_suite(const std::filesystem::path& raw_dir) {
     throw Error(raw_dir.string() + ": the raw-source directory does not exist");
   RawPlan plan;
   for (const auto& recipe : raw_recipes(raw_dir)) {
-    RawStatus status{recipe.name, {}};
+    RawStatus status{recipe.name, {}, recipe.source};
     std::vector<std::filesystem::path> paths;
     for (const auto& input : recipe.inputs) {
       std::filesystem::path found;

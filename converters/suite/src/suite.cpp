@@ -43,7 +43,8 @@ std::vector<ManifestEntry> kept_entries(const std::filesystem::path& directory,
     if (std::none_of(instances.begin(), instances.end(),
                      [&](const SuiteInstance& i) { return i.name + ".mosb" == entry.file; }))
       kept.emplace_back(entry, directory / entry.file);
-  const auto checks = check_files(kept, {options.threads, {}, false});
+  const auto checks =
+      check_files(kept, {options.threads, {}, false}, instance_paths(manifest, directory));
   std::vector<ManifestEntry> out;
   for (std::size_t i = 0; i < checks.size(); ++i) {
     if (!checks[i].ok())
@@ -59,20 +60,29 @@ std::vector<ManifestEntry> kept_entries(const std::filesystem::path& directory,
 
 }  // namespace
 
-std::vector<SuiteInstance> select_suite_instances(std::vector<SuiteInstance> instances,
-                                                  const std::vector<std::string>& patterns) {
+std::vector<SuiteInstance> select_suite_instances(
+    std::vector<SuiteInstance> instances, const std::vector<std::string>& patterns,
+    const std::vector<std::pair<std::string, std::string>>& unbuilt) {
   if (patterns.empty()) return instances;
   const auto matches = [](const std::string& pattern, const SuiteInstance& i) {
     return ::fnmatch(pattern.c_str(), i.name.c_str(), 0) == 0;
   };
-  for (const auto& pattern : patterns)
-    if (std::none_of(instances.begin(), instances.end(),
-                     [&](const SuiteInstance& i) { return matches(pattern, i); }))
-      throw Error(
-          ErrorCode::invalid_argument,
-          "--benchmark '" + pattern +
-              "' matches no benchmark to build (the generated ones, and the raw-source ones whose "
-              "inputs are present)");
+  for (const auto& pattern : patterns) {
+    if (std::any_of(instances.begin(), instances.end(),
+                    [&](const SuiteInstance& i) { return matches(pattern, i); }))
+      continue;
+    std::string why;
+    for (const auto& [name, reason] : unbuilt)
+      if (::fnmatch(pattern.c_str(), name.c_str(), 0) == 0)
+        why += (why.empty() ? "" : "; ") + reason;
+    if (!why.empty())
+      throw Error(ErrorCode::not_found,
+                  "--benchmark '" + pattern + "' matches no benchmark that can be built: " + why);
+    throw Error(ErrorCode::invalid_argument,
+                "--benchmark '" + pattern +
+                    "' matches no benchmark to build (the generated ones, and the raw-source ones "
+                    "whose inputs are present)");
+  }
   std::erase_if(instances, [&](const SuiteInstance& i) {
     return std::none_of(patterns.begin(), patterns.end(),
                         [&](const std::string& p) { return matches(p, i); });

@@ -80,9 +80,10 @@ std::vector<PlannedInstance> planned_instances(const Experiment& e) {
     try {
       const auto store = Store::open(e.store);
       for (const auto& entry : store.manifest().entries)
-        out.push_back(planned_instance(
-            entry.packed ? store.unpack(entry.file) : store.directory() / entry.file,
-            (store.directory() / entry.file).string()));
+        if (!entry.solutions)  // a reference is not an instance to run
+          out.push_back(planned_instance(
+              entry.packed ? store.unpack(entry.file) : store.directory() / entry.file,
+              (store.directory() / entry.file).string()));
     } catch (const Error& err) {
       refuse(e, e.store_source, err.what());
     }

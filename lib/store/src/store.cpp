@@ -299,8 +299,8 @@ std::pair<GraphReader, fs::path> open_packed(const fs::path& directory, const Ma
   return {GraphReader::open(copy, VerifyLevel::full), copy};
 }
 
-// The instance entries of a manifest, by content digest, in `directory`; a symlink is left out
-// (the store follows none), so a solution file bound to it is reported unbound.
+}  // namespace
+
 InstancePaths instance_paths(const Manifest& manifest, const fs::path& directory) {
   InstancePaths out;
   for (const auto& e : manifest.entries) {
@@ -310,8 +310,6 @@ InstancePaths instance_paths(const Manifest& manifest, const fs::path& directory
   }
   return out;
 }
-
-}  // namespace
 
 std::vector<FileCheck> check_files(const std::vector<std::pair<ManifestEntry, fs::path>>& files,
                                    const CheckOptions& options, const InstancePaths& instances) {
@@ -710,18 +708,18 @@ StoreInstance Store::instance(std::string_view name) const {
     const auto benchmark = name.substr(0, slash);
     view = std::string(name.substr(slash + 1));
     for (const auto& e : manifest_.entries)
-      if (e.benchmark == benchmark &&
+      if (!e.solutions && e.benchmark == benchmark &&
           std::find(e.views.begin(), e.views.end(), view) != e.views.end())
         candidates.push_back(e.file), found = &e;
   } else {
     for (const auto& e : manifest_.entries)
-      if (std::find(e.views.begin(), e.views.end(), name) != e.views.end())
+      if (!e.solutions && std::find(e.views.begin(), e.views.end(), name) != e.views.end())
         candidates.push_back(e.file), found = &e;
     if (!candidates.empty()) {
       view = std::string(name);
     } else {
       for (const auto& e : manifest_.entries)
-        if (e.benchmark == name) candidates.push_back(e.file), found = &e;
+        if (!e.solutions && e.benchmark == name) candidates.push_back(e.file), found = &e;
       if (found != nullptr && candidates.size() == 1 && found->views.size() == 1)
         view = found->views.front();
     }

@@ -48,6 +48,9 @@ struct CheckOptions {
 
 // Where the instances that solution files bind to are: content digest -> path.
 using InstancePaths = std::map<std::string, std::filesystem::path>;
+// The instance entries of a manifest, by content digest, in `directory`; a symlink is left out
+// (a store follows none), so a solution file bound to it is reported unbound.
+InstancePaths instance_paths(const Manifest& manifest, const std::filesystem::path& directory);
 
 // Checks each (entry, path) pair: existence, size, SHA-256 (when listed), readability, its content
 // digest, and that it is a mosb file passing verify --level full (a packed file is unpacked in

@@ -19,7 +19,8 @@ struct RawInput {
 };
 
 struct RawRecipe {
-  std::string name;  // the file is name + ".mosb"
+  std::string name;    // the file is name + ".mosb"
+  std::string source;  // where its inputs come from (spec/suite.json `source`)
   std::vector<RawInput> inputs;
   // Builds the instance from the path of every input, in `inputs` order (empty for an absent
   // optional input).
@@ -37,7 +38,11 @@ std::vector<RawRecipe> raw_recipes(const std::filesystem::path& raw_dir);
 struct RawStatus {
   std::string name;                  // the recipe's file name without ".mosb"
   std::vector<std::string> missing;  // required inputs absent from RAWDIR; empty: built
+  std::string source;                // where the inputs come from (RawRecipe::source)
 };
+
+// "NAME: built", or "NAME: skipped: missing A, B (from: SOURCE)": how a recipe's status is said.
+std::string raw_status_text(const RawStatus& status);
 
 struct RawPlan {
   std::vector<SuiteInstance> instances;  // the recipes whose required inputs are all present

@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -28,10 +29,13 @@ struct SuiteInstance {
 };
 
 // The instances whose name matches one of the shell patterns (fnmatch: *, ?, [...]), in their
-// order; all of them for no pattern. Throws mosb::Error (invalid_argument) naming a pattern that
-// matches none, so a typo never builds an empty suite silently.
-std::vector<SuiteInstance> select_suite_instances(std::vector<SuiteInstance> instances,
-                                                  const std::vector<std::string>& patterns);
+// order; all of them for no pattern. Throws mosb::Error naming a pattern that matches none, so a
+// typo never builds an empty suite silently: ErrorCode::not_found with what `unbuilt` says of the
+// benchmarks it matches there (name, then why it cannot be built: its missing raw inputs and
+// where they come from), else invalid_argument.
+std::vector<SuiteInstance> select_suite_instances(
+    std::vector<SuiteInstance> instances, const std::vector<std::string>& patterns,
+    const std::vector<std::pair<std::string, std::string>>& unbuilt = {});
 
 struct SuiteEntry {
   std::string name;
