@@ -17,7 +17,7 @@ import os
 import shutil
 
 import mosbtest
-from mosbtest import DATA, CliTest, read, run, setUpModule  # noqa: F401
+from mosbtest import DATA, REPOSITORY, CliTest, read, run, setUpModule  # noqa: F401
 
 # FMI multi-cost layout (spec/families/ger.md): 4 nodes, 5 edges of 10 costs.
 FMI = """# Id : 0
@@ -106,10 +106,24 @@ class RawSuite(CliTest):
         lines = r.stdout.splitlines()
         for name in ("DIMACS-FLA", "GER_10", "Panda-RRG_2", "Panda-RRG_8"):
             self.assertIn(name + ": built", lines)
+        # Each skipped recipe names its missing inputs and where they come from.
         self.assertIn("DIMACS-NY: skipped: missing USA-road-d.NY.gr.gz, USA-road-t.NY.gr.gz, "
-                      "USA-road-d.NY.co.gz", lines)
-        self.assertIn("Games-GUARDS-random512-20-1: skipped: missing random512-20-1.map, "
-                      "random512-20-1.guards", lines)
+                      "USA-road-d.NY.co.gz (from: the .gr and .co files: the 9th DIMACS "
+                      "Implementation Challenge (http://www.diag.uniroma1.it/challenge9/"
+                      "download.shtml); NY.elev: no public download (spec/families/road.md section "
+                      "1); USA-road-NY-queries: github.com/CRL-Technion/path-pair-graph-search)",
+                      lines)
+        guards = next(x for x in lines if x.startswith("Games-GUARDS-random512-20-1: "))
+        self.assertTrue(guards.startswith("Games-GUARDS-random512-20-1: skipped: missing "
+                                          "random512-20-1.map, random512-20-1.guards (from: "),
+                        guards)
+        # A selection that matches only recipes without their inputs says which, exit 1.
+        r = self.mosb("suite", "build", self.path("none"), "--raw", self.path("raw"),
+                      "--no-generated", "--benchmark", "Games-*")
+        self.assert_one_line_error(r, "--benchmark 'Games-*' matches no benchmark that can be "
+                                   "built: Games-GUARDS-random512-20-1: skipped: missing "
+                                   "random512-20-1.map, random512-20-1.guards (from: ")
+        self.assertFalse(os.path.exists(self.path("none", "MANIFEST")))
         expected = {
             "GER_10": self.converted("GER_10", "fmi", self.r("GER_10.txt"), "--costs", "10",
                                      "--name", "GER_10"),
@@ -157,12 +171,16 @@ class RawSuite(CliTest):
         self.assertEqual(read(self.path("packed", "MANIFEST")), first)
 
     def test_json_report(self):
+        def suite_source(name):  # the recipe's `source` in spec/suite.json
+            with open(os.path.join(REPOSITORY, "spec", "suite.json"), encoding="utf-8") as f:
+                return next(r["source"] for r in json.load(f)["raw"] if r["name"] == name)
         self.write_raw("GER_10.txt", FMI)
         r = self.build("out", "--json")
         self.assertEqual(r.returncode, 0, r)
         report = json.loads(r.stdout)
         raw = {s["name"]: s for s in report["raw"]}
-        self.assertEqual(raw["GER_10"], {"name": "GER_10", "status": "built", "missing": []})
+        self.assertEqual(raw["GER_10"], {"name": "GER_10", "status": "built", "missing": [],
+                                         "source": suite_source("GER_10")})
         self.assertEqual(raw["Panda-RRG_2"]["status"], "skipped")
         self.assertEqual(raw["Panda-RRG_2"]["missing"], ["Panda-RRG_2.graphml"])
         self.assertEqual([i["name"] for i in report["instances"]], ["GER_10"])
