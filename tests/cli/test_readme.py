@@ -105,6 +105,8 @@ class Readme(unittest.TestCase):
         self.dir = tempfile.mkdtemp(prefix="mosb-readme-")
         self.env = dict(os.environ, PATH=os.path.join(BUILD, "tools") + os.pathsep + os.environ["PATH"])
         self.env.pop("MOSB_ISOLATION", None)  # the README's commands run as a user's do: sealed
+        # `eval --reference URL` pulls into this scratch directory, not the user's cache.
+        self.env["MOSB_STORE_CACHE"] = os.path.join(self.dir, "store-cache")
 
     def tearDown(self):
         shutil.rmtree(self.dir, ignore_errors=True)

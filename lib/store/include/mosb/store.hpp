@@ -142,6 +142,11 @@ class Store {
     // per transfer thread), or none (each check maps its own).
     VerifyWorkspace* check_workspace = nullptr;
   };
+  // Solution files (file kind 2) are taken too, after the instances of the same add: each is
+  // checked as verify_solutions checks it against its instance, which the store lists or the
+  // same add brings (else refused), gets its instance's benchmark, and is stored as it is (`pack`
+  // packs instances only); a second exact file (ε = 0) of one instance, view and query set is
+  // refused. With `expect`, a solution file's described entry must equal the expected one.
   // Copies (or moves, or packs) each file in under its base name, each through mosb::AtomicFile,
   // then rewrites the manifest atomically, last. Refused before anything is written: a reserved
   // or invalid base name, two files of one name, a file that does not open as a mosb file or fails
