@@ -53,12 +53,11 @@ CLI::Validator duration() {
 }
 
 CLI::Validator reference_source() {
-  return CLI::Validator(
-      [](std::string& text) -> std::string {
-        if (is_store_url(text)) return {};
-        return CLI::ExistingPath(text);
-      },
-      "PATH|URL");
+  return {[](std::string& text) -> std::string {
+            if (is_store_url(text)) return {};
+            return CLI::ExistingPath(text);
+          },
+          "PATH|URL", "path or URL"};
 }
 
 CLI::Validator memory_size() {

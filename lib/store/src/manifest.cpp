@@ -137,7 +137,7 @@ ManifestEntry entry_from_json(const Json& object) {
   if (kind == "solutions")
     e.solutions = solutions_from_json(object);
   else if (kind != "instance")
-    throw LineError{"kind '" + kind + "' is neither \"instance\" nor \"solutions\""};
+    throw LineError{"kind '" + kind + R"(' is neither "instance" nor "solutions")"};
   return e;
 }
 
@@ -307,11 +307,9 @@ std::vector<SourceInput> source_inputs(const Metadata& metadata, const std::stri
 
 namespace {
 
-// The entry of a solution file: its binding and summary, read from the file (payload unchecked:
-// the store checks it before it lists the file).
-ManifestEntry describe_solutions(const std::filesystem::path& path,
-                                 std::optional<std::string> sha256) {
-  const auto reader = SolutionReader::open(path);
+// What every file kind's entry says of its container: name, size, SHA-256, digest, version.
+ManifestEntry container_entry(const ContainerReader& reader, const std::filesystem::path& path,
+                              std::optional<std::string> sha256) {
   ManifestEntry e;
   e.file = path.filename().string();
   e.size = reader.bytes().size();
@@ -319,6 +317,15 @@ ManifestEntry describe_solutions(const std::filesystem::path& path,
   e.digest = reader.digest();
   e.format_version = std::to_string(reader.header().version_major) + "." +
                      std::to_string(reader.header().version_minor);
+  return e;
+}
+
+// The entry of a solution file: its binding and summary, read from the file (payload unchecked:
+// the store checks it before it lists the file).
+ManifestEntry describe_solutions(const std::filesystem::path& path,
+                                 std::optional<std::string> sha256) {
+  const auto reader = SolutionReader::open(path);
+  auto e = container_entry(reader, path, std::move(sha256));
   if (!reader.view_name().empty()) e.views.push_back(reader.view_name());
   e.query_sets.push_back(reader.query_set());
   SolutionsEntry s;
@@ -349,13 +356,7 @@ ManifestEntry describe_file(const std::filesystem::path& path, std::optional<std
   if (stated_file_kind(map_file(path).bytes) == format::FileKind::solutions)
     return describe_solutions(path, std::move(sha256));
   const auto reader = GraphReader::open(path);
-  ManifestEntry e;
-  e.file = path.filename().string();
-  e.size = reader.bytes().size();
-  e.sha256 = sha256 ? std::move(*sha256) : sha256_file(path);
-  e.digest = reader.digest();
-  e.format_version = std::to_string(reader.header().version_major) + "." +
-                     std::to_string(reader.header().version_minor);
+  auto e = container_entry(reader, path, std::move(sha256));
   e.packed = reader.header().required_features != 0;
   for (const auto* s : reader.all(format::SectionKind::queries)) e.query_sets.push_back(s->name);
   std::sort(e.query_sets.begin(), e.query_sets.end());
