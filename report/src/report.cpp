@@ -304,8 +304,9 @@ void bind_files(Context& c) {
       c.solver_names.push_back(name);
   }
   c.solver_keys = unique_keys(c.solver_names);
+  // The solvers' runtimes decide; without solvers, the references' (their first solver's).
   std::vector<const SolutionReader*> files;
-  for (const auto& f : c.solutions) files.push_back(&f);
+  for (const auto& f : c.solutions.empty() ? c.references : c.solutions) files.push_back(&f);
   c.runtime = choose_runtime(files, c.options.runtime);
   c.runtime_text = runtime_caption(c.runtime, files);
   const auto& baseline = c.options.baseline;

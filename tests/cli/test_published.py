@@ -191,6 +191,69 @@ class InAStore(Published):
 
 @unittest.skipUnless(os.path.isfile(os.path.join(EXAMPLES, "namoa")),
                      mosbtest.MISSING + "the example solvers (EXAMPLES)")
+class Released(Published):
+    def release(self, name, references=None):
+        return self.mosb("suite", "release", os.path.join(self.base, "res"), "--references",
+                         references or os.path.join(self.base, "refs"), "-o", self.path(name))
+
+    def test_a_release_is_a_verified_store_with_its_summary_and_readme_and_reproducible(self):
+        r = self.release("rel")
+        self.assertEqual(r.returncode, 0, r)
+        self.assertIn("4 instances, 4 references", r.stdout)
+        header, entries = self.manifest(self.path("rel"))
+        self.assertEqual(header["version"], 2)
+        self.assertTrue(all(e["packed"] for e in entries if "kind" not in e))
+        self.assertEqual(sum(1 for e in entries if e.get("kind") == "solutions"), 4)
+        self.assertTrue(json.loads(self.ok("store", "verify", "--json",
+                                           self.path("rel")).stdout)["ok"])
+        # SUMMARY.csv is the report's suite table of the same results and references.
+        self.ok("report", os.path.join(self.base, "res"), "--reference",
+                os.path.join(self.base, "refs"), "-o", self.path("r.html"), "--csv",
+                self.path("tables"))
+        self.assertEqual(read(self.path("rel", "SUMMARY.csv")),
+                         read(self.path("tables", "suite.csv")))
+        text = read(self.path("rel", "README.md"), "r")
+        for expected in ("# t: instances and reference fronts", "Limits per query: `time=20s",
+                         "Solver `namoa`", "Solver `boa`", "executable SHA-256",
+                         "exact solvers namoa, boa where they agree",
+                         "per-query statistics of namoa", "- Machine: ", "4 instances"):
+            self.assertIn(expected, text)
+        # The same inputs give the same bytes.
+        self.assertEqual(self.release("again").returncode, 0)
+        for name in sorted(os.listdir(self.path("rel"))):
+            self.assertEqual(read(self.path("rel", name)), read(self.path("again", name)), name)
+        # An existing, non-empty directory is refused.
+        self.assert_one_line_error(self.release("rel"), "exists and is not empty")
+
+    def test_an_approximate_or_foreign_reference_is_refused_before_anything_is_written(self):
+        self.assert_one_line_error(self.release("approx", self.approximate), "approx.sol",
+                                   "claims epsilon 0.1")
+        self.assertFalse(os.path.exists(self.path("approx")))
+        # A reference of an instance the experiment did not run.
+        ok("generate", "grid", "--width", "5", "--height", "5", "--seed", "9", "-o",
+           self.path("other.mosb"))
+        ok("run", self.path("other.mosb"), "--view", "Grid_2", "--solver",
+           TEMPLATE % os.path.join(EXAMPLES, "namoa"), "--solver-name", "namoa", "-o",
+           self.path("other.sol"))
+        self.assert_one_line_error(self.release("foreign", self.path("other.sol")), "other.sol",
+                                   "which the experiment did not run")
+        self.assertFalse(os.path.exists(self.path("foreign")))
+
+    def test_an_instance_left_without_a_reference_is_said(self):
+        refs = self.path("three")
+        os.makedirs(refs)
+        for path in self.refs[:3]:
+            shutil.copy(path, refs)
+        r = self.release("rel", refs)
+        self.assertEqual(r.returncode, 0, r)
+        missing = os.path.basename(self.instances[3])
+        self.assertIn("mosb: note: %s has no reference" % missing, r.stderr)
+        self.assertIn("Instances without a reference: `%s`" % missing,
+                      read(self.path("rel", "README.md"), "r"))
+
+
+@unittest.skipUnless(os.path.isfile(os.path.join(EXAMPLES, "namoa")),
+                     mosbtest.MISSING + "the example solvers (EXAMPLES)")
 @unittest.skipIf(test_pull.NGINX is None, mosbtest.MISSING + "nginx is not installed "
                  "(Debian package nginx-light; tools/install-deps.sh installs it)")
 class Served(Published):

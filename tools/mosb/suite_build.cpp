@@ -1,5 +1,7 @@
 // `mosb suite build DIR [--raw RAWDIR]`: every benchmark of the paper that can be generated here,
-// every raw-source benchmark whose inputs RAWDIR holds, and their MANIFEST.
+// every raw-source benchmark whose inputs RAWDIR holds, and their MANIFEST. `mosb suite release
+// RESULTS --references REFS -o STORE`: an experiment's instances and references as a published
+// store (mosb::pages::release_suite).
 #include <CLI/CLI.hpp>
 #include <iostream>
 #include <memory>
@@ -8,6 +10,8 @@
 #include "json_writer.hpp"
 #include "mosb/converters/raw_suite.hpp"
 #include "mosb/converters/suite.hpp"
+#include "mosb/internal/utf8.hpp"
+#include "mosb/report/release.hpp"
 #include "terminal_progress.hpp"
 
 namespace mosb::cli {
@@ -72,6 +76,26 @@ int run_suite_build(const SuiteBuildArgs& a) {
   });
 }
 
+struct SuiteReleaseArgs {
+  std::string results, references, output;
+};
+
+int run_suite_release(const SuiteReleaseArgs& a) {
+  TerminalProgress progress;
+  pages::ReleaseOptions options;
+  options.pack = *suite_pack(true);
+  options.progress = progress.callback();
+  const auto release = pages::release_suite(a.results, a.references, a.output, options);
+  std::size_t references = 0;
+  for (const auto& e : release.entries) references += e.solutions ? 1 : 0;
+  std::cout << "wrote " << escape_for_terminal(a.output) << ": "
+            << release.entries.size() - references << " instances, " << references
+            << " references, MANIFEST, " << kStoreSummary << ", " << kStoreReadme << '\n';
+  for (const auto& file : release.without_reference)
+    std::cerr << "mosb: note: " << escape_for_terminal(file) << " has no reference\n";
+  return 0;
+}
+
 }  // namespace
 
 Command add_suite(CLI::App& app) {
@@ -112,7 +136,23 @@ Command add_suite(CLI::App& app) {
                   "MANIFEST, keeping, after checking them, the entries it lists and this build "
                   "does not rebuild)");
   add_json_flag(build, args->json);
-  return group(suite, {{build, [args] { return run_suite_build(*args); }}});
+  auto* release = suite->add_subcommand(
+      "release",
+      "Write an experiment's instances (packed) and exact references into a new store to publish, "
+      "with SUMMARY.csv (the suite table) and README.md (the protocol)");
+  auto release_args = std::make_shared<SuiteReleaseArgs>();
+  release->add_option("RESULTS", release_args->results, "the experiment's results directory")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  release
+      ->add_option("--references", release_args->references,
+                   "the references (mosb solutions reference -o REFS), a directory or a file")
+      ->required()
+      ->check(CLI::ExistingPath);
+  release->add_option("-o,--output", release_args->output, "the new store (absent or empty)")
+      ->required();
+  return group(suite, {{build, [args] { return run_suite_build(*args); }},
+                       {release, [release_args] { return run_suite_release(*release_args); }}});
 }
 
 }  // namespace mosb::cli

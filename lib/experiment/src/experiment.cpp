@@ -558,6 +558,16 @@ RecordedRun recorded_run(const fs::path& results) {
   if (const auto args = plan.find("arguments"); args != plan.end() && args->is_array())
     for (const auto& a : *args)
       if (a.is_string()) run.arguments.push_back(a.get<std::string>());
+  const auto text = [](const Json& object, const char* key) {
+    const auto it = object.find(key);
+    return it != object.end() && it->is_string() ? it->get<std::string>() : std::string();
+  };
+  run.name = text(plan, "name");
+  run.limits = text(plan, "limits");
+  if (const auto solvers = plan.find("solvers"); solvers != plan.end() && solvers->is_array())
+    for (const auto& s : *solvers)
+      if (s.is_object())
+        run.solvers.push_back({text(s, "name"), text(s, "binding"), text(s, "executable_sha256")});
   return run;
 }
 

@@ -185,7 +185,10 @@ void write_reference(std::span<const SolutionReader* const> files,
   // (NWMOA's runtime, expansions, memory): here the first solver named, on the queries it
   // completed with the reference's status. Another solver's figures never fill a gap.
   const SolutionReader* statistics_of = by_solver.front();
-  if (statistics_of) info.parameters["statistics"] = options.solvers.front();
+  if (statistics_of) {
+    info.parameters["statistics"] = options.solvers.front();
+    info.machine = statistics_of->solver().machine;  // where those statistics were measured
+  }
   writer.set_solver(std::move(info));
   std::vector<double> costs;
   for (const auto& q : validation.queries) {

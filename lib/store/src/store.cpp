@@ -396,7 +396,8 @@ std::vector<SourceCheck> check_sources(const GraphReader& instance, const fs::pa
 }
 
 bool is_reserved_store_name(std::string_view name) {
-  return name == kManifestName || name.starts_with('.');
+  return name == kManifestName || name == kStoreReadme || name == kStoreSummary ||
+         name.starts_with('.');
 }
 
 namespace {

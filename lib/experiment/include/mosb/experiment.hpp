@@ -241,11 +241,19 @@ std::uint64_t merge_experiment_results(const ExperimentPlan& plan,
                                        const std::filesystem::path& results,
                                        const std::vector<std::filesystem::path>& parts);
 
-// The experiment file the last run of `results` read (absolute) and its command line's narrowing,
-// as results/experiment.json records them; an empty file when it records none.
+// The experiment file the last run of `results` read (absolute), its command line's narrowing, its
+// name, limits and solvers, as results/experiment.json records them; an empty file when it records
+// none.
 struct RecordedRun {
   std::string file;
   std::vector<std::string> arguments;
+  // What the plan recorded of the experiment: its name, limits ("time=24h memory=..."; per
+  // benchmark limits follow) and each solver as it ran (empty for an older experiment.json).
+  struct Solver {
+    std::string name, binding, executable_sha256;
+  };
+  std::string name, limits;
+  std::vector<Solver> solvers;
 };
 RecordedRun recorded_run(const std::filesystem::path& results);
 // The solution files of a results directory (its MANIFEST's, in the plan's cell order), or `path`

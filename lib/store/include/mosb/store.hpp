@@ -89,9 +89,14 @@ inline constexpr std::string_view kCacheDirectory = ".cache";  // unpacked copie
 // (the rule of AtomicFile's stale temporaries).
 inline constexpr std::string_view kStagingDirectory = ".staging";
 
-// True for the names a store keeps for itself, which no entry may have: MANIFEST and every name
-// starting with '.' (the MANIFEST's and the entries' temporaries `.NAME.tmp-PID-XXXXXX`, .cache,
-// .staging, the writers' lock .lock, and whatever a later version adds).
+// A released store's description for people and its summary for programs (`suite release`).
+inline constexpr std::string_view kStoreReadme = "README.md";
+inline constexpr std::string_view kStoreSummary = "SUMMARY.csv";
+
+// True for the names a store keeps for itself, which no entry may have: MANIFEST, README.md and
+// SUMMARY.csv, and every name starting with '.' (the MANIFEST's and the entries' temporaries
+// `.NAME.tmp-PID-XXXXXX`, .cache, .staging, the writers' lock .lock, and whatever a later version
+// adds).
 bool is_reserved_store_name(std::string_view name);
 
 // A store's entry resolved for a benchmark: the reader, the file and the view to use.
