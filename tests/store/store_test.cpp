@@ -95,8 +95,13 @@ TEST_CASE(
   ManifestEntry reference = instance;
   reference.file = "g.ref.sol";
   reference.digest = std::string(32, 'c');
-  reference.solutions = SolutionsEntry{
-      instance.digest, "0", "reference", {"namoa", "ltmoa"}, {{"solved", 9}, {"timeout", 1}}, 1234};
+  reference.solutions = SolutionsEntry{instance.digest,
+                                       "0",
+                                       "reference",
+                                       {"namoa", "ltmoa"},
+                                       {{"solved", 9}, {"timeout", 1}},
+                                       1234,
+                                       {"expanded", "runtime_seconds"}};
   const auto text = serialize_manifest(Manifest{{instance, reference}, false});
   CHECK(text.starts_with("{\"format\":\"mosb-manifest\",\"version\":2}\n"));
   CHECK(text.find("\"kind\":\"solutions\"") != std::string::npos);

@@ -79,6 +79,9 @@ void write_entry(JsonWriter& json, const ManifestEntry& e) {
     for (const auto& [status, count] : s->statuses) json.key(status).value(count);
     json.end_object();
     json.key("vectors").value(s->vectors);
+    json.key("statistics").begin_array();
+    for (const auto& name : s->statistics) json.value(name);
+    json.end_array();
   }
   json.end_object();
 }

@@ -50,6 +50,7 @@ Json to_json(const ManifestEntry& e) {
     out["solvers"] = s->solvers;
     out["statuses"] = s->statuses;
     out["vectors"] = s->vectors;
+    out["statistics"] = s->statistics;
   }
   return out;
 }
@@ -102,6 +103,7 @@ SolutionsEntry solutions_from_json(const Json& object) {
     }
   }
   s.vectors = field<std::uint64_t>(object, "vectors", false);
+  s.statistics = field<std::vector<std::string>>(object, "statistics", false);
   return s;
 }
 
@@ -346,6 +348,9 @@ ManifestEntry describe_solutions(const std::filesystem::path& path,
   for (std::uint64_t q = 0; q < reader.query_count(); ++q)
     ++s.statuses[std::string(to_string(reader.status(q)))];
   s.vectors = reader.vector_count();
+  for (const auto statistic : kStatistics)
+    if (reader.has_statistic(statistic)) s.statistics.emplace_back(to_string(statistic));
+  std::sort(s.statistics.begin(), s.statistics.end());
   e.solutions = std::move(s);
   return e;
 }

@@ -33,6 +33,8 @@ struct SolutionsEntry {
   std::vector<std::string> solvers;
   std::map<std::string, std::uint64_t> statuses;  // query count per status name, those present
   std::uint64_t vectors = 0;                      // F: the vectors of every front together
+  // The per-query statistics the file carries (runtime_seconds, expanded, ...), sorted by name.
+  std::vector<std::string> statistics;
   bool operator==(const SolutionsEntry&) const = default;
 };
 
