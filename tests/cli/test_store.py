@@ -546,13 +546,14 @@ class Safety(Base):
         os.makedirs(self.path("in"))
         before = self.snapshot(store)
         for name in ("MANIFEST", ".MANIFEST.tmp-123-abcdef", ".cache", ".staging", ".lock",
-                     ".hidden.mosb"):
+                     ".hidden.mosb", "README.md", "SUMMARY.csv"):
             source = grid(self.path("in", name), 4)
             for options in ([], ["--move"], ["--pack"]):
                 with self.subTest(name=name, options=options):
                     r = self.mosb("store", "add", *options, store, source)
                     self.assert_one_line_error(r, source, "cannot be added as '%s'" % name,
-                                               "keeps MANIFEST and names starting with '.'")
+                                               "keeps MANIFEST, README.md, SUMMARY.csv and names "
+                                               "starting with '.'")
                     self.assertEqual(self.snapshot(store), before)
                     self.assertTrue(os.path.exists(source))
             os.remove(source)

@@ -786,6 +786,9 @@ ExperimentResult run_experiment(const ExperimentPlan& plan, const fs::path& resu
   const auto started = std::chrono::steady_clock::now();
   std::optional<Store> store;
   if (!plan.experiment.store.empty()) store = Store::open(plan.experiment.store);
+  // Each instance is opened (and a packed entry's copy checked) once per run, not once per cell:
+  // its cells share the reader, whose mapping stays as long as the run.
+  std::map<std::string, std::pair<fs::path, GraphReader>> opened;
   for (std::size_t c = 0; c < plan.cells.size() && !stop.load(); ++c) {
     if (done[c]) continue;
     const auto& cell = plan.cells[c];
@@ -793,12 +796,16 @@ ExperimentResult run_experiment(const ExperimentPlan& plan, const fs::path& resu
         std::find_if(plan.experiment.solvers.begin(), plan.experiment.solvers.end(),
                      [&](const ExperimentSolver& x) { return x.name == cell.solver; }) -
         plan.experiment.solvers.begin());
-    // A packed store entry runs on the store's unpacked copy; the solver maps that file.
-    const auto file = fs::path(cell.instance_file);
-    const auto* entry = store ? store->manifest().find(file.filename().string()) : nullptr;
-    const auto instance_path =
-        entry != nullptr && entry->packed ? store->unpack(entry->file) : file;
-    const auto instance = open_run_instance(instance_path.string());
+    auto it = opened.find(cell.instance_file);
+    if (it == opened.end()) {
+      // A packed store entry runs on the store's unpacked copy; the solver maps that file.
+      const auto file = fs::path(cell.instance_file);
+      const auto* entry = store ? store->manifest().find(file.filename().string()) : nullptr;
+      auto path = entry != nullptr && entry->packed ? store->unpack(entry->file) : file;
+      auto reader = open_run_instance(path.string());
+      it = opened.emplace(cell.instance_file, std::pair{std::move(path), std::move(reader)}).first;
+    }
+    const auto& [instance_path, instance] = it->second;
     if (instance.digest() != cell.instance_digest)
       throw Error(ErrorCode::invalid_argument,
                   cell.id() + ": " + instance_path.string() + " is no longer the planned instance");

@@ -941,7 +941,8 @@ PullResult pull(const fs::path& store, std::string_view url, const PullOptions& 
   for (const auto& e : published.entries)
     if (is_reserved_store_name(e.file))
       throw Error(result.manifest_url + ": lists '" + e.file +
-                  "', a name a store keeps for itself (MANIFEST, names starting with '.')");
+                  "', a name a store keeps for itself (MANIFEST, README.md, SUMMARY.csv, names "
+                  "starting with '.')");
   std::set<std::string> bound;
   for (const auto& e : published.entries)
     if (e.solutions && options.references_of.contains(e.solutions->instance))

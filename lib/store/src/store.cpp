@@ -409,7 +409,8 @@ Manifest read_store_manifest(const fs::path& path) {
   for (const auto& e : manifest.entries)
     if (is_reserved_store_name(e.file))
       throw Error(path.string() + ": lists '" + e.file +
-                  "', a name the store keeps for itself (MANIFEST, names starting with '.')");
+                  "', a name the store keeps for itself (MANIFEST, README.md, SUMMARY.csv, "
+                  "names starting with '.')");
   return manifest;
 }
 
@@ -420,7 +421,8 @@ void check_names(const std::vector<fs::path>& files) {
     const auto name = source.filename().string();
     if (is_reserved_store_name(name))
       throw Error(source.string() + ": cannot be added as '" + name +
-                  "': the store keeps MANIFEST and names starting with '.' for itself");
+                  "': the store keeps MANIFEST, README.md, SUMMARY.csv and names starting with "
+                  "'.' for itself");
     if (!is_valid_manifest_file_name(name))
       throw Error(source.string() + ": '" + name + "' cannot be an entry's name (" +
                   std::string(kManifestFileNameRule) + ")");
