@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -540,6 +541,9 @@ namespace {
   fail(name, line, column, message);
 }
 
+// A text that must be an array of records and is not.
+struct NotAnArray {};
+
 // A key given twice in one object: nlohmann keeps the last silently, so `"status": "failed",
 // "status": "solved"` would read as solved. Thrown by the parser callback below.
 struct DuplicateKey {
@@ -547,24 +551,106 @@ struct DuplicateKey {
   std::size_t occurrence = 0;  // of the quoted key in the whole text, 1-based
 };
 
-// The JSON text parsed; a syntax error is FILE:LINE:COLUMN: invalid JSON: REASON, and so is a key
-// given twice in one object.
-nlohmann::json parse_json_text(std::string_view text, const std::string& name) {
+// A JSON value built from nlohmann's SAX events, refusing a key given twice in one object; with
+// `element`, the value must be an array whose elements are handed over one by one as each is
+// read, then dropped. (nlohmann's callback parser, which could drop them too, scans an object's
+// parent at the end of each object: quadratic in a front of object vectors, a minute for a 57 MB
+// log; its DOM of the whole log took ~14 times the text.)
+class JsonBuilder {
+ public:
   using Json = nlohmann::json;
-  std::vector<std::set<std::string>> keys;  // of each object being read, outermost first
-  std::map<std::string, std::size_t> seen;  // times each key appeared anywhere
-  const Json::parser_callback_t no_duplicates = [&](int, Json::parse_event_t event, Json& parsed) {
-    if (event == Json::parse_event_t::object_start) keys.emplace_back();
-    if (event == Json::parse_event_t::object_end && !keys.empty()) keys.pop_back();
-    if (event == Json::parse_event_t::key) {
-      const auto key = parsed.get<std::string>();
-      const auto occurrence = ++seen[key];
-      if (!keys.empty() && !keys.back().insert(key).second) throw DuplicateKey{key, occurrence};
-    }
+  using Element = std::function<void(const Json&, std::size_t)>;
+  explicit JsonBuilder(const Element& element) : element_(element) {}
+  Json& root() { return root_; }
+
+  bool null() { return add(Json(nullptr)); }
+  bool boolean(bool value) { return add(Json(value)); }
+  bool number_integer(Json::number_integer_t value) { return add(Json(value)); }
+  bool number_unsigned(Json::number_unsigned_t value) { return add(Json(value)); }
+  bool number_float(Json::number_float_t value, const Json::string_t&) { return add(Json(value)); }
+  bool string(Json::string_t& value) { return add(Json(std::move(value))); }
+  bool binary(Json::binary_t& value) { return add(Json::binary(std::move(value))); }
+  bool start_object(std::size_t) {
+    if (element_ && stack_.empty()) throw NotAnArray{};
+    keys_.emplace_back();
+    return open(Json::object());
+  }
+  bool key(Json::string_t& key) {
+    const auto occurrence = ++seen_[key];
+    if (!keys_.back().insert(key).second) throw DuplicateKey{key, occurrence};
+    key_ = std::move(key);
     return true;
-  };
+  }
+  bool end_object() {
+    keys_.pop_back();
+    return close();
+  }
+  bool start_array(std::size_t) { return open(Json::array()); }
+  bool end_array() { return close(); }
+  template <class Exception>
+  bool parse_error(std::size_t, const std::string&, const Exception& error) {
+    throw error;
+  }
+
+ private:
+  // Places a value where the containers being read put it; returns where it went.
+  Json* place(Json&& value) {
+    if (stack_.empty()) {
+      root_ = std::move(value);
+      return &root_;
+    }
+    auto& parent = *stack_.back();
+    if (parent.is_array()) {
+      parent.push_back(std::move(value));
+      return &parent.back();
+    }
+    auto& slot = parent[key_];
+    slot = std::move(value);
+    return &slot;
+  }
+  bool add(Json&& value) {
+    place(std::move(value));
+    hand_over();
+    return true;
+  }
+  bool open(Json&& container) {
+    stack_.push_back(place(std::move(container)));
+    return true;
+  }
+  bool close() {
+    stack_.pop_back();
+    hand_over();
+    return true;
+  }
+  // A whole element of the top-level array, to `element_`, then dropped.
+  void hand_over() {
+    if (!element_ || stack_.size() != 1) return;
+    auto& array = *stack_.front();
+    element_(array.back(), elements_++);
+    array.erase(array.size() - 1);
+  }
+
+  const Element& element_;
+  Json root_;
+  std::vector<Json*> stack_;                 // the containers being read, outermost first
+  std::string key_;                          // of the next value of the innermost object
+  std::vector<std::set<std::string>> keys_;  // of each object being read, outermost first
+  std::map<std::string, std::size_t> seen_;  // times each key appeared anywhere
+  std::size_t elements_ = 0;
+};
+
+// The JSON text parsed; a syntax error is FILE:LINE:COLUMN: invalid JSON: REASON, and so is a key
+// given twice in one object. With `element`, the text must be an array, each of whose elements is
+// handed to `element` (with its index) as soon as it is read, then dropped (JsonBuilder): a log is
+// read in the memory of its text and one record. The value returned is then the empty array.
+nlohmann::json parse_json_text(std::string_view text, const std::string& name,
+                               const JsonBuilder::Element& element = {}) {
+  using Json = nlohmann::json;
   try {
-    return Json::parse(text.begin(), text.end(), no_duplicates);
+    JsonBuilder builder(element);
+    Json::sax_parse(text.begin(), text.end(), &builder);
+    if (element && !builder.root().is_array()) throw NotAnArray{};
+    return std::move(builder.root());
   } catch (const DuplicateKey& d) {
     // The key's position: its occurrence-th appearance as a quoted string (an escaped key, rare,
     // is located at the text's start).
@@ -660,11 +746,9 @@ void json_record_runtime(const Json& record, const std::string& record_at, const
 std::vector<ImportedResult> parse_solver_json_log(std::string_view text, const std::string& name,
                                                   const SolutionImportOptions& o) {
   check_options(o);
-  const auto log = parse_json_text(text, name);
   auto at = [&](const std::string& pointer, const std::string& message) -> Error {
     return {ErrorCode::invalid_argument, name + ": " + pointer + ": " + message};
   };
-  if (!log.is_array()) throw at("/", "expected an array of records");
   Endpoints by_endpoints;
   if (o.match == RecordMatch::endpoints)
     for (std::uint64_t q = 0; q < o.queries.size(); ++q)
@@ -672,9 +756,8 @@ std::vector<ImportedResult> parse_solver_json_log(std::string_view text, const s
           std::pair<std::uint64_t, std::uint64_t>(o.queries[q].start, o.queries[q].goal), q);
   std::vector<ImportedResult> results;
   std::vector<std::string> where;
-  for (std::size_t r = 0; r < log.size(); ++r) {
+  const auto read_record = [&](const nlohmann::json& record, std::size_t r) {
     const std::string record_at = "/" + std::to_string(r);
-    const auto& record = log[r];
     if (!record.is_object()) throw at(record_at, "expected an object");
     ImportedResult result;
     result.query = json_record_query(record, r, record_at, o, by_endpoints, at);
@@ -687,6 +770,11 @@ std::vector<ImportedResult> parse_solver_json_log(std::string_view text, const s
     json_record_runtime(record, record_at, at, result);
     results.push_back(std::move(result));
     where.push_back(name + ": " + record_at);
+  };
+  try {
+    parse_json_text(text, name, read_record);
+  } catch (const NotAnArray&) {
+    throw at("/", "expected an array of records");
   }
   return by_query(std::move(results), std::move(where));
 }
