@@ -118,8 +118,10 @@ Release release_suite(const fs::path& results, const fs::path& references, const
   const auto instance_paths = result_instances(results);
   const auto reference_paths = reference_files(references);
   std::vector<GraphReader> instances;
+  instances.reserve(instance_paths.size());
   for (const auto& path : instance_paths) instances.push_back(load(path, VerifyLevel::full));
   std::vector<SolutionReader> readers;
+  readers.reserve(reference_paths.size());
   for (const auto& path : reference_paths) readers.push_back(SolutionReader::open_verified(path));
   check_references(readers, instances);
 

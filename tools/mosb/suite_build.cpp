@@ -12,6 +12,7 @@
 #include "mosb/converters/suite.hpp"
 #include "mosb/internal/utf8.hpp"
 #include "mosb/report/release.hpp"
+#include "mosb/store.hpp"
 #include "terminal_progress.hpp"
 
 namespace mosb::cli {
