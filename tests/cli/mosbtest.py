@@ -12,6 +12,7 @@ The suites import it as a sibling module: ctest runs each one by path, so its di
 sys.path[0]. They need /usr/bin/python3 with python3-numpy and python3-xxhash.
 """
 
+import json
 import os
 import shutil
 import struct
@@ -116,6 +117,35 @@ def read(path, mode="rb"):
 
 def files_under(directory):
     return sorted(os.path.join(root, f) for root, dirs, files in os.walk(directory) for f in files)
+
+
+def finished_code(test, r, solution_files):
+    """The exit status a finished `mosb run` or `experiment run` must have given for the solution
+    files it wrote (spec/RUN.md §9): 3, with one stderr line naming the most common reason, when
+    queries ran and none completed (solved or disconnected), else 0. Asserts the line."""
+    completed = ran = 0
+    for path in solution_files:
+        statuses = json.loads(run("solutions", "inspect", "--json", path).stdout)["statuses"]
+        completed += statuses.get("solved", 0) + statuses.get("disconnected", 0)
+        ran += sum(statuses.values()) - statuses.get("not-run", 0)
+    if ran > 0 and completed == 0:
+        test.assertIn("mosb: no query completed (", r.stderr, r)
+        return 3
+    test.assertNotIn("no query completed", r.stderr, r)
+    return 0
+
+
+def assert_finished(test, r, code, solution_files):
+    """`r` ended as `code` says: FINISHED is the status finished_code gives for the files, any
+    other number exactly that status."""
+    if code == FINISHED:
+        test.assertIn(r.returncode, (0, 3), r)
+        code = finished_code(test, r, solution_files)
+    test.assertEqual(r.returncode, code, r)
+
+
+# `code=FINISHED` in the run helpers: the run finished (0, or 3 when no query completed).
+FINISHED = "finished"
 
 
 class CliTest(unittest.TestCase):

@@ -20,7 +20,7 @@ import subprocess
 import time
 
 import mosbtest
-from mosbtest import CliTest, alive, setUpModule  # noqa: F401
+from mosbtest import CliTest, FINISHED, alive, assert_finished, setUpModule  # noqa: F401
 
 # A solver script's `record FILE` appends the pid of the shell that runs it as this test sees it
 # (/proc is the test's even inside a PID namespace; `read` is a builtin, so /proc/self is the
@@ -60,11 +60,12 @@ class Hostile(CliTest):
         return subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=self.dir,
                               env=env)
 
-    def run_solver(self, solver, *extra, output="out.sol", queries="q", user=None, code=0):
+    def run_solver(self, solver, *extra, output="out.sol", queries="q", user=None,
+                   code=FINISHED):
         r = self.run_mosb("run", self.grid, "--view", "Grid_2", "--queries", queries, "--solver",
                           solver + " {query} {source} {target}", *extra, "-o",
                           self.path(output), user=user)
-        self.assertEqual(r.returncode, code, r)
+        assert_finished(self, r, code, [self.path(output)])
         return r
 
     def inspect(self, name="out.sol"):

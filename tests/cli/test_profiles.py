@@ -15,7 +15,7 @@ import stat
 import sys
 
 import mosbtest
-from mosbtest import CliTest, setUpModule  # noqa: F401
+from mosbtest import CliTest, FINISHED, assert_finished, setUpModule  # noqa: F401
 
 EXAMPLES = os.path.abspath(os.environ.get("EXAMPLES", ""))
 STANDIN = os.path.join(os.path.dirname(os.path.abspath(__file__)), "standin_solvers.py")
@@ -53,11 +53,11 @@ class ProfileTest(CliTest):
     # --- helpers -----------------------------------------------------------------------------
 
     def run_profile(self, instance, view, profile, executable, *extra, output="out.sol",
-                    code=0, env=None):
+                    code=FINISHED, env=None):
         r = self.mosb("run", self.path(instance), "--view", view, "--profile", profile,
                       "--executable", executable, *extra, "-o", self.path(output),
                       env=env or self.env)
-        self.assertEqual(r.returncode, code, r)
+        assert_finished(self, r, code, [self.path(output)])
         return r
 
     def reference(self, instance, view, output="ref.sol"):

@@ -276,6 +276,7 @@ class Served(Published):
             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
         self.addCleanup(test_pull.stop, nginx)
         test_pull.wait_for_port(self.port, nginx, "nginx")
+        test_pull.wait_for_pid_file(self.path("nginx.pid"), nginx)
         self.url = "http://127.0.0.1:%d/pub/" % self.port
         self.env = dict(os.environ, MOSB_STORE_CACHE=self.path("cache"))
 

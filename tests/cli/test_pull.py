@@ -55,6 +55,16 @@ def wait_for_port(port, process, what):
     raise AssertionError("%s does not listen on port %d" % (what, port))
 
 
+def wait_for_pid_file(path, process):
+    """nginx writes its pid file (tests/store/nginx.conf) as it starts, maybe after it listens:
+    waited for, so that a test comparing its directory before and after sees it in both."""
+    deadline = time.time() + 10
+    while not os.path.exists(path):
+        if process.poll() is not None or time.time() > deadline:
+            raise AssertionError("nginx wrote no %s" % path)
+        time.sleep(0.01)
+
+
 def stop(process):
     """Stops a server started by the test, by its PID."""
     if process.poll() is None:
@@ -153,6 +163,7 @@ class AgainstNginx(Published):
             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
         self.addCleanup(stop, self.nginx)
         wait_for_port(self.port, self.nginx, "nginx")
+        wait_for_pid_file(os.path.join(self.server, "nginx.pid"), self.nginx)
         self.url = "http://127.0.0.1:%d/pub/" % self.port
         self.slow = "http://127.0.0.1:%d/slow" % self.port
 

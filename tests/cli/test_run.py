@@ -17,7 +17,7 @@ import subprocess
 import time
 
 import mosbtest
-from mosbtest import CliTest, alive, setUpModule  # noqa: F401
+from mosbtest import CliTest, FINISHED, alive, assert_finished, setUpModule  # noqa: F401
 
 EXAMPLES = os.path.abspath(os.environ.get("EXAMPLES", ""))
 MEASUREMENTS = ["auto", "rlimit-poll"]
@@ -64,10 +64,11 @@ class RunTest(CliTest):
         os.chmod(path, os.stat(path).st_mode | stat.S_IXUSR)
         return path
 
-    def run_solver(self, template, *extra, output="out.sol", queries="q", code=0, timeout=120):
+    def run_solver(self, template, *extra, output="out.sol", queries="q", code=FINISHED,
+                   timeout=120):
         r = self.mosb("run", self.grid, "--view", "Grid_2", "--queries", queries, "--solver",
                       template, *extra, "-o", self.path(output), timeout=timeout)
-        self.assertEqual(r.returncode, code, r)
+        assert_finished(self, r, code, [self.path(output)])
         return r
 
     def inspect(self, name="out.sol"):
@@ -80,7 +81,7 @@ class RunTest(CliTest):
         left = [p for p in pids if alive(p)]
         self.assertEqual(left, [], "processes left behind")
 
-    def one_query(self, body, *extra, interpreter="/bin/sh", code=0):
+    def one_query(self, body, *extra, interpreter="/bin/sh", code=FINISHED):
         """Runs a one-query set with the solver `body`; returns (inspect, stderr)."""
         self.ok("queries", "generate", self.grid, "--set", "one", "--count", "1", "--in-place",
                 "--replace")
@@ -210,7 +211,9 @@ class RunTest(CliTest):
                               measurement, "--json", "-o", self.path("fd-%s.sol" % measurement),
                               timeout=120, preexec_fn=lambda: resource.setrlimit(
                                   resource.RLIMIT_NOFILE, (40, hard)))
-                self.assertEqual(r.returncode, 0, r)
+                # Every query over its memory limit: none completed (exit 3).
+                self.assertEqual(r.returncode, 3, r)
+                self.assertIn("most often, 6 of 6: memory-limit", r.stderr)
                 self.assertEqual(json.loads(r.stdout)["statuses"]["memory-limit"], 6, r)
                 self.assertEqual(mosbtest.read(limits, "r").split(), ["40"] * 6)
                 os.remove(limits)
@@ -234,6 +237,9 @@ class RunTest(CliTest):
     def test_unparsable_output_is_failed(self):
         info, r = self.one_query("record %s\necho '1 x'\n" % self.pids)
         self.assert_status(info, "failed")
+        # The run's line names the reason without the location: one cause counts once.
+        self.assertIn("mosb: no query completed (1 failed); most often, 1 of 1: unreadable "
+                      "output: 'x' is not an unsigned integer", r.stderr)
         self.assertEqual(info["statistics"]["exit_status"]["max"], 0)
         self.assertIn("unreadable output: stdout:1:3: 'x' is not an unsigned integer (objective 2 "
                       "is an integer one)", r.stderr)

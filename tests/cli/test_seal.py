@@ -17,7 +17,7 @@ import threading
 import time
 
 import mosbtest
-from mosbtest import CliTest, setUpModule  # noqa: F401
+from mosbtest import FINISHED, CliTest, assert_finished, setUpModule  # noqa: F401
 
 EXAMPLES = os.path.abspath(os.environ.get("EXAMPLES", ""))
 NOBODY = 65534
@@ -122,7 +122,8 @@ class Seal(CliTest):
             args += ["--isolation", isolation]
         r = subprocess.run(command + [program] + args, capture_output=True, text=True,
                            timeout=300, cwd=root, env=env)
-        self.assertEqual(r.returncode, 0, r)
+        # Unsealed, the attack rewrites the instance, and every query fails: exit 3.
+        assert_finished(self, r, FINISHED, [output])
         return {
             "instance": mosbtest.read(instance) == mosbtest.read(self.path("grid.mosb")),
             "cache": mosbtest.read(cache_file, "r") == "p sp 1 0\n",
@@ -209,7 +210,10 @@ class Seal(CliTest):
                                     "Grid_2", "--queries", "q", "--time-limit", "20s", "--solver",
                                     script + " {front}", "-o", output], capture_output=True,
                                    text=True, timeout=120, cwd=self.dir, env=env)
-                self.assertEqual(r.returncode, 0, r)
+                # Every query failed: the run finished, and no query completed.
+                self.assertEqual(r.returncode, 3, r)
+                self.assertIn("mosb: no query completed (4 failed); most often, 4 of 4: " +
+                              reason + ", not a regular file", r.stderr)
                 self.assertIn(reason + ", not a regular file", r.stderr)
                 info = json.loads(self.ok("solutions", "inspect", "--json", output).stdout)
                 self.assertEqual(info["statuses"]["failed"], 4, r.stderr)

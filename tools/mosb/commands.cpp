@@ -445,4 +445,15 @@ std::vector<std::filesystem::path> reference_files_of(const std::string& source,
   return std::move(found.files);
 }
 
+int no_query_completed(const StatusCounts& counts, const FailureReasons& failures) {
+  const auto ran = counts.total() - counts[QueryStatus::not_run];
+  if (ran == 0 || counts.completed() > 0) return 0;
+  std::cerr << "mosb: no query completed (" << status_counts_text(counts, true) << ")";
+  if (const auto most = most_common_failure(failures))
+    std::cerr << "; most often, " << most->second << " of " << ran << ": "
+              << escape_for_terminal(most->first);
+  std::cerr << '\n';
+  return 3;
+}
+
 }  // namespace mosb::cli

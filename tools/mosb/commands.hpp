@@ -104,6 +104,9 @@ CLI::Validator printable_text();
 // Query counts per status as every command prints them: "3 solved, 0 timeout, ..." for every
 // status, or with `nonzero` only those with a count.
 std::string status_counts_text(const StatusCounts& counts, bool nonzero);
+// 3 (after a line on stderr naming the most common reason) when queries ran and none completed,
+// else 0: the exit status of `run` and `experiment run` once they finished (spec/RUN.md §9).
+int no_query_completed(const StatusCounts& counts, const FailureReasons& failures);
 
 class JsonWriter;
 // The counts as a JSON object keyed by status name (after the caller's key).

@@ -128,7 +128,7 @@ int run_cells(const ExperimentPlan& plan, const ExperimentRunArgs& a) {
     out.end_object();
     out.end_object();
     std::cout << '\n';
-    return 0;
+    return no_query_completed(result.counts, result.failures);
   }
   std::cout << "experiment " << escape_for_terminal(plan.experiment.name) << ": " << result.cells
             << " cells, " << result.ran << " run now";
@@ -137,7 +137,7 @@ int run_cells(const ExperimentPlan& plan, const ExperimentRunArgs& a) {
               << " queries from their journals)";
   std::cout << ", " << result.skipped << " done before; " << status_counts_text(result.counts, true)
             << "; results in " << escape_for_terminal(a.output) << '\n';
-  return 0;
+  return no_query_completed(result.counts, result.failures);
 }
 
 // --- SLURM: one job array, task i running the cells of experiment_tasks' task i.

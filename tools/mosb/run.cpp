@@ -351,7 +351,8 @@ int run_run(const RunArgs& a) {
     return 130;
   }
   print_summary(a, result);
-  return 0;
+  // A shard is a part: whether any query completed is the merged run's question.
+  return shard ? 0 : no_query_completed(result.counts, result.failures);
 }
 
 // `mosb run ... --slurm DIR`: writes DIR (run.json, run.sbatch), then submits or prints sbatch.

@@ -846,6 +846,7 @@ ExperimentResult run_experiment(const ExperimentPlan& plan, const fs::path& resu
                        plan.solvers[s].binding, cell_limits(plan, cell).text, run.counts});
     write_results_manifest(results, records);
     ++result.ran;
+    for (const auto& [reason, queries] : run.failures) result.failures[reason] += queries;
     result.resumed += run.from_journal > 0;
     result.queries_from_journal += run.from_journal;
     ++progress.cells_done;

@@ -747,6 +747,49 @@ std::optional<std::string> record_problem(const QueryRecord& r, const RunConfig&
 
 }  // namespace
 
+namespace {
+
+// A record's reason without what differs from query to query: locations ("unreadable output:
+// stdout:3:9: 3 values, the view has 2 objectives" -> "unreadable output: 3 values, the view has
+// 2 objectives") and the directories of absolute paths (each query's own); or its status when it
+// states none.
+std::string failure_reason(const QueryRecord& record) {
+  if (record.message.empty()) return std::string(to_string(record.status));
+  // A location is a word PATH:LINE: or PATH:LINE:COLUMN: followed by a blank.
+  const auto is_location = [](std::string_view word) {
+    if (word.size() < 3 || word.back() != ':') return false;
+    word.remove_suffix(1);
+    int numbers = 0;
+    for (; numbers < 2; ++numbers) {
+      const auto colon = word.rfind(':');
+      if (colon == std::string_view::npos) break;
+      const auto digits = word.substr(colon + 1);
+      if (digits.empty() || digits.find_first_not_of("0123456789") != std::string_view::npos) break;
+      word = word.substr(0, colon);
+    }
+    return numbers > 0;
+  };
+  std::string out;
+  std::string_view text = record.message;
+  while (!text.empty()) {
+    const auto blank = text.find(' ');
+    const auto word = text.substr(0, blank == std::string_view::npos ? text.size() : blank + 1);
+    const auto bare = blank == std::string_view::npos ? word : word.substr(0, word.size() - 1);
+    if (blank != std::string_view::npos && is_location(bare)) {
+      // dropped
+    } else if (bare.size() > 1 && bare.front() == '/' && bare.back() == ':') {
+      // An absolute path names a file of the query's own directory: its name alone.
+      out += word.substr(word.rfind('/', bare.size() - 1) + 1);
+    } else {
+      out += word;
+    }
+    text.remove_prefix(word.size());
+  }
+  return out;
+}
+
+}  // namespace
+
 RunResult run_solver(const RunConfig& c, const RunCallbacks& callbacks,
                      const std::atomic<bool>& stop) {
   if (!c.instance) throw Error(ErrorCode::invalid_argument, "run_solver: no instance");
@@ -780,7 +823,11 @@ RunResult run_solver(const RunConfig& c, const RunCallbacks& callbacks,
   result.from_journal = result.total - runner.pending();
   runner.run(jobs, result);
   reap_all();
-  for (const auto& [q, record] : journal.records()) ++result.counts[record.status];
+  for (const auto& [q, record] : journal.records()) {
+    ++result.counts[record.status];
+    if (record.status != QueryStatus::not_run && !is_completed(record.status))
+      ++result.failures[failure_reason(record)];
+  }
   result.counts[QueryStatus::not_run] += result.total - journal.records().size();
   if (stop.load()) {
     result.interrupted = true;
@@ -793,6 +840,15 @@ RunResult run_solver(const RunConfig& c, const RunCallbacks& callbacks,
   writer.write(c.output);
   journal.remove();
   return result;
+}
+
+std::optional<std::pair<std::string, std::uint64_t>> most_common_failure(
+    const FailureReasons& reasons) {
+  const auto most =
+      std::max_element(reasons.begin(), reasons.end(),
+                       [](const auto& a, const auto& b) { return a.second < b.second; });
+  if (most == reasons.end()) return std::nullopt;
+  return *most;
 }
 
 std::optional<double> parse_duration(std::string_view view) {

@@ -196,7 +196,8 @@ struct ExperimentResult {
   std::uint64_t cells = 0, ran = 0, skipped = 0;  // skipped: done before
   // Of the cells run: those a killed run had begun, and the queries taken from their journals.
   std::uint64_t resumed = 0, queries_from_journal = 0;
-  StatusCounts counts;  // every cell's
+  StatusCounts counts;      // every cell's
+  FailureReasons failures;  // of the cells run now (RunResult::failures, added up)
   bool interrupted = false;
 };
 

@@ -181,12 +181,21 @@ struct RunCallbacks {
   std::function<void(const QueryRecord&, const Query&)> failed;
 };
 
+// The reasons a run's queries did not complete (failed, timeout, memory-limit: QueryRecord's
+// message with a leading FILE:LINE[:COLUMN] location taken off, so that one cause counts once
+// whatever query gave it), each with how many queries gave it.
+using FailureReasons = std::map<std::string, std::uint64_t>;
+// The reason most queries gave (the first in order on a tie) and their number; nullopt for none.
+std::optional<std::pair<std::string, std::uint64_t>> most_common_failure(
+    const FailureReasons& reasons);
+
 struct RunResult {
   bool interrupted = false;
   // total: the queries this run is for (all of the set, or the shard's); `counts` are theirs.
   std::uint64_t total = 0, from_journal = 0, ran = 0;
   std::uint64_t query_set_size = 0;
   StatusCounts counts;
+  FailureReasons failures;                   // of every query that did not complete
   double wall_seconds = 0, cpu_seconds = 0;  // of the solvers run by this invocation
   Measurement measurement = Measurement::rlimit_poll;
   std::string journal;
