@@ -50,12 +50,9 @@ ReferenceProtocol reference_protocol(const std::vector<SolutionReader>& referenc
       const auto it = info.parameters.find(key);
       return it == info.parameters.end() ? std::string() : it->second;
     };
-    if (out.solvers.empty()) {
-      out.solvers = info.name == "reference" ? param("solvers") : solver_name(r);
-      for (auto at = out.solvers.find(','); at != std::string::npos;
-           at = out.solvers.find(',', at + 2))
-        out.solvers.replace(at, 1, ", ");
-    }
+    if (out.solvers.empty())
+      for (const auto& solver : front_solvers(r))
+        out.solvers += (out.solvers.empty() ? "" : ", ") + solver;
     if (out.statistics_of.empty()) out.statistics_of = param("statistics");
     if (out.machine.empty()) out.machine = info.machine;
   }

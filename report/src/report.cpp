@@ -479,17 +479,10 @@ FrontsSource fronts_source(const SolutionReader& file, bool of_reference) {
   const auto name = solver_name(file);
   if (!of_reference) return {name, name};
   const auto info = file.solver();
-  const auto solvers = info.parameters.find("solvers");
-  if (solvers == info.parameters.end()) return {"reference (" + name + ")", name};
-  // The solvers that gave or agreed with some front (param agreed.<i> not empty), not merely
-  // those named: a solver that ran none of the queries is no part of these fronts.
   std::string names;
-  std::stringstream named(solvers->second);
-  std::size_t i = 0;
-  for (std::string solver; std::getline(named, solver, ','); ++i)
-    if (const auto agreed = info.parameters.find("agreed." + std::to_string(i));
-        agreed == info.parameters.end() || !agreed->second.empty())
-      names += (names.empty() ? "" : ", ") + solver;
+  for (const auto& solver : front_solvers(file)) names += (names.empty() ? "" : ", ") + solver;
+  if (info.parameters.find("solvers") == info.parameters.end())
+    return {"reference (" + names + ")", name};
   const auto statistics = info.parameters.find("statistics");
   return {"reference (" + names + ")",
           statistics == info.parameters.end() ? std::string() : statistics->second};

@@ -20,20 +20,8 @@ rounds=${ROUNDS:-3}
 mkdir -p "$work"
 [[ -f $suite/MANIFEST ]] || "$mosb" suite build "$suite" >/dev/null
 
-server=$work/nginx
-rm -rf "$server"
-mkdir -p "$server/tmp"
-ln -s "$suite" "$server/www"
-port=$(/usr/bin/python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
-user=""
-if [[ $(id -u) -eq 0 ]]; then user="user root;"; fi
-sed -e "s|@DIR@|$server|g" -e "s|@PORT@|$port|g" -e "s|@USER@|$user|" \
-  "$here/../store/nginx.conf" >"$server/nginx.conf"
-nginx -p "$server" -e "$server/error.log" -c "$server/nginx.conf" &
-nginx_pid=$!
-trap 'kill $nginx_pid; wait $nginx_pid 2>/dev/null || true' EXIT
-url=http://127.0.0.1:$port/pub
-until curl -sf -o /dev/null "$url/MANIFEST"; do sleep 0.05; done
+source "$here/serve_store.sh"
+serve_store "$suite" "$work/nginx"
 
 # The file names and the "SHA-256  NAME" lines sha256sum -c reads, from the MANIFEST.
 /usr/bin/python3 - "$suite/MANIFEST" "$work" <<'EOF'

@@ -48,19 +48,8 @@ template = "$examples/namoa {instance} --view {view} --query {source} {target} -
 EOF
 "$mosb" experiment run exp.toml -o results >/dev/null
 
-server=$work/nginx
-mkdir -p "$server/tmp"
-ln -s "$work/published" "$server/www"
-port=$(/usr/bin/python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
-user=""
-if [[ $(id -u) -eq 0 ]]; then user="user root;"; fi
-sed -e "s|@DIR@|$server|g" -e "s|@PORT@|$port|g" -e "s|@USER@|$user|" \
-  "$here/../store/nginx.conf" >"$server/nginx.conf"
-nginx -p "$server" -e "$server/error.log" -c "$server/nginx.conf" &
-nginx_pid=$!
-trap 'kill $nginx_pid; wait $nginx_pid 2>/dev/null || true' EXIT
-url=http://127.0.0.1:$port/pub
-until curl -sf -o /dev/null "$url/MANIFEST"; do sleep 0.05; done
+source "$here/serve_store.sh"
+serve_store "$work/published" "$work/nginx"
 
 /usr/bin/python3 - published/MANIFEST <<'EOF'
 import json, sys

@@ -29,6 +29,22 @@ std::string solver_name(const SolutionReader& solutions) {
   return std::filesystem::path(solutions.display_name()).stem().string();
 }
 
+std::vector<std::string> front_solvers(const SolutionReader& solutions) {
+  const auto info = solutions.solver();
+  const auto named = info.parameters.find("solvers");
+  if (info.name != "reference" || named == info.parameters.end()) return {solver_name(solutions)};
+  std::vector<std::string> out;
+  std::size_t i = 0;
+  for (std::size_t begin = 0; begin <= named->second.size(); ++i) {
+    const auto comma = std::min(named->second.find(',', begin), named->second.size());
+    const auto agreed = info.parameters.find("agreed." + std::to_string(i));
+    if (agreed == info.parameters.end() || !agreed->second.empty())
+      out.push_back(named->second.substr(begin, comma - begin));
+    begin = comma + 1;
+  }
+  return out;
+}
+
 std::optional<Distribution> distribution_of(std::vector<double> values,
                                             std::optional<double> runtime_shift) {
   if (values.empty()) return std::nullopt;

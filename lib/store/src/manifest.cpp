@@ -335,16 +335,7 @@ ManifestEntry describe_solutions(const std::filesystem::path& path,
   const auto solver = reader.solver();
   s.epsilon = solver.epsilon;
   s.solver = solver.name;
-  if (const auto agreed = solver.parameters.find("solvers");
-      solver.name == "reference" && agreed != solver.parameters.end()) {
-    for (std::size_t begin = 0; begin <= agreed->second.size();) {
-      const auto comma = std::min(agreed->second.find(',', begin), agreed->second.size());
-      s.solvers.push_back(agreed->second.substr(begin, comma - begin));
-      begin = comma + 1;
-    }
-  } else {
-    s.solvers.push_back(solver_name(reader));
-  }
+  s.solvers = front_solvers(reader);
   for (std::uint64_t q = 0; q < reader.query_count(); ++q)
     ++s.statuses[std::string(to_string(reader.status(q)))];
   s.vectors = reader.vector_count();

@@ -19,6 +19,12 @@ namespace mosb {
 // directory and extension ("boa" for results/boa.sol).
 std::string solver_name(const SolutionReader& solutions);
 
+// Whose fronts a file holds: for a reference of `solutions reference` (solver "reference" with
+// parameter `solvers`), the solvers that gave or agreed with some front (parameter agreed.<i> not
+// empty; a solver that completed none of the queries is no part of them), in the order named;
+// for any other file its one solver (solver_name).
+std::vector<std::string> front_solvers(const SolutionReader& solutions);
+
 // How a table's or figure's caption names the runtime it shows: "wall-clock runtime (mosb's
 // measurement)", or "runtime as each solver reported it", followed by the clock where that is
 // not the wall clock (reported_clock): "(cpu time)" when every file's is cpu, "(clocks differ:
