@@ -424,6 +424,18 @@ std::vector<LegendEntry> exposure_legend(const MapPlot& plot, double lo, double 
   return entries;
 }
 
+constexpr const char* kBlockedColour = "#252525";
+
+// A passable square with blocked cells (a passable share from 1/2 to below 1): a grey from #808080
+// (half blocked) to #e0e0e0 (nearly open), in four steps so runs of squares still merge.
+std::string partly_blocked_colour(double passable_share) {
+  const double step = std::clamp(std::floor((passable_share - 0.5) * 8), 0.0, 3.0);
+  const auto level = static_cast<unsigned>(0x80 + step * (0xe0 - 0x80) / 3);
+  char colour[8];
+  std::snprintf(colour, sizeof colour, "#%02x%02x%02x", level, level, level);
+  return colour;
+}
+
 // One rectangle per run of equal colour along each row keeps large maps small; white (passable,
 // no exposure) is the background.
 void map_cells(Svg& svg, const MapPlot& plot, double x0, double y0, double cell, double lo,
@@ -431,7 +443,9 @@ void map_cells(Svg& svg, const MapPlot& plot, double x0, double y0, double cell,
   for (std::uint32_t yy = 0; yy < plot.height; ++yy) {
     auto colour_of = [&](std::uint32_t xx) -> std::string {
       const std::size_t k = static_cast<std::size_t>(yy) * plot.width + xx;
-      if (k >= plot.passable.size() || !plot.passable[k]) return "#252525";
+      if (k >= plot.passable.size() || !plot.passable[k]) return kBlockedColour;
+      if (k < plot.passable_share.size() && plot.passable_share[k] < 1)
+        return partly_blocked_colour(plot.passable_share[k]);
       if (plot.exposure.empty()) return "#ffffff";
       const double v = plot.exposure[k];
       return std::isnan(v) ? "#d9d9d9" : exposure_colour(v, lo, hi);
@@ -472,7 +486,12 @@ std::string plot_map(const MapPlot& plot) {
   // Path colours: Okabe–Ito without yellow (unreadable on the light end of the shading).
   const char* colours[] = {kOkabeIto[0], kOkabeIto[1], kOkabeIto[2], kOkabeIto[4],
                            kOkabeIto[5], kOkabeIto[6], kOkabeIto[7]};
-  std::vector<LegendEntry> entries = {{'r', "#252525", "blocked cell", ""}};
+  std::vector<LegendEntry> entries = {
+      {'r', kBlockedColour, plot.block > 1 ? "blocked square" : "blocked cell", ""}};
+  if (std::any_of(plot.passable_share.begin(), plot.passable_share.end(),
+                  [](double share) { return share >= 0.5 && share < 1; }))
+    entries.push_back(
+        {'r', partly_blocked_colour(0.5), "partly blocked square", ""});
   if (!plot.exposure.empty() && hi >= lo)
     for (auto& e : exposure_legend(plot, lo, hi)) entries.push_back(std::move(e));
   for (std::size_t k = 0; k < plot.paths.size(); ++k) {
@@ -552,6 +571,7 @@ MapPlot MapSquares::plot() const {
   out.block = block_;
   out.exposure = exposure_;
   out.passable.resize(open_.size());
+  if (block_ > 1) out.passable_share.resize(open_.size());
   // The cells of a square: k x k, fewer in the last column and row of a side k does not divide.
   const auto cells = [this](std::uint32_t square, std::uint32_t side) {
     return std::min<std::uint64_t>(block_, side - std::uint64_t{square} * block_);
@@ -559,7 +579,9 @@ MapPlot MapSquares::plot() const {
   for (std::uint32_t y = 0; y < rows_; ++y)
     for (std::uint32_t x = 0; x < columns_; ++x) {
       const std::size_t i = std::size_t{y} * columns_ + x;
-      out.passable[i] = 2 * std::uint64_t{open_[i]} >= cells(x, width_) * cells(y, height_);
+      const std::uint64_t all = cells(x, width_) * cells(y, height_);
+      out.passable[i] = 2 * std::uint64_t{open_[i]} >= all;
+      if (block_ > 1) out.passable_share[i] = static_cast<double>(open_[i]) / static_cast<double>(all);
     }
   return out;
 }

@@ -824,14 +824,18 @@ void map_figure(const Context& c, const Benchmark& bm, const DrawnFronts& fronts
     c.page.note(std::string("No map: ") + e.what());
     return;
   }
+  const std::string cells =
+      map.block > 1 ? "Squares of " + std::to_string(map.block) + "x" + std::to_string(map.block) +
+                          " cells: dark grey when most of their cells are blocked, grey when "
+                          "some are (lighter: fewer), else shaded by exposure"
+                    : "Blocked cells dark grey, passable cells shaded by exposure";
   c.page.figure("map", plots::plot_map(map),
-                map.guards.empty()
-                    ? "Blocked cells dark grey, passable cells shaded by exposure; starts and "
-                      "goals of the queries drawn below. No guard is marked: the instance "
-                      "records each cell's exposure, not where guards stand (converted from an "
-                      "exposure grid, or before mosb 0.2.0 wrote map.guards)."
-                    : "Blocked cells dark grey, passable cells shaded by exposure, guards black "
-                      "dots; starts and goals of the queries drawn below.",
+                cells + (map.guards.empty()
+                             ? "; starts and goals of the queries drawn below. No guard is "
+                               "marked: the instance records each cell's exposure, not where "
+                               "guards stand (converted from an exposure grid, or before mosb "
+                               "0.2.0 wrote map.guards)."
+                             : ", guards black dots; starts and goals of the queries drawn below."),
                 "map-" + bm.key);
 }
 

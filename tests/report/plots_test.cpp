@@ -446,6 +446,7 @@ TEST_CASE("MapSquares: squares of k x k cells, passable when half are, the highe
   CHECK(c.height == 1);
   CHECK(c.block == 2);
   CHECK(c.passable == std::vector<bool>{false, true});  // 1 of 4 cells, 2 of 4
+  CHECK(c.passable_share == std::vector<double>{0.25, 0.5});
   CHECK(c.exposure[1] == 5);
   c.queries = {{7, square_of(c, {3, 1}), square_of(c, {0, 0})}};
   CHECK(c.queries[0].start.x == 1);
@@ -454,6 +455,9 @@ TEST_CASE("MapSquares: squares of k x k cells, passable when half are, the highe
   CHECK(MapSquares(4, 2, 4, false).plot().exposure.empty());
   const auto doc = plot_map(c);
   CHECK(has(doc, ">1 square: 2x2 cells<"));
+  CHECK(has(doc, ">blocked square<"));
+  CHECK(has(doc, ">partly blocked square<"));
+  CHECK(count(doc, "#808080") == 2);  // the half-blocked square and its legend swatch
   CHECK(has(doc, ">start (query number)<"));
   CHECK(count(doc, ">7<") == 2);  // start and goal labelled
   // The last square of a side the block does not divide holds fewer cells: 5 x 1 in squares of
@@ -461,6 +465,19 @@ TEST_CASE("MapSquares: squares of k x k cells, passable when half are, the highe
   MapSquares odd(5, 1, 3, false);
   odd.add_passable(4, 0);
   CHECK(odd.plot().passable == std::vector<bool>{false, false, true});
+  CHECK(odd.plot().passable_share == std::vector<double>{0, 0, 1});  // the last: its one cell
+  // A wall one cell thick through squares of 4 x 4 cells stays visible: every square it crosses
+  // is passable (12 of 16 cells) and partly blocked; the others are open.
+  MapSquares walled(8, 8, 2, false);
+  for (std::uint32_t y = 0; y < 8; ++y)
+    for (std::uint32_t x = 0; x < 8; ++x)
+      if (x != 5) walled.add_passable(x, y);
+  const auto wall = walled.plot();
+  CHECK(wall.passable == std::vector<bool>{true, true, true, true});
+  CHECK(wall.passable_share == std::vector<double>{1, 0.75, 1, 0.75});
+  const auto walled_doc = plot_map(wall);
+  CHECK(count(walled_doc, "#c0c0c0") == 2);  // 12 of 16 passable: the wall's two squares
+  CHECK(MapSquares(4, 2, 4, false).plot().passable_share.empty());  // a square per cell
 }
 
 // Issue 36 §1: a map's squares come from its size alone, whatever it is (0 read as 1).

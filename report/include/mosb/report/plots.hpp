@@ -84,6 +84,10 @@ struct MapPlot {
   std::string exposure_unit;  // the legend's heading "exposure [unit]" when not empty
   std::uint32_t width = 0, height = 0;
   std::vector<bool> passable;              // row-major, width * height
+  // Row-major beside `passable` when block > 1 (else empty): the share of a square's cells that
+  // are passable. A passable square with some blocked is drawn grey, darker the more are, so a
+  // wall one cell thick stays visible in squares.
+  std::vector<double> passable_share;
   std::vector<double> exposure;            // row-major; NaN = unknown; empty = no shading
   std::vector<std::vector<Point2>> paths;  // cell coordinates (x, y)
   std::vector<MapQuery> queries;           // start and goal markers
@@ -97,10 +101,11 @@ std::string plot_map(const MapPlot& plot);
 // The squares a map of width x height cells is drawn with: k x k cells each, k the smallest that
 // leaves no side more than max_side squares (max_side at least 1; k = 1: a square per cell). A
 // square is passable when at least half of its cells are (a randomly blocked map keeps its
-// texture), its exposure the highest given to its cells (NaN when none). Only the squares are
+// texture; passable_share says how many are, so a wall one cell thick stays visible), its
+// exposure the highest given to its cells (NaN when none). Only the squares are
 // held, never the cells: a map of billions of cells, mostly blocked, costs what its drawing does
-// (at most max_side² squares). Keeps a 1024 x 1024 map in a report a figure of tens, not
-// thousands, of kB.
+// (at most max_side² squares). A 1024 x 1024 map of rooms and walls stays a figure of tens of
+// kB; a randomly blocked one, whose neighbouring squares differ, about 1 MB at 160 a side.
 class MapSquares {
  public:
   MapSquares(std::uint32_t width, std::uint32_t height, std::uint32_t max_side, bool shaded);
