@@ -14,7 +14,7 @@ mkdir -p "$out"
 cd "$out"
 "$mosb" generate grid --width 30 --height 30 --objectives 3 -o grid.mosb >/dev/null
 "$mosb" generate netmaker --vertices 1000 --amin 1 --amax 10 --locality 20 -o netmaker.mosb >/dev/null
-runs=("grid.mosb Grid_2 namoa" "grid.mosb Grid_2 boa_star" "netmaker.mosb NetMaker_3 namoa")
+runs=("grid.mosb Grid_2 namoa" "grid.mosb Grid_2 boa_star" "netmaker.mosb NetMaker-1k_3 namoa")
 instances=(grid.mosb netmaker.mosb)
 if [[ -f "$arena" ]]; then
   echo "120 100 25" > guards.txt

@@ -24,6 +24,7 @@ namespace {
 
 using plots::Svg;
 using tables::Cell;
+using tables::Column;
 using tables::Table;
 
 // One solution file bound to a benchmark's instance.
@@ -205,7 +206,7 @@ figcaption{font-size:.85em;color:#333;max-width:800px}nav li{display:inline;marg
 )";
 
 constexpr const char* kScript =
-    R"(document.querySelectorAll("table.sortable th").forEach(function(th){th.tabIndex=0;
+    R"(document.querySelectorAll("table.sortable thead tr:last-child th").forEach(function(th){th.tabIndex=0;
 th.addEventListener("keydown",function(e){if(e.key==="Enter"||e.key===" "){e.preventDefault();th.click();}});
 th.addEventListener("click",function(){
 var row=th.parentNode,table=row.closest("table"),body=table.tBodies[0],col=Array.prototype.indexOf.call(row.children,th);
@@ -965,41 +966,76 @@ void write_benchmark(const Context& c, std::size_t b) {
 
 // --- Solver comparison, with two or more solvers.
 
-// Benchmark b's rows of comparison_table, one per solver of it in the order first given.
-void comparison_rows(const Context& c, std::size_t b, std::vector<std::vector<Cell>>& rows) {
-  const auto& bm = c.benchmarks[b];
+// Benchmark b's numbers for comparison_table: its queries, those every solver of it completed,
+// and per solver its statuses over its queries and its runtimes over the common ones.
+struct BenchmarkComparison {
+  std::uint64_t queries = 0, common = 0;
   std::map<std::string, StatusCounts> statuses;
   std::map<std::string, std::vector<double>> runtimes;
-  std::uint64_t queries = 0, common = 0;
+};
+
+BenchmarkComparison compare_solvers(const Context& c, std::size_t b) {
+  BenchmarkComparison out;
   for (const auto& [key, by_solver] : c.outcomes) {
     if (key.benchmark != b) continue;
-    ++queries;
-    bool all = by_solver.size() == bm.solvers.size();
+    ++out.queries;
+    bool all = by_solver.size() == c.benchmarks[b].solvers.size();
     for (const auto& [name, o] : by_solver) {
-      ++statuses[name][o.status];
+      ++out.statuses[name][o.status];
       all = all && o.completed() && o.runtime;
     }
     if (!all) continue;
-    ++common;
-    for (const auto& [name, o] : by_solver) runtimes[name].push_back(*o.runtime);
+    ++out.common;
+    for (const auto& [name, o] : by_solver) out.runtimes[name].push_back(*o.runtime);
   }
-  for (const auto& s : bm.solver_order) {
-    std::vector<Cell> row{Cell::of(bm.family),
-                          Cell::of(bm.name),
-                          Cell::of(s),
-                          Cell::of(queries),
-                          Cell::of(common),
-                          Cell::of(statuses[s][QueryStatus::timeout]),
-                          Cell::of(statuses[s][QueryStatus::memory_limit])};
-    add_median_and_max(row, distribution_of(runtimes[s]));
-    rows.push_back(std::move(row));
+  return out;
+}
+
+// A solver's four cells: timeouts, memory limits, median and max runtime over the common queries.
+void add_solver_cells(std::vector<Cell>& row, BenchmarkComparison& bc, const std::string& s) {
+  row.push_back(Cell::of(bc.statuses[s][QueryStatus::timeout]));
+  row.push_back(Cell::of(bc.statuses[s][QueryStatus::memory_limit]));
+  add_median_and_max(row, distribution_of(bc.runtimes[s]));
+}
+
+const std::vector<Column> kSolverColumns = {{"timeout", "Timeout", "timeout"},
+                                            {"memory_limit", "Mem-limit", "memory limit"},
+                                            {"runtime_median", "Med.\\ (s)", "median runtime [s]"},
+                                            {"runtime_max", "Max (s)", "max runtime [s]"}};
+
+// The paper's layout (ReportOptions::comparison_by_benchmark): a row per benchmark, each solver's
+// four columns under its name; a solver without files for a benchmark has no numbers there.
+void by_benchmark(const Context& c, Table& t) {
+  t.columns.erase(t.columns.begin() + 2);  // no solver column
+  for (std::size_t s = 0; s < c.solver_names.size(); ++s) {
+    t.groups.push_back({t.columns.size(), kSolverColumns.size(), c.solver_names[s]});
+    for (auto column : kSolverColumns) {
+      column.key += "@" + c.solver_keys[s];
+      column.html = c.solver_names[s] + ": " + column.html;
+      t.columns.push_back(std::move(column));
+    }
+  }
+  for (std::size_t b = 0; b < c.benchmarks.size(); ++b) {
+    const auto& bm = c.benchmarks[b];
+    if (bm.solver_order.empty()) continue;
+    auto bc = compare_solvers(c, b);
+    std::vector<Cell> row{Cell::of(bm.family), Cell::of(bm.name), Cell::of(bc.queries),
+                          Cell::of(bc.common)};
+    for (const auto& s : c.solver_names) {
+      if (bm.solvers.contains(s))
+        add_solver_cells(row, bc, s);
+      else
+        row.resize(row.size() + kSolverColumns.size());
+    }
+    t.rows.push_back(std::move(row));
   }
 }
 
-// The paper's comparison of exact solvers (its appendix table), one row per benchmark and solver
-// so that it reads at any number of solvers: the benchmark's queries, those every solver of it
-// completed, the solver's timeouts and memory limits over its queries, and its median and max
-// runtime over the common queries (the only runtimes that compare).
+// The paper's comparison of exact solvers (its appendix table): the benchmark's queries, those
+// every solver of it completed, each solver's timeouts and memory limits over its queries, and
+// its median and max runtime over the common queries (the only runtimes that compare). One row
+// per benchmark and solver, so that it reads at any number of solvers; the paper's layout with
+// ReportOptions::comparison_by_benchmark.
 Table comparison_table(const Context& c) {
   Table t;
   t.caption =
@@ -1010,12 +1046,22 @@ Table comparison_table(const Context& c) {
                {"benchmark", "Benchmark", "benchmark"},
                {"solver", "Solver", "solver"},
                {"queries", "Queries", "queries"},
-               {"common", "Common", "completed by all"},
-               {"timeout", "Timeout", "timeout"},
-               {"memory_limit", "Mem-limit", "memory limit"},
-               {"runtime_median", "Med.\\ (s)", "median runtime [s]"},
-               {"runtime_max", "Max (s)", "max runtime [s]"}};
-  for (std::size_t b = 0; b < c.benchmarks.size(); ++b) comparison_rows(c, b, t.rows);
+               {"common", "Common", "completed by all"}};
+  if (c.options.comparison_by_benchmark) {
+    by_benchmark(c, t);
+    return t;
+  }
+  t.columns.insert(t.columns.end(), kSolverColumns.begin(), kSolverColumns.end());
+  for (std::size_t b = 0; b < c.benchmarks.size(); ++b) {
+    const auto& bm = c.benchmarks[b];
+    auto bc = compare_solvers(c, b);
+    for (const auto& s : bm.solver_order) {
+      std::vector<Cell> row{Cell::of(bm.family), Cell::of(bm.name), Cell::of(s),
+                            Cell::of(bc.queries), Cell::of(bc.common)};
+      add_solver_cells(row, bc, s);
+      t.rows.push_back(std::move(row));
+    }
+  }
   return t;
 }
 

@@ -251,6 +251,20 @@ void write_latex(std::ostream& out, const Table& table) {
     align += text ? 'l' : 'r';
   }
   out << "\\begin{tabular}{" << align << "}\n\\toprule\n";
+  if (!table.groups.empty()) {
+    std::size_t column = 0;
+    std::string rules;
+    for (const auto& g : table.groups) {
+      for (; column < g.first; ++column) out << (column ? " & " : "");
+      out << (column ? " & " : "") << "\\multicolumn{" << g.count << "}{c}{"
+          << latex_escape(g.title) << "}";
+      rules += "\\cmidrule(lr){" + std::to_string(g.first + 1) + "-" +
+               std::to_string(g.first + g.count) + "}";
+      column = g.first + g.count;
+    }
+    for (; column < table.columns.size(); ++column) out << " & ";
+    out << " \\\\\n" << rules << "\n";
+  }
   for (std::size_t i = 0; i < table.columns.size(); ++i)
     out << (i ? " & " : "") << table.columns[i].latex;
   out << " \\\\\n\\midrule\n";
@@ -288,7 +302,20 @@ void write_html(std::ostream& out, const Table& table, const std::string& id) {
   out << R"(<table class="sortable" id=")" << plots::Svg::escape(id) << "\">\n";
   if (!table.caption.empty())
     out << "<caption>" << plots::Svg::escape(table.caption) << "</caption>\n";
-  out << "<thead><tr>";
+  out << "<thead>";
+  if (!table.groups.empty()) {  // the groups' heads, over empty cells where there is none
+    out << "<tr>";
+    std::size_t column = 0;
+    for (const auto& g : table.groups) {
+      for (; column < g.first; ++column) out << "<th></th>";
+      out << R"(<th scope="colgroup" colspan=")" << g.count << "\">"
+          << plots::Svg::escape(g.title) << "</th>";
+      column = g.first + g.count;
+    }
+    for (; column < table.columns.size(); ++column) out << "<th></th>";
+    out << "</tr>\n";
+  }
+  out << "<tr>";
   for (const auto& c : table.columns)
     out << R"(<th scope="col" data-key=")" << plots::Svg::escape(c.key) << "\">"
         << plots::Svg::escape(c.html.empty() ? c.key : c.html) << "</th>";

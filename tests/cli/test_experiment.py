@@ -39,7 +39,7 @@ class ExperimentFixture(CliTest):
         self.ok("generate", "netmaker", "--vertices", "1000", "--amin", "1", "--amax", "10",
                 "--locality", "20", "-o", self.path("netmaker.mosb"))
         instances = ["grid.mosb", "netmaker.mosb"]
-        self.benchmarks = ["Grid_2", "Grid_3", "NetMaker_3"]
+        self.benchmarks = ["Grid_2", "Grid_3", "NetMaker-1k_3"]
         self.bi_objective = ["Grid_2"]
         if os.path.exists(ARENA):
             self.write("guards.txt", "120 100 25\n")
@@ -344,7 +344,7 @@ class ExperimentTest(ExperimentFixture):
         self.assertNotEqual(r.returncode, 0)
         self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
         self.assertIn("namoa/grid/Grid_2: the limits changed", r.stderr)
-        self.assertIn("wrong/netmaker/NetMaker_3", r.stderr)
+        self.assertIn("wrong/netmaker/NetMaker-1k_3", r.stderr)
         self.assertEqual(read(os.path.join(results, "MANIFEST")), before)
         # Other limits for one benchmark ([[benchmark_limits]]) touch its cells only.
         grid3 = '[[benchmark_limits]]\nbenchmarks = ["Grid_3"]\ntime = 31\n'
@@ -415,13 +415,13 @@ class ExperimentTest(ExperimentFixture):
     def test_a_narrowed_run_is_recorded_and_its_idle_solvers_said(self):
         results = self.path("narrow")
         r = run("experiment", "run", self.experiment, "-o", results, "--benchmarks",
-                "NetMaker_3", "--time-limit", "20s", "--json")
+                "NetMaker-1k_3", "--time-limit", "20s", "--json")
         self.assertEqual(r.returncode, 0, r.stderr)
         self.assertIn("mosb: note: solver 'boa' runs no cell: its benchmarks match none of those "
                       "run", r.stderr)
-        self.assertEqual(json.loads(r.stdout)["cells"], 2)  # namoa and wrong on NetMaker_3
+        self.assertEqual(json.loads(r.stdout)["cells"], 2)  # namoa and wrong on NetMaker-1k_3
         plan = json.loads(read(os.path.join(results, "experiment.json")))
-        self.assertEqual(plan["arguments"], ["--benchmarks", "NetMaker_3", "--time-limit", "20s"])
+        self.assertEqual(plan["arguments"], ["--benchmarks", "NetMaker-1k_3", "--time-limit", "20s"])
         self.assertEqual({c["limits"] for c in self.cells(results).values()},
                          {"time=20s memory=2147483648B"})
 

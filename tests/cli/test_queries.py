@@ -142,7 +142,7 @@ class QueriesTest(CliTest):
         g = self.path("n.mosb")
         self.ok("generate", "netmaker", "--vertices", "30", "--queries", "2", "-o", g)
         meta = metadata(read(g))
-        self.assertEqual(meta["view.NetMaker_3.queries"], "default")  # bound already: untouched
+        self.assertEqual(meta["view.NetMaker-30_3.queries"], "default")  # bound already: untouched
         gr = self.write("n.gr", "p sp 3 2\na 0 1 5 6\na 1 2 7 8\n")
         inst = self.path("c.mosb")
         self.ok("convert", "netmaker", gr, "-o", inst)

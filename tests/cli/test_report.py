@@ -145,7 +145,7 @@ class ReportTest(unittest.TestCase):
             "--locality", "20", "-o", path("netmaker.mosb"))
         cls.instances = [path("grid.mosb"), path("netmaker.mosb")]
         runs = [("grid.mosb", "Grid_2", True)]
-        runs.append(("netmaker.mosb", "NetMaker_3", False))
+        runs.append(("netmaker.mosb", "NetMaker-1k_3", False))
         cls.has_arena = os.path.exists(ARENA)
         if cls.has_arena:
             with open(path("guards.txt"), "w") as f:
@@ -228,7 +228,7 @@ class ReportTest(unittest.TestCase):
         self.assertEqual(rows["Grid_2"]["vertices"], "902")
         self.assertEqual(rows["Grid_2"]["queries"], "5")
         self.assertEqual(rows["Grid_2"]["timeout"], "0")
-        self.assertEqual(rows["NetMaker_3"]["vertices"], "1000")
+        self.assertEqual(rows["NetMaker-1k_3"]["vertices"], "1000")
         self.assertEqual(rows["Grid_3"]["fronts of"], "-")  # no solver ran Grid_3
         comparison = page.tables["comparison-table"]
         self.assertIn("boa_star", [row[2][1] for row in comparison[1:]])
@@ -301,7 +301,7 @@ class ReportTest(unittest.TestCase):
         table = page.tables["instance-space-table"]
         headings = [c[1] for c in table[0]]
         rows = {row[0][1]: {h: c[0] for h, c in zip(headings, row)} for row in table[1:]}
-        netmaker = [name for name in rows if name.startswith("NetMaker_3, arcs of kind 0")]
+        netmaker = [name for name in rows if name.startswith("NetMaker-1k_3, arcs of kind 0")]
         self.assertEqual(len(netmaker), 1, list(rows))
         # The Hamiltonian cycle's arcs: the paper's ρ ≈ −0.44 (spec/GENERATORS.md: −0.444), drawn
         # as |ρ| as the paper's figure is.
@@ -338,7 +338,7 @@ class ReportTest(unittest.TestCase):
         page = parse(self.text)
         fronts = [f for f in page.figures if f["kind"] == "front"]
         texts = [t for f in fronts for t in f["texts"]]
-        self.assertIn("projection on c1, c3 of 3 objectives", texts)  # NetMaker_3
+        self.assertIn("projection on c1, c3 of 3 objectives", texts)  # NetMaker-1k_3
         # No network: the only URL is the SVG namespace.
         self.assertEqual(set(re.findall(r"https?://[^\"' )]*", self.text)),
                          {"http://www.w3.org/2000/svg"})
@@ -379,8 +379,8 @@ class ReportTest(unittest.TestCase):
             self.assertIn(name, names)
         self.assertTrue([n for n in names if re.fullmatch(r"front-grid_2-q\d+", n)], names)
         # Three objectives: three projections, each named by its axes.
-        self.assertTrue([n for n in names if re.fullmatch(r"front-netmaker_3-q\d+-13", n)], names)
-        self.assertNotIn("cactus-netmaker_3", names)  # one solver there: nothing to compare
+        self.assertTrue([n for n in names if re.fullmatch(r"front-netmaker_1k_3-q\d+-13", n)], names)
+        self.assertNotIn("cactus-netmaker_1k_3", names)  # one solver there: nothing to compare
         self.assertNotIn("cactus", names)  # pooled only on request
         if shutil.which("pdfinfo"):
             info = subprocess.run(["pdfinfo", os.path.join(figures, files[-1])],
@@ -622,6 +622,44 @@ class HostileInputTest(mosbtest.CliTest):
         self.assertIn("\\ensuremath{\\alpha}\\ensuremath{\\beta}--\\ensuremath{\\omega} "
                       "\\ensuremath{\\times} 2 \\ldots{} Müller", body)
         compile_latex(self, self.path("utex"))
+
+    def test_comparison_by_benchmark_groups_each_solvers_columns_under_its_name(self):
+        """The paper's appendix layout: a row per benchmark, each solver's four columns under a
+        \\multicolumn head with a \\cmidrule; a solver without a file for a benchmark has none
+        of its numbers there. The table still compiles with hostile names."""
+        a2 = self.solution("a2.sol", "a")
+        b2 = self.solution("b2.sol", "b $ ε=0.05", spec="0 timeout\n")
+        env = dict(os.environ, MOSB_TEST_SOLVER_NAME="a")
+        a3 = mosbtest.write_solution(self.path("a3.sol"), self.grid, "Grid_3",
+                                     "0 solved 1,2,3 t=0.25\n", "0", env=env)
+        tex, csv, html = self.path("tex"), self.path("csv"), self.path("r.html")
+        self.ok("report", self.grid, "--solutions", a2, b2, a3, "-o", html, "--latex", tex,
+                "--csv", csv, "--comparison-by-benchmark")
+        body = read(os.path.join(tex, "comparison.tex"), "r").splitlines()
+        self.assertEqual(body[3], " &  &  &  & \\multicolumn{4}{c}{a} & "
+                         "\\multicolumn{4}{c}{b \\$ \\ensuremath{\\varepsilon}=0.05} \\\\")
+        self.assertEqual(body[4], "\\cmidrule(lr){5-8}\\cmidrule(lr){9-12}")
+        self.assertTrue(body[5].startswith("Family & Benchmark & Queries & Common & Timeout"))
+        rows = [line for line in body if line.startswith("synthetic &")]
+        self.assertEqual(len(rows), 2, body)
+        self.assertIn("& Grid\\_2 & 1 & 0 & 0 & 0 & -- & -- & 1 & 0 & -- & -- \\\\", rows[0])
+        self.assertIn("& Grid\\_3 & 1 & 1 & 0 & 0 & 0.25 & 0.25 & -- & -- & -- & -- \\\\",
+                      rows[1])
+        compile_latex(self, tex)
+        lines = read(os.path.join(csv, "comparison.csv"), "r").splitlines()
+        self.assertEqual(lines[0].split(",")[:6],
+                         ["family", "benchmark", "queries", "common", "timeout@a",
+                          "memory_limit@a"])
+        self.assertEqual(len(lines), 3)
+        page = read(html, "r")
+        self.assertIn('<th scope="colgroup" colspan="4">b $ ε=0.05</th>', page)
+        self.assertIn(">b $ ε=0.05: median runtime [s]</th>", page)
+        # Without the option: a row per benchmark and solver, no group heads.
+        self.ok("report", self.grid, "--solutions", a2, b2, a3, "-o", self.path("long.html"),
+                "--latex", self.path("long"))
+        long = read(os.path.join(self.path("long"), "comparison.tex"), "r")
+        self.assertNotIn("multicolumn", long)
+        self.assertEqual(long.count("\\\\\n"), 1 + 3)
 
     def test_csv_names_a_spreadsheet_would_run_are_quoted_after_a_quote(self):
         names = ["=HYPERLINK(\"http://x\")", "+1", "-1", "@SUM(A1)"]

@@ -59,8 +59,8 @@ class GenerateNetMaker(SyntheticTest):
         self.ok("verify", "--level", "full", self.path("n.mosb"))
         info = self.inspect(self.path("n.mosb"))
         md = info["metadata"]
-        self.assertEqual(md["view.NetMaker_3.objectives"], "c1,c2,c3")
-        self.assertEqual(md["view.NetMaker_3.queries"], "default")
+        self.assertEqual(md["view.NetMaker-1k_3.objectives"], "c1,c2,c3")
+        self.assertEqual(md["view.NetMaker-1k_3.queries"], "default")
         self.assertEqual(md["family"], "synthetic")
         self.assertEqual(md["id_base"], "0")
         self.assertEqual(md["source.command"], "generate netmaker")

@@ -180,3 +180,26 @@ TEST_CASE("write_html: a sortable table, headings, exact values in data-v, text 
   CHECK(html.find(R"(<td class="n" data-v="">-</td>)") != std::string::npos);
   CHECK(html.find(R"(data-v="0.3333333333333333">0.3333</td>)") != std::string::npos);
 }
+
+TEST_CASE("column groups: a \\multicolumn head with its \\cmidrule, an HTML colgroup heading") {
+  Table t;
+  t.columns = {{"a@x", "A"}, {"b@x", "B"}, {"c", "C"}, {"d@y", "D"}};
+  t.rows = {{Cell::of(std::uint64_t{1}), Cell::of(std::uint64_t{2}), Cell::of(std::uint64_t{3}),
+             Cell{}}};
+  t.groups = {{0, 2, "x & co"}, {3, 1, "y"}};
+  std::ostringstream latex;
+  write_latex(latex, t);
+  CHECK(latex.str() ==
+        "\\begin{tabular}{lrrr}\n\\toprule\n"
+        "\\multicolumn{2}{c}{x \\& co} &  & \\multicolumn{1}{c}{y} \\\\\n"
+        "\\cmidrule(lr){1-2}\\cmidrule(lr){4-4}\n"
+        "A & B & C & D \\\\\n\\midrule\n1 & 2 & 3 & -- \\\\\n\\bottomrule\n\\end{tabular}\n");
+  std::ostringstream html;
+  write_html(html, t, "t");
+  CHECK(html.str().find("<thead><tr><th scope=\"colgroup\" colspan=\"2\">x &amp; co</th><th></th>"
+                        "<th scope=\"colgroup\" colspan=\"1\">y</th></tr>\n<tr><th") !=
+        std::string::npos);
+  std::ostringstream csv;
+  write_csv(csv, t);
+  CHECK(csv.str().substr(0, 13) == "a@x,b@x,c,d@y");  // the keys carry the groups
+}

@@ -209,7 +209,7 @@ TEST_CASE("Store::instance resolves views and benchmarks and refuses ambiguous n
   const auto reopened = Store::open(dir / "store");
   CHECK(reopened.manifest().entries.size() == 3);
 
-  const auto nm = reopened.instance("NetMaker_3");  // a view served by one file
+  const auto nm = reopened.instance("NetMaker-100_3");  // a view served by one file
   CHECK(nm.entry.file == "nm.mosb");
   REQUIRE(nm.view);
   CHECK(nm.view->objectives.size() == 3);

@@ -30,7 +30,7 @@ struct ReportArgs {
   std::size_t max_points = 1000, max_size = 5'000'000;
   std::optional<RuntimeSource> runtime;
   std::string baseline;
-  bool pooled = false, signed_rho = false;
+  bool pooled = false, signed_rho = false, comparison_by_benchmark = false;
 };
 
 std::vector<std::uint64_t> parse_queries(const std::string& list) {
@@ -116,6 +116,7 @@ int run_report(const ReportArgs& args) {
   options.baseline = args.baseline;
   options.pooled_figures = args.pooled;
   options.signed_rho = args.signed_rho;
+  options.comparison_by_benchmark = args.comparison_by_benchmark;
   if (!args.queries.empty()) options.queries = parse_queries(args.queries);
   options.epsilons = parse_epsilons(args.epsilons);
   for (const auto& e : options.epsilons) options.epsilon_labels.push_back(e.to_decimal(18));
@@ -212,6 +213,9 @@ Command add_report(CLI::App& app) {
                 "also the cactus plot and performance profile of every benchmark pooled");
   sub->add_flag("--signed-rho", args->signed_rho,
                 "the instance space in signed ρ (default: |ρ|, as the paper's figure)");
+  sub->add_flag("--comparison-by-benchmark", args->comparison_by_benchmark,
+                "the comparison table as the paper prints it: a row per benchmark, each "
+                "solver's columns under its name (default: a row per benchmark and solver)");
   add_output_option(sub, args->output, "the HTML file to write")->required();
   sub->add_option("--latex", args->latex,
                   "also write the tables as LaTeX booktabs tabulars into this directory");

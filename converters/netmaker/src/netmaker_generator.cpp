@@ -185,9 +185,15 @@ StreamedGraph netmaker_graph(const NetMakerParameters& p) {
   md.set("source.param.queries", std::to_string(p.queries));
   md.set("source.param.query_percent", std::to_string(p.query_percent));
   if (p.name) md.set("source.param.name", *p.name);
-  md.set("view.NetMaker_3.objectives", "c1,c2,c3");
-  md.set("view.NetMaker_3.queries", "default");
+  md.set("view." + netmaker_view(n) + ".objectives", "c1,c2,c3");
+  md.set("view." + netmaker_view(n) + ".queries", "default");
   return g;
+}
+
+std::string netmaker_view(std::uint32_t vertices) {
+  return "NetMaker-" +
+         (vertices % 1000 == 0 ? std::to_string(vertices / 1000) + "k" : std::to_string(vertices)) +
+         "_3";
 }
 
 GraphInput generate_netmaker(const NetMakerParameters& p) {

@@ -45,6 +45,9 @@ struct ReportOptions {
   // The instance space in signed ρ; by default |ρ|, as the paper's figure caption has it (its
   // text also quotes signed values: spec/EVALUATION.md §7).
   bool signed_rho = false;
+  // The comparison table as the paper prints it: a row per benchmark, each solver's columns
+  // under its name (wide past three solvers); by default a row per benchmark and solver.
+  bool comparison_by_benchmark = false;
 };
 
 // A figure of the page as a document of its own: its kind ("front", "cactus", ...) and its name,

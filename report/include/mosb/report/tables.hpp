@@ -34,10 +34,19 @@ struct Column {
   std::string html = {};  // HTML heading (plain text, escaped on writing); the key when empty
 };
 
+// A head over `count` columns from `first` (a solver's columns in a paper's comparison table):
+// LaTeX \multicolumn with a \cmidrule under it, an HTML heading row of its own (colspan). CSV and
+// text have no such row; the grouped columns' keys carry the group themselves.
+struct ColumnGroup {
+  std::size_t first = 0, count = 0;
+  std::string title;  // plain text, escaped on writing
+};
+
 struct Table {
   std::vector<Column> columns;
   std::vector<std::vector<Cell>> rows;  // each as long as `columns`
   std::string caption;                  // LaTeX comment line and text heading; may be empty
+  std::vector<ColumnGroup> groups;      // in column order, not overlapping; may be empty
 };
 
 // `text` as LaTeX shows it in text mode, a cell's or a heading's: \ { } $ & # % _ ~ ^ [ ] < > |

@@ -23,6 +23,11 @@ struct NetMakerParameters {
   std::optional<std::string> name;   // benchmark; default NetMaker-N<N>-I<I>
 };
 
+// The view of a generated instance (c1, c2, c3 over query set `default`): one per size, as the
+// paper's Table 1 splits NetMaker: NetMaker-10k_3 for 10,000 vertices, NetMaker-300_3 for 300
+// (thousands as "k" when N is a multiple of 1,000). spec/suite.json's netmaker `views`.
+std::string netmaker_view(std::uint32_t vertices);
+
 // Arc data section `kind` (u8): which part of the construction an arc comes from.
 inline constexpr std::uint8_t kNetMakerCycleArc = 0;
 inline constexpr std::uint8_t kNetMakerLocalityArc = 1;
