@@ -1,6 +1,7 @@
 #include "mosb/report/plots.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -116,7 +117,7 @@ void frame(Svg& svg, const Axis& x, const Axis& y, const std::string& title,
 }
 
 // Legend entries at the right of the plot area: (kind, colour, label, an optional second line);
-// kind 'c' filled dot, 'o' ring, 'r' box, '-' text alone.
+// kind 'c' filled dot, 'o' ring, 'r' box, 's' hollow square, '-' text alone.
 struct LegendEntry {
   char kind;
   std::string colour, label, note;
@@ -131,6 +132,8 @@ void legend(Svg& svg, const std::vector<LegendEntry>& entries) {
       svg.circle(x + 6, y - 5, 5, "none", e.colour, 1.5);
     else if (e.kind == 'r')
       svg.rect(x, y - 11, 12, 12, e.colour, "#555", 1, 0.5);
+    else if (e.kind == 's')
+      svg.rect(x + 1, y - 10, 10, 10, "none", e.colour, 1.5);
     svg.text(e.kind == '-' ? x : x + 18, y, e.label, "start", kLegendFont);
     if (!e.note.empty()) svg.text(x + 18, y += 18, e.note, "start", kLegendFont);
     y += 22;
@@ -284,6 +287,12 @@ std::string plot_front(const FrontPlot& plot) {
   };
   for (const auto& p : plot.reference) extend({box(p.x), box(p.y)}), extend(p);
   for (const auto& p : plot.solution) extend(p);
+  const std::size_t approximations = std::min(plot.approximations.size(), kMaxApproximations);
+  std::vector<std::vector<Point2>> approximated(approximations);
+  for (std::size_t k = 0; k < approximations; ++k) {
+    approximated[k] = thin_points(plot.approximations[k].points, plot.max_points);
+    for (const auto& p : plot.approximations[k].points) extend(p);
+  }
   if (!std::isfinite(y_lo)) y_lo = 0, y_hi = 1;
   data_range(x_lo, x_hi);
   data_range(y_lo, y_hi);
@@ -306,6 +315,16 @@ std::string plot_front(const FrontPlot& plot) {
     svg.circle(x.map(q.x), y.map(q.y), 5, "none", kReferenceColour, 1.5);
   for (const auto& p : solution)
     svg.circle(x.map(p.x), y.map(p.y), 3, kSolverColour, "#fff", 0.5, 0.75);
+  constexpr std::array<const char*, kMaxApproximations> kApproximationColours = {
+      kOkabeIto[2], kOkabeIto[6], kOkabeIto[0], kOkabeIto[7]};
+  // Hollow squares, larger per series, so fronts sharing a vector (an ε front is often a subset
+  // of the exact one) show nested around the reference's ring.
+  for (std::size_t k = 0; k < approximations; ++k) {
+    const double half = 7 + 2.5 * static_cast<double>(k);
+    for (const auto& p : approximated[k])
+      svg.rect(x.map(p.x) - half, y.map(p.y) - half, 2 * half, 2 * half, "none",
+               kApproximationColours[k], 1.5);
+  }
   std::vector<LegendEntry> entries;
   if (!plot.reference.empty())
     entries.push_back(front_entry('o', kReferenceColour, plot.reference_name, reference.size(),
@@ -313,6 +332,14 @@ std::string plot_front(const FrontPlot& plot) {
   if (!plot.solution.empty() || plot.reference.empty())
     entries.push_back(
         front_entry('c', kSolverColour, plot.solver_name, solution.size(), plot.solution.size()));
+  for (std::size_t k = 0; k < approximations; ++k)
+    entries.push_back(front_entry('s', kApproximationColours[k], plot.approximations[k].name,
+                                  approximated[k].size(), plot.approximations[k].points.size()));
+  if (plot.approximations.size() > approximations)
+    entries.push_back({'-', "",
+                       std::to_string(plot.approximations.size() - approximations) +
+                           " more not drawn",
+                       ""});
   if (e > 0) entries.push_back({'r', kBoxColour, "ε-box, ε = " + tick_label(e), ""});
   legend(svg, entries);
   return svg.str();

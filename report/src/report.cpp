@@ -769,6 +769,7 @@ std::vector<std::uint64_t> chosen_queries(const SolutionReader& r,
 struct DrawnFronts {
   const SolutionReader* shown = nullptr;
   const SolutionReader* overlay = nullptr;
+  std::vector<const SolutionReader*> approximations;  // files claiming ε > 0, in solver order
   std::size_t instance = 0;  // the instance `shown` is bound to
   bool of_reference = false;
   std::vector<std::uint64_t> queries;  // chosen_queries of `shown`
@@ -781,13 +782,19 @@ DrawnFronts drawn_fronts(const Context& c, const Benchmark& bm) {
   fronts.shown = &files.readers[files.files->front().file];
   fronts.instance = files.files->front().instance;
   fronts.of_reference = files.of_reference;
-  if (files.of_reference)  // the first other solver's: the reference is often a solver's file too
-    for (const auto& name : bm.solver_order)
-      for (const auto& f : bm.solvers.at(name))
-        if (!fronts.overlay && name != solver_name(*fronts.shown) &&
-            f.instance == fronts.instance &&
-            c.solutions[f.file].query_set() == fronts.shown->query_set())
-          fronts.overlay = &c.solutions[f.file];
+  // Over the reference, the first other exact solver's front (the reference is often a
+  // solver's file too) and every approximate solver's (an ε sweep's).
+  for (const auto& name : bm.solver_order)
+    for (const auto& f : bm.solvers.at(name)) {
+      const auto& s = c.solutions[f.file];
+      if (&s == fronts.shown || f.instance != fronts.instance ||
+          s.query_set() != fronts.shown->query_set())
+        continue;
+      if (parse_epsilon(s.solver().epsilon).num != 0)
+        fronts.approximations.push_back(&s);
+      else if (files.of_reference && !fronts.overlay && name != solver_name(*fronts.shown))
+        fronts.overlay = &s;
+    }
   fronts.queries = chosen_queries(*fronts.shown, c.options.queries);
   return fronts;
 }
@@ -845,6 +852,8 @@ void map_figure(const Context& c, const Benchmark& bm, const DrawnFronts& fronts
 struct QueryFronts {
   std::vector<std::vector<double>> reference, solution;  // rows of objective values
   std::string reference_name = "reference", solver_name = "solver";
+  // The approximate solvers' fronts of the query (drawn in the 2-D figures), by solver name.
+  std::vector<std::pair<std::string, std::vector<std::vector<double>>>> approximations;
   std::string title, caption, name;
 };
 
@@ -859,6 +868,14 @@ QueryFronts query_fronts(const Context& c, const Benchmark& bm, const DrawnFront
   const std::string what = "query " + std::to_string(q) + " of " + shown.query_set() + " on " +
                            c.instances[fronts.instance].display_name();
   QueryFronts f;
+  std::string approximated;  // their sizes, for the caption
+  const bool pairwise = bm.views.front().objectives.size() <= 3;  // parallel coordinates: not
+  for (const auto* a : fronts.approximations)
+    if (pairwise && q < a->query_count() && a->status(q) == QueryStatus::solved) {
+      f.approximations.emplace_back(solver_name(*a), plots::front_rows(*a, q));
+      approximated += ", " + solver_name(*a) + " " +
+                      std::to_string(f.approximations.back().second.size());
+    }
   // The title names no path: it is drawn in the figure, at its width.
   f.title = bm.name + ", query " + std::to_string(q) +
             (bm.instances.size() > 1 ? " on " + instance_name(c.instances[fronts.instance])
@@ -868,7 +885,7 @@ QueryFronts query_fronts(const Context& c, const Benchmark& bm, const DrawnFront
       "Front of " + what + " (" + std::to_string(rows.size()) + " vectors" +
       (fronts.overlay ? ", " + solver_name(*fronts.overlay) + " " + std::to_string(other.size())
                       : std::string()) +
-      ")";
+      approximated + ")";
   if (!fronts.of_reference) {
     f.solution = std::move(rows);
     f.solver_name = solver_name(shown);
@@ -898,6 +915,8 @@ void pair_figures(const Context& c, const SolutionReader& shown, std::size_t d,
     front.solution = plots::pair_points(f.solution, a, b);
     front.reference_name = f.reference_name;
     front.solver_name = f.solver_name;
+    for (const auto& [name, rows] : f.approximations)
+      front.approximations.push_back({name, plots::pair_points(rows, a, b)});
     c.page.figure(
         "front", plots::plot_front(front),
         f.caption +

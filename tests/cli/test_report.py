@@ -510,6 +510,15 @@ class HostileInputTest(mosbtest.CliTest):
         self.assertIn('<section id="approximation">', page)
         self.assertIn("apx: the median front size at ε = 0.1 is 66.7% below the exact one", page)
         self.assertTrue([f for f in os.listdir(figures) if f.endswith("-epsilon-grid_2.svg")])
+        # The front figure draws the sweep's fronts over the reference, each named with its size,
+        # in the experiment's order (here the order given).
+        (front,) = [f for f in os.listdir(figures) if f.endswith("-front-grid_2-q0.svg")]
+        svg = read(os.path.join(figures, front), "r")
+        self.assertLess(svg.index(">apx-eps0.1 (1 vector)<"), svg.index(">apx-eps0.05 (2 vectors)<"))
+        self.assertEqual(svg.count('stroke="#009E73"'), 1 + 1)  # apx-eps0.1's square and swatch
+        self.assertEqual(svg.count('stroke="#CC79A7"'), 2 + 1)  # apx-eps0.05's two and swatch
+        (caption,) = [c for c in re.findall(r"<figcaption>(Front of [^<]*)</figcaption>", page)]
+        self.assertTrue(caption.endswith("(3 vectors, apx-eps0.1 1, apx-eps0.05 2)"), caption)
         spread = [(r["objective"], r["queries"], r["spread_mean"])
                   for r in csv_rows(os.path.join(out, "spread.csv"))]
         self.assertEqual(spread, [("c1", "1", "4"), ("c2", "1", "4")])

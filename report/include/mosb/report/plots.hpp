@@ -28,14 +28,24 @@ std::string axis_label(const std::string& name, const std::string& unit);
 // A 2-D front: reference and solver vectors of two objectives, and the ε-box of each reference
 // vector q (the rectangle from q to (1+ε)·q: a solver vector inside it or below-left of q covers
 // q). Reference vectors are hollow blue rings, solver vectors smaller filled vermillion dots at 75%
-// opacity, so coincident vectors stay visible. The legend says "NAME (n vectors)". With
-// objective_count > 2 a subtitle says the figure is a projection on the two drawn objectives.
+// opacity, so coincident vectors stay visible; further fronts (`approximations`, an ε sweep's)
+// are hollow squares, larger per series so shared vectors show nested, each its own colour
+// (bluish green, reddish purple, orange, black; past
+// kMaxApproximations the legend says how many more were not drawn). The legend says
+// "NAME (n vectors)". With objective_count > 2 a subtitle says the figure is a projection on the
+// two drawn objectives.
+struct FrontSeries {
+  std::string name;
+  std::vector<Point2> points;
+};
+inline constexpr std::size_t kMaxApproximations = 4;
 struct FrontPlot {
   std::string title, x_label, y_label;  // axis labels: the objective names
   std::string x_unit, y_unit;           // shown as "name [unit]" when not empty
   std::string solver_name = "solver", reference_name = "reference";
   std::size_t objective_count = 2;
   std::vector<Point2> reference, solution;
+  std::vector<FrontSeries> approximations;
   std::optional<double> epsilon;  // no boxes when absent or 0
   std::size_t max_points = 5000;  // per set, past which it is thinned (kMaxDrawnPoints)
 };
