@@ -75,7 +75,7 @@ std::string objective_names(const GraphReader& g, const View& v) {
 }
 
 // A view the suite names as a benchmark of its own, NAME_d with d its number of objectives
-// (Grid_2, NetMaker_3, Games-GUARDS_2, DIMACS-Extended-NY_4): the suite groups every instance
+// (Grid_2, NetMaker-10k_3, Games-GUARDS_2, DIMACS-Extended-NY_4): the suite groups every instance
 // that has it into that one benchmark. Any other view ("length", a Moving AI map's) is a view of
 // one instance's own benchmark.
 bool is_suite_benchmark_view(const View& v) {

@@ -8,7 +8,7 @@
    .mosb (converted here with `mosb convert dimacs`) against `namoa_text` loading the two .gr files;
    one query, vertex 0 -> 20000, the same search in both. Best of 3 wall-clock runs, with the
    child's CPU time (user + system) of that run.
-2. Per-query time of `namoa` (NetMaker_3, 3 objectives) and `boa_star` (c1, c2) on the real NetMaker
+2. Per-query time of `namoa` (NetMaker-10k_3, 3 objectives) and `boa_star` (c1, c2) on the real NetMaker
    graph with its 40 published `.inst` queries, as the solvers print them.
 Fails (exit 1) only when the two programs disagree on a front size.
 """

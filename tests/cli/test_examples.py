@@ -281,7 +281,7 @@ class RealData(Base):
         self.ok("convert", "netmaker", gr, "-o", inst)
         self.ok("queries", "import", inst, os.path.join(DATA, "netmaker", "netMaker_4d.inst"), "--in-place",
                   "--set", "nm", "--match", "_79134.gr")
-        # Every published query, on the first two objectives of the file's only view (NetMaker_3).
+        # Every published query, on the first two objectives of the file's only view (NetMaker-10k_3).
         rows = self.agree(inst, ["--objectives", "c1,c2", "--queries", "nm"])
         self.assertEqual(len(rows), 40)
         self.assertEqual(rows[0][:2], ["8326", "5528"])

@@ -146,22 +146,22 @@ class QueriesTest(CliTest):
         gr = self.write("n.gr", "p sp 3 2\na 0 1 5 6\na 1 2 7 8\n")
         inst = self.path("c.mosb")
         self.ok("convert", "netmaker", gr, "-o", inst)
-        self.assertNotIn("view.NetMaker_2.queries", metadata(read(inst)))
+        self.assertNotIn("view.NetMaker-3_2.queries", metadata(read(inst)))
         c = self.ok("queries", "import", inst, q, "-o", self.path("c1.mosb"), "--set", "mine")
-        self.assertEqual(c.stderr, "query set mine is now the query set of view NetMaker_2\n")
-        self.assertEqual(metadata(read(self.path("c1.mosb")))["view.NetMaker_2.queries"], "mine")
+        self.assertEqual(c.stderr, "query set mine is now the query set of view NetMaker-3_2\n")
+        self.assertEqual(metadata(read(self.path("c1.mosb")))["view.NetMaker-3_2.queries"], "mine")
         # A view bound already keeps its set; --view V rebinds V alone.
         c = self.ok("queries", "generate", self.path("c1.mosb"), "--set", "other", "--count", "2",
                     "-o", self.path("c2.mosb"))
         self.assertEqual(c.stderr, "")
-        self.assertEqual(metadata(read(self.path("c2.mosb")))["view.NetMaker_2.queries"], "mine")
+        self.assertEqual(metadata(read(self.path("c2.mosb")))["view.NetMaker-3_2.queries"], "mine")
         c = self.ok("queries", "generate", self.path("c2.mosb"), "--set", "third", "--count", "2",
-                    "--view", "NetMaker_2", "-o", self.path("c3.mosb"))
-        self.assertEqual(c.stderr, "query set third is now the query set of view NetMaker_2\n")
-        self.assertEqual(metadata(read(self.path("c3.mosb")))["view.NetMaker_2.queries"], "third")
+                    "--view", "NetMaker-3_2", "-o", self.path("c3.mosb"))
+        self.assertEqual(c.stderr, "query set third is now the query set of view NetMaker-3_2\n")
+        self.assertEqual(metadata(read(self.path("c3.mosb")))["view.NetMaker-3_2.queries"], "third")
         err = self.fails("queries", "generate", self.path("c2.mosb"), "--set", "fourth",
                          "--view", "nope", "-o", self.path("c4.mosb"))
-        self.assertIn("no view 'nope' (views: NetMaker_2)", err)
+        self.assertIn("no view 'nope' (views: NetMaker-3_2)", err)
         self.assertFalse(os.path.exists(self.path("c4.mosb")))
 
     def test_replace_keeps_position(self):

@@ -188,12 +188,12 @@ class ConvertNetMaker(SyntheticTest):
         # Every convert and generate command takes --view NAME=OBJ,...[@SET] (the parser of
         # convert dimacs): here one more view and a replaced default.
         gr = self.write("n.gr", "p sp 3 2\na 0 1 5 6\na 1 2 7 8\n")
-        self.ok("convert", "netmaker", gr, "--view", "second=c2", "--view", "NetMaker_2=c2,c1",
+        self.ok("convert", "netmaker", gr, "--view", "second=c2", "--view", "NetMaker-3_2=c2,c1",
                 "-o", self.path("n.mosb"))
         md = self.inspect(self.path("n.mosb"))["metadata"]
         self.assertEqual(md["view.second.objectives"], "c2")
         self.assertEqual(md["source.param.view.second"], "c2@default")
-        self.assertEqual(md["view.NetMaker_2.objectives"], "c2,c1")
+        self.assertEqual(md["view.NetMaker-3_2.objectives"], "c2,c1")
         r = self.mosb("convert", "netmaker", gr, "--view", "x=c9", "-o", self.path("x.mosb"))
         self.assert_one_line_error(r, "--view 'x': objective 'c9' is not a column (columns: c1,c2)")
         self.assertFalse(os.path.exists(self.path("x.mosb")))
@@ -212,8 +212,8 @@ class ConvertNetMaker(SyntheticTest):
         r = self.ok("convert", "netmaker", NETMAKER_FILE, "-o", self.path("n.mosb"))
         self.assertIn("10000 vertices, 59750 arcs, 3 objectives", r.stdout)
         md = self.inspect(self.path("n.mosb"))["metadata"]
-        self.assertEqual(md["view.NetMaker_3.objectives"], "c1,c2,c3")
-        self.assertNotIn("view.NetMaker_3.queries", md)
+        self.assertEqual(md["view.NetMaker-10k_3.objectives"], "c1,c2,c3")
+        self.assertNotIn("view.NetMaker-10k_3.queries", md)
         self.assertEqual(md["family"], "synthetic")
         self.assertEqual(md["id_base"], "0")
         self.assertEqual(md["source.command"], "convert netmaker")

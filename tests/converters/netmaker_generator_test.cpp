@@ -339,8 +339,8 @@ TEST_CASE("the real NetMaker file converts to 10000 vertices, 59750 arcs, 3 obje
   CHECK(r.objective_count() == 3);
   CHECK(r.metadata().get("family") == "synthetic");
   CHECK(r.metadata().get("id_base") == "0");
-  CHECK(r.metadata().get("view.NetMaker_3.objectives") == "c1,c2,c3");
-  CHECK_FALSE(r.metadata().get("view.NetMaker_3.queries").has_value());
+  CHECK(r.metadata().get("view.NetMaker-10k_3.objectives") == "c1,c2,c3");
+  CHECK_FALSE(r.metadata().get("view.NetMaker-10k_3.queries").has_value());
   CHECK(r.metadata().get("benchmark") == "netMaker_3o_10000n_1amin_10amax_20i_1s_scorr_79134");
   CHECK(reaches_all(r, false));
   CHECK(reaches_all(r, true));

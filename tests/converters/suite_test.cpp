@@ -54,8 +54,9 @@ TEST_CASE("every generated benchmark carries the views the description lists") {
     if (generator == "netmaker") {
       CHECK(views == std::vector<std::string>{"NetMaker-{size}_3"});
       views = {"NetMaker-10k_3"};
-      CHECK(converters::netmaker_view(300) == "NetMaker-300_3");
-      CHECK(converters::netmaker_view(30000) == "NetMaker-30k_3");
+      CHECK(converters::netmaker_view(300, 3) == "NetMaker-300_3");
+      CHECK(converters::netmaker_view(30000, 2) == "NetMaker-30k_2");
+      CHECK(converters::netmaker_view(0, 3) == "NetMaker-0_3");
     }
     CHECK(manifest.entries[0].views == views);
   }

@@ -185,15 +185,16 @@ StreamedGraph netmaker_graph(const NetMakerParameters& p) {
   md.set("source.param.queries", std::to_string(p.queries));
   md.set("source.param.query_percent", std::to_string(p.query_percent));
   if (p.name) md.set("source.param.name", *p.name);
-  md.set("view." + netmaker_view(n) + ".objectives", "c1,c2,c3");
-  md.set("view." + netmaker_view(n) + ".queries", "default");
+  md.set("view." + netmaker_view(n, 3) + ".objectives", "c1,c2,c3");
+  md.set("view." + netmaker_view(n, 3) + ".queries", "default");
   return g;
 }
 
-std::string netmaker_view(std::uint32_t vertices) {
+std::string netmaker_view(std::uint64_t vertices, std::size_t objectives) {
   return "NetMaker-" +
-         (vertices % 1000 == 0 ? std::to_string(vertices / 1000) + "k" : std::to_string(vertices)) +
-         "_3";
+         (vertices % 1000 == 0 && vertices > 0 ? std::to_string(vertices / 1000) + "k"
+                                               : std::to_string(vertices)) +
+         "_" + std::to_string(objectives);
 }
 
 GraphInput generate_netmaker(const NetMakerParameters& p) {
@@ -215,7 +216,7 @@ GraphInput convert_netmaker(const std::filesystem::path& gr_file,
   std::string objectives;
   for (std::size_t j = 1; j <= g.costs.size(); ++j)
     objectives += (j > 1 ? ",c" : "c") + std::to_string(j);
-  md.set("view.NetMaker_" + std::to_string(g.costs.size()) + ".objectives", objectives);
+  md.set("view." + netmaker_view(g.vertex_count, g.costs.size()) + ".objectives", objectives);
   return g;
 }
 

@@ -23,10 +23,10 @@ struct NetMakerParameters {
   std::optional<std::string> name;   // benchmark; default NetMaker-N<N>-I<I>
 };
 
-// The view of a generated instance (c1, c2, c3 over query set `default`): one per size, as the
-// paper's Table 1 splits NetMaker: NetMaker-10k_3 for 10,000 vertices, NetMaker-300_3 for 300
-// (thousands as "k" when N is a multiple of 1,000). spec/suite.json's netmaker `views`.
-std::string netmaker_view(std::uint32_t vertices);
+// The view of a NetMaker instance (c1 … cd): one per size and d, as the paper's Table 1 splits
+// NetMaker: NetMaker-10k_3 for 10,000 vertices and 3 objectives, NetMaker-300_2 for 300 and 2
+// (thousands as "k" when 1,000 divides N). spec/suite.json's netmaker `views`.
+std::string netmaker_view(std::uint64_t vertices, std::size_t objectives);
 
 // Arc data section `kind` (u8): which part of the construction an arc comes from.
 inline constexpr std::uint8_t kNetMakerCycleArc = 0;
@@ -41,7 +41,7 @@ StreamedGraph netmaker_graph(const NetMakerParameters& p);
 GraphInput generate_netmaker(const NetMakerParameters& p);
 
 // An existing NetMaker file: a 0-based DIMACS-like .gr with one cost column per objective (plain
-// or compressed). Views NetMaker_<d> = c1..cd, no query set (`mosb queries import` adds them).
+// or compressed). Its view netmaker_view = c1..cd, no query set (`mosb queries import` adds it).
 GraphInput convert_netmaker(const std::filesystem::path& gr_file,
                             const std::optional<std::string>& name);
 
