@@ -320,7 +320,7 @@ std::string plot_front(const FrontPlot& plot) {
   // Hollow squares, larger per series, so fronts sharing a vector (an ε front is often a subset
   // of the exact one) show nested around the reference's ring.
   for (std::size_t k = 0; k < approximations; ++k) {
-    const double half = 7 + 2.5 * static_cast<double>(k);
+    const double half = 5.5 + 2 * static_cast<double>(k);
     for (const auto& p : approximated[k])
       svg.rect(x.map(p.x) - half, y.map(p.y) - half, 2 * half, 2 * half, "none",
                kApproximationColours[k], 1.5);
