@@ -468,6 +468,14 @@ class ExperimentTest(ExperimentFixture):
                 self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
                 self.assertIn(path + ": not a regular file", r.stderr)
                 self.assertFalse(os.path.exists(self.path("never")))
+        # Past the 16 MiB cap (a sparse file of 1 TiB): refused from its size, nothing read.
+        huge = self.path("huge.toml")
+        with open(huge, "w") as f:
+            f.truncate(1 << 40)
+        r = run("experiment", "run", huge, "-o", self.path("never"), timeout=60)
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn(huge + ": more than 16777216 bytes", r.stderr)
+        self.assertFalse(os.path.exists(self.path("never")))
 
     def test_a_directory_it_did_not_make_is_never_written(self):
         # The user's files: refused before anything (the lock included) is made there.

@@ -379,6 +379,13 @@ for c in s.pareto(n, arcs, source, target):
                       self.path("x.sol"), env=self.env)
         self.assert_error(r, "%s:3:22: key 'success_exit_codes': expected an array"
                           % self.path("bad2.toml"))
+        # Past the 1 MiB cap (a comment a byte too long): refused before it is parsed.
+        self.write("long.toml", "#" * (1 << 20) + "\n")
+        r = self.mosb("run", self.path("g2.mosb"), "--view", "Grid_2", "--profile",
+                      self.path("long.toml"), "--executable", self.standins["apex"], "-o",
+                      self.path("x.sol"), env=self.env)
+        self.assert_error(r, "%s: more than 1048576 bytes" % self.path("long.toml"))
+        self.assertFalse(os.path.exists(self.path("x.sol")))
 
     def test_options_and_usage(self):
         base = ["run", self.path("g3.mosb"), "--view", "Grid_3", "--executable",

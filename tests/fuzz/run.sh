@@ -18,13 +18,13 @@ bin="$(cd "$bin" && pwd)"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 
-run() {  # target seconds seed-files...
+run() {  # target seconds seed-files... (MAX_LEN: the longest input, 64 KiB unless set)
   local target="$1" time="$2"
   shift 2
   mkdir -p "$work/$target"
   cp "$@" "$work/$target"/ 2>/dev/null || true
   echo "fuzzing $target for ${time}s from $(ls "$work/$target" | wc -l) seed files"
-  "$bin/$target" -max_total_time="$time" -max_len=65536 -timeout=10 -rss_limit_mb=4096 \
+  "$bin/$target" -max_total_time="$time" -max_len="${MAX_LEN:-65536}" -timeout=10 -rss_limit_mb=4096 \
     -print_final_stats=1 "$work/$target" > "$work/$target.log" 2>&1 || {
     tail -n 60 "$work/$target.log"
     echo "fuzz target $target failed"
@@ -44,6 +44,11 @@ run mosb_fuzz_c_api "$((seconds / 3 > 5 ? seconds / 3 : 5))" "$root"/spec/golden
   "$root"/spec/golden/*/invalid/*.mosb "$root"/spec/golden/*/packed/*/*.mosb
 for fuzzer in "$bin"/mosb_fuzz_*; do
   target="$(basename "$fuzzer")"
-  [[ "$target" =~ ^mosb_fuzz_(reader|solutions|unpack|streaming_verify|c_api)$ ]] && continue
+  [[ "$target" =~ ^mosb_fuzz_(reader|solutions|unpack|streaming_verify|c_api|profile)$ ]] && continue
   run "$target" "$((seconds / 3 > 5 ? seconds / 3 : 5))" "$root"/tests/fuzz/corpus/"$target"/*
 done
+# A profile file is read with a cap of 1 MiB: inputs may pass it, and a seed just past it starts
+# the fuzzer there.
+head -c 1048577 /dev/zero | tr '\0' '#' > "$work/past-the-cap.toml"
+MAX_LEN=1048600 run mosb_fuzz_profile "$((seconds / 3 > 5 ? seconds / 3 : 5))" \
+  "$root"/tests/fuzz/corpus/mosb_fuzz_profile/* "$work/past-the-cap.toml"

@@ -76,6 +76,18 @@ inline const SolutionFault kSolutionFaults[] = {
        poke<std::uint8_t>(b, s, 1, 5);
        reseal_section(b, s);
      }},
+    // A non-zero byte in an alignment gap (after the first payload that does not end on a
+    // multiple of 64): every checksum still holds, but FORMAT.md §1 says such bytes are zero.
+    {"padding.sol.mosb", "payload", "[padding] byte",
+     [](Bytes& b) {
+       for (std::size_t i = 0; i < header_of(b).section_count; ++i) {
+         const auto e = entry_of(b, i);
+         if ((e.offset + e.stored_length) % 64 != 0) {
+           b[e.offset + e.stored_length] = std::byte{0x2A};
+           return;
+         }
+       }
+     }},
 };
 
 }  // namespace mosb::testing

@@ -10,6 +10,7 @@
 #include "mosb/internal/hex.hpp"
 #include "mosb/internal/sections_by_kind.hpp"
 #include "mosb/internal/xxh3.hpp"
+#include "mosb/verify.hpp"
 #include "mosb/version.hpp"
 
 namespace mosb {
@@ -430,6 +431,7 @@ std::optional<std::string> SolutionReader::verify_payload() const {
       return "section '" + s.name + "': [checksum] mismatch (stored " + hex64(s.entry.checksum) +
              ", computed " + hex64(computed) + ")";
   }
+  if (auto problem = find_padding_problem(*this)) return problem;
   const auto statuses = values<std::uint8_t>(sections_[status_index_]);
   const auto offsets = front_offsets();
   for (std::uint64_t q = 0; q < query_count_; ++q) {
