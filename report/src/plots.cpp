@@ -336,10 +336,9 @@ std::string plot_front(const FrontPlot& plot) {
     entries.push_back(front_entry('s', kApproximationColours[k], plot.approximations[k].name,
                                   approximated[k].size(), plot.approximations[k].points.size()));
   if (plot.approximations.size() > approximations)
-    entries.push_back({'-', "",
-                       std::to_string(plot.approximations.size() - approximations) +
-                           " more not drawn",
-                       ""});
+    entries.push_back(
+        {'-', "", std::to_string(plot.approximations.size() - approximations) + " more not drawn",
+         ""});
   if (e > 0) entries.push_back({'r', kBoxColour, "ε-box, ε = " + tick_label(e), ""});
   legend(svg, entries);
   return svg.str();
@@ -517,8 +516,7 @@ std::string plot_map(const MapPlot& plot) {
       {'r', kBlockedColour, plot.block > 1 ? "blocked square" : "blocked cell", ""}};
   if (std::any_of(plot.passable_share.begin(), plot.passable_share.end(),
                   [](double share) { return share >= 0.5 && share < 1; }))
-    entries.push_back(
-        {'r', partly_blocked_colour(0.5), "partly blocked square", ""});
+    entries.push_back({'r', partly_blocked_colour(0.5), "partly blocked square", ""});
   if (!plot.exposure.empty() && hi >= lo)
     for (auto& e : exposure_legend(plot, lo, hi)) entries.push_back(std::move(e));
   for (std::size_t k = 0; k < plot.paths.size(); ++k) {
@@ -608,7 +606,8 @@ MapPlot MapSquares::plot() const {
       const std::size_t i = std::size_t{y} * columns_ + x;
       const std::uint64_t all = cells(x, width_) * cells(y, height_);
       out.passable[i] = 2 * std::uint64_t{open_[i]} >= all;
-      if (block_ > 1) out.passable_share[i] = static_cast<double>(open_[i]) / static_cast<double>(all);
+      if (block_ > 1)
+        out.passable_share[i] = static_cast<double>(open_[i]) / static_cast<double>(all);
     }
   return out;
 }

@@ -770,7 +770,7 @@ struct DrawnFronts {
   const SolutionReader* shown = nullptr;
   const SolutionReader* overlay = nullptr;
   std::vector<const SolutionReader*> approximations;  // files claiming ε > 0, in solver order
-  std::size_t instance = 0;  // the instance `shown` is bound to
+  std::size_t instance = 0;                           // the instance `shown` is bound to
   bool of_reference = false;
   std::vector<std::uint64_t> queries;  // chosen_queries of `shown`
 };
@@ -868,13 +868,13 @@ QueryFronts query_fronts(const Context& c, const Benchmark& bm, const DrawnFront
   const std::string what = "query " + std::to_string(q) + " of " + shown.query_set() + " on " +
                            c.instances[fronts.instance].display_name();
   QueryFronts f;
-  std::string approximated;  // their sizes, for the caption
+  std::string approximated;                                       // their sizes, for the caption
   const bool pairwise = bm.views.front().objectives.size() <= 3;  // parallel coordinates: not
   for (const auto* a : fronts.approximations)
     if (pairwise && q < a->query_count() && a->status(q) == QueryStatus::solved) {
       f.approximations.emplace_back(solver_name(*a), plots::front_rows(*a, q));
-      approximated += ", " + solver_name(*a) + " " +
-                      std::to_string(f.approximations.back().second.size());
+      approximated +=
+          ", " + solver_name(*a) + " " + std::to_string(f.approximations.back().second.size());
     }
   // The title names no path: it is drawn in the figure, at its width.
   f.title = bm.name + ", query " + std::to_string(q) +

@@ -308,8 +308,8 @@ void write_html(std::ostream& out, const Table& table, const std::string& id) {
     std::size_t column = 0;
     for (const auto& g : table.groups) {
       for (; column < g.first; ++column) out << "<th></th>";
-      out << R"(<th scope="colgroup" colspan=")" << g.count << "\">"
-          << plots::Svg::escape(g.title) << "</th>";
+      out << R"(<th scope="colgroup" colspan=")" << g.count << "\">" << plots::Svg::escape(g.title)
+          << "</th>";
       column = g.first + g.count;
     }
     for (; column < table.columns.size(); ++column) out << "<th></th>";

@@ -19,8 +19,8 @@ TEST_CASE("read_regular_file: a regular file up to the cap, refused past it, nev
   const auto at_cap = dir / "at-cap.toml";
   std::ofstream(at_cap) << std::string(1000, '#');
   CHECK(read_regular_file(at_cap, 1000) == std::string(1000, '#'));
-  CHECK_THROWS_WITH_AS(read_regular_file(at_cap, 999), (at_cap.string() + ": more than 999 bytes").c_str(),
-                       Error);
+  CHECK_THROWS_WITH_AS(read_regular_file(at_cap, 999),
+                       (at_cap.string() + ": more than 999 bytes").c_str(), Error);
   // A sparse file of 1 TiB: refused from its size, nothing read (it would take minutes).
   const auto huge = dir / "huge.toml";
   std::ofstream(huge).close();
@@ -31,8 +31,8 @@ TEST_CASE("read_regular_file: a regular file up to the cap, refused past it, nev
   const auto fifo = dir / "fifo.toml";
   REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
   for (const std::filesystem::path& path : {fifo, std::filesystem::path("/dev/zero"), dir.path()})
-    CHECK_THROWS_WITH_AS(read_regular_file(path, 1000), (path.string() + ": not a regular file").c_str(),
-                         Error);
+    CHECK_THROWS_WITH_AS(read_regular_file(path, 1000),
+                         (path.string() + ": not a regular file").c_str(), Error);
   // A link is followed to what it names: to a regular file it reads, to a device it refuses.
   std::filesystem::create_symlink(at_cap, dir / "link.toml");
   CHECK(read_regular_file(dir / "link.toml", 1000).size() == 1000);

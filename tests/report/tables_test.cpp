@@ -184,8 +184,8 @@ TEST_CASE("write_html: a sortable table, headings, exact values in data-v, text 
 TEST_CASE("column groups: a \\multicolumn head with its \\cmidrule, an HTML colgroup heading") {
   Table t;
   t.columns = {{"a@x", "A"}, {"b@x", "B"}, {"c", "C"}, {"d@y", "D"}};
-  t.rows = {{Cell::of(std::uint64_t{1}), Cell::of(std::uint64_t{2}), Cell::of(std::uint64_t{3}),
-             Cell{}}};
+  t.rows = {
+      {Cell::of(std::uint64_t{1}), Cell::of(std::uint64_t{2}), Cell::of(std::uint64_t{3}), Cell{}}};
   t.groups = {{0, 2, "x & co"}, {3, 1, "y"}};
   std::ostringstream latex;
   write_latex(latex, t);

@@ -93,7 +93,7 @@ struct MapPlot {
   std::string title;
   std::string exposure_unit;  // the legend's heading "exposure [unit]" when not empty
   std::uint32_t width = 0, height = 0;
-  std::vector<bool> passable;              // row-major, width * height
+  std::vector<bool> passable;  // row-major, width * height
   // Row-major beside `passable` when block > 1 (else empty): the share of a square's cells that
   // are passable. A passable square with some blocked is drawn grey, darker the more are, so a
   // wall one cell thick stays visible in squares.
