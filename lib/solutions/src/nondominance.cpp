@@ -26,17 +26,20 @@ struct Rows {
 };
 
 // Row indices in lexicographic order of their vectors, equal vectors by index (deterministic).
-// Only a vector at or before v in this order can weakly dominate v.
+// Only a vector at or before v in this order can weakly dominate v. Rows already in that order
+// (as solvers and mosb's writer often leave a front) cost one pass, not a sort.
 template <class T>
 std::vector<std::size_t> lexicographic_order(const Rows<T>& rows) {
   std::vector<std::size_t> order(rows.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+  const auto before = [&](std::size_t a, std::size_t b) {
     const T *x = rows.at(a), *y = rows.at(b);
     for (std::size_t i = 0; i < rows.d; ++i)
       if (x[i] != y[i]) return x[i] < y[i];
     return a < b;
-  });
+  };
+  if (!std::is_sorted(order.begin(), order.end(), before))
+    std::sort(order.begin(), order.end(), before);
   return order;
 }
 

@@ -15,24 +15,23 @@ namespace mosb {
 
 namespace {
 
-// The front of query q, values as doubles: exact for every integer cost (the writer refuses
-// integers above 2^53) and for f32/f64 costs.
-std::vector<std::vector<double>> front_of(const SolutionReader& s, std::uint64_t begin,
-                                          std::uint64_t size) {
+// The front of query q as rows of d doubles, one buffer: exact for every integer cost (the writer
+// refuses integers above 2^53) and for f32/f64 costs. Read a column at a time, in its own type.
+std::vector<double> front_of(const SolutionReader& s, std::uint64_t begin, std::uint64_t size) {
   const std::size_t d = s.objective_count();
-  std::vector<std::vector<double>> front(size, std::vector<double>(d));
+  std::vector<double> rows(size * d);
   for (std::size_t i = 0; i < d; ++i)
-    for (std::uint64_t k = 0; k < size; ++k) front[k][i] = s.value_as_double(i, begin + k);
-  return front;
+    s.visit_column(i, [&](auto column) {
+      for (std::uint64_t k = 0; k < size; ++k)
+        rows[k * d + i] = static_cast<double>(column[begin + k]);
+    });
+  return rows;
 }
 
 // [duplicate] and [dominated]: the pair the quadratic definition names, found in O(k log k) for
 // d <= 3 (nondominance.hpp).
-std::optional<std::string> dominance_problem(const std::vector<std::vector<double>>& front,
-                                             std::size_t d, const std::string& label) {
-  std::vector<double> rows;
-  rows.reserve(front.size() * d);
-  for (const auto& v : front) rows.insert(rows.end(), v.begin(), v.end());
+std::optional<std::string> dominance_problem(std::span<const double> rows, std::size_t d,
+                                             const std::string& label) {
   const auto pair = first_dominated_row(rows, d);
   if (!pair) return std::nullopt;
   return label + dominated_row_text(rows, d, *pair);
@@ -81,7 +80,7 @@ PartialSum extended(PartialSum sum, const GraphReader& g, std::span<const std::s
 
 // Whether the arcs' sum is the stored vector: exactly for integers, within 1e-9 per arc (relative)
 // for floats.
-bool sum_matches(const PartialSum& sum, const std::vector<double>& vector,
+bool sum_matches(const PartialSum& sum, std::span<const double> vector,
                  const std::vector<bool>& is_float, std::size_t path_size) {
   if (sum.overflow) return false;
   for (std::size_t i = 0; i < is_float.size(); ++i) {
@@ -115,8 +114,7 @@ std::optional<std::string> path_problem(const SolutionReader& s, const GraphRead
                                         std::span<const std::uint64_t> offsets,
                                         std::span<const std::uint32_t> targets, const Query& query,
                                         std::span<const std::uint32_t> path,
-                                        const std::vector<double>& vector,
-                                        const std::string& where) {
+                                        std::span<const double> vector, const std::string& where) {
   const std::size_t d = s.objective_count();
   if (path.empty()) return where + "[path] is empty";
   if (path.front() != query.start || path.back() != query.goal)
@@ -287,18 +285,20 @@ std::optional<std::string> verify_solutions(const SolutionReader& s, const Graph
     const std::string label = "query " + std::to_string(q) + ": ";
     const auto begin = s.front_begin(q), size = s.front_size(q);
     const auto front = front_of(s, begin, size);
+    const auto vector = [&](std::uint64_t k) { return std::span(front).subspan(k * d, d); };
     if (auto problem = dominance_problem(front, d, label)) return problem;
     if (reference_objective && size > 0 && s.status(q) == QueryStatus::solved) {
       double c_star = INFINITY;
-      for (const auto& v : front) c_star = std::min(c_star, v[*reference_objective]);
+      for (std::uint64_t k = 0; k < size; ++k)
+        c_star = std::min(c_star, vector(k)[*reference_objective]);
       if (auto problem = reference_problem(c_star, (*reference)[q], *declared))
         return label + *problem;
     }
     if (!s.has_paths()) continue;
     for (std::uint64_t k = 0; k < size; ++k) {
-      const std::string where = label + "path of vector " + cost_vector_text(front[k]) + ": ";
+      const std::string where = label + "path of vector " + cost_vector_text(vector(k)) + ": ";
       if (auto problem = path_problem(s, g, objectives, offsets, targets, queries[q],
-                                      s.path(begin + k), front[k], where))
+                                      s.path(begin + k), vector(k), where))
         return problem;
     }
   }
