@@ -27,6 +27,7 @@ tests=(
   chromium                                  # renders mosb plot's SVG and mosb report in their tests
   slurm-wlm munge                           # a one-node SLURM cluster (tools/slurm-cluster.sh) for mosb run --slurm's test
   poppler-utils                             # pdfinfo, pdftotext: the PDF figures' tests
+  groff-base                                # groff: the generated man page renders without warnings
   texlive-latex-base texlive-latex-recommended  # pdflatex and booktabs: the report's .tex tables compile
   python3-matplotlib                        # mosb.plot (python/), optional
   clang-format clang-tidy                   # style and static checks (tools/lint.sh)

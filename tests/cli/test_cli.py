@@ -754,6 +754,56 @@ class VersionAndHelp(GridTest):
         self.assertIn("Exit status: 0 success; 1 failure while running", text)
         self.assertIn("2 usage error", text)
 
+    def commands(self, prefix=()):
+        """Every command path below `prefix`, read from --help's Subcommands lists."""
+        r = self.mosb(*prefix, "--help")
+        self.assertEqual(r.returncode, 0, r)
+        if "Subcommands:" not in r.stdout:
+            return []
+        found = []
+        for line in r.stdout.split("Subcommands:")[1].splitlines():
+            m = re.match(r"  (\S+)\s", line)
+            if m:
+                path = prefix + (m.group(1),)
+                found += [path] + self.commands(path)
+        return found
+
+    def test_bash_completion_offers_every_command_and_option(self):
+        """`mosb completion bash`, sourced in bash, completes each level's subcommands and each
+        command's options, as --help lists them."""
+        script = self.write("mosb.bash", self.mosb("completion", "bash").stdout)
+        commands = self.commands()
+        self.assertIn(("solutions", "import"), commands)
+        cases = [("mosb ru", "run"), ("mosb solutions imp", "import"),
+                 ("mosb run --time-l", "--time-limit"), ("mosb store pull --no-r", "--no-references"),
+                 ("mosb experiment run exp.toml --ex", "--executable")]
+        for path in commands:  # every command completes from its first three letters
+            cases.append(("mosb " + " ".join(path[:-1] + (path[-1][:3],)), path[-1]))
+        lines = "".join('COMP_WORDS=(%s); COMP_CWORD=$((${#COMP_WORDS[@]} - 1)); _mosb; '
+                        'echo "${COMPREPLY[*]}"\n' % typed for typed, _ in cases)
+        r = subprocess.run(["bash", "-c", "source %s\n%s" % (script, lines)], capture_output=True,
+                           text=True, timeout=60)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        for (typed, wanted), offered in zip(cases, r.stdout.splitlines()):
+            self.assertIn(wanted, offered.split(), typed)
+        self.assertEqual(len(r.stdout.splitlines()), len(cases))
+        self.ok("completion", "bash", "-o", self.path("again.bash"))
+        self.assertEqual(mosbtest.read(self.path("again.bash")), mosbtest.read(script))
+        self.assertEqual(self.mosb("completion", "zsh").returncode, 2)
+
+    def test_man_page_has_every_command_and_renders_without_warnings(self):
+        page = self.mosb("man").stdout
+        for path in self.commands():
+            self.assertIn('.SS "mosb %s' % " ".join(path), page)
+        self.assertIn("\\-\\-time\\-limit", page)
+        self.assertIn(".SH \"EXIT STATUS\"", page)
+        # groff (groff-base, a test dependency) reads it with every warning on: none.
+        r = subprocess.run(["groff", "-man", "-Tutf8", "-ww"], input=page, capture_output=True,
+                           text=True, timeout=60)
+        self.assertEqual((r.returncode, r.stderr), (0, ""))
+        self.assertIn("--time-limit", r.stdout.replace("\u2010", "-").replace("\u2212", "-"))
+        self.assertIn("ε", r.stdout)
+
     def test_one_name_for_the_instance_argument(self):
         for command in (["inspect"], ["verify"], ["stats"], ["export", "dimacs"], ["queries", "import"],
                         ["queries", "generate"]):
