@@ -1,3 +1,5 @@
 #include "program.hpp"
 
-int main(int argc, char** argv) { return mosb::cli::main(argc, argv); }
+int main(int argc, char** argv) {
+  return mosb::cli::main(argc, argv);
+}

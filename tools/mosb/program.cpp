@@ -138,11 +138,10 @@ Program make_program() {
       "I/O error); 2 usage error (unknown or missing option, bad option value, no subcommand).");
   app.require_subcommand(1);
   p.commands = {
-      add_inspect(app),  add_verify(app), add_generate(app),   add_convert(app), add_queries(app),
-      add_stats(app),    add_export(app), add_store(app),      add_suite(app),   add_plot(app),
-      add_pack(app),     add_unpack(app), add_solutions(app),  add_eval(app),    add_run(app),
-      add_report(app),   add_cache(app),  add_experiment(app), add_completion(app),
-      add_man(app),
+      add_inspect(app), add_verify(app), add_generate(app),   add_convert(app),    add_queries(app),
+      add_stats(app),   add_export(app), add_store(app),      add_suite(app),      add_plot(app),
+      add_pack(app),    add_unpack(app), add_solutions(app),  add_eval(app),       add_run(app),
+      add_report(app),  add_cache(app),  add_experiment(app), add_completion(app), add_man(app),
   };
   tidy_help(app);
   return p;
