@@ -350,9 +350,11 @@ Table comparison_summary(const SolverComparison& comparison,
   if (!for_paper) t.columns.push_back({"not_solved", "not solved"});
   for (const auto& e : epsilon_labels) {
     t.columns.push_back({"covered@" + e, "cov.\\ $\\varepsilon{=}" + latex_escape(e) + "$"});
-    if (!for_paper)
+    if (!for_paper) {
       t.columns.push_back(
           {"not_covered@" + e, "not cov.\\ $\\varepsilon{=}" + latex_escape(e) + "$"});
+      t.columns.push_back({"dominated@" + e, "dom.\\ $\\varepsilon{=}" + latex_escape(e) + "$"});
+    }
   }
   t.columns.insert(t.columns.end(), {{"eps_median", "$\\tilde\\varepsilon$"},
                                      {"eps_max", "$\\varepsilon_{\\max}$"},
@@ -371,7 +373,10 @@ Table comparison_summary(const SolverComparison& comparison,
     if (!for_paper) row.push_back(Cell::of(s.not_solved));
     for (const auto& e : s.per_epsilon) {
       row.push_back(Cell::of(e.covered));
-      if (!for_paper) row.push_back(Cell::of(e.not_covered));
+      if (!for_paper) {
+        row.push_back(Cell::of(e.not_covered));
+        row.push_back(Cell::of(e.dominated));
+      }
     }
     row.push_back(optional_real(s.achieved_epsilon, &Distribution::median));
     row.push_back(optional_real(s.achieved_epsilon, &Distribution::max));
@@ -402,7 +407,12 @@ Table comparison_per_query(const SolverComparison& comparison,
                {"achieved_eps", "$\\varepsilon$"}};
   for (const auto& e : epsilon_labels)
     t.columns.push_back({"covered@" + e, "cov.\\ $\\varepsilon{=}" + latex_escape(e) + "$"});
-  t.columns.insert(t.columns.end(), {{"runtime_seconds", "$t$ [s]"}, {"failed", "failed"}});
+  // The runtime the comparison summarises: mosb's wall clock, else the solver's own figure.
+  const auto statistic = runtime_statistic(comparison.runtime);
+  t.columns.push_back(comparison.runtime == RuntimeSource::wall
+                          ? Column{"runtime_seconds", "$t$ [s]"}
+                          : Column{std::string(to_string(statistic)), "$t_{\\mathrm{rep}}$ [s]"});
+  t.columns.push_back({"failed", "failed"});
   for (std::size_t i = 0; i < comparison.solvers.size(); ++i) {
     const auto& s = comparison.solvers[i];
     for (const auto& q : s.evaluation.queries) {
@@ -417,7 +427,7 @@ Table comparison_per_query(const SolverComparison& comparison,
       } else {
         row.resize(row.size() + 3 + epsilon_labels.size());
       }
-      const auto runtime = solutions[i].runtime_seconds(q.query);
+      const auto runtime = solutions[i].statistic_as_double(statistic, q.query);
       row.push_back(runtime ? Cell::of(*runtime) : Cell{});
       row.push_back(Cell::of(std::uint64_t{q.failed}));
       t.rows.push_back(std::move(row));

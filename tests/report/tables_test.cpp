@@ -43,15 +43,17 @@ TEST_CASE("write_csv: a header of keys, every digit, empty fields for absent val
   std::ostringstream out;
   write_csv(out, comparison_summary(two_solvers(), kLabels));
   const auto csv = out.str();
-  CHECK(
-      csv.starts_with("solver,solved,timeout,memory_limit,disconnected,not_run,failed,not_solved,"
-                      "covered@0,not_covered@0,covered@0.1,not_covered@0.1,eps_median,eps_max,"
-                      "size_ratio_median,size_ratio_mean,runtime_queries,runtime_median,"
-                      "runtime_mean,runtime_max,runtime_sgm\r\n"));
-  CHECK(csv.find("\r\nfast_1,2,0,0,1,0,0,0,1,1,2,0,0.05,0.1,1,1,2,0.75,0.75,1,0.7\r\n") !=
+  CHECK(csv.starts_with(
+      "solver,solved,timeout,memory_limit,disconnected,not_run,failed,not_solved,"
+      "covered@0,not_covered@0,dominated@0,covered@0.1,not_covered@0.1,dominated@0.1,"
+      "eps_median,eps_max,"
+      "size_ratio_median,size_ratio_mean,runtime_queries,runtime_median,"
+      "runtime_mean,runtime_max,runtime_sgm\r\n"));
+  CHECK(csv.find("\r\nfast_1,2,0,0,1,0,0,0,1,1,0,2,0,0,0.05,0.1,1,1,2,0.75,0.75,1,0.7\r\n") !=
         std::string::npos);
   // No runtime: empty fields; an infinite median: "inf".
-  CHECK(csv.find("\r\nslow & co,1,1,0,1,0,0,1,0,1,0,1,inf,0.125,,,0,,,,\r\n") != std::string::npos);
+  CHECK(csv.find("\r\nslow & co,1,1,0,1,0,0,1,0,1,0,0,1,0,inf,0.125,,,0,,,,\r\n") !=
+        std::string::npos);
 }
 
 TEST_CASE("write_csv: a field with a comma, a quote or a line break is quoted") {

@@ -209,46 +209,6 @@ void print_text(const SolverComparison& result, const std::vector<Ratio>& eps,
   std::cout << (result.failed ? "FAIL" : "OK") << '\n';
 }
 
-// What the tables of report/tables.hpp do not hold yet (report/ has another owner): per ε, the
-// queries that fail for dominated vectors (QueryOutcome::dominated), beside not_covered@ε; and
-// per query, the runtime the comparison summarises when it is not the wall clock.
-void complete_table(tables::Table& table, const SolverComparison& result,
-                    const std::vector<std::string>& eps_text,
-                    std::span<const SolutionReader> solutions, bool per_query) {
-  using tables::Cell;
-  const auto column = [&](const std::string& key) {
-    const auto at = std::find_if(table.columns.begin(), table.columns.end(),
-                                 [&](const tables::Column& c) { return c.key == key; });
-    return at == table.columns.end()
-               ? std::optional<std::size_t>{}
-               : std::optional(static_cast<std::size_t>(at - table.columns.begin()));
-  };
-  if (per_query) {
-    const auto runtime = column("runtime_seconds");
-    if (result.runtime == RuntimeSource::wall || !runtime) return;
-    const auto statistic = runtime_statistic(result.runtime);
-    table.columns[*runtime] = {std::string(to_string(statistic)), "$t_{\\mathrm{rep}}$ [s]"};
-    std::size_t row = 0;
-    for (std::size_t i = 0; i < result.solvers.size(); ++i)
-      for (const auto& q : result.solvers[i].evaluation.queries) {
-        const auto t = solutions[i].statistic_as_double(statistic, q.query);
-        table.rows.at(row++)[*runtime] = t ? Cell::of(*t) : Cell{};
-      }
-    return;
-  }
-  for (std::size_t k = 0; k < eps_text.size(); ++k) {
-    const auto after = column("not_covered@" + eps_text[k]);
-    if (!after) continue;  // the paper's table: covered per ε only
-    const auto at = static_cast<std::ptrdiff_t>(*after + 1);
-    table.columns.insert(
-        table.columns.begin() + at,
-        {"dominated@" + eps_text[k], "dom.\\ $\\varepsilon{=}" + eps_text[k] + "$"});
-    for (std::size_t i = 0; i < result.solvers.size(); ++i)
-      table.rows.at(i).insert(table.rows.at(i).begin() + at,
-                              Cell::of(result.solvers[i].per_epsilon[k].dominated));
-  }
-}
-
 // A table as JSON: {"caption": ..., "rows": [{KEY: value, ...}, ...]}, an absent cell null.
 void print_table_json(const tables::Table& table) {
   JsonWriter j(std::cout);
@@ -343,7 +303,6 @@ int run_eval(const EvalArgs& args) {
     // Names as the files give them: the table writers escape them for CSV or LaTeX.
     auto table = args.per_query ? tables::comparison_per_query(result, eps_text, solutions)
                                 : tables::comparison_summary(result, eps_text, args.latex);
-    complete_table(table, result, eps_text, solutions, args.per_query);
     std::ostringstream caption;  // a file's caption: the names as given (no terminal escaping)
     caption << "mosb eval: reference " << reference.display_name() << ", "
             << reference.query_count() << " queries, " << to_string(result.runtime)

@@ -70,14 +70,17 @@ void write_text(std::ostream& out, const Table& table);
 // script compares; empty when absent), text escaped. Readable without any script.
 void write_html(std::ostream& out, const Table& table, const std::string& id);
 
-// One row per solver: statuses, per ε covered and not covered, achieved ε (median, max), |S|/|R|
+// One row per solver: statuses, per ε covered, not covered and failed for dominated vectors
+// (QueryOutcome::dominated), achieved ε (median, max), |S|/|R|
 // (median, mean), runtime over the common queries (count, median, mean, max, shifted geometric
 // mean). `epsilon_labels` names the ε in order, as the user gave them. `for_paper` keeps the
 // columns a paper's comparison table has (solved, timeout, memory-limit, failed, covered per ε,
 // ε median and max, |S|/|R| median, runtime median, max and shifted geometric mean).
 Table comparison_summary(const SolverComparison& comparison,
                          std::span<const std::string> epsilon_labels, bool for_paper = false);
-// One row per solver and query: statuses, sizes, achieved ε, coverage per ε, runtime, failed.
+// One row per solver and query: statuses, sizes, achieved ε, coverage per ε, the runtime the
+// comparison summarises (mosb's wall clock `runtime_seconds`, else the solver's own figure under
+// its statistic's name), failed.
 Table comparison_per_query(const SolverComparison& comparison,
                            std::span<const std::string> epsilon_labels,
                            std::span<const SolutionReader> solutions);
