@@ -62,3 +62,38 @@ TEST_CASE("task_plan: the same experiment with task i's cells only") {
   CHECK_THROWS_AS((void)task_plan(plan, tasks, 0), Error);
   CHECK_THROWS_AS((void)task_plan(plan, tasks, 3), Error);
 }
+
+TEST_CASE("plan_experiment_array: the array's counts and limits, and the tasks it finds again") {
+  auto plan = plan_of({5, 5, 20});
+  plan.experiment.limits.process.wall_seconds = 60;
+  plan.experiment.limits.process.memory_bytes = std::uint64_t{1} << 30;
+  SlurmRun run;
+  run.directory = "/x/array";
+  const auto tasks = plan_experiment_array(run, plan, "/x/exp.toml", 10);
+  CHECK(tasks == Tasks{{0, 1}, {2}});
+  CHECK(run.kind == kExperimentKind);
+  CHECK(run.instance == "/x/exp.toml");
+  CHECK(run.shards == 2);
+  CHECK(run.queries == 30);
+  CHECK(run.largest_shard == 20);
+  CHECK(run.time_limit_seconds == 60);
+  CHECK(run.memory_limit_bytes == std::uint64_t{1} << 30);
+  CHECK_THROWS_WITH_AS((void)plan_experiment_array(run, plan_of({}), "/x/e.toml", 10),
+                       "/x/e.toml: the experiment has no cell", Error);
+  // The existing array: found again from its task size, refused once the file plans otherwise.
+  run.run_arguments = {"/x/exp.toml", "--queries-per-task", "10", "--jobs", "1"};
+  CHECK(experiment_array_tasks(run, plan, "/x/exp.toml") == tasks);
+  CHECK(experiment_task_directory(run, 2) == "/x/array/task-2");
+  CHECK_THROWS_WITH_AS((void)experiment_array_tasks(run, plan_of({5, 5, 5, 5, 5}), "/x/exp.toml"),
+                       doctest::Contains("no longer make the 2 tasks of /x/array"), Error);
+  CHECK_THROWS_WITH_AS((void)experiment_array_tasks(run, plan, "/y/exp.toml"),
+                       "/x/array/run.json: the job array of /x/exp.toml", Error);
+  for (const auto& bad : {std::string("1O"), std::string(""), std::string("-1")}) {
+    run.run_arguments = {"/x/exp.toml", "--queries-per-task", bad};
+    CHECK_THROWS_WITH_AS((void)experiment_array_tasks(run, plan, "/x/exp.toml"),
+                         doctest::Contains("no task size"), Error);
+  }
+  run.kind = kRunKind;
+  CHECK_THROWS_WITH_AS((void)experiment_array_tasks(run, plan, "/x/exp.toml"),
+                       doctest::Contains("the job array of a run"), Error);
+}

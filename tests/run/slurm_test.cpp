@@ -118,3 +118,21 @@ TEST_CASE("array lists and sbatch commands") {
   CHECK(mosb::shell_quote("") == "''");
   CHECK(mosb::shell_quote("a/b-c.d") == "a/b-c.d");
 }
+
+TEST_CASE("shards_to_resubmit: neither done nor queued, the queued ones left, in shard order") {
+  std::vector<mosb::ShardState> shards(5);
+  for (std::uint64_t i = 0; i < shards.size(); ++i) shards[i].index = i + 1;
+  shards[0].file = mosb::ShardFile::done;
+  shards[1].file = mosb::ShardFile::partial;
+  shards[1].state = "RUNNING";
+  shards[2].file = mosb::ShardFile::missing;
+  shards[2].state = "FAILED";
+  shards[3].file = mosb::ShardFile::damaged;
+  shards[4].file = mosb::ShardFile::missing;
+  shards[4].state = "PENDING";
+  const auto r = mosb::shards_to_resubmit(shards);
+  CHECK(r.resubmit == std::vector<std::uint64_t>{3, 4});
+  CHECK(r.queued == std::vector<std::uint64_t>{2, 5});
+  shards[0].state = "PENDING";  // done, even if the scheduler still lists it: nothing to do
+  CHECK(mosb::shards_to_resubmit(shards).queued == std::vector<std::uint64_t>{2, 5});
+}

@@ -158,30 +158,12 @@ int run_experiment_task(const ExperimentRunArgs& a) {
   return run_cells(task_plan(plan, tasks, task->index), a);
 }
 
-std::uint64_t queries_of(const ExperimentPlan& plan, const std::vector<std::size_t>& cells) {
-  std::uint64_t queries = 0;
-  for (const auto c : cells) queries += plan.cells[c].queries;
-  return queries;
-}
-
 int run_experiment_slurm_new(const ExperimentRunArgs& a) {
   if (!a.queries_per_task) throw UsageError("--slurm DIR: give --queries-per-task K");
   const auto plan = read_plan(a);
-  const auto tasks = experiment_tasks(plan, *a.queries_per_task);
-  if (tasks.empty()) throw UsageError(a.file + ": the experiment has no cell");
   SlurmRun run = slurm_run_here(a.slurm);
-  run.kind = kExperimentKind;
-  run.instance = std::filesystem::absolute(a.file).lexically_normal().string();
-  for (const auto& cell_indices : tasks) {
-    const auto queries = queries_of(plan, cell_indices);
-    run.queries += queries;
-    run.largest_shard = std::max(run.largest_shard, queries);
-  }
-  run.shards = tasks.size();
-  const auto largest = largest_cell_limits(plan);  // what the array's tasks request
-  run.time_limit_seconds = largest.wall_seconds;
-  run.grace_seconds = largest.grace_seconds;
-  run.memory_limit_bytes = largest.memory_bytes;
+  plan_experiment_array(run, plan, std::filesystem::absolute(a.file).lexically_normal().string(),
+                        *a.queries_per_task);
   run.jobs = a.jobs;
   run.account = a.account;
   run.partition = a.partition;
@@ -208,20 +190,6 @@ int run_experiment_slurm_new(const ExperimentRunArgs& a) {
   else
     std::cout << "submit it: " << escape_for_terminal(sbatch_command_text(run, all)) << '\n';
   return 0;
-}
-
-constexpr ShardFile shard_file_of(TaskFiles::State state) {
-  switch (state) {
-    case TaskFiles::State::done:
-      return ShardFile::done;
-    case TaskFiles::State::partial:
-      return ShardFile::partial;
-    case TaskFiles::State::damaged:
-      return ShardFile::damaged;
-    case TaskFiles::State::missing:
-      break;
-  }
-  return ShardFile::missing;
 }
 
 void print_task_states(const SlurmStatus& status,
@@ -268,60 +236,26 @@ void print_task_states(const SlurmStatus& status,
   std::cout << "summary: " << done << " of " << tasks.size() << " tasks done\n";
 }
 
-// The array's run.json and the experiment's tasks as the file now makes them, checked to be the
-// same array.
-std::pair<SlurmRun, std::vector<std::vector<std::size_t>>> existing_array(
-    const ExperimentRunArgs& a, const ExperimentPlan& plan) {
-  SlurmRun run = read_slurm_directory(a.slurm);
-  if (run.kind != kExperimentKind)
-    throw UsageError("--slurm " + a.slurm + ": the job array of a mosb run; use mosb run --slurm " +
-                     a.slurm);
-  const auto file = std::filesystem::absolute(a.file).lexically_normal().string();
-  if (file != run.instance) throw UsageError("--slurm " + a.slurm + " runs " + run.instance);
-  const auto k = std::find(run.run_arguments.begin(), run.run_arguments.end(),
-                           std::string("--queries-per-task"));
-  if (k == run.run_arguments.end() || k + 1 == run.run_arguments.end())
-    throw UsageError(run.directory + "/run.json: no --queries-per-task");
-  auto tasks = experiment_tasks(plan, std::stoull(*(k + 1)));
-  if (tasks.size() != run.shards)
-    throw UsageError(a.file + ": its cells no longer make the " + std::to_string(run.shards) +
-                     " tasks of " + run.directory + " (the experiment changed)");
-  return {std::move(run), std::move(tasks)};
-}
-
 // `--slurm DIR --status` and `--slurm DIR --resume [--submit]`: the tasks' states; with --resume
 // every finished cell merged into -o, and the tasks neither done nor queued resubmitted.
 int run_experiment_slurm_existing(const ExperimentRunArgs& a) {
   const auto plan = read_plan(a);
-  // Named references, not a structured binding: the lambdas below capture them (C++20 clang
-  // refuses a structured binding there).
-  const auto array = existing_array(a, plan);
-  const SlurmRun& run = array.first;
-  const auto& tasks = array.second;
-  const auto task_directory = [&](std::uint64_t i) {
-    return std::filesystem::path(run.directory) / ("task-" + std::to_string(i));
-  };
-  const auto status = slurm_status(run, [&](std::uint64_t i) {
-    const auto t = task_files(task_plan(plan, tasks, i), task_directory(i));
-    ShardState s;
-    s.index = i;
-    s.queries = queries_of(plan, tasks[i - 1]);
-    s.file = shard_file_of(t.state);
-    s.recorded = t.queries_done;
-    s.counts = t.counts;
-    s.problem = t.problem;
-    return s;
-  });
+  const SlurmRun run = read_slurm_directory(a.slurm);
+  if (run.kind != kExperimentKind)
+    throw UsageError("--slurm " + a.slurm + ": the job array of a mosb run; use mosb run --slurm " +
+                     a.slurm);
+  const auto tasks = experiment_array_tasks(
+      run, plan, std::filesystem::absolute(a.file).lexically_normal().string());
+  const auto status = experiment_array_status(run, plan, tasks);
   if (a.status) {
     print_task_states(status, tasks, a.json);
     return 0;
   }
   std::vector<std::filesystem::path> parts;
-  for (std::uint64_t i = 1; i <= run.shards; ++i) parts.push_back(task_directory(i));
+  for (std::uint64_t i = 1; i <= run.shards; ++i)
+    parts.push_back(experiment_task_directory(run, i));
   const auto merged = merge_experiment_results(plan, a.output, parts);
-  std::vector<std::uint64_t> resubmit;
-  for (const auto& s : status.shards)
-    if (s.file != ShardFile::done && !s.queued()) resubmit.push_back(s.index);
+  const auto resubmit = shards_to_resubmit(status.shards).resubmit;
   std::optional<std::string> job;
   if (a.submit && !resubmit.empty()) job = submit_shards(run, resubmit);
   if (a.json) {

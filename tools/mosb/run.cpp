@@ -534,11 +534,7 @@ int run_slurm_existing(const RunArgs& a) {
       print_status_text(run, status);
     return 0;
   }
-  std::vector<std::uint64_t> resubmit, queued;
-  for (const auto& s : status.shards) {
-    if (s.file == ShardFile::done) continue;
-    (s.queued() ? queued : resubmit).push_back(s.index);
-  }
+  const auto [resubmit, queued] = shards_to_resubmit(status.shards);
   std::optional<std::string> job;
   if (a.submit && !resubmit.empty()) job = submit_shards(run, resubmit);
   if (a.json) {

@@ -896,6 +896,95 @@ ExperimentPlan task_plan(const ExperimentPlan& plan,
   return out;
 }
 
+std::uint64_t queries_of(const ExperimentPlan& plan, const std::vector<std::size_t>& cells) {
+  std::uint64_t queries = 0;
+  for (const auto c : cells) queries += plan.cells.at(c).queries;
+  return queries;
+}
+
+std::vector<std::vector<std::size_t>> plan_experiment_array(SlurmRun& run,
+                                                            const ExperimentPlan& plan,
+                                                            const std::string& file,
+                                                            std::uint64_t queries_per_task) {
+  auto tasks = experiment_tasks(plan, queries_per_task);
+  if (tasks.empty())
+    throw Error(ErrorCode::invalid_argument, file + ": the experiment has no cell");
+  run.kind = kExperimentKind;
+  run.instance = file;
+  run.queries = run.largest_shard = 0;
+  for (const auto& cells : tasks) {
+    const auto queries = queries_of(plan, cells);
+    run.queries += queries;
+    run.largest_shard = std::max(run.largest_shard, queries);
+  }
+  run.shards = tasks.size();
+  const auto largest = largest_cell_limits(plan);  // what the array's tasks request
+  run.time_limit_seconds = largest.wall_seconds;
+  run.grace_seconds = largest.grace_seconds;
+  run.memory_limit_bytes = largest.memory_bytes;
+  return tasks;
+}
+
+std::vector<std::vector<std::size_t>> experiment_array_tasks(const SlurmRun& run,
+                                                             const ExperimentPlan& plan,
+                                                             const std::string& file) {
+  const auto json = run.directory + "/run.json";
+  if (run.kind != kExperimentKind)
+    throw Error(ErrorCode::invalid_argument,
+                json + ": the job array of a run, not of an experiment");
+  if (file != run.instance)
+    throw Error(ErrorCode::invalid_argument, json + ": the job array of " + run.instance);
+  // The tasks' size, as the array's tasks are given it (a number of decimal digits).
+  const auto k = std::find(run.run_arguments.begin(), run.run_arguments.end(),
+                           std::string("--queries-per-task"));
+  std::uint64_t queries_per_task = 0;
+  const auto parsed = [&](const std::string& text) {
+    const auto [end, error] =
+        std::from_chars(text.data(), text.data() + text.size(), queries_per_task);
+    return error == std::errc{} && end == text.data() + text.size();
+  };
+  if (k == run.run_arguments.end() || k + 1 == run.run_arguments.end() || !parsed(*(k + 1)))
+    throw Error(ErrorCode::invalid_argument, json + ": no task size (--queries-per-task)");
+  auto tasks = experiment_tasks(plan, queries_per_task);
+  if (tasks.size() != run.shards)
+    throw Error(ErrorCode::invalid_argument, file + ": its cells no longer make the " +
+                                                 std::to_string(run.shards) + " tasks of " +
+                                                 run.directory + " (the experiment changed)");
+  return tasks;
+}
+
+fs::path experiment_task_directory(const SlurmRun& run, std::uint64_t task) {
+  return fs::path(run.directory) / ("task-" + std::to_string(task));
+}
+
+SlurmStatus experiment_array_status(const SlurmRun& run, const ExperimentPlan& plan,
+                                    const std::vector<std::vector<std::size_t>>& tasks) {
+  return slurm_status(run, [&](std::uint64_t i) {
+    const auto t = task_files(task_plan(plan, tasks, i), experiment_task_directory(run, i));
+    ShardState s;
+    s.index = i;
+    s.queries = queries_of(plan, tasks.at(i - 1));
+    switch (t.state) {
+      case TaskFiles::State::done:
+        s.file = ShardFile::done;
+        break;
+      case TaskFiles::State::partial:
+        s.file = ShardFile::partial;
+        break;
+      case TaskFiles::State::damaged:
+        s.file = ShardFile::damaged;
+        break;
+      case TaskFiles::State::missing:
+        s.file = ShardFile::missing;
+        break;
+    }
+    s.recorded = t.queries_done;
+    s.counts = t.counts;
+    s.problem = t.problem;
+    return s;
+  });
+}
+
 TaskFiles task_files(const ExperimentPlan& task, const fs::path& directory) {
   TaskFiles t;
   std::error_code ec;

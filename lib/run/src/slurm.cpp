@@ -295,6 +295,13 @@ std::string_view to_string(ShardFile state) {
   return kShardFileNames.name(state);
 }
 
+Resubmission shards_to_resubmit(const std::vector<ShardState>& shards) {
+  Resubmission out;
+  for (const auto& s : shards)
+    if (s.file != ShardFile::done) (s.queued() ? out.queued : out.resubmit).push_back(s.index);
+  return out;
+}
+
 bool ShardState::queued() const {
   static constexpr std::string_view kActive[] = {
       "PENDING",     "RUNNING",  "CONFIGURING", "COMPLETING", "REQUEUED",  "REQUEUE_HOLD",

@@ -19,6 +19,7 @@
 
 #include "mosb/enum_names.hpp"
 #include "mosb/run.hpp"
+#include "mosb/slurm.hpp"
 #include "mosb/solution_file.hpp"
 #include "mosb/solver_spec.hpp"
 
@@ -217,6 +218,8 @@ ExperimentResult run_experiment(const ExperimentPlan& plan, const std::filesyste
 // every task recomputes the packing from the plan. Throws mosb::Error (invalid_argument) for 0.
 std::vector<std::vector<std::size_t>> experiment_tasks(const ExperimentPlan& plan,
                                                        std::uint64_t queries_per_task);
+// The queries of the plan's `cells`.
+std::uint64_t queries_of(const ExperimentPlan& plan, const std::vector<std::size_t>& cells);
 // The plan of task `index` (1-based) of `tasks`: the same experiment, its cells only.
 ExperimentPlan task_plan(const ExperimentPlan& plan,
                          const std::vector<std::vector<std::size_t>>& tasks, std::uint64_t index);
@@ -231,6 +234,26 @@ struct TaskFiles {
   std::string problem;
 };
 TaskFiles task_files(const ExperimentPlan& task, const std::filesystem::path& directory);
+
+// The job array of experiment `file` (its absolute path) in tasks of at most `queries_per_task`
+// queries: `run` (slurm_run_here's, with the caller's account, partition, jobs and task
+// arguments) given its kind, file, task and query counts and the largest of the cells' limits,
+// which every task requests. Returns the tasks; throws mosb::Error when there are none.
+std::vector<std::vector<std::size_t>> plan_experiment_array(SlurmRun& run,
+                                                            const ExperimentPlan& plan,
+                                                            const std::string& file,
+                                                            std::uint64_t queries_per_task);
+// The tasks of the existing array `run`, checked to be experiment `file`'s as the file now
+// plans them (the same file, its --queries-per-task making run.shards tasks); throws mosb::Error
+// naming what differs.
+std::vector<std::vector<std::size_t>> experiment_array_tasks(const SlurmRun& run,
+                                                             const ExperimentPlan& plan,
+                                                             const std::string& file);
+// Each task's state (task_files of DIR/task-i) and the scheduler's (slurm_status).
+SlurmStatus experiment_array_status(const SlurmRun& run, const ExperimentPlan& plan,
+                                    const std::vector<std::vector<std::size_t>>& tasks);
+// DIR/task-i, where array task i writes its results.
+std::filesystem::path experiment_task_directory(const SlurmRun& run, std::uint64_t task);
 
 // Merges the finished cells of task results directories into `results` (created as
 // run_experiment creates it, the plan recorded): each cell of the plan that `results` does not

@@ -132,6 +132,13 @@ struct SlurmStatus {
   std::vector<std::string> sources;  // the scheduler commands that answered: "squeue", "sacct"
 };
 
+// What `--resume` does with the shards not done: resubmits those the scheduler no longer holds;
+// leaves those still queued (pending, running or about to run again), in shard order.
+struct Resubmission {
+  std::vector<std::uint64_t> resubmit, queued;
+};
+Resubmission shards_to_resubmit(const std::vector<ShardState>& shards);
+
 // The shard files' states, and the scheduler's (squeue, sacct) when those programs exist.
 // `file_state` says what task i (1-based) has written, for a kind whose outputs lib/run does not
 // know (an experiment's task directories); empty: a run's DIR/shard-i.sol.
