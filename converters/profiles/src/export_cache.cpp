@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <charconv>
 #include <csignal>
@@ -22,6 +23,7 @@
 
 #include "mosb/atomic_file.hpp"
 #include "mosb/error.hpp"
+#include "mosb/internal/read_file.hpp"
 #include "mosb/internal/utf8.hpp"
 #include "mosb/internal/xxh3.hpp"
 
@@ -156,13 +158,14 @@ Fd open_regular(int dir, const std::string& name, struct stat& st, std::string& 
 // than `cap`); nullopt on a read error.
 std::optional<std::string> read_at_most(int fd, std::size_t cap) {
   std::string text;
-  char buffer[1 << 16];
-  while (text.size() <= cap) {
-    const auto n = ::read(fd, buffer, sizeof buffer);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) return std::nullopt;
-    if (n == 0) break;
-    text.append(buffer, static_cast<std::size_t>(n));
+  std::array<char, std::size_t{1} << 16> buffer;
+  try {
+    read_chunks(fd, {}, buffer, [&](const char* data, std::size_t n) {
+      text.append(data, n);
+      return text.size() <= cap;
+    });
+  } catch (const Error&) {
+    return std::nullopt;
   }
   return text;
 }
@@ -178,14 +181,15 @@ std::optional<Content> content_of(int fd, std::uint64_t limit = UINT64_MAX) {
   Xxh3Stream hash;
   std::vector<char> buffer(std::size_t{1} << 20);
   Content c;
-  while (c.size < limit) {
-    const auto n =
-        ::read(fd, buffer.data(), std::min<std::uint64_t>(buffer.size(), limit - c.size));
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) return std::nullopt;
-    if (n == 0) break;
-    hash.update(buffer.data(), static_cast<std::size_t>(n));
-    c.size += static_cast<std::uint64_t>(n);
+  try {
+    read_chunks(fd, {}, buffer, [&](const char* data, std::size_t n) {
+      const auto kept = std::min<std::uint64_t>(n, limit - c.size);
+      hash.update(data, static_cast<std::size_t>(kept));
+      c.size += kept;
+      return c.size < limit;
+    });
+  } catch (const Error&) {
+    return std::nullopt;
   }
   c.hash = hash.digest();
   return c;

@@ -26,6 +26,7 @@
 #include "mosb/atomic_file.hpp"
 #include "mosb/error.hpp"
 #include "mosb/internal/parallel.hpp"
+#include "mosb/internal/read_file.hpp"
 #include "mosb/sha256.hpp"
 #include "mosb/store.hpp"
 #include "mosb/version.hpp"
@@ -349,20 +350,14 @@ struct Fd {
   }
 };
 
-// Calls consume(data, size) per chunk; false from it stops the read (and this returns false).
+// Calls consume(data, size) per chunk of the whole file; false from it stops the read (and this
+// returns false).
 template <class F>
-bool read_file(int fd, const fs::path& path, std::uint64_t from, F consume) {
+bool read_file(int fd, const fs::path& path, F consume) {
+  if (::lseek(fd, 0, SEEK_SET) < 0)
+    throw Error(ErrorCode::io, path.string() + ": cannot read: " + std::strerror(errno));
   std::vector<char> buffer(kChunk);
-  for (auto offset = static_cast<off_t>(from);;) {
-    const ssize_t got = ::pread(fd, buffer.data(), buffer.size(), offset);
-    if (got < 0) {
-      if (errno == EINTR) continue;
-      throw Error(ErrorCode::io, path.string() + ": cannot read: " + std::strerror(errno));
-    }
-    if (got == 0) return true;
-    offset += got;
-    if (!consume(buffer.data(), static_cast<std::size_t>(got))) return false;
-  }
+  return read_chunks(fd, path, buffer, consume);
 }
 
 std::string fetch_manifest(const Location& where, const PullOptions& options,
@@ -371,7 +366,7 @@ std::string fetch_manifest(const Location& where, const PullOptions& options,
   std::string text;
   if (!where.http) {
     Fd in{open_regular(url)};
-    read_file(in.fd, url, 0, [&](const char* data, std::size_t size) {
+    read_file(in.fd, url, [&](const char* data, std::size_t size) {
       if (text.size() + size > kManifestLimit)
         throw Error(url + ": larger than " + std::to_string(kManifestLimit >> 20) +
                     " MiB; not a MANIFEST");
@@ -493,7 +488,7 @@ std::optional<Validators> read_validators(const fs::path& path) {
   try {
     std::string text;
     Fd in{open_regular(path)};
-    read_file(in.fd, path, 0, [&](const char* data, std::size_t size) {
+    read_file(in.fd, path, [&](const char* data, std::size_t size) {
       text.append(data, size);
       return text.size() < 65536;
     });
@@ -646,7 +641,7 @@ class Receiver : public Sink {
       restart();
       return "";
     }
-    read_file(fd_.fd, data_path_, 0, [&](const char* data, std::size_t n) {
+    read_file(fd_.fd, data_path_, [&](const char* data, std::size_t n) {
       hash_.update(data, n);
       return true;
     });
@@ -768,7 +763,7 @@ std::string transfer(Puller& p, Http* http, Receiver& r, const ManifestEntry& e)
     r.restart();  // a local copy is cheap: no partial file to trust
     Fd in{open_regular(url)};
     const bool complete = read_file(
-        in.fd, url, 0, [&](const char* data, std::size_t size) { return r.data(data, size); });
+        in.fd, url, [&](const char* data, std::size_t size) { return r.data(data, size); });
     if (!complete)
       return r.too_long() ? "more than the " + bytes_text(e.size) + " the MANIFEST says"
                           : r.write_error();

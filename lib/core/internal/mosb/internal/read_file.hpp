@@ -10,15 +10,17 @@
 #include <filesystem>
 #include <span>
 #include <string>
+#include <type_traits>
 
 #include "mosb/error.hpp"
 
 namespace mosb {
 
-// Calls consume(data, size) for each chunk read from `fd` into `buffer`, to the end of the file;
-// `path` names the file in the error.
+// Calls consume(data, size) for each chunk read from `fd` into `buffer`, from the file's offset to
+// its end; `path` names the file in the error. A consume that returns bool stops the read by
+// returning false. Returns whether the end was reached (true unless consume stopped it).
 template <class Consume>
-void read_chunks(int fd, const std::filesystem::path& path, std::span<char> buffer,
+bool read_chunks(int fd, const std::filesystem::path& path, std::span<char> buffer,
                  Consume&& consume) {
   for (;;) {
     const ssize_t got = ::read(fd, buffer.data(), buffer.size());
@@ -26,8 +28,12 @@ void read_chunks(int fd, const std::filesystem::path& path, std::span<char> buff
       if (errno == EINTR) continue;
       throw Error(ErrorCode::io, path.string() + ": cannot read: " + std::strerror(errno));
     }
-    if (got == 0) return;
-    consume(buffer.data(), static_cast<std::size_t>(got));
+    if (got == 0) return true;
+    if constexpr (std::is_same_v<decltype(consume(buffer.data(), std::size_t{})), bool>) {
+      if (!consume(buffer.data(), static_cast<std::size_t>(got))) return false;
+    } else {
+      consume(buffer.data(), static_cast<std::size_t>(got));
+    }
   }
 }
 
