@@ -9,8 +9,11 @@ Each function takes mosb.Solutions (or paths, opened with mosb.open_solutions) a
 matplotlib.figure.Figure, built without pyplot (no global state, any backend). The conventions are
 the SVG figures' (spec/EVALUATION.md §5): Okabe–Ito colours, reference vectors as hollow blue
 rings under the solver's smaller vermillion dots, value axes from 0, a subtitle saying when a
-front of more than two objectives is drawn as a projection. matplotlib is imported on first call
-(Debian: python3-matplotlib).
+front of more than two objectives is drawn as a projection. The runtime figures read the data as
+the report's do (spec/EVALUATION.md §7): the solvers' own runtime where every file has one on one
+clock, else mosb's wall clock (`runtime="wall"` or `"reported"` chooses); the cactus plot and the
+performance profile count solved queries, the scatter plot the queries both completed (solved or
+shown unreachable). matplotlib is imported on first call (Debian: python3-matplotlib).
 """
 import math
 
@@ -76,22 +79,47 @@ def front(solutions, query, reference=None, objectives=(0, 1), figsize=(6.4, 4.0
     return fig
 
 
-def _runtimes(s):
-    """Runtimes of the solved queries (NaN where not solved or absent)."""
-    runtime = s.statistic("runtime_seconds")
-    if runtime is None:
+_SOLVED, _DISCONNECTED = 0, 3  # status codes (mosb.STATUSES)
+
+
+def _runtime_statistic(files, runtime=None):
+    """The statistic every runtime figure of `files` shows, as lib/solutions' choose_runtime picks
+    it: `runtime` ("wall" or "reported") when given; else the solvers' own
+    (reported_runtime_seconds) when every file has it on one clock
+    (solution.solver.param.profile.runtime_clock, wall when not said), else mosb's wall clock."""
+    if runtime is not None:
+        if runtime not in ("wall", "reported"):
+            raise ValueError("runtime: 'wall' or 'reported', not %r" % (runtime,))
+        return "runtime_seconds" if runtime == "wall" else "reported_runtime_seconds"
+    clocks = set()
+    for s in files:
+        if s.statistic("reported_runtime_seconds") is None:
+            return "runtime_seconds"
+        clocks.add(s.metadata.get("solution.solver.param.profile.runtime_clock", "wall"))
+    return "reported_runtime_seconds" if len(clocks) == 1 else "runtime_seconds"
+
+
+def _runtimes(s, statistic, completed=False):
+    """Runtimes of the solved queries, or with `completed` also of those shown unreachable (NaN
+    elsewhere and where absent)."""
+    values = s.statistic(statistic)
+    if values is None:
         return np.full(s.query_count, np.nan)
-    solved = s.statuses() == 0
-    return np.where(solved, runtime, np.nan)
+    statuses = s.statuses()
+    kept = (statuses == _SOLVED) | (completed & (statuses == _DISCONNECTED))
+    return np.where(kept, values, np.nan)
 
 
-def cactus(solutions, figsize=(6.4, 4.0)):
+def cactus(solutions, runtime=None, figsize=(6.4, 4.0)):
     """Queries solved within a time, per solver: its solved queries' runtimes sorted, against
     their count (log runtime axis)."""
+    files = [_solutions(s) for s in solutions]
+    statistic = _runtime_statistic(files, runtime)
     fig = _figure(figsize)
     ax = fig.add_subplot()
-    for k, s in enumerate(map(_solutions, solutions)):
-        times = np.sort(_runtimes(s)[~np.isnan(_runtimes(s))])
+    for k, s in enumerate(files):
+        times = _runtimes(s, statistic)
+        times = np.sort(times[~np.isnan(times)])
         ax.plot(np.arange(1, len(times) + 1), times, marker="o", markersize=3,
                 color=_SERIES[k % len(_SERIES)], label="%s (%d solved)" % (_name(s), len(times)))
     ax.set_yscale("log")
@@ -102,11 +130,12 @@ def cactus(solutions, figsize=(6.4, 4.0)):
     return fig
 
 
-def performance_profile(solutions, figsize=(6.4, 4.0)):
+def performance_profile(solutions, runtime=None, figsize=(6.4, 4.0)):
     """The Dolan–Moré profile over the queries some solver solved: per solver, the fraction solved
     within τ times the best runtime. The files must share their instance, view and query set."""
     files = [_solutions(s) for s in solutions]
-    times = np.array([_runtimes(s) for s in files])  # solver x query
+    statistic = _runtime_statistic(files, runtime)
+    times = np.array([_runtimes(s, statistic) for s in files])  # solver x query
     solved_by_some = ~np.all(np.isnan(times), axis=0)
     times = np.maximum(times[:, solved_by_some], 1e-6)
     best = np.nanmin(times, axis=0)
@@ -130,11 +159,12 @@ def performance_profile(solutions, figsize=(6.4, 4.0)):
     return fig
 
 
-def runtime_scatter(a, b, figsize=(5.0, 5.0)):
-    """Per-query runtimes of solver A (x) against B (y) over the queries both solved, log–log
-    with the diagonal."""
+def runtime_scatter(a, b, runtime=None, figsize=(5.0, 5.0)):
+    """Per-query runtimes of solver A (x) against B (y) over the queries both completed (solved
+    or shown unreachable), log–log with the diagonal."""
     a, b = _solutions(a), _solutions(b)
-    x, y = _runtimes(a), _runtimes(b)
+    statistic = _runtime_statistic([a, b], runtime)
+    x, y = _runtimes(a, statistic, completed=True), _runtimes(b, statistic, completed=True)
     both = ~np.isnan(x) & ~np.isnan(y)
     fig = _figure(figsize)
     ax = fig.add_subplot()
@@ -151,5 +181,5 @@ def runtime_scatter(a, b, figsize=(5.0, 5.0)):
     ax.set_aspect("equal")
     ax.set_xlabel("%s runtime [s]" % _name(a))
     ax.set_ylabel("%s runtime [s]" % _name(b))
-    ax.set_title("Runtime per query (%d both solved)" % int(both.sum()))
+    ax.set_title("Runtime per query (%d both completed)" % int(both.sum()))
     return fig

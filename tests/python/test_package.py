@@ -715,7 +715,50 @@ class PlotTest(Temp):
         (ax,) = self.plot.runtime_scatter(self.exact, self.fast).axes
         self.assertEqual(sorted(map(tuple, ax.collections[0].get_offsets().tolist())),
                          [(2, 1), (2, 4)])
-        self.assertEqual(ax.get_title(), "Runtime per query (2 both solved)")
+        self.assertEqual(ax.get_title(), "Runtime per query (2 both completed)")
+
+    def test_runtime_figures_read_the_data_as_the_report_does(self):
+        """spec/EVALUATION.md §7's definitions, as `mosb report` draws them: the cactus plot counts
+        solved queries, the scatter plot the queries both completed (solved or shown
+        unreachable), and both show the solvers' own runtimes when every file has them on one
+        clock; `runtime="wall"` shows mosb's."""
+        if "WRITE_SOLUTION" not in os.environ:
+            raise mosbtest.missing("WRITE_SOLUTION (mosb_test_write_solution) is not set")
+
+        def write(name, spec):
+            out = os.path.join(self.dir, name + ".sol")
+            done = mosbtest.run(self.grid, "Grid_3", out, "0", "three", input=spec,
+                                program=os.environ["WRITE_SOLUTION"],
+                                env=dict(os.environ, MOSB_TEST_SOLVER_NAME=name))
+            self.assertEqual(done.returncode, 0, done.stderr)
+            return out
+        a = write("a", "0 solved 1,2,3 t=2 r=0.5\n1 disconnected t=1 r=0.25\n2 timeout\n")
+        b = write("b", "0 solved 1,2,3 t=4 r=1.5\n1 disconnected t=3 r=0.75\n"
+                       "2 solved 1,2,3 t=1 r=0.1\n")
+        (ax,) = self.plot.runtime_scatter(a, b).axes
+        self.assertEqual(sorted(map(tuple, ax.collections[0].get_offsets().tolist())),
+                         [(0.25, 0.75), (0.5, 1.5)])
+        self.assertEqual(ax.get_title(), "Runtime per query (2 both completed)")
+        (ax,) = self.plot.runtime_scatter(a, b, runtime="wall").axes
+        self.assertEqual(sorted(map(tuple, ax.collections[0].get_offsets().tolist())),
+                         [(1, 3), (2, 4)])
+        (ax,) = self.plot.cactus([a, b]).axes
+        self.assertEqual([line.get_ydata().tolist() for line in ax.get_lines()],
+                         [[0.5], [0.1, 1.5]])
+        self.assertEqual([line.get_label() for line in ax.get_lines()],
+                         ["a (1 solved)", "b (2 solved)"])
+        # The report over the same files: the same counts in its legends and notes.
+        html = os.path.join(self.dir, "r.html")
+        done = run(MOSB, "report", self.grid, "--solutions", a, b, "-o", html)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        with open(html, encoding="utf-8") as f:
+            page = f.read()
+        self.assertIn(">a (1 solved)<", page)
+        self.assertIn(">b (2 solved)<", page)
+        self.assertIn("runtime as each solver reported it", page)
+        self.assertIn("1 query completed by one of the two only, not drawn", page)
+        with self.assertRaises(ValueError):
+            self.plot.cactus([a], runtime="cpu")
 
 
 class ParallelArcsTest(Temp):
