@@ -944,7 +944,7 @@ std::vector<std::vector<std::size_t>> experiment_array_tasks(const SlurmRun& run
     return error == std::errc{} && end == text.data() + text.size();
   };
   if (k == run.run_arguments.end() || k + 1 == run.run_arguments.end() || !parsed(*(k + 1)))
-    throw Error(ErrorCode::invalid_argument, json + ": no task size (--queries-per-task)");
+    throw Error(ErrorCode::invalid_argument, json + ": its task arguments give no task size");
   auto tasks = experiment_tasks(plan, queries_per_task);
   if (tasks.size() != run.shards)
     throw Error(ErrorCode::invalid_argument, file + ": its cells no longer make the " +
