@@ -582,7 +582,7 @@ std::vector<Cell> solver_row(const Context& c, std::size_t b, const std::string&
       Cell::of(name),
       Cell::of(std::uint64_t{files.size()}),
       Cell::of(statuses.total()),
-      Cell::of(statuses[QueryStatus::solved] + statuses[QueryStatus::disconnected]),
+      Cell::of(statuses.completed()),
       Cell::of(statuses[QueryStatus::timeout]),
       Cell::of(statuses[QueryStatus::memory_limit]),
       Cell::of(statuses[QueryStatus::failed]),
