@@ -576,17 +576,16 @@ std::vector<Cell> solver_row(const Context& c, std::size_t b, const std::string&
   for (const auto& f : bm.solvers.at(name)) files.push_back(&c.solutions[f.file]);
   const auto summary = summarize_completed(files);
   const auto& statuses = summary.statuses;
-  std::vector<Cell> row{
-      Cell::of(bm.family),
-      Cell::of(bm.name),
-      Cell::of(name),
-      Cell::of(std::uint64_t{files.size()}),
-      Cell::of(statuses.total()),
-      Cell::of(statuses.completed()),
-      Cell::of(statuses[QueryStatus::timeout]),
-      Cell::of(statuses[QueryStatus::memory_limit]),
-      Cell::of(statuses[QueryStatus::failed]),
-      Cell::of(statuses[QueryStatus::not_run])};
+  std::vector<Cell> row{Cell::of(bm.family),
+                        Cell::of(bm.name),
+                        Cell::of(name),
+                        Cell::of(std::uint64_t{files.size()}),
+                        Cell::of(statuses.total()),
+                        Cell::of(statuses.completed()),
+                        Cell::of(statuses[QueryStatus::timeout]),
+                        Cell::of(statuses[QueryStatus::memory_limit]),
+                        Cell::of(statuses[QueryStatus::failed]),
+                        Cell::of(statuses[QueryStatus::not_run])};
   add_median_and_max(row, summary.runtime_of(c.runtime));
   const auto memory = megabytes(summary.peak_memory_bytes);
   row.push_back(memory ? Cell::of(memory->median) : Cell{});
