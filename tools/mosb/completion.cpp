@@ -192,13 +192,18 @@ std::string man_page(const CLI::App& app) {
 }
 
 Command add_completion(CLI::App& root) {
-  auto shell = std::make_shared<std::string>();
-  auto output = std::make_shared<std::string>();
+  // What the options write into lives as long as the command: the returned function holds it.
+  struct Args {
+    std::string shell, output;
+  };
+  auto args = std::make_shared<Args>();
   auto* sub = root.add_subcommand(
       "completion", "Print a shell completion script for mosb's commands and options");
-  sub->add_option("SHELL", *shell, "the shell: bash")->required()->check(CLI::IsMember({"bash"}));
-  sub->add_option("-o,--output", *output, "write the script to this file instead of stdout");
-  return {sub, [&root, output] { return print(bash_completion(root), *output); }};
+  sub->add_option("SHELL", args->shell, "the shell: bash")
+      ->required()
+      ->check(CLI::IsMember({"bash"}));
+  sub->add_option("-o,--output", args->output, "write the script to this file instead of stdout");
+  return {sub, [&root, args] { return print(bash_completion(root), args->output); }};
 }
 
 Command add_man(CLI::App& root) {
