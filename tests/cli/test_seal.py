@@ -188,6 +188,29 @@ class Seal(CliTest):
         self.assertFalse(os.path.exists("/tmp/mosb-seal-probe"))
         self.assertFalse(os.path.exists("/dev/shm/mosb-seal-probe"))
 
+    def test_a_solver_holds_no_descriptor_of_mosb_or_its_fork_server(self):
+        # Standard input, output and error only: the fork server's request socket, the command
+        # sockets, error pipes and memory-group files of the queries forked ahead are all closed
+        # before a solver executes, sealed or not, two jobs at a time. (`ls` holds 3, the listing.)
+        probe = self.write("descriptors.sh", "#!/bin/bash\n"
+                           "fds=$(ls /proc/self/fd | tr '\\n' ' ')\n"
+                           "[ \"$fds\" = '0 1 2 3 ' ] || { echo \"$fds\" >&2; exit 3; }\n"
+                           "echo 1 1\n")
+        os.chmod(probe, 0o755)
+        env = dict(os.environ)
+        env.pop("MOSB_ISOLATION", None)
+        for isolation in ("seal", "none"):
+            with self.subTest(isolation=isolation):
+                output = self.path("descriptors-%s.sol" % isolation)
+                r = subprocess.run([mosbtest.MOSB, "run", self.path("grid.mosb"), "--view",
+                                    "Grid_2", "--queries", "q", "--jobs", "2", "--isolation",
+                                    isolation, "--solver", probe, "-o", output],
+                                   capture_output=True, text=True, timeout=120, cwd=self.dir,
+                                   env=env)
+                self.assertEqual(r.returncode, 0, r)
+                info = json.loads(self.ok("solutions", "inspect", "--json", output).stdout)
+                self.assertEqual(info["statuses"]["solved"], 4, r.stderr)
+
     def test_output_files_replaced_by_a_fifo_a_device_or_a_link_fail_the_query(self):
         # The solver's own directory is its to change: what it leaves there that is not a regular
         # file is the query's failure, read by nobody (a FIFO would block mosb, /dev/zero never

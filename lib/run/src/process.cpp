@@ -6,7 +6,9 @@
 #include <net/if.h>
 #include <poll.h>
 #include <sched.h>
+#include <spawn.h>
 #include <sys/ioctl.h>
+#include <sys/mman.h>
 #include <sys/mount.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
@@ -31,6 +33,8 @@
 #include <thread>
 #include <utility>
 
+#include "fork_server_image.hpp"
+#include "launch.hpp"
 #include "mosb/error.hpp"
 #include "mosb/internal/read_file.hpp"
 
@@ -173,15 +177,6 @@ void remove_stale_groups() {
   }
   ::closedir(dir);
 }
-
-}  // namespace
-
-namespace {
-
-// The open-file limit mosb was started with, which every program it starts gets back (execute):
-// mosb itself raises its soft limit to the hard one, since each job holds some thirty descriptors
-// (the sockets, pipes and memory-group files of the queries forked ahead, running and ending).
-rlimit started_file_limit{};
 
 }  // namespace
 
@@ -340,32 +335,6 @@ class MemoryGroup {
   std::array<int, kFiles> fds_{-1, -1, -1, -1};  // by File, -1 when not open
 };
 
-// What the child reports through its error pipe when it cannot execute.
-struct ChildError {
-  // 1: joining the cgroup, 2: execve, 3: opening /dev/null, stdout or stderr, 4: creating the PID
-  // namespace, 5: forking the launcher or the solver, 6: sealing the query
-  int stage = 0;
-  int error = 0;
-};
-
-// The fixed part of the command a parked child receives; `size` bytes follow: the executable,
-// the stdout path, the stderr path and then every argument, each ending in NUL.
-struct LaunchHeader {
-  std::uint32_t size = 0;
-  std::int32_t cpu = -1;
-  std::uint64_t rlimit_as = 0;
-  std::int32_t executable_fd = -1;  // ProcessSpec::executable_fd
-};
-
-// Where a parked child receives its command: allocated before the fork, since the child of a
-// threaded process must not allocate (a command that does not fit is not started), and left
-// uninitialized: only the child writes it, so the parent never touches (or pays for) its pages.
-struct LaunchBuffer {
-  static constexpr std::size_t kBytes = std::size_t{256} * 1024, kWords = std::size_t{16} * 1024;
-  std::unique_ptr<char[]> bytes{new char[kBytes]};
-  std::unique_ptr<char* []> words { new char*[kWords] };
-};
-
 // `size` bytes that are already there (the writer has ended), or false.
 bool read_exactly_now(int fd, void* data, std::size_t size) {
   auto* at = static_cast<char*>(data);
@@ -377,41 +346,6 @@ bool read_exactly_now(int fd, void* data, std::size_t size) {
     size -= static_cast<std::size_t>(got);
   }
   return true;
-}
-
-bool read_exactly(int fd, void* data, std::size_t size) {
-  auto* at = static_cast<char*>(data);
-  while (size > 0) {
-    const ssize_t got = ::read(fd, at, size);
-    if (got < 0 && errno == EINTR) continue;
-    if (got <= 0) return false;
-    at += got;
-    size -= static_cast<std::size_t>(got);
-  }
-  return true;
-}
-
-// In a forked child: reports `stage` and errno on `error_fd` (when the child has one) and exits
-// with 127, a shell's status for a command it cannot run.
-[[noreturn]] void report_and_exit(int error_fd, int stage) {
-  const ChildError report{stage, errno};
-  if (error_fd >= 0) (void)!::write(error_fd, &report, sizeof report);
-  ::_exit(127);
-}
-
-// In a forked child, once it is prepared: stdout and stderr become `output` and `errors`, and the
-// program replaces the child (async-signal-safe calls only). Every program lib/run starts is
-// executed here; one that cannot be is reported as stage 2.
-[[noreturn]] void execute(const char* executable, char* const argv[], int output, int errors,
-                          int error_fd, int executable_fd = -1) {
-  ::dup2(output, 1);
-  ::dup2(errors, 2);
-  if (started_file_limit.rlim_max != 0) ::setrlimit(RLIMIT_NOFILE, &started_file_limit);
-  if (executable_fd >= 0)
-    ::fexecve(executable_fd, argv, environ);
-  else
-    ::execve(executable, argv, environ);
-  report_and_exit(error_fd, 2);
 }
 
 // In the parent, right after fork() returned `pid`: closes the child's ends of their pipes, and
@@ -433,329 +367,6 @@ int wait_for(pid_t pid, rusage* usage = nullptr) {
   while (::wait4(pid, &status, 0, usage) < 0 && errno == EINTR) {
   }
   return status;
-}
-
-// What a parked child needs to seal its query (spec/RUN.md §4.1), made before the fork: the child
-// of a threaded process must not allocate.
-struct SealSetup {
-  bool on = false;
-  bool user_namespace = false;    // not root: a user namespace that maps the user alone
-  std::string queries_directory;  // where the query directories are made
-  std::string uid_map, gid_map;   // "ID ID 1" for the user namespace
-  int queries_fd = -1;            // in the child: the queries directory, before anything is hidden
-  // As root: the runner's network namespace (loopback up), joined instead of making one per query.
-  int network_fd = -1;
-
-  SealSetup(Seal seal, std::string directory, int network)
-      : on(seal == Seal::sealed),
-        user_namespace(::geteuid() != 0),
-        queries_directory(std::move(directory)),
-        network_fd(network) {
-    uid_map = std::to_string(::geteuid()) + " " + std::to_string(::geteuid()) + " 1";
-    gid_map = std::to_string(::getegid()) + " " + std::to_string(::getegid()) + " 1";
-  }
-};
-
-// In a forked child: `text` written to the kernel file `path`. Async-signal-safe.
-bool write_kernel_file(const char* path, const std::string& text) {
-  const int fd = ::open(path, O_WRONLY | O_CLOEXEC);
-  if (fd < 0) return false;
-  const bool written = ::write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size());
-  ::close(fd);
-  return written;
-}
-
-// The network namespace's loopback interface, up: a solver (or its helper processes) may talk to
-// itself, to nothing else.
-bool loopback_up() {
-  const int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
-  if (fd < 0) return false;
-  ifreq request{};
-  std::memcpy(request.ifr_name, "lo", 3);
-  request.ifr_flags = IFF_UP | IFF_RUNNING;
-  const bool up = ::ioctl(fd, SIOCSIFFLAGS, &request) == 0;
-  ::close(fd);
-  return up;
-}
-
-// In the parked child, ahead of its query: the mount and network namespaces every process of the
-// query inherits, with every mount read-only (and nosuid) and a private /dev/shm. The query's own
-// directory is made writable once the command names it (open_query_directory). False, errno set,
-// when the kernel refuses. Async-signal-safe calls only.
-bool seal_namespaces(SealSetup& s) {
-  if (s.user_namespace) {
-    if (::unshare(CLONE_NEWUSER | CLONE_NEWNS | CLONE_NEWNET) != 0 ||
-        !write_kernel_file("/proc/self/setgroups", "deny") ||
-        !write_kernel_file("/proc/self/uid_map", s.uid_map) ||
-        !write_kernel_file("/proc/self/gid_map", s.gid_map))
-      return false;
-  } else if (s.network_fd >= 0) {
-    if (::unshare(CLONE_NEWNS) != 0 || ::setns(s.network_fd, CLONE_NEWNET) != 0) return false;
-  } else if (::unshare(CLONE_NEWNS | CLONE_NEWNET) != 0) {
-    return false;
-  }
-  if (::mount(nullptr, "/", nullptr, MS_REC | MS_PRIVATE, nullptr) != 0) return false;
-  mount_attr read_only{};
-  read_only.attr_set = MOUNT_ATTR_RDONLY | MOUNT_ATTR_NOSUID;
-  if (::mount_setattr(AT_FDCWD, "/", AT_RECURSIVE, &read_only, sizeof read_only) != 0) return false;
-  if (::access("/dev/shm", F_OK) == 0 &&
-      ::mount("tmpfs", "/dev/shm", "tmpfs", MS_NOSUID | MS_NODEV, "mode=1777") != 0)
-    return false;
-  // Opened in the new namespace: open_tree clones only a mount of the caller's own namespace.
-  s.queries_fd = ::open(s.queries_directory.c_str(), O_PATH | O_DIRECTORY | O_CLOEXEC);
-  return s.queries_fd >= 0 && (s.network_fd >= 0 || loopback_up());
-}
-
-// Every capability dropped, for good: a solver run by root cannot undo its seal (remount, unshare,
-// trace mosb). Async-signal-safe.
-bool drop_capabilities() {
-  for (int capability = 0; capability < 64; ++capability)
-    ::prctl(PR_CAPBSET_DROP, capability, 0, 0, 0);  // EINVAL past the kernel's last: nothing
-  __user_cap_header_struct header{_LINUX_CAPABILITY_VERSION_3, 0};
-  std::array<__user_cap_data_struct, 2> none{};
-  return ::syscall(SYS_capset, &header, none.data()) == 0 &&
-         ::prctl(PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0) == 0;
-}
-
-// In the solver's process, once its command is known: the query's directory (that of its stdout
-// file, a subdirectory of the queries directory) writable at its place, then every capability
-// dropped. Async-signal-safe.
-bool open_query_directory(const SealSetup& s, const char* stdout_path) {
-  std::array<char, 4096> directory{};
-  const std::size_t length = std::strlen(stdout_path);
-  if (length >= directory.size()) {
-    errno = ENAMETOOLONG;
-    return false;
-  }
-  std::memcpy(directory.data(), stdout_path, length + 1);
-  char* slash = std::strrchr(directory.data(), '/');
-  if (slash == nullptr || slash == directory.data()) {
-    errno = EINVAL;
-    return false;
-  }
-  *slash = '\0';
-  const char* name = std::strrchr(directory.data(), '/') + 1;
-  const int tree = ::open_tree(s.queries_fd, name, OPEN_TREE_CLONE | OPEN_TREE_CLOEXEC);
-  if (tree < 0) return false;
-  mount_attr writable{};
-  writable.attr_clr = MOUNT_ATTR_RDONLY;
-  const bool attached =
-      ::mount_setattr(tree, "", AT_EMPTY_PATH, &writable, sizeof writable) == 0 &&
-      ::move_mount(tree, "", AT_FDCWD, directory.data(), MOVE_MOUNT_F_EMPTY_PATH) == 0;
-  const int error = errno;
-  ::close(tree);
-  errno = error;
-  return attached && drop_capabilities();
-}
-
-// What the launcher tells mosb when the solver has ended (on the command socket).
-// It is sent once nothing of the query is left, so mosb ends the query on it and reaps the
-// launcher's chain later, off the query's critical path.
-struct LauncherReport {
-  std::int32_t status = 0;      // the solver's wait status
-  std::int32_t leftovers = 0;   // 1: descendants outlived the solver and were killed
-  std::int64_t max_rss_kb = 0;  // the solver's ru_maxrss (with its waited-for descendants)
-  // User + system time of every process the launcher reaped: the solver and what it left.
-  std::int64_t cpu_microseconds = 0;
-};
-
-// In a child: `count` bytes to `fd`, or false.
-bool write_exactly(int fd, const void* data, std::size_t count) {
-  const auto* at = static_cast<const char*>(data);
-  while (count > 0) {
-    const ssize_t put = ::send(fd, at, count, MSG_NOSIGNAL);
-    if (put < 0 && errno == EINTR) continue;
-    if (put <= 0) return false;
-    at += put;
-    count -= static_cast<std::size_t>(put);
-  }
-  return true;
-}
-
-// The pids listed in /proc/thread-self/children, killed; whether any was. Async-signal-safe: one
-// read into a stack buffer (a longer list is killed over several rounds).
-bool kill_listed_children() {
-  const int fd = ::open("/proc/thread-self/children", O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return false;
-  char text[4096];
-  const ssize_t size = ::read(fd, text, sizeof text);
-  ::close(fd);
-  bool any = false;
-  long pid = 0;
-  for (ssize_t i = 0; i < size; ++i) {
-    if (text[i] >= '0' && text[i] <= '9') {
-      pid = pid * 10 + (text[i] - '0');
-    } else {
-      if (pid > 0) any = ::kill(static_cast<pid_t>(pid), SIGKILL) == 0 || any;
-      pid = 0;
-    }
-  }
-  if (pid > 0) any = ::kill(static_cast<pid_t>(pid), SIGKILL) == 0 || any;
-  return any;
-}
-
-// In the launcher, once the solver has been reaped: kills and reaps every process left of the
-// query. In a PID namespace the launcher is its init, and kill(-1) reaches every process of it;
-// a subreaper kills its children, whose own children then become its children, round after
-// round. Returns whether anything was left. Async-signal-safe.
-bool kill_what_is_left(Isolation isolation) {
-  bool left = false;
-  for (int round = 0; round < 10000; ++round) {
-    int status = 0;
-    pid_t reaped = 0;
-    while ((reaped = ::waitpid(-1, &status, WNOHANG)) > 0) {
-    }
-    if (reaped < 0 && errno == ECHILD) return left;  // nothing left: the usual case, at once
-    left = true;
-    if (isolation == Isolation::pid_namespace)
-      ::kill(-1, SIGKILL);
-    else
-      kill_listed_children();
-    ::waitpid(-1, &status, 0);
-  }
-  return left;
-}
-
-// The solver's process, forked by the launcher while the previous query still runs: a process
-// group of its own (the watchdog's signals reach its tree and not the launcher), says it is ready
-// (mosb learns its pid, in mosb's PID namespace, from the message's credentials), waits for its
-// command and executes it. Async-signal-safe calls only; it runs in the launcher's memory until it
-// executes (vfork, see launcher) and writes only `buffer` and its own stack there.
-[[noreturn]] void solver_child(int command_fd, int error_fd, const SealSetup& seal,
-                               LaunchBuffer& buffer) {
-  ::setpgid(0, 0);
-  ::prctl(PR_SET_PDEATHSIG, SIGKILL, 0, 0, 0);  // the launcher's end is the solver's
-  const char ready = 1;
-  if (::send(command_fd, &ready, 1, MSG_NOSIGNAL) != 1) ::_exit(127);
-  LaunchHeader header;
-  if (!read_exactly(command_fd, &header, sizeof header) || header.size > LaunchBuffer::kBytes ||
-      !read_exactly(command_fd, buffer.bytes.get(), header.size))
-    ::_exit(127);  // mosb gave up on this child
-  char* text = buffer.bytes.get();
-  char* const end = text + header.size;
-  std::size_t count = 0;
-  while (text < end && count + 1 < LaunchBuffer::kWords) {
-    buffer.words[count++] = text;
-    while (text < end && *text != '\0') ++text;
-    ++text;
-  }
-  if (count < 4) ::_exit(127);
-  const char* executable = buffer.words[0];
-  char** argv = buffer.words.get() + 3;
-  buffer.words[count] = nullptr;
-
-  sigset_t none;
-  sigemptyset(&none);
-  ::sigprocmask(SIG_SETMASK, &none, nullptr);
-  ::signal(SIGINT, SIG_DFL);
-  ::signal(SIGTERM, SIG_DFL);
-  ::signal(SIGPIPE, SIG_DFL);
-  if (header.cpu >= 0) {
-    cpu_set_t set;
-    CPU_ZERO(&set);
-    CPU_SET(header.cpu, &set);
-    ::sched_setaffinity(0, sizeof set, &set);
-  }
-  if (header.rlimit_as != 0) {
-    const rlimit limit{header.rlimit_as, header.rlimit_as};
-    ::setrlimit(RLIMIT_AS, &limit);
-  }
-  if (seal.on && !open_query_directory(seal, buffer.words[1])) report_and_exit(error_fd, 6);
-  // Exclusively: a file that exists is another query's, and never this one's output.
-  const int output = ::open(buffer.words[1], O_WRONLY | O_CREAT | O_EXCL, 0600);
-  const int errors = ::open(buffer.words[2], O_WRONLY | O_CREAT | O_EXCL, 0600);
-  if (output < 0 || errors < 0) report_and_exit(error_fd, 3);
-  execute(executable, argv, output, errors, error_fd, header.executable_fd);
-}
-
-// The launcher of one query: forks the solver's process, reaps it (and meanwhile any orphan
-// reparented here), kills what the solver left, tells mosb how the solver ended, and exits.
-[[noreturn]] void launcher(int command_fd, int error_fd, Isolation isolation, const SealSetup& seal,
-                           LaunchBuffer& buffer) {
-  // A sealed query's processes see their PID namespace alone in /proc, read-only: not mosb's
-  // memory, not another query's processes.
-  if (seal.on && isolation == Isolation::pid_namespace &&
-      ::mount("proc", "/proc", "proc", MS_RDONLY | MS_NOSUID | MS_NODEV | MS_NOEXEC, nullptr) != 0)
-    report_and_exit(error_fd, 6);
-  // vfork: the solver's process shares this memory (a copy of mosb's, hundreds of mappings) until
-  // it executes, so its execve has no copy to tear down: 0.35 ms per query instead of 1 ms
-  // (BENCHMARKS.md). The launcher has nothing to do before the solver executes anyway. The
-  // analyzer allows only exec or _exit after vfork: solver_child also makes other
-  // async-signal-safe system calls, below the launcher's stack frame, writes only `buffer` and
-  // never returns.
-  const pid_t solver = ::vfork();  // NOLINT(clang-analyzer-security.insecureAPI.vfork)
-  if (solver < 0) report_and_exit(error_fd, 5);
-  if (solver == 0)
-    solver_child(command_fd, error_fd, seal, buffer);  // NOLINT(clang-analyzer-unix.Vfork)
-  // Here the solver's process has executed (or ended): from now on its memory is the solver's,
-  // not this one's, and mosb starts watching it.
-  const char executed = 1;
-  write_exactly(command_fd, &executed, 1);
-  LauncherReport report;
-  rusage usage{};
-  while (true) {
-    int status = 0;
-    const pid_t reaped = ::wait4(-1, &status, 0, &usage);
-    if (reaped == solver) {
-      report.status = status;
-      report.max_rss_kb = usage.ru_maxrss;
-      break;
-    }
-    if (reaped < 0 && errno != EINTR) ::_exit(127);
-  }
-  report.leftovers = kill_what_is_left(isolation) ? 1 : 0;
-  rusage reaped{};
-  ::getrusage(RUSAGE_CHILDREN, &reaped);
-  report.cpu_microseconds = (reaped.ru_utime.tv_sec + reaped.ru_stime.tv_sec) * 1000000 +
-                            reaped.ru_utime.tv_usec + reaped.ru_stime.tv_usec;
-  write_exactly(command_fd, &report, sizeof report);
-  ::_exit(0);
-}
-
-// After fork, in the child: only async-signal-safe calls. The child leaves mosb's process group
-// (so a Ctrl-C on the terminal reaches mosb alone), joins its memory group, and starts the query's
-// launcher (in a new PID namespace, or as a subreaper), which forks the solver's process; the
-// group join, which takes milliseconds under cgroup v1 on a loaded machine, and these forks happen
-// while the previous solver still runs.
-[[noreturn]] void parked_child(int command_fd, int mosb_end, int error_fd, int procs_fd, pid_t mosb,
-                               Isolation isolation, SealSetup& seal, LaunchBuffer& buffer) {
-  ::close(mosb_end);  // mosb's end closes when mosb ends: an end of file here
-  // A process group, not a session: on Linux a new session is a new scheduler autogroup, which
-  // costs time per query and gives the solver another CPU share than a shell loop gives it.
-  ::setpgid(0, 0);
-  // A kill -9 of mosb run takes the launcher with it, and the launcher's end the solver's; a
-  // mosb that ended before the signal was asked for has left this child to another parent.
-  ::prctl(PR_SET_PDEATHSIG, SIGKILL, 0, 0, 0);
-  if (::getppid() != mosb) ::_exit(127);
-  // mosb's standard streams are not the solver's: a waiting child holds none of them open.
-  const int null = ::open("/dev/null", O_RDWR);
-  if (null < 0) report_and_exit(error_fd, 3);
-  for (int fd = 0; fd < 3; ++fd) ::dup2(null, fd);
-  if (null > 2) ::close(null);
-  if (procs_fd >= 0 && ::write(procs_fd, "0", 1) != 1) report_and_exit(error_fd, 1);
-  if (seal.on && !seal_namespaces(seal)) report_and_exit(error_fd, 6);
-  // The watchdog's SIGTERM is for the solver: the launcher waits for its end (the solver
-  // unblocks them before it executes).
-  sigset_t stops;
-  sigemptyset(&stops);
-  for (const int signal : {SIGTERM, SIGINT, SIGHUP}) sigaddset(&stops, signal);
-  ::sigprocmask(SIG_BLOCK, &stops, nullptr);
-  if (isolation == Isolation::subreaper) {
-    ::prctl(PR_SET_CHILD_SUBREAPER, 1, 0, 0, 0);
-    launcher(command_fd, error_fd, isolation, seal, buffer);
-  }
-  if (::unshare(CLONE_NEWPID) != 0) report_and_exit(error_fd, 4);
-  const pid_t init = ::fork();  // the namespace's first process, its init
-  if (init < 0) report_and_exit(error_fd, 5);
-  if (init == 0) {
-    ::prctl(PR_SET_PDEATHSIG, SIGKILL, 0, 0, 0);
-    launcher(command_fd, error_fd, isolation, seal, buffer);
-  }
-  ::close(command_fd);
-  int status = 0;
-  while (::waitpid(init, &status, 0) < 0 && errno == EINTR) {
-  }
-  ::_exit(0);
 }
 
 double seconds_of(const timeval& t) {
@@ -793,7 +404,119 @@ std::optional<ChildError> child_error(int fd) {
   return report;
 }
 
+// The fork server's program (fork_server.cpp) in a sealed memory file, made once per process and
+// opened read-only (a file open for writing cannot be executed): the path that executes it.
+const std::string& fork_server_program() {
+  static const std::string path = [] {
+    const int image = ::memfd_create("mosb-fork-server", MFD_CLOEXEC | MFD_ALLOW_SEALING);
+    if (image < 0) fail("cannot create the fork server's memory file");
+    const auto size = static_cast<std::size_t>(mosb_fork_server_image_end - mosb_fork_server_image);
+    std::size_t done = 0;
+    while (done < size) {
+      const ssize_t put = ::write(image, mosb_fork_server_image + done, size - done);
+      if (put < 0 && errno == EINTR) continue;
+      if (put <= 0) break;
+      done += static_cast<std::size_t>(put);
+    }
+    const bool written =
+        done == size &&
+        ::fcntl(image, F_ADD_SEALS, F_SEAL_SEAL | F_SEAL_SHRINK | F_SEAL_GROW | F_SEAL_WRITE) == 0;
+    const int program =
+        written ? ::open(("/proc/self/fd/" + std::to_string(image)).c_str(), O_RDONLY | O_CLOEXEC)
+                : -1;
+    const int error = errno;
+    ::close(image);
+    errno = error;
+    if (program < 0) fail("cannot write the fork server's memory file");
+    return "/proc/self/fd/" + std::to_string(program);
+  }();
+  return path;
+}
+
 }  // namespace
+
+// mosb's end of one fork server (launch.hpp), started by the runner that uses it, from its thread
+// (the thread that forks a child is the one whose end the child's PR_SET_PDEATHSIG watches),
+// and ended with it.
+class ForkServer {
+ public:
+  ForkServer() {
+    int ends[2];
+    if (::socketpair(AF_UNIX, SOCK_SEQPACKET | SOCK_CLOEXEC, 0, ends) != 0)
+      fail("cannot create a socket pair");
+    socket_ = ends[0];
+    posix_spawn_file_actions_t actions;
+    posix_spawnattr_t attributes;
+    ::posix_spawn_file_actions_init(&actions);
+    ::posix_spawn_file_actions_adddup2(&actions, ends[1], 3);
+    ::posix_spawnattr_init(&attributes);
+    // A process group of its own, like the children: a Ctrl-C on the terminal reaches mosb alone.
+    ::posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
+    ::posix_spawnattr_setpgroup(&attributes, 0);
+    const std::string mosb = std::to_string(::getpid());
+    const std::string soft = std::to_string(started_file_limit.rlim_cur);
+    const std::string hard = std::to_string(started_file_limit.rlim_max);
+    const std::string& program = fork_server_program();
+    char name[] = "mosb-fork-server";
+    char* argv[] = {name, const_cast<char*>(mosb.c_str()), const_cast<char*>(soft.c_str()),
+                    const_cast<char*>(hard.c_str()), nullptr};
+    const int error = ::posix_spawn(&pid_, program.c_str(), &actions, &attributes, argv, environ);
+    ::posix_spawn_file_actions_destroy(&actions);
+    ::posix_spawnattr_destroy(&attributes);
+    ::close(ends[1]);
+    if (error != 0) {
+      ::close(socket_);
+      errno = error;
+      fail("cannot start the fork server");
+    }
+  }
+  // The socket's end is the server's.
+  ~ForkServer() {
+    ::close(socket_);
+    wait_for(pid_);
+  }
+  ForkServer(const ForkServer&) = delete;
+  ForkServer& operator=(const ForkServer&) = delete;
+
+  // A parked child for `request` with the descriptors of ParkRequest's order: its pid, or -1 with
+  // errno set.
+  pid_t park(const ParkRequest& request, const std::string& directory,
+             const std::vector<int>& fds) {
+    if (directory.size() > kMaxDirectory) {
+      errno = ENAMETOOLONG;
+      return -1;
+    }
+    std::string bytes(reinterpret_cast<const char*>(&request), sizeof request);
+    bytes += directory;
+    iovec data{bytes.data(), bytes.size()};
+    std::vector<char> control(CMSG_SPACE(sizeof(int) * fds.size()));
+    msghdr message{};
+    message.msg_iov = &data;
+    message.msg_iovlen = 1;
+    message.msg_control = control.data();
+    message.msg_controllen = control.size();
+    cmsghdr* c = CMSG_FIRSTHDR(&message);
+    c->cmsg_level = SOL_SOCKET;
+    c->cmsg_type = SCM_RIGHTS;
+    c->cmsg_len = CMSG_LEN(sizeof(int) * fds.size());
+    std::memcpy(CMSG_DATA(c), fds.data(), sizeof(int) * fds.size());
+    ssize_t sent = 0;
+    while ((sent = ::sendmsg(socket_, &message, MSG_NOSIGNAL)) < 0 && errno == EINTR) {
+    }
+    if (sent != static_cast<ssize_t>(bytes.size())) return -1;
+    ParkReply reply;
+    if (!read_exactly(socket_, &reply, sizeof reply)) {
+      errno = EPIPE;  // the server has ended
+      return -1;
+    }
+    errno = reply.error;
+    return reply.pid;
+  }
+
+ private:
+  int socket_ = -1;
+  pid_t pid_ = -1;
+};
 
 // A forked child waiting in its memory group for the command of the next query (parked_child).
 struct ProcessRunner::Parked {
@@ -806,8 +529,8 @@ struct ProcessRunner::Parked {
   std::uint64_t memory = 0;
   std::string group_prefix;
   Isolation isolation = Isolation::subreaper;
-  SealSetup seal;
-  LaunchBuffer buffer;
+  bool sealed = false;
+  std::string queries_directory;
   bool launched = false;
   bool executed = false;  // the launcher's byte saying the solver's process executed was read
   bool reaped = false;
@@ -815,13 +538,14 @@ struct ProcessRunner::Parked {
   // the child's end alone).
   int pidfd = -1;
 
-  Parked(Measurement measurement, std::uint64_t memory_bytes, const ProcessSpec& spec,
-         std::uint64_t sequence, int network_fd)
+  Parked(ForkServer& server, Measurement measurement, std::uint64_t memory_bytes,
+         const ProcessSpec& spec, std::uint64_t sequence, int network_fd)
       : m(measurement),
         memory(memory_bytes),
         group_prefix(spec.group_name),
         isolation(spec.isolation),
-        seal(spec.seal, spec.queries_directory, network_fd) {
+        sealed(spec.seal == Seal::sealed),
+        queries_directory(spec.queries_directory) {
     const auto& prefix = group_prefix;
     if (m == Measurement::cgroup_v1)
       group = std::make_unique<MemoryGroup>(prefix + "-" + std::to_string(sequence), memory);
@@ -839,11 +563,20 @@ struct ProcessRunner::Parked {
       fail("cannot create a pipe");
     }
     ::fcntl(error[0], F_SETFL, O_NONBLOCK);
-    const pid_t mosb = ::getpid();
-    pid = ::fork();
-    if (pid == 0)
-      parked_child(command[0], command[1], error[1], group ? group->procs_fd() : -1, mosb,
-                   isolation, seal, buffer);
+    ParkRequest request;
+    request.pid_namespace = isolation == Isolation::pid_namespace ? 1 : 0;
+    request.sealed = sealed ? 1 : 0;
+    request.directory_size = static_cast<std::uint32_t>(queries_directory.size());
+    std::vector<int> fds{command[0], error[1]};
+    if (group) {
+      request.has_procs = 1;
+      fds.push_back(group->procs_fd());
+    }
+    if (sealed && network_fd >= 0) {
+      request.has_network = 1;
+      fds.push_back(network_fd);
+    }
+    pid = server.park(request, queries_directory, fds);
     in_parent_after_fork(pid, {command[0], error[1]}, {command[1], error[0]});
     command_fd = command[1];
     error_fd = error[0];
@@ -864,15 +597,15 @@ struct ProcessRunner::Parked {
 
   bool suits(Measurement measurement, std::uint64_t memory_bytes, const ProcessSpec& spec) const {
     return m == measurement && memory == memory_bytes && group_prefix == spec.group_name &&
-           isolation == spec.isolation && seal.on == (spec.seal == Seal::sealed) &&
-           seal.queries_directory == spec.queries_directory;
+           isolation == spec.isolation && sealed == (spec.seal == Seal::sealed) &&
+           queries_directory == spec.queries_directory;
   }
 
   static bool fits(const ProcessSpec& spec) {
     std::size_t size =
         spec.executable.size() + spec.stdout_path.size() + spec.stderr_path.size() + 3;
     for (const auto& word : spec.argv) size += word.size() + 1;
-    return size <= LaunchBuffer::kBytes && spec.argv.size() + 4 <= LaunchBuffer::kWords;
+    return size <= kLaunchBytes && spec.argv.size() + 4 <= kLaunchWords;
   }
 
   // Returns once the solver's process waits for its command (`solver` is its pid), or the child
@@ -965,7 +698,8 @@ struct ProcessRunner::Parked {
             info.si_pid == pid);
   }
 
-  // Sends the command (fits(spec) holds); a child that has ended meanwhile is reaped as usual.
+  // Sends the command (fits(spec) holds), the executable's descriptor with its first bytes; a
+  // child that has ended meanwhile is reaped as usual.
   void launch(const ProcessSpec& spec) {
     std::string text = spec.executable + '\0' + spec.stdout_path + '\0' + spec.stderr_path + '\0';
     for (const auto& word : spec.argv) text += word + '\0';
@@ -973,17 +707,27 @@ struct ProcessRunner::Parked {
     header.size = static_cast<std::uint32_t>(text.size());
     header.cpu = spec.cpu;
     header.rlimit_as = m == Measurement::rlimit_poll ? rlimit_backstop(memory) : 0;
-    header.executable_fd = spec.executable_fd;
+    header.executable_fd = spec.executable_fd >= 0 ? 1 : 0;
     text.insert(0, reinterpret_cast<const char*>(&header), sizeof header);
-    const char* at = text.data();
-    std::size_t left = text.size();
-    while (left > 0) {
-      const ssize_t put = ::send(command_fd, at, left, MSG_NOSIGNAL);
-      if (put < 0 && errno == EINTR) continue;
-      if (put <= 0) break;
-      at += put;
-      left -= static_cast<std::size_t>(put);
+    iovec data{text.data(), text.size()};
+    alignas(cmsghdr) char control[CMSG_SPACE(sizeof(int))];
+    msghdr message{};
+    message.msg_iov = &data;
+    message.msg_iovlen = 1;
+    if (spec.executable_fd >= 0) {
+      message.msg_control = control;
+      message.msg_controllen = sizeof control;
+      cmsghdr* c = CMSG_FIRSTHDR(&message);
+      c->cmsg_level = SOL_SOCKET;
+      c->cmsg_type = SCM_RIGHTS;
+      c->cmsg_len = CMSG_LEN(sizeof(int));
+      std::memcpy(CMSG_DATA(c), &spec.executable_fd, sizeof(int));
     }
+    ssize_t put = 0;
+    while ((put = ::sendmsg(command_fd, &message, MSG_NOSIGNAL)) < 0 && errno == EINTR) {
+    }
+    if (put > 0 && static_cast<std::size_t>(put) < text.size())
+      write_exactly(command_fd, text.data() + put, text.size() - static_cast<std::size_t>(put));
     launched = true;
   }
 };
@@ -1136,7 +880,7 @@ void classify_exit(int status, const MemoryGroup* g, ProcessOutcome& out) {
 }  // namespace
 
 std::string seal_refusal() {
-  SealSetup probe(Seal::sealed, "/", -1);
+  SealSetup probe(true, "/", -1);
   int report[2];
   if (::pipe2(report, O_CLOEXEC) != 0) return errno_text(errno);
   const pid_t child = ::fork();
@@ -1159,14 +903,14 @@ ProcessOutcome ProcessRunner::run(const ProcessSpec& spec, const ProcessLimits& 
   ProcessOutcome out;
   if (!parked_.empty() && !parked_.front()->suits(m, limits.memory_bytes, spec)) parked_.clear();
   if (parked_.empty())
-    parked_.push_back(
-        std::make_unique<Parked>(m, limits.memory_bytes, spec, sequence_++, network(spec)));
+    parked_.push_back(std::make_unique<Parked>(fork_server(), m, limits.memory_bytes, spec,
+                                               sequence_++, network(spec)));
   std::unique_ptr<Parked> child = std::move(parked_.front());
   parked_.pop_front();
   if (!Parked::fits(spec)) {
     out.ending = Ending::not_started;
     out.error = spec.executable + ": cannot run: the command line is longer than " +
-                std::to_string(LaunchBuffer::kBytes) + " bytes";
+                std::to_string(kLaunchBytes) + " bytes";
     return out;
   }
   child->wait_ready();
@@ -1203,8 +947,8 @@ ProcessOutcome ProcessRunner::run(const ProcessSpec& spec, const ProcessLimits& 
   const std::size_t ahead = m == Measurement::cgroup_v1 ? 2 : 1;
   try {
     while (!stop_.load() && parked_.size() < ahead)
-      parked_.push_back(
-          std::make_unique<Parked>(m, limits.memory_bytes, spec, sequence_++, network(spec)));
+      parked_.push_back(std::make_unique<Parked>(fork_server(), m, limits.memory_bytes, spec,
+                                                 sequence_++, network(spec)));
   } catch (const Error&) {
   }
   retire_ended();
@@ -1227,6 +971,11 @@ ProcessOutcome ProcessRunner::run(const ProcessSpec& spec, const ProcessLimits& 
   outcome_of(spec, child->error_fd, g, reason, report, peak, out);
   retired_.push_back(std::move(child));
   return out;
+}
+
+ForkServer& ProcessRunner::fork_server() {
+  if (!fork_server_) fork_server_ = std::make_unique<ForkServer>();
+  return *fork_server_;
 }
 
 int ProcessRunner::network(const ProcessSpec& spec) {

@@ -100,6 +100,8 @@ struct ProcessOutcome {
 // its orphans here, never to init.
 void prepare_process_runner();
 
+class ForkServer;
+
 // Runs solvers one after the other (one per job of `mosb run`), each to its end under its
 // limits. A watchdog thread of its own checks the running solver every 20 ms against `stop`, the
 // deadline, the CPU-time limit and, under rlimit_poll, the memory limit.
@@ -124,6 +126,9 @@ class ProcessRunner {
   // solver runs: a query ends on its launcher's report, not on the exits that follow it.
   std::vector<std::unique_ptr<Parked>> retired_;
   void retire_ended();
+  // The fork server of this runner's children, started on first use (from the runner's thread).
+  std::unique_ptr<ForkServer> fork_server_;
+  ForkServer& fork_server();
   // The network namespace the sealed queries of this runner share (root), made on first use.
   int network(const ProcessSpec& spec);
   int network_fd_ = -1;
