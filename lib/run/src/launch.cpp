@@ -16,6 +16,7 @@
 #include <cerrno>
 #include <csignal>
 #include <cstring>
+#include <ctime>
 #include <utility>
 
 namespace mosb::run_internal {
@@ -331,6 +332,9 @@ bool receive_header(int command_fd, LaunchHeader& header) {
   ::getrusage(RUSAGE_CHILDREN, &reaped);
   report.cpu_microseconds = (reaped.ru_utime.tv_sec + reaped.ru_stime.tv_sec) * 1000000 +
                             reaped.ru_utime.tv_usec + reaped.ru_stime.tv_usec;
+  timespec now{};
+  ::clock_gettime(CLOCK_MONOTONIC, &now);
+  report.sent_nanoseconds = std::int64_t{now.tv_sec} * 1000000000 + now.tv_nsec;
   write_exactly(command_fd, &report, sizeof report);
   ::_exit(0);
 }

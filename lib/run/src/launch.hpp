@@ -45,6 +45,9 @@ struct LauncherReport {
   std::int64_t max_rss_kb = 0;  // the solver's ru_maxrss (with its waited-for descendants)
   // User + system time of every process the launcher reaped: the solver and what it left.
   std::int64_t cpu_microseconds = 0;
+  // When the report was sent, on CLOCK_MONOTONIC (mosb's steady clock): the end of the query's
+  // wall time, whenever mosb gets to read it.
+  std::int64_t sent_nanoseconds = 0;
 };
 
 // What a parked child needs to seal its query (spec/RUN.md §4.1), made before the fork: the child

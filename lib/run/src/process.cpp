@@ -18,6 +18,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cerrno>
 #include <chrono>
@@ -690,14 +691,6 @@ struct ProcessRunner::Parked {
     return have;
   }
 
-  // Whether the child has ended (then destroying this object costs no wait).
-  bool ended() const {
-    siginfo_t info{};
-    return reaped ||
-           (::waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOHANG | WNOWAIT) == 0 &&
-            info.si_pid == pid);
-  }
-
   // Sends the command (fits(spec) holds), the executable's descriptor with its first bytes; a
   // child that has ended meanwhile is reaped as usual.
   void launch(const ProcessSpec& spec) {
@@ -804,14 +797,55 @@ struct ProcessRunner::Watch {
   }
 };
 
+// Destroys the children handed to it, oldest first, on its own thread (Parked's destructor reaps
+// the child and removes its memory group).
+struct ProcessRunner::Retirer {
+  std::mutex mutex;
+  std::condition_variable wake;
+  std::deque<std::unique_ptr<Parked>> queue;
+  bool quit = false;
+  std::thread thread{[this] { loop(); }};
+
+  ~Retirer() {
+    {
+      std::lock_guard lock(mutex);
+      quit = true;
+    }
+    wake.notify_all();
+    thread.join();
+  }
+
+  void add(std::unique_ptr<Parked> child) {
+    {
+      std::lock_guard lock(mutex);
+      queue.push_back(std::move(child));
+    }
+    wake.notify_all();
+  }
+
+  // Runs until told to quit, and then until the queue is empty.
+  void loop() {
+    std::unique_lock lock(mutex);
+    while (true) {
+      wake.wait(lock, [this] { return quit || !queue.empty(); });
+      if (queue.empty()) return;
+      std::unique_ptr<Parked> child = std::move(queue.front());
+      queue.pop_front();
+      lock.unlock();
+      child.reset();
+      lock.lock();
+    }
+  }
+};
+
 ProcessRunner::ProcessRunner(const std::atomic<bool>& stop)
-    : stop_(stop), watch_(std::make_unique<Watch>()) {
+    : stop_(stop), watch_(std::make_unique<Watch>()), retirer_(std::make_unique<Retirer>()) {
   watch_->thread = std::thread([this] { watch_->loop(stop_); });
 }
 
 ProcessRunner::~ProcessRunner() {
   parked_.clear();
-  retired_.clear();
+  retirer_.reset();
   if (network_fd_ >= 0) ::close(network_fd_);
   {
     std::lock_guard lock(watch_->mutex);
@@ -951,11 +985,19 @@ ProcessOutcome ProcessRunner::run(const ProcessSpec& spec, const ProcessLimits& 
                                                  sequence_++, network(spec)));
   } catch (const Error&) {
   }
-  retire_ended();
   if (ready && spec.while_running) spec.while_running();
   rusage usage{};
   const auto report = child->await_report(usage);
-  out.wall_seconds = std::chrono::duration<double>(Clock::now() - started).count();
+  // The launcher's clock says when the query ended: mosb may have read the report later (busy
+  // with the previous query's record). Both clocks are CLOCK_MONOTONIC (libstdc++'s steady_clock);
+  // a time outside [started, now] is not believed.
+  const auto now = Clock::now();
+  const auto ended = report
+                         ? std::clamp(Clock::time_point(std::chrono::duration_cast<Clock::duration>(
+                                          std::chrono::nanoseconds(report->sent_nanoseconds))),
+                                      started, now)
+                         : now;
+  out.wall_seconds = std::chrono::duration<double>(ended - started).count();
   out.cpu_seconds = report ? static_cast<double>(report->cpu_microseconds) / 1e6
                            : seconds_of(usage.ru_utime) + seconds_of(usage.ru_stime);
   std::optional<Ending> reason;
@@ -969,7 +1011,7 @@ ProcessOutcome ProcessRunner::run(const ProcessSpec& spec, const ProcessLimits& 
   }
   if (ready) kill_leftovers(child->solver, out);
   outcome_of(spec, child->error_fd, g, reason, report, peak, out);
-  retired_.push_back(std::move(child));
+  retirer_->add(std::move(child));
   return out;
 }
 
@@ -992,9 +1034,6 @@ int ProcessRunner::network(const ProcessSpec& spec) {
   return network_fd_;  // -1: each query makes its own, as unprivileged
 }
 
-void ProcessRunner::retire_ended() {
-  std::erase_if(retired_, [](const std::unique_ptr<Parked>& child) { return child->ended(); });
-}
 namespace {
 
 // Reads the two pipes of a program until both are closed, into its output.

@@ -122,10 +122,12 @@ class ProcessRunner {
   std::unique_ptr<Watch> watch_;
   // The next queries' solver processes, forked ahead of their commands, oldest first.
   std::deque<std::unique_ptr<Parked>> parked_;
-  // Children whose query has ended, reaped (and their memory groups removed) while the next
-  // solver runs: a query ends on its launcher's report, not on the exits that follow it.
-  std::vector<std::unique_ptr<Parked>> retired_;
-  void retire_ended();
+  // Children whose query has ended, reaped and their memory groups removed by a thread of their
+  // own: a query ends on its launcher's report, not on the exits that follow it, and removing a
+  // v1 memory group takes the kernel most of a millisecond, which the job's thread would
+  // otherwise spend while the next solver's report waits.
+  struct Retirer;
+  std::unique_ptr<Retirer> retirer_;
   // The fork server of this runner's children, started on first use (from the runner's thread).
   std::unique_ptr<ForkServer> fork_server_;
   ForkServer& fork_server();
