@@ -409,7 +409,12 @@ std::optional<ChildError> child_error(int fd) {
 // opened read-only (a file open for writing cannot be executed): the path that executes it.
 const std::string& fork_server_program() {
   static const std::string path = [] {
-    const int image = ::memfd_create("mosb-fork-server", MFD_CLOEXEC | MFD_ALLOW_SEALING);
+    // MFD_EXEC (Linux 6.3, not in these headers): executable even where vm.memfd_noexec makes
+    // memory files non-executable by default; an older kernel refuses the flag (EINVAL).
+    constexpr unsigned kExecutable = 0x10;
+    int image = ::memfd_create("mosb-fork-server", MFD_CLOEXEC | MFD_ALLOW_SEALING | kExecutable);
+    if (image < 0 && errno == EINVAL)
+      image = ::memfd_create("mosb-fork-server", MFD_CLOEXEC | MFD_ALLOW_SEALING);
     if (image < 0) fail("cannot create the fork server's memory file");
     const auto size = static_cast<std::size_t>(mosb_fork_server_image_end - mosb_fork_server_image);
     std::size_t done = 0;
