@@ -191,7 +191,9 @@ class Seal(CliTest):
     def test_a_solver_holds_no_descriptor_of_mosb_or_its_fork_server(self):
         # Standard input, output and error only: the fork server's request socket, the command
         # sockets, error pipes and memory-group files of the queries forked ahead are all closed
-        # before a solver executes, sealed or not, two jobs at a time. (`ls` holds 3, the listing.)
+        # before a solver executes, sealed or not, two jobs at a time; so is a log mosb inherited
+        # open from whatever started it, which a sealed solver could write. (`ls` holds 3, the
+        # listing.)
         probe = self.write("descriptors.sh", "#!/bin/bash\n"
                            "fds=$(ls /proc/self/fd | tr '\\n' ' ')\n"
                            "[ \"$fds\" = '0 1 2 3 ' ] || { echo \"$fds\" >&2; exit 3; }\n"
@@ -199,6 +201,8 @@ class Seal(CliTest):
         os.chmod(probe, 0o755)
         env = dict(os.environ)
         env.pop("MOSB_ISOLATION", None)
+        log = os.open(self.path("wrapper.log"), os.O_WRONLY | os.O_CREAT | os.O_APPEND, 0o644)
+        self.addCleanup(os.close, log)
         for isolation in ("seal", "none"):
             with self.subTest(isolation=isolation):
                 output = self.path("descriptors-%s.sol" % isolation)
@@ -206,7 +210,7 @@ class Seal(CliTest):
                                     "Grid_2", "--queries", "q", "--jobs", "2", "--isolation",
                                     isolation, "--solver", probe, "-o", output],
                                    capture_output=True, text=True, timeout=120, cwd=self.dir,
-                                   env=env)
+                                   env=env, pass_fds=(log,))
                 self.assertEqual(r.returncode, 0, r)
                 info = json.loads(self.ok("solutions", "inspect", "--json", output).stdout)
                 self.assertEqual(info["statuses"]["solved"], 4, r.stderr)

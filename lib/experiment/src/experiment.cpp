@@ -964,20 +964,7 @@ SlurmStatus experiment_array_status(const SlurmRun& run, const ExperimentPlan& p
     ShardState s;
     s.index = i;
     s.queries = queries_of(plan, tasks.at(i - 1));
-    switch (t.state) {
-      case TaskFiles::State::done:
-        s.file = ShardFile::done;
-        break;
-      case TaskFiles::State::partial:
-        s.file = ShardFile::partial;
-        break;
-      case TaskFiles::State::damaged:
-        s.file = ShardFile::damaged;
-        break;
-      case TaskFiles::State::missing:
-        s.file = ShardFile::missing;
-        break;
-    }
+    s.file = t.state;
     s.recorded = t.queries_done;
     s.counts = t.counts;
     s.problem = t.problem;
@@ -993,7 +980,7 @@ TaskFiles task_files(const ExperimentPlan& task, const fs::path& directory) {
   try {
     records = read_results_manifest(directory);
   } catch (const Error& e) {
-    t.state = TaskFiles::State::damaged;
+    t.state = ShardFile::damaged;
     t.problem = e.what();
     return t;
   }
@@ -1001,7 +988,7 @@ TaskFiles task_files(const ExperimentPlan& task, const fs::path& directory) {
   for (const auto& cell : task.cells) {
     const auto s = cell_status(cell, directory, records, false);
     if (s.state == CellState::damaged) {
-      t.state = TaskFiles::State::damaged;
+      t.state = ShardFile::damaged;
       t.problem = cell.id() + ": " + s.detail;
       return t;
     }
@@ -1014,9 +1001,9 @@ TaskFiles task_files(const ExperimentPlan& task, const fs::path& directory) {
     }
     started = started || s.state != CellState::missing;
   }
-  t.state = t.cells_done == task.cells.size() ? TaskFiles::State::done
-            : started                         ? TaskFiles::State::partial
-                                              : TaskFiles::State::missing;
+  t.state = t.cells_done == task.cells.size() ? ShardFile::done
+            : started                         ? ShardFile::partial
+                                              : ShardFile::missing;
   return t;
 }
 

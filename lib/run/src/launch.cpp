@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <linux/capability.h>
+#include <linux/close_range.h>
 #include <net/if.h>
 #include <sched.h>
 #include <sys/ioctl.h>
@@ -54,6 +55,15 @@ bool read_exactly(int fd, void* data, std::size_t size) {
                           int error_fd, int executable_fd) {
   ::dup2(output, 1);
   ::dup2(errors, 2);
+  // Nothing but the standard streams reaches the program: not mosb's descriptors, nor any that
+  // mosb inherited from whatever started it (a log opened by a wrapper would let a sealed solver
+  // write outside its query). Close-on-exec, so that a failed exec can still report.
+  if (::syscall(SYS_close_range, 3U, ~0U, CLOSE_RANGE_CLOEXEC) != 0) {
+    const rlimit& files = started_file_limit;  // before Linux 5.11: the numbers mosb started with
+    const int last =
+        files.rlim_cur > 0 && files.rlim_cur < 65536 ? static_cast<int>(files.rlim_cur) : 65536;
+    for (int fd = 3; fd < last; ++fd) ::fcntl(fd, F_SETFD, FD_CLOEXEC);
+  }
   if (started_file_limit.rlim_max != 0) ::setrlimit(RLIMIT_NOFILE, &started_file_limit);
   if (executable_fd >= 0)
     ::fexecve(executable_fd, argv, environ);

@@ -224,11 +224,11 @@ std::uint64_t queries_of(const ExperimentPlan& plan, const std::vector<std::size
 ExperimentPlan task_plan(const ExperimentPlan& plan,
                          const std::vector<std::vector<std::size_t>>& tasks, std::uint64_t index);
 
-// What a task's results directory holds, as lib/run's SLURM status counts a shard: done (every
+// What a task's results directory holds, in the states of lib/run's SLURM shards: done (every
 // cell of the task listed and intact), partial (some cells or a journal), missing (nothing),
 // damaged (a listed cell's file is not the listed bytes).
 struct TaskFiles {
-  enum class State { done, partial, missing, damaged } state = State::missing;
+  ShardFile state = ShardFile::missing;
   std::uint64_t cells_done = 0, queries_done = 0;
   StatusCounts counts;
   std::string problem;
