@@ -29,7 +29,6 @@ using namespace mosb::run_internal;
 namespace {
 
 constexpr int kSocket = 3;
-constexpr int kMaxDescriptors = 4;
 
 // One request: its header, the queries directory and its descriptors (received close-on-exec),
 // or false at the socket's end.
@@ -37,40 +36,19 @@ struct Request {
   ParkRequest header;
   char directory[kMaxDirectory + 1] = {};
   int fds[kMaxDescriptors] = {-1, -1, -1, -1};
-  int count = 0;
+  std::size_t count = kMaxDescriptors;
 };
 
 bool receive(Request& r) {
   char bytes[sizeof(ParkRequest) + kMaxDirectory];
-  iovec data{bytes, sizeof bytes};
-  alignas(cmsghdr) char control[CMSG_SPACE(sizeof(int) * kMaxDescriptors)];
-  msghdr message{};
-  message.msg_iov = &data;
-  message.msg_iovlen = 1;
-  message.msg_control = control;
-  message.msg_controllen = sizeof control;
-  ssize_t got = 0;
-  while ((got = ::recvmsg(kSocket, &message, MSG_CMSG_CLOEXEC)) < 0 && errno == EINTR) {
-  }
+  const ssize_t got = receive_with_descriptors(kSocket, bytes, sizeof bytes, r.fds, r.count);
   if (got <= 0) return false;
-  for (cmsghdr* c = CMSG_FIRSTHDR(&message); c != nullptr; c = CMSG_NXTHDR(&message, c))
-    if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SCM_RIGHTS) {
-      const std::size_t count = (c->cmsg_len - CMSG_LEN(0)) / sizeof(int);
-      for (std::size_t i = 0; i < count; ++i) {
-        int fd = -1;
-        std::memcpy(&fd, CMSG_DATA(c) + i * sizeof(int), sizeof fd);
-        if (r.count < kMaxDescriptors)
-          r.fds[r.count++] = fd;
-        else
-          ::close(fd);
-      }
-    }
   const auto size = static_cast<std::size_t>(got);
   if (size < sizeof r.header) return false;
   std::memcpy(&r.header, bytes, sizeof r.header);
   if (r.header.directory_size > kMaxDirectory ||
       size != sizeof r.header + r.header.directory_size ||
-      r.count != 2 + (r.header.has_procs != 0) + (r.header.has_network != 0))
+      r.count != 2U + (r.header.has_procs != 0) + (r.header.has_network != 0))
     return false;
   std::memcpy(r.directory, bytes + sizeof r.header, r.header.directory_size);
   return true;
@@ -110,7 +88,7 @@ int main(int argc, char** argv) {
     ParkReply reply;
     reply.pid = park(request, mosb);
     reply.error = reply.pid < 0 ? errno : 0;
-    for (int i = 0; i < request.count; ++i) ::close(request.fds[i]);
+    for (std::size_t i = 0; i < request.count; ++i) ::close(request.fds[i]);
     if (::send(kSocket, &reply, sizeof reply, MSG_NOSIGNAL) != sizeof reply) return 0;
   }
 }

@@ -33,10 +33,10 @@ SealSetup::SealSetup(bool sealed, std::string directory, int network)
   gid_map = std::to_string(::getegid()) + " " + std::to_string(::getegid()) + " 1";
 }
 
-bool read_exactly(int fd, void* data, std::size_t size) {
+bool read_exactly(int fd, void* data, std::size_t size, int flags) {
   auto* at = static_cast<char*>(data);
   while (size > 0) {
-    const ssize_t got = ::read(fd, at, size);
+    const ssize_t got = ::recv(fd, at, size, flags);
     if (got < 0 && errno == EINTR) continue;
     if (got <= 0) return false;
     at += got;
@@ -82,6 +82,61 @@ bool write_exactly(int fd, const void* data, std::size_t count) {
     count -= static_cast<std::size_t>(put);
   }
   return true;
+}
+
+bool send_with_descriptors(int socket, const void* data, std::size_t size, const int* fds,
+                           std::size_t count) {
+  iovec part{const_cast<void*>(data), size};
+  msghdr message{};
+  message.msg_iov = &part;
+  message.msg_iovlen = 1;
+  alignas(cmsghdr) char control[CMSG_SPACE(sizeof(int) * kMaxDescriptors)];
+  if (count > kMaxDescriptors) {
+    errno = EINVAL;
+    return false;
+  }
+  if (count > 0) {
+    message.msg_control = control;
+    message.msg_controllen = CMSG_SPACE(sizeof(int) * count);
+    cmsghdr* c = CMSG_FIRSTHDR(&message);
+    c->cmsg_level = SOL_SOCKET;
+    c->cmsg_type = SCM_RIGHTS;
+    c->cmsg_len = CMSG_LEN(sizeof(int) * count);
+    std::memcpy(CMSG_DATA(c), fds, sizeof(int) * count);
+  }
+  ssize_t put = 0;
+  while ((put = ::sendmsg(socket, &message, MSG_NOSIGNAL)) < 0 && errno == EINTR) {
+  }
+  if (put < 0) return false;
+  const auto sent = static_cast<std::size_t>(put);
+  return sent == size || write_exactly(socket, static_cast<const char*>(data) + sent, size - sent);
+}
+
+ssize_t receive_with_descriptors(int socket, void* data, std::size_t size, int* fds,
+                                 std::size_t& count) {
+  iovec part{data, size};
+  alignas(cmsghdr) char control[CMSG_SPACE(sizeof(int) * kMaxDescriptors)];
+  msghdr message{};
+  message.msg_iov = &part;
+  message.msg_iovlen = 1;
+  message.msg_control = control;
+  message.msg_controllen = sizeof control;
+  ssize_t got = 0;
+  while ((got = ::recvmsg(socket, &message, MSG_CMSG_CLOEXEC)) < 0 && errno == EINTR) {
+  }
+  std::size_t received = 0;
+  for (cmsghdr* c = CMSG_FIRSTHDR(&message); got >= 0 && c != nullptr; c = CMSG_NXTHDR(&message, c))
+    if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SCM_RIGHTS)
+      for (std::size_t i = 0; i < (c->cmsg_len - CMSG_LEN(0)) / sizeof(int); ++i) {
+        int fd = -1;
+        std::memcpy(&fd, CMSG_DATA(c) + i * sizeof(int), sizeof fd);
+        if (received < count)
+          fds[received++] = fd;
+        else
+          ::close(fd);
+      }
+  count = received;
+  return got;
 }
 
 namespace {
@@ -229,21 +284,11 @@ char* launch_words[kLaunchWords];
 // The command's header, and with it the descriptor of the executable when it has one (then
 // `executable_fd` is that descriptor here, else -1).
 bool receive_header(int command_fd, LaunchHeader& header) {
-  iovec data{&header, sizeof header};
-  alignas(cmsghdr) char control[CMSG_SPACE(sizeof(int))];
-  msghdr message{};
-  message.msg_iov = &data;
-  message.msg_iovlen = 1;
-  message.msg_control = control;
-  message.msg_controllen = sizeof control;
-  ssize_t got = 0;
-  while ((got = ::recvmsg(command_fd, &message, MSG_CMSG_CLOEXEC)) < 0 && errno == EINTR) {
-  }
-  if (got <= 0) return false;
   int received = -1;
-  for (cmsghdr* c = CMSG_FIRSTHDR(&message); c != nullptr; c = CMSG_NXTHDR(&message, c))
-    if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SCM_RIGHTS)
-      std::memcpy(&received, CMSG_DATA(c), sizeof received);
+  std::size_t count = 1;
+  const ssize_t got =
+      receive_with_descriptors(command_fd, &header, sizeof header, &received, count);
+  if (got <= 0) return false;
   const auto have = static_cast<std::size_t>(got);
   if (have < sizeof header &&
       !read_exactly(command_fd, reinterpret_cast<char*>(&header) + have, sizeof header - have))

@@ -89,10 +89,23 @@ struct ParkReply {
 // The fork server gets it on its command line.
 extern rlimit started_file_limit;
 
-// `size` bytes from `fd`, waiting for them, or false at the end of the stream or an error.
-bool read_exactly(int fd, void* data, std::size_t size);
-// `count` bytes to `fd`, or false.
+// `size` bytes from the socket `fd` (recv with `flags`: MSG_DONTWAIT for bytes already there), or
+// false at the end of the stream or an error.
+bool read_exactly(int fd, void* data, std::size_t size, int flags = 0);
+// `count` bytes to the socket `fd`, or false.
 bool write_exactly(int fd, const void* data, std::size_t count);
+
+// The most descriptors one message carries (a park request's).
+inline constexpr std::size_t kMaxDescriptors = 4;
+// `size` bytes to `socket`, `count` (at most kMaxDescriptors) descriptors with them (SCM_RIGHTS);
+// false, errno set, when they cannot be sent.
+bool send_with_descriptors(int socket, const void* data, std::size_t size, const int* fds,
+                           std::size_t count);
+// One recvmsg of up to `size` bytes from `socket`, and the descriptors that came with them, made
+// close-on-exec, into `fds` (at most `count`, which becomes how many came; the rest are closed):
+// recvmsg's result.
+ssize_t receive_with_descriptors(int socket, void* data, std::size_t size, int* fds,
+                                 std::size_t& count);
 
 // In a forked child: reports `stage` and errno on `error_fd` (when the child has one) and exits
 // with 127, a shell's status for a command it cannot run.

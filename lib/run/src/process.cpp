@@ -332,19 +332,6 @@ class MemoryGroup {
   std::array<int, kFiles> fds_{-1, -1, -1, -1};  // by File, -1 when not open
 };
 
-// `size` bytes that are already there (the writer has ended), or false.
-bool read_exactly_now(int fd, void* data, std::size_t size) {
-  auto* at = static_cast<char*>(data);
-  while (size > 0) {
-    const ssize_t got = ::recv(fd, at, size, MSG_DONTWAIT);
-    if (got < 0 && errno == EINTR) continue;
-    if (got <= 0) return false;
-    at += got;
-    size -= static_cast<std::size_t>(got);
-  }
-  return true;
-}
-
 // In the parent, right after fork() returned `pid`: closes the child's ends of their pipes, and
 // when the fork failed also the parent's ends, and throws.
 void in_parent_after_fork(pid_t pid, std::initializer_list<int> child_ends,
@@ -490,22 +477,9 @@ class ForkServer {
     }
     std::string bytes(reinterpret_cast<const char*>(&request), sizeof request);
     bytes += directory;
-    iovec data{bytes.data(), bytes.size()};
-    std::vector<char> control(CMSG_SPACE(sizeof(int) * fds.size()));
-    msghdr message{};
-    message.msg_iov = &data;
-    message.msg_iovlen = 1;
-    message.msg_control = control.data();
-    message.msg_controllen = control.size();
-    cmsghdr* c = CMSG_FIRSTHDR(&message);
-    c->cmsg_level = SOL_SOCKET;
-    c->cmsg_type = SCM_RIGHTS;
-    c->cmsg_len = CMSG_LEN(sizeof(int) * fds.size());
-    std::memcpy(CMSG_DATA(c), fds.data(), sizeof(int) * fds.size());
-    ssize_t sent = 0;
-    while ((sent = ::sendmsg(socket_, &message, MSG_NOSIGNAL)) < 0 && errno == EINTR) {
-    }
-    if (sent != static_cast<ssize_t>(bytes.size())) return -1;
+    // One message (a SOCK_SEQPACKET socket): a request is never split.
+    if (!send_with_descriptors(socket_, bytes.data(), bytes.size(), fds.data(), fds.size()))
+      return -1;
     ParkReply reply;
     if (!read_exactly(socket_, &reply, sizeof reply)) {
       errno = EPIPE;  // the server has ended
@@ -656,7 +630,7 @@ struct ProcessRunner::Parked {
     if (have < size) {
       wait_for(pid, &usage);
       reaped = true;
-      if (!read_exactly_now(command_fd, message + have, size - have)) return std::nullopt;
+      if (!read_exactly(command_fd, message + have, size - have, MSG_DONTWAIT)) return std::nullopt;
     }
     executed = true;
     LauncherReport r;
@@ -703,25 +677,9 @@ struct ProcessRunner::Parked {
     header.rlimit_as = m == Measurement::rlimit_poll ? rlimit_backstop(memory) : 0;
     header.executable_fd = spec.executable_fd >= 0 ? 1 : 0;
     text.insert(0, reinterpret_cast<const char*>(&header), sizeof header);
-    iovec data{text.data(), text.size()};
-    alignas(cmsghdr) char control[CMSG_SPACE(sizeof(int))];
-    msghdr message{};
-    message.msg_iov = &data;
-    message.msg_iovlen = 1;
-    if (spec.executable_fd >= 0) {
-      message.msg_control = control;
-      message.msg_controllen = sizeof control;
-      cmsghdr* c = CMSG_FIRSTHDR(&message);
-      c->cmsg_level = SOL_SOCKET;
-      c->cmsg_type = SCM_RIGHTS;
-      c->cmsg_len = CMSG_LEN(sizeof(int));
-      std::memcpy(CMSG_DATA(c), &spec.executable_fd, sizeof(int));
-    }
-    ssize_t put = 0;
-    while ((put = ::sendmsg(command_fd, &message, MSG_NOSIGNAL)) < 0 && errno == EINTR) {
-    }
-    if (put > 0 && static_cast<std::size_t>(put) < text.size())
-      write_exactly(command_fd, text.data() + put, text.size() - static_cast<std::size_t>(put));
+    const int executable = spec.executable_fd;
+    send_with_descriptors(command_fd, text.data(), text.size(), &executable,
+                          executable >= 0 ? 1 : 0);
     launched = true;
   }
 };
