@@ -118,7 +118,7 @@ class ExperimentTest(ExperimentFixture):
         script = read(os.path.join(array, "run.sbatch")).decode()
         self.assertIn("#SBATCH --array=1-%d\n" % tasks, script)
         self.assertIn('experiment run %s --queries-per-task 10' % self.experiment, script)
-        self.assertIn('--task "$shard/%d" -o %s/task-"$shard"' % (tasks, array), script)
+        self.assertIn('--task "$shard"/%d -o %s/task-"$shard"' % (tasks, array), script)
         status = json.loads(self.ok("experiment", "run", self.experiment, "-o", results,
                                     "--slurm", array, "--status", "--json").stdout)
         self.assertEqual([t["file"] for t in status["task_states"]], ["missing"] * tasks)

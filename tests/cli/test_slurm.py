@@ -173,7 +173,7 @@ class ShardsAndMerge(CliTest):
                       % (self.path("job"), self.path("job")), r.stdout)
         script = mosbtest.read(self.path("job", "run.sbatch"), "r")
         for line in ("#SBATCH --array=1-4%2", "#SBATCH --time=0-00:09:00", "#SBATCH --mem=1536M",
-                     "#SBATCH --partition=short", "--shard \"$shard/4\" --resume -o "):
+                     "#SBATCH --partition=short", "--shard \"$shard\"/4 --resume -o "):
             self.assertIn(line, script)
         self.assertIn(os.path.realpath(mosbtest.MOSB), script)
         r = self.mosb(*base, "--slurm", self.path("job"), "--shards", "2")

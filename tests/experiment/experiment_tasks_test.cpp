@@ -78,6 +78,14 @@ TEST_CASE("plan_experiment_array: the array's counts and limits, and the tasks i
   CHECK(run.largest_shard == 20);
   CHECK(run.time_limit_seconds == 60);
   CHECK(run.memory_limit_bytes == std::uint64_t{1} << 30);
+  // Its script: each task runs its cells into a results directory of its own.
+  run.mosb = "/opt/mosb";
+  run.working_directory = "/x";
+  run.run_arguments = {"/x/exp.toml", "--queries-per-task", "10"};
+  const std::string script = slurm_script(run);
+  CHECK(script.find("#SBATCH --job-name=mosb-experiment\n") != std::string::npos);
+  CHECK(script.find("exec /opt/mosb experiment run /x/exp.toml --queries-per-task 10 --task "
+                    "\"$shard\"/2 -o /x/array/task-\"$shard\"\n") != std::string::npos);
   CHECK_THROWS_WITH_AS((void)plan_experiment_array(run, plan_of({}), "/x/e.toml", 10),
                        "/x/e.toml: the experiment has no cell", Error);
   // The existing array: found again from its task size, refused once the file plans otherwise.

@@ -67,6 +67,7 @@ mosb::SlurmRun example_run() {
   run.jobs = 2;
   run.throttle = 2;
   run.partition = "short";
+  mosb::describe_run_tasks(run);
   return run;
 }
 
@@ -98,8 +99,12 @@ TEST_CASE("the array script is deterministic text with quoted arguments") {
   CHECK(script.find("cd '/home/me/my solver'\n") != std::string::npos);
   CHECK(script.find("exec /opt/mosb/bin/mosb run /data/grid.mosb --view Grid_2 --solver "
                     "'./boa {instance} --query {source} {target}' --time-limit 60s --shard "
-                    "\"$shard/4\" --resume -o /scratch/boa/shard-\"$shard\".sol\n") !=
+                    "\"$shard\"/4 --resume -o /scratch/boa/shard-\"$shard\".sol\n") !=
         std::string::npos);
+  // A run without a task command has no script.
+  auto bare = example_run();
+  bare.task_command.clear();
+  CHECK_THROWS_AS((void)mosb::slurm_script(bare), mosb::Error);
 }
 
 TEST_CASE("array lists and sbatch commands") {

@@ -922,6 +922,16 @@ std::vector<std::vector<std::size_t>> plan_experiment_array(SlurmRun& run,
   run.time_limit_seconds = largest.wall_seconds;
   run.grace_seconds = largest.grace_seconds;
   run.memory_limit_bytes = largest.memory_bytes;
+  const std::string count = std::to_string(run.shards);
+  run.task_comment =
+      "# mosb experiment run --slurm (spec/EXPERIMENT.md section 4): array task i "
+      "runs task i of " +
+      count + "\n# of the experiment's cells (" + std::to_string(run.queries) +
+      " queries in all) into task-i/ here.\n# Merge and resubmit: mosb "
+      "experiment run " +
+      file + " -o RESULTS --slurm " + run.directory + " --resume --submit\n";
+  run.task_command = {"experiment", "run"};
+  run.task_words = {"--task", "{task}/" + count, "-o", run.directory + "/task-{task}"};
   return tasks;
 }
 

@@ -140,23 +140,43 @@ std::string slurm_array_list(const std::vector<std::uint64_t>& shards) {
   return text;
 }
 
+namespace {
+
+// `word` quoted for the shell, "{task}" in it becoming the array task's index ("$shard").
+std::string quote_task_word(const std::string& word) {
+  static constexpr std::string_view kTask = "{task}";
+  std::string text;
+  std::size_t from = 0;
+  for (std::size_t at = word.find(kTask); at != std::string::npos; at = word.find(kTask, from)) {
+    if (at > from) text += shell_quote(word.substr(from, at - from));
+    text += "\"$shard\"";
+    from = at + kTask.size();
+  }
+  if (from < word.size() || text.empty()) text += shell_quote(word.substr(from));
+  return text;
+}
+
+}  // namespace
+
+void describe_run_tasks(SlurmRun& run) {
+  run.kind = kRunKind;
+  run.task_comment = "# mosb run --slurm (spec/RUN.md section 8): array task i runs shard i of " +
+                     std::to_string(run.shards) + "\n# of the " + std::to_string(run.queries) +
+                     " queries of query set " + run.query_set + " and writes shard-i.sol here.\n" +
+                     "# Resubmit what is missing: mosb run --slurm " + run.directory +
+                     " --resume --submit\n";
+  run.task_command = {"run"};
+  run.task_words = {"--shard", "{task}/" + std::to_string(run.shards), "--resume", "-o",
+                    run.directory + "/shard-{task}.sol"};
+}
+
 std::string slurm_script(const SlurmRun& run) {
+  if (run.task_command.empty())
+    throw Error(ErrorCode::invalid_argument, run.directory + ": no command for the array's tasks");
   std::ostringstream s;
   const std::string dir = run.directory;
-  const bool experiment = run.kind == kExperimentKind;
-  s << "#!/bin/sh\n";
-  if (experiment)
-    s << "# mosb experiment run --slurm (spec/EXPERIMENT.md section 4): array task i runs task i "
-      << "of " << run.shards << "\n# of the experiment's cells (" << run.queries
-      << " queries in all) into task-i/ here. Written by mosb " << kVersion << ".\n"
-      << "# Merge and resubmit: mosb experiment run " << shell_quote(run.instance)
-      << " -o RESULTS --slurm " << dir << " --resume --submit\n";
-  else
-    s << "# mosb run --slurm (spec/RUN.md section 8): array task i runs shard i of " << run.shards
-      << "\n# of the " << run.queries << " queries of query set " << run.query_set
-      << " and writes shard-i.sol here. Written by mosb " << kVersion << ".\n"
-      << "# Resubmit what is missing: mosb run --slurm " << dir << " --resume --submit\n";
-  s << "#SBATCH --job-name=mosb-" << (experiment ? "experiment" : "run") << "\n";
+  s << "#!/bin/sh\n" << run.task_comment << "# Written by mosb " << kVersion << ".\n";
+  s << "#SBATCH --job-name=mosb-" << run.kind << "\n";
   s << "#SBATCH --array=" << slurm_array_list([&] {
     std::vector<std::uint64_t> all(run.shards);
     for (std::uint64_t i = 0; i < run.shards; ++i) all[i] = i + 1;
@@ -175,17 +195,11 @@ std::string slurm_script(const SlurmRun& run) {
   s << "set -eu\n";
   s << "cd " << shell_quote(run.working_directory) << "\n";
   s << "shard=\"$SLURM_ARRAY_TASK_ID\"\n";
-  if (experiment) {
-    s << "exec " << shell_quote(run.mosb) << " experiment run";
-    for (const auto& a : run.run_arguments) s << " " << shell_quote(a);
-    s << " --task \"$shard/" << run.shards << "\" -o " << shell_quote(dir + "/task-")
-      << "\"$shard\"\n";
-    return s.str();
-  }
-  s << "exec " << shell_quote(run.mosb) << " run";
+  s << "exec " << shell_quote(run.mosb);
+  for (const auto& a : run.task_command) s << " " << shell_quote(a);
   for (const auto& a : run.run_arguments) s << " " << shell_quote(a);
-  s << " --shard \"$shard/" << run.shards << "\" --resume -o " << shell_quote(dir + "/shard-")
-    << "\"$shard\".sol\n";
+  for (const auto& a : run.task_words) s << " " << quote_task_word(a);
+  s << "\n";
   return s.str();
 }
 
@@ -255,8 +269,7 @@ SlurmRun read_slurm_directory(const std::string& directory) {
     r.directory = fs::absolute(directory).lexically_normal().string();
     while (r.directory.size() > 1 && r.directory.back() == '/') r.directory.pop_back();
     r.kind = j.value("kind", std::string(kRunKind));  // absent before experiments
-    if (r.kind != kRunKind && r.kind != kExperimentKind)
-      throw Error("kind '" + r.kind + "' is neither run nor experiment");
+    if (r.kind.empty()) throw Error("an empty kind");
     r.largest_shard = j.value("largest_shard", std::uint64_t{0});
     r.mosb = j.at("mosb").get<std::string>();
     r.working_directory = j.at("working_directory").get<std::string>();
@@ -494,6 +507,7 @@ SlurmRun plan_slurm_run(const RunConfig& config, const SlurmRequest& request) {
   run.run_arguments.push_back(run.instance);
   run.run_arguments.insert(run.run_arguments.end(), request.run_options.begin(),
                            request.run_options.end());
+  describe_run_tasks(run);
   return run;
 }
 

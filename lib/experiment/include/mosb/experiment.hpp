@@ -235,6 +235,11 @@ struct TaskFiles {
 };
 TaskFiles task_files(const ExperimentPlan& task, const std::filesystem::path& directory);
 
+// The kind of an experiment's job array (SlurmRun::kind): task i runs task i of the experiment's
+// cells (`mosb experiment run EXP --task i/N`, spec/EXPERIMENT.md §4) into DIR/task-i/, a results
+// directory of its own.
+inline constexpr std::string_view kExperimentKind = "experiment";
+
 // The job array of experiment `file` (its absolute path) in tasks of at most `queries_per_task`
 // queries: `run` (slurm_run_here's, with the caller's account, partition, jobs and task
 // arguments) given its kind, file, task and query counts and the largest of the cells' limits,

@@ -21,9 +21,8 @@ namespace mosb {
 // What DIR/run.json records: enough to write the script again, to recognise the shard files, and
 // to resubmit.
 struct SlurmRun {
-  // What task i runs: kRunKind, shard i of a `mosb run` (into DIR/shard-i.sol); kExperimentKind,
-  // task i of an experiment's cells (`mosb experiment run EXP --task i/N`, spec/EXPERIMENT.md §4,
-  // into DIR/task-i/, a results directory of its own).
+  // What task i runs: kRunKind, shard i of a `mosb run` (into DIR/shard-i.sol), or the kind of the
+  // component that planned the array (lib/experiment's: task i of an experiment's cells).
   std::string kind = "run";
   std::string directory;          // absolute
   std::string mosb;               // absolute path of the mosb program every task runs
@@ -43,9 +42,19 @@ struct SlurmRun {
   unsigned jobs = 1, threads = 1;
   unsigned throttle = 0;  // at most this many tasks at once (%K); 0: no limit
   std::string account, partition;
+  // What the script says and runs, set by the planner (describe_run_tasks for a run's shards) and
+  // not recorded in run.json, since the script is written once, with the directory: its comment
+  // lines ("# ..." each), and the arguments every task gives the mosb program before and after
+  // run_arguments, "{task}" in them standing for the task's index.
+  std::string task_comment;
+  std::vector<std::string> task_command, task_words;
 };
 
-inline constexpr std::string_view kRunKind = "run", kExperimentKind = "experiment";
+inline constexpr std::string_view kRunKind = "run";
+
+// A run's tasks (kind, comment, `mosb run … --shard i/N --resume -o DIR/shard-i.sol`), from its
+// directory, shards, queries and query set.
+void describe_run_tasks(SlurmRun& run);
 
 // What `mosb run --slurm DIR` asks beyond the run itself.
 struct SlurmRequest {
@@ -85,7 +94,8 @@ std::string slurm_time_text(std::uint64_t seconds);
 // nullopt without a memory limit (the partition's default per CPU applies).
 std::optional<std::uint64_t> slurm_memory_mib(const SlurmRun& run);
 
-// The job-array script: the same text for the same SlurmRun.
+// The job-array script: the same text for the same SlurmRun. Throws mosb::Error
+// (invalid_argument) when the run has no task command.
 std::string slurm_script(const SlurmRun& run);
 // "1-4", "3,5-7": the shards (ascending, distinct) as an array index list.
 std::string slurm_array_list(const std::vector<std::uint64_t>& shards);
