@@ -30,8 +30,7 @@ namespace {
 
 constexpr int kSocket = 3;
 
-// One request: its header, the queries directory and its descriptors (received close-on-exec),
-// or false at the socket's end.
+// One request: its header, the queries directory and its descriptors (received close-on-exec).
 struct Request {
   ParkRequest header;
   char directory[kMaxDirectory + 1] = {};
@@ -39,6 +38,7 @@ struct Request {
   std::size_t count = kMaxDescriptors;
 };
 
+// The next request into `r`, or false at the socket's end or when the request is malformed.
 bool receive(Request& r) {
   char bytes[sizeof(ParkRequest) + kMaxDirectory];
   const ssize_t got = receive_with_descriptors(kSocket, bytes, sizeof bytes, r.fds, r.count);
