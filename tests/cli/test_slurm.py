@@ -178,6 +178,16 @@ class ShardsAndMerge(CliTest):
         self.assertIn(os.path.realpath(mosbtest.MOSB), script)
         r = self.mosb(*base, "--slurm", self.path("job"), "--shards", "2")
         self.assert_one_line_error(r, "holds a run already")
+        # A run.json whose kind was edited: refused, naming it (escaped for the terminal).
+        shutil.copy(self.path("job", "run.json"), self.path("run.json.kept"))
+        with open(self.path("job", "run.json")) as f:
+            edited = json.load(f)
+        edited["kind"] = "other\x1b"
+        with open(self.path("job", "run.json"), "w") as f:
+            json.dump(edited, f)
+        r = self.mosb("run", "--slurm", self.path("job"), "--status")
+        self.assert_one_line_error(r, "a job array of kind 'other\\x1b', not of mosb run", code=2)
+        shutil.copy(self.path("run.json.kept"), self.path("job", "run.json"))
         # The same command writes the same script.
         shutil.rmtree(self.path("job"))
         self.ok(*base, "--slurm", self.path("job"), "--queries-per-task", "3", "--throttle", "2",

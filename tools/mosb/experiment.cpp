@@ -241,9 +241,12 @@ void print_task_states(const SlurmStatus& status,
 int run_experiment_slurm_existing(const ExperimentRunArgs& a) {
   const auto plan = read_plan(a);
   const SlurmRun run = read_slurm_directory(a.slurm);
-  if (run.kind != kExperimentKind)
+  if (run.kind == kRunKind)
     throw UsageError("--slurm " + a.slurm + ": the job array of a mosb run; use mosb run --slurm " +
                      a.slurm);
+  if (run.kind != kExperimentKind)
+    throw UsageError("--slurm " + a.slurm + ": a job array of kind '" + run.kind +
+                     "', not of an experiment");
   const auto tasks = experiment_array_tasks(
       run, plan, std::filesystem::absolute(a.file).lexically_normal().string());
   const auto status = experiment_array_status(run, plan, tasks);

@@ -22,6 +22,7 @@
 #include "mosb/converters/profile.hpp"
 #include "mosb/converters/solver_output.hpp"
 #include "mosb/converters/solver_resolver.hpp"
+#include "mosb/experiment.hpp"
 #include "mosb/internal/utf8.hpp"
 #include "mosb/sha256.hpp"
 #include "mosb/slurm.hpp"
@@ -521,11 +522,14 @@ int run_slurm_existing(const RunArgs& a) {
   if (a.status && a.resume) throw UsageError("--status: not with --resume");
   if (a.status && a.submit) throw UsageError("--submit: not with --status");
   const SlurmRun run = read_slurm_directory(a.slurm);
-  if (run.kind != kRunKind)
+  if (run.kind == kExperimentKind)
     throw UsageError("--slurm " + a.slurm +
                      ": the job array of an experiment; see it with mosb "
                      "experiment run EXP.toml -o RESULTS --slurm " +
                      a.slurm + " --status");
+  if (run.kind != kRunKind)
+    throw UsageError("--slurm " + a.slurm + ": a job array of kind '" + run.kind +
+                     "', not of mosb run");
   const SlurmStatus status = slurm_status(run);
   if (a.status) {
     if (a.json)
