@@ -105,6 +105,18 @@ TEST_CASE("the array script is deterministic text with quoted arguments") {
   auto bare = example_run();
   bare.task_command.clear();
   CHECK_THROWS_AS((void)mosb::slurm_script(bare), mosb::Error);
+  // A name with a line break would put a command into the script's comment.
+  auto injected = example_run();
+  injected.query_set = "q\ntouch /tmp/pwned";
+  mosb::describe_run_tasks(injected);
+  CHECK_THROWS_WITH_AS((void)mosb::slurm_script(injected),
+                       doctest::Contains("is not comment lines: 'touch /tmp/pwned"), mosb::Error);
+  injected.task_comment = "# one line without its end";
+  CHECK_THROWS_AS((void)mosb::slurm_script(injected), mosb::Error);
+  injected.task_comment = "# a tab\tis a control character\n";
+  CHECK_THROWS_AS((void)mosb::slurm_script(injected), mosb::Error);
+  injected.task_comment.clear();
+  CHECK(mosb::slurm_script(injected).starts_with("#!/bin/sh\n# Written by mosb "));
 }
 
 TEST_CASE("array lists and sbatch commands") {

@@ -173,6 +173,20 @@ void describe_run_tasks(SlurmRun& run) {
 std::string slurm_script(const SlurmRun& run) {
   if (run.task_command.empty())
     throw Error(ErrorCode::invalid_argument, run.directory + ": no command for the array's tasks");
+  // The script is shell: a line break in a comment or a directive's value would start a command
+  // (a query set or an experiment file named with one). The directives' values are checked where
+  // the directory is created.
+  for (std::size_t at = 0; at < run.task_comment.size();) {
+    const auto end = run.task_comment.find('\n', at);
+    if (run.task_comment[at] != '#' || end == std::string::npos ||
+        std::any_of(run.task_comment.begin() + static_cast<std::ptrdiff_t>(at),
+                    run.task_comment.begin() + static_cast<std::ptrdiff_t>(end),
+                    [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }))
+      throw Error(ErrorCode::invalid_argument,
+                  run.directory + ": the array's comment is not comment lines: " +
+                      shell_quote(run.task_comment.substr(at, end - at)));
+    at = end + 1;
+  }
   std::ostringstream s;
   const std::string dir = run.directory;
   s << "#!/bin/sh\n" << run.task_comment << "# Written by mosb " << kVersion << ".\n";
@@ -243,8 +257,8 @@ void create_slurm_directory(const SlurmRun& run) {
   for (const auto& [option, value] :
        {std::pair{"--account", &run.account}, {"--partition", &run.partition}})
     if (!plain_path(*value))
-      throw Error(ErrorCode::invalid_argument,
-                  std::string(option) + " " + *value + ": no blanks, quotes, '$' or '%'");
+      throw Error(ErrorCode::invalid_argument, std::string(option) + " " + shell_quote(*value) +
+                                                   ": no blanks, quotes, '$' or '%'");
   if (fs::exists(dir / kRunFile))
     throw Error(ErrorCode::invalid_argument,
                 (dir / kRunFile).string() +
