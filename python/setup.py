@@ -19,8 +19,8 @@ from setuptools.command.build_py import build_py
 
 here = os.path.dirname(os.path.abspath(__file__))
 root = os.path.dirname(here)
-# The components the binding uses, each after those it depends on in link order.
-COMPONENTS = ("store", "pack", "solutions", "core")
+# The components the binding uses, in link order: each before the components it depends on.
+COMPONENTS = ("store", "solutions", "pack", "core")
 
 
 def project_version():

@@ -370,10 +370,11 @@ class Instance:
 
 
 def open_solutions(path):
-    """Maps the solution file at `path` (spec/SOLUTIONS.md) and checks its payload (checksums,
-    statuses, offsets, values), as every `mosb` command that reads fronts does: a damaged file is a
-    mosb.Error naming it, never numbers from corrupt data. Fronts are not checked against their
-    instance here (`mosb solutions verify --instance` does that)."""
+    """Maps the solution file at `path` (spec/SOLUTIONS.md; a packed one, format 1.6, is decoded
+    into memory the result owns) and checks its payload (checksums, statuses, offsets, values), as
+    every `mosb` command that reads fronts does: a damaged file is a mosb.Error naming it, never
+    numbers from corrupt data. Fronts are not checked against their instance here (`mosb
+    solutions verify --instance` does that)."""
     return Solutions(_mosb.SolutionsReader.open(_os_path(path, "open_solutions")))
 
 

@@ -10,7 +10,8 @@
 # the instances' one query), imported with `mosb solutions import --table`; RESULTS is an
 # experiment of the example NAMOA* on the same instances. Environment: MOSB (default
 # build/release/tools/mosb), EXAMPLES (default build/release/examples), WORK (default
-# /tmp/mosb-references-bench), VECTORS (default 500000), ROUNDS (default 5), JOBS (default 4).
+# /tmp/mosb-references-bench), VECTORS (default 500000), ROUNDS (default 5), JOBS (default 4),
+# PACK (default 1: the published references packed, as `suite release` stores them; 0: raw).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 mosb=$(realpath "${MOSB:-$here/../../build/release/tools/mosb}")
@@ -36,7 +37,8 @@ for i in range(n):
     --solver reference -o "refs/$name.Grid_2.sol" >/dev/null
   rm "$name.csv"
 done
-"$mosb" store add published refs/*.sol >/dev/null
+# Packed (format 1.6) as a release stores them; PACK=0 keeps them raw.
+"$mosb" store add $([ "${PACK:-1}" = 0 ] || echo --pack) published refs/*.sol >/dev/null
 cat >exp.toml <<EOF
 name = "bench"
 store = "$work/published"

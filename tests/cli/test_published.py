@@ -12,6 +12,7 @@ line naming the file, with nothing placed.
 import json
 import os
 import shutil
+import struct
 import subprocess
 import tempfile
 import unittest
@@ -106,6 +107,40 @@ class InAStore(Published):
         before = read(os.path.join(store, "MANIFEST"))
         self.ok("store", "add", store, *self.refs[:3])
         self.assertEqual(read(os.path.join(store, "MANIFEST")), before)
+
+    def test_packed_references_verify_evaluate_and_unpack_to_their_bytes(self):
+        # spec/SOLUTIONS.md §1 (format 1.6): --pack packs solution files as it packs instances.
+        store = self.path("packed")
+        self.ok("store", "init", store)
+        self.ok("store", "add", "--pack", store, *self.instances, *self.refs)
+        _, entries = self.manifest(store)
+        solutions = [e for e in entries if e.get("kind") == "solutions"]
+        self.assertEqual(len(solutions), 4)
+        for e in solutions:
+            self.assertEqual((e["packed"], e["format_version"]), (True, "1.6"), e["file"])
+            with open(os.path.join(store, e["file"]), "rb") as f:
+                self.assertEqual(f.read(16)[12:16], bytes([1, 0, 6, 0]), e["file"])
+        self.assertTrue(json.loads(self.ok("store", "verify", "--json", store).stdout)["ok"])
+        self.assertEqual(self.eval_table(store).stdout.splitlines()[1:],
+                         self.local.splitlines()[1:])
+        for ref in self.refs:
+            stored = os.path.join(store, os.path.basename(ref))
+            self.ok("unpack", stored, "-o", self.path("back.sol"))
+            self.assertEqual(read(self.path("back.sol")), read(ref), ref)
+        # A packed reference damaged in its frames is found by store verify, and eval refuses it.
+        name = solutions[0]["file"]
+        data = bytearray(read(os.path.join(store, name)))
+        table, count = struct.unpack_from("<QI", data, 48)
+        frames = [struct.unpack_from("<QQ", data, table + 64 * i + 40)
+                  for i in range(count) if data[table + 64 * i + 27] != 0]
+        self.assertTrue(frames)
+        offset, length = frames[0]
+        data[offset + length // 2] ^= 0xFF  # inside the first zstd frame
+        with open(os.path.join(store, name), "wb") as f:
+            f.write(data)
+        r = self.mosb("store", "verify", store)
+        self.assertNotEqual(r.returncode, 0)
+        self.assertIn(name, r.stdout + r.stderr)
 
     def test_a_reference_without_its_instance_is_refused_and_nothing_placed(self):
         store = self.path("s")

@@ -100,7 +100,7 @@ TEST_CASE("open refuses damaged headers and tables with a message naming the pro
     h.version_minor = 3;
     set_header(b, h);
     CHECK(open_error(b) ==
-          "f.mosb: prepared with format 2.3, this reader reads format 1.x (up to 1.5)");
+          "f.mosb: prepared with format 2.3, this reader reads format 1.x (up to 1.6)");
   }
   SUBCASE("newer minor version is read") {
     Bytes b = good;
@@ -117,7 +117,7 @@ TEST_CASE("open refuses damaged headers and tables with a message naming the pro
     h.required_features = 1ULL << 5;
     set_header(b, h);
     reseal_header(b);
-    CHECK(open_error(b) == "f.mosb: requires feature bit 5, unknown to this reader (format 1.5)");
+    CHECK(open_error(b) == "f.mosb: requires feature bit 5, unknown to this reader (format 1.6)");
   }
   SUBCASE("header checksum") {
     Bytes b = good;

@@ -1,8 +1,8 @@
-// libFuzzer target: arbitrary bytes through the solution-file reader: open, the payload checks,
-// and, when they pass, every accessor a consumer such as `mosb eval` walks, then the checks
-// against the instance (verify_solutions: path sums, disconnected claims, dominance) with the
-// golden instance the golden solution files (the corpus) are bound to. Any outcome but a clean
-// mosb::Error, a reported problem or success is a bug.
+// libFuzzer target: arbitrary bytes through the solution-file reader: open (decoding a packed
+// file, format 1.6), the payload checks, and, when they pass, every accessor a consumer such as
+// `mosb eval` walks, then the checks against the instance (verify_solutions: path sums,
+// disconnected claims, dominance) with the golden instance the golden solution files (the corpus)
+// are bound to. Any outcome but a clean mosb::Error, a reported problem or success is a bug.
 #include <unistd.h>
 
 #include <cstdint>
@@ -43,7 +43,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const auto bytes = std::as_writable_bytes(std::span(storage)).first(size);
   mosb_fuzz::repair_header_checksum(bytes);
   try {
-    const auto reader = mosb::SolutionReader::from_memory(bytes, "fuzz");
+    // A packed file is decoded as SolutionReader::open decodes it; the cap is well under
+    // libFuzzer's -rss_limit_mb, so a bomb must be refused by it, not by the OOM.
+    constexpr std::uint64_t kMaxMemory = std::uint64_t{256} << 20;
+    const auto reader = mosb::SolutionReader::from_memory(bytes, "fuzz", kMaxMemory);
     (void)reader.digest();
     (void)reader.solver();
     (void)reader.stores_path_sums();

@@ -628,6 +628,22 @@ class SolutionsTest(Temp):
         self.assertEqual(queries.loc[0, "front_size"], 2)
         self.assertEqual(queries.loc[2, "status"], "not-run")
 
+    def test_a_packed_file_reads_as_its_unpacked_form(self):
+        # spec/SOLUTIONS.md §1 (format 1.6): the golden packed file, decoded into owned memory.
+        golden = os.path.join(SOURCE, "spec", "golden", "1.6", "solutions", "valid",
+                              "fronts.packed.sol.mosb")
+        packed = mosb.open_solutions(golden)
+        unpacked = os.path.join(self.dir, "fronts.sol")
+        done = run(MOSB, "unpack", golden, "-o", unpacked)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        plain = mosb.open_solutions(unpacked)
+        self.assertEqual((packed.vector_count, packed.objectives), (257, ("distance", "time")))
+        for q in range(packed.query_count):
+            self.assertEqual(packed.status(q), plain.status(q))
+            for a, b in zip(packed.front(q), plain.front(q)):
+                self.assertEqual(a.tolist(), b.tolist())
+        self.assertFalse(packed.column(0).flags.writeable)
+
     def test_a_damaged_file_is_a_mosb_error_naming_it(self):
         with open(self.sol, "rb") as f:
             data = bytearray(f.read())

@@ -6,6 +6,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
@@ -13,8 +14,10 @@
 #include "golden_input.hpp"
 #include "golden_solutions.hpp"
 #include "mosb/graph_builder.hpp"
+#include "mosb/pack.hpp"
 #include "mosb/solution_merge.hpp"
 #include "mosb/solution_verify.hpp"
+#include "packed_faults.hpp"
 #include "solution_faults.hpp"
 #include "temp_dir.hpp"
 #include "test_files.hpp"
@@ -393,4 +396,100 @@ TEST_CASE("an import's dropped vectors: recorded, read back, added up by merge, 
   const auto forged =
       SolutionReader::from_memory(std::as_bytes(std::span(text.data(), text.size())), "forged");
   CHECK_THROWS_AS(forged.dropped_vectors(), Error);
+}
+
+// ---- format 1.6: packed solution files (spec/SOLUTIONS.md §1) ----
+
+namespace {
+const auto kPackedSolutions = kGolden / "1.6" / "solutions";
+}  // namespace
+
+TEST_CASE("format 1.6: a packed solution file reads as its unpacked form and packs back") {
+  const auto instance = GraphReader::open(kSmall);
+  const auto golden = kPackedSolutions / "valid" / "fronts.packed.sol.mosb";
+  testing::TempDir dir;
+  testing::write_golden_packable_solutions(instance, dir / "plain.sol.mosb");
+  const auto plain = SolutionReader::open_verified(dir / "plain.sol.mosb");
+  CHECK(plain.header().version_minor == 5);
+  const auto bytes = testing::read_bytes(golden);
+  format::FileHeader stored{};
+  std::memcpy(&stored, bytes.data(), sizeof stored);
+  CHECK(stored.version_minor == format::kSolutionPackedMinor);
+  CHECK(format::is_packed(stored));
+  // Read through its decoded form: the values, the binding and the digest of the unpacked file.
+  const auto packed = SolutionReader::open_verified(golden);
+  CHECK(packed.header().version_minor == 5);
+  CHECK(packed.digest() == plain.digest());
+  CHECK(packed.vector_count() == 257);
+  CHECK(packed.reported_runtime_seconds(0) == 0.125);
+  CHECK_FALSE(verify_solutions(packed, GraphReader::open(kSmall, VerifyLevel::full)));
+  // Unpacking restores the written bytes; packing them again, the golden bytes.
+  CHECK(unpack_file(golden, dir / "back.sol.mosb") == plain.digest());
+  CHECK(testing::read_bytes(dir / "back.sol.mosb") == testing::read_bytes(dir / "plain.sol.mosb"));
+  CHECK(pack_file(dir / "plain.sol.mosb", dir / "again.sol.mosb", {}) == plain.digest());
+  CHECK_MESSAGE(testing::read_bytes(dir / "again.sol.mosb") == bytes,
+                "mosb pack no longer reproduces the golden packed solution file: a change of the "
+                "packer, the writer or libzstd's output");
+}
+
+TEST_CASE("every invalid packed golden solution file is refused where EXPECTED.tsv says") {
+  testing::TempDir dir;
+  std::size_t cases = 0;
+  for (const auto& row : testing::expected_rows(kPackedSolutions / "invalid" / "EXPECTED.tsv")) {
+    REQUIRE(row.size() == 2);
+    CAPTURE(row[0]);
+    ++cases;
+    const auto path = kPackedSolutions / "invalid" / row[0];
+    CHECK_THROWS_WITH_AS(SolutionReader::open(path), doctest::Contains(row[1].c_str()), Error);
+    CHECK_THROWS_WITH_AS(unpack_file(path, dir / "out.sol.mosb"), doctest::Contains(row[1].c_str()),
+                         Error);
+    CHECK_FALSE(std::filesystem::exists(dir / "out.sol.mosb"));
+  }
+  CHECK(cases == std::size(testing::kPackedSolutionFaults));
+}
+
+TEST_CASE("pack and unpack restore each layout's minor, and others have no packed form") {
+  const auto instance = GraphReader::open(kSmall);
+  testing::TempDir dir;
+  std::vector<double> front;
+  for (int i = 0; i < 128; ++i) {
+    front.push_back(60 + i);
+    front.push_back(300 - i);
+  }
+  // 1.3 with a view, 1.4 bound to its objectives alone.
+  SolutionWriter with_view(instance, "Small_2");
+  with_view.set_query(0, QueryStatus::solved, front);
+  with_view.write(dir / "3.sol.mosb");
+  SolutionWriter no_view(
+      instance,
+      View{
+          "", {instance.objective_index("distance"), instance.objective_index("time")}, "default"});
+  no_view.set_query(0, QueryStatus::solved, front);
+  no_view.write(dir / "4.sol.mosb");
+  for (const std::uint16_t minor : {3, 4}) {
+    CAPTURE(minor);
+    const auto name = std::to_string(minor) + ".sol.mosb";
+    CHECK(SolutionReader::open(dir / name).header().version_minor == minor);
+    pack_file(dir / name, dir / ("packed-" + name), {});
+    CHECK(testing::read_bytes(dir / ("packed-" + name))[14] == std::byte{6});
+    CHECK(SolutionReader::open(dir / ("packed-" + name)).header().version_minor == minor);
+    unpack_file(dir / ("packed-" + name), dir / ("back-" + name));
+    CHECK(testing::read_bytes(dir / ("back-" + name)) == testing::read_bytes(dir / name));
+  }
+  // A file before path sums (1.1), and one stating another minor than its content gives, could
+  // not be restored: refused, nothing written.
+  CHECK_THROWS_WITH_AS(
+      pack_file(kOldSolutions / "valid" / "small.sol.mosb", dir / "old.sol.mosb", {}),
+      doctest::Contains("has no packed form"), Error);
+  auto bytes = testing::read_bytes(dir / "3.sol.mosb");
+  auto header = testing::header_of(bytes);
+  header.version_minor = 6;
+  testing::set_header(bytes, header);
+  testing::reseal_header(bytes);
+  testing::write_bytes(dir / "six.sol.mosb", bytes);
+  CHECK(SolutionReader::open(dir / "six.sol.mosb").header().version_minor == 6);
+  CHECK_THROWS_WITH_AS(pack_file(dir / "six.sol.mosb", dir / "out.sol.mosb", {}),
+                       doctest::Contains("not the minor the mosb writer gives its content"), Error);
+  CHECK_FALSE(std::filesystem::exists(dir / "old.sol.mosb"));
+  CHECK_FALSE(std::filesystem::exists(dir / "out.sol.mosb"));
 }

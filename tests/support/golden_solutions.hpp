@@ -3,8 +3,8 @@
 // arcs) and spec/golden/1.4/solutions/valid/objectives.sol.mosb (the same fronts for the objective
 // list time,distance, which no view of the instance has: a file bound to its objectives alone)
 // and spec/golden/1.5/solutions/valid/reported-runtime.sol.mosb (the fronts of view Small_2 as
-// `mosb run` records them: mosb's wall clock and the solver's own runtime). Changing any changes
-// its golden file, deliberately.
+// `mosb run` records them: mosb's wall clock and the solver's own runtime), and the content of the
+// packed spec/golden/1.6/solutions/ file. Changing any changes its golden file, deliberately.
 #pragma once
 
 #include <filesystem>
@@ -57,6 +57,29 @@ inline void write_golden_reported_runtime_solutions(const GraphReader& small,
   second.runtime_seconds = 0.25;  // a solver that reports no runtime of its own: absent (NaN)
   w.set_query(0, QueryStatus::solved, std::vector<double>{60, 5.25, 80, 3.75}, first);
   w.set_query(1, QueryStatus::solved, std::vector<double>{120, 7.5}, second);
+  w.set_query(2, QueryStatus::timeout, {});
+  w.write(out);
+}
+
+// The content of spec/golden/1.6/solutions/valid/fronts.packed.sol.mosb (packed by mosb pack at
+// its default level): a front of 256 vectors, long enough that its columns shrink (distance
+// 60, 61, ... under delta-zstd; time 300, 299.5, ... under a shuffle), and the solver's runtime, so
+// that it unpacks to 1.5.
+inline void write_golden_packable_solutions(const GraphReader& small,
+                                            const std::filesystem::path& out) {
+  SolutionWriter w(small, "Small_2");
+  w.set_source_tool("mosb 0.2.0");
+  std::vector<double> front;
+  for (int i = 0; i < 256; ++i) {
+    front.push_back(60 + i);
+    front.push_back(300 - 0.5 * i);
+  }
+  QueryStatistics first;
+  first.runtime_seconds = 0.5;
+  first.reported_runtime_seconds = 0.125;
+  first.expanded = 4096;
+  w.set_query(0, QueryStatus::solved, front, first);
+  w.set_query(1, QueryStatus::solved, std::vector<double>{120, 7.5});
   w.set_query(2, QueryStatus::timeout, {});
   w.write(out);
 }

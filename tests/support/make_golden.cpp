@@ -12,7 +12,9 @@
 //   solutions   1.3/solutions/: valid/small.sol.mosb (golden_solutions.hpp, bound to
 //               1.0/valid/small.mosb), the faults of solution_faults.hpp; 1.4/solutions/:
 //               valid/objectives.sol.mosb (bound to an objective list alone); 1.5/solutions/:
-//               valid/reported-runtime.sol.mosb (the solver's own runtime beside mosb's)
+//               valid/reported-runtime.sol.mosb (the solver's own runtime beside mosb's);
+//               1.6/solutions/: valid/fronts.packed.sol.mosb (a packed solution file) and the
+//               faults of packed_faults.hpp
 // packed and solutions read 1.0/valid/small.mosb from DIR.
 // Usage: mosb_make_golden instance|packed|references|solutions DIR (e.g. spec/golden)
 #include <algorithm>
@@ -325,6 +327,16 @@ void make_solutions(const fs::path& golden) {
   fs::create_directories(golden / "1.5" / "solutions" / "valid");
   write_golden_reported_runtime_solutions(
       instance, golden / "1.5" / "solutions" / "valid" / "reported-runtime.sol.mosb");
+  // 1.6: a packed solution file, and the ways a packed one can be damaged or hostile.
+  const auto v16 = golden / "1.6" / "solutions";
+  fs::create_directories(v16 / "valid");
+  const auto plain = fs::temp_directory_path() / "mosb-golden-fronts.sol.mosb";
+  write_golden_packable_solutions(instance, plain);
+  pack_file(plain, v16 / "valid" / "fronts.packed.sol.mosb", {});
+  fs::remove(plain);
+  write_patched(v16, "fronts.packed.sol.mosb",
+                "# file\texpected message fragment (SolutionReader::open, mosb unpack)",
+                kPackedSolutionFaults, packed_message);
 }
 
 struct GoldenSet {

@@ -101,4 +101,53 @@ inline const PackedFault kTransposeFaults[] = {
      }},
 };
 
+// Faults of a packed solution file (1.6), in
+// spec/golden/1.6/solutions/valid/fronts.packed.sol.mosb; the message fragment is the one
+// SolutionReader::open and mosb unpack give.
+inline std::size_t first_frame(const Bytes& b) {
+  for (std::size_t i = 0; i < header_of(b).section_count; ++i)
+    if (const auto encoding = entry_of(b, i).encoding; encoding >= 1 && encoding <= 3) return i;
+  throw std::runtime_error("the packed golden solution file has no zstd frame");
+}
+template <class Change>
+void patch_first_frame(Bytes& b, Change change) {
+  auto e = entry_of(b, first_frame(b));
+  change(e);
+  set_entry(b, first_frame(b), e);
+  reseal_header(b);
+}
+
+inline const PackedFault kPackedSolutionFaults[] = {
+    // Packed, yet stating the minor of its layout: a 1.5 reader would not refuse it by version.
+    {"packed-minor.sol.mosb", "a packed solution file states format 1.5, packed ones are 1.6",
+     [](Bytes& b) {
+       auto h = header_of(b);
+       h.version_minor = 5;
+       set_header(b, h);
+       reseal_header(b);
+     }},
+    // The transpose encoding is an instance's reverse CSR's, even on a section of that kind.
+    {"transpose.sol.mosb", "transpose encoding of a section that is not part of the reverse CSR",
+     [](Bytes& b) {
+       patch_first_frame(b, [](SectionEntry& e) {
+         e.kind = static_cast<std::uint16_t>(format::SectionKind::reverse_offsets);
+         e.encoding = static_cast<std::uint8_t>(Encoding::transpose);
+         e.stored_length = 0;
+       });
+       auto h = header_of(b);
+       h.required_features |= format::kFeatureTransposeSections;
+       set_header(b, h);
+       reseal_header(b);
+     }},
+    // A decoded length no frame of this size can produce (no header count bounds a front).
+    {"bomb.sol.mosb", "zstd frame can hold",
+     [](Bytes& b) { patch_first_frame(b, [](SectionEntry& e) { e.row_count = 1ULL << 40; }); }},
+    {"declared-length.sol.mosb", "zstd frame declares",
+     [](Bytes& b) { patch_first_frame(b, [](SectionEntry& e) { e.row_count += 1; }); }},
+    {"truncated-frame.sol.mosb", "truncated or damaged",
+     [](Bytes& b) { patch_first_frame(b, [](SectionEntry& e) { e.stored_length -= 5; }); }},
+    {"section-checksum.sol.mosb", "mismatch",
+     [](Bytes& b) { patch_first_frame(b, [](SectionEntry& e) { e.checksum ^= 1; }); }},
+};
+
 }  // namespace mosb::testing

@@ -8,7 +8,6 @@
 #include "commands.hpp"
 #include "json_writer.hpp"
 #include "mosb/atomic_file.hpp"
-#include "mosb/graph_reader.hpp"
 
 namespace mosb::cli {
 
@@ -50,14 +49,12 @@ int run(const PackArgs& a, bool pack) {
   }
   for (std::size_t i = 0; i < a.inputs.size(); ++i) {
     const auto before = std::filesystem::file_size(a.inputs[i]);
-    if (pack)
-      pack_file(a.inputs[i], outputs[i],
-                PackOptions{a.level, a.threads, !a.keep_reverse, a.max_memory});
-    else
-      unpack_file(a.inputs[i], outputs[i], a.max_memory);
+    // The digest a packed and an unpacked file share.
+    const auto digest =
+        pack ? pack_file(a.inputs[i], outputs[i],
+                         PackOptions{a.level, a.threads, !a.keep_reverse, a.max_memory})
+             : unpack_file(a.inputs[i], outputs[i], a.max_memory);
     const auto after = std::filesystem::file_size(outputs[i]);
-    // Header and table only: the digest a packed and an unpacked file share.
-    const auto digest = GraphReader::open(outputs[i]).digest();
     if (json) {
       json->begin_object();
       json->key("input").value(a.inputs[i]);
@@ -81,15 +78,15 @@ int run(const PackArgs& a, bool pack) {
 Command add_pack_command(CLI::App& app, bool pack) {
   auto* sub = app.add_subcommand(
       pack ? "pack" : "unpack",
-      pack ? "Compress every section of instances as zstd frames (table and digest unchanged)"
-           : "Restore the exact bytes of packed instances");
+      pack ? "Compress every section of instances and solution files as zstd frames (table and "
+             "digest unchanged)"
+           : "Restore the exact bytes of packed instances and solution files");
   auto args = std::make_shared<PackArgs>();
-  sub->add_option("INSTANCE", args->inputs, "the .mosb instances")
+  sub->add_option("FILE", args->inputs, "the .mosb instances or solution files")
       ->required()
       ->check(CLI::ExistingFile);
-  auto* output = add_output_option(sub, args->output, "the file to write (one INSTANCE only)");
-  sub->add_flag("--in-place", args->in_place, "replace each INSTANCE (atomically)")
-      ->excludes(output);
+  auto* output = add_output_option(sub, args->output, "the file to write (one FILE only)");
+  sub->add_flag("--in-place", args->in_place, "replace each FILE (atomically)")->excludes(output);
   if (pack) {
     sub->add_option("--level", args->level, "zstd level (fixed, so the bytes are reproducible)")
         ->check(unsigned_integer(std::numeric_limits<int>::max()))

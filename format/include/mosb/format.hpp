@@ -18,7 +18,7 @@ static_assert(std::endian::native == std::endian::little,
 inline constexpr std::uint16_t kVersionMajor = 1;
 // The newest minor this code reads. A writer stamps a file with the lowest minor whose readers can
 // read it (spec/FORMAT.md §2): instance files using only 1.0 features still say 1.0.
-inline constexpr std::uint16_t kVersionMinor = 5;
+inline constexpr std::uint16_t kVersionMinor = 6;
 // Solution files since 1.3 store path sums (u64 / i64 / f64 front_cost columns, path_sum_type);
 // those of 1.1 and 1.2 stored each objective in its arc cost type (spec/SOLUTIONS.md §3).
 inline constexpr std::uint16_t kSolutionSumsMinor = 3;
@@ -28,6 +28,19 @@ inline constexpr std::uint16_t kSolutionObjectivesMinor = 4;
 // A solution file with a `reported_runtime_seconds` statistic (the solver's own runtime) needs
 // 1.5: a 1.4 reader refuses the section's name; one without it keeps its 1.3 or 1.4.
 inline constexpr std::uint16_t kSolutionReportedRuntimeMinor = 5;
+// A packed solution file (spec/SOLUTIONS.md §1) says 1.6: a 1.5 reader refuses it by its version
+// instead of by its encodings. Unpacking restores the minor solution_layout_minor gives.
+inline constexpr std::uint16_t kSolutionPackedMinor = 6;
+// The minor of an unpacked solution file written since 1.3, from its content alone: whether it has
+// a `reported_runtime_seconds` statistic and a `solution.view` key. Writing and unpacking a
+// solution file both follow it, so unpacking restores the written bytes.
+constexpr std::uint16_t solution_layout_minor(bool has_reported_runtime, bool has_view) {
+  return has_reported_runtime ? kSolutionReportedRuntimeMinor
+         : has_view           ? kSolutionSumsMinor
+                              : kSolutionObjectivesMinor;
+}
+inline constexpr std::string_view kReportedRuntimeStatistic = "reported_runtime_seconds";
+inline constexpr std::string_view kSolutionViewKey = "solution.view";
 
 // PNG-style: a high-bit byte catches 7-bit transfers, CR LF catches CRLF->LF conversion,
 // the lone LF catches LF->CRLF conversion, 0x1A stops `type` on DOS.

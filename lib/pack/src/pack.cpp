@@ -24,6 +24,7 @@
 #include "mosb/internal/sections_by_kind.hpp"
 #include "mosb/internal/transpose.hpp"
 #include "mosb/internal/xxh3.hpp"
+#include "mosb/metadata.hpp"
 #include "mosb/verify.hpp"
 
 namespace mosb {
@@ -215,6 +216,46 @@ void check_memory(const std::vector<Section>& sections, const std::optional<Tran
                     " bytes (the memory available, or --max-memory)");
 }
 
+// The kind unpack_bytes and pack_file take a file as: a solution file when it says so, else an
+// instance (whose checks then name what else it is).
+format::FileKind packable_kind(std::span<const std::byte> bytes) {
+  return stated_file_kind(bytes) == format::FileKind::solutions ? format::FileKind::solutions
+                                                                : format::FileKind::instance;
+}
+
+// SOLUTIONS.md §1: a packed solution file says 1.6 or later (parse_container refuses the
+// transpose encoding outside an instance).
+void refuse_packed_minor(const Container& container, std::string_view display_name) {
+  if (is_packed(container.header) && container.header.version_minor < format::kSolutionPackedMinor)
+    throw Error(ErrorCode::damaged,
+                std::string(display_name) + ": a packed solution file states format 1." +
+                    std::to_string(container.header.version_minor) + ", packed ones are 1." +
+                    std::to_string(format::kSolutionPackedMinor) + " or later");
+}
+
+// The minor a packed solution file unpacks to, from its decoded content (its metadata and the
+// names of its statistics), as the writer chose it.
+std::uint16_t unpacked_solutions_minor(const std::vector<Section>& sections, const std::byte* out,
+                                       std::string_view display_name) {
+  bool reported = false, view = false;
+  for (const auto& s : sections) {
+    if (s.kind == format::SectionKind::solution_statistics &&
+        s.name == format::kReportedRuntimeStatistic)
+      reported = true;
+    if (s.kind != format::SectionKind::metadata) continue;
+    try {
+      const auto metadata = Metadata::parse(
+          std::string_view(reinterpret_cast<const char*>(out + s.entry.offset), s.decoded_length));
+      const auto value = metadata.get(format::kSolutionViewKey);
+      view = value && !value->empty();
+    } catch (const Error& e) {
+      throw Error(ErrorCode::damaged,
+                  std::string(display_name) + ": section 'metadata': " + e.what());
+    }
+  }
+  return format::solution_layout_minor(reported, view);
+}
+
 }  // namespace
 
 std::uint64_t available_memory() {
@@ -232,18 +273,28 @@ std::uint64_t available_memory() {
 
 MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view display_name,
                         std::uint64_t max_memory) {
-  const auto container = parse_container(bytes, display_name, format::FileKind::instance);
+  const auto kind = packable_kind(bytes);
+  const auto container = parse_container(bytes, display_name, kind);
   auto sections = container.sections;
   const std::uint64_t position = lay_out_decoded(sections, display_name);
-  const auto derived = transpose_plan(sections, display_name);
-  // The instance's own checks: each section's length is the one the header's counts give it.
-  (void)GraphReader::from_memory(bytes, std::string(display_name));
+  const auto derived =
+      kind == format::FileKind::instance ? transpose_plan(sections, display_name) : std::nullopt;
+  if (kind == format::FileKind::instance) {
+    // The instance's own checks: each section's length is the one the header's counts give it.
+    (void)GraphReader::from_memory(bytes, std::string(display_name));
+  } else {
+    // A solution file's lengths are its own (SOLUTIONS.md §3): the frames' bound and the memory
+    // cap below limit what decoding allocates, and its reader checks the decoded sections.
+    refuse_packed_minor(container, display_name);
+  }
   auto header = container.header;
   header.table_offset = format::align_up(position);
   header.file_size = header.table_offset + sections.size() * sizeof(format::SectionEntry);
   header.required_features &= ~format::kEncodingFeatures;
-  header.version_minor =
-      std::min(header.version_minor, format::minimum_version_minor(header.required_features));
+  // An instance's minor follows its features (§2); a solution file's, its content (below).
+  if (kind == format::FileKind::instance)
+    header.version_minor =
+        std::min(header.version_minor, format::minimum_version_minor(header.required_features));
 
   std::uint64_t scratch_size = 0;
   for (const auto& s : sections)
@@ -256,6 +307,8 @@ MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view displ
   auto* out = const_cast<std::byte*>(image.bytes.data());
   decode_stored(sections, out, out + format::align_up(header.file_size), display_name);
   if (derived) derive_reverse(sections, *derived, out, display_name);
+  if (kind == format::FileKind::solutions && is_packed(container.header))
+    header.version_minor = unpacked_solutions_minor(sections, out, display_name);
 
   const auto table = table_of(sections);
   std::memcpy(out + header.table_offset, table.data(), table.size() * sizeof table[0]);
@@ -271,12 +324,26 @@ MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view displ
 
 namespace {
 
+// The container of bytes the caller keeps alive, of any kind, for the checks every kind shares.
+struct BorrowedContainer : ContainerReader {
+  BorrowedContainer(std::span<const std::byte> bytes, const std::string& name,
+                    format::FileKind kind) {
+    attach_borrowed(bytes, name, kind);
+  }
+};
+
 // What verify at `level` finds in an instance from its unpacked form `image`: the image's checks
 // at that level, then (at structure and full) the padding of the instance's own bytes `file`,
 // which unpacking does not carry over (a packed file's frames keep it).
 std::optional<std::string> decoded_problem(const MappedFile& file, const MappedFile& image,
                                            const std::string& name, VerifyLevel level,
                                            const Progress& progress = {}) {
+  if (packable_kind(file.bytes) == format::FileKind::solutions) {
+    // Its checksums were checked while unpacking; its fronts are its reader's to check
+    // (SolutionReader, at every open), which this library does not know.
+    if (!covers(level, VerifyLevel::structure)) return std::nullopt;
+    return find_padding_problem(BorrowedContainer(file.bytes, name, format::FileKind::solutions));
+  }
   const auto reader = GraphReader::from_memory(image.bytes, name);
   if (auto problem = verify(reader, level, progress)) return problem;
   if (!covers(level, VerifyLevel::structure)) return std::nullopt;
@@ -292,8 +359,8 @@ void refuse_damaged(const MappedFile& file, const MappedFile& image, const std::
 
 }  // namespace
 
-void unpack_file(const std::filesystem::path& in, const std::filesystem::path& out,
-                 std::uint64_t max_memory) {
+std::string unpack_file(const std::filesystem::path& in, const std::filesystem::path& out,
+                        std::uint64_t max_memory) {
   const auto file = map_file(in);
   const auto image = unpack_bytes(file.bytes, in.string(), max_memory);
   // The image is the output, byte for byte: checking it checks what is written.
@@ -301,6 +368,8 @@ void unpack_file(const std::filesystem::path& in, const std::filesystem::path& o
   AtomicFile writer(out, existing_for(in, out));
   writer.write(image.bytes.data(), image.bytes.size());
   writer.commit();
+  return content_digest(
+      parse_container(image.bytes, in.string(), packable_kind(file.bytes)).sections);
 }
 
 namespace {
@@ -309,7 +378,8 @@ namespace {
 // so unpacked first), with no header bits the writer does not write. Returns the unpacked image's
 // container.
 Container parse_packable(const MappedFile& file, const MappedFile& image, const std::string& name) {
-  const auto input = parse_container(file.bytes, name, format::FileKind::instance);
+  const auto kind = packable_kind(file.bytes);
+  const auto input = parse_container(file.bytes, name, kind);
   if (!is_packed(input.header) &&
       (image.bytes.size() != file.bytes.size() ||
        std::memcmp(image.bytes.data(), file.bytes.data(), file.bytes.size()) != 0))
@@ -318,7 +388,7 @@ Container parse_packable(const MappedFile& file, const MappedFile& image, const 
                     ": not in the canonical layout of the mosb writer (section order, 64-byte "
                     "alignment, zero padding), so unpacking could not restore its exact bytes; "
                     "rewrite it with a mosb command first");
-  auto container = parse_container(image.bytes, name, format::FileKind::instance);
+  auto container = parse_container(image.bytes, name, kind);
   const auto& reserved = container.header.reserved;
   if (container.header.optional_features != 0 ||
       std::any_of(reserved.begin(), reserved.end(), [](std::uint8_t b) { return b != 0; }))
@@ -326,6 +396,19 @@ Container parse_packable(const MappedFile& file, const MappedFile& image, const 
                 name +
                     ": has optional feature bits or reserved header bytes the mosb writer does "
                     "not write, so unpacking could not restore its exact bytes");
+  if (kind == format::FileKind::solutions) {
+    const auto minor = container.header.version_minor;
+    if (minor < format::kSolutionSumsMinor)
+      throw Error(ErrorCode::invalid_argument,
+                  name + ": a solution file of format 1." + std::to_string(minor) + " (before 1." +
+                      std::to_string(format::kSolutionSumsMinor) +
+                      ") has no packed form; write it again with mosb solutions merge");
+    if (minor != unpacked_solutions_minor(container.sections, image.bytes.data(), name))
+      throw Error(ErrorCode::invalid_argument,
+                  name + ": states format 1." + std::to_string(minor) +
+                      ", not the minor the mosb writer gives its content, so unpacking could not "
+                      "restore its exact bytes");
+  }
   return container;
 }
 
@@ -402,8 +485,8 @@ void encode_section(const Section& s, bool derived, int level, const std::string
 
 }  // namespace
 
-void pack_file(const std::filesystem::path& in, const std::filesystem::path& out,
-               const PackOptions& options) {
+std::string pack_file(const std::filesystem::path& in, const std::filesystem::path& out,
+                      const PackOptions& options) {
   const std::string name = in.string();
   if (options.level < 1 || options.level > ZSTD_maxCLevel())
     throw Error(ErrorCode::invalid_argument, name + ": zstd level " +
@@ -414,9 +497,11 @@ void pack_file(const std::filesystem::path& in, const std::filesystem::path& out
   refuse_damaged(file, image, name);
   const auto container = parse_packable(file, image, name);
   const auto& sections = container.sections;
+  const auto kind = static_cast<format::FileKind>(container.header.file_kind);
 
-  const std::vector<bool> derived =
-      options.derive_reverse ? derived_sections(sections) : std::vector<bool>(sections.size());
+  const std::vector<bool> derived = options.derive_reverse && kind == format::FileKind::instance
+                                        ? derived_sections(sections)
+                                        : std::vector<bool>(sections.size());
   std::vector<std::vector<std::byte>> frames(sections.size());
   std::vector<Encoding> encodings(sections.size(), Encoding::raw);
   parallel_for(sections.size(), options.threads, [&](std::size_t i) {
@@ -424,6 +509,12 @@ void pack_file(const std::filesystem::path& in, const std::filesystem::path& out
   });
 
   FileWriter writer(out, existing_for(in, out));
+  writer.set_file_kind(kind);
+  if (kind == format::FileKind::solutions)  // SOLUTIONS.md §1: packed, 1.6; else as it was
+    writer.require_minor(std::any_of(encodings.begin(), encodings.end(),
+                                     [](Encoding e) { return e != Encoding::raw; })
+                             ? format::kSolutionPackedMinor
+                             : container.header.version_minor);
   for (std::size_t i = 0; i < sections.size(); ++i) {
     auto entry = sections[i].entry;
     entry.encoding = static_cast<std::uint8_t>(encodings[i]);
@@ -431,18 +522,24 @@ void pack_file(const std::filesystem::path& in, const std::filesystem::path& out
                                           ? sections[i].stored
                                           : std::span<const std::byte>(frames[i]));
   }
-  // The packed file, complete under its temporary name, must unpack and verify as its input did.
+  // The packed file, complete under its temporary name, must unpack to its input's bytes and
+  // verify as its input did.
   writer.expect_digest(content_digest(container.sections));
   writer.check_before_commit([&](const std::filesystem::path& temporary) {
     const auto packed = map_file(temporary);
     try {
-      refuse_damaged(packed, unpack_bytes(packed.bytes, name, options.max_memory), name);
+      const auto again = unpack_bytes(packed.bytes, name, options.max_memory);
+      refuse_damaged(packed, again, name);
+      if (again.bytes.size() != image.bytes.size() ||
+          std::memcmp(again.bytes.data(), image.bytes.data(), image.bytes.size()) != 0)
+        throw Error(ErrorCode::damaged, name + ": unpacks to other bytes than its input's");
     } catch (const Error& e) {
       throw Error(ErrorCode::io, name + ": internal error: the packed file does not verify (" +
                                      e.what() + "); nothing written");
     }
   });
   writer.commit(container.header.vertex_count, container.header.arc_count);
+  return content_digest(container.sections);
 }
 
 namespace {

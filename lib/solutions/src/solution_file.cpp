@@ -10,6 +10,7 @@
 #include "mosb/internal/hex.hpp"
 #include "mosb/internal/sections_by_kind.hpp"
 #include "mosb/internal/xxh3.hpp"
+#include "mosb/pack.hpp"
 #include "mosb/verify.hpp"
 #include "mosb/version.hpp"
 
@@ -103,9 +104,21 @@ std::string_view to_string(Statistic s) {
 
 // ---- SolutionReader ----
 
+namespace {
+// A packed file (SOLUTIONS.md §1) is read from its decoded form, every checksum checked.
+bool packed_bytes(std::span<const std::byte> bytes) {
+  format::FileHeader header{};
+  if (bytes.size() < sizeof header) return false;  // the container's checks say what is wrong
+  std::memcpy(&header, bytes.data(), sizeof header);
+  return format::is_packed(header);
+}
+}  // namespace
+
 SolutionReader SolutionReader::open(const std::filesystem::path& path) {
   SolutionReader reader;
-  reader.attach(map_file(path), path.string(), format::FileKind::solutions);
+  auto file = map_file(path);
+  if (packed_bytes(file.bytes)) file = unpack_bytes(file.bytes, path.string());
+  reader.attach(std::move(file), path.string(), format::FileKind::solutions);
   reader.validate();
   return reader;
 }
@@ -125,9 +138,14 @@ SolutionReader SolutionReader::open_verified(const std::filesystem::path& path) 
 }
 
 SolutionReader SolutionReader::from_memory(std::span<const std::byte> bytes,
-                                           std::string display_name) {
+                                           std::string display_name, std::uint64_t max_memory) {
   SolutionReader reader;
-  reader.attach_borrowed(bytes, std::move(display_name), format::FileKind::solutions);
+  if (packed_bytes(bytes)) {
+    auto image = unpack_bytes(bytes, display_name, max_memory);
+    reader.attach(std::move(image), std::move(display_name), format::FileKind::solutions);
+  } else {
+    reader.attach_borrowed(bytes, std::move(display_name), format::FileKind::solutions);
+  }
   reader.validate();
   return reader;
 }
@@ -145,7 +163,7 @@ void SolutionReader::validate() {
       fail("section '" + s.name + "': a " + std::string(format::to_string(*s.kind)) +
            " section does not belong in a solution file");
     if (s.is_packed())
-      fail("section '" + s.name + "': is packed; solution files store raw sections");
+      fail("section '" + s.name + "': is packed; SolutionReader::open decodes a packed file");
   }
   const SectionsByKind table(sections_, display_name_);
   const auto metadata_index = table.single(SectionKind::metadata, ElementType::u8);
@@ -228,8 +246,8 @@ void SolutionReader::validate() {
     fail("metadata 'solution.instance_digest' is not 32 lowercase hex digits");
   // Before 1.4 every file names a view; from 1.4 a file may be bound to its objectives alone.
   if (header_.version_minor < format::kSolutionObjectivesMinor)
-    view_ = required("solution.view");
-  else if (const auto view = metadata_.get("solution.view"); view && !view->empty())
+    view_ = required(format::kSolutionViewKey);
+  else if (const auto view = metadata_.get(format::kSolutionViewKey); view && !view->empty())
     view_ = *view;
   query_set_ = required("solution.query_set");
 }
@@ -559,7 +577,7 @@ struct SolutionWriter::State {
 Metadata SolutionWriter::State::metadata() const {
   Metadata meta;
   meta.set("solution.instance_digest", instance_digest);
-  if (!view.empty()) meta.set("solution.view", view);
+  if (!view.empty()) meta.set(format::kSolutionViewKey, view);
   meta.set("solution.query_set", query_set);
   meta.set("solution.epsilon", solver.epsilon.empty() ? "0" : solver.epsilon);
   if (!solver.name.empty()) meta.set("solution.solver.name", solver.name);
@@ -758,9 +776,7 @@ void SolutionWriter::write(const std::filesystem::path& target) const {
   const bool reported = std::any_of(st.results.begin(), st.results.end(), [](const auto& r) {
     return r.statistics.reported_runtime_seconds.has_value();
   });
-  out.require_minor(reported          ? format::kSolutionReportedRuntimeMinor
-                    : st.view.empty() ? format::kSolutionObjectivesMinor
-                                      : format::kSolutionSumsMinor);
+  out.require_minor(format::solution_layout_minor(reported, !st.view.empty()));
   const auto text = st.metadata().serialize();
   out.add_section<std::uint8_t>(
       SectionKind::metadata, "metadata", 1,

@@ -1,6 +1,7 @@
 #include "mosb/manifest.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <type_traits>
@@ -325,9 +326,15 @@ ManifestEntry container_entry(const ContainerReader& reader, const std::filesyst
 // The entry of a solution file: its binding and summary, read from the file (payload unchecked:
 // the store checks it before it lists the file).
 ManifestEntry describe_solutions(const std::filesystem::path& path,
-                                 std::optional<std::string> sha256) {
-  const auto reader = SolutionReader::open(path);
+                                 std::optional<std::string> sha256, const MappedFile& file) {
+  const auto reader = SolutionReader::open(path);  // a packed file decoded: describe the stored one
   auto e = container_entry(reader, path, std::move(sha256));
+  format::FileHeader stored{};
+  std::memcpy(&stored, file.bytes.data(), sizeof stored);  // map_file: a header's bytes at least
+  e.size = file.bytes.size();
+  e.format_version =
+      std::to_string(stored.version_major) + "." + std::to_string(stored.version_minor);
+  e.packed = is_packed(stored);
   if (!reader.view_name().empty()) e.views.push_back(reader.view_name());
   e.query_sets.push_back(reader.query_set());
   SolutionsEntry s;
@@ -349,8 +356,9 @@ ManifestEntry describe_solutions(const std::filesystem::path& path,
 }  // namespace
 
 ManifestEntry describe_file(const std::filesystem::path& path, std::optional<std::string> sha256) {
-  if (stated_file_kind(map_file(path).bytes) == format::FileKind::solutions)
-    return describe_solutions(path, std::move(sha256));
+  const auto file = map_file(path);
+  if (stated_file_kind(file.bytes) == format::FileKind::solutions)
+    return describe_solutions(path, std::move(sha256), file);
   const auto reader = GraphReader::open(path);
   auto e = container_entry(reader, path, std::move(sha256));
   e.packed = reader.header().required_features != 0;

@@ -463,6 +463,16 @@ void check_expected(const fs::path& source, const ManifestEntry& found,
   if (!differs.empty()) throw Error(ErrorCode::damaged, source.string() + ": " + differs);
 }
 
+// With --pack, an unpacked file of an add is placed from its packed form in the staging directory.
+void stage_packed(Placement& p, const Store::AddOptions& options, Staging& staging) {
+  if (!options.pack || p.entry.packed) return;
+  p.from = staging.file(p.entry.file);
+  pack_file(p.source, p.from, *options.pack);
+  p.staged = true;
+  p.hashed = false;
+  p.entry = describe_file(p.from);
+}
+
 Placement prepare(const fs::path& source, const Store::AddOptions& options,
                   const ManifestEntry* expected, const std::string* sha256, Staging& staging) {
   Placement p{describe_file(source, sha256 ? std::optional(*sha256) : std::nullopt), source, source,
@@ -474,22 +484,17 @@ Placement prepare(const fs::path& source, const Store::AddOptions& options,
                                      options.check_workspace, options.check_disk});
   if (found.problem)
     throw Error(ErrorCode::damaged, source.string() + ": file is damaged: " + *found.problem);
-  if (options.pack && !p.entry.packed) {
-    p.from = staging.file(p.entry.file);
-    pack_file(source, p.from, *options.pack);
-    p.staged = true;
-    p.hashed = false;
-    p.entry = describe_file(p.from);
-  }
+  stage_packed(p, options, staging);
   return p;
 }
 
 // A solution file of an add: checked against its instance, which is listed in the store or added
-// by the same add (`added`), and given that instance's benchmark. Stored as it is (--pack packs
-// instances only: a solution file has no packed form).
-Placement prepare_solutions(const fs::path& source, const ManifestEntry* expected,
-                            const std::string* sha256, const fs::path& directory,
-                            const Manifest& manifest, const std::vector<Placement>& added) {
+// by the same add (`added`), given that instance's benchmark, and packed with --pack like an
+// instance.
+Placement prepare_solutions(const fs::path& source, const Store::AddOptions& options,
+                            const ManifestEntry* expected, const std::string* sha256,
+                            Staging& staging, const fs::path& directory, const Manifest& manifest,
+                            const std::vector<Placement>& added) {
   Placement p{describe_file(source, sha256 ? std::optional(*sha256) : std::nullopt), source, source,
               false, sha256 != nullptr};
   if (expected != nullptr) check_expected(source, p.entry, *expected);
@@ -509,6 +514,7 @@ Placement prepare_solutions(const fs::path& source, const ManifestEntry* expecte
   const auto solutions = SolutionReader::open(source);
   if (const auto problem = solutions_problem(solutions, instance_path))
     throw Error(ErrorCode::damaged, source.string() + ": " + *problem);
+  stage_packed(p, options, staging);
   p.entry.benchmark = instance->benchmark;
   return p;
 }
@@ -641,10 +647,13 @@ std::vector<ManifestEntry> Store::add(const std::vector<fs::path>& files,
     else
       placements.push_back(prepare(files[i], options, expected, sha256, staging));
   }
-  for (const auto i : solution_files)
-    placements.push_back(prepare_solutions(
-        files[i], options.expect.empty() ? nullptr : &options.expect[i],
-        options.sha256.empty() ? nullptr : &options.sha256[i], directory_, manifest_, placements));
+  for (const auto i : solution_files) {
+    if (options.pack) report(options.progress, "pack", i, files.size());
+    placements.push_back(prepare_solutions(files[i], options,
+                                           options.expect.empty() ? nullptr : &options.expect[i],
+                                           options.sha256.empty() ? nullptr : &options.sha256[i],
+                                           staging, directory_, manifest_, placements));
+  }
   if (options.pack) report(options.progress, "pack", files.size(), files.size());
   check_conflicts(manifest_, placements);  // refused at once, without waiting for the lock
   {

@@ -42,28 +42,34 @@ struct PackOptions {
 // sysconf(_SC_AVPHYS_PAGES) pages).
 std::uint64_t available_memory();
 
-// Writes the packed form of the instance `in` (packed or not) to `out`, atomically
-// (mosb::AtomicFile: `out` shows the old file or the complete new one). The input is checked
-// first as verify does at level full (checksums, structure, the padding of a packed input): a
-// damaged input is refused, not repaired. Every frame is decoded again and compared before the
-// file is committed. `out` may be `in` itself (an in-place rewrite); the CLI allows that only with
-// --in-place. Throws mosb::Error naming the file; `out` is then untouched.
-void pack_file(const std::filesystem::path& in, const std::filesystem::path& out,
-               const PackOptions& options);
+// Writes the packed form of the instance or solution file `in` (packed or not) to `out`,
+// atomically (mosb::AtomicFile: `out` shows the old file or the complete new one), and returns
+// its §8 content digest (the input's). The input is checked first: an instance as verify does at
+// level full (checksums, structure, the padding of a packed input), a solution file's checksums
+// and padding (its fronts are SolutionReader's to check, at every open); a damaged input is
+// refused, not repaired. A solution file must be of 1.3 or later and state the minor its content
+// gives (format::solution_layout_minor); packed, it says 1.6 (spec/SOLUTIONS.md §1). The packed
+// file must unpack to the input's bytes before it is committed. `out` may be `in` itself (an
+// in-place rewrite); the CLI allows that only with --in-place. Throws mosb::Error naming the file;
+// `out` is then untouched.
+std::string pack_file(const std::filesystem::path& in, const std::filesystem::path& out,
+                      const PackOptions& options);
 
-// Writes the unpacked form of `in` to `out`, atomically, after checking every section's checksum,
-// the structure of the result and the padding of a packed input (verify at level full): byte-
-// identical to the file that was packed. An unpacked input is rewritten in canonical layout.
-// Throws mosb::Error naming `in`; `out` is then untouched.
-void unpack_file(const std::filesystem::path& in, const std::filesystem::path& out,
-                 std::uint64_t max_memory = 0);
+// Writes the unpacked form of `in` to `out`, atomically, after checking every section's checksum
+// and the padding of a packed input (and an instance's structure: verify at level full), and
+// returns its content digest: byte-identical to the file that was packed. An unpacked input is
+// rewritten in canonical layout. Throws mosb::Error naming `in`; `out` is then untouched.
+std::string unpack_file(const std::filesystem::path& in, const std::filesystem::path& out,
+                        std::uint64_t max_memory = 0);
 
 // The unpacked form of a container in memory (64-byte aligned, owned by the result), each section
 // decoded and its checksum checked. Hostile input is refused with "DISPLAY_NAME: ..." before any
 // allocation: each frame must declare its content size, equal to the length the table gives its
-// section; those lengths must be the ones the header's counts give each section (GraphReader's
-// checks); and all the memory decoding takes must fit in `max_memory` bytes (0: the
-// available_memory()). `bytes` must be 8-byte aligned (a mapping is).
+// section; an instance's lengths must be the ones the header's counts give each section
+// (GraphReader's checks), a packed solution file must say 1.6 or later and derive nothing; and all
+// the memory decoding takes must fit in `max_memory` bytes (0: the available_memory()). A packed
+// solution file unpacks to the minor format::solution_layout_minor gives its content. `bytes` must
+// be 8-byte aligned (a mapping is).
 MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view display_name,
                         std::uint64_t max_memory = 0);
 

@@ -114,7 +114,7 @@ inline constexpr auto kStatisticNames = enum_names<Statistic>({
     {Statistic::generated, "generated"},
     {Statistic::peak_memory_bytes, "peak_memory_bytes"},
     {Statistic::exit_status, "exit_status"},
-    {Statistic::reported_runtime_seconds, "reported_runtime_seconds"},
+    {Statistic::reported_runtime_seconds, format::kReportedRuntimeStatistic},
 });
 std::string_view to_string(Statistic s);  // kStatisticNames
 // The runtimes are f64 seconds (absent: NaN); the counters are u64 (absent: kAbsentCount).
@@ -157,6 +157,9 @@ struct DroppedVectors {
 
 class SolutionReader : public ContainerReader {
  public:
+  // Maps the file, or decodes it into memory when it is packed (SOLUTIONS.md §1; every section's
+  // checksum checked, within the memory the system reports available), and checks the container
+  // and the sections' shapes and binding keys.
   static SolutionReader open(const std::filesystem::path& path);
   // Opens, then requires the file to belong to `instance` (check_bound_to).
   static SolutionReader open(const std::filesystem::path& path, const GraphReader& instance);
@@ -164,7 +167,10 @@ class SolutionReader : public ContainerReader {
   // uses, so one flipped byte is an ErrorCode::damaged error "FILE: file is damaged: PROBLEM; run
   // mosb verify", never a number or a figure made of corrupt data.
   static SolutionReader open_verified(const std::filesystem::path& path);
-  static SolutionReader from_memory(std::span<const std::byte> bytes, std::string display_name);
+  // The same over bytes the caller keeps alive (8-byte aligned); packed bytes are decoded into
+  // memory the reader owns, within `max_memory` bytes (0: the memory available).
+  static SolutionReader from_memory(std::span<const std::byte> bytes, std::string display_name,
+                                    std::uint64_t max_memory = 0);
 
   // Throws ErrorCode::invalid_argument "FILE: solutions of instance DIGEST, not of INSTANCE
   // (DIGEST)" unless the file's instance digest is the instance's; also checks the header's n and m

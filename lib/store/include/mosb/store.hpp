@@ -149,9 +149,10 @@ class Store {
   };
   // Solution files (file kind 2) are taken too, after the instances of the same add: each is
   // checked as verify_solutions checks it against its instance, which the store lists or the
-  // same add brings (else refused), gets its instance's benchmark, and is stored as it is (`pack`
-  // packs instances only); a second exact file (ε = 0) of one instance, view and query set is
-  // refused. With `expect`, a solution file's described entry must equal the expected one.
+  // same add brings (else refused), gets its instance's benchmark, and is packed with `pack` like
+  // an instance (format 1.6, spec/SOLUTIONS.md §1); a second exact file (ε = 0) of one instance,
+  // view and query set is refused. With `expect`, a solution file's described entry must equal the
+  // expected one.
   // Copies (or moves, or packs) each file in under its base name, each through mosb::AtomicFile,
   // then rewrites the manifest atomically, last. Refused before anything is written: a reserved
   // or invalid base name, two files of one name, a file that does not open as a mosb file or fails
