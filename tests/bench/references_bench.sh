@@ -6,8 +6,10 @@
 #
 #   tests/bench/references_bench.sh
 #
-# The references are synthetic exact fronts (VECTORS two-objective vectors (i, C - i) for each of
-# the instances' one query), imported with `mosb solutions import --table`; RESULTS is an
+# The references are synthetic exact fronts (VECTORS two-objective vectors for each of the
+# instances' one query, each coordinate moving by a random step of 1 to 1000, so that they pack
+# about as a real front does, not a thousand times smaller), imported with `mosb solutions import
+# --table`; RESULTS is an
 # experiment of the example NAMOA* on the same instances. Environment: MOSB (default
 # build/release/tools/mosb), EXAMPLES (default build/release/examples), WORK (default
 # /tmp/mosb-references-bench), VECTORS (default 500000), ROUNDS (default 5), JOBS (default 4),
@@ -28,11 +30,14 @@ cd "$work"
 for instance in published/*.mosb; do
   name=$(basename "$instance" .mosb)
   /usr/bin/python3 -c "
-import sys
-n = int(sys.argv[1])
+import random, sys
+n, rng = int(sys.argv[1]), random.Random(sys.argv[2])
 print('query,c1,c2')
-for i in range(n):
-    print('0,%d,%d' % (i, 10 * n - i))" "$vectors" >"$name.csv"
+a, b = 0, 1000 * n
+for i in range(n):  # steps as uneven as a road network's front: random, seeded by the name
+    a += rng.randint(1, 1000)
+    b -= rng.randint(1, 999)
+    print('0,%d,%d' % (a, b))" "$vectors" "$name" >"$name.csv"
   "$mosb" solutions import --instance "$instance" --view Grid_2 --table "$name.csv" \
     --solver reference -o "refs/$name.Grid_2.sol" >/dev/null
   rm "$name.csv"
@@ -72,8 +77,14 @@ for round in $(seq "$rounds"); do
   mkdir curl
   pipeline=$( (cd curl && seconds bash -c "sed 's|^|$url/|' ../names | xargs -P $jobs -n 1 curl -sfO \
     && sha256sum --quiet -c ../sums"))
+  # The pipeline with the check the pull makes: each reference against its instance.
+  checked=$( (cd curl && seconds bash -c "sed 's|\.Grid_2\.sol\$||' ../names | xargs -P $jobs -I{} \
+    '$mosb' solutions verify --instance ../store/{}.mosb {}.Grid_2.sol"))
   local_eval=$(seconds "$mosb" eval results --reference refs)
+  # The store's own files, loose: what the store adds beyond decoding them.
+  rm -rf loose && mkdir loose && cp store/*.sol loose/
+  loose_eval=$(seconds "$mosb" eval results --reference loose)
   store_eval=$(seconds "$mosb" eval results --reference store)
-  awk -v r="$round" -v p="$pull" -v c="$pipeline" -v l="$local_eval" -v s="$store_eval" \
-    'BEGIN { printf "round %d: pull %.2f s, curl + sha256sum %.2f s (%.2fx); eval refs/ %.2f s, store %.2f s (%.2fx)\n", r, p, c, c / p, l, s, s / l }'
+  awk -v r="$round" -v p="$pull" -v c="$pipeline" -v k="$checked" -v l="$local_eval" \
+    -v o="$loose_eval" -v s="$store_eval" 'BEGIN { printf "round %d: pull %.2f s, curl + sha256sum %.2f s (%.2fx), then solutions verify --instance %.2f s (%.2fx); eval refs/ %.2f s, the stored files loose %.2f s, store %.2f s (%.2fx refs/, %.2fx loose)\n", r, p, c, c / p, k, (c + k) / p, l, o, s, s / l, s / o }'
 done

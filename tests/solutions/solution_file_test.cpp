@@ -493,3 +493,19 @@ TEST_CASE("pack and unpack restore each layout's minor, and others have no packe
   CHECK_FALSE(std::filesystem::exists(dir / "old.sol.mosb"));
   CHECK_FALSE(std::filesystem::exists(dir / "out.sol.mosb"));
 }
+
+TEST_CASE("open_verified_all opens in path order and throws the first failure in that order") {
+  testing::TempDir dir;
+  const auto good = kSolutions / "valid" / "small.sol.mosb";
+  std::vector<std::filesystem::path> paths(6, good);
+  paths.push_back(dir / "missing-1.sol.mosb");
+  paths.push_back(dir / "missing-2.sol.mosb");
+  for (const unsigned threads : {1U, 2U, 8U}) {
+    CAPTURE(threads);
+    const auto opened = open_verified_all(std::span(paths).first(6), threads);
+    REQUIRE(opened.size() == 6);
+    for (const auto& r : opened) CHECK(r.display_name() == good.string());
+    CHECK_THROWS_WITH_AS(open_verified_all(paths, threads), doctest::Contains("missing-1"), Error);
+  }
+  CHECK(open_verified_all({}).empty());
+}

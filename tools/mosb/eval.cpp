@@ -252,14 +252,13 @@ int run_eval_results(const EvalArgs& args) {
   for (const auto& path : result_instances(args.results))
     instances.push_back(load(path, VerifyLevel::full));
   options.views = result_views(args.results);
-  std::vector<SolutionReader> solutions, references;
-  for (const auto& path : experiment_result_files(args.results))
-    solutions.push_back(SolutionReader::open_verified(path));
+  auto solution_paths = experiment_result_files(args.results);
   // Files from outside the experiment (a solver run by hand on its instances) join its table.
-  for (const auto& path : args.solutions) solutions.push_back(SolutionReader::open_verified(path));
-  if (!args.reference.empty())
-    for (const auto& path : reference_files_of(args.reference, instances))
-      references.push_back(SolutionReader::open_verified(path));
+  solution_paths.insert(solution_paths.end(), args.solutions.begin(), args.solutions.end());
+  const auto solutions = open_verified_all(solution_paths);
+  const auto references = args.reference.empty()
+                              ? std::vector<SolutionReader>()
+                              : open_verified_all(reference_files_of(args.reference, instances));
   auto table = pages::solver_table(
       instances, solutions, references, options,
       args.common_queries ? pages::SolverTable::common_queries : pages::SolverTable::own_queries);

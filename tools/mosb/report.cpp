@@ -143,15 +143,10 @@ int run_report(const ReportArgs& args) {
   }
   for (const auto& source : args.references)
     for (auto& p : reference_files_of(source, instances)) reference_paths.push_back(std::move(p));
-  std::vector<SolutionReader> solutions, references;
-  for (const auto& path : solution_paths) {
-    solutions.push_back(SolutionReader::open_verified(path));
-    inputs.emplace_back(path);
-  }
-  for (const auto& path : reference_paths) {
-    references.push_back(SolutionReader::open_verified(path));
-    inputs.emplace_back(path);
-  }
+  const auto solutions = open_verified_all(solution_paths);
+  const auto references = open_verified_all(reference_paths);
+  inputs.insert(inputs.end(), solution_paths.begin(), solution_paths.end());
+  inputs.insert(inputs.end(), reference_paths.begin(), reference_paths.end());
   const auto result = pages::make_report(instances, solutions, references, options);
   write_outputs(args, result, inputs);
   std::cout << "wrote " << escape_for_terminal(args.output) << " (" << result.html.size()

@@ -8,6 +8,7 @@
 #include "mosb/file_writer.hpp"
 #include "mosb/graph_reader.hpp"
 #include "mosb/internal/hex.hpp"
+#include "mosb/internal/parallel.hpp"
 #include "mosb/internal/sections_by_kind.hpp"
 #include "mosb/internal/xxh3.hpp"
 #include "mosb/pack.hpp"
@@ -148,6 +149,17 @@ SolutionReader SolutionReader::from_memory(std::span<const std::byte> bytes,
   }
   reader.validate();
   return reader;
+}
+
+std::vector<SolutionReader> open_verified_all(std::span<const std::filesystem::path> paths,
+                                              unsigned threads) {
+  std::vector<std::optional<SolutionReader>> opened(paths.size());
+  parallel_for(paths.size(), thread_count(threads),
+               [&](std::size_t i) { opened[i] = SolutionReader::open_verified(paths[i]); });
+  std::vector<SolutionReader> readers;
+  readers.reserve(paths.size());
+  for (auto& r : opened) readers.push_back(std::move(*r));
+  return readers;
 }
 
 // After attach: the container's checks are done.

@@ -273,6 +273,12 @@ decltype(auto) SolutionReader::visit_column(std::size_t i, F&& f) const {
 // of an instance. Costs arrive as doubles, path sums, and are stored in format::path_sum_type of
 // each objective's arc type (u64 for unsigned, f64 for float objectives); an integer objective
 // refuses a non-integral, negative or larger than kMaxIntegerSum value.
+// SolutionReader::open_verified of every path, in order, on up to `threads` threads (0: as many as
+// the hardware runs): a packed file's decoding is most of an open. A failure is thrown as a loop
+// would throw it, the first in path order.
+std::vector<SolutionReader> open_verified_all(std::span<const std::filesystem::path> paths,
+                                              unsigned threads = 0);
+
 class SolutionWriter {
  public:
   // `query_set` empty: the view's query set (an error when the view names none).
