@@ -85,9 +85,10 @@ std::string readme(const RecordedRun& run, const ReferenceProtocol& reference,
   std::size_t references = 0;
   for (const auto& e : release.entries) references += e.solutions ? 1 : 0;
   out << "\n## Contents\n\n"
-      << "- " << instance_count << " instances (`.mosb`, packed) and " << references
-      << " reference files (`.sol`), listed with their sizes, SHA-256 and content digests in "
-         "`MANIFEST`; each reference is bound to its instance by content digest.\n"
+      << "- " << instance_count << " instances (`.mosb`) and " << references
+      << " reference files (`.sol`), packed (`mosb unpack` restores either), listed with their "
+         "sizes, SHA-256 and content digests in `MANIFEST`; each reference is bound to its "
+         "instance by content digest.\n"
       << "- `" << kStoreSummary
       << "`: per benchmark, the suite table (the paper's Table 1) over these references.\n";
   if (!release.without_reference.empty()) {
@@ -117,9 +118,7 @@ Release release_suite(const fs::path& results, const fs::path& references, const
   std::vector<GraphReader> instances;
   instances.reserve(instance_paths.size());
   for (const auto& path : instance_paths) instances.push_back(load(path, VerifyLevel::full));
-  std::vector<SolutionReader> readers;
-  readers.reserve(reference_paths.size());
-  for (const auto& path : reference_paths) readers.push_back(SolutionReader::open_verified(path));
+  const auto readers = open_verified_all(reference_paths);
   check_references(readers, instances);
 
   // The summary first: make_report's checks (one reference per binding) refuse before the store
@@ -135,7 +134,6 @@ Release release_suite(const fs::path& results, const fs::path& references, const
   add.pack = options.pack;
   add.progress = options.progress;
   made.add(instance_paths, add);
-  add.pack.reset();
   Release release;
   made.add(reference_paths, add);
   release.entries = Store::open(store).manifest().entries;

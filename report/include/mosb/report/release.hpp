@@ -14,7 +14,7 @@
 namespace mosb::pages {
 
 struct ReleaseOptions {
-  PackOptions pack;   // how the instances are packed (level 19: one level, reproducible bytes)
+  PackOptions pack;   // how the files are packed (level 19: one level, reproducible bytes)
   Progress progress;  // Store::add's stages
 };
 
