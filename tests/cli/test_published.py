@@ -142,6 +142,50 @@ class InAStore(Published):
         self.assertNotEqual(r.returncode, 0)
         self.assertIn(name, r.stdout + r.stderr)
 
+    def test_an_instance_is_removed_only_with_or_after_its_references(self):
+        store = self.store()
+        _, entries = self.manifest(store)
+        instance = os.path.basename(self.instances[0])
+        reference = next(e["file"] for e in entries if e.get("kind") == "solutions"
+                         and e["instance"] == next(x["digest"] for x in entries
+                                                   if x["file"] == instance))
+        before = read(os.path.join(store, "MANIFEST"))
+        r = self.mosb("store", "remove", store, instance)
+        self.assert_one_line_error(r, instance, "its references stay in the store", reference)
+        r = self.mosb("store", "remove", store, "nosuch.mosb")
+        self.assert_one_line_error(r, "nosuch.mosb", "not listed")
+        self.assertEqual(read(os.path.join(store, "MANIFEST")), before)
+        self.assertTrue(os.path.exists(os.path.join(store, instance)))
+        # Another listed copy of the instance (the same content digest) keeps the reference bound.
+        shutil.copy(self.instances[0], self.path("copy.mosb"))
+        self.ok("store", "add", store, self.path("copy.mosb"))
+        self.ok("store", "remove", store, "copy.mosb")
+        self.assertEqual(read(os.path.join(store, "MANIFEST")), before)
+        # With its reference, in one command: both gone, the store whole.
+        r = self.ok("store", "remove", "--json", store, instance, reference)
+        self.assertEqual(sorted(e["file"] for e in json.loads(r.stdout)["removed"]),
+                         sorted([instance, reference]))
+        for name in (instance, reference):
+            self.assertFalse(os.path.exists(os.path.join(store, name)))
+        _, left = self.manifest(store)
+        self.assertEqual(len(left), len(entries) - 2)
+        self.assertTrue(json.loads(self.ok("store", "verify", "--json", store).stdout)["ok"])
+        # Every reference gone: the MANIFEST is version 1 again; a packed entry's unpacked copy goes
+        # with it.
+        refs = [e["file"] for e in left if e.get("kind") == "solutions"]
+        self.ok("store", "remove", store, *refs)
+        self.assertEqual(self.manifest(store)[0]["version"], 1)
+        packed = self.path("packed-store")
+        self.ok("store", "init", packed)
+        self.ok("store", "add", "--pack", packed, self.instances[1])
+        name = os.path.basename(self.instances[1])
+        benchmark = self.manifest(packed)[1][0]["benchmark"]
+        self.ok("store", "instance", packed, benchmark)
+        self.assertTrue(os.path.exists(os.path.join(packed, ".cache", name)))
+        self.ok("store", "remove", packed, name)
+        self.assertFalse(os.path.exists(os.path.join(packed, ".cache", name)))
+        self.assertEqual(self.manifest(packed)[1], [])
+
     def test_a_reference_without_its_instance_is_refused_and_nothing_placed(self):
         store = self.path("s")
         self.ok("store", "init", store)

@@ -103,6 +103,24 @@ int run_init(const StoreArgs& a) {
   return 0;
 }
 
+int run_remove(const StoreArgs& a) {
+  auto store = Store::open(a.directory);
+  const auto removed = store.remove(a.files);
+  if (a.json) {
+    JsonWriter json(std::cout);
+    json.begin_object();
+    json.key("store").value(a.directory);
+    json.key("removed").begin_array();
+    for (const auto& e : removed) write_entry(json, e);
+    json.end_array();
+    json.end_object();
+  } else {
+    for (const auto& e : removed)
+      std::cout << "removed " << escape_for_terminal(e.file) << " (digest " << e.digest << ")\n";
+  }
+  return 0;
+}
+
 int run_add(const StoreArgs& a) {
   auto store = Store::open(a.directory);
   TerminalProgress progress;
@@ -369,8 +387,8 @@ Command add_store(CLI::App& app) {
   add_check_memory_option(add, args->check_memory);
   add_check_disk_option(add, args->check_disk);
   add->add_flag("--pack", args->pack,
-                "store each unpacked instance packed (as mosb pack does); solution files are "
-                "stored as they are");
+                "store each unpacked file packed (as mosb pack does), instances and solution "
+                "files alike");
   add->add_option("--level", args->level,
                   "zstd level for --pack (fixed, so the bytes are reproducible)")
       ->check(unsigned_integer(std::numeric_limits<int>::max()))
@@ -378,6 +396,14 @@ Command add_store(CLI::App& app) {
       ->capture_default_str()
       ->needs(add->get_option("--pack"));
   add_json_flag(add, args->json);
+  auto* remove = store->add_subcommand(
+      "remove",
+      "Remove entries and their files from the store; an instance whose references stay is "
+      "refused (remove them with it, or first)");
+  directory(remove);
+  remove->add_option("FILE", args->files, "the entries' file names, as the MANIFEST lists them")
+      ->required();
+  add_json_flag(remove, args->json);
   auto* list = store->add_subcommand("list", "Print the store's entries");
   directory(list);
   add_json_flag(list, args->json);
@@ -432,6 +458,7 @@ Command add_store(CLI::App& app) {
                        {pull_command, [args] { return run_pull(*args); }},
                        {instance, [args] { return run_instance(*args); }},
                        {add, [args] { return run_add(*args); }},
+                       {remove, [args] { return run_remove(*args); }},
                        {list, [args] { return run_list(*args); }},
                        {verify, [args] { return run_store_verify(*args); }}});
 }

@@ -675,6 +675,47 @@ std::vector<ManifestEntry> Store::add(const std::vector<fs::path>& files,
   return added;
 }
 
+std::vector<ManifestEntry> Store::remove(const std::vector<std::string>& files) {
+  const StoreLock lock(directory_);
+  Manifest next = read_store_manifest(manifest_path());
+  const std::set<std::string> names(files.begin(), files.end());
+  for (const auto& name : files)
+    if (next.find(name) == nullptr)
+      throw Error(ErrorCode::not_found,
+                  (directory_ / name).string() + ": not listed in the store's MANIFEST");
+  auto kept = [&](const ManifestEntry& e) { return !names.contains(e.file); };
+  for (const auto& e : next.entries) {
+    if (kept(e) || e.solutions) continue;
+    const bool another_copy = std::any_of(next.entries.begin(), next.entries.end(), [&](auto& x) {
+      return kept(x) && !x.solutions && x.digest == e.digest;
+    });
+    std::string bound;
+    for (const auto& x : next.entries)
+      if (kept(x) && x.solutions && x.solutions->instance == e.digest)
+        bound += (bound.empty() ? "" : ", ") + x.file;
+    if (!bound.empty() && !another_copy)
+      throw Error(ErrorCode::invalid_argument, (directory_ / e.file).string() +
+                                                   ": its references stay in the store (" + bound +
+                                                   "); remove them with it, or first");
+  }
+  std::vector<ManifestEntry> removed;
+  for (const auto& e : next.entries)
+    if (!kept(e)) removed.push_back(e);
+  std::erase_if(next.entries, [&](const ManifestEntry& e) { return !kept(e); });
+  next.legacy = false;
+  write_manifest(manifest_path(), next);
+  manifest_ = next;
+  const auto cache = directory_ / kCacheDirectory;
+  std::error_code ec;
+  const bool cache_is_ours = !fs::is_symlink(fs::symlink_status(cache, ec));
+  for (const auto& e : removed) {
+    fs::remove(directory_ / e.file, ec);  // a symlink itself, never what it points to
+    if (ec) throw Error(ErrorCode::io, (directory_ / e.file).string() + ": " + ec.message());
+    if (e.packed && cache_is_ours) fs::remove(cache / e.file, ec);
+  }
+  return removed;
+}
+
 std::vector<FileCheck> Store::verify(const CheckOptions& options) const {
   std::vector<std::pair<ManifestEntry, fs::path>> files;
   std::vector<FileCheck> links;

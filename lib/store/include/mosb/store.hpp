@@ -167,6 +167,15 @@ class Store {
   std::vector<ManifestEntry> add(const std::vector<std::filesystem::path>& files,
                                  const AddOptions& options);
 
+  // Removes the entries of these base names (as the MANIFEST lists them), their files, and the
+  // unpacked copy DIR/.cache/FILE of a packed one. Refused before anything changes (mosb::Error
+  // naming the file): a name the manifest does not list, and an instance whose references stay
+  // listed (solution files bound to its content digest, which no other listed instance has), named
+  // in the message: remove them with it, or first. Holding the store's StoreLock, the manifest is
+  // rewritten first, then the files removed: a crash in between leaves files the manifest no
+  // longer lists, which verify() reports as `extra`. Returns the removed entries.
+  std::vector<ManifestEntry> remove(const std::vector<std::string>& files);
+
   // Every entry (see check_files) plus every file in the directory the manifest does not list
   // (`extra`; reserved names, the store's own files, are not counted). An entry that is a symlink
   // is `unreadable` and not followed.
