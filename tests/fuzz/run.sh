@@ -36,7 +36,7 @@ run() {  # target seconds seed-files... (MAX_LEN: the longest input, 64 KiB unle
 run mosb_fuzz_reader "$seconds" "$root"/spec/golden/*/valid/*.mosb "$root"/spec/golden/*/invalid/*.mosb
 run mosb_fuzz_solutions "$((seconds / 3 > 5 ? seconds / 3 : 5))" "$root"/spec/golden/*/solutions/*/*.mosb
 run mosb_fuzz_unpack "$((seconds / 3 > 5 ? seconds / 3 : 5))" "$root"/spec/golden/*/valid/*.mosb \
-  "$root"/spec/golden/*/packed/*/*.mosb
+  "$root"/spec/golden/*/packed/*/*.mosb "$root"/spec/golden/1.6/solutions/*/*.mosb
 run mosb_fuzz_streaming_verify "$((seconds / 3 > 5 ? seconds / 3 : 5))" \
   "$root"/spec/golden/*/valid/*.mosb "$root"/spec/golden/*/invalid/*.mosb \
   "$root"/spec/golden/*/packed/*/*.mosb
