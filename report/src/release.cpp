@@ -83,12 +83,17 @@ std::string readme(const RecordedRun& run, const ReferenceProtocol& reference,
   out << ".\n";
   if (!reference.machine.empty()) out << "- Machine: " << reference.machine << ".\n";
   std::size_t references = 0;
-  for (const auto& e : release.entries) references += e.solutions ? 1 : 0;
+  bool references_packed = false;
+  for (const auto& e : release.entries) {
+    references += e.solutions ? 1 : 0;
+    references_packed |= e.solutions && e.packed;
+  }
   out << "\n## Contents\n\n"
-      << "- " << instance_count << " instances (`.mosb`) and " << references
-      << " reference files (`.sol`), packed (`mosb unpack` restores either), listed with their "
-         "sizes, SHA-256 and content digests in `MANIFEST`; each reference is bound to its "
-         "instance by content digest.\n"
+      << "- " << instance_count << " instances (`.mosb`, packed) and " << references
+      << " reference files (`.sol`" << (references_packed ? ", packed" : "")
+      << "), listed with their sizes, SHA-256 and content digests in `MANIFEST`; each reference "
+         "is bound to its instance by content digest. `mosb unpack` restores a packed file's "
+         "exact bytes.\n"
       << "- `" << kStoreSummary
       << "`: per benchmark, the suite table (the paper's Table 1) over these references.\n";
   if (!release.without_reference.empty()) {
@@ -134,6 +139,7 @@ Release release_suite(const fs::path& results, const fs::path& references, const
   add.pack = options.pack;
   add.progress = options.progress;
   made.add(instance_paths, add);
+  if (!options.pack_references) add.pack.reset();
   Release release;
   made.add(reference_paths, add);
   release.entries = Store::open(store).manifest().entries;

@@ -9,11 +9,11 @@
 # The references are synthetic exact fronts (VECTORS two-objective vectors for each of the
 # instances' one query, each coordinate moving by a random step of 1 to 1000, so that they pack
 # about as a real front does, not a thousand times smaller), imported with `mosb solutions import
-# --table`; RESULTS is an
-# experiment of the example NAMOA* on the same instances. Environment: MOSB (default
-# build/release/tools/mosb), EXAMPLES (default build/release/examples), WORK (default
-# /tmp/mosb-references-bench), VECTORS (default 500000), ROUNDS (default 5), JOBS (default 4),
-# PACK (default 1: the published references packed, as `suite release` stores them; 0: raw).
+# --table`; RESULTS is an experiment of the example NAMOA* on the same instances. Environment:
+# MOSB (default build/release/tools/mosb), EXAMPLES (default build/release/examples), WORK
+# (default /tmp/mosb-references-bench), VECTORS (default 500000), ROUNDS (default 5), JOBS
+# (default 4), PACK (default 1: the published references packed, as `suite release
+# --pack-references` stores them; 0: raw, its default).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 mosb=$(realpath "${MOSB:-$here/../../build/release/tools/mosb}")
@@ -42,7 +42,7 @@ for i in range(n):  # steps as uneven as a road network's front: random, seeded 
     --solver reference -o "refs/$name.Grid_2.sol" >/dev/null
   rm "$name.csv"
 done
-# Packed (format 1.6) as a release stores them; PACK=0 keeps them raw.
+# Packed (format 1.6) as `suite release --pack-references` stores them; PACK=0 keeps them raw.
 "$mosb" store add $([ "${PACK:-1}" = 0 ] || echo --pack) published refs/*.sol >/dev/null
 cat >exp.toml <<EOF
 name = "bench"

@@ -281,7 +281,8 @@ class Released(Published):
         self.assertIn("4 instances, 4 references", r.stdout)
         header, entries = self.manifest(self.path("rel"))
         self.assertEqual(header["version"], 2)
-        self.assertTrue(all(e["packed"] for e in entries))  # references too (format 1.6)
+        # The instances packed, the references raw unless --pack-references (format 1.6).
+        self.assertEqual([e["packed"] for e in entries], ["kind" not in e for e in entries])
         self.assertEqual(sum(1 for e in entries if e.get("kind") == "solutions"), 4)
         self.assertTrue(json.loads(self.ok("store", "verify", "--json",
                                            self.path("rel")).stdout)["ok"])
@@ -303,6 +304,17 @@ class Released(Published):
             self.assertEqual(read(self.path("rel", name)), read(self.path("again", name)), name)
         # An existing, non-empty directory is refused.
         self.assert_one_line_error(self.release("rel"), "exists and is not empty")
+        # --pack-references: the same store, its references packed, the same table from it.
+        r = self.mosb("suite", "release", os.path.join(self.base, "res"), "--references",
+                      os.path.join(self.base, "refs"), "-o", self.path("packed"),
+                      "--pack-references")
+        self.assertEqual(r.returncode, 0, r)
+        _, packed = self.manifest(self.path("packed"))
+        self.assertTrue(all(e["packed"] for e in packed))
+        self.assertEqual([e["digest"] for e in packed], [e["digest"] for e in entries])
+        self.assertIn("(`.sol`, packed)", read(self.path("packed", "README.md"), "r"))
+        self.assertEqual(self.eval_table(self.path("packed")).stdout.splitlines()[1:],
+                         self.local.splitlines()[1:])
 
     def test_an_approximate_or_foreign_reference_is_refused_before_anything_is_written(self):
         self.assert_one_line_error(self.release("approx", self.approximate), "approx.sol",

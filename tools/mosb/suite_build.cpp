@@ -79,12 +79,14 @@ int run_suite_build(const SuiteBuildArgs& a) {
 
 struct SuiteReleaseArgs {
   std::string results, references, output;
+  bool pack_references = false;
 };
 
 int run_suite_release(const SuiteReleaseArgs& a) {
   TerminalProgress progress;
   pages::ReleaseOptions options;
   options.pack = *suite_pack(true);
+  options.pack_references = a.pack_references;
   options.progress = progress.callback();
   const auto release = pages::release_suite(a.results, a.references, a.output, options);
   std::size_t references = 0;
@@ -152,6 +154,9 @@ Command add_suite(CLI::App& app) {
       ->check(CLI::ExistingPath);
   release->add_option("-o,--output", release_args->output, "the new store (absent or empty)")
       ->required();
+  release->add_flag("--pack-references", release_args->pack_references,
+                    "pack the references too (format 1.6): a smaller download, which a pull "
+                    "then decodes to check");
   return group(suite, {{build, [args] { return run_suite_build(*args); }},
                        {release, [release_args] { return run_suite_release(*release_args); }}});
 }

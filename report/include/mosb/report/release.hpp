@@ -14,7 +14,11 @@
 namespace mosb::pages {
 
 struct ReleaseOptions {
-  PackOptions pack;   // how the files are packed (level 19: one level, reproducible bytes)
+  PackOptions pack;  // how the files are packed (level 19: one level, reproducible bytes)
+  // The references packed too (format 1.6): about six times fewer bytes to download (a real
+  // front; spec/BENCHMARKS.md, issue 45), which every pull then decodes to check. Kept raw by
+  // default: a checked pull of raw references is faster than curl and sha256sum of them.
+  bool pack_references = false;
   Progress progress;  // Store::add's stages
 };
 
