@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <optional>
 #include <string>
 #include <utility>
 
+#include "mosb/internal/number_text.hpp"
 #include "mosb/report/svg.hpp"
 
 namespace mosb::tables {
@@ -16,8 +16,7 @@ namespace {
 
 std::string shortest(double x) {
   if (std::isinf(x)) return "inf";
-  std::array<char, 32> buffer{};
-  return {buffer.data(), std::to_chars(buffer.data(), buffer.data() + buffer.size(), x).ptr};
+  return shortest_text(x);
 }
 
 // `digits` significant digits, never an exponent for a number of `digits` or more digits before

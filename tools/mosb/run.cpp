@@ -8,7 +8,6 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <charconv>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -23,6 +22,7 @@
 #include "mosb/converters/solver_output.hpp"
 #include "mosb/converters/solver_resolver.hpp"
 #include "mosb/experiment.hpp"
+#include "mosb/internal/number_text.hpp"
 #include "mosb/internal/utf8.hpp"
 #include "mosb/sha256.hpp"
 #include "mosb/slurm.hpp"
@@ -100,13 +100,6 @@ void report_failed(const QueryRecord& record, const Query& q) {
   std::cerr << escape_for_terminal(line) << "\n";
 }
 
-// The number as `--grace` wrote it: the shortest text that reads back as `value` (std::to_chars).
-std::string number_text(double value) {
-  char text[64];
-  const auto end = std::to_chars(text, text + sizeof text, value).ptr;
-  return {text, end};
-}
-
 // What an option of `mosb run` is to a run on SLURM.
 enum class Role {
   run,     // defines the run: every SLURM task passes it on; run.json has it for --resume/--status
@@ -154,7 +147,7 @@ const RunOption kRunOptionTable[] = {
        pass(out, "--memory-limit", std::to_string(a.memory_limit));
      }},
     {"--grace", Role::run,
-     [](const RunArgs& a, Arguments& out) { pass(out, "--grace", number_text(a.grace)); }},
+     [](const RunArgs& a, Arguments& out) { pass(out, "--grace", shortest_text(a.grace)); }},
     {"--jobs", Role::run,
      [](const RunArgs& a, Arguments& out) { pass(out, "--jobs", std::to_string(a.jobs)); }},
     {"--pin", Role::run,
@@ -195,7 +188,7 @@ const RunOption kRunOptionTable[] = {
      }},
     {"--scale", Role::run,
      [](const RunArgs& a, Arguments& out) {
-       if (a.scale > 0) pass(out, "--scale", number_text(a.scale));
+       if (a.scale > 0) pass(out, "--scale", shortest_text(a.scale));
      }},
     // Each task exports (or finds) the text in its node's cache unless the run names one.
     {"--export-cache", Role::run,

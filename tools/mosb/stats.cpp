@@ -2,7 +2,6 @@
 #include "mosb/stats.hpp"
 
 #include <CLI/CLI.hpp>
-#include <charconv>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -12,6 +11,7 @@
 #include "commands.hpp"
 #include "json_writer.hpp"
 #include "mosb/graph_reader.hpp"
+#include "mosb/internal/number_text.hpp"
 
 namespace mosb::cli {
 
@@ -21,8 +21,7 @@ namespace {
 std::string cost_text(const std::optional<long double>& v, format::ElementType type) {
   if (!v) return "n/a";
   if (!format::is_float(type)) return std::to_string(static_cast<std::uint64_t>(*v));
-  char buffer[32];
-  return {buffer, std::to_chars(buffer, buffer + sizeof buffer, static_cast<double>(*v)).ptr};
+  return shortest_text(static_cast<double>(*v));
 }
 
 std::string mean_text(const std::optional<long double>& v) {

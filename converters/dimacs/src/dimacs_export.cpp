@@ -7,6 +7,7 @@
 #include "mosb/atomic_file.hpp"
 #include "mosb/error.hpp"
 #include "mosb/graph_reader.hpp"
+#include "mosb/internal/number_text.hpp"
 #include "mosb/version.hpp"
 
 namespace mosb::converters {
@@ -352,9 +353,7 @@ std::vector<std::string> text_comments(const GraphReader& reader, const DimacsEx
 }  // namespace
 
 std::string format_real_cost(double value) {
-  char text[64];
-  const auto r = std::to_chars(text, text + sizeof text, value);
-  std::string out(text, r.ptr);
+  std::string out = shortest_text(value);
   // Without '.' or an exponent `convert dimacs` would read an integer column.
   if (out.find_first_of(".eEn") == std::string::npos) out += ".0";
   return out;

@@ -2,7 +2,6 @@
 
 #include <toml++/toml.h>
 
-#include <charconv>
 #include <cmath>
 #include <map>
 #include <set>
@@ -10,6 +9,7 @@
 #include "mosb/converters/solver_output.hpp"
 #include "mosb/error.hpp"
 #include "mosb/eval.hpp"
+#include "mosb/internal/number_text.hpp"
 #include "mosb/internal/read_file.hpp"
 
 namespace mosb::converters {
@@ -31,13 +31,6 @@ std::string one_line(std::string_view text) {
     if (!out.empty() && i + 1 < text.size()) out += "; ";
   }
   return out;
-}
-
-// The shortest text that reads back as `value`: limits compared at full precision.
-std::string number_text(double value) {
-  char text[64];
-  const auto end = std::to_chars(text, text + sizeof text, value).ptr;
-  return {text, end};
 }
 
 // Reads one table's keys, each once, refusing any key it was not asked for.
@@ -67,7 +60,7 @@ class TableReader {
   std::string text_of(const toml::node& node) const {
     if (const auto* v = node.as_string()) return v->get();
     if (const auto* v = node.as_integer()) return std::to_string(v->get());
-    if (const auto* v = node.as_floating_point()) return number_text(v->get());
+    if (const auto* v = node.as_floating_point()) return shortest_text(v->get());
     if (const auto* v = node.as_boolean()) return v->get() ? "true" : "false";
     return "?";
   }
@@ -126,7 +119,7 @@ void read_limit_keys(TableReader& t, ExperimentLimits& limits,
     if (node == nullptr) return;
     std::optional<double> seconds;
     if (node->is_number())
-      seconds = parse_duration(number_text(*node->value<double>()));
+      seconds = parse_duration(shortest_text(*node->value<double>()));
     else if (node->is_string())
       seconds = parse_duration(*node->value<std::string>());
     else
@@ -134,7 +127,7 @@ void read_limit_keys(TableReader& t, ExperimentLimits& limits,
     if (!seconds)
       t.fail(*node, key, "'" + t.text_of(*node) + "' is not a duration (60, 60s, 500ms, 2m, 1h)");
     out = *seconds;
-    given[key] = key + '=' + number_text(*seconds) + "s";
+    given[key] = key + '=' + shortest_text(*seconds) + "s";
   };
   // A size: a number of bytes, or text as parse_memory_size reads it (the command line's grammar).
   const auto size = [&](const std::string& key, std::uint64_t& out) {

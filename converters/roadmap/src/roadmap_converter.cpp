@@ -1,7 +1,6 @@
 #include "mosb/converters/roadmap_converter.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -12,6 +11,7 @@
 #include "mosb/converters/text_scan.hpp"
 #include "mosb/error.hpp"
 #include "mosb/format.hpp"
+#include "mosb/internal/number_text.hpp"
 
 namespace mosb::converters {
 
@@ -32,13 +32,6 @@ void for_each_line(std::string_view text_in, F&& f) {
     text::tokenize(line, tokens, text::Separators::blanks_and_cr);
     f(lines.number(), tokens, line.size() + 1);
   }
-}
-
-// Shortest text that reads back as the same double: metadata values stay byte-identical.
-std::string real_text(double value) {
-  char buffer[32];
-  const auto [ptr, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return {buffer, ec == std::errc() ? ptr : buffer};
 }
 
 // What a first pass over a .gr text finds: the `p sp n m` header and the largest vertex id.
@@ -362,7 +355,7 @@ RoadmapColumns build_arcs(const GraphmlGraph& g, const Configurations& configs,
     const double d = real_of(e, key);
     if (d <= 0)
       throw Error(file + ": " + g.describe_edge(e) + ": " + g.edge_keys[key].name + " = " +
-                  real_text(d) + " <= 0: a collision (roadmap edges must be collision-free)");
+                  shortest_text(d) + " <= 0: a collision (roadmap edges must be collision-free)");
     return d;
   };
 
@@ -479,7 +472,7 @@ GraphInput convert_graphml_file(const RoadmapOptions& o) {
   if (!clearance.keys.links.empty())
     m.set("roadmap.clearance_links", std::to_string(clearance.keys.links.size()));
   m.set("source.param.clearance", kClearanceModeNames.name(clearance.mode));
-  if (clearance.aggregate || clearance.links) m.set("source.param.delta", real_text(o.delta));
+  if (clearance.aggregate || clearance.links) m.set("source.param.delta", shortest_text(o.delta));
   m.set("source.param.weight", o.weight ? "true" : "false");
   return out;
 }

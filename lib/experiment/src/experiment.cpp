@@ -20,6 +20,7 @@
 #include "mosb/atomic_file.hpp"
 #include "mosb/command_template.hpp"
 #include "mosb/error.hpp"
+#include "mosb/internal/number_text.hpp"
 #include "mosb/internal/read_file.hpp"
 #include "mosb/metadata.hpp"
 #include "mosb/sha256.hpp"
@@ -238,9 +239,7 @@ namespace {
 
 // The limits' text with its time=...s token replaced (or put first): the text a rerun compares.
 void replace_time(ExperimentLimits& limits, double seconds) {
-  char number[64];
-  const auto end = std::to_chars(number, number + sizeof number, seconds).ptr;
-  std::string token = "time=" + std::string(number, end) + "s", text;
+  std::string token = "time=" + shortest_text(seconds) + "s", text;
   std::istringstream words(limits.text);
   for (std::string word; words >> word;)
     if (!word.starts_with("time=")) text += " " + word;

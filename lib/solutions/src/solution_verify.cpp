@@ -1,7 +1,6 @@
 #include "mosb/solution_verify.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -9,6 +8,7 @@
 #include <string_view>
 #include <tuple>
 
+#include "mosb/internal/number_text.hpp"
 #include "nondominance.hpp"
 
 namespace mosb {
@@ -226,9 +226,7 @@ std::string cost_text(double value) {
   // print 1000000000 as 1e+09.
   if (value == std::floor(value) && std::fabs(value) <= 9007199254740992.0)
     return std::to_string(static_cast<std::int64_t>(value));
-  char buffer[32];
-  const auto end = std::to_chars(buffer, buffer + sizeof buffer, value).ptr;
-  return {buffer, end};
+  return shortest_text(value);
 }
 
 std::string cost_vector_text(std::span<const double> values) {

@@ -1,10 +1,10 @@
 #include "tolerance.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <string>
 
 #include "mosb/error.hpp"
+#include "mosb/internal/number_text.hpp"
 
 namespace mosb::solutions_internal {
 
@@ -18,9 +18,7 @@ std::vector<bool> float_objectives(const SolutionReader& a, const SolutionReader
 
 void check_tolerance(double tolerance) {
   if (tolerance >= 0 && tolerance < 1) return;
-  char text[32];
-  const auto end = std::to_chars(text, text + sizeof text, tolerance).ptr;
-  throw Error(ErrorCode::invalid_argument, "tolerance " + std::string(text, end) +
+  throw Error(ErrorCode::invalid_argument, "tolerance " + shortest_text(tolerance) +
                                                " is not a relative tolerance in [0, 1) "
                                                "(0: exact comparison)");
 }
