@@ -49,3 +49,14 @@ TEST_CASE("placeholders are checked and filled word by word") {
       mosb::template_placeholders(mosb::split_command("s query}"), mosb::run_placeholders()),
       doctest::Contains("without '{'"), mosb::Error);
 }
+
+TEST_CASE("shell_quote: as it is when safe, else quoted, and split_command reads it back") {
+  CHECK(mosb::shell_quote("it's") == "'it'\\''s'");
+  CHECK(mosb::shell_quote("") == "''");
+  CHECK(mosb::shell_quote("a/b-c.d") == "a/b-c.d");
+  CHECK(mosb::shell_quote("{instance}") == "'{instance}'");
+  for (const std::string word :
+       {"plain", "two words", "it's", "\"q\"", "$HOME", "a\\b", "tab\there", "new\nline", "*;|>",
+        "--flag=1,2", "{front}", "''", "\\"})
+    CHECK_MESSAGE(mosb::split_command(mosb::shell_quote(word)) == Words{word}, word);
+}

@@ -131,9 +131,6 @@ TEST_CASE("array lists and sbatch commands") {
                                                                         "/scratch/boa/run.sbatch"});
   CHECK(mosb::sbatch_command_text(run, {3}) ==
         "sbatch --parsable --array=3%2 /scratch/boa/run.sbatch >> /scratch/boa/jobs");
-  CHECK(mosb::shell_quote("it's") == "'it'\\''s'");
-  CHECK(mosb::shell_quote("") == "''");
-  CHECK(mosb::shell_quote("a/b-c.d") == "a/b-c.d");
 }
 
 TEST_CASE("shards_to_resubmit: neither done nor queued, the queued ones left, in shard order") {

@@ -82,13 +82,6 @@ std::string time_limit_text(const ProfileTimeLimit& rule, const ProcessLimits& l
   return format_real_cost(value);
 }
 
-// A word that split_command reads back as exactly `word`.
-std::string quoted(const std::string& word) {
-  std::string out = "'";
-  for (const char c : word) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
 // The one check of cost types against a profile, for a run (prepare_input) and an experiment's
 // plan (check_profile_cell): float costs for a solver that reads integers need a scale (none for
 // one that reads the .mosb itself), and a scale needs a float cost.
@@ -280,7 +273,7 @@ void apply_profile(RunConfig& config, const SolverSpec& spec) {
 
   std::string command;
   const auto add = [&](const std::string& word) {
-    command += (command.empty() ? "" : " ") + quoted(word);
+    command += (command.empty() ? "" : " ") + shell_quote(word);  // split_command reads it back
   };
   for (const auto& word : split_command(p.command)) {
     if (word == "{gr}") {

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -66,16 +65,6 @@ bool all_digits(std::string_view text) {
 }
 
 }  // namespace
-
-std::string shell_quote(const std::string& word) {
-  const bool safe = !word.empty() && std::all_of(word.begin(), word.end(), [](char c) {
-    return std::isalnum(static_cast<unsigned char>(c)) || std::strchr("_-./=:,+@%", c);
-  });
-  if (safe) return word;
-  std::string quoted = "'";
-  for (const char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return quoted + "'";
-}
 
 std::uint64_t slurm_shard_count(std::uint64_t queries, std::optional<std::uint64_t> shards,
                                 std::optional<std::uint64_t> queries_per_task) {

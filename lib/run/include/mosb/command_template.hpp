@@ -19,6 +19,10 @@ namespace mosb {
 // unterminated quote, a trailing backslash or no word at all.
 std::vector<std::string> split_command(std::string_view text);
 
+// A word quoted for sh, which split_command reads back as exactly `word`: as it is when it is made
+// of safe characters only ([A-Za-z0-9_./=:,+@%-]), else in single quotes.
+std::string shell_quote(const std::string& word);
+
 // The placeholders `mosb run` fills: instance, view, objectives, query, source, target, front,
 // fronts, threads.
 std::span<const std::string_view> run_placeholders();

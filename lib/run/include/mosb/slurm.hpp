@@ -164,7 +164,4 @@ std::string sbatch_command_text(const SlurmRun& run, const std::vector<std::uint
 // mosb::Error with sbatch's message when sbatch is missing or fails.
 std::string submit_shards(const SlurmRun& run, const std::vector<std::uint64_t>& shards);
 
-// A word quoted for sh: as is when it is made of safe characters only, else in single quotes.
-std::string shell_quote(const std::string& word);
-
 }  // namespace mosb
