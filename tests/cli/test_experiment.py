@@ -143,14 +143,17 @@ class ExperimentTest(ExperimentFixture):
         self.same_fronts(local, results)
         self.assertEqual(self.run_experiment(results)["ran"], 0)  # nothing left to run here
         # Refusals, one line each: a task count the file no longer makes, the array given to
-        # `mosb run`, an array option without --slurm.
-        for args in (["experiment", "run", self.experiment, "-o", self.path("t"), "--task",
-                      "1/99", "--queries-per-task", "10"],
-                     ["run", "--slurm", array, "--status"],
-                     ["experiment", "run", self.experiment, "-o", results, "--submit"]):
+        # `mosb run` (its run.json is of another kind: bad input), an array option without
+        # --slurm.
+        for args, code in ((["experiment", "run", self.experiment, "-o", self.path("t"), "--task",
+                             "1/99", "--queries-per-task", "10"], 2),
+                           (["run", "--slurm", array, "--status"], 1),
+                           (["experiment", "run", self.experiment, "-o", results, "--submit"], 2)):
             r = run(*args)
-            self.assertEqual(r.returncode, 2, (args, r.stderr))
+            self.assertEqual(r.returncode, code, (args, r.stderr))
             self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
+        self.assertIn("(made by mosb experiment run)",
+                      run("run", "--slurm", array, "--status").stderr)
 
     def test_killed_and_rerun_is_the_uninterrupted_run(self):
         full = self.path("full")

@@ -186,7 +186,17 @@ class ShardsAndMerge(CliTest):
         with open(self.path("job", "run.json"), "w") as f:
             json.dump(edited, f)
         r = self.mosb("run", "--slurm", self.path("job"), "--status")
-        self.assert_one_line_error(r, "a job array of kind 'other\\x1b', not of mosb run", code=2)
+        self.assert_one_line_error(r, "run.json: a job array of kind 'other\\x1b' (made by mosb "
+                                   "run), not of kind 'run'")
+        # Another kind's array names the command that made it.
+        edited["kind"] = "experiment"
+        edited["command"] = ["experiment", "run"]
+        with open(self.path("job", "run.json"), "w") as f:
+            json.dump(edited, f)
+        r = self.mosb("run", "--slurm", self.path("job"), "--status")
+        self.assert_one_line_error(r, "a job array of kind 'experiment' (made by mosb experiment "
+                                   "run), not of kind 'run'; continue it with the command that "
+                                   "made it")
         shutil.copy(self.path("run.json.kept"), self.path("job", "run.json"))
         # The same command writes the same script.
         shutil.rmtree(self.path("job"))

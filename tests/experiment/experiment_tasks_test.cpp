@@ -101,7 +101,4 @@ TEST_CASE("plan_experiment_array: the array's counts and limits, and the tasks i
     CHECK_THROWS_WITH_AS((void)experiment_array_tasks(run, plan, "/x/exp.toml"),
                          doctest::Contains("no task size"), Error);
   }
-  run.kind = kRunKind;
-  CHECK_THROWS_WITH_AS((void)experiment_array_tasks(run, plan, "/x/exp.toml"),
-                       doctest::Contains("the job array of a run"), Error);
 }

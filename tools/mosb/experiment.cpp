@@ -12,6 +12,7 @@
 
 #include "commands.hpp"
 #include "json_writer.hpp"
+#include "mosb/command_template.hpp"
 #include "mosb/converters/experiment_file.hpp"
 #include "mosb/converters/solver_resolver.hpp"
 #include "mosb/internal/utf8.hpp"
@@ -240,13 +241,7 @@ void print_task_states(const SlurmStatus& status,
 // every finished cell merged into -o, and the tasks neither done nor queued resubmitted.
 int run_experiment_slurm_existing(const ExperimentRunArgs& a) {
   const auto plan = read_plan(a);
-  const SlurmRun run = read_slurm_directory(a.slurm);
-  if (run.kind == kRunKind)
-    throw UsageError("--slurm " + a.slurm + ": the job array of a mosb run; use mosb run --slurm " +
-                     a.slurm);
-  if (run.kind != kExperimentKind)
-    throw UsageError("--slurm " + a.slurm + ": a job array of kind '" + run.kind +
-                     "', not of an experiment");
+  const SlurmRun run = read_slurm_directory(a.slurm, kExperimentKind);
   const auto tasks = experiment_array_tasks(
       run, plan, std::filesystem::absolute(a.file).lexically_normal().string());
   const auto status = experiment_array_status(run, plan, tasks);

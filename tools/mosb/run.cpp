@@ -514,15 +514,7 @@ int run_slurm_existing(const RunArgs& a) {
          "not with --slurm DIR --resume or --status (DIR/run.json has the run)");
   if (a.status && a.resume) throw UsageError("--status: not with --resume");
   if (a.status && a.submit) throw UsageError("--submit: not with --status");
-  const SlurmRun run = read_slurm_directory(a.slurm);
-  if (run.kind == kExperimentKind)
-    throw UsageError("--slurm " + a.slurm +
-                     ": the job array of an experiment; see it with mosb "
-                     "experiment run EXP.toml -o RESULTS --slurm " +
-                     a.slurm + " --status");
-  if (run.kind != kRunKind)
-    throw UsageError("--slurm " + a.slurm + ": a job array of kind '" + run.kind +
-                     "', not of mosb run");
+  const SlurmRun run = read_slurm_directory(a.slurm, kRunKind);
   const SlurmStatus status = slurm_status(run);
   if (a.status) {
     if (a.json)

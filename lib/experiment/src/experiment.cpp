@@ -938,9 +938,6 @@ std::vector<std::vector<std::size_t>> experiment_array_tasks(const SlurmRun& run
                                                              const ExperimentPlan& plan,
                                                              const std::string& file) {
   const auto json = run.directory + "/run.json";
-  if (run.kind != kExperimentKind)
-    throw Error(ErrorCode::invalid_argument,
-                json + ": the job array of a run, not of an experiment");
   if (file != run.instance)
     throw Error(ErrorCode::invalid_argument, json + ": the job array of " + run.instance);
   // The tasks' size, as the array's tasks are given it (a number of decimal digits).

@@ -229,7 +229,8 @@ nlohmann::json to_json(const SlurmRun& r) {
           {"threads", r.threads},
           {"throttle", r.throttle},
           {"account", r.account},
-          {"partition", r.partition}};
+          {"partition", r.partition},
+          {"command", r.task_command}};
 }
 
 }  // namespace
@@ -260,7 +261,7 @@ void create_slurm_directory(const SlurmRun& run) {
   write_file_atomically(dir / kRunFile, to_json(run).dump(2) + "\n");
 }
 
-SlurmRun read_slurm_directory(const std::string& directory) {
+SlurmRun read_slurm_directory(const std::string& directory, std::string_view kind) {
   const fs::path file = fs::path(directory) / kRunFile;
   if (!fs::exists(file))
     throw Error(ErrorCode::invalid_argument, file.string() + ": no such file; is " + directory +
@@ -293,6 +294,16 @@ SlurmRun read_slurm_directory(const std::string& directory) {
     r.account = j.at("account").get<std::string>();
     r.partition = j.at("partition").get<std::string>();
     if (r.shards == 0 || r.shards > r.queries) throw Error("shards out of range");
+    // Absent from arrays made before it was recorded: a run's is known.
+    r.task_command = j.value("command", r.kind == kRunKind ? std::vector<std::string>{"run"}
+                                                           : std::vector<std::string>{});
+    if (r.kind != kind) {
+      std::string made_by;
+      for (const auto& word : r.task_command) made_by += " " + word;
+      throw Error("a job array of kind '" + r.kind + "'" +
+                  (made_by.empty() ? "" : " (made by mosb" + made_by + ")") + ", not of kind '" +
+                  std::string(kind) + "'; continue it with the command that made it");
+    }
     return r;
   } catch (const nlohmann::json::exception& e) {
     throw Error(ErrorCode::invalid_argument,

@@ -248,9 +248,9 @@ std::vector<std::vector<std::size_t>> plan_experiment_array(SlurmRun& run,
                                                             const ExperimentPlan& plan,
                                                             const std::string& file,
                                                             std::uint64_t queries_per_task);
-// The tasks of the existing array `run`, checked to be experiment `file`'s as the file now
-// plans them (the same file, its --queries-per-task making run.shards tasks); throws mosb::Error
-// naming what differs.
+// The tasks of the existing array `run` (read_slurm_directory(DIR, kExperimentKind)), checked
+// to be experiment `file`'s as the file now plans them (the same file, its --queries-per-task
+// making run.shards tasks); throws mosb::Error naming what differs.
 std::vector<std::vector<std::size_t>> experiment_array_tasks(const SlurmRun& run,
                                                              const ExperimentPlan& plan,
                                                              const std::string& file);

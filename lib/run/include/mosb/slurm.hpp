@@ -42,10 +42,10 @@ struct SlurmRun {
   unsigned jobs = 1, threads = 1;
   unsigned throttle = 0;  // at most this many tasks at once (%K); 0: no limit
   std::string account, partition;
-  // What the script says and runs, set by the planner (describe_run_tasks for a run's shards) and
-  // not recorded in run.json, since the script is written once, with the directory: its comment
-  // lines ("# ..." each), and the arguments every task gives the mosb program before and after
-  // run_arguments, "{task}" in them standing for the task's index.
+  // What the script says and runs, set by the planner (describe_run_tasks for a run's shards) and,
+  // but for the command, not recorded in run.json, since the script is written once, with the
+  // directory: its comment lines ("# ..." each), and the arguments every task gives the mosb
+  // program before and after run_arguments, "{task}" in them standing for the task's index.
   std::string task_comment;
   std::vector<std::string> task_command, task_words;
 };
@@ -104,8 +104,9 @@ std::string slurm_array_list(const std::vector<std::uint64_t>& shards);
 // (invalid_argument) when DIR already holds a run or its path is no SLURM can take (blanks,
 // quotes, backslashes or '%'), io on the file system.
 void create_slurm_directory(const SlurmRun& run);
-// Reads DIR/run.json; throws mosb::Error naming the file.
-SlurmRun read_slurm_directory(const std::string& directory);
+// Reads DIR/run.json, an array of `kind`; throws mosb::Error naming the file, and for an array of
+// another kind the command that made it (run.json's `command`), which continues it.
+SlurmRun read_slurm_directory(const std::string& directory, std::string_view kind);
 
 std::string shard_output(const SlurmRun& run, std::uint64_t shard);  // DIR/shard-i.sol
 
