@@ -148,6 +148,15 @@ inline const PackedFault kPackedSolutionFaults[] = {
      [](Bytes& b) { patch_first_frame(b, [](SectionEntry& e) { e.stored_length -= 5; }); }},
     {"section-checksum.sol.mosb", "mismatch",
      [](Bytes& b) { patch_first_frame(b, [](SectionEntry& e) { e.checksum ^= 1; }); }},
+    // A non-zero byte in the gap after the first frame: decoding does not read it, the check
+    // of the packed bytes' padding does.
+    {"padding.sol.mosb", "[padding] byte",
+     [](Bytes& b) {
+       const auto e = entry_of(b, first_frame(b));
+       if ((e.offset + e.stored_length) % format::kAlignment == 0)
+         throw std::runtime_error("the first frame of the packed golden file leaves no gap");
+       b[e.offset + e.stored_length] = std::byte{0x2A};
+     }},
 };
 
 }  // namespace mosb::testing

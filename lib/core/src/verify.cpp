@@ -412,12 +412,16 @@ Problem rules::metadata_problem(const GraphReader& reader, const Metadata& metad
 }
 
 std::optional<std::string> find_padding_problem(const ContainerReader& reader) {
+  return find_padding_problem(reader.bytes(), Container{reader.header(), reader.sections()});
+}
+
+std::optional<std::string> find_padding_problem(std::span<const std::byte> bytes,
+                                                const Container& container) {
   std::vector<const Section*> by_offset;
-  for (const auto& s : reader.sections())
+  for (const auto& s : container.sections)
     if (s.entry.stored_length > 0) by_offset.push_back(&s);
   std::sort(by_offset.begin(), by_offset.end(),
             [](auto* a, auto* b) { return a->entry.offset < b->entry.offset; });
-  const auto bytes = reader.bytes();
   auto gap = [&](std::uint64_t from, std::uint64_t to,
                  const std::string& where) -> std::optional<std::string> {
     for (auto i = from; i < to; ++i)
@@ -432,7 +436,7 @@ std::optional<std::string> find_padding_problem(const ContainerReader& reader) {
     if (auto p = gap(position, s->entry.offset, "before section '" + s->name + "'")) return p;
     position = s->entry.offset + s->entry.stored_length;
   }
-  return gap(position, reader.header().table_offset, "before the section table");
+  return gap(position, container.header.table_offset, "before the section table");
 }
 
 std::optional<std::string> verify(const GraphReader& reader, VerifyLevel level,

@@ -324,14 +324,6 @@ MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view displ
 
 namespace {
 
-// The container of bytes the caller keeps alive, of any kind, for the checks every kind shares.
-struct BorrowedContainer : ContainerReader {
-  BorrowedContainer(std::span<const std::byte> bytes, const std::string& name,
-                    format::FileKind kind) {
-    attach_borrowed(bytes, name, kind);
-  }
-};
-
 // What verify at `level` finds in an instance from its unpacked form `image`: the image's checks
 // at that level, then (at structure and full) the padding of the instance's own bytes `file`,
 // which unpacking does not carry over (a packed file's frames keep it).
@@ -342,7 +334,8 @@ std::optional<std::string> decoded_problem(const MappedFile& file, const MappedF
     // Its checksums were checked while unpacking; its fronts are its reader's to check
     // (SolutionReader, at every open), which this library does not know.
     if (!covers(level, VerifyLevel::structure)) return std::nullopt;
-    return find_padding_problem(BorrowedContainer(file.bytes, name, format::FileKind::solutions));
+    return find_padding_problem(file.bytes,
+                                parse_container(file.bytes, name, format::FileKind::solutions));
   }
   const auto reader = GraphReader::from_memory(image.bytes, name);
   if (auto problem = verify(reader, level, progress)) return problem;

@@ -25,5 +25,8 @@ std::optional<std::string> verify(const GraphReader& reader, VerifyLevel level,
 // of verify()'s structure level; public for packed files, whose stored bytes are their frames
 // (their padding is checked on the packed bytes themselves, before they are decoded).
 std::optional<std::string> find_padding_problem(const ContainerReader& reader);
+// The same over the bytes of a container of any kind and what parse_container found in them.
+std::optional<std::string> find_padding_problem(std::span<const std::byte> bytes,
+                                                const Container& container);
 
 }  // namespace mosb
