@@ -627,9 +627,7 @@ Table solver_table(const Context& c) {
   if (!c.references.empty() && !c.options.epsilons.empty()) {
     t.columns.push_back({"evaluated", "Evaluated", "queries evaluated against the reference"});
     for (const auto& e : c.options.epsilon_labels)
-      t.columns.push_back({"covered@" + e,
-                           "cov.\\ $\\varepsilon{=}" + tables::latex_escape(e) + "$",
-                           "covered at ε = " + e});
+      t.columns.push_back(tables::coverage_column(tables::Coverage::covered, e));
   }
   for (std::size_t b = 0; b < c.benchmarks.size(); ++b)
     for (const auto& name : c.benchmarks[b].solver_order) t.rows.push_back(solver_row(c, b, name));
@@ -1286,8 +1284,7 @@ void coverage_figure(const Context& c) {
       "front the solver's covers at ε";
   t.columns = {{"solver", "Solver", "solver"}, {"evaluated", "Queries", "queries"}};
   for (const auto& e : c.options.epsilon_labels)
-    t.columns.push_back({"covered@" + e, "cov.\\ $\\varepsilon{=}" + tables::latex_escape(e) + "$",
-                         "covered at ε = " + e});
+    t.columns.push_back(tables::coverage_column(tables::Coverage::covered, e));
   plots::BarPlot bars;
   bars.title = "ε-coverage per solver";
   bars.x_label = "ε";

@@ -229,6 +229,17 @@ std::string latex_escape(std::string_view text) {
   return out;
 }
 
+Column coverage_column(Coverage what, std::string_view label) {
+  static constexpr std::string_view kKey[] = {"covered", "not_covered", "dominated"};
+  static constexpr std::string_view kLatex[] = {"cov.", "not cov.", "dom."};
+  static constexpr std::string_view kHtml[] = {"covered", "not covered", "dominated"};
+  const auto i = static_cast<std::size_t>(what);
+  const std::string e(label);
+  return {std::string(kKey[i]) + "@" + e,
+          std::string(kLatex[i]) + "\\ $\\varepsilon{=}" + latex_escape(e) + "$",
+          std::string(kHtml[i]) + " at ε = " + e};
+}
+
 void write_csv(std::ostream& out, const Table& table) {
   for (std::size_t i = 0; i < table.columns.size(); ++i)
     out << (i ? "," : "") << csv_field(table.columns[i].key);
@@ -348,11 +359,10 @@ Table comparison_summary(const SolverComparison& comparison,
   }
   if (!for_paper) t.columns.push_back({"not_solved", "not solved"});
   for (const auto& e : epsilon_labels) {
-    t.columns.push_back({"covered@" + e, "cov.\\ $\\varepsilon{=}" + latex_escape(e) + "$"});
+    t.columns.push_back(coverage_column(Coverage::covered, e));
     if (!for_paper) {
-      t.columns.push_back(
-          {"not_covered@" + e, "not cov.\\ $\\varepsilon{=}" + latex_escape(e) + "$"});
-      t.columns.push_back({"dominated@" + e, "dom.\\ $\\varepsilon{=}" + latex_escape(e) + "$"});
+      t.columns.push_back(coverage_column(Coverage::not_covered, e));
+      t.columns.push_back(coverage_column(Coverage::dominated, e));
     }
   }
   t.columns.insert(t.columns.end(), {{"eps_median", "$\\tilde\\varepsilon$"},
@@ -404,8 +414,7 @@ Table comparison_per_query(const SolverComparison& comparison,
                {"solution_size", "$|S|$"},
                {"reference_size", "$|R|$"},
                {"achieved_eps", "$\\varepsilon$"}};
-  for (const auto& e : epsilon_labels)
-    t.columns.push_back({"covered@" + e, "cov.\\ $\\varepsilon{=}" + latex_escape(e) + "$"});
+  for (const auto& e : epsilon_labels) t.columns.push_back(coverage_column(Coverage::covered, e));
   // The runtime the comparison summarises: mosb's wall clock, else the solver's own figure.
   const auto statistic = runtime_statistic(comparison.runtime);
   t.columns.push_back(comparison.runtime == RuntimeSource::wall

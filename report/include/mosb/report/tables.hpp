@@ -55,6 +55,13 @@ struct Table {
 // would otherwise break the table or the run). Other bytes, UTF-8 included, are kept.
 std::string latex_escape(std::string_view text);
 
+// What a query counts as at one ε in an ε-coverage column.
+enum class Coverage { covered, not_covered, dominated };
+// The column of that count at ε = `label` (the ε's decimal text), the one heading every table
+// gives it: key "covered@LABEL" ("not_covered@", "dominated@"), LaTeX "cov. $\varepsilon{=}LABEL$"
+// ("not cov.", "dom."), HTML "covered at ε = LABEL" ("not covered", "dominated").
+Column coverage_column(Coverage what, std::string_view label);
+
 // Numbers: CSV the shortest text that reads back the same ("inf" for infinity), an empty field
 // when absent; LaTeX %.3g, $\infty$, "--" when absent, text escaped; text %.4g, "-" when absent.
 // CSV (RFC 4180) quotes a field holding a comma, a quote, CR or LF, doubling its quotes; a text
