@@ -192,6 +192,26 @@ Json read_json_file(const fs::path& path) {
   }
 }
 
+// The one reader of RESULTS/experiment.json: nullopt when there is none, unless it is `required`
+// (then ErrorCode::not_found, "no experiment here").
+std::optional<Json> read_plan_file(const fs::path& results, bool required) {
+  std::error_code ec;
+  if (fs::exists(results / kPlanFile, ec)) return read_json_file(results / kPlanFile);
+  if (!required) return std::nullopt;
+  throw Error(ErrorCode::not_found,
+              results.string() + ": no experiment here (no " + std::string(kPlanFile) + ")");
+}
+
+// f(cell) for every cell the plan records; a malformed plan names the file.
+template <class F>
+void for_each_planned_cell(const Json& plan, const fs::path& results, F&& f) {
+  try {
+    for (const auto& c : plan.at("cells")) f(c);
+  } catch (const Json::exception& err) {
+    throw Error(ErrorCode::invalid_argument, (results / kPlanFile).string() + ": " + err.what());
+  }
+}
+
 }  // namespace
 
 std::string experiment_error(const Experiment& e, const SourceLine& at,
@@ -529,28 +549,20 @@ bool lock_is_held(const fs::path& results) {
 }  // namespace
 
 std::vector<CellStatus> experiment_status(const fs::path& results) {
-  const auto plan_path = results / kPlanFile;
-  std::error_code ec;
-  if (!fs::exists(plan_path, ec))
-    throw Error(ErrorCode::not_found,
-                results.string() + ": no experiment here (no " + std::string(kPlanFile) + ")");
-  const auto plan = read_json_file(plan_path);
+  const auto plan = *read_plan_file(results, true);
   const auto records = read_results_manifest(results);
   const bool held = lock_is_held(results);
   std::vector<CellStatus> out;
-  try {
-    for (const auto& c : plan.at("cells"))
-      out.push_back(cell_status(cell_of(c), results, records, held));
-  } catch (const Json::exception& err) {
-    throw Error(ErrorCode::invalid_argument, plan_path.string() + ": " + err.what());
-  }
+  for_each_planned_cell(plan, results, [&](const Json& c) {
+    out.push_back(cell_status(cell_of(c), results, records, held));
+  });
   return out;
 }
 
 RecordedRun recorded_run(const fs::path& results) {
-  std::error_code ec;
-  if (!fs::exists(results / kPlanFile, ec)) return {};
-  const auto plan = read_json_file(results / kPlanFile);
+  const auto found = read_plan_file(results, false);
+  if (!found) return {};
+  const auto& plan = *found;
   RecordedRun run;
   if (const auto file = plan.find("file"); file != plan.end() && file->is_string())
     run.file = file->get<std::string>();
@@ -581,15 +593,10 @@ std::vector<fs::path> result_files(const fs::path& path, std::vector<std::string
   // does, and the same results give the same report whatever --jobs was.
   auto records = read_results_manifest(path);
   std::map<std::string, std::size_t> position;
-  if (fs::exists(path / kPlanFile, ec)) {
-    const auto plan = read_json_file(path / kPlanFile);
-    try {
-      for (const auto& c : plan.at("cells"))
-        position.emplace(c.at("file").get<std::string>(), position.size());
-    } catch (const Json::exception& err) {
-      throw Error(ErrorCode::invalid_argument, (path / kPlanFile).string() + ": " + err.what());
-    }
-  }
+  if (const auto plan = read_plan_file(path, false))
+    for_each_planned_cell(*plan, path, [&](const Json& c) {
+      position.emplace(c.at("file").get<std::string>(), position.size());
+    });
   const auto rank = [&](const CellRecord& r) {
     const auto at = position.find(r.cell.file);
     return at == position.end() ? position.size() : at->second;
@@ -610,34 +617,22 @@ std::vector<fs::path> result_files(const fs::path& path, std::vector<std::string
 }
 
 std::vector<fs::path> result_instances(const fs::path& results) {
-  const auto plan_path = results / kPlanFile;
-  std::error_code ec;
-  if (!fs::exists(plan_path, ec))
-    throw Error(ErrorCode::not_found,
-                results.string() + ": no experiment here (no " + std::string(kPlanFile) + ")");
   std::vector<fs::path> out;
-  const auto plan = read_json_file(plan_path);  // a range-for over a temporary's member dangles
-  try {
-    for (const auto& c : plan.at("cells")) {
-      const fs::path file = c.at("instance_file").get<std::string>();
-      if (std::find(out.begin(), out.end(), file) == out.end()) out.push_back(file);
-    }
-  } catch (const Json::exception& err) {
-    throw Error(ErrorCode::invalid_argument, plan_path.string() + ": " + err.what());
-  }
+  const auto plan =
+      *read_plan_file(results, true);  // a range-for over a temporary's member dangles
+  for_each_planned_cell(plan, results, [&](const Json& c) {
+    const fs::path file = c.at("instance_file").get<std::string>();
+    if (std::find(out.begin(), out.end(), file) == out.end()) out.push_back(file);
+  });
   return out;
 }
 
 std::map<std::string, std::set<std::string>> result_views(const fs::path& results) {
-  const auto plan_path = results / kPlanFile;
   std::map<std::string, std::set<std::string>> out;
-  const auto plan = read_json_file(plan_path);
-  try {
-    for (const auto& c : plan.at("cells"))
-      out[c.at("instance_digest").get<std::string>()].insert(c.at("view").get<std::string>());
-  } catch (const Json::exception& err) {
-    throw Error(ErrorCode::invalid_argument, plan_path.string() + ": " + err.what());
-  }
+  const auto plan = *read_plan_file(results, true);
+  for_each_planned_cell(plan, results, [&](const Json& c) {
+    out[c.at("instance_digest").get<std::string>()].insert(c.at("view").get<std::string>());
+  });
   return out;
 }
 
@@ -738,17 +733,13 @@ void make_cell_directory(const fs::path& results, const ExperimentCell& cell) {
 
 // Records the plan; refuses a directory of another experiment.
 void record_plan(const ExperimentPlan& plan, const fs::path& results) {
-  const auto path = results / kPlanFile;
-  std::error_code ec;
-  if (fs::exists(path, ec)) {
-    const auto recorded = read_json_file(path);
-    if (recorded.value("format", "") != kPlanFormat ||
-        recorded.value("name", "") != plan.experiment.name)
-      throw Error(ErrorCode::invalid_argument,
-                  results.string() + " holds the results of experiment '" +
-                      recorded.value("name", "?") + "', not '" + plan.experiment.name + "'");
-  }
-  write_text_atomically(path, plan_json(plan).dump(2) + "\n");
+  if (const auto recorded = read_plan_file(results, false);
+      recorded && (recorded->value("format", "") != kPlanFormat ||
+                   recorded->value("name", "") != plan.experiment.name))
+    throw Error(ErrorCode::invalid_argument,
+                results.string() + " holds the results of experiment '" +
+                    recorded->value("name", "?") + "', not '" + plan.experiment.name + "'");
+  write_text_atomically(results / kPlanFile, plan_json(plan).dump(2) + "\n");
 }
 
 }  // namespace
