@@ -350,9 +350,13 @@ class Released(Published):
 class Served(Published):
     def setUp(self):
         super().setUp()
-        # nginx serves self.dir/www/ (the published store) at /pub/, as in test_pull.
-        self.published = self.store("www", references=4)
-        os.remove(os.path.join(self.published, ".lock"))
+        # nginx serves self.dir/www/ at /pub/, as in test_pull: the experiment released (issue
+        # 45: the instances and references a publisher serves, as suite release writes them).
+        self.published = self.path("www")
+        self.ok("suite", "release", os.path.join(self.base, "res"), "--references",
+                os.path.join(self.base, "refs"), "-o", self.published)
+        if os.path.exists(os.path.join(self.published, ".lock")):
+            os.remove(os.path.join(self.published, ".lock"))
         os.makedirs(self.path("tmp"))
         self.port = test_pull.free_port()
         with open(test_pull.NGINX_CONF) as f:
@@ -395,6 +399,20 @@ class Served(Published):
                         "0,0.1", "--csv", env=self.env)
         self.assertEqual(again.stdout, r.stdout)
         self.assertEqual(again.stderr, "")
+        # The release with its references packed (format 1.6): pulled, checked and evaluated by
+        # URL to the same table.
+        shutil.rmtree(self.published)
+        self.ok("suite", "release", os.path.join(self.base, "res"), "--references",
+                os.path.join(self.base, "refs"), "-o", self.published, "--pack-references")
+        if os.path.exists(os.path.join(self.published, ".lock")):
+            os.remove(os.path.join(self.published, ".lock"))
+        packed = self.path("pulled-packed")
+        self.ok("store", "pull", packed, self.url)
+        self.assertTrue(all(e["packed"] for e in self.manifest(packed)[1]))
+        self.assertTrue(json.loads(self.ok("store", "verify", "--json", packed).stdout)["ok"])
+        r = self.ok("eval", os.path.join(self.base, "res"), "--reference", self.url, "--eps",
+                    "0,0.1", "--csv", env=dict(self.env, MOSB_STORE_CACHE=self.path("cache2")))
+        self.assertEqual(r.stdout.splitlines()[1:], self.local.splitlines()[1:])
 
     def test_a_published_manifest_that_lies_about_a_reference_is_refused(self):
         header, entries = self.manifest(self.published)
