@@ -295,15 +295,26 @@ void check_unique_names(const std::vector<Section>& sections, const Failure& fai
 
 }  // namespace
 
-// The open checks of spec/FORMAT.md §9, steps 1 to 7 and the name rule of step 8, in that order.
-std::optional<format::FileKind> stated_file_kind(std::span<const std::byte> bytes) {
+std::optional<format::FileHeader> stated_header(std::span<const std::byte> bytes) {
   format::FileHeader header{};
   if (bytes.size() < sizeof header) return std::nullopt;
   std::memcpy(&header, bytes.data(), sizeof header);
   if (header.magic != format::kMagic) return std::nullopt;
-  return static_cast<format::FileKind>(header.file_kind);
+  return header;
 }
 
+std::optional<format::FileKind> stated_file_kind(std::span<const std::byte> bytes) {
+  const auto header = stated_header(bytes);
+  if (!header) return std::nullopt;
+  return static_cast<format::FileKind>(header->file_kind);
+}
+
+bool stated_packed(std::span<const std::byte> bytes) {
+  const auto header = stated_header(bytes);
+  return header && format::is_packed(*header);
+}
+
+// The open checks of spec/FORMAT.md §9, steps 1 to 7 and the name rule of step 8, in that order.
 Container parse_container(std::span<const std::byte> bytes, std::string_view display_name,
                           format::FileKind kind) {
   const Failure fail{display_name};

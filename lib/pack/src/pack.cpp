@@ -284,8 +284,12 @@ MappedFile unpack_bytes(std::span<const std::byte> bytes, std::string_view displ
     (void)GraphReader::from_memory(bytes, std::string(display_name));
   } else {
     // A solution file's lengths are its own (SOLUTIONS.md §3): the frames' bound and the memory
-    // cap below limit what decoding allocates, and its reader checks the decoded sections.
+    // cap below limit what decoding allocates, and its reader checks the decoded sections. The
+    // stored bytes' own gaps (FORMAT.md §1: zero), which decoding does not carry over, are checked
+    // here, so a packed file passes only where its unpacked form would.
     refuse_packed_minor(container, display_name);
+    if (const auto problem = find_padding_problem(bytes, container))
+      throw Error(ErrorCode::damaged, std::string(display_name) + ": file is damaged: " + *problem);
   }
   auto header = container.header;
   header.table_offset = format::align_up(position);
@@ -331,11 +335,9 @@ std::optional<std::string> decoded_problem(const MappedFile& file, const MappedF
                                            const std::string& name, VerifyLevel level,
                                            const Progress& progress = {}) {
   if (packable_kind(file.bytes) == format::FileKind::solutions) {
-    // Its checksums were checked while unpacking; its fronts are its reader's to check
-    // (SolutionReader, at every open), which this library does not know.
-    if (!covers(level, VerifyLevel::structure)) return std::nullopt;
-    return find_padding_problem(file.bytes,
-                                parse_container(file.bytes, name, format::FileKind::solutions));
+    // Its checksums and padding were checked while unpacking; its fronts are its reader's to
+    // check (SolutionReader, at every open), which this library does not know.
+    return std::nullopt;
   }
   const auto reader = GraphReader::from_memory(image.bytes, name);
   if (auto problem = verify(reader, level, progress)) return problem;
@@ -536,16 +538,10 @@ std::string pack_file(const std::filesystem::path& in, const std::filesystem::pa
 }
 
 namespace {
-bool packed_bytes(const MappedFile& file) {
-  format::FileHeader header{};
-  std::memcpy(&header, file.bytes.data(), sizeof header);
-  return is_packed(header);
-}
-
 // The file's bytes, decoded when packed.
 MappedFile map_decoded(const std::filesystem::path& path, std::uint64_t max_memory) {
   auto file = map_file(path);
-  return packed_bytes(file) ? unpack_bytes(file.bytes, path.string(), max_memory) : file;
+  return stated_packed(file.bytes) ? unpack_bytes(file.bytes, path.string(), max_memory) : file;
 }
 }  // namespace
 
@@ -561,7 +557,7 @@ FileVerification verify_file(const std::filesystem::path& path, VerifyLevel leve
                              std::uint64_t max_memory, const Progress& progress) {
   const auto file = map_file(path);
   const std::string name = path.string();
-  if (level == VerifyLevel::header || !packed_bytes(file)) {
+  if (level == VerifyLevel::header || !stated_packed(file.bytes)) {
     // Opening checks the header and the table (the header level) and decodes nothing.
     const auto opened = GraphReader::adopt(file, name);
     return {verify(opened, level, progress), opened.digest()};

@@ -105,31 +105,11 @@ std::string_view to_string(Statistic s) {
 
 // ---- SolutionReader ----
 
-namespace {
-// A packed file (SOLUTIONS.md §1) is read from its decoded form, every checksum checked.
-bool packed_bytes(std::span<const std::byte> bytes) {
-  format::FileHeader header{};
-  if (bytes.size() < sizeof header) return false;  // the container's checks say what is wrong
-  std::memcpy(&header, bytes.data(), sizeof header);
-  return format::is_packed(header);
-}
-
-// The decoded form of packed bytes, whose own gaps (FORMAT.md §1: zero), which decoding does not
-// carry over, are checked too: a packed file passes where its unpacked form would.
-MappedFile decoded(std::span<const std::byte> bytes, const std::string& name,
-                   std::uint64_t max_memory) {
-  auto image = unpack_bytes(bytes, name, max_memory);
-  if (const auto problem =
-          find_padding_problem(bytes, parse_container(bytes, name, format::FileKind::solutions)))
-    throw Error(ErrorCode::damaged, name + ": file is damaged: " + *problem);
-  return image;
-}
-}  // namespace
-
 SolutionReader SolutionReader::open(const std::filesystem::path& path) {
   SolutionReader reader;
   auto file = map_file(path);
-  if (packed_bytes(file.bytes)) file = decoded(file.bytes, path.string(), 0);
+  // A packed file (SOLUTIONS.md §1) is read from its decoded form, every checksum checked.
+  if (stated_packed(file.bytes)) file = unpack_bytes(file.bytes, path.string(), 0);
   reader.attach(std::move(file), path.string(), format::FileKind::solutions);
   reader.validate();
   return reader;
@@ -152,8 +132,8 @@ SolutionReader SolutionReader::open_verified(const std::filesystem::path& path) 
 SolutionReader SolutionReader::from_memory(std::span<const std::byte> bytes,
                                            std::string display_name, std::uint64_t max_memory) {
   SolutionReader reader;
-  if (packed_bytes(bytes)) {
-    auto image = decoded(bytes, display_name, max_memory);
+  if (stated_packed(bytes)) {
+    auto image = unpack_bytes(bytes, display_name, max_memory);
     reader.attach(std::move(image), std::move(display_name), format::FileKind::solutions);
   } else {
     reader.attach_borrowed(bytes, std::move(display_name), format::FileKind::solutions);

@@ -323,18 +323,19 @@ ManifestEntry container_entry(const ContainerReader& reader, const std::filesyst
   return e;
 }
 
-// The entry of a solution file: its binding and summary, read from the file (payload unchecked:
-// the store checks it before it lists the file).
-ManifestEntry describe_solutions(const std::filesystem::path& path,
-                                 std::optional<std::string> sha256, const MappedFile& file) {
-  const auto reader = SolutionReader::open(path);  // a packed file decoded: describe the stored one
+}  // namespace
+
+ManifestEntry describe_solutions(const SolutionReader& reader, const std::filesystem::path& path,
+                                 std::optional<std::string> sha256) {
   auto e = container_entry(reader, path, std::move(sha256));
-  format::FileHeader stored{};
-  std::memcpy(&stored, file.bytes.data(), sizeof stored);  // map_file: a header's bytes at least
+  // The reader holds a packed file decoded: size, version and form are the stored file's.
+  const auto file = map_file(path);
+  const auto stored = stated_header(file.bytes);
+  if (!stored) throw Error(ErrorCode::io, path.string() + ": changed while it was read");
   e.size = file.bytes.size();
   e.format_version =
-      std::to_string(stored.version_major) + "." + std::to_string(stored.version_minor);
-  e.packed = is_packed(stored);
+      std::to_string(stored->version_major) + "." + std::to_string(stored->version_minor);
+  e.packed = is_packed(*stored);
   if (!reader.view_name().empty()) e.views.push_back(reader.view_name());
   e.query_sets.push_back(reader.query_set());
   SolutionsEntry s;
@@ -353,12 +354,9 @@ ManifestEntry describe_solutions(const std::filesystem::path& path,
   return e;
 }
 
-}  // namespace
-
 ManifestEntry describe_file(const std::filesystem::path& path, std::optional<std::string> sha256) {
-  const auto file = map_file(path);
-  if (stated_file_kind(file.bytes) == format::FileKind::solutions)
-    return describe_solutions(path, std::move(sha256), file);
+  if (stated_file_kind(map_file(path).bytes) == format::FileKind::solutions)
+    return describe_solutions(SolutionReader::open(path), path, std::move(sha256));
   const auto reader = GraphReader::open(path);
   auto e = container_entry(reader, path, std::move(sha256));
   e.packed = reader.header().required_features != 0;

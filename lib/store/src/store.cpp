@@ -495,8 +495,9 @@ Placement prepare_solutions(const fs::path& source, const Store::AddOptions& opt
                             const ManifestEntry* expected, const std::string* sha256,
                             Staging& staging, const fs::path& directory, const Manifest& manifest,
                             const std::vector<Placement>& added) {
-  Placement p{describe_file(source, sha256 ? std::optional(*sha256) : std::nullopt), source, source,
-              false, sha256 != nullptr};
+  const auto solutions = SolutionReader::open(source);
+  Placement p{describe_solutions(solutions, source, sha256 ? std::optional(*sha256) : std::nullopt),
+              source, source, false, sha256 != nullptr};
   if (expected != nullptr) check_expected(source, p.entry, *expected);
   const auto& digest = p.entry.solutions->instance;
   const ManifestEntry* instance = nullptr;
@@ -511,7 +512,6 @@ Placement prepare_solutions(const fs::path& source, const Store::AddOptions& opt
                 source.string() + ": solutions of instance " + digest +
                     ", which the store does not list (add the instance first, or with it)");
   refuse_symlink(instance_path);
-  const auto solutions = SolutionReader::open(source);
   if (const auto problem = solutions_problem(solutions, instance_path))
     throw Error(ErrorCode::damaged, source.string() + ": " + *problem);
   stage_packed(p, options, staging);

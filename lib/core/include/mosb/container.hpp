@@ -55,10 +55,14 @@ struct Container {
 Container parse_container(std::span<const std::byte> bytes, std::string_view display_name,
                           format::FileKind kind);
 
-// The file kind a file's header states, read from its first 128 bytes without any check but the
-// magic: nullopt for bytes that do not start as a mosb file. Which reader to open it with, not a
-// check (the reader of that kind runs §9).
+// The header a file's first 128 bytes state, without any check but the magic: nullopt for bytes
+// that do not start as a mosb file. Which reader to open it with and whether to decode it first,
+// not a check (the reader of that kind runs §9).
+std::optional<format::FileHeader> stated_header(std::span<const std::byte> bytes);
+// The file kind stated_header states, or nullopt.
 std::optional<format::FileKind> stated_file_kind(std::span<const std::byte> bytes);
+// True when stated_header states a packed file (format::is_packed), whatever its kind.
+bool stated_packed(std::span<const std::byte> bytes);
 
 // What a reader of any file kind holds and offers: the bytes it reads (a mapping, memory it owns,
 // or memory the caller keeps alive), the name its messages carry, the header and the table, and

@@ -89,6 +89,11 @@ void write_manifest(const std::filesystem::path& path, const Manifest& manifest)
 // a read of the file, not its mapping, so that hashing a large file takes no memory of its size.
 ManifestEntry describe_file(const std::filesystem::path& path,
                             std::optional<std::string> sha256 = std::nullopt);
+class SolutionReader;
+// describe_file of a solution file the caller has open: `reader` of the file at `path` (its
+// decoded form when packed, which is not decoded again here).
+ManifestEntry describe_solutions(const SolutionReader& reader, const std::filesystem::path& path,
+                                 std::optional<std::string> sha256 = std::nullopt);
 
 class Metadata;
 // The §7 `source.input.<i>.*` records of an instance, in input order (i = 0, 1, ... until a name
