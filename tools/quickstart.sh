@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The main job on an embedded default: install what building the program needs (and nothing the
-# tests need), build the mosb program alone, generate the paper's Grid 300x300 instance with 3
-# objectives, inspect it and verify it fully.
+# tests need), build the mosb program alone, generate a 300x300 grid with 3 objectives like the
+# suite's Grid-300x300 (seed 1: not the suite's instance, whose seed spec/GENERATORS.md derives
+# from the suite seed), inspect it and verify it fully.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/install-deps.sh build

@@ -34,7 +34,8 @@ bool is_digest(std::string_view text) {
          });
 }
 
-// A status whose front must be empty (SOLUTIONS.md §4).
+// A status that carries a front (solved alone, and its front is non-empty); every other status's
+// front must be empty (SOLUTIONS.md §4).
 bool has_front(QueryStatus s) {
   return s == QueryStatus::solved;
 }

@@ -32,9 +32,11 @@ enum class Measurement {
   // limits the tree, memory.max_usage_in_bytes is its peak, an OOM kill in the group (or failcnt
   // with a failing solver) is a memory-limit.
   cgroup_v1,
-  // RLIMIT_AS per process plus the tree's resident set (/proc/PID/stat of every process of the
-  // solver's process group) polled every 20 ms: its largest sum is the peak, a sum over the limit
-  // kills.
+  // The resident set of the query's processes polled every 20 ms: /proc/PID/statm of every
+  // descendant of the query's launcher, not the launcher itself (found through
+  // /proc/PID/task/TID/children, so a process that left the solver's process group or session
+  // still counts); the largest sum is the peak, a sum over the limit kills. RLIMIT_AS of twice
+  // the limit on every process is a backstop for allocations faster than the poll (RUN.md §4).
   rlimit_poll,
 };
 inline constexpr auto kMeasurementNames = enum_names<Measurement>({
@@ -66,8 +68,8 @@ struct ProcessLimits {
   double wall_seconds = 0;         // 0: none
   std::uint64_t memory_bytes = 0;  // 0: none (still measured)
   double grace_seconds = 1;        // between SIGTERM and SIGKILL on a timeout
-  // 0: none. User + system time of the solver's process group (its live processes and the children
-  // they reaped), polled every 20 ms.
+  // 0: none. User + system time of the query's processes (the launcher's descendants, found as
+  // for rlimit_poll), each with the children it has reaped (/proc/PID/stat), polled every 20 ms.
   double cpu_seconds = 0;
   // The most bytes a solver may write to any one output file (stdout, stderr, {front}), and the
   // most a compressed log may decompress to; a front of more than output_bytes / 8 values is
