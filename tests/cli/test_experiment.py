@@ -110,13 +110,13 @@ class ExperimentTest(ExperimentFixture):
         self.run_experiment(local)
         array, results = self.path("array"), self.path("results")
         r = self.ok("experiment", "run", self.experiment, "-o", results, "--slurm", array,
-                    "--queries-per-task", "10")
+                    "--queries-per-task", "10", "--throttle", "2")
         cells = self.expected_cells()
         tasks = (cells + 1) // 2  # cells of 5 queries, two a task
         self.assertIn("%d tasks of the %d cells" % (tasks, cells), r.stdout)
         self.assertIn("submit it: sbatch --parsable %s/run.sbatch" % array, r.stdout)
         script = read(os.path.join(array, "run.sbatch")).decode()
-        self.assertIn("#SBATCH --array=1-%d\n" % tasks, script)
+        self.assertIn("#SBATCH --array=1-%d%%2\n" % tasks, script)
         self.assertIn('experiment run %s --queries-per-task 10' % self.experiment, script)
         self.assertIn('--task "$shard"/%d -o %s/task-"$shard"' % (tasks, array), script)
         status = json.loads(self.ok("experiment", "run", self.experiment, "-o", results,

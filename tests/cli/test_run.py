@@ -413,23 +413,29 @@ class RunTest(CliTest):
         self.assertEqual(self.exported("out.sol"), self.exported("straight.sol"))
 
     def test_sigint_stops_the_solvers_and_keeps_the_journal(self):
+        """SIGHUP (a closed terminal) stops a run as SIGINT does."""
         solver = self.script("solver", "record %s\n(record %s; exec sleep 30) &\nwait\n" %
                              (self.pids, self.pids))
         args = [mosbtest.MOSB, "run", self.grid, "--view", "Grid_2", "--queries", "q", "--solver",
                 solver, "--jobs", "2", "-o", self.path("out.sol")]
-        p = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-        deadline = time.monotonic() + 20
-        while time.monotonic() < deadline:
-            if os.path.exists(self.pids) and len(mosbtest.read(self.pids, "r").split()) >= 4:
-                break
-            time.sleep(0.05)
-        p.send_signal(signal.SIGINT)
-        _, err = p.communicate(timeout=30)
-        self.assertEqual(p.returncode, 130, err)
-        self.assertIn("continue with --resume", err)
-        self.assertTrue(os.path.exists(self.path("out.sol.journal")))
-        self.assertFalse(os.path.exists(self.path("out.sol")))
-        self.assert_no_process_left()
+        for stop in (signal.SIGHUP, signal.SIGINT):
+            if os.path.exists(self.pids):
+                os.remove(self.pids)
+            p = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+            deadline = time.monotonic() + 20
+            while time.monotonic() < deadline:
+                if os.path.exists(self.pids) and len(mosbtest.read(self.pids, "r").split()) >= 4:
+                    break
+                time.sleep(0.05)
+            p.send_signal(stop)
+            _, err = p.communicate(timeout=30)
+            self.assertEqual(p.returncode, 130, (stop, err))
+            self.assertIn("continue with --resume", err)
+            self.assertTrue(os.path.exists(self.path("out.sol.journal")))
+            self.assertFalse(os.path.exists(self.path("out.sol")))
+            self.assert_no_process_left()
+            if stop == signal.SIGHUP:
+                os.remove(self.path("out.sol.journal"))
         lines = mosbtest.read(self.path("out.sol.journal"), "r").count("\n")
         with open(self.path("out.sol.journal"), "a") as f:  # a whole line, not a torn one
             f.write("not json\n")

@@ -248,7 +248,7 @@ class Seal(CliTest):
     def test_a_bad_isolation_is_a_usage_error(self):
         r = self.mosb("run", self.path("grid.mosb"), "--view", "Grid_2", "--solver", "/bin/true",
                       "-o", self.path("x.sol"), env=dict(os.environ, MOSB_ISOLATION="lax"))
-        self.assert_one_line_error(r, "MOSB_ISOLATION=lax: give seal or none", code=2)
+        self.assert_one_line_error(r, "MOSB_ISOLATION=lax: give one of seal, none", code=2)
 
 
 class PinnedPrograms(CliTest):

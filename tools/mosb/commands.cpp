@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <csignal>
 #include <cstdlib>
 #include <iostream>
 #include <set>
@@ -84,8 +85,61 @@ CLI::Option* add_isolation_option(CLI::App* subcommand, std::string& isolation) 
 
 Seal parse_isolation(const std::string& isolation) {
   const auto seal = kSealNames.parse(isolation);
-  if (!seal) throw UsageError("MOSB_ISOLATION=" + isolation + ": give seal or none");
+  if (!seal)
+    throw UsageError("MOSB_ISOLATION=" + isolation + ": give one of " + kSealNames.choices_text());
   return *seal;
+}
+
+CLI::Option* add_measurement_option(CLI::App* subcommand, std::string& measurement) {
+  measurement = "auto";
+  auto names = kMeasurementNames.names();
+  names.insert(names.begin(), "auto");
+  return subcommand
+      ->add_option("--measurement", measurement,
+                   "auto (default: the first that works), " + kMeasurementNames.choices_text() +
+                       ": how memory is limited and measured")
+      ->check(CLI::IsMember(names));
+}
+
+std::optional<Measurement> chosen_measurement(const std::string& measurement) {
+  return measurement == "auto" ? std::nullopt : parse_measurement(measurement);
+}
+
+namespace {
+std::atomic<bool> g_stop{false};
+static_assert(std::atomic<bool>::is_always_lock_free);
+
+extern "C" void request_stop(int) {
+  g_stop.store(true);
+}
+}  // namespace
+
+const std::atomic<bool>& install_stop_handlers() {
+  struct sigaction action {};
+  action.sa_handler = request_stop;
+  sigemptyset(&action.sa_mask);
+  for (const int signal : {SIGINT, SIGTERM, SIGHUP}) ::sigaction(signal, &action, nullptr);
+  ::signal(SIGPIPE, SIG_IGN);
+  return g_stop;
+}
+
+CLI::Option* add_slurm_options(CLI::App* subcommand, SlurmArgs& slurm, const SlurmHelp& help) {
+  subcommand->add_option("--slurm", slurm.directory, help.slurm)->option_text("DIR");
+  auto* queries_per_task =
+      subcommand->add_option("--queries-per-task", slurm.queries_per_task, help.queries_per_task)
+          ->check(unsigned_integer(std::numeric_limits<std::uint32_t>::max()));
+  subcommand
+      ->add_option("--throttle", slurm.throttle,
+                   "with --slurm: at most K tasks at once (the array's %K; default no limit)")
+      ->check(unsigned_integer(1000000));
+  subcommand->add_option("--account", slurm.account, "with --slurm: sbatch --account")
+      ->check(printable_text());
+  subcommand->add_option("--partition", slurm.partition, "with --slurm: sbatch --partition")
+      ->check(printable_text());
+  subcommand->add_flag("--submit", slurm.submit,
+                       "with --slurm: submit with sbatch (else the sbatch command is printed)");
+  subcommand->add_flag("--status", slurm.status, help.status);
+  return queries_per_task;
 }
 
 CLI::Validator non_negative_real() {

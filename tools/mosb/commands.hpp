@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -72,8 +73,36 @@ CLI::Validator reference_source();
 // `--isolation seal|none` of `mosb run` and `mosb experiment run` (spec/RUN.md §4.1): its default
 // is $MOSB_ISOLATION when set (a cluster's or a test suite's), else seal.
 CLI::Option* add_isolation_option(CLI::App* subcommand, std::string& isolation);
-// The choice, or a UsageError naming $MOSB_ISOLATION when that holds neither word.
+// The choice, or a UsageError naming $MOSB_ISOLATION when that holds none of the words.
 Seal parse_isolation(const std::string& isolation);
+// `--measurement auto|...` of `mosb run` and `mosb experiment run`: how memory is limited and
+// measured (kMeasurementNames; auto, the default: the first that works).
+CLI::Option* add_measurement_option(CLI::App* subcommand, std::string& measurement);
+// The measurement chosen: nullopt for auto.
+std::optional<Measurement> chosen_measurement(const std::string& measurement);
+
+// Makes SIGINT, SIGTERM and SIGHUP (a closed terminal) set the returned flag, the stop request
+// `run` and `experiment run` pass their library, which ends the running solvers, keeps the
+// journal and returns; and ignores SIGPIPE, so that a closed pipe on stdout (mosb run ... |
+// head -1) makes a write fail instead of killing mosb before it removes its temporaries.
+const std::atomic<bool>& install_stop_handlers();
+
+// `--slurm DIR` and the options of a SLURM job array, the same for `mosb run` (spec/RUN.md §8)
+// and `mosb experiment run` (spec/EXPERIMENT.md §4): --queries-per-task, --throttle,
+// --account, --partition, --submit and --status.
+struct SlurmArgs {
+  std::string directory, account, partition;
+  std::optional<std::uint64_t> queries_per_task;
+  unsigned throttle = 0;
+  bool submit = false, status = false;
+};
+struct SlurmHelp {
+  std::string slurm;             // what --slurm DIR writes
+  std::string queries_per_task;  // how --queries-per-task K makes tasks
+  std::string status;            // what --status shows
+};
+// Registers the options; returns --queries-per-task's (which `run` makes exclude --shards).
+CLI::Option* add_slurm_options(CLI::App* subcommand, SlurmArgs& slurm, const SlurmHelp& help);
 // Every option that takes an ε: a non-negative decimal as parse_epsilon (mosb/eval.hpp) reads it,
 // the form spec/EVALUATION.md §2 allows and `solution.epsilon` stores.
 CLI::Validator epsilon_value();

@@ -4,7 +4,6 @@
 #include "mosb/experiment.hpp"
 
 #include <CLI/CLI.hpp>
-#include <csignal>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -24,23 +23,17 @@ namespace mosb::cli {
 
 namespace {
 
-std::atomic<bool> g_experiment_stop{false};
-
-extern "C" void request_experiment_stop(int) {
-  g_experiment_stop.store(true);
-}
-
 struct ExperimentRunArgs {
-  std::string file, output, measurement = "auto", isolation;
+  std::string file, output, measurement, isolation;
   unsigned jobs = 1;
   bool json = false;
   // One SLURM job array for the matrix (spec/EXPERIMENT.md §4), and the task an array task runs.
-  std::string slurm, task, account, partition;
+  SlurmArgs slurm;
+  std::string task;
   std::vector<std::string> executables;  // --executable NAME=PATH
   // The command line's narrowing of the file: another store, fewer benchmarks, a shorter time.
   std::string store, benchmarks, time_limit;
-  std::optional<std::uint64_t> queries_per_task;
-  bool submit = false, status = false, resume = false;
+  bool resume = false;
 };
 
 struct ExperimentStatusArgs {
@@ -91,14 +84,9 @@ ExperimentPlan read_plan(const ExperimentRunArgs& a) {
 int run_cells(const ExperimentPlan& plan, const ExperimentRunArgs& a) {
   ExperimentOptions options;
   options.jobs = a.jobs;
-  if (a.measurement != "auto") options.measurement = parse_measurement(a.measurement);
+  options.measurement = chosen_measurement(a.measurement);
   options.seal = parse_isolation(a.isolation);
-  struct sigaction action {};
-  action.sa_handler = request_experiment_stop;
-  sigemptyset(&action.sa_mask);
-  ::sigaction(SIGINT, &action, nullptr);
-  ::sigaction(SIGTERM, &action, nullptr);
-  ::signal(SIGPIPE, SIG_IGN);
+  const auto& stop = install_stop_handlers();
   TerminalProgress progress;
   options.progress = [&](const ExperimentProgress& p) { progress.update(p); };
   options.failed = [&](const ExperimentCell& cell, const QueryRecord& r, const Query&) {
@@ -106,7 +94,7 @@ int run_cells(const ExperimentPlan& plan, const ExperimentRunArgs& a) {
     std::cerr << "mosb: " << escape_for_terminal(cell.id()) << ": query " << r.query
               << " failed: " << escape_for_terminal(r.message) << '\n';
   };
-  const auto result = run_experiment(plan, a.output, options, g_experiment_stop);
+  const auto result = run_experiment(plan, a.output, options, stop);
   progress.end_line();
   if (result.interrupted) {
     std::cerr << "mosb: interrupted; finished cells are listed in " << escape_for_terminal(a.output)
@@ -146,29 +134,32 @@ int run_cells(const ExperimentPlan& plan, const ExperimentRunArgs& a) {
 // `--task i/N`: what array task i runs, its cells recomputed from the file and checked to be
 // those of the array (N tasks of --queries-per-task K).
 int run_experiment_task(const ExperimentRunArgs& a) {
-  if (!a.queries_per_task) throw UsageError("--task: give --queries-per-task K as well");
+  const auto& queries_per_task = a.slurm.queries_per_task;
+  if (!queries_per_task) throw UsageError("--task: give --queries-per-task K as well");
   const auto task = parse_shard(a.task);
   if (!task) throw UsageError("--task " + a.task + ": not i/N with 1 <= i <= N");
   const auto plan = read_plan(a);
-  const auto tasks = experiment_tasks(plan, *a.queries_per_task);
+  const auto tasks = experiment_tasks(plan, *queries_per_task);
   if (tasks.size() != task->count)
     throw UsageError("--task " + a.task + ": the experiment's cells make " +
                      std::to_string(tasks.size()) + " tasks of at most " +
-                     std::to_string(*a.queries_per_task) + " queries, not " +
+                     std::to_string(*queries_per_task) + " queries, not " +
                      std::to_string(task->count) + " (the experiment changed)");
   return run_cells(task_plan(plan, tasks, task->index), a);
 }
 
 int run_experiment_slurm_new(const ExperimentRunArgs& a) {
-  if (!a.queries_per_task) throw UsageError("--slurm DIR: give --queries-per-task K");
+  const auto& queries_per_task = a.slurm.queries_per_task;
+  if (!queries_per_task) throw UsageError("--slurm DIR: give --queries-per-task K");
   const auto plan = read_plan(a);
-  SlurmRun run = slurm_run_here(a.slurm);
+  SlurmRun run = slurm_run_here(a.slurm.directory);
   plan_experiment_array(run, plan, std::filesystem::absolute(a.file).lexically_normal().string(),
-                        *a.queries_per_task);
+                        *queries_per_task);
   run.jobs = a.jobs;
-  run.account = a.account;
-  run.partition = a.partition;
-  run.run_arguments = {run.instance,  "--queries-per-task",   std::to_string(*a.queries_per_task),
+  run.throttle = a.slurm.throttle;
+  run.account = a.slurm.account;
+  run.partition = a.slurm.partition;
+  run.run_arguments = {run.instance,  "--queries-per-task",   std::to_string(*queries_per_task),
                        "--jobs",      std::to_string(a.jobs), "--measurement",
                        a.measurement, "--isolation",          a.isolation};
   for (const auto& given : a.executables)
@@ -185,7 +176,7 @@ int run_experiment_slurm_new(const ExperimentRunArgs& a) {
             << " tasks of the " << plan.cells.size() << " cells (" << run.queries
             << " queries, at most " << run.largest_shard << " a task), --time "
             << (time ? slurm_time_text(*time) : std::string("(the partition's default)")) << '\n';
-  if (a.submit)
+  if (a.slurm.submit)
     std::cout << "submitted array job " << submit_shards(run, all) << " (" << run.shards
               << " tasks)\n";
   else
@@ -241,11 +232,11 @@ void print_task_states(const SlurmStatus& status,
 // every finished cell merged into -o, and the tasks neither done nor queued resubmitted.
 int run_experiment_slurm_existing(const ExperimentRunArgs& a) {
   const auto plan = read_plan(a);
-  const SlurmRun run = read_slurm_directory(a.slurm, kExperimentKind);
+  const SlurmRun run = read_slurm_directory(a.slurm.directory, kExperimentKind);
   const auto tasks = experiment_array_tasks(
       run, plan, std::filesystem::absolute(a.file).lexically_normal().string());
   const auto status = experiment_array_status(run, plan, tasks);
-  if (a.status) {
+  if (a.slurm.status) {
     print_task_states(status, tasks, a.json);
     return 0;
   }
@@ -255,7 +246,7 @@ int run_experiment_slurm_existing(const ExperimentRunArgs& a) {
   const auto merged = merge_experiment_results(plan, a.output, parts);
   const auto resubmit = shards_to_resubmit(status.shards).resubmit;
   std::optional<std::string> job;
-  if (a.submit && !resubmit.empty()) job = submit_shards(run, resubmit);
+  if (a.slurm.submit && !resubmit.empty()) job = submit_shards(run, resubmit);
   if (a.json) {
     JsonWriter out(std::cout);
     out.begin_object().key("results").value(a.output).key("merged").value(merged);
@@ -277,18 +268,20 @@ int run_experiment_slurm_existing(const ExperimentRunArgs& a) {
 }
 
 int run_experiment_command(const ExperimentRunArgs& a) {
+  const auto& slurm = a.slurm;
   if (!a.task.empty()) {
-    if (!a.slurm.empty() || a.submit || a.status || a.resume)
+    if (!slurm.directory.empty() || slurm.submit || slurm.status || a.resume)
       throw UsageError("--task: not with --slurm, --submit, --status or --resume");
     return run_experiment_task(a);
   }
-  if (!a.slurm.empty())
-    return a.status || a.resume ? run_experiment_slurm_existing(a) : run_experiment_slurm_new(a);
-  if (a.submit || a.status || a.resume || a.queries_per_task || !a.account.empty() ||
-      !a.partition.empty())
+  if (!slurm.directory.empty())
+    return slurm.status || a.resume ? run_experiment_slurm_existing(a)
+                                    : run_experiment_slurm_new(a);
+  if (slurm.submit || slurm.status || a.resume || slurm.queries_per_task || slurm.throttle > 0 ||
+      !slurm.account.empty() || !slurm.partition.empty())
     throw UsageError(
-        "--submit, --status, --resume, --queries-per-task, --account and --partition: only with "
-        "--slurm DIR");
+        "--submit, --status, --resume, --queries-per-task, --throttle, --account and "
+        "--partition: only with --slurm DIR");
   return run_cells(read_plan(a), a);
 }
 
@@ -363,18 +356,14 @@ Command add_experiment(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingFile);
   run->add_option("-o,--output", run_args->output, "the results directory")->required();
-  run->add_option("--slurm", run_args->slurm,
-                  "write one SLURM job array for the whole matrix into DIR (tasks: shards of "
-                  "cells); with --status or --resume, the array DIR holds");
-  run->add_option("--queries-per-task", run_args->queries_per_task,
-                  "with --slurm: consecutive cells packed into tasks of at most K queries");
-  run->add_flag("--submit", run_args->submit, "with --slurm: submit the array (sbatch)");
-  run->add_flag("--status", run_args->status, "with --slurm DIR: each task's state");
+  add_slurm_options(run, run_args->slurm,
+                    {"write one SLURM job array for the whole matrix into DIR (tasks: shards of "
+                     "cells); with --status or --resume, the array DIR holds",
+                     "with --slurm: consecutive cells packed into tasks of at most K queries",
+                     "with --slurm DIR: each task's state"});
   run->add_flag("--resume", run_args->resume,
                 "with --slurm DIR: merge the finished cells into -o, resubmit (--submit) the "
                 "tasks neither done nor queued");
-  run->add_option("--account", run_args->account, "with --slurm: sbatch --account");
-  run->add_option("--partition", run_args->partition, "with --slurm: sbatch --partition");
   run->add_option("--task", run_args->task,
                   "i/N: run array task i's cells only (what the job array's tasks run)");
   run->add_option("--executable", run_args->executables,
@@ -391,9 +380,7 @@ Command add_experiment(CLI::App& app) {
       ->check(duration());
   run->add_option("--jobs,-j", run_args->jobs, "queries of a cell run at the same time")
       ->check(CLI::Range(1u, 1024u));
-  run->add_option("--measurement", run_args->measurement,
-                  "how memory is limited and measured (auto, cgroup-v1, rlimit-poll)")
-      ->check(CLI::IsMember({"auto", "cgroup-v1", "rlimit-poll"}));
+  add_measurement_option(run, run_args->measurement);
   add_isolation_option(run, run_args->isolation);
   add_json_flag(run, run_args->json);
   auto status_args = std::make_shared<ExperimentStatusArgs>();

@@ -35,7 +35,7 @@ namespace {
 struct RunArgs {
   std::string instance, output, solver, time_limit = "0", cpu_limit = "0",
                                         output_format = "protocol";
-  std::string measurement = "auto", solver_name, solver_version, epsilon = "0";
+  std::string measurement, solver_name, solver_version, epsilon = "0";
   std::string isolation;  // add_isolation_option's default
   ViewChoice choice;
   std::uint64_t memory_limit = 0, max_output = kDefaultOutputBytes;
@@ -49,20 +49,10 @@ struct RunArgs {
   std::vector<std::string> profile_options;
   double scale = 0;
   bool list_profiles = false;
-  // --slurm DIR and its options
-  std::string slurm, account, partition;
-  std::optional<std::uint64_t> shards, queries_per_task;
-  unsigned throttle = 0;
-  bool submit = false, status = false;
+  SlurmArgs slurm;  // --slurm DIR and its options
+  std::optional<std::uint64_t> shards;
   CLI::App* app = nullptr;  // for which options were given
 };
-
-std::atomic<bool> g_stop{false};
-static_assert(std::atomic<bool>::is_always_lock_free);
-
-extern "C" void request_stop(int) {
-  g_stop.store(true);
-}
 
 void print_summary(const RunArgs& a, const RunResult& r) {
   if (a.json) {
@@ -298,7 +288,7 @@ RunConfig run_config(const RunArgs& a, const GraphReader& instance) {
   config.jobs = a.jobs;
   config.pin = a.pin;
   config.threads = a.threads;
-  if (a.measurement != "auto") config.measurement = parse_measurement(a.measurement);
+  config.measurement = chosen_measurement(a.measurement);
   config.seal = parse_isolation(a.isolation);
   config.resume = a.resume;
   config.output = a.output;
@@ -321,14 +311,7 @@ int run_run(const RunArgs& a) {
   checked_selection(instance, a.choice);
   RunConfig config = run_config(a, instance);
   config.shard = shard;
-  struct sigaction action {};
-  action.sa_handler = request_stop;
-  sigemptyset(&action.sa_mask);
-  ::sigaction(SIGINT, &action, nullptr);
-  ::sigaction(SIGTERM, &action, nullptr);
-  // A closed pipe on stdout (mosb run ... | head -1) must not kill the run before it removes its
-  // temporaries: the write fails instead.
-  ::signal(SIGPIPE, SIG_IGN);
+  const auto& stop = install_stop_handlers();
   TerminalProgress progress;
   RunCallbacks callbacks;
   callbacks.progress = [&](const RunProgress& p) { progress.update(p); };
@@ -336,7 +319,7 @@ int run_run(const RunArgs& a) {
     progress.end_line();
     report_failed(r, q);
   };
-  const RunResult result = run_solver(config, callbacks, g_stop);
+  const RunResult result = run_solver(config, callbacks, stop);
   progress.end_line();
   if (result.interrupted) {
     std::cerr << "mosb: interrupted; " << result.total - result.counts[QueryStatus::not_run]
@@ -356,18 +339,19 @@ int run_slurm_new(const RunArgs& a) {
   const auto instance = open_run_instance(a.instance);
   const View selection = checked_selection(instance, a.choice);
   try {  // a shard count that does not fit the query set is a usage error
-    slurm_shard_count(instance.queries(selection.query_set).size(), a.shards, a.queries_per_task);
+    slurm_shard_count(instance.queries(selection.query_set).size(), a.shards,
+                      a.slurm.queries_per_task);
   } catch (const Error& e) {
     throw UsageError(e.what());
   }
   SlurmRequest request;
-  request.directory = a.slurm;
+  request.directory = a.slurm.directory;
   request.run_options = task_options(a);
   request.shards = a.shards;
-  request.queries_per_task = a.queries_per_task;
-  request.throttle = a.throttle;
-  request.account = a.account;
-  request.partition = a.partition;
+  request.queries_per_task = a.slurm.queries_per_task;
+  request.throttle = a.slurm.throttle;
+  request.account = a.slurm.account;
+  request.partition = a.slurm.partition;
   const SlurmRun run = plan_slurm_run(run_config(a, instance), request);
   create_slurm_directory(run);
   std::vector<std::uint64_t> all(run.shards);
@@ -375,7 +359,7 @@ int run_slurm_new(const RunArgs& a) {
   const auto time = slurm_time_seconds(run);
   const auto mib = slurm_memory_mib(run);
   std::optional<std::string> job;
-  if (a.submit) {
+  if (a.slurm.submit) {
     try {
       job = submit_shards(run, all);
     } catch (const Error& e) {
@@ -512,11 +496,11 @@ void print_status_text(const SlurmRun& run, const SlurmStatus& status) {
 int run_slurm_existing(const RunArgs& a) {
   refuse(a, {Role::run, Role::local, Role::plan},
          "not with --slurm DIR --resume or --status (DIR/run.json has the run)");
-  if (a.status && a.resume) throw UsageError("--status: not with --resume");
-  if (a.status && a.submit) throw UsageError("--submit: not with --status");
-  const SlurmRun run = read_slurm_directory(a.slurm, kRunKind);
+  if (a.slurm.status && a.resume) throw UsageError("--status: not with --resume");
+  if (a.slurm.status && a.slurm.submit) throw UsageError("--submit: not with --status");
+  const SlurmRun run = read_slurm_directory(a.slurm.directory, kRunKind);
   const SlurmStatus status = slurm_status(run);
-  if (a.status) {
+  if (a.slurm.status) {
     if (a.json)
       print_status_json(run, status, nullptr, std::nullopt);
     else
@@ -525,7 +509,7 @@ int run_slurm_existing(const RunArgs& a) {
   }
   const auto [resubmit, queued] = shards_to_resubmit(status.shards);
   std::optional<std::string> job;
-  if (a.submit && !resubmit.empty()) job = submit_shards(run, resubmit);
+  if (a.slurm.submit && !resubmit.empty()) job = submit_shards(run, resubmit);
   if (a.json) {
     print_status_json(run, status, &resubmit, job);
     return 0;
@@ -591,8 +575,8 @@ int run_command(const RunArgs& a) {
         throw UsageError(std::string(option.name) + ": not with --list-profiles");
     return list_profiles(a);
   }
-  if (a.slurm.empty()) return run_run(a);
-  if (a.resume || a.status) return run_slurm_existing(a);
+  if (a.slurm.directory.empty()) return run_run(a);
+  if (a.resume || a.slurm.status) return run_slurm_existing(a);
   return run_slurm_new(a);
 }
 
@@ -639,12 +623,7 @@ Command add_run(CLI::App& app) {
   }
   sub->add_option("--output-format", a->output_format, formats_help + " (default protocol)")
       ->check(CLI::IsMember(format_names));
-  auto measurements = kMeasurementNames.names();
-  measurements.insert(measurements.begin(), "auto");
-  sub->add_option("--measurement", a->measurement,
-                  "auto (default: the first that works), " + kMeasurementNames.choices_text() +
-                      ": how memory is limited and measured")
-      ->check(CLI::IsMember(measurements));
+  add_measurement_option(sub, a->measurement);
   add_isolation_option(sub, a->isolation);
   sub->add_flag("--resume", a->resume,
                 "continue the run the journal OUTPUT.journal records; with --slurm DIR, resubmit "
@@ -691,27 +670,14 @@ Command add_run(CLI::App& app) {
       ->option_text("DIR");
   sub->add_flag("--list-profiles", a->list_profiles, "print the shipped solver profiles");
   add_output_option(sub, a->output, "the solution file (required without --slurm)");
-  sub->add_option("--slurm", a->slurm,
-                  "write a SLURM job array to DIR instead of running: one task per shard, each "
-                  "writing DIR/shard-i.sol (spec/RUN.md section 8)")
-      ->option_text("DIR");
   auto* shards = sub->add_option("--shards", a->shards, "with --slurm: N shards, one task each")
                      ->check(unsigned_integer(1000000));
-  sub->add_option("--queries-per-task", a->queries_per_task,
-                  "with --slurm: shards of at most K queries (ceil(Q / K) shards)")
-      ->check(unsigned_integer(std::numeric_limits<std::uint32_t>::max()))
+  add_slurm_options(sub, a->slurm,
+                    {"write a SLURM job array to DIR instead of running: one task per shard, each "
+                     "writing DIR/shard-i.sol (spec/RUN.md section 8)",
+                     "with --slurm: shards of at most K queries (ceil(Q / K) shards)",
+                     "with --slurm DIR: the shards' files and the array's state (squeue, sacct)"})
       ->excludes(shards);
-  sub->add_option("--throttle", a->throttle,
-                  "with --slurm: at most K tasks at once (the array's %K; default no limit)")
-      ->check(unsigned_integer(1000000));
-  sub->add_option("--account", a->account, "with --slurm: sbatch --account")
-      ->check(printable_text());
-  sub->add_option("--partition", a->partition, "with --slurm: sbatch --partition")
-      ->check(printable_text());
-  sub->add_flag("--submit", a->submit,
-                "with --slurm: submit with sbatch (else the sbatch command is printed)");
-  sub->add_flag("--status", a->status,
-                "with --slurm DIR: the shards' files and the array's state (squeue, sacct)");
   add_json_flag(sub, a->json);
   for (const auto* option : sub->get_options())  // a programming error, caught by every test
     if (find_run_option(option->get_name()) == nullptr)
