@@ -111,10 +111,8 @@ int run_cells(const ExperimentPlan& plan, const ExperimentRunArgs& a) {
     out.key("skipped").value(result.skipped);
     out.key("resumed").value(result.resumed);
     out.key("queries_from_journal").value(result.queries_from_journal);
-    out.key("statuses").begin_object();
-    for (const auto status : kQueryStatuses)
-      out.key(std::string(to_string(status))).value(result.counts[status]);
-    out.end_object();
+    out.key("statuses");
+    json_status_counts(out, result.counts);
     out.end_object();
     std::cout << '\n';
     return no_query_completed(result.counts, result.failures);
@@ -303,10 +301,8 @@ int run_experiment_status(const ExperimentStatusArgs& a) {
       out.key("state").value(to_string(c.state));
       out.key("queries").value(c.cell.queries);
       out.key("journaled").value(c.journaled);
-      out.key("statuses").begin_object();
-      for (const auto status : kQueryStatuses)
-        out.key(std::string(to_string(status))).value(c.counts[status]);
-      out.end_object();
+      out.key("statuses");
+      json_status_counts(out, c.counts);
       if (!c.detail.empty()) out.key("detail").value(c.detail);
       out.end_object();
     }

@@ -506,9 +506,7 @@ CellStatus cell_status(const ExperimentCell& cell, const fs::path& results,
   const auto journal = journal_path((results / cell.file).string());
   if (fs::exists(journal, ec)) {
     s.state = lock_held ? CellState::running : CellState::stopped;
-    const auto text = read_whole_file(journal);
-    const auto lines = static_cast<std::uint64_t>(std::count(text.begin(), text.end(), '\n'));
-    s.journaled = lines > 0 ? lines - 1 : 0;  // line 1 is the binding
+    s.journaled = journaled_queries(journal);
   }
   return s;
 }
@@ -769,7 +767,7 @@ ExperimentResult run_experiment(const ExperimentPlan& plan, const fs::path& resu
     done[c] = 1;
     ++progress.cells_done;
     progress.queries_done += plan.cells[c].queries;
-    for (const auto status : kQueryStatuses) progress.counts[status] += r->counts[status];
+    progress.counts += r->counts;
   }
   result.cells = plan.cells.size();
   result.skipped = progress.cells_done;
@@ -819,7 +817,7 @@ ExperimentResult run_experiment(const ExperimentPlan& plan, const fs::path& resu
       auto now = before;
       now.queries_done += p.done;
       now.queries_done_here += p.done_here;
-      for (const auto status : kQueryStatuses) now.counts[status] += p.counts[status];
+      now.counts += p.counts;
       now.elapsed_seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
       if (options.progress) options.progress(now);
@@ -842,14 +840,13 @@ ExperimentResult run_experiment(const ExperimentPlan& plan, const fs::path& resu
     ++progress.cells_done;
     progress.queries_done = before.queries_done + cell.queries;
     progress.queries_done_here = before.queries_done_here + run.ran;
-    for (const auto status : kQueryStatuses) progress.counts[status] += run.counts[status];
+    progress.counts += run.counts;
     progress.elapsed_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     if (options.progress) options.progress(progress);
   }
   if (stop.load()) result.interrupted = true;
-  for (const auto& r : records)
-    for (const auto status : kQueryStatuses) result.counts[status] += r.counts[status];
+  for (const auto& r : records) result.counts += r.counts;
   return result;
 }
 
@@ -992,7 +989,7 @@ TaskFiles task_files(const ExperimentPlan& task, const fs::path& directory) {
     if (s.state == CellState::done || s.state == CellState::failed) {
       ++t.cells_done;
       t.queries_done += cell.queries;
-      for (const auto status : kQueryStatuses) t.counts[status] += s.counts[status];
+      t.counts += s.counts;
     } else {
       t.queries_done += s.journaled;
     }

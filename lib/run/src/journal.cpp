@@ -6,6 +6,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 
 #include "mosb/checksum.hpp"
 #include "mosb/error.hpp"
@@ -296,3 +297,25 @@ void Journal::remove() {
 }
 
 }  // namespace mosb::run_internal
+
+namespace mosb {
+
+std::uint64_t journaled_queries(const std::string& journal) {
+  std::error_code ec;
+  if (!std::filesystem::exists(journal, ec)) return 0;
+  const std::string text = read_whole_file(journal);
+  std::uint64_t records = 0;
+  std::size_t pos = text.find('\n');  // line 1 is the binding
+  while (pos != std::string::npos && pos + 1 < text.size()) {
+    const std::size_t begin = pos + 1;
+    pos = text.find('\n', begin);
+    if (pos == std::string::npos) break;  // torn
+    const auto line =
+        nlohmann::json::parse(text.begin() + static_cast<std::ptrdiff_t>(begin),
+                              text.begin() + static_cast<std::ptrdiff_t>(pos), nullptr, false);
+    records += line.is_object() && line.contains("query");
+  }
+  return records;
+}
+
+}  // namespace mosb

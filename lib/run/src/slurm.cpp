@@ -348,12 +348,8 @@ ShardState shard_file_state(const SlurmRun& run, std::uint64_t index) {
   if (!fs::exists(path)) {
     const std::string journal = journal_path(path);
     if (fs::exists(journal)) {
-      std::ifstream in(journal, std::ios::binary);
-      std::uint64_t lines = 0;
-      for (std::string line; std::getline(in, line);)
-        if (!in.eof()) ++lines;  // whole lines only: a torn last record does not count
       s.file = ShardFile::partial;
-      s.recorded = lines > 0 ? lines - 1 : 0;
+      s.recorded = journaled_queries(journal);
     }
     return s;
   }

@@ -205,6 +205,11 @@ struct RunResult {
 
 // The journal of `output`.
 std::string journal_path(const std::string& output);
+// How many query records the journal at `journal` holds, for a progress report (`experiment
+// status`, `run --slurm --status`): its whole lines past the first that are query records (not
+// a changed executable's line, not a torn last line); 0 when it is absent. No check: the run
+// that resumes it checks every line.
+std::uint64_t journaled_queries(const std::string& journal);
 
 // The instance a run maps (header and table checked, every checksum verified): a packed file is
 // refused with one line saying how to get one a solver can map (mosb unpack, mosb store

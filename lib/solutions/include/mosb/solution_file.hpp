@@ -84,7 +84,14 @@ class StatusCounts {
     return sum;
   }
   constexpr std::uint64_t completed() const {
-    return (*this)[QueryStatus::solved] + (*this)[QueryStatus::disconnected];
+    std::uint64_t sum = 0;
+    for (std::size_t s = 0; s < counts_.size(); ++s)
+      if (is_completed(static_cast<QueryStatus>(s))) sum += counts_[s];
+    return sum;
+  }
+  constexpr StatusCounts& operator+=(const StatusCounts& other) {
+    for (std::size_t s = 0; s < counts_.size(); ++s) counts_[s] += other.counts_[s];
+    return *this;
   }
   constexpr bool operator==(const StatusCounts&) const = default;
 
