@@ -104,6 +104,9 @@ TEST_CASE("a malformed profile is one line with file, line, column and key") {
   CHECK(error_of("name = \"x\"\ncommand = \"{executable} -m{gr}\"\n[input]\nform = "
                  "\"dimacs\"\n")
             .find("{gr} is a word of its own") != std::string::npos);
+  // a format of the registry (mosb run --output-format) or vectors
+  CHECK(error_of(std::string(kMinimal) + "[output]\nformat = \"xml\"\n") ==
+        "p.toml:4:10: key 'output.format': expected protocol, example-log, json-log, or vectors");
   // output keys of the vectors format only with it
   CHECK(error_of(std::string(kMinimal) + "[output]\nformat = \"json-log\"\ngroup = 2\n") ==
         "p.toml:5:9: key 'output.group': only with format = \"vectors\"");

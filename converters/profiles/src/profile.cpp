@@ -9,6 +9,7 @@
 
 #include "mosb/checksum.hpp"
 #include "mosb/command_template.hpp"
+#include "mosb/converters/solver_output.hpp"
 #include "mosb/error.hpp"
 #include "mosb/internal/hex.hpp"
 #include "mosb/internal/read_file.hpp"
@@ -308,10 +309,14 @@ ProfileOutput parse_output(Fields& root) {
   if (table == nullptr) return output;
   Fields f(*table, root.file(), "output.");
   output.format = f.string("format").value_or("protocol");
-  if (output.format != "protocol" && output.format != "example-log" &&
-      output.format != "json-log" && output.format != "vectors")
-    f.fail(*f.find("format"), "format", "expected protocol, example-log, json-log or vectors");
+  // The registry's formats (mosb run --output-format) and the profile's own: vectors.
   const bool vectors = output.format == "vectors";
+  if (!vectors && find_solver_output_format(output.format) == nullptr) {
+    std::string expected = "expected";
+    for (const auto& format : solver_output_formats())
+      expected += " " + std::string(format.name) + ",";
+    f.fail(*f.find("format"), "format", expected + " or vectors");
+  }
   for (const char* key : {"file", "prefix", "group", "separator", "trailing_separator", "status",
                           "finished", "unfinished", "runtime", "count"})
     if (!vectors && f.find(key) != nullptr)
