@@ -69,48 +69,35 @@ void TerminalProgress::update(std::string_view stage, std::uint64_t done, std::u
 }
 
 void TerminalProgress::update(const RunProgress& p) {
-  if (!enabled_) return;
-  std::lock_guard lock(mutex_);
-  const auto now = std::chrono::steady_clock::now();
-  if (p.done != p.total && now - last_draw_ < std::chrono::milliseconds(200)) return;
-  last_draw_ = now;
-  std::string line = "\r" + std::to_string(p.done) + "/" + std::to_string(p.total);
-  auto counts = p.counts;
-  counts[QueryStatus::not_run] = 0;  // not yet run: the rest
-  if (const auto text = status_counts_text(counts, true); !text.empty()) line += ", " + text;
-  if (p.done_here != 0 && p.done < p.total)
-    line += ", ETA " +
-            std::to_string(static_cast<long>(p.elapsed_seconds / p.done_here *
-                                             static_cast<double>(p.total - p.done))) +
-            " s";
-  line += "\x1b[K";  // erase what a longer line before left
-  std::fputs(line.c_str(), stderr);
-  std::fflush(stderr);
-  line_open_ = true;
+  draw_queries("", p.counts, p.done, p.total, p.done_here, p.elapsed_seconds, "");
 }
 
 void TerminalProgress::update(const ExperimentProgress& p) {
+  draw_queries(
+      "cells " + std::to_string(p.cells_done) + "/" + std::to_string(p.cells_total) + ", queries ",
+      p.counts, p.queries_done, p.queries_total, p.queries_done_here, p.elapsed_seconds,
+      p.cell.empty() ? "" : " (" + escape_for_terminal(p.cell) + ")");
+}
+
+void TerminalProgress::draw_queries(const std::string& prefix, StatusCounts counts,
+                                    std::uint64_t done, std::uint64_t total,
+                                    std::uint64_t done_here, double elapsed_seconds,
+                                    const std::string& running) {
   if (!enabled_) return;
   std::lock_guard lock(mutex_);
   const auto now = std::chrono::steady_clock::now();
-  if (p.queries_done != p.queries_total && now - last_draw_ < std::chrono::milliseconds(200))
-    return;
+  if (done != total && now - last_draw_ < std::chrono::milliseconds(200)) return;
   last_draw_ = now;
-  std::string line = "\rcells " + std::to_string(p.cells_done) + "/" +
-                     std::to_string(p.cells_total) + ", queries " + std::to_string(p.queries_done) +
-                     "/" + std::to_string(p.queries_total);
-  auto counts = p.counts;
-  counts[QueryStatus::not_run] = 0;
+  std::string line = "\r" + prefix + std::to_string(done) + "/" + std::to_string(total);
+  counts[QueryStatus::not_run] = 0;  // not yet run: the rest
   if (const auto text = status_counts_text(counts, true); !text.empty()) line += ", " + text;
-  if (p.queries_done_here != 0 && p.queries_done < p.queries_total)
+  if (done_here != 0 && done < total)
     line += ", ETA " +
-            std::to_string(
-                static_cast<long>(p.elapsed_seconds / static_cast<double>(p.queries_done_here) *
-                                  static_cast<double>(p.queries_total - p.queries_done))) +
+            std::to_string(static_cast<long>(elapsed_seconds / static_cast<double>(done_here) *
+                                             static_cast<double>(total - done))) +
             " s";
-  if (!p.cell.empty() && p.queries_done < p.queries_total)
-    line += " (" + escape_for_terminal(p.cell) + ")";
-  line += "\x1b[K";
+  if (done < total) line += running;
+  line += "\x1b[K";  // erase what a longer line before left
   std::fputs(line.c_str(), stderr);
   std::fflush(stderr);
   line_open_ = true;

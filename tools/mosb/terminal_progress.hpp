@@ -39,6 +39,11 @@ class TerminalProgress {
 
  private:
   void update(std::string_view stage, std::uint64_t done, std::uint64_t total);
+  // The line of both: PREFIX done/total, the counts but not-run, the ETA from this invocation's
+  // rate, then `running` while queries remain.
+  void draw_queries(const std::string& prefix, StatusCounts counts, std::uint64_t done,
+                    std::uint64_t total, std::uint64_t done_here, double elapsed_seconds,
+                    const std::string& running);
 
   bool enabled_;
   bool bytes_ = false;
