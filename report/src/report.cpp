@@ -615,7 +615,7 @@ Table solver_table(const Context& c) {
                {"solver", "Solver", "solver"},
                {"files", "Files", "files"},
                {"queries", "Queries", "queries"},
-               {"solved", "Solved", "solved"},
+               {"completed", "Completed", "completed"},
                {"timeout", "Timeout", "timeout"},
                {"memory_limit", "Mem-limit", "memory limit"},
                {"failed", "Failed", "failed"},

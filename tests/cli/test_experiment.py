@@ -273,7 +273,7 @@ class ExperimentTest(ExperimentFixture):
         rows = list(csv.DictReader(io.StringIO(text)))
         self.assertEqual({(r["benchmark"], r["solver"]) for r in rows}, self.solver_pairs())
         for r in rows:
-            self.assertEqual((r["queries"], r["solved"], r["timeout"], r["memory_limit"]),
+            self.assertEqual((r["queries"], r["completed"], r["timeout"], r["memory_limit"]),
                              ("5", "5", "0", "0"), r)
             self.assertGreater(float(r["runtime_max"]), 0, r)
             self.assertLessEqual(float(r["runtime_median"]), float(r["runtime_max"]), r)
@@ -290,7 +290,7 @@ class ExperimentTest(ExperimentFixture):
         self.assertEqual(r.returncode, 0, r.stderr[-2000:])
         table = test_report.parse(r.stdout).tables["solvers-table"]
         headings = [c[1] for c in table[0]]
-        for column in ("benchmark", "solver", "solved", "timeout", "memory limit",
+        for column in ("benchmark", "solver", "completed", "timeout", "memory limit",
                        "median runtime [s]", "max runtime [s]", "covered at ε = 0.01"):
             self.assertIn(column, headings)
         # Every solver here reports its runtime, so that is the one shown, and said.
@@ -309,7 +309,7 @@ class ExperimentTest(ExperimentFixture):
             evaluated = 4 if benchmark.startswith("Grid") else 5
             self.assertEqual(r["evaluated"], evaluated, (benchmark, solver))
             self.assertEqual(r["covered@0.01"], evaluated, (benchmark, solver))
-            self.assertEqual(r["solved"], 5)
+            self.assertEqual(r["completed"], 5)
         text = self.ok("eval", results, "--reference", refs, "--csv").stdout
         self.check_solver_table(text)
         # The runtime kind is the user's choice, named in the caption; both are in the files.
