@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "graph_output.hpp"
 #include "json_writer.hpp"
 #include "mosb/converters/movingai.hpp"
 #include "mosb/converters/suite.hpp"
@@ -277,6 +278,14 @@ CLI::Option* add_expect_digest_option(CLI::App* subcommand, std::string& digest)
       });
 }
 
+CLI::Option* add_graph_output_options(CLI::App* subcommand, GraphOutput& output) {
+  auto* file = add_output_option(subcommand, output.file, "the .mosb file to write");
+  add_view_spec_option(subcommand, output.views);
+  add_expect_digest_option(subcommand, output.expect_digest);
+  add_json_flag(subcommand, output.json);
+  return file;
+}
+
 int report_written(const std::string& path, bool json) {
   // Header and table only (counts, digest): no payload is read, so the plain open checks suffice.
   const auto reader = GraphReader::open(path);
@@ -339,9 +348,9 @@ int report_suite(const std::string& directory, const std::string& family,
 
 Command add_convert(CLI::App& app) {
   auto* convert = app.add_subcommand("convert", "Convert a benchmark from its source format");
-  return group(convert, {add_convert_dimacs(*convert), add_convert_netmaker(*convert),
-                         add_convert_fmi(*convert), add_convert_guards(*convert),
-                         add_convert_movingai(*convert), add_convert_roadmap(*convert)});
+#define MOSB_ADD_CONVERT(name) add_convert_##name(*convert),
+  return group(convert, {MOSB_CONVERT_FAMILIES(MOSB_ADD_CONVERT)});
+#undef MOSB_ADD_CONVERT
 }
 
 Command add_generate(CLI::App& app) {

@@ -270,12 +270,11 @@ Command add_unpack(CLI::App& app);                     // pack.cpp: `unpack`
 Command add_generate_grid(CLI::App& generate);
 Command add_generate_netmaker(CLI::App& generate);
 
-// Children of `convert`.
-Command add_convert_dimacs(CLI::App& convert);
-Command add_convert_netmaker(CLI::App& convert);
-Command add_convert_fmi(CLI::App& convert);
-Command add_convert_guards(CLI::App& convert);
-Command add_convert_movingai(CLI::App& convert);
-Command add_convert_roadmap(CLI::App& convert);
+// Children of `convert`, one line a source family: `X(NAME)` is `mosb convert NAME`, defined by
+// add_convert_NAME in convert_NAME.cpp (docs/ARCHITECTURE.md, "A new source family").
+#define MOSB_CONVERT_FAMILIES(X) X(dimacs) X(netmaker) X(fmi) X(guards) X(movingai) X(roadmap)
+#define MOSB_DECLARE_CONVERT(name) Command add_convert_##name(CLI::App& convert);
+MOSB_CONVERT_FAMILIES(MOSB_DECLARE_CONVERT)
+#undef MOSB_DECLARE_CONVERT
 
 }  // namespace mosb::cli

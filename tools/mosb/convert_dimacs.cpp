@@ -1,14 +1,10 @@
 #include <CLI/CLI.hpp>
 #include <memory>
 
-#include "commands.hpp"
-#include "mosb/atomic_file.hpp"
+#include "graph_output.hpp"
 #include "mosb/converters/dimacs_converter.hpp"
 #include "mosb/converters/dimacs_extended.hpp"
-#include "mosb/converters/text_input.hpp"
 #include "mosb/error.hpp"
-#include "mosb/graph_builder.hpp"
-#include "terminal_progress.hpp"
 
 namespace mosb::cli {
 
@@ -21,19 +17,15 @@ struct DimacsArgs {
   std::string name;
   unsigned id_base = 1;
   std::string cost_type;
-  std::string output;
-  std::string expect_digest;
+  GraphOutput output;
   std::vector<std::string> derive;
   std::string avg_outdegree_mode = "twice";
   std::string elevation;
-  std::vector<std::string> views;
-  bool json = false;
 };
 
 int run_dimacs(const DimacsArgs& a) {
   std::vector<std::filesystem::path> inputs(a.gr.begin(), a.gr.end());
   inputs.insert(inputs.end(), {a.co, a.elevation});
-  check_output_is_not_input(a.output, inputs);
   converters::DimacsOptions o;
   o.gr_files = a.gr;
   for (const auto& spec : a.objectives)
@@ -54,15 +46,14 @@ int run_dimacs(const DimacsArgs& a) {
   }
   extended.avg_outdegree_mode =
       *converters::kAvgOutdegreeModeNames.parse(a.avg_outdegree_mode);  // checked by CLI11
-  for (const auto& v : a.views) extended.views.push_back(mosb::parse_view_spec(v));
-  TerminalProgress progress;
-  o.progress = progress.callback();
-  // Out of memory anywhere in the conversion names the input (a parser names the file it reads).
-  converters::naming_input_on_out_of_memory(a.gr.front(), [&] {
-    write_graph(converters::convert_dimacs_extended(o, extended), a.output, progress.callback(),
-                a.expect_digest);
+  // The views go last in convert_dimacs_extended, after the derived columns they may name.
+  for (const auto& v : a.output.views) extended.views.push_back(mosb::parse_view_spec(v));
+  auto output = a.output;
+  output.views.clear();
+  return write_converted(output, inputs, [&](const Progress& progress) {
+    o.progress = progress;
+    return converters::convert_dimacs_extended(o, extended);
   });
-  return report_written(a.output, a.json);
 }
 
 }  // namespace
@@ -101,10 +92,7 @@ Command add_convert_dimacs(CLI::App& convert) {
           "avg_outdegree as outdeg(u)+outdeg(v) (twice, exact) or their mean rounded half up")
       ->check(CLI::IsMember(converters::kAvgOutdegreeModeNames.names()))
       ->capture_default_str();
-  add_view_spec_option(dimacs, args->views);
-  add_output_option(dimacs, args->output, "the .mosb file to write")->required();
-  add_expect_digest_option(dimacs, args->expect_digest);
-  add_json_flag(dimacs, args->json);
+  add_graph_output_options(dimacs, args->output)->required();
   return {dimacs, [args] { return run_dimacs(*args); }};
 }
 

@@ -1,13 +1,8 @@
 #include <CLI/CLI.hpp>
 #include <memory>
 
-#include "commands.hpp"
-#include "mosb/atomic_file.hpp"
+#include "graph_output.hpp"
 #include "mosb/converters/fmi_converter.hpp"
-#include "mosb/converters/text_input.hpp"
-#include "mosb/error.hpp"
-#include "mosb/graph_builder.hpp"
-#include "terminal_progress.hpp"
 
 namespace mosb::cli {
 
@@ -22,16 +17,12 @@ struct FmiArgs {
   std::uint64_t bfs_count = 0;
   bool bfs_undirected = false;
   std::string name;
-  std::string output;
-  std::string expect_digest;
-  std::vector<std::string> views;
-  bool json = false;
+  GraphOutput output;
   CLI::Option* costs_option = nullptr;
   CLI::Option* bfs_option = nullptr;
 };
 
 int run_fmi(const FmiArgs& a) {
-  check_output_is_not_input(a.output, {a.file});
   converters::FmiOptions o;
   o.file = a.file;
   if (a.costs_option->count() > 0) o.cost_count = a.costs;
@@ -41,14 +32,10 @@ int run_fmi(const FmiArgs& a) {
   if (a.bfs_option->count() > 0)
     o.extract_bfs = converters::FmiBfs{a.bfs_root, a.bfs_count, a.bfs_undirected};
   if (!a.name.empty()) o.name = a.name;
-  TerminalProgress progress;
-  o.progress = progress.callback();
-  // Out of memory anywhere in the conversion names the input.
-  converters::naming_input_on_out_of_memory(a.file, [&] {
-    write_graph(with_views(converters::convert_fmi(o), a.views), a.output, progress.callback(),
-                a.expect_digest);
+  return write_converted(a.output, {a.file}, [&](const Progress& progress) {
+    o.progress = progress;
+    return converters::convert_fmi(o);
   });
-  return report_written(a.output, a.json);
 }
 
 }  // namespace
@@ -87,10 +74,7 @@ Command add_convert_fmi(CLI::App& convert) {
   count->needs(args->bfs_option);
   undirected->needs(args->bfs_option);
   fmi->add_option("--name", args->name, "benchmark name (default: the file's base name)");
-  add_output_option(fmi, args->output, "the .mosb file to write")->required();
-  add_view_spec_option(fmi, args->views);
-  add_expect_digest_option(fmi, args->expect_digest);
-  add_json_flag(fmi, args->json);
+  add_graph_output_options(fmi, args->output)->required();
   return {fmi, [args] { return run_fmi(*args); }};
 }
 

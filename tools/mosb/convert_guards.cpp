@@ -1,12 +1,8 @@
 #include <CLI/CLI.hpp>
 #include <memory>
 
-#include "commands.hpp"
-#include "mosb/atomic_file.hpp"
+#include "graph_output.hpp"
 #include "mosb/converters/guards_converter.hpp"
-#include "mosb/error.hpp"
-#include "mosb/graph_builder.hpp"
-#include "terminal_progress.hpp"
 
 namespace mosb::cli {
 
@@ -20,15 +16,11 @@ struct GuardsArgs {
   std::string write_exposure;
   TerrainOptions terrain;
   std::string name;
-  std::string output;
-  std::string expect_digest;
-  std::vector<std::string> views;
-  bool json = false;
+  GraphOutput output;
 };
 
 int run_guards(const GuardsArgs& a) {
   const std::vector<std::filesystem::path> inputs = {a.map, a.exposure, a.guards, a.scen};
-  check_output_is_not_input(a.output, inputs);
   check_output_is_not_input(a.write_exposure, inputs);
   converters::GuardsOptions o;
   o.map_file = a.map;
@@ -37,13 +29,13 @@ int run_guards(const GuardsArgs& a) {
   if (!a.scen.empty()) o.scen_file = a.scen;
   o.terrain = a.terrain.rules();
   if (!a.name.empty()) o.name = a.name;
-  TerminalProgress progress;
-  const auto result = converters::convert_guards(o);
-  if (!a.write_exposure.empty())
-    write_file_atomically(a.write_exposure,
-                          converters::format_exposure(result.map, result.exposure));
-  write_graph(with_views(result.graph, a.views), a.output, progress.callback(), a.expect_digest);
-  return report_written(a.output, a.json);
+  return write_converted(a.output, inputs, [&](const Progress&) {
+    auto result = converters::convert_guards(o);
+    if (!a.write_exposure.empty())
+      write_file_atomically(a.write_exposure,
+                            converters::format_exposure(result.map, result.exposure));
+    return std::move(result.graph);
+  });
 }
 
 }  // namespace
@@ -74,10 +66,7 @@ Command add_convert_guards(CLI::App& convert) {
   add_terrain_options(guards, args->terrain);
   guards->add_option("--name", args->name,
                      "benchmark name (default: the map's base name without .map)");
-  add_output_option(guards, args->output, "the .mosb file to write")->required();
-  add_view_spec_option(guards, args->views);
-  add_expect_digest_option(guards, args->expect_digest);
-  add_json_flag(guards, args->json);
+  add_graph_output_options(guards, args->output)->required();
   return {guards, [args] {
             if (args->exposure.empty() == args->guards.empty())
               throw UsageError("give exactly one of --exposure FILE and --guards FILE");

@@ -1,11 +1,8 @@
 #include <CLI/CLI.hpp>
 #include <memory>
 
-#include "commands.hpp"
-#include "mosb/atomic_file.hpp"
+#include "graph_output.hpp"
 #include "mosb/converters/movingai.hpp"
-#include "mosb/graph_builder.hpp"
-#include "terminal_progress.hpp"
 
 namespace mosb::cli {
 
@@ -16,23 +13,17 @@ struct MovingaiArgs {
   std::string scen;
   TerrainOptions terrain;
   std::string name;
-  std::string output;
-  std::string expect_digest;
-  std::vector<std::string> views;
-  bool json = false;
+  GraphOutput output;
 };
 
 int run_movingai(const MovingaiArgs& a) {
-  check_output_is_not_input(a.output, {a.map, a.scen});
   converters::MovingaiOptions o;
   o.map_file = a.map;
   if (!a.scen.empty()) o.scen_file = a.scen;
   o.terrain = a.terrain.rules();
   if (!a.name.empty()) o.name = a.name;
-  TerminalProgress progress;
-  write_graph(with_views(converters::convert_movingai(o), a.views), a.output, progress.callback(),
-              a.expect_digest);
-  return report_written(a.output, a.json);
+  return write_converted(a.output, {a.map, a.scen},
+                         [&](const Progress&) { return converters::convert_movingai(o); });
 }
 
 }  // namespace
@@ -49,10 +40,7 @@ Command add_convert_movingai(CLI::App& convert) {
   add_terrain_options(movingai, args->terrain);
   movingai->add_option("--name", args->name,
                        "benchmark name (default: the map's base name without .map)");
-  add_output_option(movingai, args->output, "the .mosb file to write")->required();
-  add_view_spec_option(movingai, args->views);
-  add_expect_digest_option(movingai, args->expect_digest);
-  add_json_flag(movingai, args->json);
+  add_graph_output_options(movingai, args->output)->required();
   return {movingai, [args] { return run_movingai(*args); }};
 }
 

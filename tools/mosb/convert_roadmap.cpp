@@ -2,12 +2,9 @@
 #include <iostream>
 #include <memory>
 
-#include "commands.hpp"
-#include "mosb/atomic_file.hpp"
+#include "graph_output.hpp"
 #include "mosb/converters/roadmap_converter.hpp"
 #include "mosb/error.hpp"
-#include "mosb/graph_builder.hpp"
-#include "terminal_progress.hpp"
 
 namespace mosb::cli {
 
@@ -23,16 +20,12 @@ struct RoadmapArgs {
   bool weight = false;
   std::vector<std::string> objectives;
   std::string name;
-  std::string output;
-  std::string expect_digest;
-  std::vector<std::string> views;
-  bool json = false;
+  GraphOutput output;
 };
 
 int run_roadmap(const RoadmapArgs& a) {
   std::vector<std::filesystem::path> inputs(a.gr.begin(), a.gr.end());
   inputs.insert(inputs.end(), {a.vertices, a.graphml});
-  check_output_is_not_input(a.output, inputs);
   converters::RoadmapOptions o;
   o.gr_files = a.gr;
   if (!a.vertices.empty()) o.vertex_file = a.vertices;
@@ -46,14 +39,14 @@ int run_roadmap(const RoadmapArgs& a) {
   for (const auto& spec : a.objectives)
     o.objectives.push_back(converters::parse_objective(spec, "convert roadmap"));
   if (!a.name.empty()) o.name = a.name;
-  TerminalProgress progress;
-  o.progress = progress.callback();
-  const auto input = converters::convert_roadmap(o);
-  for (const auto& [key, value] : input.metadata.entries())
-    if (key.starts_with("warning."))
-      std::cerr << "mosb: warning: " << key.substr(8) << ": " << value << '\n';
-  write_graph(with_views(input, a.views), a.output, progress.callback(), a.expect_digest);
-  return report_written(a.output, a.json);
+  return write_converted(a.output, inputs, [&](const Progress& progress) {
+    o.progress = progress;
+    auto input = converters::convert_roadmap(o);
+    for (const auto& [key, value] : input.metadata.entries())
+      if (key.starts_with("warning."))
+        std::cerr << "mosb: warning: " << key.substr(8) << ": " << value << '\n';
+    return input;
+  });
 }
 
 }  // namespace
@@ -87,10 +80,7 @@ Command add_convert_roadmap(CLI::App& convert) {
                     "also store the GraphML edge attribute 'weight' as an objective");
   roadmap->add_option("--objective", args->objectives, "NAME[:UNIT] of each objective, in order");
   roadmap->add_option("--name", args->name, "benchmark name (default: the first file's base name)");
-  add_output_option(roadmap, args->output, "the .mosb file to write")->required();
-  add_view_spec_option(roadmap, args->views);
-  add_expect_digest_option(roadmap, args->expect_digest);
-  add_json_flag(roadmap, args->json);
+  add_graph_output_options(roadmap, args->output)->required();
   return {roadmap, [args] { return run_roadmap(*args); }};
 }
 

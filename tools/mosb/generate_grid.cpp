@@ -1,10 +1,9 @@
 #include <CLI/CLI.hpp>
 #include <memory>
 
-#include "commands.hpp"
+#include "graph_output.hpp"
 #include "mosb/converters/grid_generator.hpp"
 #include "mosb/converters/suite.hpp"
-#include "terminal_progress.hpp"
 
 namespace mosb::cli {
 
@@ -12,29 +11,25 @@ namespace {
 
 struct GridArgs {
   converters::GridParameters params;
-  std::string output;
-  std::string expect_digest;
+  GraphOutput output;
   std::string suite;
   std::vector<std::uint32_t> sizes = converters::paper_grid_sizes();
   unsigned threads = 0;
   bool pack = false;
-  std::vector<std::string> views;
-  bool json = false;
 };
 
 int run_grid(const GridArgs& a) {
-  TerminalProgress progress;
   if (!a.suite.empty()) {
+    TerminalProgress progress;
     const auto entries =
         converters::run_suite(a.suite, converters::grid_suite(a.params.seed, a.sizes),
                               {a.threads, progress.callback(), suite_pack(a.pack)});
-    return report_suite(a.suite, "Grid", entries, a.json);
+    return report_suite(a.suite, "Grid", entries, a.output.json);
   }
-  if (a.output.empty()) throw UsageError("--output FILE is required (or --suite DIR)");
+  if (a.output.file.empty()) throw UsageError("--output FILE is required (or --suite DIR)");
   // Streamed: memory holds the reverse CSR only, not the arc list (BENCHMARKS.md).
-  write_graph(with_views(converters::grid_graph(a.params), a.views), a.output, progress.callback(),
-              a.expect_digest);
-  return report_written(a.output, a.json);
+  return write_converted(a.output, {},
+                         [&](const Progress&) { return converters::grid_graph(a.params); });
 }
 
 }  // namespace
@@ -60,9 +55,7 @@ Command add_generate_grid(CLI::App& generate) {
                          ->check(CLI::Range(1u, 16u))
                          ->capture_default_str();
   add_seed_option(grid, p.seed, "seed of the specified generator (with --suite: of the suite)");
-  auto* out = add_output_option(grid, args->output, "the .mosb file to write");
-  auto* views = add_view_spec_option(grid, args->views);
-  auto* expect = add_expect_digest_option(grid, args->expect_digest);
+  add_graph_output_options(grid, args->output);
   auto* directory = grid->add_option(
       "--suite", args->suite,
       "write the paper's 49 Grid graphs (3 objectives) and a MANIFEST into this directory");
@@ -77,12 +70,12 @@ Command add_generate_grid(CLI::App& generate) {
   auto* threads = grid->add_option("--threads", args->threads, "suite worker threads")
                       ->check(unsigned_integer(std::numeric_limits<unsigned>::max()))
                       ->group("");
-  for (auto* single_only : {width, height, objectives, out, expect, views})
+  for (auto* single_only : {width, height, objectives, grid->get_option("--output"),
+                            grid->get_option("--expect-digest"), grid->get_option("--view")})
     directory->excludes(single_only);
   sizes->needs(directory);
   threads->needs(directory);
   add_suite_pack_flag(grid, args->pack)->needs(directory);
-  add_json_flag(grid, args->json);
   return {grid, [args] { return run_grid(*args); }};
 }
 

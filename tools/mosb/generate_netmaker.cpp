@@ -1,10 +1,9 @@
 #include <CLI/CLI.hpp>
 #include <memory>
 
-#include "commands.hpp"
+#include "graph_output.hpp"
 #include "mosb/converters/netmaker_generator.hpp"
 #include "mosb/converters/suite.hpp"
-#include "terminal_progress.hpp"
 
 namespace mosb::cli {
 
@@ -13,31 +12,27 @@ namespace {
 struct NetMakerArgs {
   converters::NetMakerParameters params;
   std::string name;
-  std::string output;
-  std::string expect_digest;
+  GraphOutput output;
   std::string suite;
   unsigned threads = 0;
   bool pack = false;
-  std::vector<std::string> views;
-  bool json = false;
 };
 
 int run_netmaker(NetMakerArgs a, const CLI::App& app) {
-  TerminalProgress progress;
   if (!a.suite.empty()) {
+    TerminalProgress progress;
     // The suite's N list, unless --vertices narrows it (tests use a small N).
     const auto counts = app.count("--vertices") ? std::vector<std::uint32_t>{a.params.vertices}
                                                 : converters::paper_netmaker_vertex_counts();
     const auto entries =
         converters::run_suite(a.suite, converters::netmaker_suite(a.params.seed, counts),
                               {a.threads, progress.callback(), suite_pack(a.pack)});
-    return report_suite(a.suite, "NetMaker", entries, a.json);
+    return report_suite(a.suite, "NetMaker", entries, a.output.json);
   }
-  if (a.output.empty()) throw UsageError("--output FILE is required (or --suite DIR)");
+  if (a.output.file.empty()) throw UsageError("--output FILE is required (or --suite DIR)");
   if (!a.name.empty()) a.params.name = a.name;
-  write_graph(with_views(converters::netmaker_graph(a.params), a.views), a.output,
-              progress.callback(), a.expect_digest);
-  return report_written(a.output, a.json);
+  return write_converted(a.output, {},
+                         [&](const Progress&) { return converters::netmaker_graph(a.params); });
 }
 
 }  // namespace
@@ -79,9 +74,7 @@ Command add_generate_netmaker(CLI::App& generate) {
                       ->capture_default_str();
   auto* name =
       netmaker->add_option("--name", args->name, "benchmark name (default NetMaker-N<N>-I<I>)");
-  auto* output = add_output_option(netmaker, args->output, "the .mosb file to write");
-  auto* views = add_view_spec_option(netmaker, args->views);
-  auto* expect = add_expect_digest_option(netmaker, args->expect_digest);
+  add_graph_output_options(netmaker, args->output);
   auto* suite = netmaker->add_option(
       "--suite", args->suite,
       "write the paper's 12 NetMaker graphs and a MANIFEST into this directory");
@@ -89,10 +82,11 @@ Command add_generate_netmaker(CLI::App& generate) {
       ->add_option("--threads", args->threads, "worker threads for --suite (default: all cores)")
       ->check(unsigned_integer(std::numeric_limits<unsigned>::max()))
       ->group("");
-  for (auto* single_only : {amin, amax, locality, queries, percent, name, output, expect, views})
+  for (auto* single_only :
+       {amin, amax, locality, queries, percent, name, netmaker->get_option("--output"),
+        netmaker->get_option("--expect-digest"), netmaker->get_option("--view")})
     suite->excludes(single_only);
   add_suite_pack_flag(netmaker, args->pack)->needs(suite);
-  add_json_flag(netmaker, args->json);
   return {netmaker, [args, netmaker] { return run_netmaker(*args, *netmaker); }};
 }
 
