@@ -367,7 +367,10 @@ def tmda(argv):
     finish(0)
 
 
+# One stand-in per shipped profile of a published solver (profiles/NAME.toml), by that name.
+STANDINS = {"apex": apex, "mohs": mohs, "emoa": emoa, "tmda": tmda}
+
 if __name__ == "__main__":
     solver = sys.argv[1]
     record(solver, sys.argv[2:])
-    {"apex": apex, "mohs": mohs, "emoa": emoa, "tmda": tmda}[solver](sys.argv[2:])
+    STANDINS[solver](sys.argv[2:])

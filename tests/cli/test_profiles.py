@@ -13,12 +13,30 @@ import json
 import os
 import stat
 import sys
+import tomllib
 
 import mosbtest
+import standin_solvers
 from mosbtest import CliTest, FINISHED, assert_finished, setUpModule  # noqa: F401
 
 EXAMPLES = os.path.abspath(os.environ.get("EXAMPLES", ""))
-STANDIN = os.path.join(os.path.dirname(os.path.abspath(__file__)), "standin_solvers.py")
+HERE = os.path.dirname(os.path.abspath(__file__))
+STANDIN = os.path.join(HERE, "standin_solvers.py")
+# The shipped profiles, read from the folder they are built from: a new profile is a file there
+# and its stand-in (standin_solvers.STANDINS), no list here.
+PROFILE_DIR = os.path.join(HERE, "..", "..", "profiles")
+PROFILES = sorted(f[:-len(".toml")] for f in os.listdir(PROFILE_DIR) if f.endswith(".toml"))
+# The profile of the example solvers runs them, not a stand-in.
+EXAMPLE_PROFILE = "mosb-examples"
+# Cases beyond each profile's defaults on both views: (view, options); BOA* is bi-objective.
+EXTRA_CASES = {"apex": [("Grid_2", ["--profile-option", "algorithm=BOA"]),
+                        ("Grid_3", ["--profile-option", "algorithm=NAMOAdr"])],
+               "mohs": [("Grid_2", ["--profile-option", "algorithm=BOA"])]}
+
+
+def profile_toml(name):
+    with open(os.path.join(PROFILE_DIR, name + ".toml"), "rb") as f:
+        return tomllib.load(f)
 
 # A 1-based DIMACS graph of 6 vertices with parallel arcs: 1->2 three times ((1, 5) and (3, 2)
 # are both Pareto-optimal, (4, 6) is dominated), 4->5 twice with equal costs.
@@ -44,7 +62,7 @@ class ProfileTest(CliTest):
             self.ok("queries", "generate", bare, "--set", "q", "--count", "8", "--view",
                     "Grid_%d" % objectives, "-o", self.path("g%d.mosb" % objectives))
         self.standins = {}
-        for solver in ("apex", "mohs", "emoa", "tmda"):
+        for solver in standin_solvers.STANDINS:
             path = self.write("bin/" + solver, "#!/bin/sh\nexec /usr/bin/python3 %s %s \"$@\"\n"
                               % (STANDIN, solver))
             os.chmod(path, os.stat(path).st_mode | stat.S_IXUSR)
@@ -102,21 +120,21 @@ class ProfileTest(CliTest):
     def test_list_profiles(self):
         r = self.ok("run", "--list-profiles")
         names = [line.split(":")[0] for line in r.stdout.splitlines() if not line.startswith(" ")]
-        self.assertEqual(names, ["apex", "emoa", "mohs", "mosb-examples", "tmda"])
+        self.assertEqual(names, PROFILES)
+        # Every shipped profile of a published solver has its stand-in, and no stand-in lacks
+        # its profile.
+        self.assertEqual(sorted(list(standin_solvers.STANDINS) + [EXAMPLE_PROFILE]), PROFILES)
         self.assertIn("--profile-option algorithm=Apex|BOA|PPA|NAMOAdr (default Apex)", r.stdout)
         listed = json.loads(self.ok("run", "--list-profiles", "--json").stdout)
-        self.assertEqual(listed[2]["options"], {"algorithm": "LTMOA"})
+        self.assertEqual({p["name"]: p for p in listed}["mohs"]["options"], {"algorithm": "LTMOA"})
         self.assert_one_line_error(self.mosb("run", "--list-profiles", "--view", "x"),
                                    "--view: not with --list-profiles", code=2)
 
     def test_every_shipped_profile_agrees_with_namoa(self):
-        cases = [("apex", "Grid_2", []), ("apex", "Grid_3", []),
-                 ("apex", "Grid_2", ["--profile-option", "algorithm=BOA"]),
-                 ("apex", "Grid_3", ["--profile-option", "algorithm=NAMOAdr"]),
-                 ("mohs", "Grid_2", []), ("mohs", "Grid_3", []),
-                 ("mohs", "Grid_2", ["--profile-option", "algorithm=BOA"]),
-                 ("emoa", "Grid_2", []), ("emoa", "Grid_3", []),
-                 ("tmda", "Grid_2", []), ("tmda", "Grid_3", [])]
+        cases = [(profile, view, []) for profile in standin_solvers.STANDINS
+                 for view in ("Grid_2", "Grid_3")]
+        cases += [(profile, view, extra) for profile, extras in EXTRA_CASES.items()
+                  for view, extra in extras]
         for view in ("Grid_2", "Grid_3"):
             self.reference("g%s.mosb" % view[-1], view, "ref-%s.sol" % view)
         for profile, view, extra in cases:
@@ -132,7 +150,7 @@ class ProfileTest(CliTest):
                 self.assertEqual(parameters["profile.name"], profile)
                 # What the solver's own runtime measures (docs/SOLVERS.md's table).
                 self.assertEqual(parameters["profile.runtime_clock"],
-                                 "cpu" if profile == "emoa" else "wall")
+                                 profile_toml(profile)["output"]["runtime_clock"])
         # The runtime the solver reports is kept (T-MDA's eighth summary field, EMOA*'s
         # rt_search, mohs's Runtime line).
         for profile, seconds in (("tmda", 0.0021), ("emoa", 0.000103), ("mohs", 0.0364537)):
