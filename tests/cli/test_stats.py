@@ -183,9 +183,11 @@ class StatsTest(CliTest):
     def test_errors_are_one_line_naming_the_file(self):
         cases = [
             (["stats", self.grid, "--by-kind"], "no arc data section 'kind'"),
-            (["stats", self.grid, "--view", "Grid_9"], "no view 'Grid_9' (views: Grid_2, Grid_3)"),
+            (["stats", self.grid, "--view", "Grid_9"],
+             "no view 'Grid_9' (views: Grid_2, Grid_3; did you mean 'Grid_2'?)"),
             (["stats", self.grid, "--objectives", "c9"], "no objective named 'c9'"),
-            (["stats", self.grid, "--queries", "none"], "no query set 'none'"),
+            (["stats", self.grid, "--queries", "none"], "no query set 'none' (query sets: "),
+            (["stats", self.grid, "--queries", "defualt"], "did you mean 'default'?)"),
             (["stats", self.path("missing.mosb")], "missing.mosb"),
         ]
         for args, message in cases:

@@ -81,8 +81,10 @@ TEST_CASE("views resolve to objective indices and a query set") {
   CHECK(two.query_set == "default");
   CHECK(r.view("Small_5").objectives == std::vector<std::size_t>{0, 1, 2, 3, 4});
   CHECK_FALSE(r.find_view("Small_3").has_value());
-  CHECK_THROWS_WITH_AS((void)r.view("Small_3"),
-                       doctest::Contains("no view 'Small_3' (views: Small_2, Small_5)"), Error);
+  CHECK_THROWS_WITH_AS(
+      (void)r.view("Small_3"),
+      doctest::Contains("no view 'Small_3' (views: Small_2, Small_5; did you mean 'Small_2'?)"),
+      Error);
   CHECK(code_of([&] { (void)r.view("Small_3"); }) == ErrorCode::not_found);
 }
 

@@ -11,6 +11,7 @@
 
 #include "mosb/atomic_file.hpp"
 #include "mosb/error.hpp"
+#include "mosb/internal/choices.hpp"
 #include "mosb/internal/utf8.hpp"
 #include "mosb/version.hpp"
 
@@ -32,22 +33,6 @@ std::string command_path(const CLI::App& app) {
   }
 }
 
-// The edit distance of two words (insertions, deletions, substitutions), for "did you mean".
-std::size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t above = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
-}
-
 // For a word the deepest command given did not take, the subcommand it may have meant:
 // "unknown command 'rnu' (did you mean 'run'?)", else its subcommands ("unknown command 'show'
 // (the commands: import, export, ...)"); "" when there is no such word or command.
@@ -63,16 +48,14 @@ std::string did_you_mean(const CLI::App& app) {
   }
   const auto words = current->remaining();
   if (words.empty() || words.front().starts_with("-")) return {};
-  std::string best, all;
-  std::size_t best_distance = 3;  // two typos at most
+  std::vector<std::string> names;
+  std::string all;
   for (const auto* sub : current->get_subcommands([](const CLI::App*) { return true; })) {
     all += (all.empty() ? "" : ", ") + sub->get_name();
-    if (const auto d = edit_distance(words.front(), sub->get_name()); d < best_distance) {
-      best = sub->get_name();
-      best_distance = d;
-    }
+    names.push_back(sub->get_name());
   }
   if (all.empty()) return {};
+  const auto best = mosb::nearest_choice(words.front(), names);
   return "unknown command '" + words.front() + "' (" +
          (best.empty() ? "the commands: " + all : "did you mean '" + best + "'?") + ")";
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "mosb/internal/choices.hpp"
 #include "mosb/internal/sections_by_kind.hpp"
 
 namespace mosb {
@@ -220,9 +221,17 @@ std::vector<const Section*> GraphReader::all(SectionKind kind) const {
   return found;
 }
 
+std::vector<std::string> GraphReader::query_set_names() const {
+  std::vector<std::string> names;
+  for (const auto* s : all(SectionKind::queries)) names.push_back(s->name);
+  return names;
+}
+
 std::span<const Query> GraphReader::queries(std::string_view name) const {
   const Section* s = find(SectionKind::queries, name);
-  if (!s) fail(ErrorCode::not_found, "no query set named '" + std::string(name) + "'");
+  if (!s)
+    fail(ErrorCode::not_found, "no query set named '" + std::string(name) + "' " +
+                                   choices_text(name, query_set_names(), "query sets"));
   auto raw = values<std::uint32_t>(*s);
   return {reinterpret_cast<const Query*>(raw.data()), raw.size() / 2};
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "mosb/format.hpp"
+#include "mosb/internal/choices.hpp"
 
 namespace mosb {
 
@@ -46,10 +47,8 @@ std::optional<View> GraphReader::find_view(std::string_view name) const {
 
 View GraphReader::view(std::string_view name) const {
   if (auto found = find_view(name)) return std::move(*found);
-  std::string names;
-  for (const auto& n : view_names()) names += (names.empty() ? "" : ", ") + n;
-  fail(ErrorCode::not_found, "no view '" + std::string(name) + "' (views: " +
-                                 (names.empty() ? std::string("none") : names) + ")");
+  fail(ErrorCode::not_found,
+       "no view '" + std::string(name) + "' " + choices_text(name, view_names(), "views"));
 }
 
 namespace {
@@ -170,12 +169,9 @@ std::optional<View> select_view(const GraphReader& reader, const ViewChoice& cho
   }
   if (!choice.queries.empty()) {
     if (!reader.find(format::SectionKind::queries, choice.queries)) {
-      std::string sets;
-      for (const auto* set : reader.all(format::SectionKind::queries))
-        sets += (sets.empty() ? "" : ", ") + set->name;
       throw Error(ErrorCode::not_found,
-                  reader.display_name() + ": no query set '" + choice.queries +
-                      "' (query sets: " + (sets.empty() ? std::string("none") : sets) + ")");
+                  reader.display_name() + ": no query set '" + choice.queries + "' " +
+                      choices_text(choice.queries, reader.query_set_names(), "query sets"));
     }
     selected.query_set = choice.queries;
   }

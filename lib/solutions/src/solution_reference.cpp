@@ -4,6 +4,7 @@
 
 #include "mosb/error.hpp"
 #include "mosb/eval.hpp"
+#include "mosb/internal/choices.hpp"
 #include "mosb/solution_summary.hpp"
 #include "mosb/solver_comparison.hpp"
 
@@ -220,13 +221,10 @@ std::vector<ReferenceGroup> reference_groups(std::span<const SolutionReader> fil
         std::find(present.begin(), present.end(), name) == present.end())
       present.push_back(name);
   for (const auto& name : options.solvers)
-    if (std::find(present.begin(), present.end(), name) == present.end()) {
-      std::string listed;
-      for (const auto& p : present) listed += (listed.empty() ? "" : ", ") + p;
-      throw Error(
-          ErrorCode::invalid_argument,
-          "solver '" + name + "' has no file among the inputs (their solvers: " + listed + ")");
-    }
+    if (std::find(present.begin(), present.end(), name) == present.end())
+      throw Error(ErrorCode::invalid_argument, "solver '" + name +
+                                                   "' has no file among the inputs " +
+                                                   choices_text(name, present, "their solvers"));
   for (std::size_t f = 0; f < files.size(); ++f) {
     const auto name = solver_name(files[f]);
     if (std::find(options.solvers.begin(), options.solvers.end(), name) == options.solvers.end())

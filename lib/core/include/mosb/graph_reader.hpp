@@ -136,7 +136,10 @@ class GraphReader : public ContainerReader {
 
   const Section* find(format::SectionKind kind, std::string_view name) const;
   std::vector<const Section*> all(format::SectionKind kind) const;
+  // A query set's pairs; throws ErrorCode::not_found naming the sets there are when absent.
   std::span<const Query> queries(std::string_view name) const;
+  // The names of the query sets, in the file's order.
+  std::vector<std::string> query_set_names() const;
   // The published per-query optimum of query set `name` (section kind 17, spec/SOLUTIONS.md §6),
   // one value per query; nullopt when the set carries none. Its shape (f64 x 1, one row per
   // query) is checked at open, its values (finite, >= 0) by verify at level structure.
