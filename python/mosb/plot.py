@@ -13,13 +13,15 @@ front of more than two objectives is drawn as a projection. The runtime figures 
 the report's do (spec/EVALUATION.md §7): the solvers' own runtime where every file has one on one
 clock, else mosb's wall clock (`runtime="wall"` or `"reported"` chooses); the cactus plot and the
 performance profile count solved queries, the scatter plot the queries both completed (solved or
-shown unreachable). matplotlib is imported on first call (Debian: python3-matplotlib).
+shown unreachable). Their data is the report's own, computed by the library
+(mosb/runtime_figures.hpp); this module draws it. matplotlib is imported on first call (Debian:
+python3-matplotlib).
 """
 import math
 
 import numpy as np
 
-from . import Solutions, _require, open_solutions
+from . import Solutions, _mosb, _require, open_solutions
 
 __all__ = ["OKABE_ITO", "front", "cactus", "performance_profile", "runtime_scatter"]
 
@@ -79,9 +81,6 @@ def front(solutions, query, reference=None, objectives=(0, 1), figsize=(6.4, 4.0
     return fig
 
 
-_SOLVED, _DISCONNECTED = 0, 3  # status codes (mosb.STATUSES)
-
-
 def _runtime_statistic(files, runtime=None):
     """The statistic every runtime figure of `files` shows, as lib/solutions' choose_runtime picks
     it: `runtime` ("wall" or "reported") when given; else the solvers' own
@@ -99,29 +98,32 @@ def _runtime_statistic(files, runtime=None):
     return "reported_runtime_seconds" if len(clocks) == 1 else "runtime_seconds"
 
 
-def _runtimes(s, statistic, completed=False):
-    """Runtimes of the solved queries, or with `completed` also of those shown unreachable (NaN
-    elsewhere and where absent)."""
+def _runs(s, statistic):
+    """A file's queries as the runtime figures read them: status codes and runtimes (NaN where
+    absent)."""
     values = s.statistic(statistic)
     if values is None:
-        return np.full(s.query_count, np.nan)
-    statuses = s.statuses()
-    kept = (statuses == _SOLVED) | (completed & (statuses == _DISCONNECTED))
-    return np.where(kept, values, np.nan)
+        values = np.full(s.query_count, np.nan)
+    return s.statuses(), values
+
+
+def _not_drawn(count, what):
+    return ", %d %s not drawn" % (count, what) if count else ""
 
 
 def cactus(solutions, runtime=None, figsize=(6.4, 4.0)):
     """Queries solved within a time, per solver: its solved queries' runtimes sorted, against
-    their count (log runtime axis)."""
+    their count (log runtime axis; those of 0 s counted in the legend, not drawn)."""
     files = [_solutions(s) for s in solutions]
     statistic = _runtime_statistic(files, runtime)
     fig = _figure(figsize)
     ax = fig.add_subplot()
     for k, s in enumerate(files):
-        times = _runtimes(s, statistic)
-        times = np.sort(times[~np.isnan(times)])
-        ax.plot(np.arange(1, len(times) + 1), times, marker="o", markersize=3,
-                color=_SERIES[k % len(_SERIES)], label="%s (%d solved)" % (_name(s), len(times)))
+        data = _mosb.cactus_series(*_runs(s, statistic))
+        x, y = zip(*data["points"]) if data["points"] else ((), ())
+        ax.plot(x, y, marker="o", markersize=3, color=_SERIES[k % len(_SERIES)],
+                label="%s (%d solved%s)" % (_name(s), data["solved"],
+                                            _not_drawn(data["zero"], "in 0 s")))
     ax.set_yscale("log")
     ax.set_xlabel("queries solved")
     ax.set_ylabel("runtime [s]")
@@ -135,44 +137,39 @@ def performance_profile(solutions, runtime=None, figsize=(6.4, 4.0)):
     within τ times the best runtime. The files must share their instance, view and query set."""
     files = [_solutions(s) for s in solutions]
     statistic = _runtime_statistic(files, runtime)
-    times = np.array([_runtimes(s, statistic) for s in files])  # solver x query
-    solved_by_some = ~np.all(np.isnan(times), axis=0)
-    times = np.maximum(times[:, solved_by_some], 1e-6)
-    best = np.nanmin(times, axis=0)
+    runs = [_runs(s, statistic) for s in files]
+    data = _mosb.performance_profile([r[0] for r in runs], [r[1] for r in runs])
     fig = _figure(figsize)
     ax = fig.add_subplot()
-    n = times.shape[1]
     top = 1.0
-    for k, s in enumerate(files):
-        ratios = np.sort((times[k] / best)[~np.isnan(times[k])])
-        top = max(top, ratios[-1] if len(ratios) else 1.0)
-        fractions = np.arange(1, len(ratios) + 1) / max(n, 1)
-        ax.step(np.r_[1.0, ratios], np.r_[0.0, fractions], where="post",
-                color=_SERIES[k % len(_SERIES)], label=_name(s))
+    for k, (s, points) in enumerate(zip(files, data["series"])):
+        x, y = zip(*points) if points else ((), ())
+        top = max([top, *x])
+        ax.step(x, y, where="post", color=_SERIES[k % len(_SERIES)], label=_name(s))
     ax.set_xscale("log")
     ax.set_xlim(1, 10 ** math.ceil(math.log10(top)) if top > 1 else 10)
     ax.set_ylim(0, 1)
     ax.set_xlabel("τ: runtime / best runtime")
     ax.set_ylabel("fraction of queries within τ")
-    ax.set_title("Performance profile (Dolan–Moré)")
+    ax.set_title("Performance profile (Dolan–Moré, %d queries)" % data["queries"])
     ax.legend(loc="lower right")
     return fig
 
 
 def runtime_scatter(a, b, runtime=None, figsize=(5.0, 5.0)):
     """Per-query runtimes of solver A (x) against B (y) over the queries both completed (solved
-    or shown unreachable), log–log with the diagonal."""
+    or shown unreachable), log–log with the diagonal; those of 0 s counted in the title."""
     a, b = _solutions(a), _solutions(b)
     statistic = _runtime_statistic([a, b], runtime)
-    x, y = _runtimes(a, statistic, completed=True), _runtimes(b, statistic, completed=True)
-    both = ~np.isnan(x) & ~np.isnan(y)
+    data = _mosb.runtime_scatter(*_runs(a, statistic), *_runs(b, statistic))
+    x, y = (np.array(v, dtype=float) for v in zip(*data["points"])) if data["points"] else (
+        np.array([]), np.array([]))
     fig = _figure(figsize)
     ax = fig.add_subplot()
-    ax.scatter(x[both], y[both], s=16, color=OKABE_ITO[4], alpha=0.75)
-    positive = np.r_[x[both], y[both]]
-    positive = positive[positive > 0]
-    lo = 10 ** math.floor(math.log10(positive.min())) if len(positive) else 0.1
-    hi = 10 ** math.ceil(math.log10(positive.max())) if len(positive) else 1
+    ax.scatter(x, y, s=16, color=OKABE_ITO[4], alpha=0.75)
+    values = np.r_[x, y]
+    lo = 10 ** math.floor(math.log10(values.min())) if len(values) else 0.1
+    hi = 10 ** math.ceil(math.log10(values.max())) if len(values) else 1
     ax.plot([lo, hi], [lo, hi], color="#555555", linewidth=1)
     ax.set_xscale("log")
     ax.set_yscale("log")
@@ -181,5 +178,6 @@ def runtime_scatter(a, b, runtime=None, figsize=(5.0, 5.0)):
     ax.set_aspect("equal")
     ax.set_xlabel("%s runtime [s]" % _name(a))
     ax.set_ylabel("%s runtime [s]" % _name(b))
-    ax.set_title("Runtime per query (%d both completed)" % int(both.sum()))
+    ax.set_title("Runtime per query (%d both completed%s)"
+                 % (len(x) + data["zero"], _not_drawn(data["zero"], "in 0 s")))
     return fig

@@ -17,6 +17,7 @@
 #include "mosb/graph_reader.hpp"
 #include "mosb/internal/utf8.hpp"
 #include "mosb/pack.hpp"
+#include "mosb/runtime_figures.hpp"
 #include "mosb/solution_file.hpp"
 #include "mosb/solution_summary.hpp"
 #include "mosb/store.hpp"
@@ -343,6 +344,85 @@ void bind_solutions(py::module_& m) {
   m.attr("STATUSES") = py::tuple(statuses);
 }
 
+// A solver's queries as the runtime figures read them: status codes (indexing STATUSES) and
+// runtimes (NaN where absent), two arrays of one length.
+std::vector<mosb::QueryRun> runs_of(const py::array_t<std::uint8_t>& statuses,
+                                    const py::array_t<double>& runtimes) {
+  if (statuses.ndim() != 1 || runtimes.ndim() != 1 || statuses.size() != runtimes.size())
+    throw py::value_error("statuses and runtimes: two arrays of one length");
+  const auto s = statuses.unchecked<1>();
+  const auto t = runtimes.unchecked<1>();
+  std::vector<mosb::QueryRun> runs(static_cast<std::size_t>(statuses.size()));
+  for (py::ssize_t q = 0; q < statuses.size(); ++q) {
+    if (s(q) > mosb::kLastQueryStatus)
+      throw py::value_error("status code " + std::to_string(s(q)) + " is not one of STATUSES");
+    auto& run = runs[static_cast<std::size_t>(q)];
+    run.status = static_cast<mosb::QueryStatus>(s(q));
+    if (!std::isnan(t(q))) run.runtime = t(q);
+  }
+  return runs;
+}
+
+py::list points_of(const std::vector<mosb::FigurePoint>& points) {
+  py::list out;
+  for (const auto& p : points) out.append(py::make_tuple(p.x, p.y));
+  return out;
+}
+
+// The runtime figures' data (mosb/runtime_figures.hpp), which mosb.plot draws: the report's own.
+void bind_runtime_figures(py::module_& m) {
+  m.def(
+      "cactus_series",
+      [](const py::array_t<std::uint8_t>& statuses, const py::array_t<double>& runtimes) {
+        const auto data = mosb::cactus_series(runs_of(statuses, runtimes));
+        py::dict out;
+        out["points"] = points_of(data.points);
+        out["solved"] = data.solved;
+        out["zero"] = data.zero;
+        return out;
+      },
+      py::arg("statuses"), py::arg("runtimes"));
+  m.def(
+      "performance_profile",
+      [](const std::vector<py::array_t<std::uint8_t>>& statuses,
+         const std::vector<py::array_t<double>>& runtimes) {
+        if (statuses.size() != runtimes.size() || statuses.empty())
+          throw py::value_error("statuses and runtimes: one array of each per solver");
+        std::vector<std::vector<mosb::QueryRun>> by_solver;
+        for (std::size_t k = 0; k < statuses.size(); ++k)
+          by_solver.push_back(runs_of(statuses[k], runtimes[k]));
+        std::vector<std::vector<mosb::QueryRun>> by_query(by_solver.front().size());
+        for (const auto& runs : by_solver) {
+          if (runs.size() != by_query.size())
+            throw py::value_error("the solvers' arrays differ in length");
+          for (std::size_t q = 0; q < runs.size(); ++q) by_query[q].push_back(runs[q]);
+        }
+        const auto data = mosb::performance_profile(by_query, by_solver.size());
+        py::dict out;
+        out["queries"] = data.queries;
+        py::list series;
+        for (const auto& points : data.series) series.append(points_of(points));
+        out["series"] = series;
+        return out;
+      },
+      py::arg("statuses"), py::arg("runtimes"));
+  m.def(
+      "runtime_scatter",
+      [](const py::array_t<std::uint8_t>& statuses_a, const py::array_t<double>& runtimes_a,
+         const py::array_t<std::uint8_t>& statuses_b, const py::array_t<double>& runtimes_b) {
+        const auto a = runs_of(statuses_a, runtimes_a), b = runs_of(statuses_b, runtimes_b);
+        if (a.size() != b.size()) throw py::value_error("the two solvers' arrays differ in length");
+        const auto data = mosb::runtime_scatter(a, b);
+        py::dict out;
+        out["points"] = points_of(data.points);
+        out["query"] = data.query;
+        out["one_only"] = data.one_only;
+        out["zero"] = data.zero;
+        return out;
+      },
+      py::arg("statuses_a"), py::arg("runtimes_a"), py::arg("statuses_b"), py::arg("runtimes_b"));
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_mosb, m) {
@@ -357,4 +437,5 @@ PYBIND11_MODULE(_mosb, m) {
   bind_reader_checks(reader);
   bind_store(m);
   bind_solutions(m);
+  bind_runtime_figures(m);
 }

@@ -13,6 +13,7 @@
 #include "mosb/report/figures.hpp"
 #include "mosb/report/plots.hpp"
 #include "mosb/report/svg.hpp"
+#include "mosb/runtime_figures.hpp"
 #include "mosb/solution_summary.hpp"
 #include "mosb/solver_comparison.hpp"
 #include "mosb/stats.hpp"
@@ -1099,7 +1100,19 @@ Scope pooled_scope(const Context& c) {
   return {std::nullopt, &c.solver_names, ", every benchmark", ""};
 }
 
-// Each solver's solved queries by runtime.
+// A figure's points as a drawing's.
+std::vector<plots::Point2> drawn(const std::vector<FigurePoint>& points) {
+  std::vector<plots::Point2> out;
+  out.reserve(points.size());
+  for (const auto& p : points) out.push_back({p.x, p.y});
+  return out;
+}
+
+QueryRun run_of(const Outcome& o) {
+  return {o.status, o.runtime};
+}
+
+// Each solver's solved queries by runtime (cactus_series).
 void cactus_figure(const Context& c, const Scope& scope) {
   plots::LinePlot cactus;
   cactus.title = "Cactus plot" + scope.title_suffix;
@@ -1107,25 +1120,17 @@ void cactus_figure(const Context& c, const Scope& scope) {
   cactus.y_label = "runtime [s] (log scale)";
   cactus.y_log = true;
   for (const auto& s : *scope.solvers) {
-    std::vector<double> times;
+    std::vector<QueryRun> runs;
     for (const auto& [key, by_solver] : c.outcomes) {
       if (!scope.holds(key)) continue;
-      const auto it = by_solver.find(s);
-      if (it != by_solver.end() && it->second.status == QueryStatus::solved && it->second.runtime)
-        times.push_back(*it->second.runtime);
+      if (const auto it = by_solver.find(s); it != by_solver.end())
+        runs.push_back(run_of(it->second));
     }
-    std::sort(times.begin(), times.end());
-    // A runtime of 0 (below the clock's resolution: A*pex reports whole milliseconds) has no
-    // place on a log axis: counted, not drawn at some made-up height.
-    const auto zeros = static_cast<std::size_t>(
-        std::find_if(times.begin(), times.end(), [](double t) { return t > 0; }) - times.begin());
-    plots::LineSeries series{s + " (" + std::to_string(times.size()) + " solved" +
-                                 (zeros ? ", " + std::to_string(zeros) + " in 0 s not drawn" : "") +
-                                 ")",
-                             {}};
-    for (std::size_t k = zeros; k < times.size(); ++k)
-      series.points.push_back({static_cast<double>(k + 1), times[k]});
-    cactus.series.push_back(std::move(series));
+    const auto data = cactus_series(runs);
+    cactus.series.push_back(
+        {s + " (" + std::to_string(data.solved) + " solved" +
+             (data.zero ? ", " + std::to_string(data.zero) + " in 0 s not drawn" : "") + ")",
+         drawn(data.points)});
   }
   c.page.figure("cactus", plots::plot_lines(cactus),
                 "Each solver's solved queries sorted by " + c.runtime_text +
@@ -1134,8 +1139,8 @@ void cactus_figure(const Context& c, const Scope& scope) {
                 "cactus" + scope.name_suffix);
 }
 
-// The Dolan–Moré performance profile over the queries every solver of the scope has a file for
-// and some solver solved.
+// The Dolan–Moré performance profile (performance_profile) over the queries every solver of the
+// scope has a file for and some solver solved.
 void profile_figure(const Context& c, const Scope& scope) {
   plots::LinePlot profile;
   profile.title = "Performance profile" + scope.title_suffix;
@@ -1145,33 +1150,17 @@ void profile_figure(const Context& c, const Scope& scope) {
   profile.steps = true;
   profile.x_min = 1;
   profile.y_max = 1;
-  std::map<std::string, std::vector<double>> ratios;
-  std::size_t profiled = 0;
+  std::vector<std::vector<QueryRun>> runs;
   for (const auto& [key, by_solver] : c.outcomes) {
     if (!scope.holds(key) || by_solver.size() != scope.solvers->size()) continue;
-    double best = std::numeric_limits<double>::infinity();
-    for (const auto& [name, o] : by_solver)
-      if (o.status == QueryStatus::solved && o.runtime) best = std::min(best, *o.runtime);
-    if (!std::isfinite(best)) continue;
-    ++profiled;
-    constexpr double kFloor = 1e-6;  // a runtime of 0 s still divides
-    for (const auto& [name, o] : by_solver)
-      if (o.status == QueryStatus::solved && o.runtime)
-        ratios[name].push_back(std::max(*o.runtime, kFloor) / std::max(best, kFloor));
+    auto& row = runs.emplace_back();
+    for (const auto& s : *scope.solvers) row.push_back(run_of(by_solver.at(s)));
   }
-  for (const auto& s : *scope.solvers) {
-    auto r = ratios[s];
-    std::sort(r.begin(), r.end());
-    plots::LineSeries series{s, {}};
-    for (std::size_t k = 0; k < r.size(); ++k)
-      if (k + 1 == r.size() || r[k + 1] != r[k])
-        series.points.push_back({r[k], static_cast<double>(k + 1) / static_cast<double>(profiled)});
-    if (!series.points.empty() && series.points.front().x > 1)
-      series.points.insert(series.points.begin(), {1, 0});
-    profile.series.push_back(std::move(series));
-  }
+  const auto data = performance_profile(runs, scope.solvers->size());
+  for (std::size_t k = 0; k < scope.solvers->size(); ++k)
+    profile.series.push_back({(*scope.solvers)[k], drawn(data.series[k])});
   c.page.figure("profile", plots::plot_lines(profile),
-                "Dolan–Moré, over the " + std::to_string(profiled) +
+                "Dolan–Moré, over the " + std::to_string(data.queries) +
                     " queries every solver ran and some solver solved: the fraction of them a "
                     "solver solved within τ times the best solver's " +
                     c.runtime_text + ". Unsolved queries never count.",
@@ -1179,7 +1168,7 @@ void profile_figure(const Context& c, const Scope& scope) {
 }
 
 // The baseline solver's runtime (ReportOptions::baseline, else the first solver's) against each
-// other one's, per query both completed, the benchmarks told apart.
+// other one's, per query both completed (runtime_scatter), the benchmarks told apart.
 void scatter_figures(const Context& c) {
   const auto& a = c.options.baseline.empty() ? c.solver_names.front() : c.options.baseline;
   const auto file_key = [&](const std::string& name) {
@@ -1192,32 +1181,29 @@ void scatter_figures(const Context& c) {
     scatter.title = "Runtime per query: " + a + " against " + other;
     scatter.x_label = a + " runtime [s]";
     scatter.y_label = other + " runtime [s]";
-    std::map<std::size_t, plots::LineSeries> groups;  // by benchmark
-    std::uint64_t one_only = 0, at_zero = 0;
+    std::vector<QueryRun> runs_a, runs_other;
+    std::vector<std::size_t> benchmark;  // per query
     for (const auto& [key, by_solver] : c.outcomes) {
       const auto ia = by_solver.find(a), io = by_solver.find(other);
       if (ia == by_solver.end() || io == by_solver.end()) continue;
-      const bool both = ia->second.completed() && ia->second.runtime && io->second.completed() &&
-                        io->second.runtime;
-      if (!both) {
-        one_only += ia->second.completed() || io->second.completed();
-        continue;
-      }
-      if (*ia->second.runtime <= 0 || *io->second.runtime <= 0) {
-        ++at_zero;  // no place on a log–log plot
-        continue;
-      }
-      auto& group = groups[key.benchmark];
-      group.name = c.benchmarks[key.benchmark].name;
-      group.points.push_back({*ia->second.runtime, *io->second.runtime});
+      runs_a.push_back(run_of(ia->second));
+      runs_other.push_back(run_of(io->second));
+      benchmark.push_back(key.benchmark);
+    }
+    const auto data = runtime_scatter(runs_a, runs_other);
+    std::map<std::size_t, plots::LineSeries> groups;  // by benchmark
+    for (std::size_t k = 0; k < data.points.size(); ++k) {
+      auto& group = groups[benchmark[data.query[k]]];
+      group.name = c.benchmarks[benchmark[data.query[k]]].name;
+      group.points.push_back({data.points[k].x, data.points[k].y});
     }
     for (auto& [b, group] : groups) scatter.groups.push_back(std::move(group));
-    if (one_only > 0)
-      scatter.note = std::to_string(one_only) + " quer" + (one_only == 1 ? "y" : "ies") +
+    if (data.one_only > 0)
+      scatter.note = std::to_string(data.one_only) + " quer" + (data.one_only == 1 ? "y" : "ies") +
                      " completed by one of the two only, not drawn";
-    if (at_zero > 0)
-      scatter.note += (scatter.note.empty() ? "" : "; ") + std::to_string(at_zero) + " quer" +
-                      (at_zero == 1 ? "y" : "ies") + " with a runtime of 0 s, not drawn";
+    if (data.zero > 0)
+      scatter.note += (scatter.note.empty() ? "" : "; ") + std::to_string(data.zero) + " quer" +
+                      (data.zero == 1 ? "y" : "ies") + " with a runtime of 0 s, not drawn";
     c.page.figure("scatter", plots::plot_runtime_scatter(scatter),
                   "One dot per query both completed, " + c.runtime_text +
                       ", log–log; above the diagonal " + a + " was faster.",

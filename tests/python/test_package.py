@@ -725,8 +725,8 @@ class PlotTest(Temp):
         exact, fast = ax.get_lines()
         # exact is best on queries 1 and 2 and twice the best on query 0; fast best on query 0,
         # twice the best on query 1 and never solves query 2.
-        self.assertEqual(exact.get_xdata().tolist(), [1, 1, 1, 2])
-        self.assertEqual(exact.get_ydata().tolist()[-1], 1)
+        self.assertEqual(exact.get_xdata().tolist(), [1, 2])
+        self.assertEqual(exact.get_ydata().tolist(), [2 / 3, 1])
         self.assertAlmostEqual(fast.get_ydata().tolist()[-1], 2 / 3)
         (ax,) = self.plot.runtime_scatter(self.exact, self.fast).axes
         self.assertEqual(sorted(map(tuple, ax.collections[0].get_offsets().tolist())),
