@@ -250,8 +250,8 @@ std::vector<Point2> pair_points(const std::vector<std::vector<double>>& rows, st
   return points;
 }
 
-FrontPlot front_of(const SolutionReader& solutions, const SolutionReader* reference,
-                   const GraphReader* instance, std::uint64_t query, std::size_t x, std::size_t y) {
+FrontPlot front_axes(const SolutionReader& solutions, const GraphReader* instance, std::size_t x,
+                     std::size_t y) {
   FrontPlot plot;
   plot.x_label = solutions.objective_name(x);
   plot.y_label = solutions.objective_name(y);
@@ -260,6 +260,12 @@ FrontPlot front_of(const SolutionReader& solutions, const SolutionReader* refere
     plot.y_unit = objective_unit(*instance, plot.y_label);
   }
   plot.objective_count = solutions.objective_count();
+  return plot;
+}
+
+FrontPlot front_of(const SolutionReader& solutions, const SolutionReader* reference,
+                   const GraphReader* instance, std::uint64_t query, std::size_t x, std::size_t y) {
+  auto plot = front_axes(solutions, instance, x, y);
   plot.solution = pair_points(front_rows(solutions, query), x, y);
   if (const auto name = solutions.solver().name; !name.empty()) plot.solver_name = name;
   if (reference != nullptr) {

@@ -898,16 +898,13 @@ QueryFronts query_fronts(const Context& c, const Benchmark& bm, const DrawnFront
 }
 
 // d = 2: one scatter; d = 3: the three pairwise projections, each saying so.
-void pair_figures(const Context& c, const SolutionReader& shown, std::size_t d,
+void pair_figures(const Context& c, const DrawnFronts& fronts, std::size_t d,
                   const QueryFronts& f) {
   std::vector<std::pair<std::size_t, std::size_t>> pairs = {{0, 1}};
   if (d == 3) pairs = {{0, 1}, {0, 2}, {1, 2}};
   for (const auto& [a, b] : pairs) {
-    plots::FrontPlot front;
+    auto front = plots::front_axes(*fronts.shown, &c.instances[fronts.instance], a, b);
     front.title = f.title;
-    front.x_label = shown.objective_name(a);
-    front.y_label = shown.objective_name(b);
-    front.objective_count = d;
     front.max_points = c.options.max_points;
     front.reference = plots::pair_points(f.reference, a, b);
     front.solution = plots::pair_points(f.solution, a, b);
@@ -958,7 +955,7 @@ void front_figures(const Context& c, const Benchmark& bm, const DrawnFronts& fro
     if (d > 3)
       parallel_figure(c, *fronts.shown, d, std::move(f));
     else
-      pair_figures(c, *fronts.shown, d, f);
+      pair_figures(c, fronts, d, f);
   }
 }
 

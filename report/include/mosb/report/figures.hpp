@@ -65,6 +65,12 @@ std::vector<std::vector<double>> front_rows(const SolutionReader& solutions, std
 std::vector<Point2> pair_points(const std::vector<std::vector<double>>& rows, std::size_t x,
                                 std::size_t y);
 
+// A front figure's axes, what `plot front` and the report's front figures share: objectives x and
+// y of `solutions` by name, with their units when `instance` (the instance the file is bound to)
+// is not null, and the file's objective count (a projection of more says so).
+FrontPlot front_axes(const SolutionReader& solutions, const GraphReader* instance, std::size_t x,
+                     std::size_t y);
+
 // `mosb plot front` (spec/EVALUATION.md §5): query `query`'s front in `solutions` on objectives x
 // and y, labelled with their names, and `reference`'s front under it when not null
 // (check_same_binding holds between the two); the labels carry the objectives' units when
