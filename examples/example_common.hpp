@@ -10,7 +10,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -21,6 +20,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "mosb/atomic_file.hpp"
 #include "mosb/error.hpp"
 #include "mosb/graph_reader.hpp"
 
@@ -218,25 +218,20 @@ inline std::vector<double> distances_to(const Graph& g, std::uint32_t goal,
   return dist;
 }
 
-// Writes DIR/<index>.txt atomically: one cost vector per line, values separated by one space,
-// lines sorted lexicographically by value (examples/README.md).
+// Writes DIR/<index>.txt atomically (mosb::write_file_atomically): one cost vector per line,
+// values separated by one space, lines sorted lexicographically by value (examples/README.md).
 inline void write_front(const std::string& dir, std::size_t index, Front front) {
   std::sort(front.begin(), front.end());
-  const std::filesystem::path path = std::filesystem::path(dir) / (std::to_string(index) + ".txt");
-  const std::filesystem::path partial = path.string() + ".partial";
-  {
-    std::ofstream out(partial);
-    char number[32];
-    for (const auto& costs : front) {
-      for (std::size_t k = 0; k < costs.size(); ++k) {
-        std::snprintf(number, sizeof number, "%.17g", costs[k]);
-        out << (k ? " " : "") << number;
-      }
-      out << '\n';
+  std::string text;
+  char number[32];
+  for (const auto& costs : front) {
+    for (std::size_t k = 0; k < costs.size(); ++k) {
+      std::snprintf(number, sizeof number, "%.17g", costs[k]);
+      text += (k ? " " : "") + std::string(number);
     }
-    if (!out.flush()) throw mosb::Error(path.string() + ": cannot write the front");
+    text += '\n';
   }
-  std::filesystem::rename(partial, path);
+  mosb::write_file_atomically(std::filesystem::path(dir) / (std::to_string(index) + ".txt"), text);
 }
 
 // The solver protocol of `mosb run` (spec/RUN.md): the front on stdout, one vector per line in
