@@ -839,8 +839,8 @@ void map_figure(const Context& c, const Benchmark& bm, const DrawnFronts& fronts
                 cells + (map.guards.empty()
                              ? "; starts and goals of the queries drawn below. No guard is "
                                "marked: the instance records each cell's exposure, not where "
-                               "guards stand (converted from an exposure grid, or before mosb "
-                               "0.2.0 wrote map.guards)."
+                               "guards stand (converted from an exposure grid, or by mosb 0.2.0 "
+                               "or earlier, which did not write map.guards)."
                              : ", guards black dots; starts and goals of the queries drawn below."),
                 "map-" + bm.key);
 }
