@@ -426,8 +426,11 @@ ReadProgress::ReadProgress(Progress progress, const std::vector<std::string>& fi
 
 void ReadProgress::add(std::uint64_t raw_bytes) {
   if (!progress_) return;
-  const std::uint64_t done = done_ += raw_bytes;
+  done_ += raw_bytes;
   const std::lock_guard lock(report_);
+  // The sum read under the lock: a report never goes back, and the last one has every byte (a
+  // sum taken before the lock could be overtaken by another thread's larger one).
+  const std::uint64_t done = done_.load();
   progress_("read", std::min(done, total_), total_);
 }
 
