@@ -373,38 +373,41 @@ class ExperimentTest(ExperimentFixture):
 
     def test_a_bad_file_is_one_line_naming_file_line_and_key(self):
         cases = [
-            ('name = "x"\nstore = "%s"\ntypo = 1\n' % self.path("store"), ":3: typo: unknown key"),
+            ('name = "x"\nstore = "%s"\ntypo = 1\n' % self.path("store"),
+             ":3:1: key 'typo': unknown key"),
             ('name = "x"\nstore = "%s"\nlimits = { time = "1 hour" }\n'
              '[[solver]]\nname = "a"\ntemplate = "%s"\n' % (self.path("store"), self.path("wrong.sh")),
-             ":3: limits.time: '1 hour' is not a duration"),
+             ":3:19: key 'limits.time': '1 hour' is not a duration"),
             ('name = "x"\nstore = "%s"\nbenchmarks = ["Grid_2",\n  "Nope_*"]\n'
              '[[solver]]\nname = "a"\ntemplate = "%s"\n' % (self.path("store"), self.path("wrong.sh")),
-             ":4: benchmarks: 'Nope_*' matches no view or benchmark"),
+             ":4:3: key 'benchmarks': 'Nope_*' matches no view or benchmark"),
             ('name = "x"\nstore = "%s"\n[[solver]]\nname = "apex"\nprofile = "apex"\n'
              'executable = "/nonexistent/multiobj"\noptions = { algorithm = "Apex" }\n'
              % self.path("store"),
-             ":3: solver[1]: solver 'apex': executable /nonexistent/multiobj: no such executable"),
+             ":3:1: key 'solver[1]': solver 'apex': executable /nonexistent/multiobj: "
+             "no such executable"),
             ('name = "x"\nstore = "%s"\n[[solver]]\nname = "apex"\nprofile = "apex"\n'
              'executable = "/bin/true"\noptions = { algorithm = "Dijkstra" }\n'
              % self.path("store"),
-             ":3: solver[1]: solver 'apex': option algorithm=Dijkstra: algorithm is one of"),
+             ":3:1: key 'solver[1]': solver 'apex': option algorithm=Dijkstra: algorithm is one of"),
             ('name = "x"\nstore = "%s"\n[[solver]]\nname = "tmda"\nprofile = "tmda"\n'
              'executable = "/bin/true"\nepsilon = 0.1\n' % self.path("store"),
-             ":3: solver[1]: solver 'tmda': epsilon 0.1: profile tmda gives its solver no epsilon"),
+             ":3:1: key 'solver[1]': solver 'tmda': epsilon 0.1: profile tmda gives its solver "
+             "no epsilon"),
             ('name = "x"\nstore = "%s"\n[[solver]]\nname = "a"\ntempalte = "x"\n' % self.path("store"),
-             ":5: solver[1].tempalte: unknown key"),
+             ":5:1: key 'solver[1].tempalte': unknown key"),
             ('name = "x"\nstore = "%s"\n[[solver]]\nname = "a"\ntemplate = "%s"\n'
              '[reference]\nsolvers = ["b"]\n' % (self.path("store"), self.path("wrong.sh")),
-             ":7: reference.solvers: 'b' is none of the [[solver]] names"),
+             ":7:11: key 'reference.solvers': 'b' is none of the [[solver]] names"),
             ('name = "x"\nstore = [\n', ":2:11: "),
             ('name = "x"\nstore = "%s"\n[[solver]]\nname = "a"\ntemplate = "%s"\n'
              '[[benchmark_limits]]\nbenchmarks = ["Grid_2",\n "Nope"]\nmemory = "1G"\n'
              % (self.path("store"), self.path("wrong.sh")),
-             ":8: benchmark_limits[1].benchmarks: 'Nope' matches no cell of the experiment"),
+             ":8:2: key 'benchmark_limits[1].benchmarks': 'Nope' matches no cell of the experiment"),
             ('name = "x"\nstore = "%s"\n[[solver]]\nname = "a"\ntemplate = "%s"\n'
              '[[benchmark_limits]]\nbenchmarks = ["Grid_2"]\nmem = "1G"\n'
              % (self.path("store"), self.path("wrong.sh")),
-             ":8: benchmark_limits[1].mem: unknown key"),
+             ":8:1: key 'benchmark_limits[1].mem': unknown key"),
         ]
         for text, expected in cases:
             with self.subTest(expected=expected):
@@ -443,9 +446,9 @@ class ExperimentTest(ExperimentFixture):
         r = run("experiment", "run", self.write("float.toml", text), "-o", self.path("never"))
         self.assertEqual(r.returncode, 2, r.stderr)
         self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
-        self.assertIn("float.toml:3: solver[1]: solver 'apex', cell roadmap/Roadmap_2: objective "
-                      "'length' holds float costs and profile apex's solver reads integers only: "
-                      "give a scale K", r.stderr)
+        self.assertIn("float.toml:3:1: key 'solver[1]': solver 'apex', cell roadmap/Roadmap_2: "
+                      "objective 'length' holds float costs and profile apex's solver reads "
+                      "integers only: give a scale K", r.stderr)
         self.assertFalse(os.path.exists(self.path("never")))
         # With a scale, the cells are planned (a scale where no cost is a float is refused).
         scaled = self.write("scaled.toml", text + "scale = 1000\n")
@@ -536,7 +539,7 @@ class ExperimentTest(ExperimentFixture):
         r = run("experiment", "run", exp, "-o", results, env=env)
         self.assertEqual(r.returncode, 2, r.stderr)
         self.assertEqual(r.stderr.count("\n"), 1, r.stderr)
-        self.assertIn("paper.toml:13: solver[3]: solver 'apex-eps0.01': executable "
+        self.assertIn("paper.toml:13:1: key 'solver[3]': solver 'apex-eps0.01': executable "
                       "${MOSB_TEST_APEX}: the environment variable MOSB_TEST_APEX is not set",
                       r.stderr)
         env["MOSB_TEST_APEX"] = bins["apex"]

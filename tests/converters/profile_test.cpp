@@ -107,7 +107,7 @@ TEST_CASE("a malformed profile is one line with file, line, column and key") {
   CHECK(error_of(std::string(kMinimal) + "[input]\nparallel_arcs = \"merge\"\n") ==
         "p.toml:4:17: key 'input.parallel_arcs': 'merge' is not one of keep, collapse");
   // missing keys
-  CHECK(error_of("name = \"x\"\n") == "p.toml:1:1: key 'command' is missing");
+  CHECK(error_of("name = \"x\"\n") == "p.toml:1:1: key 'command': is missing");
   // an unknown placeholder, and one that needs another input form
   CHECK(error_of("name = \"x\"\ncommand = \"{executable} {sourc}\"\n") ==
         "p.toml:2:11: key 'command': unknown placeholder {sourc}");

@@ -10,9 +10,11 @@
 #include "mosb/checksum.hpp"
 #include "mosb/command_template.hpp"
 #include "mosb/converters/solver_output.hpp"
+#include "mosb/converters/toml_table.hpp"
 #include "mosb/error.hpp"
 #include "mosb/internal/hex.hpp"
 #include "mosb/internal/read_file.hpp"
+#include "mosb/internal/source_error.hpp"
 #include "placeholders.hpp"
 
 namespace mosb::converters {
@@ -24,130 +26,6 @@ constexpr std::array<std::string_view, 19> kPlaceholders = {
     "fronts",   "threads",    "executable", "gr",      "multi_gr", "queries", "co",
     "d",        "time_limit", "epsilon",    "gr:NAME", "OPTION"};
 
-// The message as one line: a quoted value's control characters (a command's newlines) shown as
-// blanks.
-std::string one_line(std::string text) {
-  for (auto& c : text)
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) c = ' ';
-  return text;
-}
-
-std::string position(const std::string& file, const toml::source_region& where) {
-  return file + ":" + std::to_string(where.begin.line) + ":" + std::to_string(where.begin.column);
-}
-
-// The keys of one TOML table, read by type; each read marks its key known, and finish() refuses
-// the others. Every error names the file, the line and column, and the key's dotted path.
-class Fields {
- public:
-  Fields(const toml::table& table, const std::string& file, std::string prefix)
-      : table_(table), file_(file), prefix_(std::move(prefix)) {}
-
-  [[noreturn]] void fail(const toml::node& at, std::string_view key,
-                         const std::string& what) const {
-    throw Error(ErrorCode::invalid_argument,
-                one_line(position(file_, at.source()) + ": key '" + path(key) + "': " + what));
-  }
-  [[noreturn]] void fail_missing(std::string_view key) const {
-    throw Error(ErrorCode::invalid_argument, one_line(position(file_, table_.source()) + ": key '" +
-                                                      path(key) + "' is missing"));
-  }
-  std::string path(std::string_view key) const { return prefix_ + std::string(key); }
-
-  const toml::node* find(std::string_view key) {
-    known_.insert(std::string(key));
-    return table_.get(key);
-  }
-
-  // `blanks`: tabs and newlines are allowed (a command's words may span lines).
-  std::optional<std::string> string(std::string_view key, bool blanks = false) {
-    const auto* node = find(key);
-    if (node == nullptr) return std::nullopt;
-    const auto value = node->value<std::string>();
-    if (!node->is_string()) fail(*node, key, "expected a string");
-    for (const char c : *value)
-      if ((static_cast<unsigned char>(c) < 0x20 || c == 0x7F) &&
-          !(blanks && (c == '\n' || c == '\t')))
-        fail(*node, key, "a control character in the string");
-    return *value;
-  }
-  std::string required_string(std::string_view key, bool blanks = false) {
-    auto value = string(key, blanks);
-    if (!value) fail_missing(key);
-    return *value;
-  }
-  template <class Enum, std::size_t N>
-  std::optional<Enum> choice(std::string_view key, const EnumNames<Enum, N>& names) {
-    const auto text = string(key);
-    if (!text) return std::nullopt;
-    const auto value = names.parse(*text);
-    if (!value) fail(*find(key), key, "'" + *text + "' is not one of " + names.choices_text());
-    return value;
-  }
-  std::optional<bool> boolean(std::string_view key) {
-    const auto* node = find(key);
-    if (node == nullptr) return std::nullopt;
-    if (!node->is_boolean()) fail(*node, key, "expected true or false");
-    return node->value<bool>();
-  }
-  std::optional<std::int64_t> integer(std::string_view key, std::int64_t min, std::int64_t max) {
-    const auto* node = find(key);
-    if (node == nullptr) return std::nullopt;
-    if (!node->is_integer()) fail(*node, key, "expected an integer");
-    const auto value = *node->value<std::int64_t>();
-    if (value < min || value > max)
-      fail(*node, key,
-           std::to_string(value) + " is not in [" + std::to_string(min) + ", " +
-               std::to_string(max) + "]");
-    return value;
-  }
-  std::optional<double> number(std::string_view key, double min, double max) {
-    const auto* node = find(key);
-    if (node == nullptr) return std::nullopt;
-    if (!node->is_number()) fail(*node, key, "expected a number");
-    const auto value = *node->value<double>();
-    if (!std::isfinite(value) || value < min || value > max)
-      fail(*node, key,
-           "not a number in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
-    return value;
-  }
-  const toml::table* table(std::string_view key) {
-    const auto* node = find(key);
-    if (node == nullptr) return nullptr;
-    if (!node->is_table()) fail(*node, key, "expected a table");
-    return node->as_table();
-  }
-  const toml::array* array(std::string_view key) {
-    const auto* node = find(key);
-    if (node == nullptr) return nullptr;
-    if (!node->is_array()) fail(*node, key, "expected an array");
-    return node->as_array();
-  }
-  std::vector<std::string> strings(std::string_view key) {
-    std::vector<std::string> out;
-    if (const auto* list = array(key))
-      for (const auto& item : *list) {
-        if (!item.is_string()) fail(item, key, "expected an array of strings");
-        out.push_back(*item.value<std::string>());
-      }
-    return out;
-  }
-  void finish() const {
-    for (const auto& [key, node] : table_)
-      if (!known_.count(std::string(key.str())))
-        throw Error(ErrorCode::invalid_argument,
-                    one_line(position(file_, key.source()) + ": key '" + path(key.str()) +
-                             "': unknown key"));
-  }
-  const std::string& file() const { return file_; }
-
- private:
-  const toml::table& table_;
-  const std::string& file_;
-  std::string prefix_;
-  std::set<std::string> known_;
-};
-
 bool is_name(std::string_view text) {
   if (text.empty() || text.size() > 64) return false;
   return std::all_of(text.begin(), text.end(), [](char c) {
@@ -156,11 +34,11 @@ bool is_name(std::string_view text) {
   });
 }
 
-ProfileInput parse_input(Fields& root) {
+ProfileInput parse_input(TomlTable& root) {
   ProfileInput in;
   const auto* table = root.table("input");
   if (table == nullptr) return in;
-  Fields f(*table, root.file(), "input.");
+  TomlTable f(*table, root.file(), "input.");
   in.form = f.choice("form", kInputFormNames).value_or(InputForm::mosb);
   in.id_base = static_cast<unsigned>(f.integer("id_base", 0, 1).value_or(0));
   in.integer_costs = f.boolean("integer_costs").value_or(false);
@@ -182,36 +60,36 @@ ProfileInput parse_input(Fields& root) {
     in.max_objectives = static_cast<unsigned>(max);
   }
   if (in.pad_columns > 0 && in.form != InputForm::dimacs_multi_column)
-    f.fail(*f.find("pad_columns"), "pad_columns", "only with form = \"dimacs-multi-column\"");
-  f.finish();
+    f.fail(*f.get("pad_columns"), "pad_columns", "only with form = \"dimacs-multi-column\"");
+  f.refuse_unknown();
   return in;
 }
 
-ProfileTimeLimit parse_time_limit(Fields& root) {
+ProfileTimeLimit parse_time_limit(TomlTable& root) {
   ProfileTimeLimit limit;
   const auto* table = root.table("time_limit");
   if (table == nullptr) return limit;
-  Fields f(*table, root.file(), "time_limit.");
+  TomlTable f(*table, root.file(), "time_limit.");
   limit.scale = f.number("scale", 1, 100).value_or(limit.scale);
   limit.add_seconds = f.number("add", 0, 1e6).value_or(limit.add_seconds);
   limit.integer = f.boolean("integer").value_or(false);
   limit.unlimited = f.number("unlimited", 1, 1e12).value_or(limit.unlimited);
-  f.finish();
+  f.refuse_unknown();
   return limit;
 }
 
-std::vector<ProfileOption> parse_options(Fields& root) {
+std::vector<ProfileOption> parse_options(TomlTable& root) {
   std::vector<ProfileOption> options;
   const auto* table = root.table("options");
   if (table == nullptr) return options;
-  Fields all(*table, root.file(), "options.");
+  TomlTable all(*table, root.file(), "options.");
   for (const auto& [key, node] : *table) {
     const std::string name(key.str());
     const auto* option_table = all.table(name);
     if (!is_name(name) ||
         std::find(kPlaceholders.begin(), kPlaceholders.end(), name) != kPlaceholders.end())
       all.fail(node, name, "an option's name is letters, digits, - and _, and no placeholder's");
-    Fields f(*option_table, root.file(), "options." + name + ".");
+    TomlTable f(*option_table, root.file(), "options." + name + ".");
     ProfileOption option;
     option.name = name;
     option.description = f.string("description").value_or("");
@@ -219,49 +97,50 @@ std::vector<ProfileOption> parse_options(Fields& root) {
     option.values = f.strings("values");
     if (!option.values.empty() && std::find(option.values.begin(), option.values.end(),
                                             option.default_value) == option.values.end())
-      f.fail(*f.find("default"), "default", "not one of the values");
+      f.fail(*f.get("default"), "default", "not one of the values");
     if (const auto* limits = f.table("max_objectives")) {
-      Fields g(*limits, root.file(), "options." + name + ".max_objectives.");
+      TomlTable g(*limits, root.file(), "options." + name + ".max_objectives.");
       for (const auto& [value, limit] : *limits) {
         const std::string v(value.str());
         if (std::find(option.values.begin(), option.values.end(), v) == option.values.end())
           g.fail(limit, v, "not one of the option's values");
         option.max_objectives[v] = static_cast<unsigned>(*g.integer(v, 1, 4096));
       }
-      g.finish();
+      g.refuse_unknown();
     }
-    f.finish();
+    f.refuse_unknown();
     options.push_back(std::move(option));
   }
-  all.finish();
+  all.refuse_unknown();
   return options;
 }
 
 OutputLine parse_output_line(const toml::node& node, const std::string& file,
                              const std::string& path, bool status) {
-  if (!node.is_table())
+  if (!node.is_table()) {
+    const auto at = position_of(node);
     throw Error(ErrorCode::invalid_argument,
-                one_line(position(file, node.source()) + ": key '" + path + "': expected a table"));
-  Fields f(*node.as_table(), file, path + ".");
+                source_error(file, at.line, at.column, path, "expected a table"));
+  }
+  TomlTable f(*node.as_table(), file, path + ".");
   OutputLine line;
   line.file = f.choice("file", kOutputFileNames).value_or(OutputFile::front);
   line.text = status ? f.required_string("line") : f.required_string("prefix");
   if (line.text.empty()) f.fail(node, status ? "line" : "prefix", "empty");
   if (status) line.status = f.choice("status", kQueryStatusNames).value_or(QueryStatus::timeout);
   if (status && is_completed(line.status))
-    f.fail(*f.find("status"), "status", "a status line states that the solver did not finish");
+    f.fail(*f.get("status"), "status", "a status line states that the solver did not finish");
   if (const auto when = f.string("when")) {
     const auto eq = when->find('=');
-    if (eq == std::string::npos || eq == 0)
-      f.fail(*f.find("when"), "when", "expected OPTION=VALUE");
+    if (eq == std::string::npos || eq == 0) f.fail(*f.get("when"), "when", "expected OPTION=VALUE");
     line.when_option = when->substr(0, eq);
     line.when_value = when->substr(eq + 1);
   }
-  f.finish();
+  f.refuse_unknown();
   return line;
 }
 
-std::vector<OutputLine> parse_output_lines(Fields& f, std::string_view key, bool status) {
+std::vector<OutputLine> parse_output_lines(TomlTable& f, std::string_view key, bool status) {
   std::vector<OutputLine> lines;
   if (const auto* list = f.array(key))
     for (const auto& item : *list)
@@ -270,44 +149,44 @@ std::vector<OutputLine> parse_output_lines(Fields& f, std::string_view key, bool
 }
 
 // The keys of an output field (OutputField) in `f`.
-OutputField parse_output_field(Fields& f) {
+OutputField parse_output_field(TomlTable& f) {
   OutputField field;
   field.file = f.choice("file", kOutputFileNames).value_or(OutputFile::stdout_file);
   field.prefix = f.required_string("prefix");
   field.field = static_cast<unsigned>(f.integer("field", 0, 1000).value_or(0));
   field.separator = f.string("separator").value_or("");
   if (field.field > 0 && field.separator.empty())
-    f.fail(*f.find("field"), "field", "a field needs a separator");
+    f.fail(*f.get("field"), "field", "a field needs a separator");
   return field;
 }
 
-std::optional<OutputRuntime> parse_runtime(Fields& out) {
+std::optional<OutputRuntime> parse_runtime(TomlTable& out) {
   const auto* table = out.table("runtime");
   if (table == nullptr) return std::nullopt;
-  Fields f(*table, out.file(), "output.runtime.");
+  TomlTable f(*table, out.file(), "output.runtime.");
   OutputRuntime runtime;
   static_cast<OutputField&>(runtime) = parse_output_field(f);
   const auto unit = f.string("unit").value_or("s");
-  if (unit != "s" && unit != "ms") f.fail(*f.find("unit"), "unit", "expected s or ms");
+  if (unit != "s" && unit != "ms") f.fail(*f.get("unit"), "unit", "expected s or ms");
   runtime.unit_seconds = unit == "ms" ? 1e-3 : 1;
-  f.finish();
+  f.refuse_unknown();
   return runtime;
 }
 
-std::optional<OutputField> parse_count(Fields& out) {
+std::optional<OutputField> parse_count(TomlTable& out) {
   const auto* table = out.table("count");
   if (table == nullptr) return std::nullopt;
-  Fields f(*table, out.file(), "output.count.");
+  TomlTable f(*table, out.file(), "output.count.");
   auto count = parse_output_field(f);
-  f.finish();
+  f.refuse_unknown();
   return count;
 }
 
-ProfileOutput parse_output(Fields& root) {
+ProfileOutput parse_output(TomlTable& root) {
   ProfileOutput output;
   const auto* table = root.table("output");
   if (table == nullptr) return output;
-  Fields f(*table, root.file(), "output.");
+  TomlTable f(*table, root.file(), "output.");
   output.format = f.string("format").value_or("protocol");
   // The registry's formats (mosb run --output-format) and the profile's own: vectors.
   const bool vectors = output.format == "vectors";
@@ -315,40 +194,40 @@ ProfileOutput parse_output(Fields& root) {
     std::string expected = "expected";
     for (const auto& format : solver_output_formats())
       expected += " " + std::string(format.name) + ",";
-    f.fail(*f.find("format"), "format", expected + " or vectors");
+    f.fail(*f.get("format"), "format", expected + " or vectors");
   }
   for (const char* key : {"file", "prefix", "group", "separator", "trailing_separator", "status",
                           "finished", "unfinished", "runtime", "count"})
-    if (!vectors && f.find(key) != nullptr)
-      f.fail(*f.find(key), key, "only with format = \"vectors\"");
+    if (!vectors && f.get(key) != nullptr)
+      f.fail(*f.get(key), key, "only with format = \"vectors\"");
   output.file = f.string("file").value_or("{front}");
   output.prefix = f.string("prefix").value_or("");
   output.group = static_cast<unsigned>(f.integer("group", 0, 16).value_or(0));
   output.separator = f.string("separator").value_or(" ");
-  if (output.separator.empty()) f.fail(*f.find("separator"), "separator", "empty");
+  if (output.separator.empty()) f.fail(*f.get("separator"), "separator", "empty");
   output.trailing_separator = f.boolean("trailing_separator").value_or(false);
   output.status_lines = parse_output_lines(f, "status", true);
   output.finished = parse_output_lines(f, "finished", false);
   output.unfinished = f.choice("unfinished", kQueryStatusNames).value_or(QueryStatus::failed);
   if (is_completed(output.unfinished))
-    f.fail(*f.find("unfinished"), "unfinished", "expected a status of a search that did not end");
+    f.fail(*f.get("unfinished"), "unfinished", "expected a status of a search that did not end");
   output.runtime = parse_runtime(f);
   output.runtime_clock = f.choice("runtime_clock", kRuntimeClockNames).value_or(RuntimeClock::wall);
   output.count = parse_count(f);
-  f.finish();
+  f.refuse_unknown();
   return output;
 }
 
 // The command's placeholders are known, fit the input form, and {gr} is a word of its own.
-void check_command(const SolverProfile& p, Fields& root) {
+void check_command(const SolverProfile& p, TomlTable& root) {
   std::vector<std::string> words;
   try {
     words = split_command(p.command);
   } catch (const Error& e) {
-    root.fail(*root.find("command"), "command", e.what());
+    root.fail(*root.get("command"), "command", e.what());
   }
   const auto refuse = [&](const std::string& what) {
-    root.fail(*root.find("command"), "command", what);
+    root.fail(*root.get("command"), "command", what);
   };
   if (words.front() != "{executable}") refuse("the first word is {executable} (--executable PATH)");
   for (const auto& word : words) {
@@ -380,19 +259,13 @@ std::span<const std::string_view> profile_placeholders() {
 }
 
 SolverProfile parse_profile(std::string_view text, const std::string& file) {
-  toml::table table;
-  try {
-    table = toml::parse(text, file);
-  } catch (const toml::parse_error& e) {
-    throw Error(ErrorCode::invalid_argument,
-                one_line(position(file, e.source()) + ": " + std::string(e.description())));
-  }
-  Fields root(table, file, "");
+  const auto table = parse_toml(text, file);
+  TomlTable root(table, file, "");
   SolverProfile p;
   p.file = file;
   p.text_digest = hex64(xxh3_64(text.data(), text.size()));
   p.name = root.required_string("name");
-  if (!is_name(p.name)) root.fail(*root.find("name"), "name", "letters, digits, - and _ only");
+  if (!is_name(p.name)) root.fail(*root.get("name"), "name", "letters, digits, - and _ only");
   p.solver = root.string("solver").value_or("");  // empty: the executable's file name
   p.description = root.string("description").value_or("");
   p.repository = root.string("repository").value_or("");
@@ -414,7 +287,7 @@ SolverProfile parse_profile(std::string_view text, const std::string& file) {
   p.options = parse_options(root);
   p.output = parse_output(root);
   check_command(p, root);
-  root.finish();
+  root.refuse_unknown();
   return p;
 }
 

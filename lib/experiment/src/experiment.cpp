@@ -22,6 +22,7 @@
 #include "mosb/error.hpp"
 #include "mosb/internal/number_text.hpp"
 #include "mosb/internal/read_file.hpp"
+#include "mosb/internal/source_error.hpp"
 #include "mosb/metadata.hpp"
 #include "mosb/sha256.hpp"
 #include "mosb/store.hpp"
@@ -216,23 +217,7 @@ void for_each_planned_cell(const Json& plan, const fs::path& results, F&& f) {
 
 std::string experiment_error(const Experiment& e, const SourceLine& at,
                              const std::string& problem) {
-  std::string out = e.file;
-  if (at.line > 0) out += ":" + std::to_string(at.line);
-  if (!at.key.empty()) out += ": " + at.key;
-  out += ": " + problem;
-  // A refusal is one line, whatever the file's values hold (a string with a line break quoted in
-  // a problem): control characters as \xHH.
-  std::string line;
-  for (const char c : out) {
-    const auto byte = static_cast<unsigned char>(c);
-    if (byte >= 0x20 && byte != 0x7f) {
-      line += c;
-      continue;
-    }
-    static constexpr char kDigits[] = "0123456789abcdef";
-    line += {'\\', 'x', kDigits[byte >> 4], kDigits[byte & 0xf]};
-  }
-  return line;
+  return source_error(e.file, at.line, at.column, at.key, problem);
 }
 
 void set_solver_executable(Experiment& e, const std::string& name, const std::string& path) {

@@ -25,10 +25,12 @@
 
 namespace mosb {
 
-// Where a value came from in the experiment file, for one-line errors "FILE:LINE: KEY: problem".
+// Where a value came from in the experiment file, for one-line errors
+// "FILE:LINE:COLUMN: key 'KEY': problem".
 struct SourceLine {
   std::size_t line = 0;  // 0: unknown
   std::string key;
+  std::size_t column = 0;  // 0: unknown
 };
 
 struct ExperimentSolver {
@@ -79,7 +81,8 @@ struct Experiment {
   std::vector<std::string> command_line;
 };
 
-// "FILE:LINE: KEY: problem" (or "FILE: problem" without a line), as every refusal of a plan says.
+// "FILE:LINE:COLUMN: key 'KEY': problem" (mosb::source_error: without what is unknown), as every
+// refusal of an experiment file and of its plan says.
 std::string experiment_error(const Experiment& e, const SourceLine& at, const std::string& problem);
 
 // Gives the solver `name` the executable `path` (`--executable NAME=PATH`: one experiment file
