@@ -699,6 +699,18 @@ void claim_results_directory(const fs::path& results) {
   if (ec) throw Error(ErrorCode::io, results.string() + ": cannot create: " + ec.message());
 }
 
+// What a run and a merge do first, holding results/'s `lock`: refuse when another writes it, read
+// results/MANIFEST and check the plan's finished cells against it.
+std::vector<CellRecord> begin_writing(const ExperimentPlan& plan, const fs::path& results,
+                                      const ResultsLock& lock) {
+  if (!lock.held())
+    throw Error(ErrorCode::invalid_argument,
+                results.string() + ": another `mosb experiment run` is writing it");
+  auto records = read_results_manifest(results);
+  check_finished_cells(plan, results, records);
+  return records;
+}
+
 // results/cells/SOLVER, created; a link on the way (planted to write elsewhere) is refused.
 void make_cell_directory(const fs::path& results, const ExperimentCell& cell) {
   auto directory = results;
@@ -732,11 +744,7 @@ ExperimentResult run_experiment(const ExperimentPlan& plan, const fs::path& resu
   std::error_code ec;
   claim_results_directory(results);
   const ResultsLock lock(results);
-  if (!lock.held())
-    throw Error(ErrorCode::invalid_argument,
-                results.string() + ": another `mosb experiment run` is writing it");
-  auto records = read_results_manifest(results);
-  check_finished_cells(plan, results, records);
+  auto records = begin_writing(plan, results, lock);
   record_plan(plan, results);
 
   ExperimentResult result;
@@ -1022,11 +1030,7 @@ std::uint64_t merge_experiment_results(const ExperimentPlan& plan, const fs::pat
                                        const std::vector<fs::path>& parts) {
   claim_results_directory(results);
   const ResultsLock lock(results);
-  if (!lock.held())
-    throw Error(ErrorCode::invalid_argument,
-                results.string() + ": another `mosb experiment run` is writing it");
-  auto records = read_results_manifest(results);
-  check_finished_cells(plan, results, records);
+  auto records = begin_writing(plan, results, lock);
   const auto merged = records_to_merge(plan, records, parts);
   record_plan(plan, results);
   for (const auto& [part, record] : merged) {
