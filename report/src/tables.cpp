@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <utility>
@@ -283,6 +284,24 @@ void write_latex(std::ostream& out, const Table& table) {
     out << " \\\\\n";
   }
   out << "\\bottomrule\n\\end{tabular}\n";
+}
+
+void write_json(std::ostream& out, const Table& table) {
+  auto rows = nlohmann::ordered_json::array();
+  for (const auto& row : table.rows) {
+    auto& object = rows.emplace_back(nlohmann::ordered_json::object());
+    for (std::size_t k = 0; k < table.columns.size(); ++k) {
+      const auto& cell = row.at(k);
+      auto& value = object[table.columns[k].key];  // null unless set below
+      if (cell.kind == Cell::Kind::text) value = cell.text;
+      if (cell.kind == Cell::Kind::count) value = cell.count;
+      if (cell.kind == Cell::Kind::real && std::isfinite(cell.real)) value = cell.real;
+    }
+  }
+  nlohmann::ordered_json document;
+  document["caption"] = table.caption;
+  document["rows"] = std::move(rows);
+  out << document.dump() << '\n';
 }
 
 void write_text(std::ostream& out, const Table& table) {

@@ -65,6 +65,20 @@ TEST_CASE("write_csv: a field with a comma, a quote or a line break is quoted") 
   CHECK(out.str() == "name\r\n\"a,b\"\r\n\"say \"\"x\"\"\"\r\n");
 }
 
+TEST_CASE("write_json: keys in column order, numbers as numbers, absent and infinite null") {
+  Table t;
+  t.caption = "a \"caption\"";
+  t.columns = {{"name", "Name"}, {"n", "N"}, {"x", "X"}, {"gap", "Gap"}};
+  t.rows = {{Cell::of(std::string("s\n1")), Cell::of(std::uint64_t{3}), Cell::of(0.125), Cell{}},
+            {Cell::of(std::string("t")), Cell{}, Cell::of(std::numeric_limits<double>::infinity()),
+             Cell::of(std::uint64_t{0})}};
+  std::ostringstream out;
+  write_json(out, t);
+  CHECK(out.str() ==
+        "{\"caption\":\"a \\\"caption\\\"\",\"rows\":[{\"name\":\"s\\n1\",\"n\":3,\"x\":0.125,"
+        "\"gap\":null},{\"name\":\"t\",\"n\":null,\"x\":null,\"gap\":0}]}\n");
+}
+
 // Issue 36 §4: a spreadsheet runs a field starting with = + - @ TAB or CR as a formula.
 TEST_CASE(
     "write_csv: text that a spreadsheet would run is quoted after a ', numbers stay numbers") {

@@ -209,36 +209,6 @@ void print_text(const SolverComparison& result, const std::vector<Ratio>& eps,
   std::cout << (result.failed ? "FAIL" : "OK") << '\n';
 }
 
-// A table as JSON: {"caption": ..., "rows": [{KEY: value, ...}, ...]}, an absent cell null.
-void print_table_json(const tables::Table& table) {
-  JsonWriter j(std::cout);
-  j.begin_object().key("caption").value(table.caption).key("rows").begin_array();
-  for (const auto& row : table.rows) {
-    j.begin_object();
-    for (std::size_t k = 0; k < table.columns.size(); ++k) {
-      j.key(table.columns[k].key);
-      const auto& cell = row.at(k);
-      switch (cell.kind) {
-        case tables::Cell::Kind::absent:
-          j.null();
-          break;
-        case tables::Cell::Kind::text:
-          j.value(cell.text);
-          break;
-        case tables::Cell::Kind::count:
-          j.value(cell.count);
-          break;
-        case tables::Cell::Kind::real:
-          j.value(cell.real);
-          break;
-      }
-    }
-    j.end_object();
-  }
-  j.end_array().end_object();
-  std::cout << '\n';
-}
-
 // `mosb eval RESULTS [--reference REFS]`: the report's solver table (the paper's Table 5) of an
 // experiment's results directory, its instances grouped into benchmarks as the report groups
 // them; with references, each solver's ε-coverage per benchmark.
@@ -266,7 +236,7 @@ int run_eval_results(const EvalArgs& args) {
                   (args.reference.empty() ? std::string() : ", references " + args.reference) +
                   ": " + table.caption;
   if (args.json)
-    print_table_json(table);
+    tables::write_json(std::cout, table);
   else if (args.csv)
     tables::write_csv(std::cout, table);
   else if (args.latex)

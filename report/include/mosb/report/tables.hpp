@@ -72,6 +72,9 @@ Column coverage_column(Coverage what, std::string_view label);
 void write_csv(std::ostream& out, const Table& table);
 void write_latex(std::ostream& out, const Table& table);
 void write_text(std::ostream& out, const Table& table);
+// The table as one compact JSON object and a newline: {"caption": ..., "rows": [{KEY: value, ...},
+// ...]}, keys in column order, an absent cell and a non-finite number null (`mosb eval --json`).
+void write_json(std::ostream& out, const Table& table);
 // An HTML <table class="sortable"> with the caption, a header row and one row per table row:
 // numbers as text writes them, each cell also carrying its exact value in data-v (what a sorting
 // script compares; empty when absent), text escaped. Readable without any script.
