@@ -714,6 +714,24 @@ class PlotTest(Temp):
         with open(png, "rb") as f:
             self.assertEqual(f.read(8), b"\x89PNG\r\n\x1a\n")
 
+    def test_runtime_figure_data_refuses_malformed_arrays(self):
+        """The binding of lib/solutions' runtime figure data: arrays of other lengths, a status
+        code that is none of STATUSES and an empty solver list are refused, not misread."""
+        from mosb import _mosb
+        codes, one = np.array([0, 9], dtype=np.uint8), np.array([1.0, 2.0])
+        with self.assertRaisesRegex(ValueError, "status code 9 is not one of STATUSES"):
+            _mosb.cactus_series(codes, one)
+        with self.assertRaisesRegex(ValueError, "two arrays of one length"):
+            _mosb.cactus_series(np.array([0], dtype=np.uint8), one)
+        with self.assertRaisesRegex(ValueError, "one array of each per solver"):
+            _mosb.performance_profile([], [])
+        with self.assertRaisesRegex(ValueError, "differ in length"):
+            _mosb.runtime_scatter(np.array([0], dtype=np.uint8), np.array([1.0]),
+                                  np.array([0, 0], dtype=np.uint8), one)
+        data = _mosb.runtime_scatter(np.array([0, 3], dtype=np.uint8), np.array([1.0, 0.0]),
+                                     np.array([0, 3], dtype=np.uint8), np.array([2.0, 5.0]))
+        self.assertEqual((data["points"], data["query"], data["zero"]), ([(1.0, 2.0)], [0], 1))
+
     def test_comparison_figures(self):
         (ax,) = self.plot.cactus([self.exact, self.fast]).axes
         exact, fast = ax.get_lines()
