@@ -6,6 +6,11 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <regex>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -63,4 +68,49 @@ TEST_CASE("the completion script and the man page come from the registered comma
   const auto again = cli::make_program();
   CHECK(cli::man_page(*again.app) == page);
   CHECK(cli::bash_completion(*again.app) == script);
+}
+
+TEST_CASE("error_text: a library error's settings are spelled as the program's flags") {
+  const Error error(ErrorCode::invalid_argument,
+                    {"give ", setting("shards"), " N or ", setting("queries_per_task"), " K"});
+  CHECK(error.message() == "give shards N or queries_per_task K");
+  CHECK(cli::error_text(error) == "give --shards N or --queries-per-task K");
+  const auto placed = error.with_context("run.json: ");
+  CHECK(placed.code() == ErrorCode::invalid_argument);
+  CHECK(cli::error_text(placed) == "run.json: give --shards N or --queries-per-task K");
+  CHECK(cli::error_text(Error("plain")) == "plain");
+  CHECK(cli::flag_of_setting("no_such_setting") == "no_such_setting");
+}
+
+namespace {
+
+// Every option name of `app` and of its subcommands, at any depth.
+void collect_option_names(const CLI::App& app, std::set<std::string>& names) {
+  for (const auto* option : app.get_options())
+    for (const auto& name : option->get_lnames()) names.insert("--" + name);
+  for (const auto* sub : app.get_subcommands({})) collect_option_names(*sub, names);
+}
+
+}  // namespace
+
+TEST_CASE("error_text: every setting the libraries name is a flag of some command") {
+  std::set<std::string> flags;
+  collect_option_names(*cli::make_program().app, flags);
+  const std::regex named(R"re(setting\("([A-Za-z0-9_.]+)"\))re");
+  std::set<std::string> settings = {"slurm.account", "slurm.partition"};  // named through a loop
+  for (const char* tree : {"lib", "converters"})
+    for (const auto& entry :
+         std::filesystem::recursive_directory_iterator(std::string(MOSB_SOURCE_DIR) + "/" + tree)) {
+      if (entry.path().extension() != ".cpp") continue;
+      std::ifstream in(entry.path());
+      const std::string text((std::istreambuf_iterator<char>(in)),
+                             std::istreambuf_iterator<char>());
+      for (std::sregex_iterator m(text.begin(), text.end(), named), end; m != end; ++m)
+        settings.insert((*m)[1].str());
+    }
+  CHECK(settings.size() > 15);
+  for (const auto& name : settings) {
+    INFO("setting ", name, " is spelled ", cli::flag_of_setting(name));
+    CHECK(flags.count(cli::flag_of_setting(name)) == 1);
+  }
 }

@@ -55,7 +55,7 @@ ELSEWHERE = {
     "Use mosb in your solver": [("tests/install/test_install.py", "pkg-config"),
                                 ("tests/install/test_install.py", "--libs")],
     "The same on SLURM": [("tests/cli/test_slurm.py", 'README_SECTION = "The same on SLURM"'),
-                          ("tests/cli/CMakeLists.txt", "test_slurm.py")],
+                          ("tests/cli/CMakeLists.txt", "foreach(name cli_slurm")],
     "Building and testing by hand": [("tests/run-all.sh", "cmake --preset sanitize"),
                                      ("tests/run-all.sh", "ctest --preset release"),
                                      ("tests/run-all.sh", "tests/fuzz/run.sh")],

@@ -150,20 +150,20 @@ TEST_CASE(
   CHECK(g.metadata.get("view.v.queries") == "default");
   CHECK_NOTHROW(write_graph(g, dir / "q.mosb"));
   CHECK_THROWS_WITH_AS(mosb::add_views(g, {mosb::parse_view_spec("w=c1,c2")}),
-                       "--view 'w': objective 'c2' is not a column (columns: c1)", Error);
+                       "view 'w': objective 'c2' is not a column (columns: c1)", Error);
 }
 
 TEST_CASE("dimacs-extended: malformed --view texts are refused with one line") {
   CHECK_THROWS_WITH_AS(mosb::parse_view_spec("NY"),
-                       "--view 'NY': expected NAME=OBJ1,OBJ2,...[@QUERYSET]", Error);
+                       "view 'NY': expected NAME=OBJ1,OBJ2,...[@QUERYSET]", Error);
   CHECK_THROWS_WITH_AS(mosb::parse_view_spec("=a"),
-                       "--view '=a': the view name must be 1 or more of [A-Za-z0-9_.+-]", Error);
+                       "view '=a': the view name must be 1 or more of [A-Za-z0-9_.+-]", Error);
   CHECK_THROWS_WITH_AS(mosb::parse_view_spec("v=a,,b"),
-                       "--view 'v=a,,b': empty or invalid objective name ''", Error);
-  CHECK_THROWS_WITH_AS(mosb::parse_view_spec("v=a,a"), "--view 'v=a,a': objective 'a' listed twice",
+                       "view 'v=a,,b': empty or invalid objective name ''", Error);
+  CHECK_THROWS_WITH_AS(mosb::parse_view_spec("v=a,a"), "view 'v=a,a': objective 'a' listed twice",
                        Error);
   CHECK_THROWS_WITH_AS(mosb::parse_view_spec("v=a@"),
-                       "--view 'v=a@': the query set name must be 1-24 characters "
+                       "view 'v=a@': the query set name must be 1-24 characters "
                        "from [A-Za-z0-9_.+-]",
                        Error);
   const auto v = mosb::parse_view_spec("DIMACS-NY_2=distance,time@ny100");

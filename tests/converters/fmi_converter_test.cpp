@@ -366,7 +366,9 @@ TEST_CASE("fmi: BFS extraction keeps the first N vertices in BFS order, remapped
     o.extract_bfs = converters::FmiBfs{7, 8, false};
     CHECK_THROWS_WITH_AS(
         converters::convert_fmi(o),
-        (name + ": BFS from vertex 7 reaches only 2 vertices, --count asks for 8").c_str(), Error);
+        (name + ": BFS from vertex 7 reaches only 2 vertices, extract_bfs.count asks for 8")
+            .c_str(),
+        Error);
     o.extract_bfs = converters::FmiBfs{8, 1, false};
     CHECK_THROWS_WITH_AS(converters::convert_fmi(o),
                          (name + ": BFS root 8 is not a vertex (the graph has 8 vertices)").c_str(),

@@ -104,13 +104,13 @@ TEST_CASE("query files: graph fields and --match") {
   CHECK(parse(text, options(0, 10, "y_")) == std::vector<Query>{{3, 4}});
   CHECK(error_of(text, options(0, 10)) ==
         "q.txt:2:1: the file names more than one graph ('/a/x_1.gr' on line 1, '/a/y_2.gr' here): "
-        "choose one with --match TEXT");
+        "choose one with match TEXT");
   CHECK(error_of(text, options(0, 10, ".gr")) ==
-        "q.txt:2:1: --match '.gr' selects more than one graph ('/a/x_1.gr' on line 1, '/a/y_2.gr' "
+        "q.txt:2:1: match '.gr' selects more than one graph ('/a/x_1.gr' on line 1, '/a/y_2.gr' "
         "here)");
   CHECK(error_of(text, options(0, 10, "zzz")) == "q.txt: no line's graph field contains 'zzz'");
   CHECK(error_of("1 2\n", options(0, 10, "x")) ==
-        "q.txt:1:1: --match 'x' given, but the lines have no graph field");
+        "q.txt:1:1: match 'x' given, but the lines have no graph field");
   // Unselected lines are not range-checked: their ids belong to another graph.
   CHECK(parse("big.gr 100 200\nsmall.gr 1 2\n", options(0, 3, "small")) ==
         std::vector<Query>{{1, 2}});
@@ -137,5 +137,5 @@ TEST_CASE("query files: the real DIMACS and targeted-MOSP query files") {
   const auto without_match = error_of(inst_text, options(0, 10000));
   CHECK(without_match.find(":21:1: the file names more than one graph ('...") != std::string::npos);
   CHECK(without_match.find("_79134.gr' on line 1, '...") != std::string::npos);
-  CHECK(without_match.find("_442970.gr' here): choose one with --match TEXT") != std::string::npos);
+  CHECK(without_match.find("_442970.gr' here): choose one with match TEXT") != std::string::npos);
 }

@@ -71,6 +71,6 @@ TEST_CASE("views: a --view of a default view's name replaces it, its old set inc
   CHECK(g.metadata.get("view.V.objectives") == "b");
   CHECK_FALSE(g.metadata.get("view.V.queries").has_value());
   CHECK(g.metadata.get("source.param.view.V") == "b@later");
-  CHECK_THROWS_WITH_AS(parse_objective_list("a,,b", "--objectives"),
-                       "--objectives: empty or invalid objective name ''", Error);
+  CHECK_THROWS_WITH_AS(parse_objective_list("a,,b"),
+                       "objectives: empty or invalid objective name ''", Error);
 }

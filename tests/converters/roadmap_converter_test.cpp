@@ -137,7 +137,7 @@ TEST_CASE("GraphML roadmap: per-link clearance, weight, delta and objective name
   CHECK(h.metadata().get("objective.len.unit") == "rad");
 
   o.objectives.pop_back();
-  CHECK(error_of(o).find("3 --objective names given, the input has 4") != std::string::npos);
+  CHECK(error_of(o).find("3 objective names given, the input has 4") != std::string::npos);
 }
 
 TEST_CASE("GraphML roadmap: a collision edge is refused, naming the edge") {
@@ -203,7 +203,7 @@ TEST_CASE(".gr roadmap: ids beyond the declared count, vertex file, determinism"
   CHECK(error_of(o) ==
         (dir / "c1.gr").string() +
             ":4:5: the largest vertex id, 3, is outside the 3 vertices declared on line 2 (0-based "
-            "ids 0..2); --vertices-from-ids sizes the graph from the largest id instead");
+            "ids 0..2); vertices_from_ids sizes the graph from the largest id instead");
   o.vertices_from_ids = true;
   const auto g = convert(o, dir / "a.mosb");
   CHECK(g.vertex_count() == 4);
@@ -260,5 +260,5 @@ TEST_CASE("real point-robot roadmap and GraphML fixture") {
       error_of(p) ==
       p.gr_files[0] +
           ":146501:8: the largest vertex id, 5002, is outside the 5002 vertices declared on line 2 "
-          "(0-based ids 0..5001); --vertices-from-ids sizes the graph from the largest id instead");
+          "(0-based ids 0..5001); vertices_from_ids sizes the graph from the largest id instead");
 }

@@ -24,7 +24,7 @@ TEST_CASE("objective specs: NAME and NAME:UNIT, the unit after the first colon")
   CHECK(with_unit.name == "time");
   CHECK(with_unit.unit == "s:approx");
   CHECK_THROWS_WITH_AS(parse_objective(":m", "convert x"),
-                       "convert x: --objective ':m' has an empty name", Error);
+                       "convert x: objective ':m' has an empty name", Error);
   CHECK_THROWS_AS(parse_objective("", "convert x"), Error);
   CHECK(objective_list({plain, with_unit, {"risk", ""}}) == "distance,time:s:approx,risk");
   CHECK(objective_list({}).empty());

@@ -468,8 +468,8 @@ TEST_CASE(
       std::to_string(bound) + " bytes of disk for its spill file, more than the limit of " +
       std::to_string(default_check_disk(size, 4096)) + " bytes (the default: 64 times its " +
       std::to_string(size) +
-      " bytes or 8 times the memory, whichever is more; --check-disk SIZE, "
-      "or more --check-memory, allows it)";
+      " bytes or 8 times the memory, whichever is more; streaming_verify.disk SIZE, "
+      "or more streaming_verify.memory, allows it)";
   CHECK_THROWS_WITH_AS(verify_file_streaming(dir / "packed.mosb", {4096, dir.path()}),
                        doctest::Contains(said.c_str()), Error);
   CHECK_THROWS_AS(

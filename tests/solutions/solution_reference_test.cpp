@@ -207,7 +207,7 @@ TEST_CASE("cross_validate: refusals") {
   CHECK(message({"a", "a"}, {}, all) == "solver 'a' is named twice");
   CHECK(message({"a,b"}, {}, all) == "solver name 'a,b' is empty or has a ','");
   CHECK(message({"a", ""}, {}, all) == "solver name '' is empty or has a ','");
-  CHECK(message({"a", "b"}, "c", all) == "--prefer 'c' is not one of the reference's solvers");
+  CHECK(message({"a", "b"}, "c", all) == "prefer 'c' is not one of the reference's solvers");
   CHECK(message({"a", "b"}, {}, {}) == "no solution file for the reference");
   CHECK(
       message({"a"}, {}, all).ends_with("b.sol: solver 'b' is not one of the reference's solvers"));

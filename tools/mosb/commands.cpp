@@ -9,6 +9,7 @@
 #include <iostream>
 #include <set>
 #include <sstream>
+#include <utility>
 
 #include "graph_output.hpp"
 #include "json_writer.hpp"
@@ -157,6 +158,66 @@ CLI::Validator non_negative_real() {
             return {};
           },
           "REAL", "non-negative real"};
+}
+
+std::string flag_of_setting(std::string_view setting) {
+  static constexpr std::pair<std::string_view, std::string_view> kFlags[] = {
+      {"view", "--view"},
+      {"objectives", "--objectives"},
+      {"queries", "--queries"},
+      {"solver_template", "--solver"},
+      {"solver_name", "--solver-name"},
+      {"solver_version", "--solver-version"},
+      {"shard", "--shard"},
+      {"resume", "--resume"},
+      {"allow_new_executable", "--allow-new-executable"},
+      {"shards", "--shards"},
+      {"queries_per_task", "--queries-per-task"},
+      {"slurm.directory", "--slurm"},
+      {"slurm.account", "--account"},
+      {"slurm.partition", "--partition"},
+      {"by_kind", "--by-kind"},
+      {"prefer", "--prefer"},
+      {"expect_digest", "--expect-digest"},
+      {"max_memory", "--max-memory"},
+      {"streaming_verify.disk", "--check-disk"},
+      {"streaming_verify.memory", "--check-memory"},
+      {"objective", "--objective"},
+      {"exposure_file", "--exposure"},
+      {"guards_file", "--guards"},
+      {"cost_count", "--costs"},
+      {"extract_bfs.count", "--count"},
+      {"ignore_extra_fields", "--ignore-extra-fields"},
+      {"id_base", "--id-base"},
+      {"scale", "--scale"},
+      {"columns", "--columns"},
+      {"dominated", "--nondominated"},
+      {"suite.benchmarks", "--benchmark"},
+      {"replace", "--replace"},
+      {"vertices_from_ids", "--vertices-from-ids"},
+      {"vertex_file", "--vertices"},
+      {"gr_files", "--gr"},
+      {"graphml_file", "--graphml"},
+      {"clearance", "--clearance"},
+      {"weight", "--weight"},
+      {"delta", "--delta"},
+      {"profile", "--profile"},
+      {"export_cache", "--export-cache"},
+      {"scenario", "--scen"},
+      {"match", "--match"},
+      {"allow_same", "--allow-same"},
+  };
+  for (const auto& [name, flag] : kFlags)
+    if (name == setting) return std::string(flag);
+  return std::string(setting);
+}
+
+std::string error_text(const Message& message) {
+  return message_text(message, flag_of_setting);
+}
+
+std::string error_text(const Error& error) {
+  return error_text(error.parts());
 }
 
 CLI::Validator epsilon_value() {
@@ -370,7 +431,7 @@ CLI::Option* add_view_spec_option(CLI::App* subcommand, std::vector<std::string>
               parse_view_spec(text);
               return std::string();
             } catch (const Error& e) {
-              return std::string(e.what());
+              return error_text(e);
             }
           },
           "NAME=OBJ1,OBJ2,...[@QUERYSET]"));
@@ -384,9 +445,9 @@ void add_view_choice_options(CLI::App* subcommand, ViewChoice& choice, const std
                              "--objectives",
                              [&choice](const std::string& text) {
                                try {
-                                 choice.objectives = parse_objective_list(text, "--objectives");
+                                 choice.objectives = parse_objective_list(text);
                                } catch (const Error& e) {
-                                 throw CLI::ValidationError(e.what());
+                                 throw CLI::ValidationError(error_text(e));
                                }
                              },
                              "these objectives, in this order, instead of a view's")
@@ -489,7 +550,8 @@ std::vector<std::filesystem::path> reference_files_of(const std::string& source,
     std::size_t fetched = 0;
     for (const auto& e : pulled.entries) {
       if (e.status == PullStatus::refused)
-        throw Error(ErrorCode::damaged, source + ": refused " + e.entry.file + ": " + e.reason);
+        throw Error(ErrorCode::damaged,
+                    source + ": refused " + e.entry.file + ": " + error_text(e.reason));
       fetched += e.status == PullStatus::fetched ? 1 : 0;
     }
     if (fetched > 0)

@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "mosb/error.hpp"
@@ -54,6 +55,13 @@ class UsageError : public Error {
  public:
   using Error::Error;
 };
+
+// The flag that sets the library's setting `setting` (MessagePart): "--queries-per-task" for
+// "queries_per_task"; a setting no flag sets keeps its library name.
+std::string flag_of_setting(std::string_view setting);
+// A library error as the program says it: the settings it names spelled as flags.
+std::string error_text(const Message& message);
+std::string error_text(const Error& error);
 
 // The one parser of every option that takes an unsigned integer: the whole text is decimal digits
 // (no sign, space, exponent or hex) and the value is at most `max`, so nothing wraps or saturates.

@@ -60,7 +60,7 @@ ExperimentPlan read_plan(const ExperimentRunArgs& a) {
       std::stringstream list(a.benchmarks);
       for (std::string p; std::getline(list, p, ',');)
         if (!p.empty()) patterns.push_back(p);
-      restrict_benchmarks(experiment, patterns);
+      restrict_benchmarks(experiment, patterns, "--benchmarks");
     }
     if (!a.time_limit.empty()) set_time_limit(experiment, *parse_duration(a.time_limit));
     for (const auto& [option, value] :
@@ -76,7 +76,7 @@ ExperimentPlan read_plan(const ExperimentRunArgs& a) {
     return plan;
   } catch (const Error& e) {
     if (e.code() == ErrorCode::io) throw;
-    throw UsageError(e.what());
+    throw UsageError(error_text(e));
   }
 }
 

@@ -157,7 +157,7 @@ int run_program(int argc, char** argv) {
   } catch (const mosb::cli::UsageError& e) {
     return usage_error(app, e.what());
   } catch (const mosb::Error& e) {
-    std::cerr << "mosb: " << mosb::escape_for_terminal(e.message()) << '\n';
+    std::cerr << "mosb: " << mosb::escape_for_terminal(error_text(e)) << '\n';
     return kRuntimeError;
   } catch (const std::exception& e) {
     std::cerr << "mosb: internal error: " << mosb::escape_for_terminal(e.what()) << '\n';

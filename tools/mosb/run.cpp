@@ -262,7 +262,7 @@ void check_run_options(const RunArgs& a) {
     // A template that does not parse or run is a usage error; a profile's problems (its file,
     // its options) say which themselves.
     if (e.code() == ErrorCode::io || !a.profile.empty()) throw;
-    throw UsageError("--solver: " + std::string(e.what()));
+    throw UsageError(error_text(e));
   }
 }
 
@@ -272,7 +272,7 @@ View checked_selection(const GraphReader& instance, const ViewChoice& choice) {
     return solution_selection(instance, choice);  // what the file binds to
   } catch (const Error& e) {
     if (e.code() != ErrorCode::invalid_argument) throw;
-    throw UsageError(e.what());
+    throw UsageError(error_text(e));
   }
 }
 
@@ -342,7 +342,7 @@ int run_slurm_new(const RunArgs& a) {
     slurm_shard_count(instance.queries(selection.query_set).size(), a.shards,
                       a.slurm.queries_per_task);
   } catch (const Error& e) {
-    throw UsageError(e.what());
+    throw UsageError(error_text(e));
   }
   SlurmRequest request;
   request.directory = a.slurm.directory;
@@ -363,7 +363,7 @@ int run_slurm_new(const RunArgs& a) {
     try {
       job = submit_shards(run, all);
     } catch (const Error& e) {
-      throw Error(e.code(), std::string(e.what()) + "; " + run.directory +
+      throw Error(e.code(), error_text(e) + "; " + run.directory +
                                 " is written: submit it with mosb run --slurm " + run.directory +
                                 " --resume --submit");
     }

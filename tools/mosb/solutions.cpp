@@ -60,7 +60,7 @@ int run_import(const SolutionImportArgs& a) {
     selected = solution_selection(instance, a.choice);
   } catch (const Error& e) {
     if (e.code() != ErrorCode::invalid_argument) throw;
-    throw UsageError(e.what());
+    throw UsageError(error_text(e));
   }
   SolutionWriter writer(instance, selected);
   const auto& set = selected.query_set;
@@ -269,7 +269,7 @@ int run_solution_verify(const SolutionVerifyArgs& a) {
       if (problem && !problem->starts_with(a.file)) problem = a.file + ": " + *problem;
     }
   } catch (const Error& e) {
-    problem = e.what();
+    problem = error_text(e);
   }
   if (a.json) {
     JsonWriter json(std::cout);

@@ -261,7 +261,7 @@ int run_pull(const StoreArgs& a) {
   for (const auto& p : result.entries)
     if (p.status == PullStatus::refused)
       std::cerr << "mosb: refused " << escape_for_terminal(p.entry.file) << ": "
-                << escape_for_terminal(p.reason) << '\n';
+                << escape_for_terminal(error_text(p.reason)) << '\n';
   if (a.json) {
     JsonWriter json(std::cout);
     json.begin_object();
@@ -295,7 +295,7 @@ int run_pull(const StoreArgs& a) {
       if (p.status != PullStatus::refused) continue;
       json.begin_object();
       json.key("file").value(p.entry.file);
-      json.key("reason").value(p.reason);
+      json.key("reason").value(error_text(p.reason));
       json.end_object();
     }
     json.end_array();

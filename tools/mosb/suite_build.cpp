@@ -47,7 +47,7 @@ int run_suite_build(const SuiteBuildArgs& a) {
     instances = converters::select_suite_instances(std::move(instances), a.benchmarks, unbuilt);
   } catch (const Error& e) {
     if (e.code() != ErrorCode::invalid_argument) throw;
-    throw UsageError(e.what());
+    throw UsageError(error_text(e));
   }
   // Raw recipes left out by --benchmark are not reported as built.
   std::erase_if(raw, [&](const converters::RawStatus& s) {

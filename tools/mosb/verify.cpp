@@ -104,7 +104,7 @@ int run_verify(const VerifyArgs& a) {
       if (outcome.problem) outcome.problem = file + ": " + *outcome.problem;
       outcome.digest = std::move(result.digest);
     } catch (const Error& e) {
-      outcome.problem = e.what();
+      outcome.problem = error_text(e);
     }
     outcomes.push_back(std::move(outcome));
     report(per_file, "verify", outcomes.size(), a.files.size());

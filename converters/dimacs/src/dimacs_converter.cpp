@@ -479,7 +479,8 @@ bool same_arcs(const DimacsGraph& a, const DimacsGraph& b) {
 
 GraphInput convert_dimacs(const DimacsOptions& options) {
   if (options.gr_files.empty()) throw Error("convert dimacs: no .gr file given");
-  if (options.id_base > 1) throw Error("convert dimacs: --id-base must be 0 or 1");
+  if (options.id_base > 1)
+    throw Error(ErrorCode::other, {"convert dimacs: ", setting("id_base"), " must be 0 or 1"});
   GraphInput out;
   // Each file is parsed on its own, in parallel. A later file that fails or disagrees with the
   // first is parsed again against it, sequentially, which gives the message (and the first of

@@ -75,7 +75,8 @@ std::string file_stem_for(const GraphReader& reader, const std::filesystem::path
 
 unsigned export_id_base(const GraphReader& reader, const DimacsExportOptions& options) {
   if (options.id_base) {
-    if (*options.id_base > 1) throw Error("export dimacs: --id-base must be 0 or 1");
+    if (*options.id_base > 1)
+      throw Error(ErrorCode::other, {"export dimacs: ", setting("id_base"), " must be 0 or 1"});
     return *options.id_base;
   }
   const auto stored = reader.metadata().get("id_base");
@@ -158,9 +159,11 @@ CostColumn read_column(const GraphReader& reader, std::size_t j, const DimacsExp
            std::to_string(std::uint64_t{reader.forward_targets()[arc]} + id_base) + ")";
   };
   if (real && o.integer_costs && !(o.scale > 0))
-    throw Error(reader.display_name() + ": objective '" + section.name +
-                "' holds float costs and the solver reads integer costs only: give --scale K "
-                "(costs x K, rounded to integers; the solver's values are divided back)");
+    throw Error(ErrorCode::other,
+                {reader.display_name() + ": objective '" + section.name +
+                     "' holds float costs and the solver reads integer costs only: give ",
+                 setting("scale"),
+                 " K (costs x K, rounded to integers; the solver's values are divided back)"});
   if (real && !(o.scale > 0)) {
     column.real = true;
     column.reals.resize(m);
@@ -390,9 +393,9 @@ DimacsExportFiles export_dimacs_files(const std::filesystem::path& instance,
       files.scaled_objectives.push_back(g.columns.back().name);
   }
   if (options.scale > 0 && files.scaled_objectives.empty())
-    throw Error(reader.display_name() +
-                ": --scale: no objective of the selection holds float "
-                "costs (integer costs are written as they are)");
+    throw Error(ErrorCode::other, {reader.display_name() + ": ", setting("scale"),
+                                   ": no objective of the selection holds float costs (integer "
+                                   "costs are written as they are)"});
   g.arcs = plan_arcs(reader, g.columns, options, g.vertex_count);
   if (options.max_degree) check_degrees(reader, g, *options.max_degree);
   files.vertex_count = g.vertex_count;

@@ -248,8 +248,10 @@ std::vector<std::uint32_t> bfs_select(const FmiGraph& graph, std::uint32_t root,
     }
   }
   if (order.size() < count)
-    throw Error(display_name + ": BFS from vertex " + std::to_string(root) + " reaches only " +
-                plural(order.size(), "vertex") + ", --count asks for " + std::to_string(count));
+    throw Error(ErrorCode::other,
+                {display_name + ": BFS from vertex " + std::to_string(root) + " reaches only " +
+                     plural(order.size(), "vertex") + ", ",
+                 setting("extract_bfs.count"), " asks for " + std::to_string(count)});
   std::sort(order.begin(), order.end());
   return order;
 }
@@ -318,13 +320,14 @@ DataColumn elevation_column(const Elevation& elevation) {
 
 GraphInput convert_fmi(const FmiOptions& options) {
   if (options.cost_count && (*options.cost_count == 0 || *options.cost_count > 64))
-    throw Error("convert fmi: --costs must be 1..64");
+    throw Error(ErrorCode::other, {"convert fmi: ", setting("cost_count"), " must be 1..64"});
   std::optional<InputFile> file(std::in_place, options.file);
   ReadProgress read(options.progress, {options.file});
   file->count_into(&read);
   const InputFacts input = file->facts();
   if (options.ignore_extra_fields && !options.cost_count)
-    throw Error("convert fmi: --ignore-extra-fields needs --costs");
+    throw Error(ErrorCode::other, {"convert fmi: ", setting("ignore_extra_fields"), " needs ",
+                                   setting("cost_count")});
   FmiGraph graph = naming_input_on_out_of_memory(input.display_name, [&] {
     return parse_fmi(*file, file->size_hint(), input.display_name, options.cost_count,
                      options.ignore_extra_fields);

@@ -206,7 +206,8 @@ StreamedGraph build_guards_graph(const OctileMap& map, const std::vector<std::ui
 
 GuardsResult convert_guards(const GuardsOptions& o) {
   if (o.exposure_file.has_value() == o.guards_file.has_value())
-    throw Error("convert guards: give exactly one of --exposure and --guards");
+    throw Error(ErrorCode::other, {"convert guards: give exactly one of ", setting("exposure_file"),
+                                   " and ", setting("guards_file")});
   GuardsResult r;
   Metadata inputs;
   auto map = octile::read_map(o.map_file, o.terrain, inputs, 0);

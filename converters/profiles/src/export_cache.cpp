@@ -488,8 +488,8 @@ fs::path default_export_cache() {
   if (const char* home = std::getenv("HOME"); home && *home)
     return fs::path(home) / ".cache" / "mosb" / "exports";
   throw Error(ErrorCode::invalid_argument,
-              "no export cache: set MOSB_EXPORT_CACHE, XDG_CACHE_HOME or HOME, or give "
-              "--export-cache DIR");
+              {"no export cache: set MOSB_EXPORT_CACHE, XDG_CACHE_HOME or HOME, or give ",
+               setting("export_cache"), " DIR"});
 }
 
 CachedExport cached_export(const fs::path& cache, const fs::path& instance,

@@ -229,7 +229,8 @@ void check_command(const SolverProfile& p, TomlTable& root) {
   const auto refuse = [&](const std::string& what) {
     root.fail(*root.get("command"), "command", what);
   };
-  if (words.front() != "{executable}") refuse("the first word is {executable} (--executable PATH)");
+  if (words.front() != "{executable}")
+    refuse("the first word is {executable} (the solver a run is given)");
   for (const auto& word : words) {
     const auto names = profile_internal::placeholder_names(word);
     if (!names) refuse("a lone brace in '" + word + "'");
@@ -303,8 +304,9 @@ SolverProfile load_profile(const std::string& name_or_path) {
     for (const auto& shipped : shipped_profiles())
       names += (names.empty() ? "" : ", ") + std::string(shipped.name);
     throw Error(ErrorCode::invalid_argument,
-                "--profile " + name_or_path + ": no shipped profile of that name (shipped: " +
-                    names + "; a file's path has a / or ends in .toml)");
+                {setting("profile"), " " + name_or_path +
+                                         ": no shipped profile of that name (shipped: " + names +
+                                         "; a file's path has a / or ends in .toml)"});
   }
   return parse_profile(read_regular_file(name_or_path, std::uint64_t{1} << 20), name_or_path);
 }

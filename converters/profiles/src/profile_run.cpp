@@ -91,12 +91,14 @@ void check_cost_types(const SolverProfile& p, const SolverSpec& spec,
   for (std::size_t j = 0; j < objectives.names.size(); ++j) {
     if (!objectives.is_float[j]) continue;
     any_float = true;
-    if (p.input.integer_costs && (p.input.form == InputForm::mosb || spec.scale <= 0))
-      refuse("objective '" + objectives.names[j] + "' holds float costs and profile " + p.name +
-             "'s solver reads integers only" +
-             (p.input.form == InputForm::mosb
-                  ? std::string()
-                  : ": give a scale K (--scale, or scale in an experiment file)"));
+    if (p.input.integer_costs && (p.input.form == InputForm::mosb || spec.scale <= 0)) {
+      const std::string problem = "objective '" + objectives.names[j] +
+                                  "' holds float costs and profile " + p.name +
+                                  "'s solver reads integers only";
+      if (p.input.form == InputForm::mosb) refuse(problem);
+      throw Error(ErrorCode::invalid_argument,
+                  {problem + ": give a scale K (", setting("scale"), ")"});
+    }
   }
   if (spec.scale > 0 && p.input.form == InputForm::mosb)
     refuse("scale: profile " + p.name + "'s solver reads the .mosb itself");
@@ -125,7 +127,7 @@ RunInput prepare_input(const RunConfig& config, const SolverProfile& p, const So
   try {
     check_cost_types(p, request, objectives);
   } catch (const Error& err) {
-    refuse(instance.display_name() + ": " + err.what());
+    throw err.with_context(instance.display_name() + ": ");
   }
   in.objective_names = std::move(objectives.names);
   if (p.input.form == InputForm::mosb) return in;

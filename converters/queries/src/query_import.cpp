@@ -111,8 +111,8 @@ class QueryParser {
                   std::to_string(form_line_) + " is " + form_text(*form_));
     }
     if (form == LineForm::pair && options_.match)
-      fail(1, "--match " + quoted_field(*options_.match) +
-                  " given, but the lines have no graph field");
+      fail(1, {setting("match"),
+               " " + quoted_field(*options_.match) + " given, but the lines have no graph field"});
     if (graph && !select(*graph)) return;
     out.push_back({parse_id(*start), parse_id(*goal)});
   }
@@ -127,6 +127,9 @@ class QueryParser {
  private:
   [[noreturn]] void fail(std::uint64_t column, const std::string& message) const {
     text::fail(file_, line_, column, message);
+  }
+  [[noreturn]] void fail(std::uint64_t column, Message message) const {
+    text::fail(file_, line_, column, std::move(message));
   }
 
   const char* expected() const {
@@ -146,10 +149,10 @@ class QueryParser {
                                std::to_string(graph_line_) + ", " + quoted_path(graph.text) +
                                " here)";
       if (options_.match)
-        fail(graph.column,
-             "--match " + quoted_field(*options_.match) + " selects more than one graph " + both);
-      fail(graph.column,
-           "the file names more than one graph " + both + ": choose one with --match TEXT");
+        fail(graph.column, {setting("match"), " " + quoted_field(*options_.match) +
+                                                  " selects more than one graph " + both});
+      fail(graph.column, {"the file names more than one graph " + both + ": choose one with ",
+                          setting("match"), " TEXT"});
     }
     return true;
   }

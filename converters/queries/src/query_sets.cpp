@@ -38,8 +38,9 @@ Metadata without_query_keys(const Metadata& metadata, const std::string& name) {
 
 void check_new_set(const GraphReader& reader, const std::string& name, bool replace) {
   if (reader.find(format::SectionKind::queries, name) && !replace)
-    throw Error(reader.display_name() + ": query set '" + name +
-                "' exists; pass --replace to overwrite it");
+    throw Error(ErrorCode::other,
+                {reader.display_name() + ": query set '" + name + "' exists; pass ",
+                 setting("replace"), " to overwrite it"});
 }
 
 unsigned instance_id_base(const GraphReader& reader) {
@@ -47,8 +48,9 @@ unsigned instance_id_base(const GraphReader& reader) {
   if (!value) return 0;  // file ids are 0-based; an instance without the key came from 0-based data
   if (*value == "0") return 0;
   if (*value == "1") return 1;
-  throw Error(reader.display_name() + ": metadata id_base '" + *value +
-              "' is not 0 or 1; pass --id-base");
+  throw Error(ErrorCode::other,
+              {reader.display_name() + ": metadata id_base '" + *value + "' is not 0 or 1; pass ",
+               setting("id_base")});
 }
 
 // The octile map an instance was built from, as far as a scenario check needs it: its size and
@@ -60,9 +62,11 @@ OctileMap instance_map(const GraphReader& reader) {
     const auto value = reader.metadata().get(key);
     const auto parsed = value ? text::to_u64(*value, 0xFFFFFFFFULL) : std::nullopt;
     if (!parsed || *parsed == 0)
-      throw Error(file + ": metadata " + key +
-                  " is missing or not a positive integer: --scen needs an instance converted from "
-                  "a Moving AI map (convert movingai or convert guards)");
+      throw Error(ErrorCode::other,
+                  {file + ": metadata " + key + " is missing or not a positive integer: ",
+                   setting("scenario"),
+                   " needs an instance converted from a Moving AI map (convert movingai or "
+                   "convert guards)"});
     return static_cast<std::uint32_t>(*parsed);
   };
   OctileMap map;
@@ -71,9 +75,9 @@ OctileMap instance_map(const GraphReader& reader) {
   const Section* cell = reader.find(format::SectionKind::vertex_data, "cell");
   if (!cell || cell->entry.row_width != 2 ||
       (cell->type != format::ElementType::u16 && cell->type != format::ElementType::u32))
-    throw Error(file +
-                ": no vertex data 'cell' (u16 or u32 x 2): --scen needs an instance "
-                "converted from a Moving AI map");
+    throw Error(ErrorCode::other,
+                {file + ": no vertex data 'cell' (u16 or u32 x 2): ", setting("scenario"),
+                 " needs an instance converted from a Moving AI map"});
   std::vector<std::uint32_t> cells;
   if (cell->type == format::ElementType::u16) {
     const auto v = reader.values<std::uint16_t>(*cell);
@@ -140,7 +144,9 @@ QuerySetEdit import_query_set(const GraphReader& reader, const std::string& set,
   check_new_set(reader, set, replace);
   if (options.scenario) {
     if (options.id_base || options.match)
-      throw Error("a scenario (--scen) gives cells, not ids: --id-base and --match do not apply");
+      throw Error(ErrorCode::other, {"a scenario (", setting("scenario"),
+                                     ") gives cells, not ids: ", setting("id_base"), " and ",
+                                     setting("match"), " do not apply"});
     const auto map = instance_map(reader);
     const auto input = read_text_input(options.file);
     const auto entries = parse_scenario(input.text, input.display_name);
@@ -186,8 +192,10 @@ QuerySetEdit draw_query_set(const GraphReader& reader, const std::string& set,
   if (n == 0)
     throw Error(reader.display_name() + ": the graph has no vertices to draw queries from");
   if (n == 1 && !options.allow_same)
-    throw Error(reader.display_name() +
-                ": the graph has one vertex, so every query has start = goal; pass --allow-same");
+    throw Error(ErrorCode::other,
+                {reader.display_name() +
+                     ": the graph has one vertex, so every query has start = goal; pass ",
+                 setting("allow_same")});
   if (options.count < 1 || options.count > kMaxDrawnQueries)
     throw Error("query count " + std::to_string(options.count) + " is not 1 to " +
                 std::to_string(kMaxDrawnQueries));

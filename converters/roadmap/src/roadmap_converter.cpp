@@ -68,7 +68,11 @@ GrScan scan_gr(std::string_view text) {
   return s;
 }
 
-const char* kFromIdsHint = "; --vertices-from-ids sizes the graph from the largest id instead";
+// `problem`, then how vertices_from_ids would take the input instead.
+Message with_from_ids_hint(std::string problem) {
+  return {std::move(problem) + "; ", setting("vertices_from_ids"),
+          " sizes the graph from the largest id instead"};
+}
 
 std::string declared_range(std::uint64_t declared) {
   return declared == 0 ? "(none)" : "0.." + std::to_string(declared - 1);
@@ -100,9 +104,10 @@ std::vector<double> vertex_configs(const VertexFile& vf, std::uint64_t n, const 
 void name_objectives(GraphInput& out, const std::vector<Objective>& names) {
   if (names.empty()) return;
   if (names.size() != out.costs.size())
-    throw Error("convert roadmap: " + std::to_string(names.size()) +
-                " --objective names given, the input has " + std::to_string(out.costs.size()) +
-                " objectives");
+    throw Error(
+        ErrorCode::other,
+        {"convert roadmap: " + std::to_string(names.size()) + " ", setting("objective"),
+         " names given, the input has " + std::to_string(out.costs.size()) + " objectives"});
   for (std::size_t j = 0; j < names.size(); ++j) {
     out.costs[j].name = names[j].name;
     out.costs[j].unit = names[j].unit;
@@ -147,10 +152,10 @@ GraphInput convert_gr_files(const RoadmapOptions& o) {
       if (!s.largest || *s.largest < declared) continue;
       if (!o.vertices_from_ids)
         fail(inputs[i].display_name, s.largest_line, s.largest_column,
-             "the largest vertex id, " + std::to_string(*s.largest) + ", is outside the " +
-                 std::to_string(declared) + " vertices declared on line " +
-                 std::to_string(s.header_line) + " (0-based ids " + declared_range(declared) + ")" +
-                 kFromIdsHint);
+             with_from_ids_hint("the largest vertex id, " + std::to_string(*s.largest) +
+                                ", is outside the " + std::to_string(declared) +
+                                " vertices declared on line " + std::to_string(s.header_line) +
+                                " (0-based ids " + declared_range(declared) + ")"));
       if (*s.largest + 1 > n) {
         n = *s.largest + 1;
         largest_file = &inputs[i].display_name, largest_line = s.largest_line,
@@ -163,10 +168,11 @@ GraphInput convert_gr_files(const RoadmapOptions& o) {
       const auto largest = vertices->ids[static_cast<std::size_t>(at)];
       if (largest >= declared && !o.vertices_from_ids)
         fail(vertex_name, vertices->lines[static_cast<std::size_t>(at)], 1,
-             "the largest vertex id, " + std::to_string(largest) + ", is outside the " +
-                 std::to_string(declared) + " vertices declared on " + inputs[0].display_name +
-                 ":" + std::to_string(scans[0].header_line) + " (0-based ids " +
-                 declared_range(declared) + ")" + kFromIdsHint);
+             with_from_ids_hint("the largest vertex id, " + std::to_string(largest) +
+                                ", is outside the " + std::to_string(declared) +
+                                " vertices declared on " + inputs[0].display_name + ":" +
+                                std::to_string(scans[0].header_line) + " (0-based ids " +
+                                declared_range(declared) + ")"));
       if (largest + 1 > n) {
         n = largest + 1;
         largest_file = &vertex_name, largest_line = vertices->lines[static_cast<std::size_t>(at)],
@@ -177,10 +183,11 @@ GraphInput convert_gr_files(const RoadmapOptions& o) {
     // one huge id cannot make the graph (and the memory it needs) unbounded.
     if (largest_file && (n > kMaxCount || n - declared > input_bytes))
       fail(*largest_file, largest_line, largest_column,
-           "vertex id " + std::to_string(n - 1) + " would size the graph to " + std::to_string(n) +
-               " vertices: --vertices-from-ids adds at most as many vertices beyond the " +
-               std::to_string(declared) + " declared as the input has bytes (" +
-               std::to_string(input_bytes) + ")");
+           {"vertex id " + std::to_string(n - 1) + " would size the graph to " + std::to_string(n) +
+                " vertices: ",
+            setting("vertices_from_ids"),
+            " adds at most as many vertices beyond the " + std::to_string(declared) +
+                " declared as the input has bytes (" + std::to_string(input_bytes) + ")"});
     if (n > kMaxCount)
       throw Error("convert roadmap: vertex ids reach " + std::to_string(n - 1) +
                   ", beyond the format's limit");
@@ -322,11 +329,13 @@ ClearanceChoice choose_clearance(const GraphmlGraph& g, const RoadmapOptions& o,
   c.aggregate = c.mode == ClearanceMode::aggregate || c.mode == ClearanceMode::both;
   c.links = c.mode == ClearanceMode::per_link || c.mode == ClearanceMode::both;
   if (c.aggregate && !keys.aggregate && keys.links.empty())
-    throw Error(file + ": --clearance " + std::string(kClearanceModeNames.name(c.mode)) +
-                ": no edge key 'clearance' or 'clearance_0'...");
+    throw Error(ErrorCode::other, {file + ": ", setting("clearance"),
+                                   " " + std::string(kClearanceModeNames.name(c.mode)) +
+                                       ": no edge key 'clearance' or 'clearance_0'..."});
   if (c.links && keys.links.empty())
-    throw Error(file + ": --clearance " + std::string(kClearanceModeNames.name(c.mode)) +
-                ": no edge keys 'clearance_0' .. 'clearance_{L-1}'");
+    throw Error(ErrorCode::other, {file + ": ", setting("clearance"),
+                                   " " + std::string(kClearanceModeNames.name(c.mode)) +
+                                       ": no edge keys 'clearance_0' .. 'clearance_{L-1}'"});
   return c;
 }
 
@@ -435,9 +444,10 @@ GraphInput convert_graphml_file(const RoadmapOptions& o) {
   auto configs = read_configurations(g, file);
   const auto clearance = choose_clearance(g, o, file, base_name, m);
   if (o.weight && !g.edge_key("weight"))
-    throw Error(file + ": --weight: no edge key named 'weight'");
+    throw Error(ErrorCode::other, {file + ": ", setting("weight"), ": no edge key named 'weight'"});
   if (!(o.delta > 0) || !std::isfinite(o.delta))
-    throw Error("convert roadmap: --delta must be a positive real");
+    throw Error(ErrorCode::other,
+                {"convert roadmap: ", setting("delta"), " must be a positive real"});
   auto columns = build_arcs(g, configs, clearance, o, file, out);
   const std::size_t links = columns.per_link.size();
   const bool want_aggregate = clearance.aggregate;
@@ -527,14 +537,20 @@ VertexFile parse_vertex_file(std::string_view text, const std::string& display_n
 GraphInput convert_roadmap(const RoadmapOptions& options) {
   const bool text = !options.gr_files.empty();
   if (text == options.graphml_file.has_value())
-    throw Error("convert roadmap: give either --gr files or one --graphml file");
+    throw Error(ErrorCode::other, {"convert roadmap: give either ", setting("gr_files"),
+                                   " files or one ", setting("graphml_file"), " file"});
   if (text && options.clearance != ClearanceMode::automatic &&
       options.clearance != ClearanceMode::none)
-    throw Error(
-        "convert roadmap: --clearance applies to --graphml input (.gr files carry their costs)");
-  if (text && options.weight) throw Error("convert roadmap: --weight applies to --graphml input");
+    throw Error(ErrorCode::other,
+                {"convert roadmap: ", setting("clearance"), " applies to ", setting("graphml_file"),
+                 " input (.gr files carry their costs)"});
+  if (text && options.weight)
+    throw Error(ErrorCode::other, {"convert roadmap: ", setting("weight"), " applies to ",
+                                   setting("graphml_file"), " input"});
   if (!text && (options.vertex_file || options.vertices_from_ids))
-    throw Error("convert roadmap: --vertices and --vertices-from-ids apply to --gr input");
+    throw Error(ErrorCode::other,
+                {"convert roadmap: ", setting("vertex_file"), " and ", setting("vertices_from_ids"),
+                 " apply to ", setting("gr_files"), " input"});
   auto out = text ? convert_gr_files(options) : convert_graphml_file(options);
   auto& m = out.metadata;
   m.set("family", "robots");

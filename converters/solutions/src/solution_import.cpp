@@ -65,15 +65,17 @@ std::string cost_problem(std::string_view token, double& value) {
 }
 
 // Why a vector of `count` values cannot give the view's d values, or empty.
-std::string width_problem(std::size_t count, const SolutionImportOptions& o) {
+Message width_problem(std::size_t count, const SolutionImportOptions& o) {
   if (o.columns.empty()) {
     if (count == o.objective_count) return {};
-    return text::plural(count, "value") + ", the view has " +
-           text::plural(o.objective_count, "objective") + " (--columns picks values)";
+    return {text::plural(count, "value") + ", the view has " +
+                text::plural(o.objective_count, "objective") + " (",
+            setting("columns"), " picks values)"};
   }
   for (auto c : o.columns)
     if (c >= count)
-      return text::plural(count, "value") + ", --columns needs value " + std::to_string(c);
+      return {text::plural(count, "value") + ", ", setting("columns"),
+              " needs value " + std::to_string(c)};
   return {};
 }
 
@@ -106,11 +108,13 @@ std::string query_problem(std::string_view token, const SolutionImportOptions& o
 
 void check_options(const SolutionImportOptions& o) {
   if (o.objective_count == 0) throw Error(ErrorCode::invalid_argument, "no objectives");
-  if (o.id_base > 1) throw Error(ErrorCode::invalid_argument, "--id-base must be 0 or 1");
+  if (o.id_base > 1)
+    throw Error(ErrorCode::invalid_argument, {setting("id_base"), " must be 0 or 1"});
   if (!o.columns.empty() && o.columns.size() != o.objective_count)
-    throw Error(ErrorCode::invalid_argument,
-                "--columns picks " + text::plural(o.columns.size(), "value") + ", the view has " +
-                    text::plural(o.objective_count, "objective"));
+    throw Error(
+        ErrorCode::invalid_argument,
+        {setting("columns"), " picks " + text::plural(o.columns.size(), "value") +
+                                 ", the view has " + text::plural(o.objective_count, "objective")});
 }
 
 // Sorts by query and refuses two results for one query.
@@ -472,8 +476,8 @@ std::vector<ImportedResult> parse_solution_table(std::string_view text, const st
     for (auto c : o.columns) {
       if (c >= header.size())
         fail(name, header_line, 1,
-             text::plural(header.size(), "column") + ", --columns needs column " +
-                 std::to_string(c));
+             {text::plural(header.size(), "column") + ", ", setting("columns"),
+              " needs column " + std::to_string(c)});
       cost_columns.push_back(c);
     }
   } else {
@@ -483,9 +487,8 @@ std::vector<ImportedResult> parse_solution_table(std::string_view text, const st
                                 [&](const text::Token& t) { return t.text == wanted; });
       if (found == header.end())
         fail(name, header_line, 1,
-             "no column " + quoted(wanted) +
-                 " (an objective of the view; --columns picks "
-                 "columns by position)");
+             {"no column " + quoted(wanted) + " (an objective of the view; ", setting("columns"),
+              " picks columns by position)"});
       cost_columns.push_back(static_cast<std::size_t>(found - header.begin()));
     }
   }
@@ -746,8 +749,9 @@ void json_record_runtime(const Json& record, const std::string& record_at, const
 std::vector<ImportedResult> parse_solver_json_log(std::string_view text, const std::string& name,
                                                   const SolutionImportOptions& o) {
   check_options(o);
-  auto at = [&](const std::string& pointer, const std::string& message) -> Error {
-    return {ErrorCode::invalid_argument, name + ": " + pointer + ": " + message};
+  // `message`: a std::string, or parts that name settings.
+  auto at = [&](const std::string& pointer, const auto& message) -> Error {
+    return Error(ErrorCode::invalid_argument, message).with_context(name + ": " + pointer + ": ");
   };
   Endpoints by_endpoints;
   if (o.match == RecordMatch::endpoints)
@@ -793,9 +797,9 @@ std::vector<double> kept_costs(const ImportedResult& r, std::size_t d, Dominated
       return row < r.vector_sources.size() ? r.vector_sources[row] : r.source;
     };
     throw Error(ErrorCode::invalid_argument,
-                source(pair.dominated) + ": query " + std::to_string(r.query) + ": " +
-                    dominated_row_text(r.costs, d, pair) + " (at " + source(pair.by) +
-                    "); give --nondominated to keep each front's non-dominated vectors");
+                {source(pair.dominated) + ": query " + std::to_string(r.query) + ": " +
+                     dominated_row_text(r.costs, d, pair) + " (at " + source(pair.by) + "); give ",
+                 setting("dominated"), " to keep each front's non-dominated vectors"});
   }
   std::vector<double> kept;
   kept.reserve(r.costs.size() - drop.size() * d);
@@ -832,7 +836,7 @@ DroppedVectors set_imported_results(SolutionWriter& writer, std::span<const Impo
       writer.set_query(r.query, r.status, costs, r.statistics);
     } catch (const Error& e) {
       if (r.source.empty()) throw;
-      throw Error(e.code(), r.source + ": " + e.what());
+      throw e.with_context(r.source + ": ");
     }
   }
   if (dominated == DominatedVectors::keep_optimal) writer.set_dropped_vectors(drops);

@@ -49,10 +49,10 @@ std::vector<ManifestEntry> kept_entries(const std::filesystem::path& directory,
   for (std::size_t i = 0; i < checks.size(); ++i) {
     if (!checks[i].ok())
       throw Error(ErrorCode::invalid_argument,
-                  (directory / kManifestName).string() + " lists " + checks[i].file +
-                      ", which this build keeps but which fails its check (" +
-                      checks[i].problems.front().detail +
-                      "); rebuild it (--benchmark) or start over (--replace)");
+                  {(directory / kManifestName).string() + " lists " + checks[i].file +
+                       ", which this build keeps but which fails its check (" +
+                       checks[i].problems.front().detail + "); rebuild it (",
+                   setting("suite.benchmarks"), ") or start over (", setting("replace"), ")"});
     out.push_back(manifest.legacy ? describe_file(kept[i].second) : kept[i].first);
   }
   return out;
@@ -77,11 +77,13 @@ std::vector<SuiteInstance> select_suite_instances(
         why += (why.empty() ? "" : "; ") + reason;
     if (!why.empty())
       throw Error(ErrorCode::not_found,
-                  "--benchmark '" + pattern + "' matches no benchmark that can be built: " + why);
+                  {setting("suite.benchmarks"),
+                   " '" + pattern + "' matches no benchmark that can be built: " + why});
     throw Error(ErrorCode::invalid_argument,
-                "--benchmark '" + pattern +
-                    "' matches no benchmark to build (the generated ones, and the raw-source ones "
-                    "whose inputs are present)");
+                {setting("suite.benchmarks"),
+                 " '" + pattern +
+                     "' matches no benchmark to build (the generated ones, and the raw-source ones "
+                     "whose inputs are present)"});
   }
   std::erase_if(instances, [&](const SuiteInstance& i) {
     return std::none_of(patterns.begin(), patterns.end(),

@@ -9,8 +9,8 @@ Objective parse_objective(std::string_view spec, std::string_view context) {
   Objective objective{std::string(spec.substr(0, colon)),
                       colon == std::string_view::npos ? "" : std::string(spec.substr(colon + 1))};
   if (objective.name.empty())
-    throw Error(std::string(context) + ": --objective '" + std::string(spec) +
-                "' has an empty name");
+    throw Error(ErrorCode::other, {std::string(context) + ": ", setting("objective"),
+                                   " '" + std::string(spec) + "' has an empty name"});
   return objective;
 }
 

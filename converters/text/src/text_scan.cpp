@@ -60,6 +60,11 @@ void fail(const std::string& file, std::uint64_t line, std::uint64_t column,
   throw Error(file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " + message);
 }
 
+void fail(const std::string& file, std::uint64_t line, std::uint64_t column, Message message) {
+  throw Error(ErrorCode::other, std::move(message))
+      .with_context(file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": ");
+}
+
 bool is_digits(std::string_view s) {
   if (s.empty()) return false;
   for (char c : s)

@@ -143,8 +143,9 @@ void FileWriter::commit(std::uint64_t vertex_count, std::uint64_t arc_count) {
   if (!expected_digest_.empty()) {
     const auto digest = content_digest(table_);
     if (digest != expected_digest_)
-      fail("content digest " + digest + ", but " + expected_digest_ +
-           " was expected (--expect-digest); nothing written");
+      throw Error(ErrorCode::other, {file_.target().string() + ": content digest " + digest +
+                                         ", but " + expected_digest_ + " was expected (",
+                                     setting("expect_digest"), "); nothing written"});
   }
   file_.write_at(&header, sizeof header, 0);
   if (check_) check_(file_.temporary());

@@ -79,29 +79,44 @@ void add_views_to(Graph& graph, const std::vector<ViewSpec>& views) {
 
 }  // namespace
 
-std::vector<std::string> parse_objective_list(std::string_view text, std::string_view option) {
+namespace {
+
+// `where` (the setting, and the text given for it) comes first in each refusal.
+std::vector<std::string> parse_objective_list(std::string_view text, const Message& where) {
+  auto refuse = [&where](const std::string& problem) {
+    auto parts = where;
+    parts.emplace_back(": " + problem);
+    return Error(ErrorCode::invalid_argument, std::move(parts));
+  };
   std::vector<std::string> list;
   while (true) {
     const auto comma = text.find(',');
     std::string objective(text.substr(0, comma));
     if (!format::is_valid_section_name(objective))
-      throw Error(ErrorCode::invalid_argument,
-                  std::string(option) + ": empty or invalid objective name " + shown(objective));
+      throw refuse("empty or invalid objective name " + shown(objective));
     for (const auto& seen : list)
-      if (seen == objective)
-        throw Error(ErrorCode::invalid_argument,
-                    std::string(option) + ": objective '" + objective + "' listed twice");
+      if (seen == objective) throw refuse("objective '" + objective + "' listed twice");
     list.push_back(std::move(objective));
     if (comma == std::string_view::npos) return list;
     text = text.substr(comma + 1);
   }
 }
 
+}  // namespace
+
+std::vector<std::string> parse_objective_list(std::string_view text) {
+  return parse_objective_list(text, {setting("objectives")});
+}
+
 ViewSpec parse_view_spec(std::string_view text) {
-  const std::string where = "--view " + shown(text);
+  const Message where = {setting("view"), " " + shown(text)};
+  auto refuse = [&where](const std::string& problem) {
+    auto parts = where;
+    parts.emplace_back(": " + problem);
+    return Error(ErrorCode::invalid_argument, std::move(parts));
+  };
   const auto equals = text.find('=');
-  if (equals == std::string_view::npos)
-    throw Error(ErrorCode::invalid_argument, where + ": expected NAME=OBJ1,OBJ2,...[@QUERYSET]");
+  if (equals == std::string_view::npos) throw refuse("expected NAME=OBJ1,OBJ2,...[@QUERYSET]");
   ViewSpec view;
   view.name = std::string(text.substr(0, equals));
   auto rest = text.substr(equals + 1);
@@ -110,11 +125,9 @@ ViewSpec parse_view_spec(std::string_view text) {
     rest = rest.substr(0, at);
   }
   if (!Metadata::is_valid_key(view.name))
-    throw Error(ErrorCode::invalid_argument,
-                where + ": the view name must be 1 or more of [A-Za-z0-9_.+-]");
+    throw refuse("the view name must be 1 or more of [A-Za-z0-9_.+-]");
   if (!format::is_valid_section_name(view.queries))
-    throw Error(ErrorCode::invalid_argument,
-                where + ": the query set name must be " + std::string(format::kSectionNameRule));
+    throw refuse("the query set name must be " + std::string(format::kSectionNameRule));
   view.objectives = parse_objective_list(rest, where);
   return view;
 }
@@ -127,13 +140,14 @@ void add_views(Metadata& metadata, const std::vector<std::string>& columns,
   std::vector<std::string> seen;
   for (const auto& view : views) {
     if (contains(seen, view.name))
-      throw Error(ErrorCode::invalid_argument, "--view '" + view.name + "' given twice");
+      throw Error(ErrorCode::invalid_argument,
+                  {setting("view"), " '" + view.name + "' given twice"});
     seen.push_back(view.name);
     for (const auto& objective : view.objectives)
       if (!contains(columns, objective))
-        throw Error(ErrorCode::not_found, "--view '" + view.name + "': objective '" + objective +
-                                              "' is not a column (columns: " + joined(columns) +
-                                              ")");
+        throw Error(ErrorCode::not_found,
+                    {setting("view"), " '" + view.name + "': objective '" + objective +
+                                          "' is not a column (columns: " + joined(columns) + ")"});
     const std::string key = "view." + view.name;
     metadata.set(key + ".objectives", joined(view.objectives));
     // A replaced default view must not keep a query set the new one does not name.
@@ -157,7 +171,8 @@ std::optional<View> select_view(const GraphReader& reader, const ViewChoice& cho
   if (choice.empty()) return std::nullopt;
   if (!choice.view.empty() && !choice.objectives.empty())
     throw Error(ErrorCode::invalid_argument,
-                "give --view or --objectives, not both (a view is a name for an objective list)");
+                {"give ", setting("view"), " or ", setting("objectives"),
+                 ", not both (a view is a name for an objective list)"});
   View selected;
   if (!choice.view.empty()) selected = reader.view(choice.view);
   if (!choice.objectives.empty()) {
@@ -181,9 +196,9 @@ std::optional<View> select_view(const GraphReader& reader, const ViewChoice& cho
 View solution_selection(const GraphReader& reader, const ViewChoice& choice) {
   auto selected = select_view(reader, choice);
   if (!selected || (choice.view.empty() && choice.objectives.empty()))
-    throw Error(ErrorCode::invalid_argument, reader.display_name() +
-                                                 ": give a view or an objective list (--view V or "
-                                                 "--objectives A,B,...)");
+    throw Error(ErrorCode::invalid_argument,
+                {reader.display_name() + ": give a view or an objective list (", setting("view"),
+                 " V or ", setting("objectives"), " A,B,...)"});
   if (choice.view.empty()) {
     for (const auto& view : reader.views())
       if (view.objectives == selected->objectives) {
@@ -194,10 +209,11 @@ View solution_selection(const GraphReader& reader, const ViewChoice& choice) {
   }
   if (selected->query_set.empty())
     throw Error(ErrorCode::invalid_argument,
-                reader.display_name() + ": no query set for these objectives (" +
-                    (selected->name.empty() ? std::string("no view has them")
-                                            : "view '" + selected->name + "' names none") +
-                    "); give --queries SET");
+                {reader.display_name() + ": no query set for these objectives (" +
+                     (selected->name.empty() ? std::string("no view has them")
+                                             : "view '" + selected->name + "' names none") +
+                     "); give ",
+                 setting("queries"), " SET"});
   return *selected;
 }
 

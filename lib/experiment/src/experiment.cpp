@@ -234,9 +234,10 @@ void set_solver_executable(Experiment& e, const std::string& name, const std::st
               "executable for solver '" + name + "': the experiment's solvers are " + names);
 }
 
-void restrict_benchmarks(Experiment& e, const std::vector<std::string>& patterns) {
+void restrict_benchmarks(Experiment& e, const std::vector<std::string>& patterns,
+                         const std::string& source) {
   e.benchmarks = patterns;
-  e.benchmark_sources.assign(patterns.size(), SourceLine{0, "--benchmarks"});
+  e.benchmark_sources.assign(patterns.size(), SourceLine{0, source});
   e.restricted = true;
 }
 
@@ -850,7 +851,7 @@ namespace mosb {
 std::vector<std::vector<std::size_t>> experiment_tasks(const ExperimentPlan& plan,
                                                        std::uint64_t queries_per_task) {
   if (queries_per_task == 0)
-    throw Error(ErrorCode::invalid_argument, "--queries-per-task 0: give at least 1");
+    throw Error(ErrorCode::invalid_argument, {setting("queries_per_task"), " 0: give at least 1"});
   std::vector<std::vector<std::size_t>> tasks;
   std::uint64_t in_task = 0;
   for (std::size_t c = 0; c < plan.cells.size(); ++c) {

@@ -210,10 +210,11 @@ void check_memory(const std::vector<Section>& sections, const std::optional<Tran
   const std::uint64_t cap = max_memory != 0 ? max_memory : available_memory();
   if (overflows || total > cap)
     throw Error(overflows ? ErrorCode::damaged : ErrorCode::no_memory,
-                std::string(display_name) + ": decoding needs " +
-                    (overflows ? std::string("more than 2^64") : std::to_string(total)) +
-                    " bytes of memory, more than the cap of " + std::to_string(cap) +
-                    " bytes (the memory available, or --max-memory)");
+                {std::string(display_name) + ": decoding needs " +
+                     (overflows ? std::string("more than 2^64") : std::to_string(total)) +
+                     " bytes of memory, more than the cap of " + std::to_string(cap) +
+                     " bytes (the memory available, or ",
+                 setting("max_memory"), ")"});
 }
 
 // The kind unpack_bytes and pack_file take a file as: a solution file when it says so, else an

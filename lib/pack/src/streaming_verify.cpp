@@ -894,16 +894,18 @@ void check_spill_limit(const GraphReader& reader, const Context& context,
   const std::uint64_t bound = streaming_spill_bound(reader, context.memory);
   if (bound <= limit) return;
   throw Error(ErrorCode::no_memory,
-              context.name + ": checking it in " + std::to_string(context.memory) +
-                  " bytes of memory needs up to " + std::to_string(bound) +
-                  " bytes of disk for its spill file, more than the limit of " +
-                  std::to_string(limit) + " bytes (" +
-                  (options.disk ? std::string("as asked")
-                                : "the default: " + std::to_string(kCheckDiskPerFileByte) +
-                                      " times its " + std::to_string(size) + " bytes or " +
-                                      std::to_string(kCheckDiskPerMemoryByte) +
-                                      " times the memory, whichever is more") +
-                  "; --check-disk SIZE, or more --check-memory, allows it)");
+              {context.name + ": checking it in " + std::to_string(context.memory) +
+                   " bytes of memory needs up to " + std::to_string(bound) +
+                   " bytes of disk for its spill file, more than the limit of " +
+                   std::to_string(limit) + " bytes (" +
+                   (options.disk ? std::string("as asked")
+                                 : "the default: " + std::to_string(kCheckDiskPerFileByte) +
+                                       " times its " + std::to_string(size) + " bytes or " +
+                                       std::to_string(kCheckDiskPerMemoryByte) +
+                                       " times the memory, whichever is more") +
+                   "; ",
+               setting("streaming_verify.disk"), " SIZE, or more ",
+               setting("streaming_verify.memory"), ", allows it)"});
 }
 
 }  // namespace

@@ -835,11 +835,11 @@ void fetch_entry(Puller& p, Http* http, PulledEntry& pulled) {
   }
   if (auto why = conflict(current, e); !why.empty()) {
     pulled.status = PullStatus::refused;
-    pulled.reason = std::move(why);
+    pulled.reason = {std::move(why)};
     return;
   }
   Receiver r(p, pulled, lock);
-  const auto refuse = [&](std::string why, bool keep_partial) {
+  const auto refuse = [&](Message why, bool keep_partial) {
     pulled.status = PullStatus::refused;
     pulled.reason = std::move(why);
     p.moved(-static_cast<std::int64_t>(r.have()));
@@ -848,13 +848,13 @@ void fetch_entry(Puller& p, Http* http, PulledEntry& pulled) {
   if (auto why = transfer(p, http, r, e); !why.empty()) {
     // A transfer that failed may be continued by the next pull; bytes that were wrong may not.
     const bool wrong_bytes = r.too_long();
-    return refuse(std::move(why), !wrong_bytes);
+    return refuse({std::move(why)}, !wrong_bytes);
   }
   if (r.have() != e.size)
-    return refuse(bytes_text(r.have()) + " received, the MANIFEST says " + bytes_text(e.size),
+    return refuse({bytes_text(r.have()) + " received, the MANIFEST says " + bytes_text(e.size)},
                   false);
   const auto sha = r.sha256();
-  if (sha != e.sha256) return refuse("SHA-256 " + sha + ", the MANIFEST says " + e.sha256, false);
+  if (sha != e.sha256) return refuse({"SHA-256 " + sha + ", the MANIFEST says " + e.sha256}, false);
   r.sync_and_close();
   try {
     p.checks.run([&](VerifyWorkspace& workspace) {
@@ -869,7 +869,7 @@ void fetch_entry(Puller& p, Http* http, PulledEntry& pulled) {
       store.add({r.data_path()}, add);
     });
   } catch (const Error& error) {
-    return refuse(error.message(), false);
+    return refuse(error.parts(), false);
   }
   pulled.status = PullStatus::fetched;
   lock.remove_when_done();
@@ -959,7 +959,7 @@ PullResult pull(const fs::path& store, std::string_view url, const PullOptions& 
       pulled.status = PullStatus::present;
     } else if (auto why = conflict(local, pulled.entry); !why.empty()) {
       pulled.status = PullStatus::refused;
-      pulled.reason = std::move(why);
+      pulled.reason = {std::move(why)};
     } else {
       to_fetch.push_back(&pulled);
       puller.total += pulled.entry.size;
@@ -998,9 +998,12 @@ PullResult pull(const fs::path& store, std::string_view url, const PullOptions& 
           auto& pulled = *to_fetch[range.first + k];
           try {
             fetch_entry(puller, http.get(), pulled);
-          } catch (const std::exception& error) {  // the store's own trouble (I/O, a planted link)
+          } catch (const Error& error) {  // the store's own trouble (I/O, a planted link)
             pulled.status = PullStatus::refused;
-            pulled.reason = error.what();
+            pulled.reason = error.parts();
+          } catch (const std::exception& error) {
+            pulled.status = PullStatus::refused;
+            pulled.reason = {error.what()};
           }
           puller.settled(pulled);
         });
@@ -1017,7 +1020,7 @@ PullResult pull(const fs::path& store, std::string_view url, const PullOptions& 
         placed.unpack(pulled.entry.file);
       } catch (const Error& error) {
         pulled.status = PullStatus::refused;
-        pulled.reason = std::string("listed, but not unpacked: ") + error.message();
+        pulled.reason = error.with_context("listed, but not unpacked: ").parts();
       }
     }
   }

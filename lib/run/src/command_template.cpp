@@ -17,7 +17,7 @@ namespace mosb {
 namespace {
 
 [[noreturn]] void refuse(const std::string& message) {
-  throw Error(ErrorCode::invalid_argument, "--solver: " + message);
+  throw Error(ErrorCode::invalid_argument, {setting("solver_template"), ": " + message});
 }
 
 bool is_blank(char c) {

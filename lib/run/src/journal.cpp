@@ -167,9 +167,8 @@ Journal::Journal(std::string path, const JournalBinding& binding, bool resume,
   const bool exists = ::stat(path_.c_str(), &st) == 0;
   if (exists && !resume)
     throw Error(ErrorCode::invalid_argument,
-                path_ +
-                    ": a journal of an earlier run exists; continue it with --resume or "
-                    "remove it");
+                {path_ + ": a journal of an earlier run exists; continue it with ",
+                 setting("resume"), " or remove it"});
   if (exists) {
     read_existing(binding, check);
     return;
@@ -195,9 +194,10 @@ void check_head(const Json& head, const JournalBinding& binding, bool& new_execu
               ", this one writes " + std::to_string(kJournalVersion) +
               "): it cannot be checked; remove it and run again");
   if (head["binding"] != binding.settings)
-    malformed("--resume: the journal is of another run (" +
-              first_difference(head["binding"], binding.settings) +
-              "); rerun with its settings or remove it");
+    throw Error(ErrorCode::invalid_argument,
+                {setting("resume"), ": the journal is of another run (" +
+                                        first_difference(head["binding"], binding.settings) +
+                                        "); rerun with its settings or remove it"});
   const std::string recorded = string_of(member(head, "executable_sha256"), "executable_sha256");
   new_executable = recorded != binding.executable_sha256;
 }
@@ -240,7 +240,7 @@ void Journal::read_existing(const JournalBinding& binding, const RecordCheck& ch
       throw Error(ErrorCode::invalid_argument,
                   path_ + ":" + std::to_string(line) + ": not a journal line (" + e.what() + ")");
     } catch (const Error& e) {
-      throw Error(e.code(), path_ + ":" + std::to_string(line) + ": " + e.what());
+      throw e.with_context(path_ + ":" + std::to_string(line) + ": ");
     }
     pos = newline + 1;
     complete = pos;
@@ -249,10 +249,11 @@ void Journal::read_existing(const JournalBinding& binding, const RecordCheck& ch
   const bool new_executable = executables_.back() != binding.executable_sha256;
   if (new_executable && !binding.allow_new_executable)
     throw Error(ErrorCode::invalid_argument,
-                path_ + ": --resume: the solver's executable changed (SHA-256 " +
-                    executables_.back() + " recorded, " + binding.executable_sha256 +
-                    " now): the file would mix two programs' fronts; rerun with "
-                    "--allow-new-executable to record both, or remove the journal");
+                {path_ + ": ", setting("resume"),
+                 ": the solver's executable changed (SHA-256 " + executables_.back() +
+                     " recorded, " + binding.executable_sha256 +
+                     " now): the file would mix two programs' fronts; rerun with ",
+                 setting("allow_new_executable"), " to record both, or remove the journal"});
   if (::truncate(path_.c_str(), static_cast<off_t>(complete)) != 0)
     io_error(path_, "cannot cut the torn last record");
   fd_ = ::open(path_.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);

@@ -77,7 +77,7 @@ void read_output(const std::string& path, const std::string& name, std::uint64_t
   if (static_cast<std::uint64_t>(st.st_size) > limit) {
     ::close(fd);
     throw Error(name + ": " + std::to_string(st.st_size) + " bytes, over the output limit of " +
-                std::to_string(limit) + " bytes (--max-output)");
+                std::to_string(limit) + " bytes");
   }
   std::vector<char> buffer(std::size_t{64} << 10);
   try {
@@ -231,8 +231,7 @@ QueryRecord classify(std::uint64_t q, const ProcessOutcome& o, const SolverOutpu
       return r;
     case Ending::output_limit:
       return failed(128 + SIGKILL, "killed: an output file passed the output limit of " +
-                                       std::to_string(j.limits.output_bytes) +
-                                       " bytes (--max-output)");
+                                       std::to_string(j.limits.output_bytes) + " bytes");
     case Ending::not_started:
       return failed(127, o.error);
     case Ending::signaled:
@@ -795,9 +794,9 @@ RunResult run_solver(const RunConfig& c, const RunCallbacks& callbacks,
   if (!c.instance) throw Error(ErrorCode::invalid_argument, "run_solver: no instance");
   // Recorded in the solution file's metadata, which is UTF-8: refused before any solver starts.
   if (!is_valid_utf8(c.solver_name) || !is_valid_utf8(c.solver_version))
-    throw Error(
-        ErrorCode::invalid_argument,
-        "the solver's name or version is not valid UTF-8 (--solver-name, --solver-version)");
+    throw Error(ErrorCode::invalid_argument,
+                {"the solver's name or version is not valid UTF-8 (", setting("solver_name"), ", ",
+                 setting("solver_version"), ")"});
   // The caller's reader is the one open of the instance (open_run_instance verified it): a packed
   // file is refused before any solver starts, without a second read of the payload.
   if (format::is_packed(c.instance->header())) refuse_packed(c.instance_path);
@@ -812,7 +811,8 @@ RunResult run_solver(const RunConfig& c, const RunCallbacks& callbacks,
   RunResult result;
   result.measurement = plan.measurement;
   result.query_set_size = plan.queries.size();
-  if (c.shard && c.shard->count == 0) throw Error(ErrorCode::invalid_argument, "--shard: 0 shards");
+  if (c.shard && c.shard->count == 0)
+    throw Error(ErrorCode::invalid_argument, {setting("shard"), ": 0 shards"});
   result.total = c.shard ? c.shard->size(result.query_set_size) : result.query_set_size;
   result.journal = journal_path(c.output);
   const run_internal::JournalBinding binding{binding_of(c, plan), plan.executable_sha256,

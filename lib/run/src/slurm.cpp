@@ -69,22 +69,26 @@ bool all_digits(std::string_view text) {
 std::uint64_t slurm_shard_count(std::uint64_t queries, std::optional<std::uint64_t> shards,
                                 std::optional<std::uint64_t> queries_per_task) {
   if (shards && queries_per_task)
-    throw Error(ErrorCode::invalid_argument, "give --shards N or --queries-per-task K, not both");
+    throw Error(ErrorCode::invalid_argument, {"give ", setting("shards"), " N or ",
+                                              setting("queries_per_task"), " K, not both"});
   if (queries == 0) throw Error(ErrorCode::invalid_argument, "the query set is empty");
   std::uint64_t n = 1;
   if (shards) {
-    if (*shards == 0) throw Error(ErrorCode::invalid_argument, "--shards 0: give at least 1");
+    if (*shards == 0)
+      throw Error(ErrorCode::invalid_argument, {setting("shards"), " 0: give at least 1"});
     if (*shards > queries)
-      throw Error(ErrorCode::invalid_argument, "--shards " + std::to_string(*shards) +
-                                                   ": the query set has only " +
-                                                   std::to_string(queries) + " queries");
+      throw Error(ErrorCode::invalid_argument,
+                  {setting("shards"), " " + std::to_string(*shards) + ": the query set has only " +
+                                          std::to_string(queries) + " queries"});
     n = *shards;
   } else if (queries_per_task) {
     if (*queries_per_task == 0)
-      throw Error(ErrorCode::invalid_argument, "--queries-per-task 0: give at least 1");
+      throw Error(ErrorCode::invalid_argument,
+                  {setting("queries_per_task"), " 0: give at least 1"});
     n = ceil_div(queries, *queries_per_task);
   } else {
-    throw Error(ErrorCode::invalid_argument, "give --shards N or --queries-per-task K");
+    throw Error(ErrorCode::invalid_argument,
+                {"give ", setting("shards"), " N or ", setting("queries_per_task"), " K"});
   }
   if (n > 1000000)
     throw Error(ErrorCode::invalid_argument,
@@ -238,22 +242,23 @@ nlohmann::json to_json(const SlurmRun& r) {
 void create_slurm_directory(const SlurmRun& run) {
   const fs::path dir(run.directory);
   if (!dir.is_absolute())
-    throw Error(ErrorCode::invalid_argument, "--slurm: not absolute: " + run.directory);
+    throw Error(ErrorCode::invalid_argument,
+                {setting("slurm.directory"), ": not absolute: " + run.directory});
   if (!plain_path(run.directory))
     throw Error(ErrorCode::invalid_argument,
-                "--slurm " + run.directory +
-                    ": SLURM takes no blanks, quotes, backslashes, '$' or '%' in this path; "
-                    "choose another directory");
-  for (const auto& [option, value] :
-       {std::pair{"--account", &run.account}, {"--partition", &run.partition}})
+                {setting("slurm.directory"),
+                 " " + run.directory +
+                     ": SLURM takes no blanks, quotes, backslashes, '$' or '%' in this path; "
+                     "choose another directory"});
+  for (const auto& [name, value] :
+       {std::pair{"slurm.account", &run.account}, {"slurm.partition", &run.partition}})
     if (!plain_path(*value))
-      throw Error(ErrorCode::invalid_argument, std::string(option) + " " + shell_quote(*value) +
-                                                   ": no blanks, quotes, '$' or '%'");
+      throw Error(ErrorCode::invalid_argument,
+                  {setting(name), " " + shell_quote(*value) + ": no blanks, quotes, '$' or '%'"});
   if (fs::exists(dir / kRunFile))
     throw Error(ErrorCode::invalid_argument,
-                (dir / kRunFile).string() +
-                    ": the directory holds a run already; continue it with --slurm " +
-                    run.directory + " --resume, see it with --status, or choose another directory");
+                {(dir / kRunFile).string() + ": the directory holds a run already; continue it (",
+                 setting("resume"), ") or choose another directory"});
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) throw Error(ErrorCode::io, run.directory + ": cannot create: " + ec.message());
@@ -265,10 +270,10 @@ SlurmRun read_slurm_directory(const std::string& directory, std::string_view kin
   const fs::path file = fs::path(directory) / kRunFile;
   if (!fs::exists(file))
     throw Error(ErrorCode::invalid_argument, file.string() + ": no such file; is " + directory +
-                                                 " a mosb run --slurm directory?");
+                                                 " the directory of a mosb job array?");
   try {
     const auto j = nlohmann::json::parse(read_whole_file(file));
-    if (j.value("mosb_slurm_run", 0) != 1) throw Error("not a mosb run --slurm file");
+    if (j.value("mosb_slurm_run", 0) != 1) throw Error("not the file of a mosb job array");
     SlurmRun r;
     r.directory = fs::absolute(directory).lexically_normal().string();
     while (r.directory.size() > 1 && r.directory.back() == '/') r.directory.pop_back();
@@ -307,7 +312,7 @@ SlurmRun read_slurm_directory(const std::string& directory, std::string_view kin
     return r;
   } catch (const nlohmann::json::exception& e) {
     throw Error(ErrorCode::invalid_argument,
-                file.string() + ": not a mosb run --slurm file (" + e.what() + ")");
+                file.string() + ": not the file of a mosb job array (" + e.what() + ")");
   } catch (const Error& e) {
     if (e.code() == ErrorCode::io) throw;
     throw Error(ErrorCode::invalid_argument, file.string() + ": " + e.what());

@@ -27,8 +27,9 @@ std::vector<const SolutionReader*> files_by_solver(std::span<const SolutionReade
       throw Error(ErrorCode::invalid_argument, "solver '" + solvers[k] + "' is named twice");
   }
   if (options.prefer && std::find(solvers.begin(), solvers.end(), *options.prefer) == solvers.end())
-    throw Error(ErrorCode::invalid_argument,
-                "--prefer '" + *options.prefer + "' is not one of the reference's solvers");
+    throw Error(
+        ErrorCode::invalid_argument,
+        {setting("prefer"), " '" + *options.prefer + "' is not one of the reference's solvers"});
   if (files.empty()) throw Error(ErrorCode::invalid_argument, "no solution file for the reference");
   std::vector<const SolutionReader*> out(solvers.size(), nullptr);
   for (const auto* file_pointer : files) {

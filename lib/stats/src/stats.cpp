@@ -153,7 +153,10 @@ std::vector<ArcGroupStats> grouped_stats(const GraphReader& graph,
 
 std::span<const std::uint8_t> kind_column(const GraphReader& graph) {
   const Section* s = graph.find(format::SectionKind::arc_data, "kind");
-  if (!s) fail(graph, "no arc data section 'kind' (needed by --by-kind)");
+  if (!s)
+    throw Error(ErrorCode::other,
+                {graph.display_name() + ": no arc data section 'kind' (needed by ",
+                 setting("by_kind"), ")"});
   if (s->type != ElementType::u8 || s->entry.row_width != 1)
     fail(graph, "arc data section 'kind' holds " + std::string(format::to_string(s->type)) + " x" +
                     std::to_string(s->entry.row_width) + ", not u8 x1");

@@ -24,12 +24,13 @@ struct ViewSpec {
   std::string queries = "default";  // empty: no intended set (the first one added becomes it)
 };
 
-// Parses the text of one --view option; throws mosb::Error ("--view 'TEXT': ...").
+// Parses the text of one --view option; throws mosb::Error naming the setting "view" ("view 'TEXT':
+// ...").
 ViewSpec parse_view_spec(std::string_view text);
 
-// Parses `OBJ1,OBJ2,...` (--objectives): valid section names, none twice; throws mosb::Error
-// naming `option`.
-std::vector<std::string> parse_objective_list(std::string_view text, std::string_view option);
+// Parses `OBJ1,OBJ2,...` (ViewChoice::objectives): valid section names, none twice; throws
+// mosb::Error naming the setting "objectives" (see MessagePart).
+std::vector<std::string> parse_objective_list(std::string_view text);
 
 // Writes view.NAME.objectives, and view.NAME.queries only when `query_sets` holds that set (a later
 // `mosb queries import|generate` adds it), keeping the intended set in

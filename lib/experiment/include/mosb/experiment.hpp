@@ -91,8 +91,10 @@ std::string experiment_error(const Experiment& e, const SourceLine& at, const st
 void set_solver_executable(Experiment& e, const std::string& name, const std::string& path);
 // The command line's narrowing of an experiment (`experiment run --benchmarks`, `--time-limit`):
 // only the cells these patterns match (each must match one, as the file's benchmarks must); the
-// time limit of every cell, the file's [[benchmark_limits]] included.
-void restrict_benchmarks(Experiment& e, const std::vector<std::string>& patterns);
+// time limit of every cell, the file's [[benchmark_limits]] included. A refusal of a pattern names
+// `source` as its key (the caller's name for where the patterns came from).
+void restrict_benchmarks(Experiment& e, const std::vector<std::string>& patterns,
+                         const std::string& source);
 void set_time_limit(Experiment& e, double seconds);
 
 // One cell: one solver over the query set of one view of one instance.

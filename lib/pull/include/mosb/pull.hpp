@@ -39,7 +39,7 @@ inline constexpr auto kPullStatusNames = enum_names<PullStatus>({
 struct PulledEntry {
   ManifestEntry entry;  // as the published MANIFEST lists it
   PullStatus status = PullStatus::planned;
-  std::string reason;          // refused: one line, what differs or what failed
+  Message reason;  // refused: one line, what differs or what failed (message_text spells it)
   std::uint64_t received = 0;  // bytes received for it by this pull (retries included)
   // The offset at which a partial file left by an earlier transfer was continued, or 0 (when the
   // transfer started from zero, or the server answered the range with other bytes).

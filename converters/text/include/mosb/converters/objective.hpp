@@ -14,7 +14,8 @@ struct Objective {
   std::string unit;
 };
 
-// Parses `NAME[:UNIT]`; throws mosb::Error "CONTEXT: --objective 'SPEC' has an empty name".
+// Parses `NAME[:UNIT]`; throws mosb::Error "CONTEXT: objective 'SPEC' has an empty name" (naming
+// the setting "objective").
 Objective parse_objective(std::string_view spec, std::string_view context);
 
 // `NAME` or `NAME:UNIT`, comma-separated: what `source.param.objectives` records.

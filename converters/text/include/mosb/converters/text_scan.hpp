@@ -9,6 +9,8 @@
 #include <string_view>
 #include <vector>
 
+#include "mosb/error.hpp"
+
 namespace mosb::converters::text {
 
 struct Token {
@@ -86,9 +88,11 @@ inline std::string quoted(const std::string& token, std::size_t limit = 40) {
   return quoted(std::string_view(token), limit);
 }
 
-// Throws mosb::Error("FILE:LINE:COLUMN: message").
+// Throws mosb::Error("FILE:LINE:COLUMN: message"); the second form's message names settings.
 [[noreturn]] void fail(const std::string& file, std::uint64_t line, std::uint64_t column,
                        const std::string& message);
+[[noreturn]] void fail(const std::string& file, std::uint64_t line, std::uint64_t column,
+                       Message message);
 
 // One or more decimal digits and nothing else.
 bool is_digits(std::string_view s);
